@@ -1,0 +1,190 @@
+# endosim: the haptic heart of a flexible-endoscopy simulator.
+#
+# The object lists below are the architecture: which module goes into which
+# program. See docs/ARCHITECTURE.md for the threads and the data flow.
+#
+#   make            build build/endosimd and build/endoctl
+#   make test       install missing Debian packages (as root), build with
+#                   gcc and clang (-Werror), run every test
+#   make demo       run the daemon on the simulated rig with the demo scenario
+#   make bench      the figures: loop latency next to cyclictest's, ...
+#   make install    PREFIX=/usr/local DESTDIR= : binaries, config, systemd
+#   make deps       install (as root) or name the Debian packages needed
+
+VERSION := 0.1.0
+CC ?= cc
+BUILD ?= build
+PREFIX ?= /usr/local
+SYSCONFDIR ?= /etc
+DESTDIR ?=
+BINDIR = $(PREFIX)/bin
+SBINDIR = $(PREFIX)/sbin
+DATADIR = $(PREFIX)/share/endosim
+SYSTEMDDIR = $(PREFIX)/lib/systemd/system
+SYSUSERSDIR = $(PREFIX)/lib/sysusers.d
+TMPFILESDIR = $(PREFIX)/lib/tmpfiles.d
+UDEVDIR = $(PREFIX)/lib/udev/rules.d
+
+CFLAGS ?= -O2 -g
+WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
+	   -Wno-format-nonliteral
+PKGS = libprotobuf-c inih libsystemd
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
+	     -Iproto $(PKG_CFLAGS) -MMD -MP
+LDLIBS = $(PKG_LIBS) -lpthread -lm
+
+# --- Debian packages -------------------------------------------------------
+DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
+	     libinih-dev libsystemd-dev
+DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat procps
+DEPS_BENCH = $(DEPS_BUILD) rt-tests
+
+# Installs the missing packages of $(1) as root; otherwise names them.
+define ensure_packages
+	@missing=""; for p in $(1); do \
+		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | \
+			grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+		if [ "$$(id -u)" = 0 ]; then \
+			echo "installing:$$missing"; \
+			apt-get update && DEBIAN_FRONTEND=noninteractive \
+				apt-get install -y --no-install-recommends $$missing; \
+		else \
+			echo "missing Debian packages; run as root:"; \
+			echo "  apt-get update && apt-get install -y$$missing"; \
+			exit 1; \
+		fi; \
+	fi
+endef
+
+# --- what goes where -------------------------------------------------------
+PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
+
+# the wire: protocol, framing, client library, shared-memory reader
+PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
+
+# endosimd: main, configuration, logging, the force loop and what it calls
+# (rig backends, hand, haptics, safety, publish), the control thread
+DAEMON_OBJS = main.o config.o log.o loop.o histo.o spsc.o publish.o \
+	      rig.o rig_sim.o plant.o hand.o scenario.o haptics.o safety.o \
+	      control.o
+
+# endoctl: the CLI over the sockets
+ENDOCTL_OBJS = endoctl.o json.o
+
+obj = $(addprefix $(BUILD)/obj/,$(1))
+
+PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
+
+# --- unit tests (cmocka) and helpers --------------------------------------
+UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
+	     test_safety
+test_config_OBJS = config.o log.o names.o
+test_frame_OBJS =
+test_seqlock_OBJS =
+test_plant_OBJS = plant.o
+test_scenario_OBJS = scenario.o names.o
+test_safety_OBJS = safety.o haptics.o config.o log.o names.o
+TEST_TOOLS = shm_probe shm_latency
+
+.PHONY: all test check bench demo install clean deps deps-test deps-bench \
+	unit-tests clang-build
+
+all: $(PROGRAMS)
+
+$(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h &: proto/endosim.proto
+	@mkdir -p $(BUILD)/gen
+	protoc-c --proto_path=proto --c_out=$(BUILD)/gen $<
+
+$(BUILD)/obj/endosim.pb-c.o: $(BUILD)/gen/endosim.pb-c.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(BUILD)/obj/%.o: proto/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(BUILD)/obj/%.o: daemon/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(BUILD)/endosimd: $(call obj,$(DAEMON_OBJS) $(PROTO_OBJS))
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
+
+$(BUILD)/endoctl: $(call obj,$(ENDOCTL_OBJS) $(PROTO_OBJS))
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
+
+# unit tests: each test file with the modules it exercises
+define unit_test_rule
+$(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+		$(call obj,$($(1)_OBJS)) $$(LDFLAGS) $$(LDLIBS) -lcmocka
+endef
+$(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
+
+$(BUILD)/tests/%: tests/tools/%.c $(call obj,$(PROTO_OBJS))
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(call obj,$(PROTO_OBJS)) $(LDFLAGS) \
+		$(LDLIBS)
+
+unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
+
+# --- the two commands --------------------------------------------------------
+deps: deps-test deps-bench
+
+deps-build:
+	$(call ensure_packages,$(DEPS_BUILD))
+
+deps-test:
+	$(call ensure_packages,$(DEPS_TEST))
+
+deps-bench:
+	$(call ensure_packages,$(DEPS_BENCH))
+
+test: deps-test
+	$(MAKE) --no-print-directory check
+
+# the clang build is a compile check: same sources, same -Werror
+clang-build:
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/clang CC=clang all \
+		unit-tests
+
+check: all unit-tests clang-build
+	BUILD=$(BUILD) tests/run.sh
+
+demo: deps-build
+	$(MAKE) --no-print-directory all
+	BUILD=$(BUILD) tests/demo.sh
+
+bench: deps-bench
+	$(MAKE) --no-print-directory all unit-tests
+	BUILD=$(BUILD) tests/bench/run.sh
+
+# --- install ----------------------------------------------------------------
+install: all
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
+		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
+		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
+		$(DESTDIR)$(TMPFILESDIR)
+	install -m 0755 $(BUILD)/endosimd $(DESTDIR)$(SBINDIR)/endosimd
+	install -m 0755 $(BUILD)/endoctl $(DESTDIR)$(BINDIR)/endoctl
+	test -e $(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf || \
+		install -m 0644 config/endosimd.conf \
+			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
+	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
+	sed -e 's|@SBINDIR@|$(SBINDIR)|g' \
+		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \
+		> $(DESTDIR)$(SYSTEMDDIR)/endosimd.service
+	install -m 0644 systemd/endosim.sysusers \
+		$(DESTDIR)$(SYSUSERSDIR)/endosim.conf
+	install -m 0644 systemd/endosim.tmpfiles \
+		$(DESTDIR)$(TMPFILESDIR)/endosim.conf
+
+clean:
+	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD)/obj $(BUILD)/tests -name '*.d' 2>/dev/null)

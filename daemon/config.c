@@ -1,0 +1,509 @@
+/* config.c - see config.h. */
+#include "config.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../proto/names.h"
+#include "log.h"
+
+static const char *const backend_names[] = { "sim", NULL };
+
+#define OFF(field) offsetof(struct config, field)
+#define KI(sec, key, field, d, lo, hi, u, fl, h) \
+	{ sec, key, CONFIG_INT, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+#define KD(sec, key, field, d, lo, hi, u, fl, h) \
+	{ sec, key, CONFIG_DOUBLE, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+#define KS(sec, key, field, d, fl, h) \
+	{ sec, key, CONFIG_STRING, OFF(field), 0, d, 0, 0, NULL, "", fl, h }
+#define KE(sec, key, field, d, ch, fl, h) \
+	{ sec, key, CONFIG_ENUM, OFF(field), d, NULL, 0, 0, ch, "", fl, h }
+#define KL(sec, key, field, d, fl, h) \
+	{ sec, key, CONFIG_LEVEL, OFF(field), d, NULL, 0, 0, NULL, "", fl, h }
+
+#define I_INS ENDOSIM_AXIS_INSERTION
+#define I_ROLL ENDOSIM_AXIS_ROLL
+#define I_UD ENDOSIM_AXIS_WHEEL_UD
+#define I_LR ENDOSIM_AXIS_WHEEL_LR
+#define LIVE CONFIG_LIVE
+
+static const struct config_key keys[] = {
+	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
+	   "force-loop rate"),
+	KI("loop", "priority", loop.priority, 80, 1, 99, "", 0,
+	   "SCHED_FIFO priority of the force loop"),
+	KI("loop", "cpu", loop.cpu, -1, -1, 1023, "", 0,
+	   "CPU the force loop is pinned to; -1: not pinned"),
+
+	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
+	   "drive backend: sim (the simulated rig)"),
+	KD("rig", "insertion_min_m", rig.travel_min[I_INS], 0.0, -1, 3, "m", 0,
+	   "carriage travel, withdrawn end"),
+	KD("rig", "insertion_max_m", rig.travel_max[I_INS], 1.8, -1, 3, "m", 0,
+	   "carriage travel, inserted end"),
+	KD("rig", "roll_min_rad", rig.travel_min[I_ROLL], -6.2832, -100, 100,
+	   "rad", 0, "tube roll travel, counter-clockwise end"),
+	KD("rig", "roll_max_rad", rig.travel_max[I_ROLL], 6.2832, -100, 100,
+	   "rad", 0, "tube roll travel, clockwise end"),
+	KD("rig", "wheel_ud_min_rad", rig.travel_min[I_UD], -1.75, -10, 10,
+	   "rad", 0, "up/down wheel travel, one end"),
+	KD("rig", "wheel_ud_max_rad", rig.travel_max[I_UD], 1.75, -10, 10,
+	   "rad", 0, "up/down wheel travel, other end"),
+	KD("rig", "wheel_lr_min_rad", rig.travel_min[I_LR], -1.75, -10, 10,
+	   "rad", 0, "left/right wheel travel, one end"),
+	KD("rig", "wheel_lr_max_rad", rig.travel_max[I_LR], 1.75, -10, 10,
+	   "rad", 0, "left/right wheel travel, other end"),
+	KD("rig", "feedback_max_age_s", rig.feedback_max_age_s, 0.05, 0.001,
+	   1.0, "s", 0, "feedback older than this is a fault"),
+
+	KD("sim", "insertion_mass_kg", sim.inertia[I_INS], 0.5, 0.01, 100,
+	   "kg", 0, "moving mass of carriage and tube"),
+	KD("sim", "roll_inertia_kg_m2", sim.inertia[I_ROLL], 2e-4, 1e-7, 1,
+	   "kg m^2", 0, "inertia of the tube in roll"),
+	KD("sim", "wheel_ud_inertia_kg_m2", sim.inertia[I_UD], 2e-5, 1e-8, 1,
+	   "kg m^2", 0, "inertia of the up/down wheel"),
+	KD("sim", "wheel_lr_inertia_kg_m2", sim.inertia[I_LR], 2e-5, 1e-8, 1,
+	   "kg m^2", 0, "inertia of the left/right wheel"),
+	KD("sim", "insertion_viscous_n_s_per_m", sim.viscous[I_INS], 2.0, 0,
+	   1000, "N s/m", 0, "viscous friction of the carriage"),
+	KD("sim", "roll_viscous_n_m_s_per_rad", sim.viscous[I_ROLL], 2e-3, 0,
+	   10, "N m s/rad", 0, "viscous friction in roll"),
+	KD("sim", "wheel_ud_viscous_n_m_s_per_rad", sim.viscous[I_UD], 1e-4, 0,
+	   10, "N m s/rad", 0, "viscous friction of the up/down wheel"),
+	KD("sim", "wheel_lr_viscous_n_m_s_per_rad", sim.viscous[I_LR], 1e-4, 0,
+	   10, "N m s/rad", 0, "viscous friction of the left/right wheel"),
+	KD("sim", "insertion_coulomb_n", sim.coulomb[I_INS], 0.3, 0, 100, "N",
+	   0, "dry friction of the carriage"),
+	KD("sim", "roll_coulomb_n_m", sim.coulomb[I_ROLL], 2e-3, 0, 10, "N m",
+	   0, "dry friction in roll"),
+	KD("sim", "wheel_ud_coulomb_n_m", sim.coulomb[I_UD], 5e-4, 0, 10, "N m",
+	   0, "dry friction of the up/down wheel"),
+	KD("sim", "wheel_lr_coulomb_n_m", sim.coulomb[I_LR], 5e-4, 0, 10, "N m",
+	   0, "dry friction of the left/right wheel"),
+	KD("sim", "hand_insertion_stiffness_n_per_m", sim.hand_stiffness[I_INS],
+	   400, 0, 1e5, "N/m", 0, "scripted hand: grip stiffness, insertion"),
+	KD("sim", "hand_roll_stiffness_n_m_per_rad", sim.hand_stiffness[I_ROLL],
+	   0.5, 0, 100, "N m/rad", 0, "scripted hand: grip stiffness, roll"),
+	KD("sim", "hand_wheel_ud_stiffness_n_m_per_rad",
+	   sim.hand_stiffness[I_UD], 0.05, 0, 10, "N m/rad", 0,
+	   "scripted hand: thumb stiffness, up/down wheel"),
+	KD("sim", "hand_wheel_lr_stiffness_n_m_per_rad",
+	   sim.hand_stiffness[I_LR], 0.05, 0, 10, "N m/rad", 0,
+	   "scripted hand: thumb stiffness, left/right wheel"),
+	KD("sim", "hand_insertion_damping_n_s_per_m", sim.hand_damping[I_INS],
+	   40, 0, 1e4, "N s/m", 0, "scripted hand: damping, insertion"),
+	KD("sim", "hand_roll_damping_n_m_s_per_rad", sim.hand_damping[I_ROLL],
+	   0.02, 0, 100, "N m s/rad", 0, "scripted hand: damping, roll"),
+	KD("sim", "hand_wheel_ud_damping_n_m_s_per_rad", sim.hand_damping[I_UD],
+	   0.002, 0, 10, "N m s/rad", 0, "scripted hand: damping, up/down wheel"),
+	KD("sim", "hand_wheel_lr_damping_n_m_s_per_rad", sim.hand_damping[I_LR],
+	   0.002, 0, 10, "N m s/rad", 0,
+	   "scripted hand: damping, left/right wheel"),
+	KD("sim", "hand_insertion_max_n", sim.hand_max[I_INS], 40, 0, 200, "N",
+	   0, "strongest push or pull of the hand"),
+	KD("sim", "hand_roll_max_n_m", sim.hand_max[I_ROLL], 1.0, 0, 10, "N m",
+	   0, "strongest twist of the hand"),
+	KD("sim", "hand_wheel_ud_max_n_m", sim.hand_max[I_UD], 0.15, 0, 10,
+	   "N m", 0, "strongest thumb torque on the up/down wheel"),
+	KD("sim", "hand_wheel_lr_max_n_m", sim.hand_max[I_LR], 0.15, 0, 10,
+	   "N m", 0, "strongest thumb torque on the left/right wheel"),
+	KD("sim", "hand_hold_s", sim.hand_hold_s, 0.25, 0.01, 10, "s", 0,
+	   "live hand input holds this long unless refreshed"),
+
+	KS("socket", "directory", socket.directory, "/run/endosim", 0,
+	   "where status.sock (read-only) and control.sock live"),
+	KS("socket", "group", socket.group, "", 0,
+	   "group owning control.sock; empty: the daemon's group"),
+	KI("socket", "max_request_bytes", socket.max_request_bytes, 65536, 256,
+	   1 << 24, "bytes", 0, "largest request accepted"),
+	KI("socket", "max_clients", socket.max_clients, 32, 1, 1024, "", 0,
+	   "connections served at once"),
+
+	KS("shm", "name", shm.name, ENDOSIM_SHM_DEFAULT_NAME, 0,
+	   "POSIX shared-memory object holding the published state"),
+
+	KD("limits", "insertion_max_force_n", limits.max[I_INS], 45, 0, 100,
+	   "N", LIVE, "largest force on the carriage, either way"),
+	KD("limits", "roll_max_torque_n_m", limits.max[I_ROLL], 1.0, 0, 5,
+	   "N m", LIVE, "largest torque on the tube, either way"),
+	KD("limits", "wheel_ud_max_torque_n_m", limits.max[I_UD], 0.1, 0, 1,
+	   "N m", LIVE, "largest torque on the up/down wheel"),
+	KD("limits", "wheel_lr_max_torque_n_m", limits.max[I_LR], 0.1, 0, 1,
+	   "N m", LIVE, "largest torque on the left/right wheel"),
+
+	KD("haptics", "insertion_damping_n_s_per_m", haptics.damping[I_INS],
+	   1.0, 0, 100, "N s/m", LIVE,
+	   "placeholder: light damping of the carriage"),
+	KD("haptics", "roll_damping_n_m_s_per_rad", haptics.damping[I_ROLL],
+	   2e-3, 0, 1, "N m s/rad", LIVE, "placeholder: light damping in roll"),
+	KD("haptics", "wheel_ud_damping_n_m_s_per_rad", haptics.damping[I_UD],
+	   2e-4, 0, 1, "N m s/rad", LIVE,
+	   "placeholder: light damping, up/down wheel"),
+	KD("haptics", "wheel_lr_damping_n_m_s_per_rad", haptics.damping[I_LR],
+	   2e-4, 0, 1, "N m s/rad", LIVE,
+	   "placeholder: light damping, left/right wheel"),
+	KD("haptics", "end_zone_fraction", haptics.end_zone, 0.05, 0.001, 0.5,
+	   "", LIVE, "placeholder: travel-end brakes act over this share of travel"),
+
+	KL("log", "level", log.level, LOG_INFO, LIVE,
+	   "err, warning, notice, info or debug"),
+};
+
+#define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
+
+size_t config_key_count(void)
+{
+	return KEY_COUNT;
+}
+
+const struct config_key *config_key_at(size_t i)
+{
+	return i < KEY_COUNT ? &keys[i] : NULL;
+}
+
+static const struct config_key *find(const char *section, const char *name)
+{
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		if (!strcmp(keys[i].section, section) &&
+		    !strcmp(keys[i].name, name)) {
+			return &keys[i];
+		}
+	}
+	return NULL;
+}
+
+const struct config_key *config_key_find(const char *key)
+{
+	char section[64];
+	const char *dot = strchr(key, '.');
+
+	if (!dot || (size_t)(dot - key) >= sizeof(section)) {
+		return NULL;
+	}
+	memcpy(section, key, (size_t)(dot - key));
+	section[dot - key] = '\0';
+	return find(section, dot + 1);
+}
+
+static void *field(struct config *cfg, const struct config_key *k)
+{
+	return (char *)cfg + k->offset;
+}
+
+static const void *cfield(const struct config *cfg, const struct config_key *k)
+{
+	return (const char *)cfg + k->offset;
+}
+
+void config_defaults(struct config *cfg)
+{
+	memset(cfg, 0, sizeof(*cfg));
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		const struct config_key *k = &keys[i];
+
+		switch (k->type) {
+		case CONFIG_INT:
+		case CONFIG_ENUM:
+		case CONFIG_LEVEL:
+			*(int *)field(cfg, k) = (int)k->def;
+			break;
+		case CONFIG_DOUBLE:
+			*(double *)field(cfg, k) = k->def;
+			break;
+		case CONFIG_STRING:
+			snprintf(field(cfg, k), CONFIG_STR, "%s", k->def_str);
+			break;
+		}
+	}
+}
+
+static int parse_number(const struct config_key *k, const char *text,
+			double *out, char *why, size_t size)
+{
+	char *end;
+
+	errno = 0;
+	if (k->type == CONFIG_INT) {
+		long v = strtol(text, &end, 10);
+
+		if (!*text || *end || errno) {
+			snprintf(why, size, "'%s' is not an integer", text);
+			return -EINVAL;
+		}
+		*out = (double)v;
+	} else {
+		double v = strtod(text, &end);
+
+		if (!*text || *end || errno || !isfinite(v)) {
+			snprintf(why, size, "'%s' is not a number", text);
+			return -EINVAL;
+		}
+		*out = v;
+	}
+	if (*out < k->min || *out > k->max) {
+		snprintf(why, size, "%s is out of range [%g, %g]%s%s", text,
+			 k->min, k->max, *k->unit ? " " : "", k->unit);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int parse_choice(const struct config_key *k, const char *text,
+			int *out, char *why, size_t size)
+{
+	int n = 0;
+
+	if (k->type == CONFIG_LEVEL) {
+		*out = log_level_parse(text);
+		if (*out < 0) {
+			snprintf(why, size, "'%s' is not one of err, warning, "
+				 "notice, info, debug", text);
+			return -EINVAL;
+		}
+		return 0;
+	}
+	for (; k->choices[n]; n++) {
+		if (!strcmp(text, k->choices[n])) {
+			*out = n;
+			return 0;
+		}
+	}
+	snprintf(why, size, "'%s' is not a known choice", text);
+	return -EINVAL;
+}
+
+/* Parses TEXT into K's field of CFG; on error CFG is unchanged. */
+static int apply(struct config *cfg, const struct config_key *k,
+		 const char *text, char *why, size_t size)
+{
+	double num;
+	int choice, err;
+
+	switch (k->type) {
+	case CONFIG_INT:
+	case CONFIG_DOUBLE:
+		err = parse_number(k, text, &num, why, size);
+		if (err) {
+			return err;
+		}
+		if (k->type == CONFIG_INT) {
+			*(int *)field(cfg, k) = (int)num;
+		} else {
+			*(double *)field(cfg, k) = num;
+		}
+		break;
+	case CONFIG_STRING:
+		if (strlen(text) >= CONFIG_STR) {
+			snprintf(why, size, "longer than %d characters",
+				 CONFIG_STR - 1);
+			return -EINVAL;
+		}
+		strcpy(field(cfg, k), text);
+		break;
+	case CONFIG_ENUM:
+	case CONFIG_LEVEL:
+		err = parse_choice(k, text, &choice, why, size);
+		if (err) {
+			return err;
+		}
+		*(int *)field(cfg, k) = choice;
+		break;
+	}
+	return 0;
+}
+
+struct parse_ctx {
+	struct config *cfg;
+	FILE *file;
+	const char *path;
+	int line;           /* line being parsed, 1-based */
+	bool at_line_start;
+	unsigned int keys_seen;
+	int first_line[KEY_COUNT]; /* 0: not set in this file */
+	char *err;
+	size_t errsize;
+};
+
+/* fgets for inih that counts lines, so errors can name them. */
+static char *read_line(char *str, int num, void *stream)
+{
+	struct parse_ctx *ctx = stream;
+	char *r = fgets(str, num, ctx->file);
+
+	if (r) {
+		if (ctx->at_line_start) {
+			ctx->line++;
+		}
+		ctx->at_line_start = strchr(r, '\n') != NULL;
+	}
+	return r;
+}
+
+static int on_key(void *user, const char *section, const char *name,
+		  const char *value)
+{
+	struct parse_ctx *ctx = user;
+	const struct config_key *k = find(section, name);
+	char why[160];
+	size_t idx;
+
+	if (*ctx->err) {
+		return 0; /* keep the first error */
+	}
+	if (!k) {
+		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: unknown key",
+			 ctx->path, ctx->line, section, name);
+		return 0;
+	}
+	idx = (size_t)(k - keys);
+	if (ctx->first_line[idx]) {
+		snprintf(ctx->err, ctx->errsize,
+			 "%s:%d: [%s] %s: duplicate key (first set on line %d)",
+			 ctx->path, ctx->line, section, name,
+			 ctx->first_line[idx]);
+		return 0;
+	}
+	if (apply(ctx->cfg, k, value, why, sizeof(why))) {
+		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: %s",
+			 ctx->path, ctx->line, section, name, why);
+		return 0;
+	}
+	ctx->first_line[idx] = ctx->line;
+	ctx->keys_seen++;
+	return 1;
+}
+
+int config_load(struct config *cfg, const char *path, char *err,
+		size_t errsize)
+{
+	struct parse_ctx ctx = {
+		.cfg = cfg, .path = path, .at_line_start = true,
+		.err = err, .errsize = errsize,
+	};
+	int r;
+
+	err[0] = '\0';
+	ctx.file = fopen(path, "r");
+	if (!ctx.file) {
+		r = -errno;
+		snprintf(err, errsize, "%s: cannot open: %s", path,
+			 strerror(-r));
+		return r == -ENOENT ? -ENOENT : r;
+	}
+	r = ini_parse_stream(read_line, &ctx, on_key, &ctx);
+	fclose(ctx.file);
+	if (*err) {
+		return -EINVAL;
+	}
+	if (r != 0) {
+		snprintf(err, errsize, "%s:%d: syntax error", path, r);
+		return -EINVAL;
+	}
+	if (!ctx.keys_seen) {
+		snprintf(err, errsize, "%s: empty configuration (no keys)",
+			 path);
+		return -EINVAL;
+	}
+	return config_check(cfg, err, errsize);
+}
+
+int config_set(struct config *cfg, const char *key, const char *value,
+	       bool live_only, char *err, size_t errsize)
+{
+	const struct config_key *k = config_key_find(key);
+	struct config tmp = *cfg;
+	char why[160];
+	int r;
+
+	if (!k) {
+		snprintf(err, errsize, "%s: unknown key", key);
+		return -ENOENT;
+	}
+	if (live_only && !(k->flags & CONFIG_LIVE)) {
+		snprintf(err, errsize,
+			 "%s: cannot change while running (restart needed)",
+			 key);
+		return -EPERM;
+	}
+	if (apply(&tmp, k, value, why, sizeof(why))) {
+		snprintf(err, errsize, "%s: %s", key, why);
+		return -EINVAL;
+	}
+	r = config_check(&tmp, err, errsize);
+	if (r) {
+		return r;
+	}
+	*cfg = tmp;
+	return 0;
+}
+
+int config_check(const struct config *cfg, char *err, size_t errsize)
+{
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (cfg->rig.travel_min[a] >= cfg->rig.travel_max[a]) {
+			snprintf(err, errsize,
+				 "[rig] %s travel: minimum %g is not below "
+				 "maximum %g", names_axis(a),
+				 cfg->rig.travel_min[a],
+				 cfg->rig.travel_max[a]);
+			return -EINVAL;
+		}
+	}
+	if (cfg->shm.name[0] != '/' || strchr(cfg->shm.name + 1, '/') ||
+	    !cfg->shm.name[1]) {
+		snprintf(err, errsize, "[shm] name: '%s' must be '/' and a "
+			 "name without further '/'", cfg->shm.name);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+void config_format(const struct config *cfg, const struct config_key *k,
+		   char *buf, size_t size)
+{
+	switch (k->type) {
+	case CONFIG_INT:
+		snprintf(buf, size, "%d", *(const int *)cfield(cfg, k));
+		break;
+	case CONFIG_DOUBLE:
+		snprintf(buf, size, "%.9g", *(const double *)cfield(cfg, k));
+		break;
+	case CONFIG_STRING:
+		snprintf(buf, size, "%s", (const char *)cfield(cfg, k));
+		break;
+	case CONFIG_ENUM:
+		snprintf(buf, size, "%s",
+			 k->choices[*(const int *)cfield(cfg, k)]);
+		break;
+	case CONFIG_LEVEL:
+		snprintf(buf, size, "%s",
+			 log_level_name(*(const int *)cfield(cfg, k)));
+		break;
+	}
+}
+
+void config_print(const struct config *cfg, FILE *out)
+{
+	const char *section = "";
+	char value[CONFIG_STR + 32];
+	int pad;
+
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		const struct config_key *k = &keys[i];
+
+		if (strcmp(section, k->section)) {
+			section = k->section;
+			fprintf(out, "%s[%s]\n", i ? "\n" : "", section);
+		}
+		config_format(cfg, k, value, sizeof(value));
+		pad = 40 - (int)(strlen(k->name) + strlen(value));
+		fprintf(out, "%s = %s%*s ; %s%s%s%s%s\n", k->name, value,
+			pad > 0 ? pad : 0, "", *k->unit ? "[" : "", k->unit,
+			*k->unit ? "] " : "", k->help,
+			k->flags & CONFIG_LIVE ? " (live)" : "");
+	}
+}

@@ -1,0 +1,136 @@
+/*
+ * config.h - endosimd's configuration: one table declares every key once
+ * (section, name, type, default, range, unit, whether it may change while
+ * running, one line of help). The same table parses the INI file (with
+ * Debian's libinih), applies command-line overrides, prints the effective
+ * configuration and answers GetConfig/SetParam.
+ *
+ * Errors are reported as one line, "FILE:LINE: [section] key: what", in the
+ * caller's buffer, before anything else happens; the caller exits with
+ * EX_CONFIG (78).
+ *
+ * Not thread-safe: the main thread loads; afterwards the control thread owns
+ * the master copy and hands copies to the force loop (loop.h).
+ */
+#ifndef ENDOSIM_CONFIG_H
+#define ENDOSIM_CONFIG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "../proto/endosim_shm.h"
+
+#define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
+#define CONFIG_STR 128 /* longest string value, bytes with the NUL */
+
+enum config_backend {
+	CONFIG_BACKEND_SIM = 0,
+};
+
+struct config {
+	struct {
+		int rate_hz;      /* force-loop rate, Hz */
+		int priority;     /* SCHED_FIFO priority, 1..99 */
+		int cpu;          /* CPU to pin the loop to, -1: any */
+	} loop;
+	struct {
+		int backend;                   /* enum config_backend */
+		double travel_min[ENDOSIM_AXES]; /* m or rad */
+		double travel_max[ENDOSIM_AXES]; /* m or rad */
+		double feedback_max_age_s;     /* older feedback is a fault */
+	} rig;
+	struct {
+		double inertia[ENDOSIM_AXES];  /* kg or kg m^2 */
+		double viscous[ENDOSIM_AXES];  /* N s/m or N m s/rad */
+		double coulomb[ENDOSIM_AXES];  /* N or N m */
+		double hand_stiffness[ENDOSIM_AXES]; /* N/m or N m/rad */
+		double hand_damping[ENDOSIM_AXES];   /* N s/m or N m s/rad */
+		double hand_max[ENDOSIM_AXES]; /* N or N m */
+		double hand_hold_s;            /* default hold of live input */
+	} sim;
+	struct {
+		char directory[CONFIG_STR];
+		char group[CONFIG_STR];        /* "" : the daemon's own group */
+		int max_request_bytes;
+		int max_clients;
+	} socket;
+	struct {
+		char name[CONFIG_STR];
+	} shm;
+	struct {
+		double max[ENDOSIM_AXES];      /* N or N m, both directions */
+	} limits;
+	struct {
+		double damping[ENDOSIM_AXES];  /* N s/m or N m s/rad */
+		double end_zone;               /* fraction of travel */
+	} haptics;
+	struct {
+		int level;                     /* syslog level */
+	} log;
+};
+
+enum config_type {
+	CONFIG_INT,
+	CONFIG_DOUBLE,
+	CONFIG_STRING,
+	CONFIG_ENUM,
+	CONFIG_LEVEL, /* a log level name */
+};
+
+enum config_flags {
+	CONFIG_LIVE = 1u << 0, /* may change while running (SetParam) */
+};
+
+struct config_key {
+	const char *section;
+	const char *name;
+	enum config_type type;
+	size_t offset;               /* into struct config */
+	double def;                  /* numbers, enum index, level */
+	const char *def_str;         /* strings */
+	double min, max;             /* numbers, inclusive */
+	const char *const *choices;  /* enums, NULL-terminated */
+	const char *unit;
+	unsigned int flags;          /* enum config_flags */
+	const char *help;
+};
+
+/* Fills CFG with every key's default. */
+void config_defaults(struct config *cfg);
+
+/*
+ * Reads the INI file PATH over CFG. Returns 0, -ENOENT (cannot open) or
+ * -EINVAL (unknown key, bad value, duplicate, syntax error, empty file),
+ * with one line in ERR.
+ */
+int config_load(struct config *cfg, const char *path, char *err,
+		size_t errsize);
+
+/*
+ * Sets KEY ("section.name") from the text VALUE as if read from the file.
+ * With LIVE_ONLY, keys without CONFIG_LIVE are refused. Returns 0, -ENOENT
+ * (no such key), -EPERM (not live) or -EINVAL (bad value), with one line in
+ * ERR. CFG is unchanged on error.
+ */
+int config_set(struct config *cfg, const char *key, const char *value,
+	       bool live_only, char *err, size_t errsize);
+
+/* Cross-key checks (travel min below max, ...). Returns 0 or -EINVAL. */
+int config_check(const struct config *cfg, char *err, size_t errsize);
+
+/* The table: config_key_count() entries. */
+size_t config_key_count(void);
+const struct config_key *config_key_at(size_t i);
+
+/* The key called "section.name", or NULL. */
+const struct config_key *config_key_find(const char *key);
+
+/* Writes KEY's value in CFG as text, as it would appear in the file. */
+void config_format(const struct config *cfg, const struct config_key *key,
+		   char *buf, size_t size);
+
+/* Prints every key with its value, unit and help as a valid INI file. */
+void config_print(const struct config *cfg, FILE *out);
+
+#endif

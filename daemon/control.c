@@ -1,0 +1,926 @@
+/* control.c - see control.h. */
+#include "control.h"
+
+#include <errno.h>
+#include <grp.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/epoll.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include "../proto/client.h"
+#include "../proto/frame.h"
+#include "../proto/names.h"
+#include "../proto/version.h"
+#include "log.h"
+
+#define OUT_MAX_BYTES (8u << 20) /* unsent replies before a client is dropped */
+#define MAX_EVENTS 32
+#define COMMAND_TIMEOUT_MS 200
+#define MAX_PUSH_HZ 1000.0
+#define MAX_HOLD_S 10.0
+
+enum { TAG_WAKE = 0, TAG_RO = 1, TAG_RW = 2, TAG_CLIENT = 3 };
+
+struct client {
+	int fd;               /* -1: free slot */
+	bool rw;              /* connected to the read-write socket */
+	uid_t uid;
+	pid_t pid;
+	struct frame_rx rx;
+	uint8_t *out;         /* replies not yet sent */
+	size_t out_len, out_cap;
+	uint64_t push_period_ns; /* 0: not subscribed */
+	uint64_t next_push_ns;
+	uint32_t push_seq;
+};
+
+/* Storage for the reply being built: no allocation per reply. */
+struct reply_buf {
+	Endosim__StatusReply status;
+	Endosim__AxisStatus axes[ENDOSIM_AXES];
+	Endosim__AxisStatus *axes_p[ENDOSIM_AXES];
+	char fault_text[160];
+	Endosim__StatsReply stats;
+	Endosim__Histogram latency, compute;
+	Endosim__ConfigReply config;
+	Endosim__ConfigEntry *entries;
+	Endosim__ConfigEntry **entries_p;
+	char (*values)[CONFIG_STR + 32];
+	char error[256];
+};
+
+struct control {
+	struct config cfg;       /* the master copy */
+	struct control_deps deps;
+	char ro_path[sizeof(((struct sockaddr_un *)0)->sun_path)];
+	char rw_path[sizeof(((struct sockaddr_un *)0)->sun_path)];
+	int ro_fd, rw_fd, ep, wake_fd;
+	struct client *clients;
+	int max_clients;
+	size_t max_request;
+	struct reply_buf rb;
+	uint64_t rate_t0_ns, rate_cycle0;
+	double loop_hz;
+	pthread_t thread;
+	bool running;
+	_Atomic bool alive;
+	_Atomic bool stop;
+};
+
+/* ---------------------------------------------------------------- sockets */
+
+/* Another daemon answering on PATH? */
+static bool socket_in_use(const char *path)
+{
+	struct client *probe = client_connect(path);
+
+	client_close(probe);
+	return probe != NULL;
+}
+
+static int listen_on(const char *path, mode_t mode, gid_t gid)
+{
+	struct sockaddr_un addr = { .sun_family = AF_UNIX };
+	int fd;
+
+	if (socket_in_use(path)) {
+		log_err("%s: another endosimd is running", path);
+		return -EADDRINUSE;
+	}
+	unlink(path);
+	strcpy(addr.sun_path, path);
+	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+	if (fd < 0) {
+		log_err("%s: socket: %m", path);
+		return -errno;
+	}
+	if (bind(fd, (struct sockaddr *)&addr, sizeof(addr)) < 0 ||
+	    chmod(path, mode) < 0 ||
+	    (gid != (gid_t)-1 && chown(path, (uid_t)-1, gid) < 0) ||
+	    listen(fd, 16) < 0) {
+		log_err("%s: cannot listen: %m", path);
+		close(fd);
+		unlink(path);
+		return -errno;
+	}
+	return fd;
+}
+
+static int socket_paths(struct control *c)
+{
+	const char *dir = c->cfg.socket.directory;
+	int n1 = snprintf(c->ro_path, sizeof(c->ro_path), "%s/%s", dir,
+			  CLIENT_RO_SOCKET);
+	int n2 = snprintf(c->rw_path, sizeof(c->rw_path), "%s/%s", dir,
+			  CLIENT_RW_SOCKET);
+
+	if (n1 < 0 || n2 < 0 || (size_t)n1 >= sizeof(c->ro_path) ||
+	    (size_t)n2 >= sizeof(c->rw_path)) {
+		log_err("[socket] directory '%s' is too long for a socket path",
+			dir);
+		return -ENAMETOOLONG;
+	}
+	if (mkdir(dir, 0755) < 0 && errno != EEXIST) {
+		log_err("%s: cannot create: %m", dir);
+		return -errno;
+	}
+	return 0;
+}
+
+static int resolve_group(const char *name, gid_t *gid)
+{
+	struct group *gr;
+
+	*gid = (gid_t)-1;
+	if (!*name) {
+		return 0;
+	}
+	gr = getgrnam(name);
+	if (!gr) {
+		log_err("[socket] group '%s' does not exist", name);
+		return -ENOENT;
+	}
+	*gid = gr->gr_gid;
+	return 0;
+}
+
+static int epoll_add(int ep, int fd, uint64_t tag, uint32_t events)
+{
+	struct epoll_event ev = { .events = events, .data.u64 = tag };
+
+	return epoll_ctl(ep, EPOLL_CTL_ADD, fd, &ev) < 0 ? -errno : 0;
+}
+
+/* ---------------------------------------------------------------- clients */
+
+static void client_drop(struct control *c, struct client *cl)
+{
+	epoll_ctl(c->ep, EPOLL_CTL_DEL, cl->fd, NULL);
+	close(cl->fd);
+	cl->fd = -1;
+	frame_rx_free(&cl->rx);
+	free(cl->out);
+	cl->out = NULL;
+	cl->out_len = cl->out_cap = 0;
+	cl->push_period_ns = 0;
+}
+
+static void watch_output(struct control *c, struct client *cl, bool on)
+{
+	struct epoll_event ev = {
+		.events = EPOLLIN | (on ? EPOLLOUT : 0u),
+		.data.u64 = TAG_CLIENT + (uint64_t)(cl - c->clients),
+	};
+
+	epoll_ctl(c->ep, EPOLL_CTL_MOD, cl->fd, &ev);
+}
+
+/* Sends what is queued; returns -1 when the client is gone. */
+static int client_flush(struct control *c, struct client *cl)
+{
+	while (cl->out_len) {
+		ssize_t n = send(cl->fd, cl->out, cl->out_len,
+				 MSG_NOSIGNAL | MSG_DONTWAIT);
+
+		if (n < 0 && errno == EINTR) {
+			continue;
+		}
+		if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+			watch_output(c, cl, true);
+			return 0;
+		}
+		if (n < 0) {
+			client_drop(c, cl);
+			return -1;
+		}
+		memmove(cl->out, cl->out + n, cl->out_len - (size_t)n);
+		cl->out_len -= (size_t)n;
+	}
+	watch_output(c, cl, false);
+	return 0;
+}
+
+static int queue_bytes(struct client *cl, size_t len, uint8_t **at)
+{
+	if (cl->out_len + len > OUT_MAX_BYTES) {
+		return -ENOBUFS;
+	}
+	if (cl->out_len + len > cl->out_cap) {
+		size_t cap = cl->out_cap ? cl->out_cap : 4096;
+		uint8_t *grown;
+
+		while (cap < cl->out_len + len) {
+			cap *= 2;
+		}
+		grown = realloc(cl->out, cap);
+		if (!grown) {
+			return -ENOMEM;
+		}
+		cl->out = grown;
+		cl->out_cap = cap;
+	}
+	*at = cl->out + cl->out_len;
+	cl->out_len += len;
+	return 0;
+}
+
+/* Queues and sends a reply; a client that cannot keep up is dropped. */
+static int client_reply(struct control *c, struct client *cl,
+			Endosim__Reply *rep)
+{
+	size_t len;
+	uint8_t *at;
+
+	rep->version = ENDOSIM__PROTOCOL_VERSION__PROTOCOL_VERSION_CURRENT;
+	len = endosim__reply__get_packed_size(rep);
+	if (queue_bytes(cl, FRAME_HEADER_BYTES + len, &at)) {
+		log_notice("client pid %d: %zu bytes of replies unread, "
+			   "disconnected", (int)cl->pid, cl->out_len);
+		client_drop(c, cl);
+		return -1;
+	}
+	frame_put_header(at, (uint32_t)len);
+	endosim__reply__pack(rep, at + FRAME_HEADER_BYTES);
+	return client_flush(c, cl);
+}
+
+static void accept_client(struct control *c, int lfd, bool rw)
+{
+	struct ucred cred;
+	socklen_t len = sizeof(cred);
+	struct client *cl = NULL;
+	int fd = accept4(lfd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+
+	if (fd < 0) {
+		return;
+	}
+	for (int i = 0; i < c->max_clients && !cl; i++) {
+		cl = c->clients[i].fd < 0 ? &c->clients[i] : NULL;
+	}
+	if (!cl || frame_rx_init(&cl->rx, c->max_request)) {
+		static struct log_ratelimit rl = LOG_RATELIMIT_INIT(10, 1);
+
+		log_ratelimited(&rl, LOG_WARNING,
+				"too many clients (%d): connection refused",
+				c->max_clients);
+		close(fd);
+		return;
+	}
+	memset(&cred, 0, sizeof(cred));
+	getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len);
+	cl->fd = fd;
+	cl->rw = rw;
+	cl->uid = cred.uid;
+	cl->pid = cred.pid;
+	if (epoll_add(c->ep, fd, TAG_CLIENT + (uint64_t)(cl - c->clients),
+		      EPOLLIN)) {
+		client_drop(c, cl);
+	}
+}
+
+/* ---------------------------------------------------------------- replies */
+
+static void fault_text(const struct endosim_state *st, uint64_t start_ns,
+		       char *buf, size_t size)
+{
+	char names[128];
+
+	if (!st->fault_bits) {
+		buf[0] = '\0';
+		return;
+	}
+	names_faults(st->fault_bits, names, sizeof(names));
+	snprintf(buf, size, "%s%s%s (detail %u) at %.3f s", names,
+		 st->fault_axis >= 0 ? " on " : "",
+		 st->fault_axis >= 0 ? names_axis(st->fault_axis) : "",
+		 st->fault_detail,
+		 (double)(st->fault_ns - start_ns) / 1e9);
+}
+
+static void update_loop_rate(struct control *c, uint64_t now)
+{
+	uint64_t cycles = loop_heartbeat(c->deps.loop);
+
+	if (!c->rate_t0_ns) {
+		c->rate_t0_ns = now;
+		c->rate_cycle0 = cycles;
+		return;
+	}
+	if (now - c->rate_t0_ns >= 1000000000ull) {
+		c->loop_hz = (double)(cycles - c->rate_cycle0) * 1e9 /
+			     (double)(now - c->rate_t0_ns);
+		c->rate_t0_ns = now;
+		c->rate_cycle0 = cycles;
+	}
+}
+
+static void build_status(struct control *c, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	const struct loop_info *info = loop_get_info(c->deps.loop);
+	Endosim__StatusReply *s = &rb->status;
+	struct endosim_state st;
+
+	if (publish_read(c->deps.pub, &st)) {
+		rep->status = ENDOSIM__STATUS__STATUS_INTERNAL;
+		rep->error = "state busy, try again";
+		return;
+	}
+	endosim__status_reply__init(s);
+	s->state = (Endosim__DaemonState)st.state;
+	s->fault_bits = st.fault_bits;
+	fault_text(&st, c->deps.start_ns, rb->fault_text,
+		   sizeof(rb->fault_text));
+	s->fault_text = rb->fault_text;
+	s->cycle = st.cycle;
+	s->stamp_ns = st.stamp_ns;
+	s->rt_policy = (char *)info->policy;
+	s->rt_priority = info->priority;
+	s->loop_hz = c->loop_hz ? c->loop_hz
+				: (double)st.cycle * 1e9 /
+					  (double)(st.stamp_ns - c->deps.start_ns + 1);
+	s->loop_rate_hz = c->cfg.loop.rate_hz;
+	s->overruns = st.overruns;
+	s->rig = (char *)c->deps.rig_name;
+	s->version = ENDOSIM_VERSION;
+	s->uptime_s = (double)(loop_now_ns() - c->deps.start_ns) / 1e9;
+	s->scenario_time_s = st.scenario_time_s;
+	s->scenario_done = st.scenario_done;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		Endosim__AxisStatus *ax = &rb->axes[a];
+
+		endosim__axis_status__init(ax);
+		ax->name = (char *)names_axis(a);
+		ax->position = st.axis[a].position;
+		ax->velocity = st.axis[a].velocity;
+		ax->hand = st.axis[a].hand;
+		ax->command = st.axis[a].command;
+		ax->limited = st.axis[a].limited;
+		ax->position_unit = (char *)names_axis_position_unit(a);
+		ax->force_unit = (char *)names_axis_force_unit(a);
+		ax->drive_status = st.axis[a].drive_status;
+		rb->axes_p[a] = ax;
+	}
+	s->n_axes = ENDOSIM_AXES;
+	s->axes = rb->axes_p;
+	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
+	rep->status_reply = s;
+}
+
+static void fill_histogram(Endosim__Histogram *h,
+			   const struct histo_summary *s)
+{
+	endosim__histogram__init(h);
+	h->p50_us = s->p50_us;
+	h->p99_us = s->p99_us;
+	h->p999_us = s->p999_us;
+	h->max_us = s->max_us;
+	h->mean_us = s->mean_us;
+	h->count = s->count;
+}
+
+static void build_stats(struct control *c, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	const struct loop_info *info = loop_get_info(c->deps.loop);
+	struct loop_stats st;
+
+	loop_get_stats(c->deps.loop, &st);
+	endosim__stats_reply__init(&rb->stats);
+	rb->stats.cycles = st.cycles;
+	rb->stats.overruns = st.overruns;
+	fill_histogram(&rb->latency, &st.latency);
+	fill_histogram(&rb->compute, &st.compute);
+	rb->stats.latency = &rb->latency;
+	rb->stats.compute = &rb->compute;
+	rb->stats.rt_policy = (char *)info->policy;
+	rb->stats.rt_priority = info->priority;
+	rb->stats.period_us = info->period_ns / 1000.0;
+	rep->body_case = ENDOSIM__REPLY__BODY_STATS;
+	rep->stats = &rb->stats;
+}
+
+/* ---------------------------------------------------------------- requests */
+
+typedef void handler_fn(struct control *c, struct client *cl,
+			const Endosim__Request *req, Endosim__Reply *rep);
+
+static void refuse(Endosim__Reply *rep, Endosim__Status status,
+		   const char *why)
+{
+	rep->status = status;
+	rep->error = (char *)why;
+}
+
+static void on_get_status(struct control *c, struct client *cl,
+			  const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)cl;
+	(void)req;
+	build_status(c, rep);
+}
+
+static void on_get_stats(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)cl;
+	(void)req;
+	build_stats(c, rep);
+}
+
+static void on_get_config(struct control *c, struct client *cl,
+			  const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	const char *want = req->get_config->key;
+	size_t n = 0;
+
+	(void)cl;
+	for (size_t i = 0; i < config_key_count(); i++) {
+		const struct config_key *k = config_key_at(i);
+		Endosim__ConfigEntry *e = &rb->entries[n];
+		char *value = rb->values[n];
+		int len = snprintf(value, sizeof(rb->values[n]), "%s.%s",
+				   k->section, k->name);
+
+		if (*want && strcmp(want, value)) {
+			continue;
+		}
+		endosim__config_entry__init(e);
+		e->key = value;
+		config_format(&c->cfg, k, value + len + 1,
+			      sizeof(rb->values[n]) - (size_t)len - 1);
+		e->value = value + len + 1;
+		e->unit = (char *)k->unit;
+		e->live = k->flags & CONFIG_LIVE;
+		e->help = (char *)k->help;
+		rb->entries_p[n++] = e;
+	}
+	if (*want && !n) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_UNKNOWN_KEY, "no such key");
+		return;
+	}
+	endosim__config_reply__init(&rb->config);
+	rb->config.n_entries = n;
+	rb->config.entries = rb->entries_p;
+	rep->body_case = ENDOSIM__REPLY__BODY_CONFIG;
+	rep->config = &rb->config;
+}
+
+static void on_set_param(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__SetParam *sp = req->set_param;
+	const struct config_key *k = config_key_find(sp->key);
+	char before[CONFIG_STR + 32];
+	int r;
+
+	if (k) {
+		config_format(&c->cfg, k, before, sizeof(before));
+	}
+	r = config_set(&c->cfg, sp->key, sp->value, true, c->rb.error,
+		       sizeof(c->rb.error));
+	if (r) {
+		refuse(rep, r == -ENOENT   ? ENDOSIM__STATUS__STATUS_UNKNOWN_KEY
+			    : r == -EPERM ? ENDOSIM__STATUS__STATUS_NOT_LIVE
+					  : ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       c->rb.error);
+		return;
+	}
+	loop_set_config(c->deps.loop, &c->cfg);
+	atomic_store(&log_max_level, c->cfg.log.level);
+	log_notice("%s set from %s to %s (uid %d)", sp->key, before, sp->value,
+		   (int)cl->uid);
+}
+
+static void on_command(struct control *c, struct client *cl,
+		       enum safety_cmd cmd, const char *what,
+		       Endosim__Reply *rep)
+{
+	int r = loop_command(c->deps.loop, cmd, COMMAND_TIMEOUT_MS);
+
+	switch (r) {
+	case 0:
+		log_info("%s by uid %d", what, (int)cl->uid);
+		return;
+	case -EPERM:
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "latched in FAULT or ESTOP: reset first");
+		return;
+	case -EBUSY:
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "the fault's cause is still present");
+		return;
+	default:
+		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
+		       "the force loop did not take the command");
+		return;
+	}
+}
+
+static void on_enable(struct control *c, struct client *cl,
+		      const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)req;
+	on_command(c, cl, SAFETY_ENABLE, "enable", rep);
+}
+
+static void on_disable(struct control *c, struct client *cl,
+		       const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)req;
+	on_command(c, cl, SAFETY_DISABLE, "disable", rep);
+}
+
+static void on_estop(struct control *c, struct client *cl,
+		     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)req;
+	on_command(c, cl, SAFETY_ESTOP, "emergency stop", rep);
+}
+
+static void on_reset(struct control *c, struct client *cl,
+		     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)req;
+	on_command(c, cl, SAFETY_RESET, "reset", rep);
+}
+
+static void on_hand_input(struct control *c, struct client *cl,
+			  const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__HandInput *hi = req->hand_input;
+	double hold = hi->hold_ms ? hi->hold_ms / 1000.0 : c->cfg.sim.hand_hold_s;
+
+	(void)cl;
+	if (!c->deps.hand) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "the rig is not simulated");
+		return;
+	}
+	if (hi->n_force != ENDOSIM_AXES || hold > MAX_HOLD_S) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "need 4 forces and a hold of at most 10 s");
+		return;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (!isfinite(hi->force[a])) {
+			refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+			       "forces must be finite");
+			return;
+		}
+	}
+	hand_set_live(c->deps.hand, hi->force, hold, loop_now_ns());
+}
+
+static void on_subscribe(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	double hz = req->subscribe->rate_hz;
+
+	if (!isfinite(hz) || hz < 0 || hz > MAX_PUSH_HZ) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "rate_hz must be in [0, 1000]");
+		return;
+	}
+	cl->push_period_ns = hz > 0 ? (uint64_t)(1e9 / hz) : 0;
+	cl->next_push_ns = loop_now_ns();
+	cl->push_seq = req->seq;
+	build_status(c, rep);
+}
+
+struct handler {
+	Endosim__Request__BodyCase body;
+	bool writes; /* refused on the read-only socket */
+	handler_fn *fn;
+};
+
+static const struct handler handlers[] = {
+	{ ENDOSIM__REQUEST__BODY_GET_STATUS, false, on_get_status },
+	{ ENDOSIM__REQUEST__BODY_GET_STATS, false, on_get_stats },
+	{ ENDOSIM__REQUEST__BODY_GET_CONFIG, false, on_get_config },
+	{ ENDOSIM__REQUEST__BODY_SUBSCRIBE, false, on_subscribe },
+	{ ENDOSIM__REQUEST__BODY_SET_PARAM, true, on_set_param },
+	{ ENDOSIM__REQUEST__BODY_ENABLE, true, on_enable },
+	{ ENDOSIM__REQUEST__BODY_DISABLE, true, on_disable },
+	{ ENDOSIM__REQUEST__BODY_ESTOP, true, on_estop },
+	{ ENDOSIM__REQUEST__BODY_RESET_FAULT, true, on_reset },
+	{ ENDOSIM__REQUEST__BODY_HAND_INPUT, true, on_hand_input },
+};
+
+static const struct handler *find_handler(Endosim__Request__BodyCase body)
+{
+	for (size_t i = 0; i < sizeof(handlers) / sizeof(handlers[0]); i++) {
+		if (handlers[i].body == body) {
+			return &handlers[i];
+		}
+	}
+	return NULL;
+}
+
+static int dispatch(struct control *c, struct client *cl, const uint8_t *msg,
+		    size_t len)
+{
+	Endosim__Request *req = endosim__request__unpack(NULL, len, msg);
+	Endosim__Reply rep = ENDOSIM__REPLY__INIT;
+	const struct handler *h;
+	int r;
+
+	if (!req) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_MALFORMED,
+		       "undecodable request");
+		return client_reply(c, cl, &rep);
+	}
+	rep.seq = req->seq;
+	h = find_handler(req->body_case);
+	if (req->version !=
+	    ENDOSIM__PROTOCOL_VERSION__PROTOCOL_VERSION_CURRENT) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_BAD_VERSION,
+		       "protocol version not supported");
+	} else if (req->body_case == ENDOSIM__REQUEST__BODY__NOT_SET) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_MALFORMED,
+		       "no request in the message");
+	} else if (!h) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_UNSUPPORTED,
+		       "request not supported by this daemon");
+	} else if (h->writes && !cl->rw) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_READ_ONLY,
+		       "read-only socket: use the control socket");
+	} else {
+		h->fn(c, cl, req, &rep);
+	}
+	r = client_reply(c, cl, &rep);
+	endosim__request__free_unpacked(req, NULL);
+	return r;
+}
+
+static void client_read(struct control *c, struct client *cl)
+{
+	const uint8_t *msg;
+	size_t room, len;
+	uint8_t *dst = frame_rx_space(&cl->rx, &room);
+	ssize_t n = recv(cl->fd, dst, room, 0);
+	int r;
+
+	if (n < 0 && (errno == EAGAIN || errno == EINTR)) {
+		return;
+	}
+	if (n <= 0) {
+		client_drop(c, cl); /* EOF; a truncated message dies with it */
+		return;
+	}
+	frame_rx_commit(&cl->rx, (size_t)n);
+	while ((r = frame_rx_next(&cl->rx, &msg, &len)) == 1) {
+		if (dispatch(c, cl, msg, len)) {
+			return; /* dropped */
+		}
+	}
+	if (r < 0) {
+		Endosim__Reply rep = ENDOSIM__REPLY__INIT;
+
+		refuse(&rep, ENDOSIM__STATUS__STATUS_TOO_LARGE,
+		       "request larger than max_request_bytes");
+		if (!client_reply(c, cl, &rep)) {
+			client_drop(c, cl);
+		}
+	}
+}
+
+/* ---------------------------------------------------------------- thread */
+
+static int push_subscriptions(struct control *c, uint64_t now)
+{
+	uint64_t next = UINT64_MAX;
+
+	for (int i = 0; i < c->max_clients; i++) {
+		struct client *cl = &c->clients[i];
+
+		if (cl->fd < 0 || !cl->push_period_ns) {
+			continue;
+		}
+		if (now >= cl->next_push_ns) {
+			Endosim__Reply rep = ENDOSIM__REPLY__INIT;
+
+			rep.seq = cl->push_seq;
+			build_status(c, &rep);
+			cl->next_push_ns += cl->push_period_ns;
+			if (cl->next_push_ns < now) {
+				cl->next_push_ns = now + cl->push_period_ns;
+			}
+			if (client_reply(c, cl, &rep)) {
+				continue;
+			}
+		}
+		if (cl->next_push_ns < next) {
+			next = cl->next_push_ns;
+		}
+	}
+	if (next == UINT64_MAX) {
+		return 100;
+	}
+	return next <= now ? 0 : (int)((next - now + 999999) / 1000000);
+}
+
+static void handle_event(struct control *c, const struct epoll_event *ev)
+{
+	uint64_t tag = ev->data.u64;
+	uint64_t junk;
+	struct client *cl;
+
+	switch (tag) {
+	case TAG_WAKE:
+		if (read(c->wake_fd, &junk, sizeof(junk)) < 0) {
+			/* nothing to drain */
+		}
+		return;
+	case TAG_RO:
+		accept_client(c, c->ro_fd, false);
+		return;
+	case TAG_RW:
+		accept_client(c, c->rw_fd, true);
+		return;
+	}
+	cl = &c->clients[tag - TAG_CLIENT];
+	if (cl->fd < 0) {
+		return;
+	}
+	if ((ev->events & EPOLLOUT) && client_flush(c, cl)) {
+		return;
+	}
+	if (ev->events & (EPOLLIN | EPOLLHUP | EPOLLERR)) {
+		client_read(c, cl);
+	}
+}
+
+static void *control_main(void *arg)
+{
+	struct control *c = arg;
+	struct epoll_event evs[MAX_EVENTS];
+	int timeout = 0;
+
+	while (!atomic_load(&c->stop)) {
+		int n = epoll_wait(c->ep, evs, MAX_EVENTS, timeout);
+
+		for (int i = 0; i < n; i++) {
+			handle_event(c, &evs[i]);
+		}
+		uint64_t now = loop_now_ns();
+
+		update_loop_rate(c, now);
+		timeout = push_subscriptions(c, now);
+	}
+	atomic_store(&c->alive, false);
+	return NULL;
+}
+
+/* ---------------------------------------------------------------- life */
+
+static int alloc_buffers(struct control *c)
+{
+	size_t keys = config_key_count();
+
+	c->clients = calloc((size_t)c->max_clients, sizeof(*c->clients));
+	c->rb.entries = calloc(keys, sizeof(*c->rb.entries));
+	c->rb.entries_p = calloc(keys, sizeof(*c->rb.entries_p));
+	c->rb.values = calloc(keys, sizeof(*c->rb.values));
+	if (!c->clients || !c->rb.entries || !c->rb.entries_p ||
+	    !c->rb.values) {
+		log_err("control: out of memory");
+		return -ENOMEM;
+	}
+	for (int i = 0; i < c->max_clients; i++) {
+		c->clients[i].fd = -1;
+	}
+	return 0;
+}
+
+static int open_sockets(struct control *c)
+{
+	gid_t gid;
+	int r;
+
+	r = socket_paths(c);
+	if (r || (r = resolve_group(c->cfg.socket.group, &gid))) {
+		return r;
+	}
+	c->ro_fd = listen_on(c->ro_path, 0666, (gid_t)-1);
+	if (c->ro_fd < 0) {
+		return c->ro_fd;
+	}
+	c->rw_fd = listen_on(c->rw_path, 0660, gid);
+	if (c->rw_fd < 0) {
+		return c->rw_fd;
+	}
+	c->ep = epoll_create1(EPOLL_CLOEXEC);
+	c->wake_fd = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+	if (c->ep < 0 || c->wake_fd < 0 ||
+	    epoll_add(c->ep, c->wake_fd, TAG_WAKE, EPOLLIN) ||
+	    epoll_add(c->ep, c->ro_fd, TAG_RO, EPOLLIN) ||
+	    epoll_add(c->ep, c->rw_fd, TAG_RW, EPOLLIN)) {
+		log_err("control: epoll: %m");
+		return -errno;
+	}
+	return 0;
+}
+
+struct control *control_create(const struct config *cfg,
+			       const struct control_deps *deps)
+{
+	struct control *c = calloc(1, sizeof(*c));
+
+	if (!c) {
+		log_err("control: out of memory");
+		return NULL;
+	}
+	c->cfg = *cfg;
+	c->deps = *deps;
+	c->ro_fd = c->rw_fd = c->ep = c->wake_fd = -1;
+	c->max_clients = cfg->socket.max_clients;
+	c->max_request = (size_t)cfg->socket.max_request_bytes;
+	if (alloc_buffers(c) || open_sockets(c)) {
+		control_destroy(c);
+		return NULL;
+	}
+	log_info("listening on %s (read-only) and %s (read-write)", c->ro_path,
+		 c->rw_path);
+	return c;
+}
+
+int control_start(struct control *c)
+{
+	int r;
+
+	atomic_store(&c->alive, true);
+	r = pthread_create(&c->thread, NULL, control_main, c);
+	if (r) {
+		atomic_store(&c->alive, false);
+		log_err("control: cannot start thread: %s", strerror(r));
+		return -r;
+	}
+	pthread_setname_np(c->thread, "endosim-ctl");
+	c->running = true;
+	return 0;
+}
+
+void control_stop(struct control *c)
+{
+	uint64_t one = 1;
+
+	if (!c->running) {
+		return;
+	}
+	atomic_store(&c->stop, true);
+	if (write(c->wake_fd, &one, sizeof(one)) < 0) {
+		log_warn("control: cannot wake thread: %m");
+	}
+	pthread_join(c->thread, NULL);
+	c->running = false;
+}
+
+bool control_alive(const struct control *c)
+{
+	return atomic_load(&((struct control *)c)->alive);
+}
+
+static void close_fd(int fd)
+{
+	if (fd >= 0) {
+		close(fd);
+	}
+}
+
+void control_destroy(struct control *c)
+{
+	if (!c) {
+		return;
+	}
+	control_stop(c);
+	for (int i = 0; c->clients && i < c->max_clients; i++) {
+		if (c->clients[i].fd >= 0) {
+			client_drop(c, &c->clients[i]);
+		}
+	}
+	if (c->ro_fd >= 0) {
+		unlink(c->ro_path);
+	}
+	if (c->rw_fd >= 0) {
+		unlink(c->rw_path);
+	}
+	close_fd(c->ro_fd);
+	close_fd(c->rw_fd);
+	close_fd(c->ep);
+	close_fd(c->wake_fd);
+	free(c->clients);
+	free(c->rb.entries);
+	free(c->rb.entries_p);
+	free(c->rb.values);
+	free(c);
+}

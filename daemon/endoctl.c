@@ -1,0 +1,624 @@
+/*
+ * endoctl.c - the command-line client of endosimd's control sockets, for the
+ * instructor, the technician and scripts (also over ssh).
+ *
+ * Read-only commands go to status.sock, commands that change the daemon to
+ * control.sock (which needs the endosim group). --json prints one JSON
+ * object per reply.
+ *
+ * Exit status: 0 done; 1 the daemon refused or failed (its reason on
+ * stderr); 2 bad usage; 3 the daemon is not running (cannot connect);
+ * 4 the conversation failed (timeout, closed, undecodable reply).
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../proto/client.h"
+#include "../proto/names.h"
+#include "../proto/version.h"
+#include "json.h"
+
+enum {
+	EXIT_REFUSED = 1,
+	EXIT_USAGE = 2,
+	EXIT_NO_DAEMON = 3,
+	EXIT_COMM = 4,
+};
+
+struct ctl {
+	const char *socket; /* --socket, or NULL */
+	bool json;
+	int timeout_ms;
+	struct client *client;
+};
+
+typedef int command_fn(struct ctl *ctl, int argc, char **argv);
+
+/* ------------------------------------------------------------ plumbing */
+
+static int connect_daemon(struct ctl *ctl, bool write)
+{
+	char path[256];
+
+	if (client_socket_path(ctl->socket, write, path, sizeof(path))) {
+		fprintf(stderr, "endoctl: socket path too long\n");
+		return EXIT_USAGE;
+	}
+	ctl->client = client_connect(path);
+	if (!ctl->client) {
+		fprintf(stderr, "endoctl: cannot connect to %s: %s (is "
+			"endosimd running?)\n", path, strerror(errno));
+		return EXIT_NO_DAEMON;
+	}
+	return 0;
+}
+
+static int comm_error(int err)
+{
+	fprintf(stderr, "endoctl: %s\n",
+		err == -ETIMEDOUT ? "no reply from endosimd (timeout)"
+		: err == -ECONNRESET ? "endosimd closed the connection"
+		: err == -EPROTO ? "undecodable reply" : strerror(-err));
+	return EXIT_COMM;
+}
+
+/* Sends REQ; on success *REP holds an OK reply. */
+static int transact(struct ctl *ctl, bool write, Endosim__Request *req,
+		    Endosim__Reply **rep)
+{
+	int r = connect_daemon(ctl, write);
+
+	if (r) {
+		return r;
+	}
+	r = client_request(ctl->client, req, rep, ctl->timeout_ms);
+	if (r) {
+		return comm_error(r);
+	}
+	if ((*rep)->status != ENDOSIM__STATUS__STATUS_OK) {
+		if (ctl->json) {
+			struct json j;
+
+			json_init(&j, stdout);
+			json_object_begin(&j, NULL);
+			json_uint(&j, "status", (uint64_t)(*rep)->status);
+			json_string(&j, "error", (*rep)->error);
+			json_object_end(&j);
+		}
+		fprintf(stderr, "endoctl: %s: %s\n",
+			client_status_text((*rep)->status), (*rep)->error);
+		endosim__reply__free_unpacked(*rep, NULL);
+		*rep = NULL;
+		return EXIT_REFUSED;
+	}
+	return 0;
+}
+
+/* ------------------------------------------------------------ printing */
+
+static void json_status(const Endosim__StatusReply *s)
+{
+	struct json j;
+
+	json_init(&j, stdout);
+	json_object_begin(&j, NULL);
+	json_string(&j, "state", names_state((uint32_t)s->state));
+	json_uint(&j, "fault_bits", s->fault_bits);
+	json_string(&j, "fault", s->fault_text);
+	json_uint(&j, "cycle", s->cycle);
+	json_uint(&j, "stamp_ns", s->stamp_ns);
+	json_string(&j, "rt_policy", s->rt_policy);
+	json_int(&j, "rt_priority", s->rt_priority);
+	json_double(&j, "loop_hz", s->loop_hz);
+	json_double(&j, "loop_rate_hz", s->loop_rate_hz);
+	json_uint(&j, "overruns", s->overruns);
+	json_string(&j, "rig", s->rig);
+	json_string(&j, "version", s->version);
+	json_double(&j, "uptime_s", s->uptime_s);
+	json_double(&j, "scenario_time_s", s->scenario_time_s);
+	json_bool(&j, "scenario_done", s->scenario_done);
+	json_object_begin(&j, "axes");
+	for (size_t i = 0; i < s->n_axes; i++) {
+		const Endosim__AxisStatus *a = s->axes[i];
+
+		json_object_begin(&j, a->name);
+		json_double(&j, "position", a->position);
+		json_double(&j, "velocity", a->velocity);
+		json_double(&j, "hand", a->hand);
+		json_double(&j, "command", a->command);
+		json_double(&j, "limited", a->limited);
+		json_string(&j, "position_unit", a->position_unit);
+		json_string(&j, "force_unit", a->force_unit);
+		json_uint(&j, "drive_status", a->drive_status);
+		json_object_end(&j);
+	}
+	json_object_end(&j);
+	json_object_end(&j);
+}
+
+static void print_status(const Endosim__StatusReply *s)
+{
+	printf("state     %s\n", names_state((uint32_t)s->state));
+	printf("fault     %s\n", *s->fault_text ? s->fault_text : "none");
+	printf("rig       %s, %s priority %d, %.1f Hz (configured %.0f), "
+	       "overruns %llu\n", s->rig, s->rt_policy, s->rt_priority,
+	       s->loop_hz, s->loop_rate_hz, (unsigned long long)s->overruns);
+	printf("cycle     %llu, uptime %.1f s, scenario %.1f s%s\n",
+	       (unsigned long long)s->cycle, s->uptime_s, s->scenario_time_s,
+	       s->scenario_done ? " (ended)" : "");
+	printf("%-10s %16s %16s %12s %12s %12s\n", "axis", "position",
+	       "velocity", "hand", "command", "limited");
+	for (size_t i = 0; i < s->n_axes; i++) {
+		const Endosim__AxisStatus *a = s->axes[i];
+		char pos[32], vel[32], hand[32], cmd[32], lim[32];
+
+		snprintf(pos, sizeof(pos), "%+.4f %s", a->position,
+			 a->position_unit);
+		snprintf(vel, sizeof(vel), "%+.4f %s/s", a->velocity,
+			 a->position_unit);
+		snprintf(hand, sizeof(hand), "%+.3f %s", a->hand, a->force_unit);
+		snprintf(cmd, sizeof(cmd), "%+.3f %s", a->command,
+			 a->force_unit);
+		snprintf(lim, sizeof(lim), "%+.3f %s", a->limited,
+			 a->force_unit);
+		printf("%-10s %16s %16s %12s %12s %12s\n", a->name, pos, vel,
+		       hand, cmd, lim);
+	}
+}
+
+static void json_histogram(struct json *j, const char *key,
+			   const Endosim__Histogram *h)
+{
+	json_object_begin(j, key);
+	json_double(j, "p50_us", h->p50_us);
+	json_double(j, "p99_us", h->p99_us);
+	json_double(j, "p999_us", h->p999_us);
+	json_double(j, "max_us", h->max_us);
+	json_double(j, "mean_us", h->mean_us);
+	json_uint(j, "count", h->count);
+	json_object_end(j);
+}
+
+static void print_stats(const Endosim__StatsReply *s, bool json)
+{
+	if (json) {
+		struct json j;
+
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_uint(&j, "cycles", s->cycles);
+		json_uint(&j, "overruns", s->overruns);
+		json_string(&j, "rt_policy", s->rt_policy);
+		json_int(&j, "rt_priority", s->rt_priority);
+		json_double(&j, "period_us", s->period_us);
+		json_histogram(&j, "latency", s->latency);
+		json_histogram(&j, "compute", s->compute);
+		json_object_end(&j);
+		return;
+	}
+	printf("cycles %llu, overruns %llu, %s priority %d, period %.0f us\n",
+	       (unsigned long long)s->cycles, (unsigned long long)s->overruns,
+	       s->rt_policy, s->rt_priority, s->period_us);
+	printf("%-9s %8s %8s %8s %8s %8s   (us)\n", "", "p50", "p99",
+	       "p99.9", "max", "mean");
+	printf("%-9s %8.0f %8.0f %8.0f %8.1f %8.1f\n", "latency",
+	       s->latency->p50_us, s->latency->p99_us, s->latency->p999_us,
+	       s->latency->max_us, s->latency->mean_us);
+	printf("%-9s %8.0f %8.0f %8.0f %8.1f %8.1f\n", "compute",
+	       s->compute->p50_us, s->compute->p99_us, s->compute->p999_us,
+	       s->compute->max_us, s->compute->mean_us);
+}
+
+/* ------------------------------------------------------------ commands */
+
+static int cmd_status(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	(void)argc;
+	(void)argv;
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_STATUS;
+	req.get_status = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (r) {
+		return r;
+	}
+	if (ctl->json) {
+		json_status(rep->status_reply);
+	} else {
+		print_status(rep->status_reply);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static int cmd_stats(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__GetStats body = ENDOSIM__GET_STATS__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	(void)argc;
+	(void)argv;
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_STATS;
+	req.get_stats = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (r) {
+		return r;
+	}
+	print_stats(rep->stats, ctl->json);
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static void watch_line(const Endosim__StatusReply *s, bool tty)
+{
+	const char *sep = tty ? "\r\033[K" : "";
+
+	printf("%s%-7s %s%s cyc %-9llu ins %+.3f m %+6.2f N  roll %+6.2f rad "
+	       "%+5.2f N m  ud %+5.2f rad %+6.3f N m  lr %+5.2f rad %+6.3f "
+	       "N m  ovr %llu%s", sep, names_state((uint32_t)s->state),
+	       *s->fault_text ? s->fault_text : "", *s->fault_text ? " " : "",
+	       (unsigned long long)s->cycle, s->axes[0]->position,
+	       s->axes[0]->limited, s->axes[1]->position, s->axes[1]->limited,
+	       s->axes[2]->position, s->axes[2]->limited, s->axes[3]->position,
+	       s->axes[3]->limited, (unsigned long long)s->overruns,
+	       tty ? "" : "\n");
+	fflush(stdout);
+}
+
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int sig)
+{
+	(void)sig;
+	interrupted = 1;
+}
+
+/* Runs until interrupted, the duration passes or the daemon leaves. */
+static int watch_loop(struct ctl *ctl, double duration_s, bool tty)
+{
+	struct timespec t0, now;
+	Endosim__Reply *rep;
+	int r;
+
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+	while (!interrupted) {
+		r = client_receive(ctl->client, &rep, 2000);
+		if (r) {
+			if (tty) {
+				putchar('\n');
+			}
+			return r == -EINTR ? 0 : comm_error(r);
+		}
+		if (rep->body_case == ENDOSIM__REPLY__BODY_STATUS_REPLY) {
+			if (ctl->json) {
+				json_status(rep->status_reply);
+			} else {
+				watch_line(rep->status_reply, tty);
+			}
+		}
+		endosim__reply__free_unpacked(rep, NULL);
+		clock_gettime(CLOCK_MONOTONIC, &now);
+		if (duration_s > 0 && (double)(now.tv_sec - t0.tv_sec) +
+		    (double)(now.tv_nsec - t0.tv_nsec) / 1e9 >= duration_s) {
+			break;
+		}
+	}
+	if (tty && !ctl->json) {
+		putchar('\n');
+	}
+	return 0;
+}
+
+static int cmd_watch(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__Subscribe body = ENDOSIM__SUBSCRIBE__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	bool tty = isatty(STDOUT_FILENO) && !ctl->json;
+	double duration = 0;
+	Endosim__Reply *rep;
+	int r;
+
+	body.rate_hz = tty ? 10 : 1;
+	for (int i = 1; i < argc; i++) {
+		char *end;
+
+		if (!strcmp(argv[i], "--rate") && i + 1 < argc) {
+			body.rate_hz = strtod(argv[++i], &end);
+		} else if (!strcmp(argv[i], "--duration") && i + 1 < argc) {
+			duration = strtod(argv[++i], &end);
+		} else {
+			fprintf(stderr, "endoctl: watch [--rate HZ] "
+				"[--duration S]\n");
+			return EXIT_USAGE;
+		}
+	}
+	signal(SIGINT, on_interrupt);
+	signal(SIGTERM, on_interrupt);
+	req.body_case = ENDOSIM__REQUEST__BODY_SUBSCRIBE;
+	req.subscribe = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (r) {
+		return r;
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return watch_loop(ctl, duration, tty);
+}
+
+/* enable, disable, estop, reset: a body-less request on control.sock. */
+static int simple_command(struct ctl *ctl, Endosim__Request__BodyCase body,
+			  void *msg, const char *done)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	req.body_case = body;
+	req.enable = msg; /* one member of the oneof's union */
+	r = transact(ctl, true, &req, &rep);
+	if (r) {
+		return r;
+	}
+	if (ctl->json) {
+		struct json j;
+
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_uint(&j, "status", 0);
+		json_string(&j, "result", done);
+		json_object_end(&j);
+	} else {
+		printf("%s\n", done);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static int cmd_enable(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__Enable m = ENDOSIM__ENABLE__INIT;
+
+	(void)argc;
+	(void)argv;
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_ENABLE, &m,
+			      "enabled: forces on");
+}
+
+static int cmd_disable(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__Disable m = ENDOSIM__DISABLE__INIT;
+
+	(void)argc;
+	(void)argv;
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_DISABLE, &m,
+			      "disabled: torque off");
+}
+
+static int cmd_estop(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__EStop m = ENDOSIM__ESTOP__INIT;
+
+	(void)argc;
+	(void)argv;
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_ESTOP, &m,
+			      "EMERGENCY STOP: torque off, latched until reset");
+}
+
+static int cmd_reset(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__ResetFault m = ENDOSIM__RESET_FAULT__INIT;
+
+	(void)argc;
+	(void)argv;
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_RESET_FAULT, &m,
+			      "reset: IDLE");
+}
+
+static int cmd_get(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__GetConfig body = ENDOSIM__GET_CONFIG__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	struct json j;
+	int r;
+
+	if (argc > 2) {
+		fprintf(stderr, "endoctl: get [SECTION.KEY]\n");
+		return EXIT_USAGE;
+	}
+	body.key = argc == 2 ? argv[1] : "";
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_CONFIG;
+	req.get_config = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (r) {
+		return r;
+	}
+	json_init(&j, stdout);
+	if (ctl->json) {
+		json_object_begin(&j, NULL);
+	}
+	for (size_t i = 0; i < rep->config->n_entries; i++) {
+		const Endosim__ConfigEntry *e = rep->config->entries[i];
+
+		if (ctl->json) {
+			json_object_begin(&j, e->key);
+			json_string(&j, "value", e->value);
+			json_string(&j, "unit", e->unit);
+			json_bool(&j, "live", e->live);
+			json_string(&j, "help", e->help);
+			json_object_end(&j);
+		} else if (argc == 2) {
+			printf("%s\n", e->value);
+		} else {
+			printf("%s = %s%s%s%s\n", e->key, e->value,
+			       *e->unit ? " " : "", e->unit,
+			       e->live ? "  (live)" : "");
+		}
+	}
+	if (ctl->json) {
+		json_object_end(&j);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static int cmd_set(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__SetParam body = ENDOSIM__SET_PARAM__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	if (argc != 3) {
+		fprintf(stderr, "endoctl: set SECTION.KEY VALUE\n");
+		return EXIT_USAGE;
+	}
+	body.key = argv[1];
+	body.value = argv[2];
+	req.body_case = ENDOSIM__REQUEST__BODY_SET_PARAM;
+	req.set_param = &body;
+	r = transact(ctl, true, &req, &rep);
+	if (r) {
+		return r;
+	}
+	if (ctl->json) {
+		struct json j;
+
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_uint(&j, "status", 0);
+		json_string(&j, "key", argv[1]);
+		json_string(&j, "value", argv[2]);
+		json_object_end(&j);
+	} else {
+		printf("%s = %s\n", argv[1], argv[2]);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static int cmd_version(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	(void)argc;
+	(void)argv;
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_STATUS;
+	req.get_status = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (ctl->json) {
+		struct json j;
+
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_string(&j, "endoctl", ENDOSIM_VERSION);
+		json_string(&j, "endosimd", r ? "" : rep->status_reply->version);
+		json_uint(&j, "protocol",
+			  ENDOSIM__PROTOCOL_VERSION__PROTOCOL_VERSION_CURRENT);
+		json_object_end(&j);
+	} else {
+		printf("endoctl %s, protocol %d\n", ENDOSIM_VERSION,
+		       ENDOSIM__PROTOCOL_VERSION__PROTOCOL_VERSION_CURRENT);
+		if (!r) {
+			printf("endosimd %s\n", rep->status_reply->version);
+		}
+	}
+	if (!r) {
+		endosim__reply__free_unpacked(rep, NULL);
+	}
+	return r;
+}
+
+/* ------------------------------------------------------------ main */
+
+static const struct {
+	const char *name;
+	command_fn *fn;
+	const char *help;
+} commands[] = {
+	{ "status", cmd_status, "state, faults, loop and axes" },
+	{ "stats", cmd_stats, "force-loop latency and compute time" },
+	{ "watch", cmd_watch, "live status line [--rate HZ] [--duration S]" },
+	{ "enable", cmd_enable, "IDLE -> ENABLED: render forces" },
+	{ "disable", cmd_disable, "ENABLED -> IDLE: torque off" },
+	{ "estop", cmd_estop, "emergency stop (latched)" },
+	{ "reset", cmd_reset, "clear ESTOP or a FAULT whose cause is gone" },
+	{ "get", cmd_get, "[SECTION.KEY]: configuration" },
+	{ "set", cmd_set, "SECTION.KEY VALUE: change a live key" },
+	{ "version", cmd_version, "endoctl's and endosimd's versions" },
+};
+
+static void usage(FILE *out)
+{
+	fprintf(out, "usage: endoctl [--socket PATH] [--json] [--timeout MS] "
+		"COMMAND [ARGS]\n\nPATH is a socket or the directory holding "
+		"both (default $%s or %s).\n\ncommands:\n", CLIENT_ENV,
+		CLIENT_DEFAULT_DIR);
+	for (size_t i = 0; i < sizeof(commands) / sizeof(commands[0]); i++) {
+		fprintf(out, "  %-8s %s\n", commands[i].name, commands[i].help);
+	}
+	fprintf(out, "\nexit status: 0 ok, 1 refused by endosimd, 2 usage, "
+		"3 endosimd not running, 4 communication error\n");
+}
+
+int main(int argc, char **argv)
+{
+	static const struct option opts[] = {
+		{ "socket", required_argument, NULL, 's' },
+		{ "json", no_argument, NULL, 'j' },
+		{ "timeout", required_argument, NULL, 't' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 },
+	};
+	struct ctl ctl = { .timeout_ms = 2000 };
+	int c, r;
+
+	while ((c = getopt_long(argc, argv, "+s:jt:h", opts, NULL)) != -1) {
+		switch (c) {
+		case 's':
+			ctl.socket = optarg;
+			break;
+		case 'j':
+			ctl.json = true;
+			break;
+		case 't':
+			ctl.timeout_ms = atoi(optarg);
+			break;
+		case 'h':
+			usage(stdout);
+			return 0;
+		default:
+			usage(stderr);
+			return EXIT_USAGE;
+		}
+	}
+	if (optind >= argc || ctl.timeout_ms <= 0) {
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	for (size_t i = 0; i < sizeof(commands) / sizeof(commands[0]); i++) {
+		if (!strcmp(argv[optind], commands[i].name)) {
+			r = commands[i].fn(&ctl, argc - optind, argv + optind);
+			client_close(ctl.client);
+			return r;
+		}
+	}
+	fprintf(stderr, "endoctl: unknown command '%s'\n", argv[optind]);
+	usage(stderr);
+	return EXIT_USAGE;
+}

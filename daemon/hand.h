@@ -1,0 +1,44 @@
+/*
+ * hand.h - the simulated trainee's hand: the force it puts on each axis of
+ * the simulated rig, from a scenario (a spring-damper grip following timed
+ * targets, or timed pushes) or from live input through the socket (the
+ * viewer's keyboard or gamepad). Live input, while it holds, overrides the
+ * scenario on every axis.
+ *
+ * Every force is clamped to the configured strongest push of a hand.
+ */
+#ifndef ENDOSIM_HAND_H
+#define ENDOSIM_HAND_H
+
+#include <stdint.h>
+
+#include "config.h"
+#include "scenario.h"
+
+struct hand;
+
+/* Takes ownership of SCN (may be NULL: no scenario). NULL on ENOMEM. */
+struct hand *hand_create(const struct config *cfg, struct scenario *scn);
+
+/* NULL is fine. */
+void hand_destroy(struct hand *h);
+
+/* The scenario, or NULL. */
+const struct scenario *hand_scenario(const struct hand *h);
+
+/*
+ * Control thread (one writer): live forces (N, N m, N m, N m) that hold for
+ * HOLD_S seconds after NOW_NS (CLOCK_MONOTONIC). Lock-free.
+ */
+void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
+		   double hold_s, uint64_t now_ns);
+
+/*
+ * Force loop: the hand's force on each axis at scenario time T_S given the
+ * axes' positions and velocities. Never blocks or allocates.
+ */
+void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
+		 const double pos[ENDOSIM_AXES], const double vel[ENDOSIM_AXES],
+		 double force[ENDOSIM_AXES]);
+
+#endif

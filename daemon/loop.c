@@ -1,0 +1,438 @@
+/* loop.c - see loop.h. */
+#include "loop.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../proto/seqlock.h"
+#include "haptics.h"
+#include "log.h"
+#include "spsc.h"
+
+#define LOOP_STACK_BYTES (512 * 1024)
+#define LOOP_PREFAULT_BYTES (256 * 1024)
+#define LOOP_EVENTS 256
+#define CMD_SHIFT 8
+
+struct loop {
+	/* owned by the loop thread */
+	struct config cfg;
+	struct config cfg_incoming; /* scratch for a torn-free copy */
+	uint64_t cfg_seen;
+	struct safety safety;
+	struct rig_feedback fb;
+	double command[ENDOSIM_AXES];
+	double limited[ENDOSIM_AXES];
+	struct endosim_state state;
+	bool scenario_was_done;
+
+	/* shared */
+	struct rig *rig;
+	struct publish *pub;
+	pthread_t thread;
+	bool running;
+	_Atomic bool stop;
+	_Atomic uint64_t heartbeat;
+	_Atomic uint64_t overruns;
+	struct histo latency;
+	struct histo compute;
+	struct loop_info info;
+	struct spsc events;        /* loop -> main */
+	seqlock_t cfg_lock;        /* control -> loop */
+	struct config cfg_mailbox;
+	_Atomic uint64_t cmd_slot; /* control -> loop: seq << 8 | cmd, 0 empty */
+	_Atomic uint64_t cmd_done; /* loop -> control: seq << 32 | result */
+	uint32_t cmd_seq;          /* control thread's counter */
+};
+
+uint64_t loop_now_ns(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+static struct timespec to_timespec(uint64_t ns)
+{
+	return (struct timespec){ .tv_sec = (time_t)(ns / 1000000000ull),
+				  .tv_nsec = (long)(ns % 1000000000ull) };
+}
+
+struct loop *loop_create(const struct config *cfg, struct rig *rig,
+			 struct publish *pub)
+{
+	struct loop *l = calloc(1, sizeof(*l));
+
+	if (!l) {
+		log_err("force loop: out of memory");
+		return NULL;
+	}
+	if (spsc_init(&l->events, LOOP_EVENTS, sizeof(struct loop_event))) {
+		log_err("force loop: out of memory");
+		free(l);
+		return NULL;
+	}
+	l->cfg = *cfg;
+	l->cfg_mailbox = *cfg;
+	seqlock_init(&l->cfg_lock);
+	l->cfg_seen = seqlock_read_begin(&l->cfg_lock);
+	l->rig = rig;
+	l->pub = pub;
+	safety_init(&l->safety);
+	l->info.policy = "none";
+	l->info.period_ns = (uint32_t)(1000000000u / (unsigned)cfg->loop.rate_hz);
+	return l;
+}
+
+/* --- inside the loop thread: nothing below may block or allocate --- */
+
+static void post(struct loop *l, const struct loop_event *ev)
+{
+	/* a full ring drops the event: the state in shm still tells */
+	(void)spsc_push(&l->events, ev);
+}
+
+static void fetch_config(struct loop *l)
+{
+	uint64_t seq = seqlock_read_begin(&l->cfg_lock);
+
+	if (seq == l->cfg_seen) {
+		return;
+	}
+	memcpy(&l->cfg_incoming, &l->cfg_mailbox, sizeof(l->cfg_incoming));
+	if (!seqlock_read_retry(&l->cfg_lock, seq)) {
+		memcpy(&l->cfg, &l->cfg_incoming, sizeof(l->cfg));
+		l->cfg_seen = seq;
+	}
+}
+
+/* Takes a posted command, if any, and answers it. Returns the command. */
+static uint32_t take_command(struct loop *l)
+{
+	uint64_t slot = atomic_load_explicit(&l->cmd_slot, memory_order_acquire);
+	uint32_t cmd, seq;
+	int r;
+
+	if (!slot || !atomic_compare_exchange_strong(&l->cmd_slot, &slot, 0)) {
+		return 0;
+	}
+	cmd = (uint32_t)(slot & ((1u << CMD_SHIFT) - 1));
+	seq = (uint32_t)(slot >> CMD_SHIFT);
+	r = safety_command(&l->safety, (enum safety_cmd)cmd);
+	atomic_store_explicit(&l->cmd_done,
+			      (uint64_t)seq << 32 | (uint32_t)r,
+			      memory_order_release);
+	return cmd;
+}
+
+static void post_changes(struct loop *l, uint32_t old_state,
+			 uint32_t old_faults, uint32_t cmd, uint64_t now)
+{
+	const struct safety *s = &l->safety;
+	uint32_t added = s->faults & ~old_faults;
+
+	for (uint32_t bit = 1; added; bit <<= 1) {
+		if (added & bit) {
+			struct loop_event ev = {
+				.stamp_ns = now, .code = LOOP_EV_FAULT,
+				.arg = bit, .axis = s->fault_axis,
+				.detail = s->fault_detail,
+			};
+			post(l, &ev);
+			added &= ~bit;
+		}
+	}
+	if (s->state != old_state) {
+		struct loop_event ev = {
+			.stamp_ns = now, .code = LOOP_EV_STATE,
+			.arg = s->state, .prev = old_state, .cmd = cmd,
+			.axis = -1,
+		};
+		post(l, &ev);
+	}
+}
+
+static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
+{
+	struct endosim_state *st = &l->state;
+	const struct safety *s = &l->safety;
+
+	st->cycle = atomic_load_explicit(&l->heartbeat, memory_order_relaxed);
+	st->stamp_ns = now;
+	st->state = s->state;
+	st->fault_bits = s->faults;
+	st->fault_axis = s->fault_axis;
+	st->fault_detail = s->fault_detail;
+	st->fault_ns = s->fault_ns;
+	st->overruns = atomic_load_explicit(&l->overruns, memory_order_relaxed);
+	st->latency_ns = (uint32_t)(latency < UINT32_MAX ? latency : UINT32_MAX);
+	st->scenario_time_s = l->fb.hand_time_s;
+	st->scenario_done = l->fb.hand_done;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		struct endosim_axis_state *ax = &st->axis[a];
+		const struct rig_axis_feedback *f = &l->fb.axis[a];
+
+		ax->position = f->position;
+		ax->velocity = f->velocity;
+		ax->hand = f->hand;
+		ax->command = l->command[a];
+		ax->limited = l->limited[a];
+		ax->feedback_ns = f->stamp_ns;
+		ax->drive_status = f->status;
+	}
+}
+
+static void cycle(struct loop *l, uint64_t now, uint64_t latency)
+{
+	uint32_t old_state = l->safety.state;
+	uint32_t old_faults = l->safety.faults;
+	uint32_t cmd;
+
+	fetch_config(l);
+	cmd = take_command(l);
+	safety_begin_cycle(&l->safety);
+	rig_read(l->rig, now, &l->fb);
+	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
+	haptics_render(&l->cfg, &l->fb, l->command);
+	safety_filter(&l->safety, &l->cfg, l->command, l->limited, now);
+	rig_write(l->rig, now, l->limited, safety_torque_on(&l->safety));
+
+	post_changes(l, old_state, old_faults, cmd, now);
+	if (l->fb.hand_done && !l->scenario_was_done) {
+		struct loop_event ev = { .stamp_ns = now,
+					 .code = LOOP_EV_SCENARIO_END,
+					 .axis = -1 };
+		post(l, &ev);
+	}
+	l->scenario_was_done = l->fb.hand_done;
+	fill_state(l, now, latency);
+	l->state.publish_ns = loop_now_ns();
+	publish_state(l->pub, &l->state);
+}
+
+static void prefault_stack(void)
+{
+	unsigned char buf[LOOP_PREFAULT_BYTES];
+
+	memset(buf, 0, sizeof(buf));
+	__asm__ volatile("" : : "r"(buf) : "memory");
+}
+
+/* Skips whole periods after an overrun; returns how many. */
+static uint64_t skip_overrun(uint64_t *next, uint64_t now, uint64_t period)
+{
+	uint64_t skipped;
+
+	if (now < *next + period) {
+		return 0;
+	}
+	skipped = (now - *next) / period;
+	*next += skipped * period;
+	return skipped;
+}
+
+static void *loop_main(void *arg)
+{
+	struct loop *l = arg;
+	uint64_t period = l->info.period_ns;
+	uint64_t next, now, skipped;
+	struct timespec ts;
+
+	prefault_stack();
+	next = loop_now_ns();
+	while (!atomic_load_explicit(&l->stop, memory_order_acquire)) {
+		next += period;
+		ts = to_timespec(next);
+		while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts,
+				       NULL) == EINTR) {
+		}
+		now = loop_now_ns();
+		uint64_t latency = now > next ? now - next : 0;
+
+		skipped = skip_overrun(&next, now, period);
+		if (skipped) {
+			struct loop_event ev = { .stamp_ns = now,
+						 .code = LOOP_EV_OVERRUN,
+						 .arg = (uint32_t)skipped,
+						 .axis = -1 };
+			atomic_fetch_add_explicit(&l->overruns, skipped,
+						  memory_order_relaxed);
+			post(l, &ev);
+		}
+		histo_add(&l->latency, latency);
+		cycle(l, now, latency);
+		uint64_t compute = loop_now_ns() - now;
+
+		histo_add(&l->compute, compute);
+		l->state.compute_ns = (uint32_t)compute;
+		atomic_fetch_add_explicit(&l->heartbeat, 1,
+					  memory_order_release);
+	}
+	/* last act: nothing energised */
+	memset(l->limited, 0, sizeof(l->limited));
+	rig_write(l->rig, loop_now_ns(), l->limited, false);
+	return NULL;
+}
+
+/* --- setup, from the main thread --- */
+
+static void lock_memory(struct loop *l)
+{
+	struct rlimit rl;
+
+	getrlimit(RLIMIT_MEMLOCK, &rl);
+	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
+		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "
+			 "(set LimitMEMLOCK=infinity); page faults may "
+			 "delay the force loop",
+			 (unsigned long long)rl.rlim_cur / 1024);
+		return;
+	}
+	if (mlockall(MCL_CURRENT | MCL_FUTURE) < 0) {
+		log_warn("memory not locked: mlockall: %m");
+		return;
+	}
+	l->info.memory_locked = true;
+}
+
+static int create_thread(struct loop *l, bool fifo)
+{
+	struct sched_param sp = { .sched_priority = l->cfg.loop.priority };
+	pthread_attr_t attr;
+	cpu_set_t cpus;
+	int r;
+
+	pthread_attr_init(&attr);
+	pthread_attr_setstacksize(&attr, LOOP_STACK_BYTES);
+	if (fifo) {
+		pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
+		pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
+		pthread_attr_setschedparam(&attr, &sp);
+	}
+	if (l->cfg.loop.cpu >= 0) {
+		CPU_ZERO(&cpus);
+		CPU_SET(l->cfg.loop.cpu, &cpus);
+		pthread_attr_setaffinity_np(&attr, sizeof(cpus), &cpus);
+	}
+	r = pthread_create(&l->thread, &attr, loop_main, l);
+	pthread_attr_destroy(&attr);
+	return -r;
+}
+
+int loop_start(struct loop *l)
+{
+	struct sched_param sp;
+	int policy, r;
+
+	lock_memory(l);
+	r = create_thread(l, true);
+	if (r == -EPERM) {
+		log_warn("force loop: no permission for SCHED_FIFO priority %d "
+			 "(needs root or CAP_SYS_NICE with LimitRTPRIO); "
+			 "running as SCHED_OTHER without latency guarantees",
+			 l->cfg.loop.priority);
+		r = create_thread(l, false);
+	}
+	if (r) {
+		log_err("force loop: cannot start thread: %s", strerror(-r));
+		return r;
+	}
+	l->running = true;
+	pthread_setname_np(l->thread, "endosim-loop");
+	pthread_getschedparam(l->thread, &policy, &sp);
+	l->info.policy = policy == SCHED_FIFO ? "SCHED_FIFO" : "SCHED_OTHER";
+	l->info.priority = policy == SCHED_FIFO ? sp.sched_priority : 0;
+	log_info("force loop: %d Hz, %s priority %d, memory %slocked%s",
+		 l->cfg.loop.rate_hz, l->info.policy, l->info.priority,
+		 l->info.memory_locked ? "" : "not ",
+		 l->cfg.loop.cpu >= 0 ? ", pinned" : "");
+	return 0;
+}
+
+void loop_stop(struct loop *l)
+{
+	if (!l->running) {
+		return;
+	}
+	atomic_store_explicit(&l->stop, true, memory_order_release);
+	pthread_join(l->thread, NULL);
+	l->running = false;
+	rig_stop(l->rig);
+}
+
+void loop_destroy(struct loop *l)
+{
+	if (!l) {
+		return;
+	}
+	loop_stop(l);
+	spsc_free(&l->events);
+	free(l);
+}
+
+int loop_command(struct loop *l, enum safety_cmd cmd, int timeout_ms)
+{
+	uint32_t seq = ++l->cmd_seq & 0xffffff;
+	uint64_t slot = (uint64_t)seq << CMD_SHIFT | (uint64_t)cmd;
+	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	atomic_store_explicit(&l->cmd_slot, slot, memory_order_release);
+	for (;;) {
+		uint64_t done = atomic_load_explicit(&l->cmd_done,
+						     memory_order_acquire);
+
+		if ((uint32_t)(done >> 32) == seq) {
+			return (int32_t)(uint32_t)done;
+		}
+		if (loop_now_ns() > deadline) {
+			uint64_t expected = slot;
+
+			if (atomic_compare_exchange_strong(&l->cmd_slot,
+							   &expected, 0)) {
+				return -ETIMEDOUT; /* withdrawn */
+			}
+			/* taken just now: its answer is a cycle away */
+			deadline += 100000000u;
+		}
+		nanosleep(&nap, NULL);
+	}
+}
+
+void loop_set_config(struct loop *l, const struct config *cfg)
+{
+	seqlock_write_begin(&l->cfg_lock);
+	memcpy(&l->cfg_mailbox, cfg, sizeof(*cfg));
+	seqlock_write_end(&l->cfg_lock);
+}
+
+bool loop_pop_event(struct loop *l, struct loop_event *ev)
+{
+	return spsc_pop(&l->events, ev);
+}
+
+uint64_t loop_heartbeat(const struct loop *l)
+{
+	return atomic_load_explicit(&l->heartbeat, memory_order_acquire);
+}
+
+void loop_get_stats(const struct loop *l, struct loop_stats *st)
+{
+	st->cycles = loop_heartbeat(l);
+	st->overruns = atomic_load_explicit(&l->overruns, memory_order_relaxed);
+	histo_summarize(&l->latency, &st->latency);
+	histo_summarize(&l->compute, &st->compute);
+}
+
+const struct loop_info *loop_get_info(const struct loop *l)
+{
+	return &l->info;
+}

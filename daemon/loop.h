@@ -1,0 +1,106 @@
+/*
+ * loop.h - the force loop: a dedicated real-time thread that, every period,
+ * reads the rig, renders forces, applies the safety filter, writes the
+ * setpoints and publishes the state.
+ *
+ * Real time after cyclictest: SCHED_FIFO at [loop] priority when permitted
+ * (root, or CAP_SYS_NICE with an RLIMIT_RTPRIO that allows it; otherwise one
+ * warning and SCHED_OTHER), memory locked when permitted, a prefaulted stack,
+ * everything allocated before the thread starts, absolute-time
+ * clock_nanosleep on CLOCK_MONOTONIC; after an overrun whole periods are
+ * skipped and counted. Inside the loop: no allocation, no stdio or syslog,
+ * no blocking lock, no bus I/O.
+ *
+ * Talking to the loop, lock-free:
+ *  - commands (enable, disable, estop, reset): loop_command(), the control
+ *    thread only, one at a time, answered within a cycle or two;
+ *  - live configuration: loop_set_config(), the control thread only;
+ *  - events out (state changes, faults, overruns): loop_pop_event(), the main
+ *    thread only, which logs them;
+ *  - statistics and heartbeat: any thread.
+ */
+#ifndef ENDOSIM_LOOP_H
+#define ENDOSIM_LOOP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "config.h"
+#include "histo.h"
+#include "publish.h"
+#include "rig.h"
+#include "safety.h"
+
+enum loop_event_code {
+	LOOP_EV_STATE = 1,    /* arg: new state, prev: old state, cmd */
+	LOOP_EV_FAULT,        /* arg: the fault bit, axis, detail */
+	LOOP_EV_OVERRUN,      /* arg: periods skipped */
+	LOOP_EV_SCENARIO_END, /* the scripted hand's scenario ended */
+};
+
+struct loop_event {
+	uint64_t stamp_ns; /* CLOCK_MONOTONIC */
+	uint32_t code;     /* enum loop_event_code */
+	uint32_t arg;
+	uint32_t prev;
+	uint32_t cmd;      /* enum safety_cmd that caused it, 0: none */
+	int32_t axis;      /* -1: none or global */
+	uint32_t detail;
+};
+
+struct loop_info {
+	const char *policy;  /* "SCHED_FIFO" or "SCHED_OTHER" */
+	int priority;        /* 0 under SCHED_OTHER */
+	bool memory_locked;
+	uint32_t period_ns;
+};
+
+struct loop_stats {
+	uint64_t cycles;
+	uint64_t overruns;
+	struct histo_summary latency; /* wake-up latency */
+	struct histo_summary compute; /* wake-up to publish */
+};
+
+struct loop;
+
+/* Allocates everything the loop will use. NULL on ENOMEM (logged). */
+struct loop *loop_create(const struct config *cfg, struct rig *rig,
+			 struct publish *pub);
+
+/* Locks memory and starts the thread. Returns 0 or a negative errno. */
+int loop_start(struct loop *l);
+
+/*
+ * Stops the thread (its last act: zero setpoints, drives disabled) and
+ * joins it, then brings the rig down. Idempotent.
+ */
+void loop_stop(struct loop *l);
+
+/* NULL is fine; stops first. */
+void loop_destroy(struct loop *l);
+
+/*
+ * Control thread: carries out CMD in the loop and waits up to TIMEOUT_MS.
+ * Returns what safety_command() returned (0, -EPERM, -EBUSY), or -ETIMEDOUT
+ * when the loop did not take it (it is then withdrawn, never applied).
+ */
+int loop_command(struct loop *l, enum safety_cmd cmd, int timeout_ms);
+
+/* Control thread: the loop uses CFG's live keys from its next cycle on. */
+void loop_set_config(struct loop *l, const struct config *cfg);
+
+/* Main thread: the next event, false when there is none. */
+bool loop_pop_event(struct loop *l, struct loop_event *ev);
+
+/* Any thread: cycles completed so far (the watchdog's heartbeat). */
+uint64_t loop_heartbeat(const struct loop *l);
+
+/* Any thread. */
+void loop_get_stats(const struct loop *l, struct loop_stats *st);
+const struct loop_info *loop_get_info(const struct loop *l);
+
+/* CLOCK_MONOTONIC in nanoseconds. */
+uint64_t loop_now_ns(void);
+
+#endif

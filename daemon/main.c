@@ -1,0 +1,437 @@
+/*
+ * main.c - endosimd: the haptics daemon of the endosim colonoscopy
+ * simulator. Start-up order, signals, systemd notification and watchdog,
+ * and the log lines for what the force loop reports.
+ *
+ * Start-up: configuration (exit 78 on any error, before anything else), the
+ * sockets (refusing to run beside another daemon), shared memory, the rig
+ * (devices opened and checked), the force loop, the control thread, then
+ * READY=1. Motors stay off until an explicit enable.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/signalfd.h>
+#include <sys/timerfd.h>
+#include <sysexits.h>
+#include <systemd/sd-daemon.h>
+#include <unistd.h>
+
+#include "../proto/names.h"
+#include "../proto/version.h"
+#include "config.h"
+#include "control.h"
+#include "hand.h"
+#include "log.h"
+#include "loop.h"
+#include "publish.h"
+#include "rig.h"
+#include "scenario.h"
+
+#define TICK_MS 50
+
+struct options {
+	const char *config_path;
+	bool config_explicit;
+	const char *scenario_path;
+	bool check_config;
+	bool print_config;
+};
+
+struct daemon {
+	struct config cfg;
+	uint64_t start_ns;
+	struct hand *hand;
+	struct control *control;
+	struct publish *pub;
+	struct rig *rig;
+	struct loop *loop;
+};
+
+static void usage(FILE *out)
+{
+	fprintf(out,
+		"usage: endosimd [options]\n"
+		"  -c, --config FILE     configuration (default %s)\n"
+		"      --check-config    validate the configuration and exit\n"
+		"      --print-config    print the effective configuration and exit\n"
+		"      --socket-dir DIR  override [socket] directory\n"
+		"      --shm-name NAME   override [shm] name (e.g. /endosim-test)\n"
+		"      --set KEY=VALUE   override any key, e.g. --set loop.rate_hz=500\n"
+		"      --scenario FILE   simulated hand follows this scenario\n"
+		"  -V, --version         print the version and exit\n"
+		"  -h, --help            this help\n",
+		CONFIG_DEFAULT_PATH);
+}
+
+/* Applies one override "KEY=VALUE" (or KEY with VALUE apart). */
+static int override(struct config *cfg, const char *key, const char *value)
+{
+	char err[256];
+
+	if (config_set(cfg, key, value, false, err, sizeof(err))) {
+		fprintf(stderr, "endosimd: command line: %s\n", err);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int override_pair(struct config *cfg, const char *pair)
+{
+	char key[128];
+	const char *eq = strchr(pair, '=');
+
+	if (!eq || (size_t)(eq - pair) >= sizeof(key)) {
+		fprintf(stderr, "endosimd: --set %s: expected KEY=VALUE\n",
+			pair);
+		return -EINVAL;
+	}
+	memcpy(key, pair, (size_t)(eq - pair));
+	key[eq - pair] = '\0';
+	return override(cfg, key, eq + 1);
+}
+
+enum { OPT_CHECK = 256, OPT_PRINT, OPT_SOCKDIR, OPT_SHM, OPT_SET, OPT_SCN };
+
+static const struct option long_opts[] = {
+	{ "config", required_argument, NULL, 'c' },
+	{ "check-config", no_argument, NULL, OPT_CHECK },
+	{ "print-config", no_argument, NULL, OPT_PRINT },
+	{ "socket-dir", required_argument, NULL, OPT_SOCKDIR },
+	{ "shm-name", required_argument, NULL, OPT_SHM },
+	{ "set", required_argument, NULL, OPT_SET },
+	{ "scenario", required_argument, NULL, OPT_SCN },
+	{ "version", no_argument, NULL, 'V' },
+	{ "help", no_argument, NULL, 'h' },
+	{ NULL, 0, NULL, 0 },
+};
+
+/* First pass: the options that say which file to read and what to do. */
+static int parse_options(int argc, char **argv, struct options *opt)
+{
+	int c;
+
+	*opt = (struct options){ .config_path = CONFIG_DEFAULT_PATH };
+	while ((c = getopt_long(argc, argv, "c:Vh", long_opts, NULL)) != -1) {
+		switch (c) {
+		case 'c':
+			opt->config_path = optarg;
+			opt->config_explicit = true;
+			break;
+		case OPT_CHECK:
+			opt->check_config = true;
+			break;
+		case OPT_PRINT:
+			opt->print_config = true;
+			break;
+		case OPT_SCN:
+			opt->scenario_path = optarg;
+			break;
+		case OPT_SOCKDIR:
+		case OPT_SHM:
+		case OPT_SET:
+			break;
+		case 'V':
+			printf("endosimd %s\n", ENDOSIM_VERSION);
+			exit(0);
+		case 'h':
+			usage(stdout);
+			exit(0);
+		default:
+			usage(stderr);
+			return -EINVAL;
+		}
+	}
+	if (optind < argc) {
+		fprintf(stderr, "endosimd: unexpected argument '%s'\n",
+			argv[optind]);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+/* Second pass, after the file: command-line overrides win. */
+static int apply_overrides(int argc, char **argv, struct config *cfg)
+{
+	int c, r = 0;
+
+	optind = 1;
+	while (!r && (c = getopt_long(argc, argv, "c:Vh", long_opts, NULL)) !=
+			     -1) {
+		if (c == OPT_SOCKDIR) {
+			r = override(cfg, "socket.directory", optarg);
+		} else if (c == OPT_SHM) {
+			r = override(cfg, "shm.name", optarg);
+		} else if (c == OPT_SET) {
+			r = override_pair(cfg, optarg);
+		}
+	}
+	return r;
+}
+
+static int load_config(int argc, char **argv, const struct options *opt,
+		       struct config *cfg)
+{
+	char err[512];
+
+	config_defaults(cfg);
+	if (opt->config_explicit || access(opt->config_path, F_OK) == 0) {
+		if (config_load(cfg, opt->config_path, err, sizeof(err))) {
+			fprintf(stderr, "endosimd: %s\n", err);
+			return -EINVAL;
+		}
+	}
+	if (apply_overrides(argc, argv, cfg)) {
+		return -EINVAL;
+	}
+	if (config_check(cfg, err, sizeof(err))) {
+		fprintf(stderr, "endosimd: %s\n", err);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+/* ------------------------------------------------------------ events */
+
+static void log_event(const struct daemon *d, const struct loop_event *ev)
+{
+	static struct log_ratelimit overrun_rl = LOG_RATELIMIT_INIT(10, 3);
+	static const char *const cmd_names[] = {
+		"", "enable", "disable", "emergency stop", "reset",
+	};
+	double t = (double)(ev->stamp_ns - d->start_ns) / 1e9;
+
+	switch (ev->code) {
+	case LOOP_EV_STATE:
+		log_notice("state %s -> %s (%s) at %.3f s",
+			   names_state(ev->prev), names_state(ev->arg),
+			   ev->cmd ? cmd_names[ev->cmd % 5] : "fault", t);
+		break;
+	case LOOP_EV_FAULT:
+		log_err("FAULT %s%s%s (detail %u) at %.3f s: torque off on "
+			"every axis; 'endoctl reset' once the cause is gone",
+			names_fault(ev->arg), ev->axis >= 0 ? " on " : "",
+			ev->axis >= 0 ? names_axis(ev->axis) : "", ev->detail,
+			t);
+		break;
+	case LOOP_EV_OVERRUN:
+		log_ratelimited(&overrun_rl, LOG_WARNING,
+				"force loop overrun: %u period(s) skipped at "
+				"%.3f s", ev->arg, t);
+		break;
+	case LOOP_EV_SCENARIO_END:
+		log_info("scenario ended at %.3f s", t);
+		break;
+	}
+}
+
+/* ------------------------------------------------------------ life */
+
+static int start(struct daemon *d, const struct options *opt)
+{
+	struct scenario *scn = NULL;
+	char err[512];
+
+	if (opt->scenario_path) {
+		scn = scenario_load(opt->scenario_path, err, sizeof(err));
+		if (!scn) {
+			log_err("%s", err);
+			return EX_CONFIG;
+		}
+	}
+	d->hand = hand_create(&d->cfg, scn);
+	if (!d->hand) {
+		scenario_destroy(scn);
+		return EX_OSERR;
+	}
+	d->rig = rig_create(&d->cfg, d->hand);
+	if (!d->rig) {
+		return EX_SOFTWARE;
+	}
+	struct control_deps deps = {
+		.hand = d->cfg.rig.backend == CONFIG_BACKEND_SIM ? d->hand
+								 : NULL,
+		.rig_name = rig_name(d->rig),
+		.start_ns = d->start_ns,
+	};
+
+	d->pub = publish_create(d->cfg.shm.name,
+				1000000000u / (unsigned)d->cfg.loop.rate_hz,
+				d->start_ns);
+	if (!d->pub) {
+		return EX_UNAVAILABLE;
+	}
+	d->loop = loop_create(&d->cfg, d->rig, d->pub);
+	if (!d->loop) {
+		return EX_OSERR;
+	}
+	deps.loop = d->loop;
+	deps.pub = d->pub;
+	d->control = control_create(&d->cfg, &deps);
+	if (!d->control) {
+		return EX_UNAVAILABLE;
+	}
+	if (rig_start(d->rig)) {
+		return EX_UNAVAILABLE;
+	}
+	if (loop_start(d->loop) || control_start(d->control)) {
+		return EX_OSERR;
+	}
+	return 0;
+}
+
+static void stop(struct daemon *d)
+{
+	if (d->loop) {
+		loop_stop(d->loop); /* torque zero, drives disabled */
+	}
+	control_destroy(d->control);
+	loop_destroy(d->loop);
+	publish_destroy(d->pub);
+	rig_destroy(d->rig);
+	hand_destroy(d->hand);
+}
+
+static int open_fds(int *sig_fd, int *tick_fd)
+{
+	struct itimerspec tick = {
+		.it_interval = { .tv_nsec = TICK_MS * 1000000L },
+		.it_value = { .tv_nsec = TICK_MS * 1000000L },
+	};
+	sigset_t set;
+
+	sigemptyset(&set);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGHUP);
+	*sig_fd = signalfd(-1, &set, SFD_CLOEXEC);
+	*tick_fd = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC);
+	if (*sig_fd < 0 || *tick_fd < 0 ||
+	    timerfd_settime(*tick_fd, 0, &tick, NULL) < 0) {
+		log_err("main: signalfd/timerfd: %m");
+		return -errno;
+	}
+	return 0;
+}
+
+/* Pings systemd's watchdog only while the force loop makes progress. */
+static void watchdog(struct daemon *d, uint64_t usec, uint64_t *last_beat,
+		     uint64_t *last_ping)
+{
+	uint64_t now = loop_now_ns();
+	uint64_t beat = loop_heartbeat(d->loop);
+
+	if (!usec || now - *last_ping < usec * 1000 / 2) {
+		return;
+	}
+	if (beat != *last_beat) {
+		sd_notify(0, "WATCHDOG=1");
+		*last_ping = now;
+		*last_beat = beat;
+	}
+}
+
+static int run(struct daemon *d)
+{
+	uint64_t wd_usec = 0, last_beat = 0, last_ping = 0, junk;
+	struct signalfd_siginfo si;
+	struct loop_event ev;
+	struct pollfd pfd[2];
+	int sig_fd, tick_fd;
+
+	if (open_fds(&sig_fd, &tick_fd)) {
+		return EX_OSERR;
+	}
+	if (sd_watchdog_enabled(0, &wd_usec) <= 0) {
+		wd_usec = 0;
+	}
+	sd_notifyf(0, "READY=1\nSTATUS=running, %s rig, state IDLE",
+		   rig_name(d->rig));
+	pfd[0] = (struct pollfd){ .fd = sig_fd, .events = POLLIN };
+	pfd[1] = (struct pollfd){ .fd = tick_fd, .events = POLLIN };
+	for (;;) {
+		if (poll(pfd, 2, -1) < 0 && errno != EINTR) {
+			log_err("main: poll: %m");
+			break;
+		}
+		if ((pfd[0].revents & POLLIN) &&
+		    read(sig_fd, &si, sizeof(si)) == sizeof(si)) {
+			if (si.ssi_signo != SIGHUP) {
+				log_notice("%s: stopping, torque off",
+					   strsignal((int)si.ssi_signo));
+				break;
+			}
+			log_notice("SIGHUP: reload is not supported; restart "
+				   "the service to apply a new configuration");
+		}
+		if ((pfd[1].revents & POLLIN) &&
+		    read(tick_fd, &junk, sizeof(junk)) < 0) {
+			/* the tick only wakes us */
+		}
+		while (loop_pop_event(d->loop, &ev)) {
+			log_event(d, &ev);
+		}
+		if (!control_alive(d->control)) {
+			log_err("control thread ended: stopping, torque off");
+			break;
+		}
+		watchdog(d, wd_usec, &last_beat, &last_ping);
+	}
+	sd_notify(0, "STOPPING=1");
+	close(sig_fd);
+	close(tick_fd);
+	return 0;
+}
+
+static void block_signals(void)
+{
+	sigset_t set;
+
+	sigemptyset(&set);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGHUP);
+	sigaddset(&set, SIGPIPE);
+	pthread_sigmask(SIG_BLOCK, &set, NULL);
+}
+
+int main(int argc, char **argv)
+{
+	struct daemon d = { 0 };
+	struct options opt;
+	int r;
+
+	if (parse_options(argc, argv, &opt)) {
+		return EX_USAGE;
+	}
+	if (load_config(argc, argv, &opt, &d.cfg)) {
+		return EX_CONFIG;
+	}
+	if (opt.check_config) {
+		printf("%s: configuration ok\n", opt.config_explicit ||
+		       access(opt.config_path, F_OK) == 0 ? opt.config_path
+						  : "built-in defaults");
+		return 0;
+	}
+	if (opt.print_config) {
+		config_print(&d.cfg, stdout);
+		return 0;
+	}
+	log_init("endosimd", d.cfg.log.level);
+	log_info("endosimd %s starting", ENDOSIM_VERSION);
+	block_signals();
+	d.start_ns = loop_now_ns();
+	r = start(&d, &opt);
+	if (!r) {
+		r = run(&d);
+	}
+	stop(&d);
+	if (!r) {
+		log_info("stopped");
+	}
+	return r;
+}

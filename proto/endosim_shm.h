@@ -1,0 +1,113 @@
+/*
+ * endosim_shm.h - the layout of endosimd's shared-memory state.
+ *
+ * This header is the contract between the daemon (the one writer) and every
+ * reader (endoview, endoctl, tests). It is plain C11 with fixed-size types so
+ * that any process on the rig can map it.
+ *
+ * The object is a POSIX shm object (default name "/endosim") holding one
+ * struct endosim_shm: a header written once at start-up, then a seqlock and
+ * the state that the force loop publishes every cycle.
+ *
+ * Compatibility: a reader checks magic, version and size before using the
+ * state. Any change to struct endosim_state that moves or retypes a field
+ * bumps ENDOSIM_SHM_VERSION.
+ *
+ * Units are SI throughout: m, rad, s, N, N m; time stamps in nanoseconds of
+ * CLOCK_MONOTONIC.
+ */
+#ifndef ENDOSIM_SHM_H
+#define ENDOSIM_SHM_H
+
+#include <stdint.h>
+
+#include "seqlock.h"
+
+#define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
+#define ENDOSIM_SHM_VERSION 1u
+#define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
+
+/* The rig's four axes, in this order everywhere (shm, sockets, config). */
+enum endosim_axis {
+	ENDOSIM_AXIS_INSERTION = 0, /* carriage: position m, force N */
+	ENDOSIM_AXIS_ROLL = 1,      /* tube roll: angle rad, torque N m */
+	ENDOSIM_AXIS_WHEEL_UD = 2,  /* up/down wheel: angle rad, torque N m */
+	ENDOSIM_AXIS_WHEEL_LR = 3,  /* left/right wheel: angle rad, torque N m */
+	ENDOSIM_AXES = 4,
+};
+
+/* The daemon's state machine. Motors are energised only in ENABLED. */
+enum endosim_state_id {
+	ENDOSIM_STATE_IDLE = 0,    /* torque off, waiting for enable */
+	ENDOSIM_STATE_ENABLED = 1, /* forces rendered */
+	ENDOSIM_STATE_ESTOP = 2,   /* latched emergency stop, torque off */
+	ENDOSIM_STATE_FAULT = 3,   /* latched fault, torque off */
+};
+
+/*
+ * Fault causes: bits of endosim_state.fault_bits (all faults latched since
+ * the last reset). Bit numbers never change meaning.
+ */
+enum endosim_fault {
+	ENDOSIM_FAULT_DRIVE = 1u << 0,       /* a drive reports a fault */
+	ENDOSIM_FAULT_DRIVE_GONE = 1u << 1,  /* a drive or bus vanished */
+	ENDOSIM_FAULT_STALE = 1u << 2,       /* feedback older than allowed */
+	ENDOSIM_FAULT_BUS = 1u << 3,         /* a bus transaction failed */
+	ENDOSIM_FAULT_OVERRUN = 1u << 4,     /* loop overrun budget exceeded */
+	ENDOSIM_FAULT_TRAVEL = 1u << 5,      /* position outside travel */
+	ENDOSIM_FAULT_RUNAWAY = 1u << 6,     /* velocity above its limit */
+	ENDOSIM_FAULT_SATURATION = 1u << 7,  /* command saturated too long */
+	ENDOSIM_FAULT_NONFINITE = 1u << 8,   /* NaN or inf in the pipeline */
+	ENDOSIM_FAULT_INTERNAL = 1u << 9,    /* a daemon thread died */
+};
+
+/* Per-axis drive status bits (endosim_axis_state.drive_status). */
+enum endosim_drive_status {
+	ENDOSIM_DRIVE_PRESENT = 1u << 0, /* the device answers */
+	ENDOSIM_DRIVE_ENABLED = 1u << 1, /* power stage on, following torque */
+	ENDOSIM_DRIVE_FAULT = 1u << 2,   /* the drive itself reports a fault */
+};
+
+struct endosim_axis_state {
+	double position;   /* m (insertion) or rad */
+	double velocity;   /* m/s or rad/s */
+	double hand;       /* N or N m: the hand's force (simulated rig only) */
+	double command;    /* N or N m: rendered force before the safety filter */
+	double limited;    /* N or N m: after limits, sent to the drive */
+	uint64_t feedback_ns; /* CLOCK_MONOTONIC time of the feedback sample */
+	uint32_t drive_status; /* enum endosim_drive_status bits */
+	uint32_t reserved;
+};
+
+struct endosim_state {
+	uint64_t cycle;       /* force-loop cycles since start */
+	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
+	uint64_t publish_ns;  /* CLOCK_MONOTONIC: just before publishing */
+	uint32_t state;       /* enum endosim_state_id */
+	uint32_t fault_bits;  /* enum endosim_fault bits, latched */
+	int32_t fault_axis;   /* axis of the first fault, -1 if none or global */
+	uint32_t fault_detail; /* backend-specific code of the first fault */
+	uint64_t fault_ns;    /* CLOCK_MONOTONIC time of the first fault */
+	uint64_t overruns;    /* periods skipped since start */
+	uint32_t latency_ns;  /* this cycle's wake-up latency */
+	uint32_t compute_ns;  /* the previous cycle's compute time */
+	double scenario_time_s; /* simulated hand: time into the scenario */
+	uint32_t scenario_done; /* 1 once a scenario without repeat ended */
+	uint32_t reserved;
+	struct endosim_axis_state axis[ENDOSIM_AXES];
+};
+
+struct endosim_shm {
+	/* Header: written once before the loop starts. */
+	uint64_t magic;       /* ENDOSIM_SHM_MAGIC */
+	uint32_t version;     /* ENDOSIM_SHM_VERSION */
+	uint32_t size;        /* sizeof(struct endosim_shm) of the writer */
+	int32_t writer_pid;
+	uint32_t period_ns;   /* force-loop period */
+	uint64_t start_ns;    /* CLOCK_MONOTONIC at daemon start */
+	/* Published every cycle. */
+	seqlock_t lock;
+	struct endosim_state state;
+};
+
+#endif

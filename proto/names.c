@@ -1,0 +1,84 @@
+/* names.c - see names.h. */
+#include "names.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "endosim_shm.h"
+
+static const char *const state_names[] = {
+	[ENDOSIM_STATE_IDLE] = "IDLE",
+	[ENDOSIM_STATE_ENABLED] = "ENABLED",
+	[ENDOSIM_STATE_ESTOP] = "ESTOP",
+	[ENDOSIM_STATE_FAULT] = "FAULT",
+};
+
+static const char *const axis_names[ENDOSIM_AXES] = {
+	"insertion", "roll", "wheel_ud", "wheel_lr",
+};
+
+static const char *const fault_names[] = {
+	"drive", "drive-gone", "stale-feedback", "bus-error",
+	"overrun-budget", "travel", "runaway", "saturation",
+	"non-finite", "internal",
+};
+
+#define COUNT(a) (sizeof(a) / sizeof((a)[0]))
+
+const char *names_state(uint32_t state)
+{
+	return state < COUNT(state_names) ? state_names[state] : "?";
+}
+
+const char *names_axis(int axis)
+{
+	return axis >= 0 && axis < ENDOSIM_AXES ? axis_names[axis] : "?";
+}
+
+const char *names_axis_position_unit(int axis)
+{
+	return axis == ENDOSIM_AXIS_INSERTION ? "m" : "rad";
+}
+
+const char *names_axis_force_unit(int axis)
+{
+	return axis == ENDOSIM_AXIS_INSERTION ? "N" : "N m";
+}
+
+int names_axis_find(const char *name)
+{
+	for (int i = 0; i < ENDOSIM_AXES; i++) {
+		if (!strcmp(name, axis_names[i])) {
+			return i;
+		}
+	}
+	return -1;
+}
+
+const char *names_fault(uint32_t bit)
+{
+	for (unsigned int i = 0; i < COUNT(fault_names); i++) {
+		if (bit == 1u << i) {
+			return fault_names[i];
+		}
+	}
+	return "?";
+}
+
+char *names_faults(uint32_t fault_bits, char *buf, size_t size)
+{
+	size_t len = 0;
+
+	buf[0] = '\0';
+	for (unsigned int i = 0; i < 32 && len < size; i++) {
+		if (fault_bits & (1u << i)) {
+			len += (size_t)snprintf(buf + len, size - len, "%s%s",
+						len ? "," : "",
+						names_fault(1u << i));
+		}
+	}
+	if (!fault_bits) {
+		snprintf(buf, size, "none");
+	}
+	return buf;
+}

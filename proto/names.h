@@ -1,0 +1,34 @@
+/*
+ * names.h - the printable names of the shared enumerations in
+ * endosim_shm.h, so that the daemon, endoctl and the viewer say the same.
+ * All functions are pure and thread-safe; unknown values give "?".
+ */
+#ifndef ENDOSIM_NAMES_H
+#define ENDOSIM_NAMES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* "IDLE", "ENABLED", "ESTOP", "FAULT". */
+const char *names_state(uint32_t state);
+
+/* "insertion", "roll", "wheel_ud", "wheel_lr". */
+const char *names_axis(int axis);
+
+/* The unit of an axis' position ("m" or "rad") and of its force ("N" or "N m"). */
+const char *names_axis_position_unit(int axis);
+const char *names_axis_force_unit(int axis);
+
+/* Index of the axis called NAME, or -1. */
+int names_axis_find(const char *name);
+
+/* The short name of one fault bit ("drive", "stale", ...). */
+const char *names_fault(uint32_t bit);
+
+/*
+ * Writes the names of every bit in FAULT_BITS, comma-separated, into BUF
+ * ("none" when zero). Returns BUF.
+ */
+char *names_faults(uint32_t fault_bits, char *buf, size_t size);
+
+#endif
