@@ -20,6 +20,7 @@ DESTDIR ?=
 BINDIR = $(PREFIX)/bin
 SBINDIR = $(PREFIX)/sbin
 DATADIR = $(PREFIX)/share/endosim
+DOCDIR = $(PREFIX)/share/doc/endosim
 SYSTEMDDIR = $(PREFIX)/lib/systemd/system
 SYSUSERSDIR = $(PREFIX)/lib/sysusers.d
 TMPFILESDIR = $(PREFIX)/lib/tmpfiles.d
@@ -38,7 +39,7 @@ LDLIBS = $(PKG_LIBS) -lpthread -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev
-DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat procps
+DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd
 DEPS_BENCH = $(DEPS_BUILD) rt-tests
 
 # Installs the missing packages of $(1) as root; otherwise names them.
@@ -83,12 +84,14 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety
 test_config_OBJS = config.o log.o names.o
-test_frame_OBJS =
-test_seqlock_OBJS =
+test_frame_OBJS = frame.o endosim.pb-c.o
+test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
 test_safety_OBJS = safety.o haptics.o config.o log.o names.o
 TEST_TOOLS = shm_probe shm_latency
+shm_probe_OBJS =
+shm_latency_OBJS = histo.o
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
 	unit-tests clang-build
@@ -126,10 +129,14 @@ $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
 
-$(BUILD)/tests/%: tests/tools/%.c $(call obj,$(PROTO_OBJS))
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(call obj,$(PROTO_OBJS)) $(LDFLAGS) \
-		$(LDLIBS)
+# test tools: separate processes the tests and benchmarks run
+define test_tool_rule
+$(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+		$(call obj,$($(1)_OBJS) $(PROTO_OBJS)) $$(LDFLAGS) $$(LDLIBS)
+endef
+$(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
 
@@ -168,6 +175,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
+		$(DESTDIR)$(DOCDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
 	install -m 0755 $(BUILD)/endosimd $(DESTDIR)$(SBINDIR)/endosimd
@@ -176,7 +184,8 @@ install: all
 		install -m 0644 config/endosimd.conf \
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
-	sed -e 's|@SBINDIR@|$(SBINDIR)|g' \
+	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
+	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \
 		> $(DESTDIR)$(SYSTEMDDIR)/endosimd.service
 	install -m 0644 systemd/endosim.sysusers \

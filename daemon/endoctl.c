@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "../proto/client.h"
+#include "../proto/endosim_shm.h"
 #include "../proto/names.h"
 #include "../proto/version.h"
 #include "json.h"
@@ -509,6 +510,47 @@ static int cmd_set(struct ctl *ctl, int argc, char **argv)
 	return 0;
 }
 
+static int cmd_hand(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	double force[ENDOSIM_AXES];
+	Endosim__Reply *rep;
+	int r, n = 0;
+
+	for (int i = 1; i < argc; i++) {
+		char *end;
+
+		if (!strcmp(argv[i], "--hold-ms") && i + 1 < argc) {
+			body.hold_ms = (uint32_t)strtoul(argv[++i], &end, 10);
+			continue;
+		}
+		if (n == ENDOSIM_AXES) {
+			n++;
+			break;
+		}
+		force[n++] = strtod(argv[i], &end);
+		if (*end) {
+			n = -1;
+			break;
+		}
+	}
+	if (n != ENDOSIM_AXES) {
+		fprintf(stderr, "endoctl: hand F_INSERTION_N F_ROLL_NM F_UD_NM "
+			"F_LR_NM [--hold-ms MS]\n");
+		return EXIT_USAGE;
+	}
+	body.n_force = ENDOSIM_AXES;
+	body.force = force;
+	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
+	req.hand_input = &body;
+	r = transact(ctl, true, &req, &rep);
+	if (!r) {
+		endosim__reply__free_unpacked(rep, NULL);
+	}
+	return r;
+}
+
 static int cmd_version(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
@@ -560,6 +602,8 @@ static const struct {
 	{ "reset", cmd_reset, "clear ESTOP or a FAULT whose cause is gone" },
 	{ "get", cmd_get, "[SECTION.KEY]: configuration" },
 	{ "set", cmd_set, "SECTION.KEY VALUE: change a live key" },
+	{ "hand", cmd_hand, "F_INS F_ROLL F_UD F_LR [--hold-ms MS]: push the "
+			    "simulated hand (N, N m)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 };
 

@@ -1,0 +1,59 @@
+#!/bin/bash
+# run.sh - `make bench`: the figures the issues ask for. Benchmarks, not
+# tests: they print numbers and judge nothing.
+#
+#   BENCH_SECONDS   duration of the loop-latency runs (default 30)
+#
+# 1. Force-loop wake-up latency next to cyclictest's, both at SCHED_FIFO 80
+#    and 1 kHz, run at the same time on the same machine, their
+#    percentiles computed the same way (1 us histogram bins); the loop's
+#    compute time; the shared-memory publish-to-read latency seen by a
+#    reader process.
+set -u
+. "$(dirname "$0")/../common.sh"
+
+SECONDS_RUN=${BENCH_SECONDS:-30}
+PRIO=80
+
+# percentiles of a cyclictest histogram ("bin count" lines, 1 us bins)
+cyclictest_percentiles() {
+	awk '/^[0-9]+ +[0-9]+/ { n[$1 + 0] = $2; total += $2; if ($1 + 0 > top) top = $1 + 0 }
+	     /^# Max Latencies:/ { max = $4 + 0 }
+	     END {
+		split("0.50 0.99 0.999", q, " ");
+		for (k = 1; k <= 3; k++) {
+			need = int(total * q[k] + 0.5); if (need < 1) need = 1;
+			seen = 0;
+			for (i = 0; i <= top; i++) { seen += n[i]; if (seen >= need) { p[k] = i; break } }
+		}
+		printf "%d %d %d %d %d\n", p[1], p[2], p[3], max, total
+	     }' "$1"
+}
+
+echo "=== force loop vs cyclictest: ${SECONDS_RUN} s each, at the same time, SCHED_FIFO $PRIO, 1 kHz ==="
+echo "machine: $(nproc) CPUs, $(uname -r)"
+start_daemon --set loop.priority=$PRIO || exit 1
+cyclictest -m -p $PRIO -i 1000 -D "$SECONDS_RUN" -h 10000 -q >"$TMP/cyclictest.out" 2>&1 &
+ct=$!
+sleep "$SECONDS_RUN"
+wait $ct
+ctl --json stats >"$TMP/stats.json"
+read -r c50 c99 c999 cmax ctotal < <(cyclictest_percentiles "$TMP/cyclictest.out")
+read -r cycles overruns policy prio l50 l99 l999 lmax lcount k50 k99 k999 kmax < <(
+	jq -r '[.cycles, .overruns, .rt_policy, .rt_priority,
+		.latency.p50_us, .latency.p99_us, .latency.p999_us, .latency.max_us,
+		.latency.count, .compute.p50_us, .compute.p99_us,
+		.compute.p999_us, .compute.max_us] | @tsv' "$TMP/stats.json")
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; }
+echo "policy $policy $prio; loop cycles $cycles, overruns $overruns"
+printf '%-22s %7s %7s %7s %9s %9s\n' "wake-up latency (us)" p50 p99 p99.9 max samples
+printf '%-22s %7.0f %7.0f %7.0f %9.1f %9d\n' "  endosimd" "$l50" "$l99" "$l999" "$lmax" "$lcount"
+printf '%-22s %7d %7d %7d %9d %9d\n' "  cyclictest" "$c50" "$c99" "$c999" "$cmax" "$ctotal"
+printf '%-22s %7s %7s %7s %9s   (goal: p99 <= 1.20)\n' "  ratio ours/theirs" \
+	"$(ratio "$l50" "$c50")" "$(ratio "$l99" "$c99")" \
+	"$(ratio "$l999" "$c999")" "$(ratio "$lmax" "$cmax")"
+printf 'loop compute time (us): p50 %.0f, p99 %.0f, p99.9 %.0f, max %.1f\n' \
+	"$k50" "$k99" "$k999" "$kmax"
+echo "(endosimd's figures cover the whole daemon run, start-up included; 1 us bins, a percentile is the bin it falls in)"
+"$TOOLS/shm_latency" "$SHM" 5
+stop_daemon

@@ -1,0 +1,136 @@
+# common.sh - shared by the system tests (tests/system/NN-name.sh) and the
+# demo: start endosimd on the simulated rig in a private socket directory
+# with a private shm name, talk to it with endoctl, count checks.
+#
+# A test script sources this file, calls start_daemon, makes checks with
+# `check DESCRIPTION COMMAND...` (or pass/fail), and ends with `finish`,
+# which prints "N passed, N failed" and exits non-zero on any failure. The
+# daemon and the temporary directory are cleaned up on exit whatever
+# happens.
+
+set -u
+
+TOP=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+: "${BUILD:=build}"
+case "$BUILD" in /*) ;; *) BUILD="$TOP/$BUILD" ;; esac
+ENDOSIMD="$BUILD/endosimd"
+ENDOCTL="$BUILD/endoctl"
+TOOLS="$BUILD/tests"
+
+TMP=$(mktemp -d /tmp/endosim-test.XXXXXX)
+SOCK="$TMP/run"
+SHM="/endosim-test-$$"
+LOG="$TMP/endosimd.log"
+DAEMON_PID=""
+PASSED=0
+FAILED=0
+
+pass() {
+	PASSED=$((PASSED + 1))
+	echo "ok - $1"
+}
+
+fail() {
+	FAILED=$((FAILED + 1))
+	echo "not ok - $1"
+	if [ -n "${2:-}" ]; then
+		echo "#   $2"
+	fi
+}
+
+# check DESCRIPTION COMMAND...: passes when COMMAND succeeds.
+check() {
+	local what=$1
+	shift
+	if "$@" >"$TMP/check.out" 2>&1; then
+		pass "$what"
+	else
+		fail "$what" "$(tail -n 3 "$TMP/check.out" | tr '\n' ' ')"
+	fi
+}
+
+# check_status DESCRIPTION STATUS COMMAND...: passes when COMMAND exits
+# with STATUS. Its output stays in $OUT for the checks that follow.
+OUT="$TMP/last.out"
+check_status() {
+	local what=$1 want=$2 got
+	shift 2
+	"$@" >"$OUT" 2>&1
+	got=$?
+	if [ "$got" = "$want" ]; then
+		pass "$what"
+	else
+		fail "$what" "exit $got, expected $want: $(tail -n 2 "$OUT" | tr '\n' ' ')"
+	fi
+}
+
+ctl() {
+	"$ENDOCTL" --socket "$SOCK" "$@"
+}
+
+# status_field JQ: a jq expression over `endoctl --json status`.
+status_field() {
+	ctl --json status | jq -r "$1"
+}
+
+# status_true JQ: the jq expression over the status is true.
+status_true() {
+	[ "$(status_field "$1")" = true ]
+}
+
+# wait_for COMMAND...: retries for up to 5 s.
+wait_for() {
+	local i
+	for i in $(seq 1 100); do
+		if "$@" >/dev/null 2>&1; then
+			return 0
+		fi
+		sleep 0.05
+	done
+	return 1
+}
+
+# start_daemon [ARGS...]: endosimd on the simulated rig, in the background.
+start_daemon() {
+	"$ENDOSIMD" --config "$TOP/config/endosimd.conf" --socket-dir "$SOCK" \
+		--shm-name "$SHM" --set socket.group= "$@" >>"$LOG" 2>&1 &
+	DAEMON_PID=$!
+	if ! wait_for ctl status; then
+		echo "# endosimd did not come up; its log:"
+		sed 's/^/#   /' "$LOG"
+		return 1
+	fi
+}
+
+# stop_daemon: SIGTERM and wait; returns the daemon's exit status.
+stop_daemon() {
+	local rc
+	if [ -z "$DAEMON_PID" ]; then
+		return 0
+	fi
+	kill -TERM "$DAEMON_PID" 2>/dev/null
+	wait "$DAEMON_PID"
+	rc=$?
+	DAEMON_PID=""
+	return $rc
+}
+
+cleanup() {
+	if [ -n "$DAEMON_PID" ]; then
+		kill -KILL "$DAEMON_PID" 2>/dev/null
+		wait "$DAEMON_PID" 2>/dev/null
+	fi
+	rm -f "/dev/shm${SHM}"
+	rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+finish() {
+	if [ "$FAILED" -gt 0 ] && [ -s "$LOG" ]; then
+		echo "# endosimd log:"
+		sed 's/^/#   /' "$LOG"
+	fi
+	echo "$PASSED passed, $FAILED failed"
+	[ "$FAILED" -eq 0 ]
+	exit $?
+}

@@ -1,0 +1,43 @@
+#!/bin/bash
+# demo.sh - `make demo`: endosimd on the simulated rig with the shipped demo
+# scenario (the simulated hand inserts, twists, steers and withdraws), a live
+# status line while it runs, and a summary at the end.
+set -u
+. "$(dirname "$0")/common.sh"
+
+SCENARIO="$TOP/config/scenarios/demo.scn"
+LENGTH=$(awk '$2 == "end" || $2 == "repeat" { print $1 }' "$SCENARIO")
+: "${LENGTH:=25}"
+
+echo "endosim demo: endosimd on the simulated rig, scenario $(basename "$SCENARIO") (${LENGTH} s)"
+start_daemon --scenario "$SCENARIO" || exit 1
+echo "daemon pid $DAEMON_PID, sockets in $SOCK, shared memory $SHM"
+echo "  in another terminal: $ENDOCTL --socket $SOCK status"
+ctl enable
+ctl --json watch --rate 50 --duration "$LENGTH" >"$TMP/trace.json" &
+tracer=$!
+if [ -t 1 ]; then rate=10; else rate=1; fi
+ctl watch --rate $rate --duration "$LENGTH"
+wait "$tracer"
+
+echo
+echo "=== summary ==="
+ctl status | sed -n '1,4p'
+ctl stats
+jq -rs '
+  def peak(f): map(f | fabs) | max;
+  "peak |force| sent to the drives: insertion \(peak(.axes.insertion.limited) * 100 | round / 100) N, " +
+  "roll \(peak(.axes.roll.limited) * 1000 | round / 1000) N m, " +
+  "wheels \(peak(.axes.wheel_ud.limited) * 1000 | round / 1000) / \(peak(.axes.wheel_lr.limited) * 1000 | round / 1000) N m",
+  "deepest insertion: \(map(.axes.insertion.position) | max * 1000 | round / 1000) m; " +
+  "largest roll: \(peak(.axes.roll.position) * 100 | round / 100) rad; " +
+  "largest tip steer: up/down \(peak(.axes.wheel_ud.position) * 100 | round / 100) rad, left/right \(peak(.axes.wheel_lr.position) * 100 | round / 100) rad",
+  "states seen: \(map(.state) | unique | join(", ")); faults: \(map(.fault_bits) | max)"
+' "$TMP/trace.json"
+if stop_daemon; then
+	echo "endosimd stopped cleanly (torque off, exit 0)"
+else
+	echo "endosimd exited with an error; its log:"
+	cat "$LOG"
+	exit 1
+fi

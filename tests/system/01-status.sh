@@ -1,0 +1,44 @@
+#!/bin/bash
+# endosimd starts on the simulated rig with motors off; endoctl status,
+# stats, get/set, version; distinct exit codes.
+. "$(dirname "$0")/../common.sh"
+
+start_daemon || finish
+c1=$(status_field .cycle)
+sleep 0.3
+c2=$(status_field .cycle)
+check "cycles advance ($c1 -> $c2)" test "$c2" -gt "$c1"
+check "starts IDLE: motors never energised at start-up" \
+	test "$(status_field .state)" = IDLE
+check "no torque at start-up" \
+	test "$(ctl --json status | jq '[.axes[].limited] | all(. == 0)')" = true
+if [ "$(id -u)" = 0 ]; then
+	check "root gets SCHED_FIFO" test "$(status_field .rt_policy)" = SCHED_FIFO
+	check "at the configured priority" test "$(status_field .rt_priority)" = 80
+else
+	check "policy reported" test -n "$(status_field .rt_policy)"
+fi
+check "status --json has the documented keys" \
+	test "$(ctl --json status | jq '[has("state","cycle","rt_policy","loop_hz","overruns")] | all')" = true
+check "one object per axis" \
+	test "$(ctl --json status | jq -c '.axes | keys')" = '["insertion","roll","wheel_lr","wheel_ud"]'
+check "each axis has position, velocity, command and limited" \
+	test "$(ctl --json status | jq '[.axes[] | has("position","velocity","command","limited")] | all')" = true
+sleep 1
+check "the loop runs at its rate (loop_hz > 500)" \
+	test "$(status_field '.loop_hz > 500')" = true
+check "stats count latency samples" \
+	test "$(ctl --json stats | jq '.latency.count > 100 and .compute.count > 100')" = true
+check "human status names the state" sh -c "'$ENDOCTL' --socket '$SOCK' status | grep -q '^state *IDLE'"
+check "version names both programs" sh -c "'$ENDOCTL' --socket '$SOCK' version | grep -q 'endosimd 0\.'"
+check "get a key" test "$(ctl get limits.insertion_max_force_n)" = 45
+check "set a live key" ctl set limits.insertion_max_force_n 30
+check "the new value is in effect" test "$(ctl get limits.insertion_max_force_n)" = 30
+check_status "a key that needs a restart is refused" 1 ctl set loop.rate_hz 500
+check_status "an unknown key is refused" 1 ctl set loop.nonsense 1
+check_status "an out-of-range value is refused" 1 ctl set limits.roll_max_torque_n_m 50
+check "a refused value changes nothing" test "$(ctl get limits.roll_max_torque_n_m)" = 1
+check_status "unknown command: usage error" 2 ctl frobnicate
+check_status "no daemon: exit 3" 3 "$ENDOCTL" --socket "$TMP/nowhere" status
+check "ENDOSIM_SOCKET names the socket" env ENDOSIM_SOCKET="$SOCK" "$ENDOCTL" status
+finish

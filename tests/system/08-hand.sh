@@ -1,0 +1,23 @@
+#!/bin/bash
+# The simulated rig: the scripted hand inserts, twists and steers; live
+# hand input through the socket takes over while it holds.
+. "$(dirname "$0")/../common.sh"
+
+start_daemon --scenario "$TOP/config/scenarios/demo.scn" || finish
+ctl enable >/dev/null
+check "the scenario runs" wait_for status_true '.scenario_time_s > 2'
+check "the hand inserts the scope" wait_for status_true '.axes.insertion.position > 0.05'
+check "the hand twists the tube" wait_for status_true '.axes.roll.position > 0.2'
+check "the hand steers up" wait_for status_true '.axes.wheel_ud.position > 0.2' 
+check "live input" ctl hand 0 0 0 0.1 --hold-ms 800
+check "live input shows as the hand's torque" \
+	test "$(status_field .axes.wheel_lr.hand)" = 0.1
+check "live input moves the wheel" wait_for status_true '.axes.wheel_lr.position > 0.1' 
+check "live input clamped to the hand's strength" ctl hand 1000 0 0 0 --hold-ms 500
+check "clamped to hand_insertion_max_n" test "$(status_field .axes.insertion.hand)" = 40
+sleep 0.7
+check "live input expires: the scenario's hand is back" \
+	test "$(status_field '.axes.insertion.hand != 40')" = true
+check_status "wrong number of forces: usage" 2 ctl hand 1 2 3
+check_status "non-finite force refused" 1 ctl hand nan 0 0 0
+finish

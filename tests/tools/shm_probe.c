@@ -1,0 +1,104 @@
+/*
+ * shm_probe - a separate process reading endosimd's shared memory, as the
+ * viewer does: checks that every copy is consistent and that the state
+ * advances. Used by the system tests.
+ *
+ *   shm_probe NAME [COUNT [INTERVAL_US]]   read COUNT states (default 200)
+ *   shm_probe NAME --once                  print one state as key=value
+ *
+ * Exit 0 when every read was consistent and the cycle advanced, 1 otherwise.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "names.h"
+#include "shm_reader.h"
+
+static void print_once(const struct endosim_state *st)
+{
+	printf("cycle=%llu\nstate=%s\nfault_bits=%u\n",
+	       (unsigned long long)st->cycle, names_state(st->state),
+	       st->fault_bits);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		printf("%s.position=%.9g\n%s.limited=%.9g\n", names_axis(a),
+		       st->axis[a].position, names_axis(a),
+		       st->axis[a].limited);
+	}
+}
+
+/* Checks a copy against its own invariants and against the previous one. */
+static const char *check(const struct endosim_state *st,
+			 const struct endosim_state *prev)
+{
+	if (st->publish_ns < st->stamp_ns) {
+		return "published before its own cycle";
+	}
+	if (st->state > ENDOSIM_STATE_FAULT) {
+		return "unknown state";
+	}
+	if (prev && (st->cycle < prev->cycle || st->stamp_ns < prev->stamp_ns)) {
+		return "went backwards";
+	}
+	if (prev && st->cycle == prev->cycle &&
+	    memcmp(st, prev, sizeof(*st)) != 0) {
+		return "same cycle, different contents";
+	}
+	return NULL;
+}
+
+int main(int argc, char **argv)
+{
+	struct endosim_state st, prev;
+	struct shm_reader *r;
+	long count = 200, interval_us = 1000;
+	const char *why;
+
+	if (argc < 2) {
+		fprintf(stderr, "usage: shm_probe NAME [COUNT [INTERVAL_US]] | "
+			"NAME --once\n");
+		return 2;
+	}
+	r = shm_reader_open(argv[1]);
+	if (!r) {
+		fprintf(stderr, "shm_probe: %s: %s\n", argv[1], strerror(errno));
+		return 1;
+	}
+	if (argc > 2 && !strcmp(argv[2], "--once")) {
+		if (shm_reader_read(r, &st, 1000)) {
+			return 1;
+		}
+		print_once(&st);
+		return 0;
+	}
+	if (argc > 2) {
+		count = atol(argv[2]);
+	}
+	if (argc > 3) {
+		interval_us = atol(argv[3]);
+	}
+	struct timespec nap = { .tv_nsec = interval_us * 1000 };
+	uint64_t first = 0;
+
+	for (long i = 0; i < count; i++) {
+		if (shm_reader_read(r, &st, 1000)) {
+			fprintf(stderr, "shm_probe: no consistent copy\n");
+			return 1;
+		}
+		why = check(&st, i ? &prev : NULL);
+		if (why) {
+			fprintf(stderr, "shm_probe: read %ld: %s\n", i, why);
+			return 1;
+		}
+		first = i ? first : st.cycle;
+		prev = st;
+		nanosleep(&nap, NULL);
+	}
+	printf("reads %ld, cycles %llu..%llu, writer pid %d\n", count,
+	       (unsigned long long)first, (unsigned long long)st.cycle,
+	       shm_reader_header(r)->writer_pid);
+	shm_reader_close(r);
+	return st.cycle > first ? 0 : 1;
+}

@@ -1,0 +1,144 @@
+/* test_scenario.c - the scripted hand's scenario files. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "scenario.h"
+
+static char path[64];
+static char err[256];
+
+static struct scenario *load(const char *text)
+{
+	FILE *f;
+
+	snprintf(path, sizeof(path), "/tmp/test_scenario.%d.scn", (int)getpid());
+	f = fopen(path, "w");
+	assert_non_null(f);
+	fputs(text, f);
+	fclose(f);
+	err[0] = '\0';
+	return scenario_load(path, err, sizeof(err));
+}
+
+static void assert_error(int line, const char *what)
+{
+	char where[96];
+
+	snprintf(where, sizeof(where), "%s:%d:", path, line);
+	assert_non_null(strstr(err, where));
+	assert_non_null(strstr(err, what));
+}
+
+static void test_ramps_and_modes(void **state)
+{
+	struct scenario_cmd c[ENDOSIM_AXES];
+	struct scenario *s = load("# comment\n"
+				  "1.0 insertion target 0.4 2.0\n"
+				  "0.0 insertion target 0.1\n"
+				  "2.0 roll force 0.3   # push\n"
+				  "4.0 roll free\n"
+				  "5.0 end\n");
+
+	(void)state;
+	assert_non_null(s);
+	scenario_eval(s, 0.5, c);
+	assert_int_equal(c[ENDOSIM_AXIS_INSERTION].mode, SCENARIO_TARGET);
+	assert_float_equal(c[ENDOSIM_AXIS_INSERTION].value, 0.1, 1e-12);
+	assert_int_equal(c[ENDOSIM_AXIS_ROLL].mode, SCENARIO_FREE);
+	scenario_eval(s, 2.0, c);
+	/* halfway along the ramp from 0.1 to 0.4 */
+	assert_float_equal(c[ENDOSIM_AXIS_INSERTION].value, 0.25, 1e-12);
+	assert_int_equal(c[ENDOSIM_AXIS_ROLL].mode, SCENARIO_FORCE);
+	assert_float_equal(c[ENDOSIM_AXIS_ROLL].value, 0.3, 1e-12);
+	scenario_eval(s, 4.5, c);
+	assert_float_equal(c[ENDOSIM_AXIS_INSERTION].value, 0.4, 1e-12);
+	assert_int_equal(c[ENDOSIM_AXIS_ROLL].mode, SCENARIO_FREE);
+	assert_int_equal(c[ENDOSIM_AXIS_WHEEL_UD].mode, SCENARIO_FREE);
+	assert_false(scenario_done(s, 4.99));
+	assert_true(scenario_done(s, 5.0));
+	assert_float_equal(scenario_length(s), 5.0, 1e-12);
+	scenario_destroy(s);
+}
+
+static void test_repeat(void **state)
+{
+	struct scenario_cmd c[ENDOSIM_AXES];
+	struct scenario *s = load("0 wheel_ud target 1.0 2\n3 repeat\n");
+
+	(void)state;
+	assert_non_null(s);
+	scenario_eval(s, 1.0, c);
+	assert_float_equal(c[ENDOSIM_AXIS_WHEEL_UD].value, 0.5, 1e-12);
+	scenario_eval(s, 4.0, c);
+	assert_float_equal(c[ENDOSIM_AXIS_WHEEL_UD].value, 0.5, 1e-12);
+	assert_false(scenario_done(s, 100));
+	scenario_destroy(s);
+}
+
+static void test_without_end(void **state)
+{
+	struct scenario *s = load("1 insertion target 0.5 4\n2 roll free\n");
+
+	(void)state;
+	assert_non_null(s);
+	assert_float_equal(scenario_length(s), 5.0, 1e-12);
+	assert_false(scenario_done(s, 1e6));
+	scenario_destroy(s);
+}
+
+static void test_errors(void **state)
+{
+	(void)state;
+	assert_null(load("0 insertion target 0.1\n1 elbow target 2\n"));
+	assert_error(2, "unknown axis 'elbow'");
+	assert_null(load("0 insertion push 3\n"));
+	assert_error(1, "expected");
+	assert_null(load("\n\nx insertion free\n"));
+	assert_error(3, "'x' is not a time");
+	assert_null(load("0 insertion target abc\n"));
+	assert_error(1, "'abc' is not a number");
+	assert_null(load("0 insertion target 0.2 -1\n"));
+	assert_error(1, "ramp");
+	assert_null(load("0 insertion force 1 2\n"));
+	assert_error(1, "expected");
+	assert_null(load("1 end\n2 roll free\n"));
+	assert_error(2, "after the end/repeat on line 1");
+	assert_null(load("5 roll free\n1 end\n"));
+	assert_non_null(strstr(err, "after the end/repeat"));
+	assert_null(load("# nothing\n"));
+	assert_non_null(strstr(err, "no steps"));
+	assert_null(scenario_load("/nonexistent.scn", err, sizeof(err)));
+	assert_non_null(strstr(err, "cannot open"));
+	unlink(path);
+}
+
+static void test_shipped_demo(void **state)
+{
+	struct scenario *s = scenario_load("config/scenarios/demo.scn", err,
+					   sizeof(err));
+
+	(void)state;
+	assert_non_null(s);
+	assert_true(scenario_length(s) > 10);
+	scenario_destroy(s);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_ramps_and_modes),
+		cmocka_unit_test(test_repeat),
+		cmocka_unit_test(test_without_end),
+		cmocka_unit_test(test_errors),
+		cmocka_unit_test(test_shipped_demo),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
