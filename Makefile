@@ -24,17 +24,19 @@ DOCDIR = $(PREFIX)/share/doc/endosim
 SYSTEMDDIR = $(PREFIX)/lib/systemd/system
 SYSUSERSDIR = $(PREFIX)/lib/sysusers.d
 TMPFILESDIR = $(PREFIX)/lib/tmpfiles.d
-UDEVDIR = $(PREFIX)/lib/udev/rules.d
+# udev does not read /usr/local: rules go where the administrator's go
+UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
 PKGS = libprotobuf-c inih libsystemd
+CLIENT_PKGS = libprotobuf-c
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
 	     -Iproto $(PKG_CFLAGS) -MMD -MP
-LDLIBS = $(PKG_LIBS) -lpthread -lm
+LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lpthread -lm
+CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
@@ -118,7 +120,7 @@ $(BUILD)/endosimd: $(call obj,$(DAEMON_OBJS) $(PROTO_OBJS))
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
 
 $(BUILD)/endoctl: $(call obj,$(ENDOCTL_OBJS) $(PROTO_OBJS))
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(CLIENT_LDLIBS)
 
 # unit tests: each test file with the modules it exercises
 define unit_test_rule
@@ -175,7 +177,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
-		$(DESTDIR)$(DOCDIR) \
+		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
 	install -m 0755 $(BUILD)/endosimd $(DESTDIR)$(SBINDIR)/endosimd
@@ -192,6 +194,7 @@ install: all
 		$(DESTDIR)$(SYSUSERSDIR)/endosim.conf
 	install -m 0644 systemd/endosim.tmpfiles \
 		$(DESTDIR)$(TMPFILESDIR)/endosim.conf
+	install -m 0644 systemd/70-endosim.rules $(DESTDIR)$(UDEVDIR)/
 
 clean:
 	rm -rf $(BUILD)

@@ -38,6 +38,9 @@ static const struct config_key keys[] = {
 	   "SCHED_FIFO priority of the force loop"),
 	KI("loop", "cpu", loop.cpu, -1, -1, 1023, "", 0,
 	   "CPU the force loop is pinned to; -1: not pinned"),
+	KI("loop", "cpu_dma_latency_us", loop.cpu_dma_latency_us, 0, -1, 100000,
+	   "us", 0, "hold /dev/cpu_dma_latency at this while running (keeps "
+	   "CPUs out of deep idle states); -1: leave alone"),
 
 	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
 	   "drive backend: sim (the simulated rig)"),

@@ -33,6 +33,7 @@ struct config {
 		int rate_hz;      /* force-loop rate, Hz */
 		int priority;     /* SCHED_FIFO priority, 1..99 */
 		int cpu;          /* CPU to pin the loop to, -1: any */
+		int cpu_dma_latency_us; /* PM QoS held while running, -1: none */
 	} loop;
 	struct {
 		int backend;                   /* enum config_backend */

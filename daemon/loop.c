@@ -2,6 +2,7 @@
 #include "loop.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <stdlib.h>
@@ -38,6 +39,7 @@ struct loop {
 	struct publish *pub;
 	pthread_t thread;
 	bool running;
+	int pm_qos_fd;             /* /dev/cpu_dma_latency, held open */
 	_Atomic bool stop;
 	_Atomic uint64_t heartbeat;
 	_Atomic uint64_t overruns;
@@ -87,6 +89,7 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 	l->rig = rig;
 	l->pub = pub;
 	safety_init(&l->safety);
+	l->pm_qos_fd = -1;
 	l->info.policy = "none";
 	l->info.period_ns = (uint32_t)(1000000000u / (unsigned)cfg->loop.rate_hz);
 	return l;
@@ -303,6 +306,30 @@ static void lock_memory(struct loop *l)
 	l->info.memory_locked = true;
 }
 
+/*
+ * Holds the PM QoS request cyclictest makes: while the file stays open the
+ * CPUs do not enter idle states slower to leave than the value.
+ */
+static void hold_cpu_latency(struct loop *l)
+{
+	int32_t us = l->cfg.loop.cpu_dma_latency_us;
+	int fd;
+
+	if (us < 0) {
+		return;
+	}
+	fd = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+	if (fd < 0 || write(fd, &us, sizeof(us)) != sizeof(us)) {
+		log_warn("cannot hold /dev/cpu_dma_latency at %d us: %m; deep "
+			 "CPU idle states may delay the force loop", (int)us);
+		if (fd >= 0) {
+			close(fd);
+		}
+		return;
+	}
+	l->pm_qos_fd = fd;
+}
+
 static int create_thread(struct loop *l, bool fifo)
 {
 	struct sched_param sp = { .sched_priority = l->cfg.loop.priority };
@@ -333,6 +360,7 @@ int loop_start(struct loop *l)
 	int policy, r;
 
 	lock_memory(l);
+	hold_cpu_latency(l);
 	r = create_thread(l, true);
 	if (r == -EPERM) {
 		log_warn("force loop: no permission for SCHED_FIFO priority %d "
@@ -350,10 +378,11 @@ int loop_start(struct loop *l)
 	pthread_getschedparam(l->thread, &policy, &sp);
 	l->info.policy = policy == SCHED_FIFO ? "SCHED_FIFO" : "SCHED_OTHER";
 	l->info.priority = policy == SCHED_FIFO ? sp.sched_priority : 0;
-	log_info("force loop: %d Hz, %s priority %d, memory %slocked%s",
+	log_info("force loop: %d Hz, %s priority %d, memory %slocked%s%s",
 		 l->cfg.loop.rate_hz, l->info.policy, l->info.priority,
 		 l->info.memory_locked ? "" : "not ",
-		 l->cfg.loop.cpu >= 0 ? ", pinned" : "");
+		 l->cfg.loop.cpu >= 0 ? ", pinned" : "",
+		 l->pm_qos_fd >= 0 ? ", CPU idle latency held" : "");
 	return 0;
 }
 
@@ -374,6 +403,9 @@ void loop_destroy(struct loop *l)
 		return;
 	}
 	loop_stop(l);
+	if (l->pm_qos_fd >= 0) {
+		close(l->pm_qos_fd);
+	}
 	spsc_free(&l->events);
 	free(l);
 }

@@ -16,6 +16,7 @@ unit="$root/usr/lib/systemd/system/endosimd.service"
 check "unit installed" test -f "$unit"
 check "unit paths substituted" grep -q "^ExecStart=$root/usr/sbin/endosimd --config $root/etc/endosim/endosimd.conf$" "$unit"
 check "sysusers.d and tmpfiles.d installed" test -f "$root/usr/lib/sysusers.d/endosim.conf" -a -f "$root/usr/lib/tmpfiles.d/endosim.conf"
+check "udev rules installed where udev reads them" test -f "$root/etc/udev/rules.d/70-endosim.rules"
 check "a second install keeps an edited configuration" sh -c "echo '; edited' >> '$root/etc/endosim/endosimd.conf' && make -C '$TOP' --no-print-directory BUILD='$BUILD' PREFIX='$root/usr' SYSCONFDIR='$root/etc' install >/dev/null && grep -q '; edited' '$root/etc/endosim/endosimd.conf'"
 if command -v systemd-analyze >/dev/null; then
 	check "systemd-analyze security: exposure 1.0 or lower" \
