@@ -41,7 +41,8 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev
-DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd
+DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
+	    valgrind
 DEPS_BENCH = $(DEPS_BUILD) rt-tests
 
 # Installs the missing packages of $(1) as root; otherwise names them.
@@ -96,7 +97,7 @@ shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
-	unit-tests clang-build
+	unit-tests clang-build sanitize
 
 all: $(PROGRAMS)
 
@@ -162,8 +163,19 @@ clang-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/clang CC=clang all \
 		unit-tests
 
+# AddressSanitizer and UndefinedBehaviorSanitizer: every suite again, in a
+# build of its own; any report fails the run
+SAN_FLAGS = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all \
+	    -fno-omit-frame-pointer
+sanitize:
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/asan CFLAGS="$(SAN_FLAGS)" \
+		LDFLAGS="-fsanitize=address,undefined" all unit-tests
+	BUILD=$(BUILD)/asan SUITE_PREFIX=asan/ tests/run.sh
+
 check: all unit-tests clang-build
-	BUILD=$(BUILD) tests/run.sh
+	BUILD=$(BUILD) tests/run.sh; a=$$?; \
+	$(MAKE) --no-print-directory sanitize; b=$$?; \
+	test $$a -eq 0 -a $$b -eq 0
 
 demo: deps-build
 	$(MAKE) --no-print-directory all

@@ -17,6 +17,14 @@
 #include "log.h"
 #include "spsc.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+
 #define LOOP_STACK_BYTES (512 * 1024)
 #define LOOP_PREFAULT_BYTES (256 * 1024)
 #define LOOP_EVENTS 256
@@ -291,6 +299,11 @@ static void lock_memory(struct loop *l)
 {
 	struct rlimit rl;
 
+#ifdef UNDER_ASAN
+	log_info("memory not locked: built with AddressSanitizer, whose "
+		 "shadow memory cannot be locked");
+	return;
+#endif
 	getrlimit(RLIMIT_MEMLOCK, &rl);
 	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
 		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "

@@ -17,7 +17,6 @@ struct rig_sim {
 	double hand_force[ENDOSIM_AXES]; /* N or N m, last step */
 	double dt_s;                     /* loop period */
 	double t_s;                      /* simulated time */
-	uint64_t stamp_ns;               /* time of the newest state */
 };
 
 static struct rig_sim *to_sim(struct rig *rig)
@@ -36,16 +35,14 @@ static void sim_read(struct rig *rig, uint64_t now_ns, struct rig_feedback *fb)
 	struct rig_sim *s = to_sim(rig);
 	const struct scenario *scn = hand_scenario(s->hand);
 
-	if (!s->stamp_ns) {
-		s->stamp_ns = now_ns;
-	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		struct rig_axis_feedback *f = &fb->axis[a];
 
 		f->position = s->plant[a].x;
 		f->velocity = s->plant[a].v;
 		f->hand = s->hand_force[a];
-		f->stamp_ns = s->stamp_ns;
+		/* the plants live in this thread: their state is current */
+		f->stamp_ns = now_ns;
 		f->status = ENDOSIM_DRIVE_PRESENT;
 		f->fault_detail = 0;
 	}
@@ -70,7 +67,6 @@ static void sim_write(struct rig *rig, uint64_t now_ns,
 		plant_step(&s->plant[a], motor + s->hand_force[a], s->dt_s);
 	}
 	s->t_s += s->dt_s;
-	s->stamp_ns = now_ns;
 }
 
 static void sim_stop(struct rig *rig)

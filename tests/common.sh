@@ -78,10 +78,10 @@ status_true() {
 	[ "$(status_field "$1")" = true ]
 }
 
-# wait_for COMMAND...: retries for up to 5 s.
+# wait_for COMMAND...: retries for up to $WAIT_S seconds (default 5).
 wait_for() {
 	local i
-	for i in $(seq 1 100); do
+	for i in $(seq 1 $((${WAIT_S:-5} * 20))); do
 		if "$@" >/dev/null 2>&1; then
 			return 0
 		fi
@@ -126,6 +126,13 @@ cleanup() {
 trap cleanup EXIT
 
 finish() {
+	if [ -n "$DAEMON_PID" ]; then
+		check "endosimd exits cleanly on SIGTERM" stop_daemon
+	fi
+	if grep -qE "ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:" \
+		"$LOG" 2>/dev/null; then
+		fail "sanitizer report in endosimd's log"
+	fi
 	if [ "$FAILED" -gt 0 ] && [ -s "$LOG" ]; then
 		echo "# endosimd log:"
 		sed 's/^/#   /' "$LOG"

@@ -7,6 +7,7 @@ set -u
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP" || exit 1
 : "${BUILD:=build}"
+: "${SUITE_PREFIX:=}"
 export BUILD
 passed=0
 failed=0
@@ -45,14 +46,14 @@ for t in "$BUILD"/tests/test_*; do
 	[ -x "$t" ] || continue
 	"$t" >"$out" 2>&1
 	rc=$?
-	count "unit/$(basename "$t")" "$out" $rc
+	count "${SUITE_PREFIX}unit/$(basename "$t")" "$out" $rc
 	[ $rc -eq 0 ] || sed 's/^/    /' "$out" | grep -vE 'OK \]|RUN  ' | tail -n 20
 done
 for t in tests/system/[0-9]*.sh; do
 	[ -e "$t" ] || continue
 	timeout 300 bash "$t" >"$out" 2>&1
 	rc=$?
-	count "system/$(basename "$t" .sh)" "$out" $rc
+	count "${SUITE_PREFIX}system/$(basename "$t" .sh)" "$out" $rc
 	[ $rc -eq 0 ] || sed 's/^/    /' "$out" | tail -n 40
 done
 rm -f "$out"

@@ -67,11 +67,13 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	if (argc > 2 && !strcmp(argv[2], "--once")) {
-		if (shm_reader_read(r, &st, 1000)) {
-			return 1;
+		int err = shm_reader_read(r, &st, 1000);
+
+		if (!err) {
+			print_once(&st);
 		}
-		print_once(&st);
-		return 0;
+		shm_reader_close(r);
+		return err ? 1 : 0;
 	}
 	if (argc > 2) {
 		count = atol(argv[2]);
@@ -83,13 +85,11 @@ int main(int argc, char **argv)
 	uint64_t first = 0;
 
 	for (long i = 0; i < count; i++) {
-		if (shm_reader_read(r, &st, 1000)) {
-			fprintf(stderr, "shm_probe: no consistent copy\n");
-			return 1;
-		}
-		why = check(&st, i ? &prev : NULL);
+		why = shm_reader_read(r, &st, 1000) ? "no consistent copy"
+						     : check(&st, i ? &prev : NULL);
 		if (why) {
 			fprintf(stderr, "shm_probe: read %ld: %s\n", i, why);
+			shm_reader_close(r);
 			return 1;
 		}
 		first = i ? first : st.cycle;
