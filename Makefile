@@ -97,7 +97,7 @@ shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
-	unit-tests clang-build sanitize
+	unit-tests clang-build sanitize fuzz fuzz-build fuzz-targets
 
 all: $(PROGRAMS)
 
@@ -143,6 +143,32 @@ $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
 
+# --- fuzz targets (libFuzzer, clang) --------------------------------------
+FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario
+fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o log.o names.o
+fuzz_config_OBJS = config.o log.o names.o
+fuzz_scenario_OBJS = scenario.o names.o
+FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined
+FUZZ_SECONDS ?= 60
+
+define fuzz_rule
+$(BUILD)/$(1): tests/fuzz/$(1).c $(call obj,$($(1)_OBJS))
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -fsanitize=fuzzer,address,undefined \
+		-o $$@ $$< $(call obj,$($(1)_OBJS)) $$(LDLIBS)
+endef
+$(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_rule,$(t))))
+
+fuzz-targets: $(addprefix $(BUILD)/,$(FUZZ_TARGETS))
+
+fuzz-build:
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzz CC=clang \
+		CFLAGS="$(FUZZ_CFLAGS)" fuzz-targets
+
+# each target for FUZZ_SECONDS from the corpus in tests/fuzz/NAME/
+fuzz: deps-test
+	$(MAKE) --no-print-directory fuzz-build
+	FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run.sh $(BUILD)/fuzz
+
 # --- the two commands --------------------------------------------------------
 deps: deps-test deps-bench
 
@@ -172,7 +198,7 @@ sanitize:
 		LDFLAGS="-fsanitize=address,undefined" all unit-tests
 	BUILD=$(BUILD)/asan SUITE_PREFIX=asan/ tests/run.sh
 
-check: all unit-tests clang-build
+check: all unit-tests clang-build fuzz-build
 	BUILD=$(BUILD) tests/run.sh; a=$$?; \
 	$(MAKE) --no-print-directory sanitize; b=$$?; \
 	test $$a -eq 0 -a $$b -eq 0

@@ -380,38 +380,47 @@ static int on_key(void *user, const char *section, const char *name,
 	return 1;
 }
 
-int config_load(struct config *cfg, const char *path, char *err,
-		size_t errsize)
+int config_load_stream(struct config *cfg, FILE *f, const char *name,
+		       char *err, size_t errsize)
 {
 	struct parse_ctx ctx = {
-		.cfg = cfg, .path = path, .at_line_start = true,
+		.cfg = cfg, .file = f, .path = name, .at_line_start = true,
 		.err = err, .errsize = errsize,
 	};
 	int r;
 
 	err[0] = '\0';
-	ctx.file = fopen(path, "r");
-	if (!ctx.file) {
-		r = -errno;
-		snprintf(err, errsize, "%s: cannot open: %s", path,
-			 strerror(-r));
-		return r == -ENOENT ? -ENOENT : r;
-	}
 	r = ini_parse_stream(read_line, &ctx, on_key, &ctx);
-	fclose(ctx.file);
 	if (*err) {
 		return -EINVAL;
 	}
 	if (r != 0) {
-		snprintf(err, errsize, "%s:%d: syntax error", path, r);
+		snprintf(err, errsize, "%s:%d: syntax error", name, r);
 		return -EINVAL;
 	}
 	if (!ctx.keys_seen) {
 		snprintf(err, errsize, "%s: empty configuration (no keys)",
-			 path);
+			 name);
 		return -EINVAL;
 	}
 	return config_check(cfg, err, errsize);
+}
+
+int config_load(struct config *cfg, const char *path, char *err,
+		size_t errsize)
+{
+	FILE *f = fopen(path, "r");
+	int r;
+
+	if (!f) {
+		r = -errno;
+		snprintf(err, errsize, "%s: cannot open: %s", path,
+			 strerror(-r));
+		return r;
+	}
+	r = config_load_stream(cfg, f, path, err, errsize);
+	fclose(f);
+	return r;
 }
 
 int config_set(struct config *cfg, const char *key, const char *value,

@@ -108,6 +108,10 @@ void config_defaults(struct config *cfg);
 int config_load(struct config *cfg, const char *path, char *err,
 		size_t errsize);
 
+/* The same for an open stream; NAME stands for the file in messages. */
+int config_load_stream(struct config *cfg, FILE *f, const char *name,
+		       char *err, size_t errsize);
+
 /*
  * Sets KEY ("section.name") from the text VALUE as if read from the file.
  * With LIVE_ONLY, keys without CONFIG_LIVE are refused. Returns 0, -ENOENT

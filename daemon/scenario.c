@@ -204,36 +204,42 @@ static int check_end(const struct scenario *s, const char *path, char *err,
 	return 0;
 }
 
-struct scenario *scenario_load(const char *path, char *err, size_t errsize)
+struct scenario *scenario_load_stream(FILE *f, const char *name, char *err,
+				      size_t errsize)
 {
-	struct scenario *s;
-	FILE *f;
+	struct scenario *s = calloc(1, sizeof(*s));
 	int r;
 
-	f = fopen(path, "r");
-	if (!f) {
-		snprintf(err, errsize, "%s: cannot open: %s", path,
-			 strerror(errno));
-		return NULL;
-	}
-	s = calloc(1, sizeof(*s));
 	if (!s) {
-		snprintf(err, errsize, "%s: out of memory", path);
-		fclose(f);
+		snprintf(err, errsize, "%s: out of memory", name);
 		return NULL;
 	}
 	s->end_t = INFINITY;
-	r = parse_file(s, f, path, err, errsize);
-	fclose(f);
+	r = parse_file(s, f, name, err, errsize);
 	if (!r) {
 		sort_steps(s);
-		r = check_end(s, path, err, errsize);
+		r = check_end(s, name, err, errsize);
 	}
 	if (r) {
 		scenario_destroy(s);
 		return NULL;
 	}
 	link_targets(s);
+	return s;
+}
+
+struct scenario *scenario_load(const char *path, char *err, size_t errsize)
+{
+	struct scenario *s;
+	FILE *f = fopen(path, "r");
+
+	if (!f) {
+		snprintf(err, errsize, "%s: cannot open: %s", path,
+			 strerror(errno));
+		return NULL;
+	}
+	s = scenario_load_stream(f, path, err, errsize);
+	fclose(f);
 	return s;
 }
 

@@ -26,6 +26,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "../proto/endosim_shm.h"
 
@@ -47,6 +48,10 @@ struct scenario;
  * file cannot be read or a line is wrong.
  */
 struct scenario *scenario_load(const char *path, char *err, size_t errsize);
+
+/* The same for an open stream; NAME stands for the file in messages. */
+struct scenario *scenario_load_stream(FILE *f, const char *name, char *err,
+				      size_t errsize);
 
 /* NULL is fine. */
 void scenario_destroy(struct scenario *s);

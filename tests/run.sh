@@ -56,6 +56,13 @@ for t in tests/system/[0-9]*.sh; do
 	count "${SUITE_PREFIX}system/$(basename "$t" .sh)" "$out" $rc
 	[ $rc -eq 0 ] || sed 's/^/    /' "$out" | tail -n 40
 done
+# a short run of each fuzz target (make fuzz runs them longer)
+if [ -d "$BUILD/fuzz" ] && [ -z "$SUITE_PREFIX" ]; then
+	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" >"$out" 2>&1
+	rc=$?
+	count "fuzz" "$out" $rc
+	sed 's/^/    /' "$out" | grep -v "passed, .* failed$"
+fi
 rm -f "$out"
 if [ -n "$failed_suites" ]; then
 	echo "failed:$failed_suites"

@@ -1,0 +1,36 @@
+#!/bin/bash
+# run.sh DIR - runs every libFuzzer target in DIR for $FUZZ_SECONDS (default
+# 60) from its seed corpus tests/fuzz/NAME/ (new inputs go to a scratch
+# copy, not into the repository). Prints executions and coverage per
+# target, then "N passed, N failed": a target fails when it crashes, leaks
+# or trips a sanitizer; the crashing input is kept in tests/fuzz/crash-*.
+set -u
+dir=${1:?usage: run.sh BUILD_DIR_OF_FUZZERS}
+here=$(cd "$(dirname "$0")" && pwd)
+seconds=${FUZZ_SECONDS:-60}
+passed=0
+failed=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for bin in "$dir"/fuzz_*; do
+	[ -x "$bin" ] || continue
+	name=$(basename "$bin")
+	seeds="$here/${name#fuzz_}"
+	mkdir -p "$tmp/$name"
+	"$bin" -max_total_time="$seconds" -print_final_stats=1 \
+		-artifact_prefix="$here/crash-$name-" "$tmp/$name" "$seeds" \
+		>"$tmp/$name.log" 2>&1
+	rc=$?
+	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$tmp/$name.log")
+	cov=$(grep -oE 'cov: [0-9]+' "$tmp/$name.log" | tail -n 1)
+	if [ $rc -eq 0 ]; then
+		passed=$((passed + 1))
+		echo "ok - $name: ${execs:-?} executions in ${seconds} s, ${cov:-cov: ?} edges"
+	else
+		failed=$((failed + 1))
+		echo "not ok - $name (exit $rc)"
+		grep -E "ERROR|SUMMARY|runtime error" "$tmp/$name.log" | head -n 5 | sed 's/^/#   /'
+	fi
+done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
