@@ -97,7 +97,7 @@ shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
-	unit-tests clang-build sanitize fuzz fuzz-build fuzz-targets
+	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets
 
 all: $(PROGRAMS)
 
@@ -189,19 +189,16 @@ clang-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/clang CC=clang all \
 		unit-tests
 
-# AddressSanitizer and UndefinedBehaviorSanitizer: every suite again, in a
-# build of its own; any report fails the run
+# AddressSanitizer and UndefinedBehaviorSanitizer: a build of its own in
+# which tests/run.sh runs every suite again; any report fails the run
 SAN_FLAGS = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all \
 	    -fno-omit-frame-pointer
-sanitize:
+asan-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/asan CFLAGS="$(SAN_FLAGS)" \
 		LDFLAGS="-fsanitize=address,undefined" all unit-tests
-	BUILD=$(BUILD)/asan SUITE_PREFIX=asan/ tests/run.sh
 
-check: all unit-tests clang-build fuzz-build
-	BUILD=$(BUILD) tests/run.sh; a=$$?; \
-	$(MAKE) --no-print-directory sanitize; b=$$?; \
-	test $$a -eq 0 -a $$b -eq 0
+check: all unit-tests clang-build asan-build fuzz-build
+	BUILD=$(BUILD) tests/run.sh
 
 demo: deps-build
 	$(MAKE) --no-print-directory all

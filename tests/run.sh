@@ -1,21 +1,26 @@
 #!/bin/bash
-# run.sh - runs every test suite (the cmocka unit tests, then the numbered
-# system tests) and sums them up in a closing line "N passed, N failed".
-# Exits non-zero when anything failed. Called by `make check`/`make test`.
+# run.sh - runs every test suite and sums them up in one closing line,
+# "N passed, N failed"; exits non-zero when anything failed. Called by
+# `make check` (and so `make test`).
+#
+# Suites: the cmocka unit tests and the numbered system tests of the build
+# in $BUILD; the same again for the AddressSanitizer/UBSan build in
+# $BUILD/asan when it exists; a short run of each fuzz target in
+# $BUILD/fuzz when they exist ($FUZZ_SECONDS each, default 5).
 set -u
 
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP" || exit 1
 : "${BUILD:=build}"
-: "${SUITE_PREFIX:=}"
-export BUILD
 passed=0
 failed=0
 failed_suites=""
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
 
-# count SUITE OUTPUT_FILE EXIT_STATUS: adds the suite's own tally.
+# count SUITE EXIT_STATUS: adds the tally the suite printed in $out.
 count() {
-	local suite=$1 out=$2 rc=$3 p f line
+	local suite=$1 rc=$2 p f line
 	line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out" | tail -n 1)
 	if [ -n "$line" ]; then
 		p=${line%% passed*}
@@ -34,36 +39,39 @@ count() {
 	fi
 	passed=$((passed + p))
 	failed=$((failed + f))
-	if [ "$f" -ne 0 ]; then
-		failed_suites="$failed_suites $suite"
-	fi
-	printf '%-32s %4d passed, %d failed\n' "$suite" "$p" "$f"
+	[ "$f" -eq 0 ] || failed_suites="$failed_suites $suite"
+	printf '%-34s %4d passed, %d failed\n' "$suite" "$p" "$f"
 }
 
-out=$(mktemp)
-for t in "$BUILD"/tests/test_*; do
-	case "$t" in *.d) continue ;; esac
-	[ -x "$t" ] || continue
-	"$t" >"$out" 2>&1
-	rc=$?
-	count "${SUITE_PREFIX}unit/$(basename "$t")" "$out" $rc
-	[ $rc -eq 0 ] || sed 's/^/    /' "$out" | grep -vE 'OK \]|RUN  ' | tail -n 20
-done
-for t in tests/system/[0-9]*.sh; do
-	[ -e "$t" ] || continue
-	timeout 300 bash "$t" >"$out" 2>&1
-	rc=$?
-	count "${SUITE_PREFIX}system/$(basename "$t" .sh)" "$out" $rc
-	[ $rc -eq 0 ] || sed 's/^/    /' "$out" | tail -n 40
-done
-# a short run of each fuzz target (make fuzz runs them longer)
-if [ -d "$BUILD/fuzz" ] && [ -z "$SUITE_PREFIX" ]; then
-	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" >"$out" 2>&1
-	rc=$?
-	count "fuzz" "$out" $rc
-	sed 's/^/    /' "$out" | grep -v "passed, .* failed$"
+# run_suites BUILD_DIR PREFIX: unit and system tests of one build.
+run_suites() {
+	local build=$1 prefix=$2 t rc
+	for t in "$build"/tests/test_*; do
+		case "$t" in *.d) continue ;; esac
+		[ -x "$t" ] || continue
+		"$t" >"$out" 2>&1
+		rc=$?
+		count "${prefix}unit/$(basename "$t")" $rc
+		[ $rc -eq 0 ] || grep -vE 'OK \]|RUN  ' "$out" | tail -n 20 | sed 's/^/    /'
+	done
+	for t in tests/system/[0-9]*.sh; do
+		[ -e "$t" ] || continue
+		BUILD="$build" timeout 300 bash "$t" >"$out" 2>&1
+		rc=$?
+		count "${prefix}system/$(basename "$t" .sh)" $rc
+		[ $rc -eq 0 ] || tail -n 40 "$out" | sed 's/^/    /'
+	done
+}
+
+run_suites "$BUILD" ""
+if [ -d "$BUILD/asan/tests" ]; then
+	run_suites "$BUILD/asan" "asan/"
 fi
-rm -f "$out"
+if [ -d "$BUILD/fuzz" ]; then
+	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" >"$out" 2>&1
+	count "fuzz" $?
+	grep -v "passed, .* failed$" "$out" | sed 's/^/    /'
+fi
 if [ -n "$failed_suites" ]; then
 	echo "failed:$failed_suites"
 fi
