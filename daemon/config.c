@@ -125,6 +125,15 @@ static const struct config_key keys[] = {
 	   1 << 24, "bytes", 0, "largest request accepted"),
 	KI("socket", "max_clients", socket.max_clients, 32, 1, 1024, "", 0,
 	   "connections served at once"),
+	KI("socket", "max_queued_bytes", socket.max_queued_bytes, 4 << 20,
+	   1 << 16, 1 << 26, "bytes", 0,
+	   "unsent replies held per client before it is disconnected"),
+	KD("socket", "idle_timeout_s", socket.idle_timeout_s, 60, 1, 86400, "s",
+	   0, "a client that sends nothing this long is disconnected "
+	   "(subscribers excepted)"),
+	KD("socket", "partial_timeout_s", socket.partial_timeout_s, 5, 0.1,
+	   3600, "s", 0, "a request begun but not finished within this is "
+	   "dropped with its connection"),
 
 	KS("shm", "name", shm.name, ENDOSIM_SHM_DEFAULT_NAME, 0,
 	   "POSIX shared-memory object holding the published state"),

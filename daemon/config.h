@@ -55,6 +55,9 @@ struct config {
 		char group[CONFIG_STR];        /* "" : the daemon's own group */
 		int max_request_bytes;
 		int max_clients;
+		int max_queued_bytes;          /* unsent replies per client */
+		double idle_timeout_s;         /* silent clients are closed */
+		double partial_timeout_s;      /* unfinished requests too */
 	} socket;
 	struct {
 		char name[CONFIG_STR];

@@ -21,8 +21,8 @@
 #include "../proto/version.h"
 #include "log.h"
 
-#define OUT_MAX_BYTES (8u << 20) /* unsent replies before a client is dropped */
 #define MAX_EVENTS 32
+#define MAX_PEER_GROUPS 256
 #define COMMAND_TIMEOUT_MS 200
 #define MAX_PUSH_HZ 1000.0
 #define MAX_HOLD_S 10.0
@@ -32,8 +32,11 @@ enum { TAG_WAKE = 0, TAG_RO = 1, TAG_RW = 2, TAG_CLIENT = 3 };
 struct client {
 	int fd;               /* -1: free slot */
 	bool rw;              /* connected to the read-write socket */
+	bool may_command;     /* rw, and root or in the command group */
 	uid_t uid;
 	pid_t pid;
+	uint64_t last_rx_ns;  /* last bytes received */
+	uint64_t partial_ns;  /* since when part of a request waits, 0: none */
 	struct frame_rx rx;
 	uint8_t *out;         /* replies not yet sent */
 	size_t out_len, out_cap;
@@ -66,6 +69,8 @@ struct control {
 	struct client *clients;
 	int max_clients;
 	size_t max_request;
+	size_t max_queued;
+	gid_t command_gid;       /* who may command besides root */
 	struct reply_buf rb;
 	uint64_t rate_t0_ns, rate_cycle0;
 	double loop_hz;
@@ -208,9 +213,10 @@ static int client_flush(struct control *c, struct client *cl)
 	return 0;
 }
 
-static int queue_bytes(struct client *cl, size_t len, uint8_t **at)
+static int queue_bytes(struct client *cl, size_t len, size_t max,
+		       uint8_t **at)
 {
-	if (cl->out_len + len > OUT_MAX_BYTES) {
+	if (cl->out_len + len > max) {
 		return -ENOBUFS;
 	}
 	if (cl->out_len + len > cl->out_cap) {
@@ -241,7 +247,7 @@ static int client_reply(struct control *c, struct client *cl,
 
 	rep->version = ENDOSIM__PROTOCOL_VERSION__PROTOCOL_VERSION_CURRENT;
 	len = endosim__reply__get_packed_size(rep);
-	if (queue_bytes(cl, FRAME_HEADER_BYTES + len, &at)) {
+	if (queue_bytes(cl, FRAME_HEADER_BYTES + len, c->max_queued, &at)) {
 		log_notice("client pid %d: %zu bytes of replies unread, "
 			   "disconnected", (int)cl->pid, cl->out_len);
 		client_drop(c, cl);
@@ -250,6 +256,28 @@ static int client_reply(struct control *c, struct client *cl,
 	frame_put_header(at, (uint32_t)len);
 	endosim__reply__pack(rep, at + FRAME_HEADER_BYTES);
 	return client_flush(c, cl);
+}
+
+/* Root, the daemon's own user, or a member of the command group. */
+static bool peer_may_command(const struct control *c, int fd,
+			     const struct ucred *cred)
+{
+	gid_t groups[MAX_PEER_GROUPS];
+	socklen_t len = sizeof(groups);
+
+	if (cred->uid == 0 || cred->uid == geteuid() ||
+	    cred->gid == c->command_gid) {
+		return true;
+	}
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups, &len) < 0) {
+		return false;
+	}
+	for (size_t i = 0; i < len / sizeof(groups[0]); i++) {
+		if (groups[i] == c->command_gid) {
+			return true;
+		}
+	}
+	return false;
 }
 
 static void accept_client(struct control *c, int lfd, bool rw)
@@ -274,12 +302,15 @@ static void accept_client(struct control *c, int lfd, bool rw)
 		close(fd);
 		return;
 	}
-	memset(&cred, 0, sizeof(cred));
+	cred = (struct ucred){ .pid = 0, .uid = (uid_t)-1, .gid = (gid_t)-1 };
 	getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len);
 	cl->fd = fd;
 	cl->rw = rw;
+	cl->may_command = rw && peer_may_command(c, fd, &cred);
 	cl->uid = cred.uid;
 	cl->pid = cred.pid;
+	cl->last_rx_ns = loop_now_ns();
+	cl->partial_ns = 0;
 	if (epoll_add(c->ep, fd, TAG_CLIENT + (uint64_t)(cl - c->clients),
 		      EPOLLIN)) {
 		client_drop(c, cl);
@@ -502,7 +533,7 @@ static void on_set_param(struct control *c, struct client *cl,
 }
 
 static void on_command(struct control *c, struct client *cl,
-		       enum safety_cmd cmd, const char *what,
+		       enum loop_cmd cmd, const char *what,
 		       Endosim__Reply *rep)
 {
 	int r = loop_command(c->deps.loop, cmd, COMMAND_TIMEOUT_MS);
@@ -530,28 +561,35 @@ static void on_enable(struct control *c, struct client *cl,
 		      const Endosim__Request *req, Endosim__Reply *rep)
 {
 	(void)req;
-	on_command(c, cl, SAFETY_ENABLE, "enable", rep);
+	on_command(c, cl, LOOP_CMD_ENABLE, "enable", rep);
 }
 
 static void on_disable(struct control *c, struct client *cl,
 		       const Endosim__Request *req, Endosim__Reply *rep)
 {
 	(void)req;
-	on_command(c, cl, SAFETY_DISABLE, "disable", rep);
+	on_command(c, cl, LOOP_CMD_DISABLE, "disable", rep);
 }
 
 static void on_estop(struct control *c, struct client *cl,
 		     const Endosim__Request *req, Endosim__Reply *rep)
 {
 	(void)req;
-	on_command(c, cl, SAFETY_ESTOP, "emergency stop", rep);
+	on_command(c, cl, LOOP_CMD_ESTOP, "emergency stop", rep);
 }
 
 static void on_reset(struct control *c, struct client *cl,
 		     const Endosim__Request *req, Endosim__Reply *rep)
 {
 	(void)req;
-	on_command(c, cl, SAFETY_RESET, "reset", rep);
+	on_command(c, cl, LOOP_CMD_RESET, "reset", rep);
+}
+
+static void on_reset_stats(struct control *c, struct client *cl,
+			   const Endosim__Request *req, Endosim__Reply *rep)
+{
+	(void)req;
+	on_command(c, cl, LOOP_CMD_RESET_STATS, "statistics reset", rep);
 }
 
 static void on_hand_input(struct control *c, struct client *cl,
@@ -614,6 +652,7 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_ESTOP, true, on_estop },
 	{ ENDOSIM__REQUEST__BODY_RESET_FAULT, true, on_reset },
 	{ ENDOSIM__REQUEST__BODY_HAND_INPUT, true, on_hand_input },
+	{ ENDOSIM__REQUEST__BODY_RESET_STATS, true, on_reset_stats },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -654,6 +693,14 @@ static int dispatch(struct control *c, struct client *cl, const uint8_t *msg,
 	} else if (h->writes && !cl->rw) {
 		refuse(&rep, ENDOSIM__STATUS__STATUS_READ_ONLY,
 		       "read-only socket: use the control socket");
+	} else if (h->writes && !cl->may_command) {
+		static struct log_ratelimit rl = LOG_RATELIMIT_INIT(10, 3);
+
+		log_ratelimited(&rl, LOG_NOTICE, "command from uid %d (pid %d) "
+				"refused: not root or in the command group",
+				(int)cl->uid, (int)cl->pid);
+		refuse(&rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+		       "only root and the endosim group may command");
 	} else {
 		h->fn(c, cl, req, &rep);
 	}
@@ -678,10 +725,16 @@ static void client_read(struct control *c, struct client *cl)
 		return;
 	}
 	frame_rx_commit(&cl->rx, (size_t)n);
+	cl->last_rx_ns = loop_now_ns();
 	while ((r = frame_rx_next(&cl->rx, &msg, &len)) == 1) {
 		if (dispatch(c, cl, msg, len)) {
 			return; /* dropped */
 		}
+	}
+	if (!frame_rx_pending(&cl->rx)) {
+		cl->partial_ns = 0;
+	} else if (!cl->partial_ns) {
+		cl->partial_ns = cl->last_rx_ns;
 	}
 	if (r < 0) {
 		Endosim__Reply rep = ENDOSIM__REPLY__INIT;
@@ -727,6 +780,32 @@ static int push_subscriptions(struct control *c, uint64_t now)
 		return 100;
 	}
 	return next <= now ? 0 : (int)((next - now + 999999) / 1000000);
+}
+
+/* Closes silent clients (subscribers excepted) and half-sent requests. */
+static void sweep_clients(struct control *c, uint64_t now)
+{
+	uint64_t idle = (uint64_t)(c->cfg.socket.idle_timeout_s * 1e9);
+	uint64_t partial = (uint64_t)(c->cfg.socket.partial_timeout_s * 1e9);
+
+	for (int i = 0; i < c->max_clients; i++) {
+		struct client *cl = &c->clients[i];
+		const char *why = NULL;
+
+		if (cl->fd < 0) {
+			continue;
+		}
+		if (cl->partial_ns && now - cl->partial_ns > partial) {
+			why = "unfinished request";
+		} else if (!cl->push_period_ns && now - cl->last_rx_ns > idle) {
+			why = "idle";
+		}
+		if (why) {
+			log_info("client pid %d: %s, disconnected", (int)cl->pid,
+				 why);
+			client_drop(c, cl);
+		}
+	}
 }
 
 static void handle_event(struct control *c, const struct epoll_event *ev)
@@ -775,6 +854,7 @@ static void *control_main(void *arg)
 		uint64_t now = loop_now_ns();
 
 		update_loop_rate(c, now);
+		sweep_clients(c, now);
 		timeout = push_subscriptions(c, now);
 	}
 	atomic_store(&c->alive, false);
@@ -811,6 +891,7 @@ static int open_sockets(struct control *c)
 	if (r || (r = resolve_group(c->cfg.socket.group, &gid))) {
 		return r;
 	}
+	c->command_gid = gid != (gid_t)-1 ? gid : getegid();
 	c->ro_fd = listen_on(c->ro_path, 0666, (gid_t)-1);
 	if (c->ro_fd < 0) {
 		return c->ro_fd;
@@ -845,6 +926,7 @@ struct control *control_create(const struct config *cfg,
 	c->ro_fd = c->rw_fd = c->ep = c->wake_fd = -1;
 	c->max_clients = cfg->socket.max_clients;
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
+	c->max_queued = (size_t)cfg->socket.max_queued_bytes;
 	if (alloc_buffers(c) || open_sockets(c)) {
 		control_destroy(c);
 		return NULL;

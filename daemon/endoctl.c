@@ -243,15 +243,25 @@ static int cmd_status(struct ctl *ctl, int argc, char **argv)
 	return 0;
 }
 
+static int simple_command(struct ctl *ctl, Endosim__Request__BodyCase body,
+			  void *msg, const char *done);
+
 static int cmd_stats(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__GetStats body = ENDOSIM__GET_STATS__INIT;
+	Endosim__ResetStats reset = ENDOSIM__RESET_STATS__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
 	int r;
 
-	(void)argc;
-	(void)argv;
+	if (argc == 2 && !strcmp(argv[1], "--reset")) {
+		return simple_command(ctl, ENDOSIM__REQUEST__BODY_RESET_STATS,
+				      &reset, "statistics reset");
+	}
+	if (argc != 1) {
+		fprintf(stderr, "endoctl: stats [--reset]\n");
+		return EXIT_USAGE;
+	}
 	req.body_case = ENDOSIM__REQUEST__BODY_GET_STATS;
 	req.get_stats = &body;
 	r = transact(ctl, false, &req, &rep);
@@ -594,7 +604,7 @@ static const struct {
 	const char *help;
 } commands[] = {
 	{ "status", cmd_status, "state, faults, loop and axes" },
-	{ "stats", cmd_stats, "force-loop latency and compute time" },
+	{ "stats", cmd_stats, "force-loop latency and compute time [--reset]" },
 	{ "watch", cmd_watch, "live status line [--rate HZ] [--duration S]" },
 	{ "enable", cmd_enable, "IDLE -> ENABLED: render forces" },
 	{ "disable", cmd_disable, "ENABLED -> IDLE: torque off" },

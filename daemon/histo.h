@@ -25,7 +25,7 @@ struct histo_summary {
 	uint64_t count;
 };
 
-/* Zeroes H. Not to be called while a writer is adding. */
+/* Zeroes H; only the writer may (a reader meanwhile sees a partial sum). */
 void histo_reset(struct histo *h);
 
 /* The single writer: one sample of NS nanoseconds. Never blocks. */

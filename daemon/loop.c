@@ -137,7 +137,13 @@ static uint32_t take_command(struct loop *l)
 	}
 	cmd = (uint32_t)(slot & ((1u << CMD_SHIFT) - 1));
 	seq = (uint32_t)(slot >> CMD_SHIFT);
-	r = safety_command(&l->safety, (enum safety_cmd)cmd);
+	if (cmd == LOOP_CMD_RESET_STATS) {
+		histo_reset(&l->latency);
+		histo_reset(&l->compute);
+		r = 0;
+	} else {
+		r = safety_command(&l->safety, (enum safety_cmd)cmd);
+	}
 	atomic_store_explicit(&l->cmd_done,
 			      (uint64_t)seq << 32 | (uint32_t)r,
 			      memory_order_release);
@@ -423,7 +429,7 @@ void loop_destroy(struct loop *l)
 	free(l);
 }
 
-int loop_command(struct loop *l, enum safety_cmd cmd, int timeout_ms)
+int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
 {
 	uint32_t seq = ++l->cmd_seq & 0xffffff;
 	uint64_t slot = (uint64_t)seq << CMD_SHIFT | (uint64_t)cmd;

@@ -38,12 +38,21 @@ enum loop_event_code {
 	LOOP_EV_SCENARIO_END, /* the scripted hand's scenario ended */
 };
 
+/* Commands for loop_command(): the safety commands, and one of the loop's. */
+enum loop_cmd {
+	LOOP_CMD_ENABLE = SAFETY_ENABLE,
+	LOOP_CMD_DISABLE = SAFETY_DISABLE,
+	LOOP_CMD_ESTOP = SAFETY_ESTOP,
+	LOOP_CMD_RESET = SAFETY_RESET,
+	LOOP_CMD_RESET_STATS = 16, /* zero the latency/compute histograms */
+};
+
 struct loop_event {
 	uint64_t stamp_ns; /* CLOCK_MONOTONIC */
 	uint32_t code;     /* enum loop_event_code */
 	uint32_t arg;
 	uint32_t prev;
-	uint32_t cmd;      /* enum safety_cmd that caused it, 0: none */
+	uint32_t cmd;      /* enum loop_cmd that caused it, 0: none */
 	int32_t axis;      /* -1: none or global */
 	uint32_t detail;
 };
@@ -82,10 +91,11 @@ void loop_destroy(struct loop *l);
 
 /*
  * Control thread: carries out CMD in the loop and waits up to TIMEOUT_MS.
- * Returns what safety_command() returned (0, -EPERM, -EBUSY), or -ETIMEDOUT
- * when the loop did not take it (it is then withdrawn, never applied).
+ * Returns 0, what safety_command() refused with (-EPERM, -EBUSY), or
+ * -ETIMEDOUT when the loop did not take it (it is then withdrawn, never
+ * applied).
  */
-int loop_command(struct loop *l, enum safety_cmd cmd, int timeout_ms);
+int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms);
 
 /* Control thread: the loop uses CFG's live keys from its next cycle on. */
 void loop_set_config(struct loop *l, const struct config *cfg);

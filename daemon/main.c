@@ -201,7 +201,8 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 {
 	static struct log_ratelimit overrun_rl = LOG_RATELIMIT_INIT(10, 3);
 	static const char *const cmd_names[] = {
-		"", "enable", "disable", "emergency stop", "reset",
+		[LOOP_CMD_ENABLE] = "enable", [LOOP_CMD_DISABLE] = "disable",
+		[LOOP_CMD_ESTOP] = "emergency stop", [LOOP_CMD_RESET] = "reset",
 	};
 	double t = (double)(ev->stamp_ns - d->start_ns) / 1e9;
 
@@ -209,7 +210,8 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 	case LOOP_EV_STATE:
 		log_notice("state %s -> %s (%s) at %.3f s",
 			   names_state(ev->prev), names_state(ev->arg),
-			   ev->cmd ? cmd_names[ev->cmd % 5] : "fault", t);
+			   ev->cmd && ev->cmd <= LOOP_CMD_RESET ? cmd_names[ev->cmd]
+								  : "fault", t);
 		break;
 	case LOOP_EV_FAULT:
 		log_err("FAULT %s%s%s (detail %u) at %.3f s: torque off on "
