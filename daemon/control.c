@@ -297,7 +297,8 @@ static void accept_client(struct control *c, int lfd, bool rw)
 		static struct log_ratelimit rl = LOG_RATELIMIT_INIT(10, 1);
 
 		log_ratelimited(&rl, LOG_WARNING,
-				"too many clients (%d): connection refused",
+				cl ? "out of memory: connection refused"
+				   : "too many clients (%d): connection refused",
 				c->max_clients);
 		close(fd);
 		return;
