@@ -30,7 +30,7 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus
 CLIENT_PKGS = libprotobuf-c
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
@@ -40,9 +40,9 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
-	     libinih-dev libsystemd-dev
+	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev
 DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
-	    valgrind
+	    valgrind umockdev libumockdev-dev libglib2.0-dev
 DEPS_BENCH = $(DEPS_BUILD) rt-tests
 
 # Installs the missing packages of $(1) as root; otherwise names them.
@@ -72,9 +72,14 @@ PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
 
 # endosimd: main, configuration, logging, the force loop and what it calls
 # (rig backends, hand, haptics, safety, publish), the control thread
-DAEMON_OBJS = main.o config.o log.o loop.o histo.o spsc.o publish.o \
-	      rig.o rig_sim.o plant.o hand.o scenario.o haptics.o safety.o \
-	      control.o
+DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
+	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
+	      safety.o control.o $(DRIVE_OBJS)
+
+# the drive layer: the rig of drives, one bus thread per bus, the drive
+# interface and its backends (EPOS4 on USB, Modbus) with their protocols
+DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
+	     canopen.o drive_modbus.o
 
 # endoctl: the CLI over the sockets
 ENDOCTL_OBJS = endoctl.o json.o
@@ -86,18 +91,28 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety
-test_config_OBJS = config.o log.o names.o
+test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
-test_safety_OBJS = safety.o haptics.o config.o log.o names.o
+test_safety_OBJS = safety.o haptics.o config.o regmap.o log.o names.o
 TEST_TOOLS = shm_probe shm_latency
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 
+# --- device emulators (tests/emulators/): what the system tests and the
+# drive benchmark run the real drive backends against
+EMULATORS = epos4-emu modbus-emu
+EMU_PKGS = umockdev-1.0 glib-2.0
+EMU_CFLAGS = $(shell pkg-config --cflags $(EMU_PKGS) 2>/dev/null)
+EMU_LIBS = $(shell pkg-config --libs $(EMU_PKGS) 2>/dev/null)
+epos4-emu_OBJS = epos4_emu.o emu.o epos4_frame.o canopen.o plant.o
+modbus-emu_OBJS = modbus_emu.o emu.o config.o regmap.o log.o names.o plant.o
+
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
-	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets
+	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
+	emulators
 
 all: $(PROGRAMS)
 
@@ -143,10 +158,23 @@ $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
 
+$(BUILD)/obj/%.o: tests/emulators/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(EMU_CFLAGS) -c -o $@ $<
+
+define emulator_rule
+$(BUILD)/emulators/$(1): $(call obj,$($(1)_OBJS))
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(LDLIBS) $$(EMU_LIBS)
+endef
+$(foreach e,$(EMULATORS),$(eval $(call emulator_rule,$(e))))
+
+emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS))
+
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario
-fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o log.o names.o
-fuzz_config_OBJS = config.o log.o names.o
+fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o regmap.o log.o names.o
+fuzz_config_OBJS = config.o regmap.o log.o names.o
 fuzz_scenario_OBJS = scenario.o names.o
 FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined
 FUZZ_SECONDS ?= 60
@@ -197,7 +225,7 @@ asan-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/asan CFLAGS="$(SAN_FLAGS)" \
 		LDFLAGS="-fsanitize=address,undefined" all unit-tests
 
-check: all unit-tests clang-build asan-build fuzz-build
+check: all unit-tests emulators clang-build asan-build fuzz-build
 	BUILD=$(BUILD) tests/run.sh
 
 demo: deps-build

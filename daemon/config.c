@@ -11,7 +11,13 @@
 #include "../proto/names.h"
 #include "log.h"
 
-static const char *const backend_names[] = { "sim", NULL };
+static const char *const backend_names[] = { "sim", "drives", NULL };
+static const char *const drive_names[] = { "sim", "epos4-usb", "modbus",
+					   NULL };
+static const char *const direction_names[] = { "normal", "reversed", NULL };
+static const char *const transport_names[] = { "rtu", "tcp", NULL };
+static const char *const parity_names[] = { "none", "even", "odd", NULL };
+static const char *const yes_no[] = { "no", "yes", NULL };
 
 #define OFF(field) offsetof(struct config, field)
 #define KI(sec, key, field, d, lo, hi, u, fl, h) \
@@ -24,12 +30,68 @@ static const char *const backend_names[] = { "sim", NULL };
 	{ sec, key, CONFIG_ENUM, OFF(field), d, NULL, 0, 0, ch, "", fl, h }
 #define KL(sec, key, field, d, fl, h) \
 	{ sec, key, CONFIG_LEVEL, OFF(field), d, NULL, 0, 0, NULL, "", fl, h }
+#define KR(sec, key, field, h) \
+	{ sec, key, CONFIG_REGISTER, OFF(field), 0, "none", 0, 0, NULL, "", 0, h }
 
 #define I_INS ENDOSIM_AXIS_INSERTION
 #define I_ROLL ENDOSIM_AXIS_ROLL
 #define I_UD ENDOSIM_AXIS_WHEEL_UD
 #define I_LR ENDOSIM_AXIS_WHEEL_LR
 #define LIVE CONFIG_LIVE
+
+/* [axis.NAME]: how motor turns and encoder counts map to axis I. */
+#define AXIS_KEYS(sec, i)                                                    \
+	KE(sec, "backend", axis[i].backend, CONFIG_DRIVE_SIM, drive_names, 0, \
+	   "sim, epos4-usb or modbus (when [rig] backend = drives)"),        \
+	KD(sec, "gear_ratio", axis[i].gear_ratio, 1.0, 0.001, 1000, "", 0,   \
+	   "motor turns per turn of the output"),                            \
+	KI(sec, "counts_per_rev", axis[i].counts_per_rev, 2048, 1, 1 << 30,  \
+	   "counts", 0, "encoder counts per motor turn (quadrature counted)"), \
+	KE(sec, "direction", axis[i].reversed, 0, direction_names, 0,        \
+	   "normal, or reversed: motor positive is axis negative")
+
+/* [epos4.NAME]: the maxon EPOS4 on USB that drives axis I. */
+#define EPOS4_KEYS(sec, i)                                                   \
+	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", CONFIG_HEX,     \
+	   "USB vendor id"),                                                 \
+	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", CONFIG_HEX,     \
+	   "USB product id"),                                                \
+	KS(sec, "serial", epos4[i].serial, "", 0,                            \
+	   "USB serial number; empty: the only drive with that id"),          \
+	KI(sec, "node_id", epos4[i].node_id, 1, 0, 127, "", 0,               \
+	   "the drive's node-ID"),                                           \
+	KD(sec, "timeout_s", epos4[i].timeout_s, 0.1, 0.001, 5, "s", 0,      \
+	   "longest wait for one USB transfer"),                             \
+	KD(sec, "feedback_max_age_s", epos4[i].feedback_max_age_s, 0.1,     \
+	   0.001, 2, "s", 0, "feedback older than this is a fault"),         \
+	KD(sec, "max_rate_hz", epos4[i].max_rate_hz, 1000, 1, 1e5, "Hz", 0, \
+	   "exchanges per second at most (the bus may allow fewer)"),         \
+	KD(sec, "rated_torque_unit_n_m", epos4[i].rated_torque_unit_n_m,     \
+	   1e-6, 1e-9, 1, "N m", 0,                                          \
+	   "what one unit of the rated torque 0x6076 is (EPOS4: 1 uN m)")
+
+/* [modbus.NAME]: the Modbus wheel drive of axis I and its register map. */
+#define MODBUS_DRIVE_KEYS(sec, i)                                            \
+	KI(sec, "slave", modbus_drive[i].slave, 1, 0, 255, "", 0,            \
+	   "slave id (RTU 1..247; TCP unit id)"),                            \
+	KE(sec, "combined_0x17", modbus_drive[i].combined_0x17, 0, yes_no, 0, \
+	   "write torque and read feedback in one transaction (function 0x17)"), \
+	KD(sec, "watchdog_s", modbus_drive[i].watchdog_s, 0.1, 0, 60, "s", 0, \
+	   "written to the watchdog register at enable"),                    \
+	KR(sec, "torque", modbus_drive[i].reg[REGMAP_TORQUE],                \
+	   "motor torque setpoint, N m (required)"),                         \
+	KR(sec, "enable", modbus_drive[i].reg[REGMAP_ENABLE],                \
+	   "written 1 to enable, 0 to disable"),                             \
+	KR(sec, "position", modbus_drive[i].reg[REGMAP_POSITION],            \
+	   "encoder counts (required)"),                                     \
+	KR(sec, "velocity", modbus_drive[i].reg[REGMAP_VELOCITY],            \
+	   "encoder counts per second"),                                     \
+	KR(sec, "fault", modbus_drive[i].reg[REGMAP_FAULT],                  \
+	   "the drive's fault code, 0: none"),                               \
+	KR(sec, "fault_reset", modbus_drive[i].reg[REGMAP_FAULT_RESET],      \
+	   "written 1 then 0 to clear a fault"),                             \
+	KR(sec, "watchdog", modbus_drive[i].reg[REGMAP_WATCHDOG],            \
+	   "communication watchdog, s (gets watchdog_s)")
 
 static const struct config_key keys[] = {
 	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
@@ -43,7 +105,7 @@ static const struct config_key keys[] = {
 	   "CPUs out of deep idle states); -1: leave alone"),
 
 	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
-	   "drive backend: sim (the simulated rig)"),
+	   "sim: every axis simulated; drives: as each [axis.*] says"),
 	KD("rig", "insertion_min_m", rig.travel_min[I_INS], 0.0, -1, 3, "m", 0,
 	   "carriage travel, withdrawn end"),
 	KD("rig", "insertion_max_m", rig.travel_max[I_INS], 1.8, -1, 3, "m", 0,
@@ -163,6 +225,49 @@ static const struct config_key keys[] = {
 
 	KL("log", "level", log.level, LOG_INFO, LIVE,
 	   "err, warning, notice, info or debug"),
+
+	AXIS_KEYS("axis.insertion", I_INS),
+	KD("axis.insertion", "gear_radius_m", axis[I_INS].gear_radius_m, 0.015,
+	   0.001, 1, "m", 0, "radius of the pinion that drives the carriage"),
+	AXIS_KEYS("axis.roll", I_ROLL),
+	AXIS_KEYS("axis.wheel_ud", I_UD),
+	AXIS_KEYS("axis.wheel_lr", I_LR),
+
+	EPOS4_KEYS("epos4.insertion", I_INS),
+	EPOS4_KEYS("epos4.roll", I_ROLL),
+	EPOS4_KEYS("epos4.wheel_ud", I_UD),
+	EPOS4_KEYS("epos4.wheel_lr", I_LR),
+
+	KE("modbus", "transport", modbus.transport, CONFIG_MODBUS_RTU,
+	   transport_names, 0, "rtu (serial line) or tcp"),
+	KS("modbus", "device", modbus.device, "/dev/ttyUSB0", 0,
+	   "rtu: the serial device"),
+	KI("modbus", "baud", modbus.baud, 115200, 1200, 4000000, "Bd", 0,
+	   "rtu: line speed"),
+	KE("modbus", "parity", modbus.parity, CONFIG_PARITY_NONE, parity_names,
+	   0, "rtu: none, even or odd"),
+	KI("modbus", "data_bits", modbus.data_bits, 8, 5, 8, "", 0,
+	   "rtu: data bits"),
+	KI("modbus", "stop_bits", modbus.stop_bits, 1, 1, 2, "", 0,
+	   "rtu: stop bits"),
+	KE("modbus", "rs485", modbus.rs485, 0, yes_no, 0,
+	   "rtu: switch the port to RS-485 mode (TIOCSRS485)"),
+	KS("modbus", "host", modbus.host, "127.0.0.1", 0,
+	   "tcp: host name or address"),
+	KI("modbus", "port", modbus.port, 502, 1, 65535, "", 0, "tcp: port"),
+	KD("modbus", "response_timeout_s", modbus.response_timeout_s, 0.02,
+	   0.001, 5, "s", 0, "longest wait for a reply to begin"),
+	KD("modbus", "byte_timeout_s", modbus.byte_timeout_s, 0.005, 0.0001, 1,
+	   "s", 0, "longest gap inside a reply"),
+	KD("modbus", "feedback_max_age_s", modbus.feedback_max_age_s, 0.05,
+	   0.001, 2, "s", 0, "feedback older than this is a fault"),
+	KD("modbus", "max_rate_hz", modbus.max_rate_hz, 1000, 1, 1e5, "Hz", 0,
+	   "bus cycles per second at most (the line may allow fewer)"),
+
+	MODBUS_DRIVE_KEYS("modbus.insertion", I_INS),
+	MODBUS_DRIVE_KEYS("modbus.roll", I_ROLL),
+	MODBUS_DRIVE_KEYS("modbus.wheel_ud", I_UD),
+	MODBUS_DRIVE_KEYS("modbus.wheel_lr", I_LR),
 };
 
 #define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
@@ -191,7 +296,7 @@ static const struct config_key *find(const char *section, const char *name)
 const struct config_key *config_key_find(const char *key)
 {
 	char section[64];
-	const char *dot = strchr(key, '.');
+	const char *dot = strrchr(key, '.');
 
 	if (!dot || (size_t)(dot - key) >= sizeof(section)) {
 		return NULL;
@@ -229,6 +334,9 @@ void config_defaults(struct config *cfg)
 		case CONFIG_STRING:
 			snprintf(field(cfg, k), CONFIG_STR, "%s", k->def_str);
 			break;
+		case CONFIG_REGISTER:
+			regmap_parse(k->def_str, field(cfg, k), NULL, 0);
+			break;
 		}
 	}
 }
@@ -240,7 +348,7 @@ static int parse_number(const struct config_key *k, const char *text,
 
 	errno = 0;
 	if (k->type == CONFIG_INT) {
-		long v = strtol(text, &end, 10);
+		long v = strtol(text, &end, k->flags & CONFIG_HEX ? 16 : 10);
 
 		if (!*text || *end || errno) {
 			snprintf(why, size, "'%s' is not an integer", text);
@@ -324,6 +432,8 @@ static int apply(struct config *cfg, const struct config_key *k,
 		}
 		*(int *)field(cfg, k) = choice;
 		break;
+	case CONFIG_REGISTER:
+		return regmap_parse(text, field(cfg, k), why, size);
 	}
 	return 0;
 }
@@ -462,8 +572,188 @@ int config_set(struct config *cfg, const char *key, const char *value,
 	return 0;
 }
 
+int config_axis_backend(const struct config *cfg, int axis)
+{
+	return cfg->rig.backend == CONFIG_BACKEND_DRIVES
+		       ? cfg->axis[axis].backend
+		       : CONFIG_DRIVE_SIM;
+}
+
+double config_feedback_max_age_s(const struct config *cfg, int axis)
+{
+	switch (config_axis_backend(cfg, axis)) {
+	case CONFIG_DRIVE_EPOS4_USB:
+		return cfg->epos4[axis].feedback_max_age_s;
+	case CONFIG_DRIVE_MODBUS:
+		return cfg->modbus.feedback_max_age_s;
+	default:
+		return cfg->rig.feedback_max_age_s;
+	}
+}
+
+/* Two EPOS4 axes must not be able to find the same drive. */
+static int check_epos4(const struct config *cfg, char *err, size_t size)
+{
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		const struct config_epos4 *e = &cfg->epos4[a];
+
+		for (int b = 0; b < a; b++) {
+			const struct config_epos4 *o = &cfg->epos4[b];
+
+			if (config_axis_backend(cfg, a) !=
+				    CONFIG_DRIVE_EPOS4_USB ||
+			    config_axis_backend(cfg, b) !=
+				    CONFIG_DRIVE_EPOS4_USB ||
+			    e->vid != o->vid || e->pid != o->pid ||
+			    strcmp(e->serial, o->serial)) {
+				continue;
+			}
+			snprintf(err, size, "[epos4.%s] serial: '%s' names the "
+				 "same drive as [epos4.%s]; two EPOS4 need their "
+				 "serial numbers", names_axis(a), e->serial,
+				 names_axis(b));
+			return -EINVAL;
+		}
+	}
+	return 0;
+}
+
+/* Speeds libmodbus knows (it silently takes 9600 for any other). */
+static bool standard_baud(int baud)
+{
+	static const int bauds[] = {
+		1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200, 230400,
+		460800, 500000, 576000, 921600, 1000000, 1152000, 1500000,
+		2000000, 2500000, 3000000, 3500000, 4000000,
+	};
+
+	for (size_t i = 0; i < sizeof(bauds) / sizeof(bauds[0]); i++) {
+		if (bauds[i] == baud) {
+			return true;
+		}
+	}
+	return false;
+}
+
+static int check_modbus_bus(const struct config_modbus *m, char *err,
+			    size_t size)
+{
+	if (m->transport == CONFIG_MODBUS_TCP) {
+		if (!m->host[0]) {
+			snprintf(err, size, "[modbus] host: empty");
+			return -EINVAL;
+		}
+		return 0;
+	}
+	if (!m->device[0]) {
+		snprintf(err, size, "[modbus] device: empty");
+		return -EINVAL;
+	}
+	if (!standard_baud(m->baud)) {
+		snprintf(err, size, "[modbus] baud: %d is not a standard line "
+			 "speed (e.g. 9600, 115200, 1000000)", m->baud);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+/* The feedback registers of D, read with 0x17, fit one holding block. */
+static int check_combined(const struct config_modbus_drive *d,
+			  const char *axis, char *err, size_t size)
+{
+	static const int reads[] = { REGMAP_POSITION, REGMAP_VELOCITY,
+				     REGMAP_FAULT };
+	int lo = 0xFFFF, hi = 0;
+
+	if (d->reg[REGMAP_TORQUE].table != REGMAP_HOLDING) {
+		snprintf(err, size, "[modbus.%s] combined_0x17: torque must "
+			 "be a holding register", axis);
+		return -EINVAL;
+	}
+	for (size_t i = 0; i < sizeof(reads) / sizeof(reads[0]); i++) {
+		const struct regmap_reg *r = &d->reg[reads[i]];
+
+		if (r->table == REGMAP_NONE) {
+			continue;
+		}
+		if (r->table != REGMAP_HOLDING) {
+			snprintf(err, size, "[modbus.%s] %s: 0x17 reads holding "
+				 "registers only", axis,
+				 regmap_signal_name(reads[i]));
+			return -EINVAL;
+		}
+		lo = r->address < lo ? r->address : lo;
+		hi = r->address + regmap_words(r) > hi
+			     ? r->address + regmap_words(r) : hi;
+	}
+	if (hi - lo > 125) {
+		snprintf(err, size, "[modbus.%s] combined_0x17: the feedback "
+			 "registers span %d, more than one 0x17 reads (125)",
+			 axis, hi - lo);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int check_modbus_drive(const struct config_modbus_drive *d,
+			      const char *axis, char *err, size_t size)
+{
+	static const int needed[] = { REGMAP_TORQUE, REGMAP_POSITION };
+	static const int writes[] = { REGMAP_TORQUE, REGMAP_ENABLE,
+				      REGMAP_FAULT_RESET, REGMAP_WATCHDOG };
+
+	for (size_t i = 0; i < sizeof(needed) / sizeof(needed[0]); i++) {
+		if (d->reg[needed[i]].table == REGMAP_NONE) {
+			snprintf(err, size, "[modbus.%s] %s: a modbus axis needs "
+				 "it", axis, regmap_signal_name(needed[i]));
+			return -EINVAL;
+		}
+	}
+	for (size_t i = 0; i < sizeof(writes) / sizeof(writes[0]); i++) {
+		const struct regmap_reg *r = &d->reg[writes[i]];
+
+		if (r->table != REGMAP_NONE && !regmap_writable(r)) {
+			snprintf(err, size, "[modbus.%s] %s: is written: it must "
+				 "be a coil or a holding register", axis,
+				 regmap_signal_name(writes[i]));
+			return -EINVAL;
+		}
+	}
+	return d->combined_0x17 ? check_combined(d, axis, err, size) : 0;
+}
+
+static int check_modbus(const struct config *cfg, char *err, size_t size)
+{
+	bool any = false;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		const struct config_modbus_drive *d = &cfg->modbus_drive[a];
+
+		if (config_axis_backend(cfg, a) != CONFIG_DRIVE_MODBUS) {
+			continue;
+		}
+		any = true;
+		if (check_modbus_drive(d, names_axis(a), err, size)) {
+			return -EINVAL;
+		}
+		for (int b = 0; b < a; b++) {
+			if (config_axis_backend(cfg, b) == CONFIG_DRIVE_MODBUS &&
+			    cfg->modbus_drive[b].slave == d->slave) {
+				snprintf(err, size, "[modbus.%s] slave: %d is "
+					 "[modbus.%s]'s too", names_axis(a),
+					 d->slave, names_axis(b));
+				return -EINVAL;
+			}
+		}
+	}
+	return any ? check_modbus_bus(&cfg->modbus, err, size) : 0;
+}
+
 int config_check(const struct config *cfg, char *err, size_t errsize)
 {
+	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize)) {
+		return -EINVAL;
+	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		if (cfg->rig.travel_min[a] >= cfg->rig.travel_max[a]) {
 			snprintf(err, errsize,
@@ -488,7 +778,8 @@ void config_format(const struct config *cfg, const struct config_key *k,
 {
 	switch (k->type) {
 	case CONFIG_INT:
-		snprintf(buf, size, "%d", *(const int *)cfield(cfg, k));
+		snprintf(buf, size, k->flags & CONFIG_HEX ? "0x%04x" : "%d",
+			 *(const int *)cfield(cfg, k));
 		break;
 	case CONFIG_DOUBLE:
 		snprintf(buf, size, "%.9g", *(const double *)cfield(cfg, k));
@@ -503,6 +794,9 @@ void config_format(const struct config *cfg, const struct config_key *k,
 	case CONFIG_LEVEL:
 		snprintf(buf, size, "%s",
 			 log_level_name(*(const int *)cfield(cfg, k)));
+		break;
+	case CONFIG_REGISTER:
+		regmap_format(cfield(cfg, k), buf, size);
 		break;
 	}
 }

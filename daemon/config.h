@@ -20,12 +20,68 @@
 #include <stdio.h>
 
 #include "../proto/endosim_shm.h"
+#include "regmap.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
 #define CONFIG_STR 128 /* longest string value, bytes with the NUL */
 
 enum config_backend {
-	CONFIG_BACKEND_SIM = 0,
+	CONFIG_BACKEND_SIM = 0,    /* every axis simulated */
+	CONFIG_BACKEND_DRIVES = 1, /* each axis as its [axis.NAME] says */
+};
+
+/* What moves one axis ([axis.NAME] backend). */
+enum config_drive {
+	CONFIG_DRIVE_SIM = 0,
+	CONFIG_DRIVE_EPOS4_USB = 1,
+	CONFIG_DRIVE_MODBUS = 2,
+};
+
+enum config_transport { CONFIG_MODBUS_RTU = 0, CONFIG_MODBUS_TCP = 1 };
+enum config_parity { CONFIG_PARITY_NONE = 0, CONFIG_PARITY_EVEN, CONFIG_PARITY_ODD };
+
+/* One axis' mechanics: how motor turns and encoder counts map to the axis. */
+struct config_axis {
+	int backend;          /* enum config_drive */
+	double gear_ratio;    /* motor turns per turn of the output */
+	double gear_radius_m; /* insertion only: pinion radius, m per rad */
+	int counts_per_rev;   /* encoder counts per motor turn */
+	int reversed;         /* 1: motor positive is axis negative */
+};
+
+/* One maxon EPOS4 on USB ([epos4.NAME]). */
+struct config_epos4 {
+	int vid, pid;                 /* USB vendor and product id */
+	char serial[CONFIG_STR];      /* USB serial number; "": any */
+	int node_id;                  /* the drive's node-ID */
+	double timeout_s;             /* per USB transfer */
+	double feedback_max_age_s;    /* older feedback is a fault */
+	double max_rate_hz;           /* the bus thread's exchange rate cap */
+	double rated_torque_unit_n_m; /* SI value of one unit of 0x6076 */
+};
+
+/* The Modbus line or connection all modbus axes share ([modbus]). */
+struct config_modbus {
+	int transport;                /* enum config_transport */
+	char device[CONFIG_STR];      /* RTU: serial device */
+	int baud;
+	int parity;                   /* enum config_parity */
+	int data_bits, stop_bits;
+	int rs485;                    /* 1: switch the port to RS-485 mode */
+	char host[CONFIG_STR];        /* TCP */
+	int port;
+	double response_timeout_s;
+	double byte_timeout_s;
+	double feedback_max_age_s;
+	double max_rate_hz;
+};
+
+/* One Modbus wheel drive ([modbus.NAME]): its slave id and register map. */
+struct config_modbus_drive {
+	int slave;
+	int combined_0x17;            /* 1: write and read in one transaction */
+	double watchdog_s;            /* written to the watchdog register */
+	struct regmap_reg reg[REGMAP_SIGNALS];
 };
 
 struct config {
@@ -72,6 +128,10 @@ struct config {
 	struct {
 		int level;                     /* syslog level */
 	} log;
+	struct config_axis axis[ENDOSIM_AXES];
+	struct config_epos4 epos4[ENDOSIM_AXES];
+	struct config_modbus modbus;
+	struct config_modbus_drive modbus_drive[ENDOSIM_AXES];
 };
 
 enum config_type {
@@ -79,11 +139,13 @@ enum config_type {
 	CONFIG_DOUBLE,
 	CONFIG_STRING,
 	CONFIG_ENUM,
-	CONFIG_LEVEL, /* a log level name */
+	CONFIG_LEVEL,    /* a log level name */
+	CONFIG_REGISTER, /* a Modbus register (regmap.h), text in def_str */
 };
 
 enum config_flags {
 	CONFIG_LIVE = 1u << 0, /* may change while running (SetParam) */
+	CONFIG_HEX = 1u << 1,  /* an integer written in hexadecimal */
 };
 
 struct config_key {
@@ -124,8 +186,18 @@ int config_load_stream(struct config *cfg, FILE *f, const char *name,
 int config_set(struct config *cfg, const char *key, const char *value,
 	       bool live_only, char *err, size_t errsize);
 
-/* Cross-key checks (travel min below max, ...). Returns 0 or -EINVAL. */
+/*
+ * Cross-key checks (travel min below max, distinct devices, a usable
+ * register map for each modbus axis, ...). Returns 0 or -EINVAL.
+ */
 int config_check(const struct config *cfg, char *err, size_t errsize);
+
+/* The backend that moves AXIS: CONFIG_DRIVE_SIM unless [rig] backend is
+ * drives. */
+int config_axis_backend(const struct config *cfg, int axis);
+
+/* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
+double config_feedback_max_age_s(const struct config *cfg, int axis);
 
 /* The table: config_key_count() entries. */
 size_t config_key_count(void);

@@ -50,7 +50,7 @@ struct reply_buf {
 	Endosim__StatusReply status;
 	Endosim__AxisStatus axes[ENDOSIM_AXES];
 	Endosim__AxisStatus *axes_p[ENDOSIM_AXES];
-	char fault_text[160];
+	char fault_text[640];
 	Endosim__StatsReply stats;
 	Endosim__Histogram latency, compute;
 	Endosim__ConfigReply config;
@@ -320,21 +320,24 @@ static void accept_client(struct control *c, int lfd, bool rw)
 
 /* ---------------------------------------------------------------- replies */
 
-static void fault_text(const struct endosim_state *st, uint64_t start_ns,
+/* The first fault: its bits, axis, time, and the device's own words. */
+static void fault_text(struct control *c, const struct endosim_state *st,
 		       char *buf, size_t size)
 {
-	char names[128];
+	char names[128], what[400];
 
 	if (!st->fault_bits) {
 		buf[0] = '\0';
 		return;
 	}
 	names_faults(st->fault_bits, names, sizeof(names));
-	snprintf(buf, size, "%s%s%s (detail %u) at %.3f s", names,
+	rig_describe(c->deps.rig, st->fault_first, st->fault_axis,
+		     st->fault_detail, what, sizeof(what));
+	snprintf(buf, size, "%s%s%s (detail %u) at %.3f s: %s", names,
 		 st->fault_axis >= 0 ? " on " : "",
 		 st->fault_axis >= 0 ? names_axis(st->fault_axis) : "",
 		 st->fault_detail,
-		 (double)(st->fault_ns - start_ns) / 1e9);
+		 (double)(st->fault_ns - c->deps.start_ns) / 1e9, what);
 }
 
 static void update_loop_rate(struct control *c, uint64_t now)
@@ -369,8 +372,7 @@ static void build_status(struct control *c, Endosim__Reply *rep)
 	endosim__status_reply__init(s);
 	s->state = (Endosim__DaemonState)st.state;
 	s->fault_bits = st.fault_bits;
-	fault_text(&st, c->deps.start_ns, rb->fault_text,
-		   sizeof(rb->fault_text));
+	fault_text(c, &st, rb->fault_text, sizeof(rb->fault_text));
 	s->fault_text = rb->fault_text;
 	s->cycle = st.cycle;
 	s->stamp_ns = st.stamp_ns;
@@ -381,7 +383,7 @@ static void build_status(struct control *c, Endosim__Reply *rep)
 					  (double)(st.stamp_ns - c->deps.start_ns + 1);
 	s->loop_rate_hz = c->cfg.loop.rate_hz;
 	s->overruns = st.overruns;
-	s->rig = (char *)c->deps.rig_name;
+	s->rig = (char *)rig_name(c->deps.rig);
 	s->version = ENDOSIM_VERSION;
 	s->uptime_s = (double)(loop_now_ns() - c->deps.start_ns) / 1e9;
 	s->scenario_time_s = st.scenario_time_s;

@@ -31,7 +31,7 @@ struct control_deps {
 	struct loop *loop;
 	struct hand *hand;       /* simulated rig's hand; NULL on real drives */
 	struct publish *pub;
-	const char *rig_name;
+	struct rig *rig;         /* its name, and faults in words */
 	uint64_t start_ns;       /* CLOCK_MONOTONIC at daemon start */
 };
 

@@ -15,6 +15,7 @@
 #include "../proto/seqlock.h"
 #include "haptics.h"
 #include "log.h"
+#include "rt.h"
 #include "spsc.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -186,6 +187,7 @@ static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
 	st->stamp_ns = now;
 	st->state = s->state;
 	st->fault_bits = s->faults;
+	st->fault_first = s->fault_bit;
 	st->fault_axis = s->fault_axis;
 	st->fault_detail = s->fault_detail;
 	st->fault_ns = s->fault_ns;
@@ -349,54 +351,33 @@ static void hold_cpu_latency(struct loop *l)
 	l->pm_qos_fd = fd;
 }
 
-static int create_thread(struct loop *l, bool fifo)
-{
-	struct sched_param sp = { .sched_priority = l->cfg.loop.priority };
-	pthread_attr_t attr;
-	cpu_set_t cpus;
-	int r;
-
-	pthread_attr_init(&attr);
-	pthread_attr_setstacksize(&attr, LOOP_STACK_BYTES);
-	if (fifo) {
-		pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
-		pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
-		pthread_attr_setschedparam(&attr, &sp);
-	}
-	if (l->cfg.loop.cpu >= 0) {
-		CPU_ZERO(&cpus);
-		CPU_SET(l->cfg.loop.cpu, &cpus);
-		pthread_attr_setaffinity_np(&attr, sizeof(cpus), &cpus);
-	}
-	r = pthread_create(&l->thread, &attr, loop_main, l);
-	pthread_attr_destroy(&attr);
-	return -r;
-}
-
 int loop_start(struct loop *l)
 {
-	struct sched_param sp;
-	int policy, r;
+	struct rt_thread_params p = {
+		.name = "endosim-loop",
+		.priority = l->cfg.loop.priority,
+		.cpu = l->cfg.loop.cpu,
+		.stack_bytes = LOOP_STACK_BYTES,
+	};
+	bool fifo;
+	int r;
 
 	lock_memory(l);
 	hold_cpu_latency(l);
-	r = create_thread(l, true);
-	if (r == -EPERM) {
-		log_warn("force loop: no permission for SCHED_FIFO priority %d "
-			 "(needs root or CAP_SYS_NICE with LimitRTPRIO); "
-			 "running as SCHED_OTHER without latency guarantees",
-			 l->cfg.loop.priority);
-		r = create_thread(l, false);
-	}
+	r = rt_thread_start(&l->thread, &p, loop_main, l, &fifo);
 	if (r) {
 		log_err("force loop: cannot start thread: %s", strerror(-r));
 		return r;
 	}
+	if (!fifo) {
+		log_warn("force loop: no permission for SCHED_FIFO priority %d "
+			 "(needs root or CAP_SYS_NICE with LimitRTPRIO); "
+			 "running as SCHED_OTHER without latency guarantees",
+			 l->cfg.loop.priority);
+	}
 	l->running = true;
-	pthread_setname_np(l->thread, "endosim-loop");
-	pthread_getschedparam(l->thread, &policy, &sp);
-	l->info.policy = policy == SCHED_FIFO ? "SCHED_FIFO" : "SCHED_OTHER";
-	l->info.priority = policy == SCHED_FIFO ? sp.sched_priority : 0;
+	l->info.policy = fifo ? "SCHED_FIFO" : "SCHED_OTHER";
+	l->info.priority = fifo ? l->cfg.loop.priority : 0;
 	log_info("force loop: %d Hz, %s priority %d, memory %slocked%s%s",
 		 l->cfg.loop.rate_hz, l->info.policy, l->info.priority,
 		 l->info.memory_locked ? "" : "not ",

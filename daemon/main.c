@@ -205,6 +205,7 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 		[LOOP_CMD_ESTOP] = "emergency stop", [LOOP_CMD_RESET] = "reset",
 	};
 	double t = (double)(ev->stamp_ns - d->start_ns) / 1e9;
+	char what[400];
 
 	switch (ev->code) {
 	case LOOP_EV_STATE:
@@ -214,11 +215,13 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 								  : "fault", t);
 		break;
 	case LOOP_EV_FAULT:
-		log_err("FAULT %s%s%s (detail %u) at %.3f s: torque off on "
+		rig_describe(d->rig, ev->arg, ev->axis, ev->detail, what,
+			     sizeof(what));
+		log_err("FAULT %s%s%s (detail %u) at %.3f s: %s: torque off on "
 			"every axis; 'endoctl reset' once the cause is gone",
 			names_fault(ev->arg), ev->axis >= 0 ? " on " : "",
 			ev->axis >= 0 ? names_axis(ev->axis) : "", ev->detail,
-			t);
+			t, what);
 		break;
 	case LOOP_EV_OVERRUN:
 		log_ratelimited(&overrun_rl, LOG_WARNING,
@@ -232,6 +235,17 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 }
 
 /* ------------------------------------------------------------ life */
+
+/* Some axis is simulated: the simulated hand has something to push. */
+static bool any_simulated(const struct config *cfg)
+{
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (config_axis_backend(cfg, a) == CONFIG_DRIVE_SIM) {
+			return true;
+		}
+	}
+	return false;
+}
 
 static int start(struct daemon *d, const struct options *opt)
 {
@@ -255,9 +269,8 @@ static int start(struct daemon *d, const struct options *opt)
 		return EX_SOFTWARE;
 	}
 	struct control_deps deps = {
-		.hand = d->cfg.rig.backend == CONFIG_BACKEND_SIM ? d->hand
-								 : NULL,
-		.rig_name = rig_name(d->rig),
+		.hand = any_simulated(&d->cfg) ? d->hand : NULL,
+		.rig = d->rig,
 		.start_ns = d->start_ns,
 	};
 

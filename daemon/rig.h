@@ -12,6 +12,9 @@
  *    mailboxes with their bus threads).
  *  - stop: torque to zero and drives disabled; called once after the force
  *    loop has ended; may block.
+ *  - describe: any thread but the force loop: which device a fault (its
+ *    bit, axis and detail as the loop reported them) concerns and why, in
+ *    words, for the log line and `endoctl status`.
  *  - destroy: frees; NULL-safe through rig_destroy().
  *
  * Units: SI (m, rad, N, N m); backends convert counts and per-mille in one
@@ -21,6 +24,7 @@
 #define ENDOSIM_RIG_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "config.h"
@@ -50,6 +54,8 @@ struct rig_ops {
 	void (*write)(struct rig *rig, uint64_t now_ns,
 		      const double setpoint[ENDOSIM_AXES], bool enable);
 	void (*stop)(struct rig *rig);
+	void (*describe)(struct rig *rig, uint32_t fault_bit, int axis,
+			 uint32_t detail, char *buf, size_t size);
 	void (*destroy)(struct rig *rig);
 };
 
@@ -66,6 +72,14 @@ struct rig *rig_create(const struct config *cfg, struct hand *hand);
 
 /* The simulated rig (rig_sim.c). */
 struct rig *rig_sim_create(const struct config *cfg, struct hand *hand);
+
+/*
+ * The rig of drives (rig_drives.c): each axis on the backend its
+ * [axis.NAME] section names, simulated axes next to real ones; one bus
+ * thread per physical bus (bus.h), started by start() at a SCHED_FIFO
+ * priority below the force loop's.
+ */
+struct rig *rig_drives_create(const struct config *cfg, struct hand *hand);
 
 static inline int rig_start(struct rig *rig)
 {
@@ -92,6 +106,13 @@ static inline void rig_stop(struct rig *rig)
 static inline const char *rig_name(const struct rig *rig)
 {
 	return rig->ops->name;
+}
+
+static inline void rig_describe(struct rig *rig, uint32_t fault_bit,
+				int axis, uint32_t detail, char *buf,
+				size_t size)
+{
+	rig->ops->describe(rig, fault_bit, axis, detail, buf, size);
 }
 
 void rig_destroy(struct rig *rig);

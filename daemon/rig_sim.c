@@ -4,6 +4,7 @@
  * cycle. Simulated time advances by exactly one period per cycle, so a run
  * is repeatable whatever the machine's timing.
  */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "log.h"
@@ -74,6 +75,16 @@ static void sim_stop(struct rig *rig)
 	(void)rig;
 }
 
+static void sim_describe(struct rig *rig, uint32_t fault_bit, int axis,
+			 uint32_t detail, char *buf, size_t size)
+{
+	(void)rig;
+	(void)fault_bit;
+	(void)axis;
+	(void)detail;
+	snprintf(buf, size, "simulated axis");
+}
+
 static void sim_destroy(struct rig *rig)
 {
 	free(rig);
@@ -85,6 +96,7 @@ static const struct rig_ops sim_ops = {
 	.read = sim_read,
 	.write = sim_write,
 	.stop = sim_stop,
+	.describe = sim_describe,
 	.destroy = sim_destroy,
 };
 

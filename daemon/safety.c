@@ -35,6 +35,7 @@ int safety_command(struct safety *s, enum safety_cmd cmd)
 			s->state = ENDOSIM_STATE_IDLE;
 		}
 		s->faults = 0;
+		s->fault_bit = 0;
 		s->fault_axis = -1;
 		s->fault_detail = 0;
 		s->fault_ns = 0;
@@ -54,6 +55,7 @@ void safety_fault(struct safety *s, uint32_t bit, int axis, uint32_t detail,
 {
 	s->seen |= bit;
 	if (!s->faults) {
+		s->fault_bit = bit;
 		s->fault_axis = axis;
 		s->fault_detail = detail;
 		s->fault_ns = now_ns;
@@ -70,16 +72,19 @@ static bool finite_axis(const struct rig_axis_feedback *f)
 void safety_check_feedback(struct safety *s, const struct config *cfg,
 			   const struct rig_feedback *fb, uint64_t now_ns)
 {
-	uint64_t max_age = (uint64_t)(cfg->rig.feedback_max_age_s * 1e9);
-
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		const struct rig_axis_feedback *f = &fb->axis[a];
+		uint64_t max_age =
+			(uint64_t)(config_feedback_max_age_s(cfg, a) * 1e9);
 
 		if (!(f->status & ENDOSIM_DRIVE_PRESENT)) {
 			safety_fault(s, ENDOSIM_FAULT_DRIVE_GONE, a,
 				     f->fault_detail, now_ns);
 		} else if (f->status & ENDOSIM_DRIVE_FAULT) {
 			safety_fault(s, ENDOSIM_FAULT_DRIVE, a, f->fault_detail,
+				     now_ns);
+		} else if (f->status & ENDOSIM_DRIVE_BUS_ERROR) {
+			safety_fault(s, ENDOSIM_FAULT_BUS, a, f->fault_detail,
 				     now_ns);
 		} else if (now_ns > f->stamp_ns &&
 			   now_ns - f->stamp_ns > max_age) {

@@ -34,6 +34,7 @@ struct safety {
 	uint32_t faults;       /* latched enum endosim_fault bits */
 	uint32_t active;       /* causes seen in the last checked cycle */
 	uint32_t seen;         /* causes seen so far in this cycle */
+	uint32_t fault_bit;    /* first fault's bit */
 	int fault_axis;        /* first fault's axis, -1: none or global */
 	uint32_t fault_detail; /* first fault's backend code */
 	uint64_t fault_ns;     /* first fault's time */
@@ -54,7 +55,10 @@ void safety_begin_cycle(struct safety *s);
 void safety_fault(struct safety *s, uint32_t bit, int axis, uint32_t detail,
 		  uint64_t now_ns);
 
-/* Checks feedback: present, not faulted, fresh, finite. */
+/*
+ * Checks feedback: present, not faulted, no failed transaction, fresh (the
+ * axis' bus' feedback_max_age_s), finite.
+ */
 void safety_check_feedback(struct safety *s, const struct config *cfg,
 			   const struct rig_feedback *fb, uint64_t now_ns);
 

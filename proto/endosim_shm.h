@@ -66,6 +66,7 @@ enum endosim_drive_status {
 	ENDOSIM_DRIVE_PRESENT = 1u << 0, /* the device answers */
 	ENDOSIM_DRIVE_ENABLED = 1u << 1, /* power stage on, following torque */
 	ENDOSIM_DRIVE_FAULT = 1u << 2,   /* the drive itself reports a fault */
+	ENDOSIM_DRIVE_BUS_ERROR = 1u << 3, /* a transaction with it failed */
 };
 
 struct endosim_axis_state {
@@ -93,7 +94,7 @@ struct endosim_state {
 	uint32_t compute_ns;  /* the previous cycle's compute time */
 	double scenario_time_s; /* simulated hand: time into the scenario */
 	uint32_t scenario_done; /* 1 once a scenario without repeat ended */
-	uint32_t reserved;
+	uint32_t fault_first; /* the enum endosim_fault bit of the first fault */
 	struct endosim_axis_state axis[ENDOSIM_AXES];
 };
 
