@@ -33,13 +33,20 @@ struct bus_fb {
 	uint32_t fault_seq;                        /* latched faults so far */
 };
 
+/* What can be latched on a drive, each with its own words. */
+enum latch_kind {
+	LATCH_GONE,   /* the device vanished: PRESENT cleared */
+	LATCH_BUS,    /* a transaction failed: ENDOSIM_DRIVE_BUS_ERROR */
+	LATCH_FAULT,  /* the drive faulted: ENDOSIM_DRIVE_FAULT */
+	LATCHES,
+};
+
 /* What the bus thread keeps of each drive. */
 struct bus_drive {
 	bool up;             /* bring_up() completed: torque follows */
 	bool rising;         /* bring_up() under way */
-	uint32_t latch;      /* latched ENDOSIM_DRIVE_FAULT, _BUS_ERROR */
-	bool gone;           /* latched: the device vanished */
-	uint32_t detail;     /* of the latched fault */
+	uint32_t latched;    /* 1 << enum latch_kind */
+	uint32_t detail[LATCHES]; /* errno, drive code */
 	struct drive_sample sample;
 };
 
@@ -63,9 +70,9 @@ struct bus {
 	seqlock_t fb_lock;
 	struct bus_fb fb_box;
 
-	/* bus -> other threads: the latched cause per drive, in words */
+	/* bus -> other threads: each latched cause in words */
 	seqlock_t note_lock;
-	char note[DRIVE_MAX][384];
+	char note[DRIVE_MAX][LATCHES][384];
 
 	/* the bus thread's own */
 	struct bus_cmd cmd;
@@ -158,7 +165,7 @@ static void take_command(struct bus *b)
 static bool any_latch(const struct bus *b)
 {
 	for (int i = 0; i < b->d->n; i++) {
-		if (b->dr[i].latch || b->dr[i].gone) {
+		if (b->dr[i].latched) {
 			return true;
 		}
 	}
@@ -172,45 +179,47 @@ static bool may_run(const struct bus *b)
 	       !any_latch(b);
 }
 
-static void write_note(struct bus *b, int i, const char *fmt, ...)
-	__attribute__((format(printf, 3, 4)));
+static void publish(struct bus *b);
 
-static void write_note(struct bus *b, int i, const char *fmt, ...)
+static void write_note(struct bus *b, int i, int kind, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+
+static void write_note(struct bus *b, int i, int kind, const char *fmt, ...)
 {
-	char text[sizeof(b->note[0])];
+	char text[sizeof(b->note[0][0])];
 	va_list ap;
 
 	va_start(ap, fmt);
 	vsnprintf(text, sizeof(text), fmt, ap);
 	va_end(ap);
 	seqlock_write_begin(&b->note_lock);
-	memcpy(b->note[i], text, sizeof(text));
+	memcpy(b->note[i][kind], text, sizeof(text));
 	seqlock_write_end(&b->note_lock);
 }
 
 /*
- * Latches a fault on drive I (-1: every drive of the bus): BITS
- * (ENDOSIM_DRIVE_*), or GONE; the first cause of a drive is kept in words.
+ * Latches a fault of KIND on drive I (-1: every drive of the bus) with its
+ * DETAIL and WHY in words (the first of each kind is kept), and tells the
+ * loop at once.
  */
-static void latch(struct bus *b, int i, uint32_t bits, bool gone,
-		  uint32_t detail, const char *why)
+static void latch(struct bus *b, int i, enum latch_kind kind, uint32_t detail,
+		  const char *why)
 {
 	for (int j = 0; j < b->d->n; j++) {
 		struct bus_drive *dr = &b->dr[j];
 
-		if (i >= 0 && j != i) {
+		if ((i >= 0 && j != i) || (dr->latched & 1u << kind)) {
 			continue;
 		}
-		if (!dr->latch && !dr->gone) {
-			write_note(b, j, "%s %s: %s%s", b->d->name, b->d->unit[j],
-				   gone ? "device gone: " : "", why);
-			dr->detail = detail;
-		}
-		dr->latch |= bits;
-		dr->gone |= gone;
+		write_note(b, j, kind, "%s %s: %s%s", b->d->name, b->d->unit[j],
+			   kind == LATCH_GONE ? "device gone: " : "", why);
+		dr->detail[kind] = detail;
+		dr->latched |= 1u << kind;
 	}
 	b->fault_seq++;
 	b->blocked_gen = b->cmd.enable_gen;
+	/* the loop learns of it now, not after the drives are down */
+	publish(b);
 }
 
 static void take_down(struct bus *b, int i)
@@ -222,28 +231,38 @@ static void take_down(struct bus *b, int i)
 	b->dr[i].rising = false;
 }
 
-static void take_all_down(struct bus *b)
+/* Brings every drive down but SKIP (-1: none). */
+static void take_all_down(struct bus *b, int skip)
 {
 	for (int i = 0; i < b->d->n; i++) {
-		take_down(b, i);
+		if (i == skip) {
+			b->dr[i].up = false;
+			b->dr[i].rising = false;
+		} else {
+			take_down(b, i);
+		}
 	}
 }
 
-/* A failed operation: latch it, stop every drive, drop a lost device. */
+/*
+ * A failed operation: latch it, stop every drive, drop a lost device. A
+ * drive that did not answer is not asked again: the bus would wait on it
+ * while the others' feedback grows old (its own watchdog stops it).
+ */
 static void failed(struct bus *b, int err)
 {
-	bool gone = err == -ENODEV;
+	int i = b->d->why_drive;
 
-	latch(b, gone ? -1 : b->d->why_drive,
-	      gone ? 0 : ENDOSIM_DRIVE_BUS_ERROR, gone,
-	      gone ? 0 : (uint32_t)-err, b->d->why);
-	if (gone) {
+	if (err == -ENODEV) {
+		latch(b, -1, LATCH_GONE, 0, b->d->why);
 		b->d->ops->close(b->d);
 		b->connected = false;
 		b->sample_ok = false;
 		b->next_open_ns = drive_now_ns() + (uint64_t)(BUS_REOPEN_S * 1e9);
+	} else {
+		latch(b, i, LATCH_BUS, (uint32_t)-err, b->d->why);
 	}
-	take_all_down(b);
+	take_all_down(b, err == -ETIMEDOUT ? i : -1);
 }
 
 static void step_up(struct bus *b, int i)
@@ -296,17 +315,16 @@ static void check_drives(struct bus *b)
 	for (int i = 0; i < b->d->n; i++) {
 		struct bus_drive *dr = &b->dr[i];
 
-		if (dr->sample.fault && !(dr->latch & ENDOSIM_DRIVE_FAULT)) {
+		if (dr->sample.fault && !(dr->latched & 1u << LATCH_FAULT)) {
 			snprintf(why, sizeof(why), "drive fault 0x%04x (%s)",
 				 dr->sample.code,
 				 b->d->ops->describe_fault(dr->sample.code));
-			latch(b, i, ENDOSIM_DRIVE_FAULT, false, dr->sample.code,
-			      why);
-			take_all_down(b);
+			latch(b, i, LATCH_FAULT, dr->sample.code, why);
+			take_all_down(b, -1);
 		} else if (dr->up && !dr->sample.enabled && !dr->sample.fault) {
-			latch(b, i, ENDOSIM_DRIVE_FAULT, false, 0,
+			latch(b, i, LATCH_FAULT, 0,
 			      "the drive stopped following torque by itself");
-			take_all_down(b);
+			take_all_down(b, -1);
 		}
 	}
 }
@@ -347,8 +365,7 @@ static void settle(struct bus *b)
 	}
 	for (int i = 0; i < b->d->n; i++) {
 		if (!b->dr[i].sample.fault) {
-			b->dr[i].latch = 0;
-			b->dr[i].gone = false;
+			b->dr[i].latched = 0;
 		}
 	}
 }
@@ -369,21 +386,44 @@ static void reopen(struct bus *b)
 	}
 }
 
+static bool has(const struct bus_drive *dr, enum latch_kind kind)
+{
+	return dr->latched & 1u << kind;
+}
+
 static uint32_t status_of(const struct bus *b, int i)
 {
 	const struct bus_drive *dr = &b->dr[i];
-	uint32_t st = dr->latch;
+	uint32_t st = 0;
 
-	if (b->connected && !dr->gone) {
+	if (b->connected && !has(dr, LATCH_GONE)) {
 		st |= ENDOSIM_DRIVE_PRESENT;
 	}
 	if (b->sample_ok && dr->up && dr->sample.enabled) {
 		st |= ENDOSIM_DRIVE_ENABLED;
 	}
-	if (b->sample_ok && dr->sample.fault) {
+	if (has(dr, LATCH_FAULT) || (b->sample_ok && dr->sample.fault)) {
 		st |= ENDOSIM_DRIVE_FAULT;
 	}
+	if (has(dr, LATCH_BUS)) {
+		st |= ENDOSIM_DRIVE_BUS_ERROR;
+	}
 	return st;
+}
+
+/* The detail of what the status shows first, as safety.h checks it. */
+static uint32_t detail_of(const struct bus *b, int i, uint32_t status)
+{
+	const struct bus_drive *dr = &b->dr[i];
+
+	if (!(status & ENDOSIM_DRIVE_PRESENT)) {
+		return dr->detail[LATCH_GONE];
+	}
+	if (status & ENDOSIM_DRIVE_FAULT) {
+		return has(dr, LATCH_FAULT) ? dr->detail[LATCH_FAULT]
+					    : dr->sample.code;
+	}
+	return status & ENDOSIM_DRIVE_BUS_ERROR ? dr->detail[LATCH_BUS] : 0;
 }
 
 static void publish(struct bus *b)
@@ -401,8 +441,7 @@ static void publish(struct bus *b)
 		f->hand = 0.0;
 		f->stamp_ns = b->stamp_ns;
 		f->status = status_of(b, i);
-		f->fault_detail = dr->latch || dr->gone ? dr->detail
-				  : dr->sample.fault ? dr->sample.code : 0;
+		f->fault_detail = detail_of(b, i, f->status);
 	}
 	fb.fault_seq = b->fault_seq;
 	seqlock_write_begin(&b->fb_lock);
@@ -450,7 +489,7 @@ static void *bus_main(void *arg)
 		publish(b);
 		next = pace(b, next);
 	}
-	take_all_down(b);
+	take_all_down(b, -1);
 	if (b->connected) {
 		b->d->ops->close(b->d);
 		b->connected = false;
@@ -565,26 +604,41 @@ static int drive_index(const struct bus *b, int axis)
 	return -1;
 }
 
+/* The latch whose words explain FAULT_BIT, or -1. */
+static int kind_of(uint32_t fault_bit)
+{
+	switch (fault_bit) {
+	case ENDOSIM_FAULT_DRIVE_GONE:
+		return LATCH_GONE;
+	case ENDOSIM_FAULT_BUS:
+		return LATCH_BUS;
+	case ENDOSIM_FAULT_DRIVE:
+		return LATCH_FAULT;
+	default:
+		return -1;
+	}
+}
+
 void bus_describe(struct bus *b, int axis, uint32_t fault_bit,
 		  uint32_t detail, char *buf, size_t size)
 {
-	int i = drive_index(b, axis);
+	int i = drive_index(b, axis), kind = kind_of(fault_bit);
 	uint64_t seq;
 
-	if (i < 0) {
-		snprintf(buf, size, "%s", b->d->name);
-		return;
-	}
-	if (fault_bit == ENDOSIM_FAULT_STALE) {
+	if (fault_bit == ENDOSIM_FAULT_STALE && i >= 0) {
 		snprintf(buf, size, "%s %s: no feedback for %u ms (limit %.0f "
 			 "ms)", b->d->name, b->d->unit[i], detail,
 			 b->p.feedback_max_age_s * 1e3);
 		return;
 	}
+	if (i < 0 || kind < 0) {
+		snprintf(buf, size, "%s%s%s", b->d->name, i < 0 ? "" : " ",
+			 i < 0 ? "" : b->d->unit[i]);
+		return;
+	}
 	do {
 		seq = seqlock_read_begin(&b->note_lock);
-		snprintf(buf, size, "%s", b->note[i][0] ? b->note[i]
-							: b->d->name);
+		snprintf(buf, size, "%s", b->note[i][kind]);
 	} while (seqlock_read_retry(&b->note_lock, seq));
 }
 

@@ -157,12 +157,14 @@ static void post_changes(struct loop *l, uint32_t old_state,
 	const struct safety *s = &l->safety;
 	uint32_t added = s->faults & ~old_faults;
 
-	for (uint32_t bit = 1; added; bit <<= 1) {
+	for (uint32_t k = 0; added; k++) {
+		uint32_t bit = 1u << k;
+
 		if (added & bit) {
 			struct loop_event ev = {
 				.stamp_ns = now, .code = LOOP_EV_FAULT,
-				.arg = bit, .axis = s->fault_axis,
-				.detail = s->fault_detail,
+				.arg = bit, .axis = s->cause[k].axis,
+				.detail = s->cause[k].detail,
 			};
 			post(l, &ev);
 			added &= ~bit;

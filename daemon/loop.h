@@ -33,7 +33,7 @@
 
 enum loop_event_code {
 	LOOP_EV_STATE = 1,    /* arg: new state, prev: old state, cmd */
-	LOOP_EV_FAULT,        /* arg: the fault bit, axis, detail */
+	LOOP_EV_FAULT,        /* arg: a new fault bit, its axis and detail */
 	LOOP_EV_OVERRUN,      /* arg: periods skipped */
 	LOOP_EV_SCENARIO_END, /* the scripted hand's scenario ended */
 };

@@ -53,7 +53,12 @@ void safety_begin_cycle(struct safety *s)
 void safety_fault(struct safety *s, uint32_t bit, int axis, uint32_t detail,
 		  uint64_t now_ns)
 {
+	int k = __builtin_ctz(bit);
+
 	s->seen |= bit;
+	if (!(s->faults & bit)) {
+		s->cause[k] = (struct safety_cause){ axis, detail };
+	}
 	if (!s->faults) {
 		s->fault_bit = bit;
 		s->fault_axis = axis;

@@ -29,6 +29,15 @@ enum safety_cmd {
 	SAFETY_RESET,
 };
 
+/* One cause per possible fault bit. */
+#define SAFETY_CAUSES 32
+
+/* Where a fault bit was first seen since the last reset. */
+struct safety_cause {
+	int axis;              /* -1: none or global */
+	uint32_t detail;       /* the backend's code */
+};
+
 struct safety {
 	uint32_t state;        /* enum endosim_state_id */
 	uint32_t faults;       /* latched enum endosim_fault bits */
@@ -38,6 +47,7 @@ struct safety {
 	int fault_axis;        /* first fault's axis, -1: none or global */
 	uint32_t fault_detail; /* first fault's backend code */
 	uint64_t fault_ns;     /* first fault's time */
+	struct safety_cause cause[SAFETY_CAUSES]; /* by bit number */
 };
 
 void safety_init(struct safety *s);
