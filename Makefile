@@ -90,13 +90,18 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
-	     test_safety
+	     test_safety test_epos4_frame test_canopen test_regmap \
+	     test_config_drives
 test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
 test_safety_OBJS = safety.o haptics.o config.o regmap.o log.o names.o
+test_epos4_frame_OBJS = epos4_frame.o
+test_canopen_OBJS = canopen.o
+test_regmap_OBJS = regmap.o
+test_config_drives_OBJS = config.o regmap.o log.o names.o drive.o histo.o
 TEST_TOOLS = shm_probe shm_latency
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o

@@ -79,8 +79,7 @@ static int frame_fail(struct epos4 *e, int r, const char *what, int index,
 {
 	return drive_fail(&e->d, 0, r, "%s 0x%04x/%02x: reply %s", what,
 			  index, sub,
-			  r == -EBADMSG ? "failed its CRC"
-			  : r == -EMSGSIZE ? "too long" : "badly framed");
+			  r == -EBADMSG ? "failed its CRC" : "badly framed");
 }
 
 /* Sends REQ, then reads until a whole reply frame is in RSP. */

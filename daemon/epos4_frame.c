@@ -91,10 +91,6 @@ static int body_byte(struct epos4_decoder *d, uint8_t byte,
 	uint16_t crc;
 
 	d->body[d->n++] = byte;
-	if (d->n == 2 && (size_t)d->body[1] * 2 > EPOS4_FRAME_MAX_DATA) {
-		epos4_decoder_reset(d);
-		return -EMSGSIZE;
-	}
 	total = d->n >= 2 ? 2 + (size_t)d->body[1] * 2 + 2 : SIZE_MAX;
 	if (d->n < total) {
 		return 0;

@@ -28,8 +28,8 @@
 #define EPOS4_OP_READ_OBJECT 0x60
 #define EPOS4_OP_WRITE_OBJECT 0x68
 
-/* Longest data this module handles, bytes (the services use at most 8). */
-#define EPOS4_FRAME_MAX_DATA 32
+/* Longest data, bytes: Len is one byte of words (the services use 8). */
+#define EPOS4_FRAME_MAX_DATA 510
 /* Longest encoded frame: DLE STX, then every byte stuffed at worst. */
 #define EPOS4_FRAME_MAX_BYTES (2 + 2 * (2 + EPOS4_FRAME_MAX_DATA + 2))
 
@@ -73,7 +73,6 @@ bool epos4_decoder_busy(const struct epos4_decoder *d);
  *   -EBADMSG   the CRC does not match
  *   -EPROTO    a DLE followed by anything but DLE or STX, or a frame cut
  *              short by a new DLE STX
- *   -EMSGSIZE  Len is beyond EPOS4_FRAME_MAX_DATA
  */
 int epos4_decoder_feed(struct epos4_decoder *d, uint8_t byte,
 		       struct epos4_frame *f);

@@ -60,7 +60,7 @@
 #include "emu.h"
 
 #define MAX_DEV 4
-#define REPLY_MAX 1024
+#define REPLY_MAX 4096
 #define TICK_MS 1
 #define STATE_EVERY_S 0.02
 #define DEFAULT_RATED_UNM 200000 /* 0.2 N m, in 0x6076 units (uN m) */

@@ -1,0 +1,236 @@
+/*
+ * test_config_drives.c - the drive sections of the configuration: keys in
+ * dotted sections, hexadecimal ids, register keys, the cross-key checks
+ * that refuse an unusable drive setup, the feedback age per bus, and the
+ * unit conversion derived from an axis' mechanics.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "config.h"
+#include "drive.h"
+
+static char err[512];
+
+static void set(struct config *c, const char *key, const char *value)
+{
+	if (config_set(c, key, value, false, err, sizeof(err))) {
+		fail_msg("%s=%s: %s", key, value, err);
+	}
+}
+
+/*
+ * Two modbus wheels with a usable map. (config_set() checks across keys
+ * after each key: the order keeps every step valid.)
+ */
+static void modbus_wheels(struct config *c)
+{
+	config_defaults(c);
+	set(c, "modbus.wheel_ud.torque", "holding 0 i16 scale=1e-5");
+	set(c, "modbus.wheel_ud.position", "input 0 i32");
+	set(c, "modbus.wheel_lr.torque", "holding 0 i16 scale=1e-5");
+	set(c, "modbus.wheel_lr.position", "input 0 i32");
+	set(c, "modbus.wheel_lr.slave", "2");
+	set(c, "axis.wheel_ud.backend", "modbus");
+	set(c, "axis.wheel_lr.backend", "modbus");
+	set(c, "rig.backend", "drives");
+}
+
+#define UD ENDOSIM_AXIS_WHEEL_UD
+#define LR ENDOSIM_AXIS_WHEEL_LR
+
+/* Sets register SIG of axis A directly (no cross-key check), then checks. */
+static int try_reg(struct config *c, int a, int sig, const char *text)
+{
+	assert_int_equal(regmap_parse(text, &c->modbus_drive[a].reg[sig], err,
+				      sizeof(err)), 0);
+	return config_check(c, err, sizeof(err));
+}
+
+static void test_dotted_sections_and_hex(void **state)
+{
+	const struct config_key *k = config_key_find("epos4.roll.vid");
+	struct config c;
+	char buf[64];
+
+	(void)state;
+	assert_non_null(k);
+	config_defaults(&c);
+	assert_int_equal(c.epos4[ENDOSIM_AXIS_ROLL].vid, 0x24E7);
+	assert_int_equal(c.epos4[ENDOSIM_AXIS_ROLL].pid, 0x3B01);
+	set(&c, "epos4.roll.vid", "0x1234");
+	assert_int_equal(c.epos4[ENDOSIM_AXIS_ROLL].vid, 0x1234);
+	config_format(&c, k, buf, sizeof(buf));
+	assert_string_equal(buf, "0x1234");
+	assert_int_equal(config_set(&c, "epos4.roll.vid", "0x10000", false,
+				    err, sizeof(err)), -EINVAL);
+	assert_null(config_key_find("axis.roll.gear_radius_m"));
+	assert_non_null(config_key_find("axis.insertion.gear_radius_m"));
+}
+
+static void test_register_key(void **state)
+{
+	const struct config_key *k =
+		config_key_find("modbus.wheel_lr.velocity");
+	struct config c;
+	char buf[160];
+
+	(void)state;
+	config_defaults(&c);
+	config_format(&c, k, buf, sizeof(buf));
+	assert_string_equal(buf, "none");
+	set(&c, "modbus.wheel_lr.velocity", "input 0x0002 f32 cdab");
+	config_format(&c, k, buf, sizeof(buf));
+	assert_string_equal(buf, "input 0x0002 f32 cdab");
+	assert_int_equal(config_set(&c, "modbus.wheel_lr.velocity",
+				    "input 2 f33", false, err, sizeof(err)),
+			 -EINVAL);
+	assert_non_null(strstr(err, "modbus.wheel_lr.velocity"));
+}
+
+static void test_file_errors_name_line(void **state)
+{
+	char path[] = "/tmp/test_config_drives.XXXXXX";
+	int fd = mkstemp(path);
+	FILE *f = fdopen(fd, "w");
+	struct config c;
+
+	(void)state;
+	fprintf(f, "[rig]\nbackend = drives\n[modbus.wheel_ud]\n"
+		   "slave = 3\nposition = input 1 i33\n");
+	fclose(f);
+	config_defaults(&c);
+	assert_int_equal(config_load(&c, path, err, sizeof(err)), -EINVAL);
+	unlink(path);
+	assert_non_null(strstr(err, ":5: [modbus.wheel_ud] position: "));
+}
+
+static void test_modbus_checks(void **state)
+{
+	struct config c;
+
+	(void)state;
+	modbus_wheels(&c);
+	assert_int_equal(config_check(&c, err, sizeof(err)), 0);
+
+	c.modbus_drive[LR].slave = 1;
+	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[modbus.wheel_lr] slave"));
+
+	modbus_wheels(&c);
+	assert_int_equal(try_reg(&c, UD, REGMAP_TORQUE, "none"), -EINVAL);
+	assert_non_null(strstr(err, "[modbus.wheel_ud] torque"));
+
+	modbus_wheels(&c);
+	assert_int_equal(try_reg(&c, UD, REGMAP_ENABLE, "discrete 3"), -EINVAL);
+	assert_non_null(strstr(err, "[modbus.wheel_ud] enable"));
+
+	modbus_wheels(&c);
+	c.modbus_drive[UD].combined_0x17 = 1;
+	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "position: 0x17 reads holding"));
+	assert_int_equal(try_reg(&c, UD, REGMAP_POSITION, "holding 0x10 i32"),
+			 0);
+	assert_int_equal(try_reg(&c, UD, REGMAP_FAULT, "holding 0x200"),
+			 -EINVAL);
+	assert_non_null(strstr(err, "span"));
+	assert_int_equal(try_reg(&c, UD, REGMAP_FAULT, "holding 0x20"), 0);
+
+	modbus_wheels(&c);
+	c.modbus.baud = 100000;
+	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[modbus] baud"));
+	/* a modbus map is not checked while every axis is simulated */
+	c.rig.backend = CONFIG_BACKEND_SIM;
+	assert_int_equal(config_check(&c, err, sizeof(err)), 0);
+}
+
+static void test_epos4_checks(void **state)
+{
+	struct config c;
+
+	(void)state;
+	config_defaults(&c);
+	set(&c, "axis.insertion.backend", "epos4-usb");
+	set(&c, "axis.roll.backend", "epos4-usb");
+	c.rig.backend = CONFIG_BACKEND_DRIVES;
+	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[epos4.roll] serial"));
+	set(&c, "epos4.insertion.serial", "A");
+	set(&c, "epos4.roll.serial", "B");
+	assert_int_equal(config_check(&c, err, sizeof(err)), 0);
+	set(&c, "epos4.roll.pid", "0x3b02");
+	set(&c, "epos4.roll.serial", "A");
+	assert_int_equal(config_check(&c, err, sizeof(err)), 0);
+	c.epos4[ENDOSIM_AXIS_ROLL].pid = 0x3B01;
+	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
+}
+
+static void test_feedback_age_per_bus(void **state)
+{
+	struct config c;
+
+	(void)state;
+	modbus_wheels(&c);
+	set(&c, "axis.insertion.backend", "epos4-usb");
+	set(&c, "rig.feedback_max_age_s", "0.01");
+	set(&c, "epos4.insertion.feedback_max_age_s", "0.2");
+	set(&c, "modbus.feedback_max_age_s", "0.03");
+	assert_true(config_feedback_max_age_s(&c, ENDOSIM_AXIS_INSERTION) ==
+		    0.2);
+	assert_true(config_feedback_max_age_s(&c, ENDOSIM_AXIS_ROLL) == 0.01);
+	assert_true(config_feedback_max_age_s(&c, ENDOSIM_AXIS_WHEEL_UD) ==
+		    0.03);
+	set(&c, "rig.backend", "sim");
+	assert_true(config_feedback_max_age_s(&c, ENDOSIM_AXIS_WHEEL_UD) ==
+		    0.01);
+}
+
+static void test_units(void **state)
+{
+	struct drive_units u;
+	struct config c;
+
+	(void)state;
+	config_defaults(&c);
+	set(&c, "axis.insertion.counts_per_rev", "2000");
+	set(&c, "axis.insertion.gear_ratio", "2");
+	set(&c, "axis.insertion.gear_radius_m", "0.015");
+	drive_units_init(&u, &c, ENDOSIM_AXIS_INSERTION);
+	/* 4000 counts: one pinion turn: 2 pi r of belt */
+	assert_true(fabs(4000 * u.si_per_count - 2 * M_PI * 0.015) < 1e-12);
+	/* 20 N on the carriage: 0.3 N m at the pinion, 0.15 at the motor */
+	assert_true(fabs(20 * u.motor_nm_per_si - 0.15) < 1e-12);
+
+	set(&c, "axis.wheel_lr.counts_per_rev", "4096");
+	set(&c, "axis.wheel_lr.gear_ratio", "3.5");
+	set(&c, "axis.wheel_lr.direction", "reversed");
+	drive_units_init(&u, &c, ENDOSIM_AXIS_WHEEL_LR);
+	assert_true(fabs(4096 * 3.5 * u.si_per_count + 2 * M_PI) < 1e-12);
+	assert_true(fabs(0.07 * u.motor_nm_per_si + 0.02) < 1e-12);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_dotted_sections_and_hex),
+		cmocka_unit_test(test_register_key),
+		cmocka_unit_test(test_file_errors_name_line),
+		cmocka_unit_test(test_modbus_checks),
+		cmocka_unit_test(test_epos4_checks),
+		cmocka_unit_test(test_feedback_age_per_bus),
+		cmocka_unit_test(test_units),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
