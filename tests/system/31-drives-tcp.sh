@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# 31-drives-tcp.sh - both wheels on Modbus TCP (the emulator on loopback),
+# insertion and roll simulated beside them. Comes up, renders torque the
+# drives get, reads positions that move; a drive that stops answering is a
+# bus error (and its own watchdog stops it); a killed server is a FAULT
+# naming host:port with torque off on every axis, refused reset until it
+# is back, then recovered.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+. tests/system/drives_lib.sh
+
+PORT=$((20000 + $$ % 20000))
+cat >"$T/rig.conf" <<EOF
+[rig]
+backend = drives
+[axis.wheel_ud]
+backend = modbus
+[axis.wheel_lr]
+backend = modbus
+[modbus]
+transport = tcp
+host = 127.0.0.1
+port = $PORT
+response_timeout_s = 0.3
+feedback_max_age_s = 1
+[modbus.wheel_ud]
+slave = 1
+torque = holding 0x0000 f32 dcba
+enable = holding 0x0002
+position = input 0x0000 i32
+velocity = input 0x0002 i32
+[modbus.wheel_lr]
+slave = 2
+torque = holding 0x0000 i16 scale=1e-5
+enable = coil 0x0000
+fault_reset = coil 0x0001
+watchdog = holding 0x0001 u16 scale=0.001
+watchdog_s = 0.2
+position = input 0x0000 i32 badc
+fault = discrete 0x0000
+EOF
+
+wheels_enabled() {
+	state_is ENABLED && [ "$(mb_get 1 enabled)$(mb_get 2 enabled)" = 11 ]
+}
+
+torque_off() {
+	for a in insertion roll wheel_ud wheel_lr; do
+		[ "$(st ".axes.$a.limited")" = 0 ] || return 1
+	done
+	[ -z "$MODBUS_PID" ] && return 0
+	[ "$(mb_get 1 torque_nm)" = 0 ] && [ "$(mb_get 2 torque_nm)" = 0 ]
+}
+
+others_off() {
+	[ "$(st .axes.wheel_ud.limited)$(mb_get 1 torque_nm)" = 00 ]
+}
+
+watchdog_stopped() {
+	[ "$(mb_get 2 torque_nm)" = 0 ] && [ "$(mb_get 2 fault)" = 0x8130 ]
+}
+
+fault_says() {
+	case "$(st .fault)" in *"$1"*) ;; *) return 1 ;; esac
+}
+
+reset_ok() {
+	ctl reset >/dev/null 2>&1
+}
+
+refused() {
+	! ctl reset >/dev/null 2>&1
+}
+
+check "Modbus TCP emulator up" start_modbus "$T/rig.conf" --listen "$PORT"
+check "endosimd up, connected" start_daemon "$T/rig.conf"
+check "IDLE, wheels present" \
+	[ "$(st .state)/$(st .axes.wheel_ud.drive_status)" = IDLE/1 ]
+
+mb "move 1 30"
+mb "hand 2 0.002 1"
+ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
+ctl enable >/dev/null
+check "enabled: both drives" wait_for 10 wheels_enabled
+sleep 0.3
+lim=$(st .axes.wheel_ud.limited)
+check "wheel_ud torque rendered ($lim N m)" nonzero "$lim" 0.005
+check "the f32 dcba torque register gets it" \
+	approx "$(mb_get 1 torque_nm)" "$lim" 0.03 1e-6
+check "wheel_ud velocity pi rad/s (i32 counts/s)" \
+	approx "$(st .axes.wheel_ud.velocity)" 3.14159265 0.01 0
+p1=$(st .axes.wheel_lr.position)
+sleep 0.4
+p2=$(st .axes.wheel_lr.position)
+check "wheel_lr position (i32 badc) moves ($p1 -> $p2 rad)" \
+	nonzero "$(awk -v a="$p1" -v b="$p2" 'BEGIN { print b - a }')" 0.001
+
+# a drive that stops answering
+mb "mute 2 on"
+check "silent drive: FAULT" wait_for 10 state_is FAULT
+check "silent drive: a bus error on wheel_lr" \
+	fault_says "bus-error on wheel_lr"
+check "silent drive: ... naming slave 2" fault_says "slave 2"
+check "silent drive: ... timed out" fault_says "timed out"
+check "silent drive: torque off on the other axes" wait_for 5 others_off
+check "silent drive: its own watchdog stops it" wait_for 5 watchdog_stopped
+mb "mute 2 off"
+check "answering again: reset" wait_for 5 reset_ok
+ctl enable >/dev/null
+check "answering again: enabled" wait_for 10 wheels_enabled
+
+# the server goes away
+n=$(fault_lines)
+kill_modbus
+check "server killed: FAULT" wait_for 10 state_is FAULT
+check "server killed: torque off on every axis" wait_for 5 torque_off
+check "server killed: drive-gone" fault_says "drive-gone on wheel_ud"
+check "server killed: ... naming modbus tcp 127.0.0.1:$PORT" \
+	fault_says "modbus tcp 127.0.0.1:$PORT"
+sleep 0.3
+check "server killed: one log line" [ "$(fault_lines)" -eq $((n + 1)) ]
+check "server gone: reset refused" refused
+check "server restarted" start_modbus "$T/rig.conf" --listen "$PORT"
+check "server back: reset" wait_for 5 reset_ok
+check "server back: IDLE" state_is IDLE
+ctl enable >/dev/null
+check "server back: enabled" wait_for 10 wheels_enabled
+
+finish
