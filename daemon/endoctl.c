@@ -138,6 +138,7 @@ static void json_status(const Endosim__StatusReply *s)
 		json_string(&j, "position_unit", a->position_unit);
 		json_string(&j, "force_unit", a->force_unit);
 		json_uint(&j, "drive_status", a->drive_status);
+		json_string(&j, "drive", names_drive_status(a->drive_status));
 		json_object_end(&j);
 	}
 	json_object_end(&j);
@@ -154,8 +155,8 @@ static void print_status(const Endosim__StatusReply *s)
 	printf("cycle     %llu, uptime %.1f s, scenario %.1f s%s\n",
 	       (unsigned long long)s->cycle, s->uptime_s, s->scenario_time_s,
 	       s->scenario_done ? " (ended)" : "");
-	printf("%-10s %16s %16s %12s %12s %12s\n", "axis", "position",
-	       "velocity", "hand", "command", "limited");
+	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
+	       "velocity", "hand", "command", "limited", "drive");
 	for (size_t i = 0; i < s->n_axes; i++) {
 		const Endosim__AxisStatus *a = s->axes[i];
 		char pos[32], vel[32], hand[32], cmd[32], lim[32];
@@ -169,8 +170,9 @@ static void print_status(const Endosim__StatusReply *s)
 			 a->force_unit);
 		snprintf(lim, sizeof(lim), "%+.3f %s", a->limited,
 			 a->force_unit);
-		printf("%-10s %16s %16s %12s %12s %12s\n", a->name, pos, vel,
-		       hand, cmd, lim);
+		printf("%-10s %16s %16s %12s %12s %12s  %s\n", a->name, pos,
+		       vel, hand, cmd, lim,
+		       names_drive_status(a->drive_status));
 	}
 }
 

@@ -18,6 +18,7 @@ struct rig_sim {
 	double hand_force[ENDOSIM_AXES]; /* N or N m, last step */
 	double dt_s;                     /* loop period */
 	double t_s;                      /* simulated time */
+	bool enabled;                    /* torque was on in the last write */
 };
 
 static struct rig_sim *to_sim(struct rig *rig)
@@ -44,7 +45,8 @@ static void sim_read(struct rig *rig, uint64_t now_ns, struct rig_feedback *fb)
 		f->hand = s->hand_force[a];
 		/* the plants live in this thread: their state is current */
 		f->stamp_ns = now_ns;
-		f->status = ENDOSIM_DRIVE_PRESENT;
+		f->status = ENDOSIM_DRIVE_PRESENT |
+			    (s->enabled ? ENDOSIM_DRIVE_ENABLED : 0);
 		f->fault_detail = 0;
 	}
 	fb->hand_time_s = s->t_s;
@@ -68,6 +70,7 @@ static void sim_write(struct rig *rig, uint64_t now_ns,
 		plant_step(&s->plant[a], motor + s->hand_force[a], s->dt_s);
 	}
 	s->t_s += s->dt_s;
+	s->enabled = enable;
 }
 
 static void sim_stop(struct rig *rig)

@@ -55,6 +55,20 @@ int names_axis_find(const char *name)
 	return -1;
 }
 
+const char *names_drive_status(uint32_t status)
+{
+	if (!(status & ENDOSIM_DRIVE_PRESENT)) {
+		return "gone";
+	}
+	if (status & ENDOSIM_DRIVE_FAULT) {
+		return "fault";
+	}
+	if (status & ENDOSIM_DRIVE_BUS_ERROR) {
+		return "bus-error";
+	}
+	return status & ENDOSIM_DRIVE_ENABLED ? "on" : "off";
+}
+
 const char *names_fault(uint32_t bit)
 {
 	for (unsigned int i = 0; i < COUNT(fault_names); i++) {

@@ -22,6 +22,12 @@ const char *names_axis_force_unit(int axis);
 /* Index of the axis called NAME, or -1. */
 int names_axis_find(const char *name);
 
+/*
+ * One word for an axis' drive status bits (enum endosim_drive_status), the
+ * worst first: "gone", "fault", "bus-error", "on" (enabled), "off".
+ */
+const char *names_drive_status(uint32_t status);
+
 /* The short name of one fault bit ("drive", "stale", ...). */
 const char *names_fault(uint32_t bit);
 
