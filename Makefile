@@ -114,6 +114,9 @@ EMU_CFLAGS = $(shell pkg-config --cflags $(EMU_PKGS) 2>/dev/null)
 EMU_LIBS = $(shell pkg-config --libs $(EMU_PKGS) 2>/dev/null)
 epos4-emu_OBJS = epos4_emu.o emu.o epos4_frame.o canopen.o plant.o
 modbus-emu_OBJS = modbus_emu.o emu.o config.o regmap.o log.o names.o plant.o
+# the drive benchmark: endosimd's rig of drives without the force loop
+DRIVES_BENCH_OBJS = drives_bench.o rig.o rig_sim.o plant.o hand.o scenario.o \
+		    config.o regmap.o log.o names.o histo.o rt.o $(DRIVE_OBJS)
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
@@ -174,7 +177,17 @@ $(BUILD)/emulators/$(1): $(call obj,$($(1)_OBJS))
 endef
 $(foreach e,$(EMULATORS),$(eval $(call emulator_rule,$(e))))
 
-emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS))
+$(BUILD)/obj/drives_bench.o: tests/bench/drives_bench.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(BUILD)/bench/drives-bench: $(call obj,$(DRIVES_BENCH_OBJS))
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
+
+# the emulators, and the benchmark that runs the drive code against them
+emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS)) \
+	$(BUILD)/bench/drives-bench
 
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario

@@ -540,7 +540,7 @@ int bus_start(struct bus *b)
 
 void bus_stop(struct bus *b)
 {
-	struct bus_stats st;
+	struct rig_bus_stats st;
 
 	if (!b->running) {
 		if (b->connected) {
@@ -642,11 +642,12 @@ void bus_describe(struct bus *b, int axis, uint32_t fault_bit,
 	} while (seqlock_read_retry(&b->note_lock, seq));
 }
 
-void bus_get_stats(struct bus *b, struct bus_stats *st)
+void bus_get_stats(struct bus *b, struct rig_bus_stats *st)
 {
 	uint64_t now = drive_now_ns();
 
 	memset(st, 0, sizeof(*st));
+	st->name = b->d->name;
 	st->exchanges = atomic_load_explicit(&b->exchanges,
 					     memory_order_relaxed);
 	if (b->start_ns && now > b->start_ns) {

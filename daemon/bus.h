@@ -39,14 +39,6 @@ struct bus_params {
 	int priority;               /* SCHED_FIFO priority of the thread */
 };
 
-struct bus_stats {
-	uint64_t exchanges;
-	double rate_hz;             /* exchanges per second since start */
-	struct histo_summary exchange; /* one exchange, all its transactions */
-	struct histo_summary txn;      /* one request and its reply */
-	bool fifo;                  /* the thread got SCHED_FIFO */
-};
-
 struct bus;
 
 /* Takes ownership of D (destroyed with the bus). NULL on ENOMEM, logged. */
@@ -93,7 +85,7 @@ void bus_describe(struct bus *b, int axis, uint32_t fault_bit,
 		  uint32_t detail, char *buf, size_t size);
 
 /* Any thread: exchange rate and latencies so far. */
-void bus_get_stats(struct bus *b, struct bus_stats *st);
+void bus_get_stats(struct bus *b, struct rig_bus_stats *st);
 
 /* Any thread: the bus' name ("epos4-usb 24e7:3b01 serial ..."). */
 const char *bus_name(const struct bus *b);

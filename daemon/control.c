@@ -53,6 +53,9 @@ struct reply_buf {
 	char fault_text[640];
 	Endosim__StatsReply stats;
 	Endosim__Histogram latency, compute;
+	Endosim__BusStats buses[ENDOSIM_AXES];
+	Endosim__BusStats *buses_p[ENDOSIM_AXES];
+	Endosim__Histogram bus_histo[ENDOSIM_AXES][2];
 	Endosim__ConfigReply config;
 	Endosim__ConfigEntry *entries;
 	Endosim__ConfigEntry **entries_p;
@@ -421,6 +424,30 @@ static void fill_histogram(Endosim__Histogram *h,
 	h->count = s->count;
 }
 
+/* At most one bus per axis. */
+static void fill_buses(struct control *c)
+{
+	struct reply_buf *rb = &c->rb;
+	struct rig_bus_stats st;
+	size_t n = 0;
+
+	while (n < ENDOSIM_AXES && !rig_bus_stats(c->deps.rig, (int)n, &st)) {
+		Endosim__BusStats *b = &rb->buses[n];
+
+		endosim__bus_stats__init(b);
+		b->name = (char *)st.name;
+		b->rate_hz = st.rate_hz;
+		b->exchanges = st.exchanges;
+		fill_histogram(&rb->bus_histo[n][0], &st.exchange);
+		fill_histogram(&rb->bus_histo[n][1], &st.txn);
+		b->exchange = &rb->bus_histo[n][0];
+		b->transaction = &rb->bus_histo[n][1];
+		rb->buses_p[n++] = b;
+	}
+	rb->stats.n_buses = n;
+	rb->stats.buses = rb->buses_p;
+}
+
 static void build_stats(struct control *c, Endosim__Reply *rep)
 {
 	struct reply_buf *rb = &c->rb;
@@ -438,6 +465,7 @@ static void build_stats(struct control *c, Endosim__Reply *rep)
 	rb->stats.rt_policy = (char *)info->policy;
 	rb->stats.rt_priority = info->priority;
 	rb->stats.period_us = info->period_ns / 1000.0;
+	fill_buses(c);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATS;
 	rep->stats = &rb->stats;
 }

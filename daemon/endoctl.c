@@ -189,6 +189,35 @@ static void json_histogram(struct json *j, const char *key,
 	json_object_end(j);
 }
 
+static void json_buses(struct json *j, const Endosim__StatsReply *s)
+{
+	json_array_begin(j, "buses");
+	for (size_t i = 0; i < s->n_buses; i++) {
+		const Endosim__BusStats *b = s->buses[i];
+
+		json_object_begin(j, NULL);
+		json_string(j, "name", b->name);
+		json_double(j, "rate_hz", b->rate_hz);
+		json_uint(j, "exchanges", b->exchanges);
+		json_histogram(j, "exchange", b->exchange);
+		json_histogram(j, "transaction", b->transaction);
+		json_object_end(j);
+	}
+	json_array_end(j);
+}
+
+static void print_buses(const Endosim__StatsReply *s)
+{
+	for (size_t i = 0; i < s->n_buses; i++) {
+		const Endosim__BusStats *b = s->buses[i];
+
+		printf("bus       %s: %.0f exchanges/s; exchange p50 %.0f p99 "
+		       "%.0f us; transaction p50 %.0f p99 %.0f us\n", b->name,
+		       b->rate_hz, b->exchange->p50_us, b->exchange->p99_us,
+		       b->transaction->p50_us, b->transaction->p99_us);
+	}
+}
+
 static void print_stats(const Endosim__StatsReply *s, bool json)
 {
 	if (json) {
@@ -203,6 +232,7 @@ static void print_stats(const Endosim__StatsReply *s, bool json)
 		json_double(&j, "period_us", s->period_us);
 		json_histogram(&j, "latency", s->latency);
 		json_histogram(&j, "compute", s->compute);
+		json_buses(&j, s);
 		json_object_end(&j);
 		return;
 	}
@@ -217,6 +247,7 @@ static void print_stats(const Endosim__StatsReply *s, bool json)
 	printf("%-9s %8.0f %8.0f %8.0f %8.1f %8.1f\n", "compute",
 	       s->compute->p50_us, s->compute->p99_us, s->compute->p999_us,
 	       s->compute->max_us, s->compute->mean_us);
+	print_buses(s);
 }
 
 /* ------------------------------------------------------------ commands */

@@ -12,6 +12,8 @@
  *    mailboxes with their bus threads).
  *  - stop: torque to zero and drives disabled; called once after the force
  *    loop has ended; may block.
+ *  - bus_stats: any thread: the exchange rate and latencies of bus INDEX
+ *    (0, 1, ...); -ENOENT past the last (the simulated rig has none).
  *  - describe: any thread but the force loop: which device a fault (its
  *    bit, axis and detail as the loop reported them) concerns and why, in
  *    words, for the log line and `endoctl status`.
@@ -29,6 +31,7 @@
 
 #include "config.h"
 #include "hand.h"
+#include "histo.h"
 
 struct rig_axis_feedback {
 	double position;       /* m or rad */
@@ -45,6 +48,16 @@ struct rig_feedback {
 	bool hand_done;        /* simulated hand: scenario ended */
 };
 
+/* What one bus thread achieves (bus.h). */
+struct rig_bus_stats {
+	const char *name;              /* the bus, as in the log */
+	uint64_t exchanges;            /* cycles: setpoints out, feedback in */
+	double rate_hz;                /* exchanges per second since start */
+	struct histo_summary exchange; /* one exchange, all its transactions */
+	struct histo_summary txn;      /* one request and its reply */
+	bool fifo;                     /* the thread runs SCHED_FIFO */
+};
+
 struct rig;
 
 struct rig_ops {
@@ -54,6 +67,7 @@ struct rig_ops {
 	void (*write)(struct rig *rig, uint64_t now_ns,
 		      const double setpoint[ENDOSIM_AXES], bool enable);
 	void (*stop)(struct rig *rig);
+	int (*bus_stats)(struct rig *rig, int index, struct rig_bus_stats *st);
 	void (*describe)(struct rig *rig, uint32_t fault_bit, int axis,
 			 uint32_t detail, char *buf, size_t size);
 	void (*destroy)(struct rig *rig);
@@ -106,6 +120,12 @@ static inline void rig_stop(struct rig *rig)
 static inline const char *rig_name(const struct rig *rig)
 {
 	return rig->ops->name;
+}
+
+static inline int rig_bus_stats(struct rig *rig, int index,
+				struct rig_bus_stats *st)
+{
+	return rig->ops->bus_stats(rig, index, st);
 }
 
 static inline void rig_describe(struct rig *rig, uint32_t fault_bit,

@@ -7,6 +7,7 @@
  * The force loop's read and write touch only the buses' mailboxes and the
  * simulated rig: nothing here waits on a device.
  */
+#include <errno.h>
 #include <stdlib.h>
 
 #include "bus.h"
@@ -73,6 +74,18 @@ static void drives_stop(struct rig *rig)
 	rig_stop(r->sim);
 }
 
+static int drives_bus_stats(struct rig *rig, int index,
+			    struct rig_bus_stats *st)
+{
+	struct rig_drives *r = to_drives(rig);
+
+	if (index < 0 || index >= r->buses) {
+		return -ENOENT;
+	}
+	bus_get_stats(r->bus[index], st);
+	return 0;
+}
+
 static void drives_describe(struct rig *rig, uint32_t fault_bit, int axis,
 			    uint32_t detail, char *buf, size_t size)
 {
@@ -105,6 +118,7 @@ static const struct rig_ops drives_ops = {
 	.read = drives_read,
 	.write = drives_write,
 	.stop = drives_stop,
+	.bus_stats = drives_bus_stats,
 	.describe = drives_describe,
 	.destroy = drives_destroy,
 };

@@ -4,6 +4,7 @@
  * cycle. Simulated time advances by exactly one period per cycle, so a run
  * is repeatable whatever the machine's timing.
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -78,6 +79,15 @@ static void sim_stop(struct rig *rig)
 	(void)rig;
 }
 
+static int sim_bus_stats(struct rig *rig, int index,
+			 struct rig_bus_stats *st)
+{
+	(void)rig;
+	(void)index;
+	(void)st;
+	return -ENOENT;
+}
+
 static void sim_describe(struct rig *rig, uint32_t fault_bit, int axis,
 			 uint32_t detail, char *buf, size_t size)
 {
@@ -99,6 +109,7 @@ static const struct rig_ops sim_ops = {
 	.read = sim_read,
 	.write = sim_write,
 	.stop = sim_stop,
+	.bus_stats = sim_bus_stats,
 	.describe = sim_describe,
 	.destroy = sim_destroy,
 };
