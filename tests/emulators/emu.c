@@ -27,7 +27,7 @@ void emu_motor_init(struct emu_motor *m, const struct emu_motor_params *p)
 	m->hold_nm_per_rad = p->hold_nm_per_rad;
 }
 
-void emu_motor_step(struct emu_motor *m, double dt_s)
+static void step(struct emu_motor *m, double dt_s)
 {
 	double hand = m->hand_nm - m->hold_nm_per_rad * m->plant.x;
 
@@ -41,6 +41,14 @@ void emu_motor_step(struct emu_motor *m, double dt_s)
 		return;
 	}
 	plant_step(&m->plant, m->drive_nm + hand, dt_s);
+}
+
+void emu_motor_advance(struct emu_motor *m, double dt_s)
+{
+	dt_s = fmin(dt_s, 0.05);
+	for (double t = 0; t < dt_s; t += 0.001) {
+		step(m, fmin(0.001, dt_s - t));
+	}
 }
 
 int emu_motor_hand(struct emu_motor *m, const char *args)

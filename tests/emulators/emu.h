@@ -47,8 +47,11 @@ struct emu_motor_params {
 
 void emu_motor_init(struct emu_motor *m, const struct emu_motor_params *p);
 
-/* Advances the motor by DT_S under its drive and hand torques. */
-void emu_motor_step(struct emu_motor *m, double dt_s);
+/*
+ * Advances the motor by DT_S (at most 50 ms: an emulator that slept longer
+ * does not catch up) under its drive and hand torques, in 1 ms steps.
+ */
+void emu_motor_advance(struct emu_motor *m, double dt_s);
 
 /* The hand: "TORQUE [FREQ_HZ]" (a sine about 0 when FREQ is given). */
 int emu_motor_hand(struct emu_motor *m, const char *args);

@@ -800,7 +800,7 @@ static void write_state(struct emu *e)
 static gboolean tick(gpointer data)
 {
 	struct emu *e = data;
-	double now = emu_now_s(), dt = fmin(now - e->last_s, 0.05);
+	double now = emu_now_s();
 
 	emu_control_poll(e->ctl, &e->lines, command, e);
 	g_mutex_lock(&e->lock);
@@ -808,9 +808,7 @@ static gboolean tick(gpointer data)
 		struct dev *d = &e->dev[i];
 
 		d->motor.drive_nm = drive_torque_nm(d);
-		for (double t = 0; t < dt; t += 0.001) {
-			emu_motor_step(&d->motor, fmin(0.001, dt - t));
-		}
+		emu_motor_advance(&d->motor, now - e->last_s);
 	}
 	e->last_s = now;
 	if (e->state_path && now - e->last_state_s >= STATE_EVERY_S) {

@@ -459,13 +459,11 @@ static void write_state(struct mbemu *e)
 /* Integrates the motors up to now; writes the state file now and then. */
 static void advance(struct mbemu *e)
 {
-	double now = emu_now_s(), dt = fmin(now - e->last_s, 0.05);
+	double now = emu_now_s();
 
 	for (int i = 0; i < e->n; i++) {
 		drive(&e->s[i], now);
-		for (double t = 0; t < dt; t += 0.001) {
-			emu_motor_step(&e->s[i].motor, fmin(0.001, dt - t));
-		}
+		emu_motor_advance(&e->s[i].motor, now - e->last_s);
 	}
 	e->last_s = now;
 	if (e->state_path && now - e->last_state_s >= STATE_EVERY_S) {

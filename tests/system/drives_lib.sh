@@ -154,11 +154,16 @@ usb() {
 	echo "$*" >"$T/usb.ctl"
 }
 
+# emu_get FILE ID FIELD: FIELD of the state file's line that starts with ID
+emu_get() {
+	awk -v s="$2" -v f="$3=" '$1 == s {
+		for (i = 2; i <= NF; i++) if (index($i, f) == 1)
+			print substr($i, length(f) + 1) }' "$1"
+}
+
 # usb_get SERIAL FIELD: from the USB emulator's state file
 usb_get() {
-	awk -v s="serial=$1" -v f="$2=" '$1 == s {
-		for (i = 2; i <= NF; i++) if (index($i, f) == 1)
-			print substr($i, length(f) + 1) }' "$T/usb.state"
+	emu_get "$T/usb.state" "serial=$1" "$2"
 }
 
 # start_modbus CONFIG WHERE...: the Modbus emulator (--pty LINK, --listen PORT)
@@ -184,9 +189,7 @@ mb() {
 
 # mb_get SLAVE FIELD: from the Modbus emulator's state file
 mb_get() {
-	awk -v s="slave=$1" -v f="$2=" '$1 == s {
-		for (i = 2; i <= NF; i++) if (index($i, f) == 1)
-			print substr($i, length(f) + 1) }' "$T/mb.state"
+	emu_get "$T/mb.state" "slave=$1" "$2"
 }
 
 # --- cleaning up ----------------------------------------------------------------
