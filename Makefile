@@ -233,7 +233,7 @@ test: deps-test
 # the clang build is a compile check: same sources, same -Werror
 clang-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/clang CC=clang all \
-		unit-tests
+		unit-tests emulators
 
 # AddressSanitizer and UndefinedBehaviorSanitizer: a build of its own in
 # which tests/run.sh runs every suite again; any report fails the run
@@ -241,7 +241,7 @@ SAN_FLAGS = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all \
 	    -fno-omit-frame-pointer
 asan-build:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/asan CFLAGS="$(SAN_FLAGS)" \
-		LDFLAGS="-fsanitize=address,undefined" all unit-tests
+		LDFLAGS="-fsanitize=address,undefined" all unit-tests emulators
 
 check: all unit-tests emulators clang-build asan-build fuzz-build
 	BUILD=$(BUILD) tests/run.sh

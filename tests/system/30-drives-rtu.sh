@@ -8,15 +8,13 @@
 # torque off on every axis and one log line naming the device and the
 # cause; `endoctl reset` is refused while the cause persists and recovers
 # once the device is back.
-set -u
-cd "$(dirname "$0")/../.." || exit 1
-. tests/system/drives_lib.sh
+. "$(dirname "$0")/drives_lib.sh"
 
 R=0.015 # the pinion, m
 
 # Generous timeouts: the emulators are ordinary processes on a shared
 # machine; these tests are about what happens, not how fast.
-cat >"$T/rig.conf" <<EOF
+cat >"$TMP/rig.conf" <<EOF
 [rig]
 backend = drives
 [axis.insertion]
@@ -41,7 +39,7 @@ serial = EMU-ROLL
 timeout_s = 0.5
 feedback_max_age_s = 1
 [modbus]
-device = $T/tty
+device = $TMP/tty
 response_timeout_s = 0.5
 feedback_max_age_s = 1
 [modbus.wheel_ud]
@@ -70,9 +68,9 @@ all_status() {
 	local a
 	for a in $AXES; do
 		if [ "$2" = set ]; then
-			[ $(($(st ".axes.$a.drive_status") & $1)) -ne 0 ] || return 1
+			[ $(($(status_field ".axes.$a.drive_status") & $1)) -ne 0 ] || return 1
 		else
-			[ $(($(st ".axes.$a.drive_status") & $1)) -eq 0 ] || return 1
+			[ $(($(status_field ".axes.$a.drive_status") & $1)) -eq 0 ] || return 1
 		fi
 	done
 }
@@ -81,7 +79,7 @@ all_status() {
 torque_off() {
 	local a
 	for a in $AXES; do
-		[ "$(st ".axes.$a.limited")" = 0 ] || return 1
+		[ "$(status_field ".axes.$a.limited")" = 0 ] || return 1
 	done
 	for s in EMU-INS EMU-ROLL; do
 		[ "$(usb_get $s present)" = 0 ] && continue
@@ -102,48 +100,31 @@ enabled_everywhere() {
 		[ "$(mb_get 1 enabled)" = 1 ] && [ "$(mb_get 2 enabled)" = 1 ]
 }
 
-reset_ok() {
-	ctl reset >/dev/null 2>&1
-}
-
 enable_all() {
-	ctl enable >/dev/null && wait_for 10 enabled_everywhere
-}
-
-# the status' fault, and the newest FAULT log line, say TEXT
-fault_says() {
-	case "$(st .fault)" in *"$1"*) ;; *) return 1 ;; esac
-}
-
-log_says() {
-	grep "error: FAULT" "$T/daemon.log" | tail -n 1 | grep -qF -- "$1"
-}
-
-refused() {
-	! ctl reset >/dev/null 2>&1
+	ctl enable >/dev/null && wait_for enabled_everywhere
 }
 
 # --- start-up ---------------------------------------------------------------
 
 check "USB emulator up" start_epos4 EMU-INS EMU-ROLL
-check "Modbus emulator up on a pty" start_modbus "$T/rig.conf" --pty "$T/tty"
-check "endosimd up on the emulated drives" start_daemon "$T/rig.conf"
+check "Modbus emulator up on a pty" start_modbus "$TMP/rig.conf" --pty "$TMP/tty"
+check "endosimd up on the emulated drives" start_on "$TMP/rig.conf"
 check "IDLE" state_is IDLE
 check "every drive present, none faulted" all_status 1 set
 check "no fault bits" all_status 12 clear
-check "the rig names its backend" [ "$(st .rig)" = drives ]
+check "the rig names its backend" [ "$(status_field .rig)" = drives ]
 
 # --- motion, torque and units ---------------------------------------------------
 
 # positions at rest: counts to metres and radians
 at_rest() {
-	approx "$(st .axes.insertion.position)" 0.9 0.001 0 &&
-		approx "$(st .axes.wheel_lr.position)" -1.5707963 0.001 0
+	approx "$(status_field .axes.insertion.position)" 0.9 0.001 0 &&
+		approx "$(status_field .axes.wheel_lr.position)" -1.5707963 0.001 0
 }
 usb "place EMU-INS 19557" # 19557 / 2048 turns of a 1.5 cm pinion: 0.9 m
 mb "place 2 1792"         # 2048 counts a turn: a quarter after 3.5:1, reversed
 check "positions from counts: insertion 0.9 m, wheel_lr -pi/2 rad" \
-	wait_for 5 at_rest
+	wait_for at_rest
 
 # the hands: the carriage pushed at 60 rpm of the motor from mid travel,
 # the wheels turned at 30 rpm, the tube twisted back and forth
@@ -163,35 +144,35 @@ sleep 0.5
 # 60 rpm at the motor: 2 pi rad/s on a 1.5 cm pinion
 V=$(awk -v r=$R 'BEGIN { print 2 * 3.14159265358979 * r }')
 check "insertion velocity from rpm: $V m/s" \
-	approx "$(st .axes.insertion.velocity)" "$V" 0.01 0
+	approx "$(status_field .axes.insertion.velocity)" "$V" 0.01 0
 # position and the daemon's own clock in one reply: speed from positions
-s1=$(st '"\(.axes.insertion.position) \(.stamp_ns)"')
+s1=$(status_field '"\(.axes.insertion.position) \(.stamp_ns)"')
 sleep 0.4
-s2=$(st '"\(.axes.insertion.position) \(.stamp_ns)"')
+s2=$(status_field '"\(.axes.insertion.position) \(.stamp_ns)"')
 dpdt=$(echo "$s1 $s2" | awk '{ print ($3 - $1) / (($4 - $2) / 1e9) }')
 check "insertion position from counts moves at $dpdt m/s" \
 	approx "$dpdt" "$V" 0.2 0
 check "wheel_ud velocity from counts/s: pi rad/s" \
-	approx "$(st .axes.wheel_ud.velocity)" 3.14159265 0.01 0
+	approx "$(status_field .axes.wheel_ud.velocity)" 3.14159265 0.01 0
 check "wheel_lr velocity, geared 3.5 and reversed: -pi/3.5 rad/s" \
-	approx "$(st .axes.wheel_lr.velocity)" -0.8975979 0.01 0
-r1=$(st .axes.roll.position)
+	approx "$(status_field .axes.wheel_lr.velocity)" -0.8975979 0.01 0
+r1=$(status_field .axes.roll.position)
 sleep 0.5
-r2=$(st .axes.roll.position)
+r2=$(status_field .axes.roll.position)
 check "roll position moves with the hand ($r1 -> $r2 rad)" \
 	nonzero "$(awk -v a="$r1" -v b="$r2" 'BEGIN { print b - a }')" 0.001
 
 # what endosimd sent against what each emulated motor gets
-lim=$(st .axes.insertion.limited)
+lim=$(status_field .axes.insertion.limited)
 check "insertion force rendered ($lim N)" nonzero "$lim" 0.5
 check "EPOS4 motor torque = force x radius, via per-mille of 0x6076" \
 	approx "$(usb_get EMU-INS torque_nm)" \
 	"$(awk -v f="$lim" -v r=$R 'BEGIN { print f * r }')" 0.03 3e-4
-lim=$(st .axes.wheel_ud.limited)
+lim=$(status_field .axes.wheel_ud.limited)
 check "wheel_ud torque rendered ($lim N m)" nonzero "$lim" 0.005
 check "Modbus drive torque register = wheel_ud torque" \
 	approx "$(mb_get 1 torque_nm)" "$lim" 0.03 2e-5
-lim=$(st .axes.wheel_lr.limited)
+lim=$(status_field .axes.wheel_lr.limited)
 check "wheel_lr torque rendered ($lim N m)" nonzero "$lim" 0.005
 check "Modbus drive torque (0x17) = -wheel_lr torque / 3.5" \
 	approx "$(mb_get 2 torque_nm)" \
@@ -205,8 +186,8 @@ fault_case() {
 	shift 2
 	n=$(fault_lines)
 	eval "$inject"
-	check "$name: FAULT" wait_for 10 state_is FAULT
-	check "$name: torque off on every axis" wait_for 5 torque_off
+	check "$name: FAULT" wait_for state_is FAULT
+	check "$name: torque off on every axis" wait_for torque_off
 	sleep 0.3 # a further FAULT line would come now
 	check "$name: one log line" [ "$(fault_lines)" -eq $((n + 1)) ]
 	for t in "$@"; do
@@ -216,7 +197,7 @@ fault_case() {
 }
 
 recover() {
-	check "$1: reset" wait_for 5 reset_ok
+	check "$1: reset" wait_for reset_ok
 	check "$1: IDLE" state_is IDLE
 	check "$1: enabled again" enable_all
 }
@@ -232,7 +213,7 @@ recover "Modbus drive fault"
 fault_case "EPOS4 drive fault" "usb 'fault EMU-INS 0x4210 sticky'" \
 	"drive on insertion" "drive fault 0x4210 (excess temperature"
 sleep 0.6
-check "sticky drive fault: reset refused while it persists" refused
+check "sticky drive fault: reset refused while it persists" reset_refused
 check "sticky drive fault: still FAULT" state_is FAULT
 usb "clear EMU-INS"
 recover "EPOS4 drive fault"
@@ -244,24 +225,24 @@ recover "CRC error"
 fault_case "USB unplug" "usb 'unplug EMU-INS'" "drive-gone on insertion" \
 	"epos4-usb 24e7:3b01 serial 'EMU-INS'" "device gone"
 sleep 0.6
-check "unplugged: reset refused" refused
+check "unplugged: reset refused" reset_refused
 check "unplugged: insertion not present" \
-	[ $(($(st .axes.insertion.drive_status) & 1)) -eq 0 ]
+	[ $(($(status_field .axes.insertion.drive_status) & 1)) -eq 0 ]
 usb "plug EMU-INS"
 usb "move EMU-INS 60"
 recover "USB replug"
 
 fault_case "Modbus emulator killed" "kill_modbus" "drive-gone on wheel" \
-	"modbus rtu $T/tty" "device gone"
+	"modbus rtu $TMP/tty" "device gone"
 sleep 0.6
-check "Modbus gone: reset refused" refused
-check "Modbus emulator restarted" start_modbus "$T/rig.conf" --pty "$T/tty"
+check "Modbus gone: reset refused" reset_refused
+check "Modbus emulator restarted" start_modbus "$TMP/rig.conf" --pty "$TMP/tty"
 mb "move 1 30"
 recover "Modbus back"
 wheel_torque() {
 	nonzero "$(mb_get 1 torque_nm)" 0.001
 }
-check "wheel torque reaches the new emulator" wait_for 5 wheel_torque
+check "wheel torque reaches the new emulator" wait_for wheel_torque
 
 # --- on the way down ----------------------------------------------------------
 
@@ -275,9 +256,9 @@ modbus_disabled() {
 }
 
 check "before stopping: enabled" enabled_everywhere
-stop_daemon
-check "stopping: EPOS4 drives disabled" wait_for 5 epos4_disabled
-check "stopping: Modbus drives disabled" wait_for 5 modbus_disabled
+check "endosimd exits cleanly on SIGTERM" stop_daemon
+check "stopping: EPOS4 drives disabled" wait_for epos4_disabled
+check "stopping: Modbus drives disabled" wait_for modbus_disabled
 check "stopping: no torque left on the motors" \
 	test "$(usb_get EMU-INS torque_nm)$(mb_get 1 torque_nm)" = 00
 

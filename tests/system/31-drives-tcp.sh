@@ -5,12 +5,10 @@
 # bus error (and its own watchdog stops it); a killed server is a FAULT
 # naming host:port with torque off on every axis, refused reset until it
 # is back, then recovered.
-set -u
-cd "$(dirname "$0")/../.." || exit 1
-. tests/system/drives_lib.sh
+. "$(dirname "$0")/drives_lib.sh"
 
 PORT=$((20000 + $$ % 20000))
-cat >"$T/rig.conf" <<EOF
+cat >"$TMP/rig.conf" <<EOF
 [rig]
 backend = drives
 [axis.wheel_ud]
@@ -46,84 +44,72 @@ wheels_enabled() {
 
 torque_off() {
 	for a in insertion roll wheel_ud wheel_lr; do
-		[ "$(st ".axes.$a.limited")" = 0 ] || return 1
+		[ "$(status_field ".axes.$a.limited")" = 0 ] || return 1
 	done
 	[ -z "$MODBUS_PID" ] && return 0
 	[ "$(mb_get 1 torque_nm)" = 0 ] && [ "$(mb_get 2 torque_nm)" = 0 ]
 }
 
 others_off() {
-	[ "$(st .axes.wheel_ud.limited)$(mb_get 1 torque_nm)" = 00 ]
+	[ "$(status_field .axes.wheel_ud.limited)$(mb_get 1 torque_nm)" = 00 ]
 }
 
 watchdog_stopped() {
 	[ "$(mb_get 2 torque_nm)" = 0 ] && [ "$(mb_get 2 fault)" = 0x8130 ]
 }
 
-fault_says() {
-	case "$(st .fault)" in *"$1"*) ;; *) return 1 ;; esac
-}
-
-reset_ok() {
-	ctl reset >/dev/null 2>&1
-}
-
-refused() {
-	! ctl reset >/dev/null 2>&1
-}
-
-check "Modbus TCP emulator up" start_modbus "$T/rig.conf" --listen "$PORT"
-check "endosimd up, connected" start_daemon "$T/rig.conf"
+check "Modbus TCP emulator up" start_modbus "$TMP/rig.conf" --listen "$PORT"
+check "endosimd up, connected" start_on "$TMP/rig.conf"
 check "IDLE, wheels present" \
-	[ "$(st .state)/$(st .axes.wheel_ud.drive_status)" = IDLE/1 ]
+	[ "$(status_field .state)/$(status_field .axes.wheel_ud.drive_status)" = IDLE/1 ]
 
 mb "move 1 30"
 mb "hand 2 0.002 1"
 ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
 ctl enable >/dev/null
-check "enabled: both drives" wait_for 10 wheels_enabled
+check "enabled: both drives" wait_for wheels_enabled
 sleep 0.3
-lim=$(st .axes.wheel_ud.limited)
+lim=$(status_field .axes.wheel_ud.limited)
 check "wheel_ud torque rendered ($lim N m)" nonzero "$lim" 0.005
 check "the f32 dcba torque register gets it" \
 	approx "$(mb_get 1 torque_nm)" "$lim" 0.03 1e-6
 check "wheel_ud velocity pi rad/s (i32 counts/s)" \
-	approx "$(st .axes.wheel_ud.velocity)" 3.14159265 0.01 0
-p1=$(st .axes.wheel_lr.position)
+	approx "$(status_field .axes.wheel_ud.velocity)" 3.14159265 0.01 0
+p1=$(status_field .axes.wheel_lr.position)
 sleep 0.4
-p2=$(st .axes.wheel_lr.position)
+p2=$(status_field .axes.wheel_lr.position)
 check "wheel_lr position (i32 badc) moves ($p1 -> $p2 rad)" \
 	nonzero "$(awk -v a="$p1" -v b="$p2" 'BEGIN { print b - a }')" 0.001
 
 # a drive that stops answering
 mb "mute 2 on"
-check "silent drive: FAULT" wait_for 10 state_is FAULT
+check "silent drive: FAULT" wait_for state_is FAULT
 check "silent drive: a bus error on wheel_lr" \
 	fault_says "bus-error on wheel_lr"
 check "silent drive: ... naming slave 2" fault_says "slave 2"
 check "silent drive: ... timed out" fault_says "timed out"
-check "silent drive: torque off on the other axes" wait_for 5 others_off
-check "silent drive: its own watchdog stops it" wait_for 5 watchdog_stopped
+check "silent drive: torque off on the other axes" wait_for others_off
+check "silent drive: its own watchdog stops it" wait_for watchdog_stopped
 mb "mute 2 off"
-check "answering again: reset" wait_for 5 reset_ok
+check "answering again: reset" wait_for reset_ok
 ctl enable >/dev/null
-check "answering again: enabled" wait_for 10 wheels_enabled
+check "answering again: enabled" wait_for wheels_enabled
 
 # the server goes away
 n=$(fault_lines)
 kill_modbus
-check "server killed: FAULT" wait_for 10 state_is FAULT
-check "server killed: torque off on every axis" wait_for 5 torque_off
+check "server killed: FAULT" wait_for state_is FAULT
+check "server killed: torque off on every axis" wait_for torque_off
 check "server killed: drive-gone" fault_says "drive-gone on wheel_ud"
 check "server killed: ... naming modbus tcp 127.0.0.1:$PORT" \
 	fault_says "modbus tcp 127.0.0.1:$PORT"
 sleep 0.3
 check "server killed: one log line" [ "$(fault_lines)" -eq $((n + 1)) ]
-check "server gone: reset refused" refused
-check "server restarted" start_modbus "$T/rig.conf" --listen "$PORT"
-check "server back: reset" wait_for 5 reset_ok
+check "server gone: reset refused" reset_refused
+check "server restarted" start_modbus "$TMP/rig.conf" --listen "$PORT"
+check "server back: reset" wait_for reset_ok
 check "server back: IDLE" state_is IDLE
 ctl enable >/dev/null
-check "server back: enabled" wait_for 10 wheels_enabled
+check "server back: enabled" wait_for wheels_enabled
 
 finish

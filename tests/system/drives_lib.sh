@@ -1,58 +1,20 @@
-# drives_lib.sh - what the drive system tests share: the device emulators
-# (tests/emulators/), endosimd started against them in a private directory,
-# and small checks. Sourced by tests/system/3*-drives-*.sh.
+# drives_lib.sh - what the drive system tests (tests/system/3N-drives-*.sh)
+# add to common.sh: the device emulators of tests/emulators/, endosimd
+# started on a drive configuration (under the USB emulator when one runs),
+# reading the emulators' state, and number comparisons.
 #
 # Nothing here depends on timing precision: every wait polls for a state
 # with a generous deadline.
 
-BUILD=${BUILD:-build}
-EMU_DIR=$BUILD/emulators
-PASSED=0
-FAILED=0
+. "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
 
-T=$(mktemp -d "${TMPDIR:-/tmp}/endosim-drives.XXXXXX")
-SHM=/endosim-test-$$
-DAEMON_PID=
-EPOS4_PID=
-MODBUS_PID=
-UMOCKDEV_ROOT=
+EMU_DIR="$BUILD/emulators"
+WAIT_S=10 # common.sh's wait_for: the emulators are ordinary processes
+EPOS4_PID=""
+MODBUS_PID=""
+UMOCKDEV_ROOT=""
 
-# --- reporting -------------------------------------------------------------
-
-ok() {
-	PASSED=$((PASSED + 1))
-	echo "ok - $1"
-}
-
-not_ok() {
-	FAILED=$((FAILED + 1))
-	echo "not ok - $1"
-	[ -n "${2:-}" ] && echo "#   $2"
-	return 0
-}
-
-# check NAME CMD...: passes when CMD succeeds
-check() {
-	local name=$1
-	shift
-	if "$@"; then ok "$name"; else not_ok "$name" "failed: $*"; fi
-}
-
-# finish: the summary line, and the exit status
-finish() {
-	echo "$PASSED passed, $FAILED failed"
-	[ "$FAILED" -eq 0 ]
-}
-
-# wait_for SECONDS CMD...: polls CMD until it succeeds
-wait_for() {
-	local deadline=$(($(date +%s%N) + $1 * 1000000000))
-	shift
-	until "$@"; do
-		[ "$(date +%s%N)" -gt "$deadline" ] && return 1
-		sleep 0.05
-	done
-}
+# --- numbers ---------------------------------------------------------------
 
 # approx A B REL ABS: |A - B| <= REL * |B| + ABS
 approx() {
@@ -66,93 +28,71 @@ nonzero() {
 	awk -v x="$1" -v m="$2" 'BEGIN { if (x < 0) x = -x; exit !(x >= m) }'
 }
 
-# --- the daemon ---------------------------------------------------------------
-
-ctl() {
-	"$BUILD/endoctl" --socket "$T" "$@"
-}
-
-# st JQ: one value of `endoctl --json status`
-st() {
-	ctl --json status 2>/dev/null | jq -r "$1"
-}
+# --- the daemon on drives ---------------------------------------------------------
 
 state_is() {
-	[ "$(st .state)" = "$1" ]
+	[ "$(status_field .state)" = "$1" ]
 }
 
-# start_daemon CONFIG [ARGS...]: endosimd under the USB emulator when one
-# runs; returns once it answers (1 if it exited instead)
-start_daemon() {
+# fault_says TEXT: the status' fault (the first since reset) says TEXT
+fault_says() {
+	case "$(status_field .fault)" in *"$1"*) ;; *) return 1 ;; esac
+}
+
+# log_says TEXT: the newest FAULT line of the log says TEXT
+log_says() {
+	grep "error: FAULT" "$LOG" | tail -n 1 | grep -qF -- "$1"
+}
+
+# fault_lines: how many FAULT lines endosimd has logged
+fault_lines() {
+	grep -c "error: FAULT" "$LOG"
+}
+
+reset_ok() {
+	ctl reset >/dev/null 2>&1
+}
+
+reset_refused() {
+	! ctl reset >/dev/null 2>&1
+}
+
+# The daemon runs under the USB emulator through this wrapper: umockdev's
+# preload library redirects /sys and /dev/bus/usb into the testbed and
+# hands the usbfs ioctls to the emulator; everything else passes through.
+# (Under AddressSanitizer the preload library comes first: ASan is told.)
+usb_wrapper() {
+	cat >"$TMP/endosimd-usb" <<EOF
+#!/bin/sh
+export UMOCKDEV_DIR='$UMOCKDEV_ROOT' LD_PRELOAD=libumockdev-preload.so.0
+export ASAN_OPTIONS="\${ASAN_OPTIONS:+\$ASAN_OPTIONS:}verify_asan_link_order=0"
+exec '$BUILD/endosimd' "\$@"
+EOF
+	chmod +x "$TMP/endosimd-usb"
+	ENDOSIMD="$TMP/endosimd-usb"
+}
+
+# start_on CONFIG [ARGS...]: endosimd on that drive configuration
+start_on() {
 	local conf=$1
 	shift
-	if [ -n "$UMOCKDEV_ROOT" ]; then
-		UMOCKDEV_DIR=$UMOCKDEV_ROOT LD_PRELOAD=libumockdev-preload.so.0 \
-			"$BUILD/endosimd" -c "$conf" --socket-dir "$T" \
-			--shm-name "$SHM" --set socket.group= "$@" \
-			>>"$T/daemon.log" 2>&1 &
-	else
-		"$BUILD/endosimd" -c "$conf" --socket-dir "$T" --shm-name "$SHM" \
-			--set socket.group= "$@" >>"$T/daemon.log" 2>&1 &
-	fi
-	DAEMON_PID=$!
-	wait_for 15 daemon_answers_or_died
-	ctl status >/dev/null 2>&1
+	start_daemon --config "$conf" "$@"
 }
 
-daemon_answers_or_died() {
-	ctl status >/dev/null 2>&1 || ! kill -0 "$DAEMON_PID" 2>/dev/null
-}
-
-# run_daemon_expecting_failure CONFIG [ARGS...]: its exit status
-run_daemon_expecting_failure() {
-	local conf=$1 rc
-	shift
-	if [ -n "$UMOCKDEV_ROOT" ]; then
-		UMOCKDEV_DIR=$UMOCKDEV_ROOT LD_PRELOAD=libumockdev-preload.so.0 \
-			timeout 20 "$BUILD/endosimd" -c "$conf" --socket-dir "$T" \
-			--shm-name "$SHM" --set socket.group= "$@" \
-			>"$T/failed.log" 2>&1
-	else
-		timeout 20 "$BUILD/endosimd" -c "$conf" --socket-dir "$T" \
-			--shm-name "$SHM" --set socket.group= "$@" \
-			>"$T/failed.log" 2>&1
-	fi
+# refused_at_start CONFIG STATUS TEXT [ARGS...]: endosimd exits with STATUS
+# before its force loop runs, saying TEXT
+refused_at_start() {
+	local conf=$1 want=$2 what=$3 rc
+	shift 3
+	timeout 30 "$ENDOSIMD" --config "$conf" --socket-dir "$SOCK" \
+		--shm-name "$SHM" --set socket.group= "$@" >"$TMP/failed.log" 2>&1
 	rc=$?
-	echo "$rc"
-}
-
-stop_daemon() {
-	if [ -n "$DAEMON_PID" ]; then
-		kill "$DAEMON_PID" 2>/dev/null
-		wait "$DAEMON_PID" 2>/dev/null
-		DAEMON_PID=
-	fi
-}
-
-# fault_lines: how many FAULT lines the daemon has logged
-fault_lines() {
-	grep -c "error: FAULT" "$T/daemon.log"
+	[ "$rc" = "$want" ] || { echo "exit $rc, expected $want"; return 1; }
+	grep -qF -- "$what" "$TMP/failed.log" || { cat "$TMP/failed.log"; return 1; }
+	! grep -q "force loop:" "$TMP/failed.log"
 }
 
 # --- the emulators ------------------------------------------------------------
-
-# start_epos4 SERIAL...: the USB emulator with these devices
-start_epos4() {
-	local args=()
-	for s in "$@"; do args+=(--device "$s"); done
-	mkdir -p "$T/usb"
-	TMPDIR=$T/usb "$EMU_DIR/epos4-emu" "${args[@]}" --ready "$T/usb.ready" \
-		--control "$T/usb.ctl" --state "$T/usb.state" \
-		--trace "$T/usb.trace" >"$T/usb.out" 2>"$T/usb.err" &
-	EPOS4_PID=$!
-	wait_for 10 test -s "$T/usb.ready" || return 1
-	UMOCKDEV_ROOT=$(cat "$T/usb.ready")
-}
-
-usb() {
-	echo "$*" >"$T/usb.ctl"
-}
 
 # emu_get FILE ID FIELD: FIELD of the state file's line that starts with ID
 emu_get() {
@@ -161,48 +101,72 @@ emu_get() {
 			print substr($i, length(f) + 1) }' "$1"
 }
 
-# usb_get SERIAL FIELD: from the USB emulator's state file
+# start_epos4 SERIAL...: the USB emulator with these devices; the daemon
+# starts under it from now on
+start_epos4() {
+	local args=() s
+	for s in "$@"; do args+=(--device "$s"); done
+	mkdir -p "$TMP/usb"
+	TMPDIR="$TMP/usb" "$EMU_DIR/epos4-emu" "${args[@]}" \
+		--ready "$TMP/usb.ready" --control "$TMP/usb.ctl" \
+		--state "$TMP/usb.state" --trace "$TMP/usb.trace" \
+		>"$TMP/usb.out" 2>"$TMP/usb.err" &
+	EPOS4_PID=$!
+	wait_for test -s "$TMP/usb.ready" || return 1
+	UMOCKDEV_ROOT=$(cat "$TMP/usb.ready")
+	usb_wrapper
+}
+
+# usb COMMAND: to the USB emulator (see tests/emulators/epos4_emu.c)
+usb() {
+	echo "$*" >"$TMP/usb.ctl"
+}
+
+# usb_get SERIAL FIELD: what the USB emulator's device sees
 usb_get() {
-	emu_get "$T/usb.state" "serial=$1" "$2"
+	emu_get "$TMP/usb.state" "serial=$1" "$2"
 }
 
 # start_modbus CONFIG WHERE...: the Modbus emulator (--pty LINK, --listen PORT)
 start_modbus() {
 	local conf=$1
 	shift
-	"$EMU_DIR/modbus-emu" --config "$conf" "$@" --control "$T/mb.ctl" \
-		--state "$T/mb.state" --trace "$T/mb.trace" \
-		>"$T/mb.out" 2>>"$T/mb.err" &
+	: >"$TMP/mb.out"
+	"$EMU_DIR/modbus-emu" --config "$conf" "$@" --control "$TMP/mb.ctl" \
+		--state "$TMP/mb.state" --trace "$TMP/mb.trace" \
+		>"$TMP/mb.out" 2>>"$TMP/mb.err" &
 	MODBUS_PID=$!
-	wait_for 10 grep -q ready "$T/mb.out"
+	wait_for grep -q ready "$TMP/mb.out"
 }
 
 kill_modbus() {
-	kill -9 "$MODBUS_PID" 2>/dev/null
+	kill -KILL "$MODBUS_PID" 2>/dev/null
 	wait "$MODBUS_PID" 2>/dev/null
-	MODBUS_PID=
+	MODBUS_PID=""
 }
 
+# mb COMMAND: to the Modbus emulator (see tests/emulators/modbus_emu.c)
 mb() {
-	echo "$*" >"$T/mb.ctl"
+	echo "$*" >"$TMP/mb.ctl"
 }
 
-# mb_get SLAVE FIELD: from the Modbus emulator's state file
+# mb_get SLAVE FIELD: what the Modbus emulator's drive sees
 mb_get() {
-	emu_get "$T/mb.state" "slave=$1" "$2"
+	emu_get "$TMP/mb.state" "slave=$1" "$2"
 }
 
 # --- cleaning up ----------------------------------------------------------------
 
-cleanup() {
-	# the daemon first: it dies with the USB emulator (the preload library)
-	stop_daemon
-	[ -n "$MODBUS_PID" ] && kill "$MODBUS_PID" 2>/dev/null && wait "$MODBUS_PID" 2>/dev/null
-	[ -n "$EPOS4_PID" ] && kill "$EPOS4_PID" 2>/dev/null && wait "$EPOS4_PID" 2>/dev/null
-	if [ "$FAILED" -ne 0 ] || [ -n "${KEEP:-}" ]; then
-		echo "# kept $T (daemon.log, *.state, *.trace)"
-	else
-		rm -rf "$T"
+drives_cleanup() {
+	# the daemon first: under the preload library it ends with the emulator
+	if [ -n "$DAEMON_PID" ]; then
+		kill -KILL "$DAEMON_PID" 2>/dev/null
+		wait "$DAEMON_PID" 2>/dev/null
+		DAEMON_PID=""
 	fi
+	[ -n "$MODBUS_PID" ] && kill "$MODBUS_PID" 2>/dev/null
+	[ -n "$EPOS4_PID" ] && kill "$EPOS4_PID" 2>/dev/null
+	wait 2>/dev/null
+	cleanup
 }
-trap cleanup EXIT
+trap drives_cleanup EXIT
