@@ -8,6 +8,8 @@
 #                   gcc and clang (-Werror), run every test
 #   make demo       run the daemon on the simulated rig with the demo scenario
 #   make bench      the figures: loop latency next to cyclictest's, ...
+#   make emulators  the drive emulators (tests/emulators/) and the drive
+#                   benchmark program (run tests/bench/drives.sh)
 #   make install    PREFIX=/usr/local DESTDIR= : binaries, config, systemd
 #   make deps       install (as root) or name the Debian packages needed
 
