@@ -38,7 +38,11 @@ enum config_drive {
 };
 
 enum config_transport { CONFIG_MODBUS_RTU = 0, CONFIG_MODBUS_TCP = 1 };
-enum config_parity { CONFIG_PARITY_NONE = 0, CONFIG_PARITY_EVEN, CONFIG_PARITY_ODD };
+enum config_parity {
+	CONFIG_PARITY_NONE = 0,
+	CONFIG_PARITY_EVEN,
+	CONFIG_PARITY_ODD,
+};
 
 /* One axis' mechanics: how motor turns and encoder counts map to the axis. */
 struct config_axis {

@@ -5,7 +5,7 @@
  *
  * One exchange, per drive: the torque setpoint written (when enabled), then
  * the feedback registers read, grouped per table into as few reads as fit
- * (125 registers or 2000 bits each); with combined_0x17 both in one
+ * (125 registers or bits each); with combined_0x17 both in one
  * write-and-read transaction (function 0x17).
  *
  * libmodbus' failure modes (measured; see the notes): timeouts are set short
@@ -24,8 +24,7 @@
 #include "drive.h"
 #include "log.h"
 
-#define READ_MAX_REGS 125
-#define READ_MAX_BITS 2000
+#define READ_MAX 125 /* registers or bits one read may take */
 #define PLAN_MAX 3 /* position, velocity, fault: at most one read each */
 
 static const int feedback[] = { REGMAP_POSITION, REGMAP_VELOCITY,
@@ -36,7 +35,7 @@ static const int feedback[] = { REGMAP_POSITION, REGMAP_VELOCITY,
 struct mb_read {
 	uint8_t table;
 	uint16_t address, count;
-	uint16_t regs[READ_MAX_REGS]; /* bits land one per element */
+	uint16_t regs[READ_MAX]; /* bits land one per element */
 };
 
 struct mb_drive {
@@ -63,12 +62,6 @@ static struct mb *to_mb(struct drive *d)
 
 /* --- the read plan -------------------------------------------------- */
 
-static int span_limit(uint8_t table)
-{
-	return table == REGMAP_COIL || table == REGMAP_DISCRETE ? READ_MAX_BITS
-								 : READ_MAX_REGS;
-}
-
 /* Adds signal S to a read of its table that can take it, or a new one. */
 static void plan_signal(struct mb_drive *dr, int s)
 {
@@ -81,7 +74,7 @@ static void plan_signal(struct mb_drive *dr, int s)
 		int b = rd->address + rd->count > hi ? rd->address + rd->count
 						     : hi;
 
-		if (rd->table == r->table && b - a <= span_limit(r->table)) {
+		if (rd->table == r->table && b - a <= READ_MAX) {
 			rd->address = (uint16_t)a;
 			rd->count = (uint16_t)(b - a);
 			dr->of[s] = k;
@@ -168,7 +161,7 @@ static int write_signal(struct mb *m, int i, int s, double value)
 
 static int read_span(struct mb *m, int i, struct mb_read *rd)
 {
-	uint8_t bits[READ_MAX_REGS];
+	uint8_t bits[READ_MAX];
 	uint64_t t0 = drive_now_ns();
 	int rc;
 

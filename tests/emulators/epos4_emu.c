@@ -588,8 +588,8 @@ static void dispatch(struct emu *e, struct dev *d, UMockdevIoctlClient *client,
 	}
 }
 
-static gboolean on_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClient *client,
-			 gpointer data)
+static gboolean on_ioctl(UMockdevIoctlBase *handler,
+			 UMockdevIoctlClient *client, gpointer data)
 {
 	struct handler_ctx *hc = data;
 	gulong request = umockdev_ioctl_client_get_request(client);
