@@ -76,6 +76,10 @@ DAEMON_OBJS = main.o config.o log.o loop.o histo.o spsc.o publish.o \
 	      rig.o rig_sim.o plant.o hand.o scenario.o haptics.o safety.o \
 	      control.o
 
+# the colon and the endoscope: case files, centreline, mesh, OBJ, the
+# model that ties them, the scope's kinematics
+COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o
+
 # endoctl: the CLI over the sockets
 ENDOCTL_OBJS = endoctl.o json.o
 
@@ -85,16 +89,19 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
-	     test_safety
+	     test_safety test_colon test_scope
 test_config_OBJS = config.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
 test_safety_OBJS = safety.o haptics.o config.o log.o names.o
+test_colon_OBJS = $(COLON_OBJS)
+test_scope_OBJS = $(COLON_OBJS)
 TEST_TOOLS = shm_probe shm_latency
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
+BENCH_TOOLS = bench_colon
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets
@@ -141,7 +148,15 @@ $(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
 endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
-unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
+unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
+	$(BENCH_TOOLS))
+
+# benchmarks: programs that print figures (tests/bench/)
+$(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \
+		$(call obj,$(COLON_OBJS))
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< $(call obj,$(COLON_OBJS)) \
+		$(LDFLAGS) $(LDLIBS)
 
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario
