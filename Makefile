@@ -33,7 +33,9 @@ WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 PKGS = libprotobuf-c inih libsystemd
 CLIENT_PKGS = libprotobuf-c
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CASEDIR = $(DATADIR)/cases
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
+	     -DCONFIG_CASE_DIR='"$(CASEDIR)"' \
 	     -Iproto $(PKG_CFLAGS) -MMD -MP
 LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lpthread -lm
 CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
@@ -70,18 +72,19 @@ PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
 # the wire: protocol, framing, client library, shared-memory reader
 PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
 
-# endosimd: main, configuration, logging, the force loop and what it calls
-# (rig backends, hand, haptics, safety, publish), the control thread
-DAEMON_OBJS = main.o config.o log.o loop.o histo.o spsc.o publish.o \
-	      rig.o rig_sim.o plant.o hand.o scenario.o haptics.o safety.o \
-	      control.o
-
 # the colon and the endoscope: case files, centreline, mesh, OBJ, the
 # model that ties them, the scope's kinematics
 COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o
 
+# endosimd: main, configuration, logging, the force loop and what it calls
+# (rig backends, hand, haptics, safety, publish, the colon and the scope),
+# the control thread with the cases and the scene it serves
+DAEMON_OBJS = main.o config.o log.o loop.o histo.o spsc.o publish.o \
+	      rig.o rig_sim.o plant.o hand.o scenario.o haptics.o safety.o \
+	      control.o cases.o scene.o $(COLON_OBJS)
+
 # endoctl: the CLI over the sockets
-ENDOCTL_OBJS = endoctl.o json.o
+ENDOCTL_OBJS = endoctl.o json.o objio.o
 
 obj = $(addprefix $(BUILD)/obj/,$(1))
 
@@ -89,7 +92,7 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
-	     test_safety test_colon test_scope
+	     test_safety test_colon test_scope test_scene
 test_config_OBJS = config.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
@@ -98,9 +101,12 @@ test_scenario_OBJS = scenario.o names.o
 test_safety_OBJS = safety.o haptics.o config.o log.o names.o
 test_colon_OBJS = $(COLON_OBJS)
 test_scope_OBJS = $(COLON_OBJS)
-TEST_TOOLS = shm_probe shm_latency
+test_scene_OBJS = scene.o cases.o config.o log.o names.o endosim.pb-c.o \
+		  $(COLON_OBJS)
+TEST_TOOLS = shm_probe shm_latency obj_import
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
+obj_import_OBJS = $(COLON_OBJS)
 BENCH_TOOLS = bench_colon
 
 .PHONY: all test check bench demo install clean deps deps-test deps-bench \
@@ -227,6 +233,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
+		$(DESTDIR)$(CASEDIR) \
 		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
@@ -236,6 +243,7 @@ install: all
 		install -m 0644 config/endosimd.conf \
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
+	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \

@@ -551,7 +551,29 @@ free_data:
 int colon_export(const struct colon *c, const char *path, char *err,
 		 size_t errsize)
 {
-	return objio_write(path, c->name, c->mesh, c->cl, err, errsize);
+	size_t n = centreline_count(c->cl);
+	double (*line)[3] = malloc(n * sizeof(*line));
+	struct objio_mesh m = {
+		.name = c->name, .pos = (const float(*)[3])c->mesh->pos,
+		.nrm = (const float(*)[3])c->mesh->nrm,
+		.vertices = c->mesh->vertices,
+		.tri = (const uint32_t(*)[3])c->mesh->tri,
+		.triangles = c->mesh->triangles, .samples = n,
+		.step_m = centreline_step(c->cl),
+	};
+	int r;
+
+	if (!line) {
+		snprintf(err, errsize, "%s: out of memory", path);
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < n; i++) {
+		vec3_copy(line[i], centreline_sample(c->cl, i)->p);
+	}
+	m.centreline = (const double(*)[3])line;
+	r = objio_write(path, &m, err, errsize);
+	free(line);
+	return r;
 }
 
 const char *colon_name(const struct colon *c)

@@ -22,6 +22,9 @@
 #include "../proto/endosim_shm.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
+#ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
+#define CONFIG_CASE_DIR "/usr/local/share/endosim/cases"
+#endif
 #define CONFIG_STR 128 /* longest string value, bytes with the NUL */
 
 enum config_backend {
@@ -69,6 +72,20 @@ struct config {
 	struct {
 		int level;                     /* syslog level */
 	} log;
+	struct {                           /* [case] */
+		char directory[CONFIG_STR];    /* holds NAME.case files */
+		char name[CONFIG_STR];         /* the case at start-up */
+		char file[CONFIG_STR];         /* "" or a .case or .obj path */
+		char centreline_file[CONFIG_STR]; /* an .obj's points, "" */
+		double step_m;                 /* centreline and ring spacing */
+		int ring_vertices;
+		double segment_m;              /* mesh segments along s */
+	} colon;
+	struct {
+		double bending_length_m;
+		double gain[2];      /* tip rad per wheel rad: ud, lr */
+		double limit_rad[2]; /* largest tip bend: ud, lr */
+	} scope;
 };
 
 enum config_type {
@@ -120,6 +137,9 @@ int config_load_stream(struct config *cfg, FILE *f, const char *name,
  */
 int config_set(struct config *cfg, const char *key, const char *value,
 	       bool live_only, char *err, size_t errsize);
+
+/* True when NAME can name a case file: [A-Za-z0-9_-]+, no path. */
+bool config_case_name_ok(const char *name);
 
 /* Cross-key checks (travel min below max, ...). Returns 0 or -EINVAL. */
 int config_check(const struct config *cfg, char *err, size_t errsize);

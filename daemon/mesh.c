@@ -10,6 +10,7 @@
 #include "vec3.h"
 
 #define BIND_MAX_M 0.15    /* farthest a wall vertex may be from its sample */
+#define BIND_SPAN_M 0.05   /* a triangle's corners lie this close along s */
 #define GRID_CELL_M 0.01
 #define GRID_MAX_CELLS (1u << 21)
 
@@ -69,6 +70,8 @@ size_t mesh_bytes(const struct mesh *m)
 	       (4 * m->samples + 1) * sizeof(uint32_t) +
 	       m->segments * sizeof(*m->seg);
 }
+
+static uint32_t sample_segment(const struct mesh *m, double i);
 
 /* ---------------------------------------------------------------- placing */
 
@@ -160,8 +163,8 @@ static void place_vertex(struct mesh *m, const struct centreline *cl,
 static void segment_bounds(struct mesh *m, uint32_t k, double ds)
 {
 	struct mesh_segment *sg = &m->seg[k];
-	size_t first = (size_t)ceil(sg->s0_m / ds - 1e-9);
-	size_t last = (size_t)floor(sg->s1_m / ds + 1e-9) + m->tri_span;
+	size_t first = (size_t)lround(sg->s0_m / ds);
+	size_t last = (size_t)lround(sg->s1_m / ds) + m->tri_span;
 
 	if (last >= m->samples) {
 		last = m->samples - 1;
@@ -216,12 +219,7 @@ void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
 
 uint32_t mesh_segment_at(const struct mesh *m, double s_m)
 {
-	double k = floor(s_m / m->segment_m);
-
-	if (!(k > 0)) {
-		return 0;
-	}
-	return k >= m->segments ? m->segments - 1 : (uint32_t)k;
+	return sample_segment(m, round(s_m / m->step_m));
 }
 
 void mesh_range(const struct mesh *m, double s0_m, double s1_m,
@@ -406,6 +404,67 @@ static uint32_t normal_plane(const struct centreline *cl, uint32_t i,
 }
 
 /* Gives every vertex its nearest sample and its offset from it. */
+/* The sample nearest P among [LO, HI]. */
+static uint32_t nearest_in(const struct centreline *cl, size_t lo, size_t hi,
+			   const double p[3])
+{
+	size_t best = lo;
+
+	for (size_t i = lo + 1; i <= hi; i++) {
+		if (vec3_dist(centreline_base(cl, i)->p, p) <
+		    vec3_dist(centreline_base(cl, best)->p, p)) {
+			best = i;
+		}
+	}
+	return (uint32_t)best;
+}
+
+static uint32_t median3(uint32_t a, uint32_t b, uint32_t c)
+{
+	return a < b ? (b < c ? b : a < c ? c : a) : (a < c ? a : b < c ? c : b);
+}
+
+/*
+ * Where a wider lumen passes close to a narrower one, a wall vertex can be
+ * nearer the other's centreline. Its triangle's other corners say where
+ * it belongs: a corner far (in samples) from the triangle's median is
+ * bound again near the median.
+ */
+static void rebind_strays(struct mesh *m, const struct centreline *cl)
+{
+	size_t w = (size_t)ceil(BIND_SPAN_M / centreline_step(cl));
+
+	for (int pass = 0; pass < 4; pass++) {
+		size_t changed = 0;
+
+		for (uint32_t k = 0; k < m->triangles; k++) {
+			const uint32_t *t = m->tri[k];
+			size_t med = median3(m->sample[t[0]], m->sample[t[1]],
+					     m->sample[t[2]]);
+
+			for (int j = 0; j < 3; j++) {
+				uint32_t *sj = &m->sample[t[j]];
+				double p[3] = { m->pos[t[j]][0], m->pos[t[j]][1],
+						m->pos[t[j]][2] };
+
+				if (*sj + w >= med && *sj <= med + w) {
+					continue;
+				}
+				*sj = nearest_in(cl, med > w ? med - w : 0,
+						 med + w < m->samples ?
+							 med + w :
+							 m->samples - 1, p);
+				*sj = normal_plane(cl, *sj, p);
+				changed++;
+			}
+		}
+		if (!changed) {
+			return;
+		}
+	}
+}
+
+/* Gives every vertex its nearest sample and its offset from it. */
 static int bind(struct mesh *m, const struct centreline *cl, char *err,
 		size_t errsize)
 {
@@ -416,8 +475,7 @@ static int bind(struct mesh *m, const struct centreline *cl, char *err,
 		return r;
 	}
 	for (uint32_t j = 0; j < m->vertices; j++) {
-		double p[3] = { m->pos[j][0], m->pos[j][1], m->pos[j][2] }, x[3];
-		const struct centreline_point *c;
+		double p[3] = { m->pos[j][0], m->pos[j][1], m->pos[j][2] };
 
 		if (grid_nearest(&g, cl, p, &m->sample[j])) {
 			snprintf(err, errsize, "vertex %u (%g, %g, %g) is more "
@@ -427,11 +485,17 @@ static int bind(struct mesh *m, const struct centreline *cl, char *err,
 			return -EINVAL;
 		}
 		m->sample[j] = normal_plane(cl, m->sample[j], p);
-		c = centreline_base(cl, m->sample[j]);
-		vec3_sub(x, p, c->p);
-		to_local(c, x, m->off[j]);
 	}
 	grid_free(&g);
+	rebind_strays(m, cl);
+	for (uint32_t j = 0; j < m->vertices; j++) {
+		const struct centreline_point *c = centreline_base(cl,
+								  m->sample[j]);
+		double x[3] = { m->pos[j][0] - c->p[0], m->pos[j][1] - c->p[1],
+				m->pos[j][2] - c->p[2] };
+
+		to_local(c, x, m->off[j]);
+	}
 	return 0;
 }
 
@@ -540,7 +604,7 @@ static uint32_t tri_low_sample(struct mesh *m, uint32_t k)
 }
 
 /* Orders the triangles by segment (stable) and fills the segment table. */
-static int sort_triangles(struct mesh *m, double ds)
+static int sort_triangles(struct mesh *m)
 {
 	uint32_t (*tri)[3] = malloc(m->triangles * sizeof(*tri));
 	uint32_t *key = malloc(m->triangles * sizeof(*key));
@@ -551,7 +615,7 @@ static int sort_triangles(struct mesh *m, double ds)
 		return -ENOMEM;
 	}
 	for (uint32_t k = 0; k < m->triangles; k++) {
-		key[k] = mesh_segment_at(m, tri_low_sample(m, k) * ds);
+		key[k] = sample_segment(m, tri_low_sample(m, k));
 		m->seg[key[k]].count++;
 	}
 	for (uint32_t s = 1; s < m->segments; s++) {
@@ -571,23 +635,39 @@ static int sort_triangles(struct mesh *m, double ds)
 	return 0;
 }
 
+/*
+ * Segments as runs of samples: sample I belongs to the segment holding
+ * (I + 1/2) step, so a boundary never falls on a sample and a centreline
+ * resampled a hair differently (an import) cuts the same runs. The last
+ * segment is 0.5 to 1.5 segment_m long.
+ */
+static uint32_t sample_segment(const struct mesh *m, double i)
+{
+	double k = floor((i + 0.5) * m->step_m / m->segment_m);
+
+	if (!(k > 0)) {
+		return 0;
+	}
+	return k >= m->segments ? m->segments - 1 : (uint32_t)k;
+}
+
 static int make_segments(struct mesh *m, const struct centreline *cl,
 			 double segment_m)
 {
 	double len = centreline_length(cl);
 
 	m->segment_m = segment_m;
-	m->segments = (uint32_t)ceil(len / segment_m - 1e-9);
-	if (m->segments < 1) {
-		m->segments = 1;
-	}
+	m->step_m = centreline_step(cl);
+	m->segments = (uint32_t)fmax(1, round(len / segment_m));
 	m->seg = calloc(m->segments, sizeof(*m->seg));
 	if (!m->seg) {
 		return -ENOMEM;
 	}
+	for (size_t i = m->samples; i-- > 0;) {
+		m->seg[sample_segment(m, (double)i)].s0_m = (double)i * m->step_m;
+	}
 	for (uint32_t k = 0; k < m->segments; k++) {
-		m->seg[k].s0_m = k * segment_m;
-		m->seg[k].s1_m = fmin(len, (k + 1) * segment_m);
+		m->seg[k].s1_m = k + 1 < m->segments ? m->seg[k + 1].s0_m : len;
 	}
 	return 0;
 }
@@ -659,7 +739,7 @@ int mesh_finish(struct mesh *m, const struct centreline *cl,
 		r = make_segments(m, cl, segment_m);
 	}
 	if (!r) {
-		r = sort_triangles(m, centreline_step(cl));
+		r = sort_triangles(m);
 	}
 	if (r) {
 		snprintf(err, errsize, "mesh: out of memory");
@@ -674,6 +754,13 @@ int mesh_finish(struct mesh *m, const struct centreline *cl,
 		snprintf(err, errsize, "mesh: out of memory");
 		return r;
 	}
-	mesh_place(m, cl, 0, m->samples - 1);
+	if (from == MESH_FROM_OFFSETS) {
+		mesh_place(m, cl, 0, m->samples - 1);
+	} else {
+		/* at rest an import keeps the file's positions to the bit */
+		for (uint32_t k = 0; k < m->segments; k++) {
+			segment_bounds(m, k, centreline_step(cl));
+		}
+	}
 	return 0;
 }

@@ -6,7 +6,10 @@
  * that sample in the sample's frame (t, u, v); its world position is
  *   p = r(i) + a t(i) + b u(i) + c v(i)
  * (mesh_place()). A generated tube has a = 0 (rings in the normal planes);
- * an imported vertex belongs to the sample whose normal plane is nearest.
+ * an imported vertex belongs to the sample nearest to it, moved to the
+ * neighbour whose normal plane is nearest; a vertex that so lands on
+ * another part of the colon (a wider lumen passing close) is bound again
+ * near its triangle's other corners.
  *
  * Folds: inside a bend tighter than the lumen the normal planes of nearby
  * samples cross within the wall, and rings placed at full radius would
@@ -22,11 +25,12 @@
  * Triangles wind counter-clockwise seen from inside the lumen: the face
  * normal (B - A) x (C - A) faces the lumen, like the vertex normals.
  *
- * Segments cut the colon along the material arc length s into pieces of
- * segment_m (a few cm); triangle k belongs to the segment of its lowest
- * sample, and the triangles are stored segment by segment, so the
- * triangles near any stretch of s are one contiguous index range found in
- * O(1) (mesh_range()). Each segment has an axis-aligned bounding box.
+ * Segments cut the colon along the material arc length s into runs of
+ * samples segment_m long (a few cm; the last one 0.5 to 1.5 times that);
+ * triangle k belongs to the segment of its lowest sample, and the
+ * triangles are stored segment by segment, so the triangles near any
+ * stretch of s are one contiguous index range found in O(1)
+ * (mesh_range()). Each segment has an axis-aligned bounding box.
  *
  * Allocation: mesh_create() and mesh_finish() allocate. mesh_place(),
  * mesh_range() and the accessors do not, never block, and are safe in
@@ -67,6 +71,7 @@ struct mesh {
 	float *sample_rho;     /* per sample: its largest offset, m */
 	uint32_t *near_lo, *near_hi; /* per sample: planes that may cut in */
 	double segment_m;
+	double step_m;         /* the centreline's */
 	uint32_t segments;
 	struct mesh_segment *seg;
 };

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #define LINE_MAX_BYTES 4096
+#define LINE_POINTS 16 /* per 'l' element written */
 
 struct reader {
 	const char *path;
@@ -291,10 +292,9 @@ int objio_read_points(const char *path, double (**out)[3], size_t *n,
 	return 0;
 }
 
-int objio_write(const char *path, const char *name, const struct mesh *m,
-		const struct centreline *cl, char *err, size_t errsize)
+int objio_write(const char *path, const struct objio_mesh *m, char *err,
+		size_t errsize)
 {
-	size_t n = centreline_count(cl);
 	FILE *f = fopen(path, "w");
 	int ret = 0;
 
@@ -305,8 +305,8 @@ int objio_write(const char *path, const char *name, const struct mesh *m,
 		return ret;
 	}
 	fprintf(f, "# endosim colon '%s': %u vertices, %u triangles, "
-		"centreline of %zu points every %.9g m\no colon\n", name,
-		m->vertices, m->triangles, n, centreline_step(cl));
+		"centreline of %zu points every %.9g m\no colon\n", m->name,
+		m->vertices, m->triangles, m->samples, m->step_m);
 	for (uint32_t j = 0; j < m->vertices; j++) {
 		fprintf(f, "v %.9g %.9g %.9g\n", m->pos[j][0], m->pos[j][1],
 			m->pos[j][2]);
@@ -322,16 +322,19 @@ int objio_write(const char *path, const char *name, const struct mesh *m,
 			t[1] + 1, t[1] + 1, t[2] + 1, t[2] + 1);
 	}
 	fprintf(f, "o centreline\n");
-	for (size_t i = 0; i < n; i++) {
-		const double *p = centreline_sample(cl, i)->p;
+	for (size_t i = 0; i < m->samples; i++) {
+		const double *p = m->centreline[i];
 
 		fprintf(f, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]);
 	}
-	fprintf(f, "l");
-	for (size_t i = 0; i < n; i++) {
-		fprintf(f, " %zu", m->vertices + i + 1);
+	/* polylines of LINE_POINTS, each starting where the last ended */
+	for (size_t i = 0; i + 1 < m->samples; i += LINE_POINTS - 1) {
+		fprintf(f, "l");
+		for (size_t k = i; k < i + LINE_POINTS && k < m->samples; k++) {
+			fprintf(f, " %zu", m->vertices + k + 1);
+		}
+		fprintf(f, "\n");
 	}
-	fprintf(f, "\n");
 	if (ferror(f)) {
 		ret = -EIO;
 	}

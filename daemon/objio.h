@@ -16,9 +16,11 @@
  *
  * Writing: "o colon" with 'v', 'vn' and 'f i//i' (triangles counter-
  * clockwise seen from the lumen), then "o centreline" with its points and
- * one 'l' polyline; numbers with 9 significant digits (floats exactly).
+ * 'l' polylines of 16 points, each starting at the last one's end; numbers
+ * with 9 significant digits (floats exactly).
  *
- * All functions do file I/O and allocate: never in the force loop.
+ * All functions do file I/O and allocate: never in the force loop. The
+ * module depends on nothing but libc, so clients (endoctl) link it too.
  */
 #ifndef ENDOSIM_OBJIO_H
 #define ENDOSIM_OBJIO_H
@@ -27,7 +29,6 @@
 #include <stdint.h>
 
 #include "centreline.h"
-#include "mesh.h"
 
 struct objio_data {
 	double (*v)[3];      /* every 'v', m */
@@ -52,8 +53,21 @@ void objio_free(struct objio_data *d);
 int objio_read_points(const char *path, double (**pts)[3], size_t *n,
 		      char *err, size_t errsize);
 
-/* Writes M as placed now and CL's samples as PATH, headed by NAME. */
-int objio_write(const char *path, const char *name, const struct mesh *m,
-		const struct centreline *cl, char *err, size_t errsize);
+/* What objio_write() writes: plain arrays, so any client can. */
+struct objio_mesh {
+	const char *name;
+	const float (*pos)[3];         /* m */
+	const float (*nrm)[3];         /* unit, into the lumen */
+	uint32_t vertices;
+	const uint32_t (*tri)[3];      /* 0-based */
+	uint32_t triangles;
+	const double (*centreline)[3]; /* m */
+	size_t samples;
+	double step_m;                 /* for the header comment */
+};
+
+/* Writes M to PATH. Returns 0, or a negative errno with one line in ERR. */
+int objio_write(const char *path, const struct objio_mesh *m, char *err,
+		size_t errsize);
 
 #endif

@@ -14,6 +14,8 @@ TOP=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 : "${BUILD:=build}"
 case "$BUILD" in /*) ;; *) BUILD="$TOP/$BUILD" ;; esac
 ENDOSIMD="$BUILD/endosimd"
+# the shipped cases from the source tree (installed: $(DATADIR)/cases)
+CASES="$TOP/config/cases"
 ENDOCTL="$BUILD/endoctl"
 TOOLS="$BUILD/tests"
 
@@ -93,7 +95,8 @@ wait_for() {
 # start_daemon [ARGS...]: endosimd on the simulated rig, in the background.
 start_daemon() {
 	"$ENDOSIMD" --config "$TOP/config/endosimd.conf" --socket-dir "$SOCK" \
-		--shm-name "$SHM" --set socket.group= "$@" >>"$LOG" 2>&1 &
+		--shm-name "$SHM" --set socket.group= \
+		--set "case.directory=$CASES" "$@" >>"$LOG" 2>&1 &
 	DAEMON_PID=$!
 	if ! wait_for ctl status; then
 		echo "# endosimd did not come up; its log:"
