@@ -35,7 +35,9 @@ WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus
 CLIENT_PKGS = libprotobuf-c
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CASEDIR = $(DATADIR)/cases
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
+	     -DCONFIG_CASE_DIR='"$(CASEDIR)"' \
 	     -Iproto $(PKG_CFLAGS) -MMD -MP
 LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lpthread -lm
 CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
@@ -72,11 +74,16 @@ PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
 # the wire: protocol, framing, client library, shared-memory reader
 PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
 
+# the colon and the endoscope: case files, centreline, mesh, OBJ, the
+# model that ties them, the scope's kinematics
+COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o
+
 # endosimd: main, configuration, logging, the force loop and what it calls
-# (rig backends, hand, haptics, safety, publish), the control thread
+# (rig backends, hand, haptics, safety, publish, the colon and the scope),
+# the control thread with the cases and the scene it serves
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
-	      safety.o control.o $(DRIVE_OBJS)
+	      safety.o control.o cases.o scene.o $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
@@ -84,7 +91,7 @@ DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 	     canopen.o drive_modbus.o
 
 # endoctl: the CLI over the sockets
-ENDOCTL_OBJS = endoctl.o json.o
+ENDOCTL_OBJS = endoctl.o json.o objio.o
 
 obj = $(addprefix $(BUILD)/obj/,$(1))
 
@@ -93,7 +100,7 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
-	     test_config_drives
+	     test_config_drives test_colon test_scope test_scene
 test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
@@ -104,9 +111,15 @@ test_epos4_frame_OBJS = epos4_frame.o
 test_canopen_OBJS = canopen.o
 test_regmap_OBJS = regmap.o
 test_config_drives_OBJS = config.o regmap.o log.o names.o drive.o histo.o
-TEST_TOOLS = shm_probe shm_latency
+test_colon_OBJS = $(COLON_OBJS)
+test_scope_OBJS = $(COLON_OBJS)
+test_scene_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
+		  endosim.pb-c.o $(COLON_OBJS)
+TEST_TOOLS = shm_probe shm_latency obj_import
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
+obj_import_OBJS = $(COLON_OBJS)
+BENCH_TOOLS = bench_colon
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against
@@ -166,7 +179,15 @@ $(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
 endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
-unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS))
+unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
+	$(BENCH_TOOLS))
+
+# benchmarks: programs that print figures (tests/bench/)
+$(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \
+		$(call obj,$(COLON_OBJS))
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< $(call obj,$(COLON_OBJS)) \
+		$(LDFLAGS) $(LDLIBS)
 
 $(BUILD)/obj/%.o: tests/emulators/%.c
 	@mkdir -p $(dir $@)
@@ -260,6 +281,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
+		$(DESTDIR)$(CASEDIR) \
 		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
@@ -269,6 +291,7 @@ install: all
 		install -m 0644 config/endosimd.conf \
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
+	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \

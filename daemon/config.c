@@ -268,6 +268,33 @@ static const struct config_key keys[] = {
 	MODBUS_DRIVE_KEYS("modbus.roll", I_ROLL),
 	MODBUS_DRIVE_KEYS("modbus.wheel_ud", I_UD),
 	MODBUS_DRIVE_KEYS("modbus.wheel_lr", I_LR),
+	KS("case", "directory", colon.directory, CONFIG_CASE_DIR, 0,
+	   "where the case files NAME.case live (endoctl case list)"),
+	KS("case", "name", colon.name, "normal", 0,
+	   "the case loaded at start-up: DIRECTORY/NAME.case"),
+	KS("case", "file", colon.file, "", 0,
+	   "instead of NAME: a .case file, or a Wavefront .obj colon mesh"),
+	KS("case", "centreline_file", colon.centreline_file, "", 0,
+	   "with an .obj: its centreline, 'x y z' per line; empty: the "
+	   "OBJ's own polyline"),
+	KD("case", "step_m", colon.step_m, 0.002, 0.0002, 0.01, "m", 0,
+	   "centreline sample and mesh ring spacing"),
+	KI("case", "ring_vertices", colon.ring_vertices, 192, 8, 4096, "", 0,
+	   "vertices around each ring (triangles ~ 2 x length / step_m x "
+	   "this)"),
+	KD("case", "segment_m", colon.segment_m, 0.04, 0.01, 0.5, "m", 0,
+	   "length of the mesh segments that index triangles along the colon"),
+
+	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
+	   "m", LIVE, "length of the bending section behind the tip"),
+	KD("scope", "ud_gain_rad_per_rad", scope.gain[0], 1.8, 0, 20, "rad/rad",
+	   LIVE, "tip bend per up/down wheel angle"),
+	KD("scope", "lr_gain_rad_per_rad", scope.gain[1], 1.6, 0, 20, "rad/rad",
+	   LIVE, "tip bend per left/right wheel angle"),
+	KD("scope", "ud_limit_rad", scope.limit_rad[0], 3.14159, 0, 3.1416,
+	   "rad", LIVE, "largest tip bend up or down (180 deg)"),
+	KD("scope", "lr_limit_rad", scope.limit_rad[1], 2.79253, 0, 3.1416,
+	   "rad", LIVE, "largest tip bend left or right (160 deg)"),
 };
 
 #define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
@@ -749,6 +776,14 @@ static int check_modbus(const struct config *cfg, char *err, size_t size)
 	return any ? check_modbus_bus(&cfg->modbus, err, size) : 0;
 }
 
+bool config_case_name_ok(const char *name)
+{
+	size_t n = strspn(name, "abcdefghijklmnopqrstuvwxyz"
+			  "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-");
+
+	return n && !name[n];
+}
+
 int config_check(const struct config *cfg, char *err, size_t errsize)
 {
 	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize)) {
@@ -763,6 +798,11 @@ int config_check(const struct config *cfg, char *err, size_t errsize)
 				 cfg->rig.travel_max[a]);
 			return -EINVAL;
 		}
+	}
+	if (!config_case_name_ok(cfg->colon.name)) {
+		snprintf(err, errsize, "[case] name: '%s' must be letters, "
+			 "digits, '-' and '_'", cfg->colon.name);
+		return -EINVAL;
 	}
 	if (cfg->shm.name[0] != '/' || strchr(cfg->shm.name + 1, '/') ||
 	    !cfg->shm.name[1]) {

@@ -23,6 +23,9 @@
 #include "regmap.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
+#ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
+#define CONFIG_CASE_DIR "/usr/local/share/endosim/cases"
+#endif
 #define CONFIG_STR 128 /* longest string value, bytes with the NUL */
 
 enum config_backend {
@@ -136,6 +139,20 @@ struct config {
 	struct config_epos4 epos4[ENDOSIM_AXES];
 	struct config_modbus modbus;
 	struct config_modbus_drive modbus_drive[ENDOSIM_AXES];
+	struct {                           /* [case] */
+		char directory[CONFIG_STR];    /* holds NAME.case files */
+		char name[CONFIG_STR];         /* the case at start-up */
+		char file[CONFIG_STR];         /* "" or a .case or .obj path */
+		char centreline_file[CONFIG_STR]; /* an .obj's points, "" */
+		double step_m;                 /* centreline and ring spacing */
+		int ring_vertices;
+		double segment_m;              /* mesh segments along s */
+	} colon;
+	struct {
+		double bending_length_m;
+		double gain[2];      /* tip rad per wheel rad: ud, lr */
+		double limit_rad[2]; /* largest tip bend: ud, lr */
+	} scope;
 };
 
 enum config_type {
@@ -190,9 +207,13 @@ int config_load_stream(struct config *cfg, FILE *f, const char *name,
 int config_set(struct config *cfg, const char *key, const char *value,
 	       bool live_only, char *err, size_t errsize);
 
+/* True when NAME can name a case file: [A-Za-z0-9_-]+, no path. */
+bool config_case_name_ok(const char *name);
+
 /*
  * Cross-key checks (travel min below max, distinct devices, a usable
- * register map for each modbus axis, ...). Returns 0 or -EINVAL.
+ * register map for each modbus axis, a case name, ...). Returns 0 or
+ * -EINVAL.
  */
 int config_check(const struct config *cfg, char *err, size_t errsize);
 

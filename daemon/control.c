@@ -19,13 +19,16 @@
 #include "../proto/frame.h"
 #include "../proto/names.h"
 #include "../proto/version.h"
+#include "cases.h"
 #include "log.h"
+#include "scene.h"
 
 #define MAX_EVENTS 32
 #define MAX_PEER_GROUPS 256
 #define COMMAND_TIMEOUT_MS 200
 #define MAX_PUSH_HZ 1000.0
 #define MAX_HOLD_S 10.0
+#define SWAP_TIMEOUT_MS 500
 
 enum { TAG_WAKE = 0, TAG_RO = 1, TAG_RW = 2, TAG_CLIENT = 3 };
 
@@ -61,6 +64,13 @@ struct reply_buf {
 	Endosim__ConfigEntry **entries_p;
 	char (*values)[CONFIG_STR + 32];
 	char error[256];
+	Endosim__ScopeStatus scope;
+	struct endosim_scope_state scope_state; /* what scope points into */
+	Endosim__CaseListReply case_list;
+	Endosim__CaseEntry *case_entries;
+	Endosim__CaseEntry **case_entries_p;
+	struct cases_entry *cases;
+	char case_error[512];
 };
 
 struct control {
@@ -75,6 +85,9 @@ struct control {
 	size_t max_queued;
 	gid_t command_gid;       /* who may command besides root */
 	struct reply_buf rb;
+	struct colon *colon;     /* the loop's now: read its mesh only */
+	uint64_t scene_id;
+	struct scene *scene;     /* GetScene's replies, made on demand */
 	uint64_t rate_t0_ns, rate_cycle0;
 	double loop_hz;
 	pthread_t thread;
@@ -360,6 +373,25 @@ static void update_loop_rate(struct control *c, uint64_t now)
 	}
 }
 
+/* The protobuf view of the published scope: arrays point into SC. */
+static void fill_scope(Endosim__ScopeStatus *p, struct endosim_scope_state *sc)
+{
+	endosim__scope_status__init(p);
+	p->depth_m = sc->depth_m;
+	p->tip_s_m = sc->tip_s_m;
+	p->base_s_m = sc->base_s_m;
+	p->n_bend_rad = 2;
+	p->bend_rad = sc->bend_rad;
+	p->n_tip = p->n_dir = p->n_up = 3;
+	p->tip = sc->tip;
+	p->dir = sc->dir;
+	p->up = sc->up;
+	p->turning_rad = sc->turning_rad;
+	p->n_bow_m = sc->spans;
+	p->bow_m = sc->bow_m;
+	p->scene_id = sc->scene_id;
+}
+
 static void build_status(struct control *c, Endosim__Reply *rep)
 {
 	struct reply_buf *rb = &c->rb;
@@ -391,6 +423,10 @@ static void build_status(struct control *c, Endosim__Reply *rep)
 	s->uptime_s = (double)(loop_now_ns() - c->deps.start_ns) / 1e9;
 	s->scenario_time_s = st.scenario_time_s;
 	s->scenario_done = st.scenario_done;
+	s->case_name = (char *)colon_name(c->colon);
+	rb->scope_state = st.scope;
+	fill_scope(&rb->scope, &rb->scope_state);
+	s->scope = &rb->scope;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		Endosim__AxisStatus *ax = &rb->axes[a];
 
@@ -666,6 +702,139 @@ static void on_subscribe(struct control *c, struct client *cl,
 	build_status(c, rep);
 }
 
+static void on_get_scene(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__GetScene *g = req->get_scene;
+	Endosim__SceneReply *sr;
+
+	(void)cl;
+	if (g->chunk && g->scene_id != c->scene_id) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "the case changed: start again from chunk 0");
+		return;
+	}
+	if (!c->scene) {
+		c->scene = scene_create(c->colon, c->scene_id);
+		if (!c->scene) {
+			log_err("GetScene: out of memory");
+			refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+			       "out of memory");
+			return;
+		}
+	}
+	sr = scene_reply(c->scene, g->chunk);
+	if (!sr) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, "no such chunk");
+		return;
+	}
+	rep->body_case = ENDOSIM__REPLY__BODY_SCENE;
+	rep->scene = sr;
+}
+
+static void free_case_list(struct reply_buf *rb)
+{
+	free(rb->cases);
+	free(rb->case_entries);
+	free(rb->case_entries_p);
+	rb->cases = NULL;
+	rb->case_entries = NULL;
+	rb->case_entries_p = NULL;
+}
+
+static void on_list_cases(struct control *c, struct client *cl,
+			  const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	Endosim__CaseListReply *l = &rb->case_list;
+	size_t n;
+
+	(void)cl;
+	(void)req;
+	free_case_list(rb);
+	if (cases_list(c->cfg.colon.directory, &rb->cases, &n, rb->case_error,
+		       sizeof(rb->case_error))) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->case_error);
+		return;
+	}
+	rb->case_entries = calloc(n + 1, sizeof(*rb->case_entries));
+	rb->case_entries_p = calloc(n + 1, sizeof(*rb->case_entries_p));
+	if (!rb->case_entries || !rb->case_entries_p) {
+		free_case_list(rb);
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, "out of memory");
+		return;
+	}
+	for (size_t i = 0; i < n; i++) {
+		Endosim__CaseEntry *e = &rb->case_entries[i];
+
+		endosim__case_entry__init(e);
+		e->name = rb->cases[i].name;
+		e->description = rb->cases[i].description;
+		e->loaded = !strcmp(e->name, colon_name(c->colon));
+		rb->case_entries_p[i] = e;
+	}
+	endosim__case_list_reply__init(l);
+	l->n_cases = n;
+	l->cases = rb->case_entries_p;
+	l->directory = c->cfg.colon.directory;
+	l->error = rb->case_error;
+	rep->body_case = ENDOSIM__REPLY__BODY_CASES;
+	rep->cases = l;
+}
+
+/* Hands COLON to the loop; on success it is the one GetScene serves. */
+static int swap_colon(struct control *c, struct colon *colon)
+{
+	struct colon *old = NULL;
+	int r = loop_swap_colon(c->deps.loop, colon, c->scene_id + 1, &old,
+				SWAP_TIMEOUT_MS);
+
+	if (r) {
+		colon_destroy(colon);
+		return r;
+	}
+	scene_destroy(c->scene);
+	c->scene = NULL;
+	c->colon = colon;
+	c->scene_id++;
+	colon_destroy(old);
+	return 0;
+}
+
+static void on_load_case(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const char *name = req->load_case->name;
+	struct endosim_state st;
+	struct colon *colon;
+	int r;
+
+	if (!publish_read(c->deps.pub, &st) &&
+	    st.state != ENDOSIM_STATE_IDLE) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "a case loads only while IDLE: disable first");
+		return;
+	}
+	colon = cases_load(&c->cfg, name, c->rb.error, sizeof(c->rb.error));
+	if (!colon) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, c->rb.error);
+		return;
+	}
+	r = swap_colon(c, colon);
+	if (r == -EBUSY) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "a case loads only while IDLE: disable first");
+		return;
+	}
+	if (r) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
+		       "the force loop did not take the new case");
+		return;
+	}
+	log_notice("case %s loaded (uid %d): %u triangles", name,
+		   (int)cl->uid, colon_mesh(colon)->triangles);
+}
+
 struct handler {
 	Endosim__Request__BodyCase body;
 	bool writes; /* refused on the read-only socket */
@@ -677,6 +846,9 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_GET_STATS, false, on_get_stats },
 	{ ENDOSIM__REQUEST__BODY_GET_CONFIG, false, on_get_config },
 	{ ENDOSIM__REQUEST__BODY_SUBSCRIBE, false, on_subscribe },
+	{ ENDOSIM__REQUEST__BODY_GET_SCENE, false, on_get_scene },
+	{ ENDOSIM__REQUEST__BODY_LIST_CASES, false, on_list_cases },
+	{ ENDOSIM__REQUEST__BODY_LOAD_CASE, true, on_load_case },
 	{ ENDOSIM__REQUEST__BODY_SET_PARAM, true, on_set_param },
 	{ ENDOSIM__REQUEST__BODY_ENABLE, true, on_enable },
 	{ ENDOSIM__REQUEST__BODY_DISABLE, true, on_disable },
@@ -954,6 +1126,8 @@ struct control *control_create(const struct config *cfg,
 	}
 	c->cfg = *cfg;
 	c->deps = *deps;
+	c->colon = deps->colon;
+	c->scene_id = deps->scene_id;
 	c->ro_fd = c->rw_fd = c->ep = c->wake_fd = -1;
 	c->max_clients = cfg->socket.max_clients;
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
@@ -1035,5 +1209,7 @@ void control_destroy(struct control *c)
 	free(c->rb.entries);
 	free(c->rb.entries_p);
 	free(c->rb.values);
+	free_case_list(&c->rb);
+	scene_destroy(c->scene);
 	free(c);
 }

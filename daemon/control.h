@@ -2,8 +2,9 @@
  * control.h - the control thread: endosimd's two Unix sockets, served with
  * epoll, speaking proto/endosim.proto in length-prefixed frames (frame.h).
  *
- *   DIR/status.sock   mode 0666: GetStatus, GetStats, GetConfig, Subscribe;
- *                     anything else is answered STATUS_READ_ONLY
+ *   DIR/status.sock   mode 0666: GetStatus, GetStats, GetConfig, Subscribe,
+ *                     GetScene, ListCases; anything else is answered
+ *                     STATUS_READ_ONLY
  *   DIR/control.sock  mode 0660, group [socket] group: every request
  *
  * Hostile or broken clients cannot hurt the daemon: a request over
@@ -14,13 +15,16 @@
  *
  * The control thread never runs in the force loop's place: it talks to it
  * through loop.h's lock-free calls and reads the state from shared memory.
- * It owns the master copy of the configuration.
+ * It owns the master copy of the configuration. LoadCase builds the new
+ * colon here (tens of ms, other clients wait) and hands it to the loop
+ * (loop_swap_colon()); the old one is freed here once the loop let go.
  */
 #ifndef ENDOSIM_CONTROL_H
 #define ENDOSIM_CONTROL_H
 
 #include <stdint.h>
 
+#include "colon.h"
 #include "config.h"
 #include "hand.h"
 #include "loop.h"
@@ -33,6 +37,8 @@ struct control_deps {
 	struct publish *pub;
 	struct rig *rig;         /* its name, and faults in words */
 	uint64_t start_ns;       /* CLOCK_MONOTONIC at daemon start */
+	struct colon *colon;     /* the loop's colon at start (loop owns it) */
+	uint64_t scene_id;       /* its GetScene id */
 };
 
 struct control;

@@ -25,6 +25,7 @@
 #include "../proto/names.h"
 #include "../proto/version.h"
 #include "json.h"
+#include "objio.h"
 
 enum {
 	EXIT_REFUSED = 1,
@@ -104,6 +105,32 @@ static int transact(struct ctl *ctl, bool write, Endosim__Request *req,
 
 /* ------------------------------------------------------------ printing */
 
+static void json_vector(struct json *j, const char *key, const double *v,
+			size_t n)
+{
+	json_array_begin(j, key);
+	for (size_t i = 0; i < n; i++) {
+		json_double(j, NULL, v[i]);
+	}
+	json_array_end(j);
+}
+
+static void json_scope(struct json *j, const Endosim__ScopeStatus *sc)
+{
+	json_object_begin(j, "scope");
+	json_double(j, "depth_m", sc->depth_m);
+	json_double(j, "tip_s_m", sc->tip_s_m);
+	json_double(j, "base_s_m", sc->base_s_m);
+	json_double(j, "turning_rad", sc->turning_rad);
+	json_vector(j, "bend_rad", sc->bend_rad, sc->n_bend_rad);
+	json_vector(j, "tip", sc->tip, sc->n_tip);
+	json_vector(j, "dir", sc->dir, sc->n_dir);
+	json_vector(j, "up", sc->up, sc->n_up);
+	json_vector(j, "bow_m", sc->bow_m, sc->n_bow_m);
+	json_uint(j, "scene_id", sc->scene_id);
+	json_object_end(j);
+}
+
 static void json_status(const Endosim__StatusReply *s)
 {
 	struct json j;
@@ -125,6 +152,10 @@ static void json_status(const Endosim__StatusReply *s)
 	json_double(&j, "uptime_s", s->uptime_s);
 	json_double(&j, "scenario_time_s", s->scenario_time_s);
 	json_bool(&j, "scenario_done", s->scenario_done);
+	json_string(&j, "case", s->case_name);
+	if (s->scope) {
+		json_scope(&j, s->scope);
+	}
 	json_object_begin(&j, "axes");
 	for (size_t i = 0; i < s->n_axes; i++) {
 		const Endosim__AxisStatus *a = s->axes[i];
@@ -155,6 +186,16 @@ static void print_status(const Endosim__StatusReply *s)
 	printf("cycle     %llu, uptime %.1f s, scenario %.1f s%s\n",
 	       (unsigned long long)s->cycle, s->uptime_s, s->scenario_time_s,
 	       s->scenario_done ? " (ended)" : "");
+	if (s->scope && s->scope->n_tip == 3 && s->scope->n_bend_rad == 2) {
+		const Endosim__ScopeStatus *sc = s->scope;
+
+		printf("case      %s\n", s->case_name);
+		printf("scope     inserted %.3f m, tip at s %.3f m "
+		       "(%.3f %.3f %.3f) m, bent %+.2f/%+.2f rad, turning "
+		       "%.2f rad\n", sc->depth_m, sc->tip_s_m, sc->tip[0],
+		       sc->tip[1], sc->tip[2], sc->bend_rad[0], sc->bend_rad[1],
+		       sc->turning_rad);
+	}
 	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
 	       "velocity", "hand", "command", "limited", "drive");
 	for (size_t i = 0; i < s->n_axes; i++) {
@@ -594,6 +635,164 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 	return r;
 }
 
+static void print_cases(const Endosim__CaseListReply *l, bool json)
+{
+	struct json j;
+
+	if (json) {
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_string(&j, "directory", l->directory);
+		json_string(&j, "error", l->error);
+		json_array_begin(&j, "cases");
+		for (size_t i = 0; i < l->n_cases; i++) {
+			json_object_begin(&j, NULL);
+			json_string(&j, "name", l->cases[i]->name);
+			json_string(&j, "description", l->cases[i]->description);
+			json_bool(&j, "loaded", l->cases[i]->loaded);
+			json_object_end(&j);
+		}
+		json_array_end(&j);
+		json_object_end(&j);
+		return;
+	}
+	for (size_t i = 0; i < l->n_cases; i++) {
+		printf("%c %-20s %s\n", l->cases[i]->loaded ? '*' : ' ',
+		       l->cases[i]->name, l->cases[i]->description);
+	}
+	if (*l->error) {
+		fprintf(stderr, "endoctl: left out: %s\n", l->error);
+	}
+}
+
+static int case_list(struct ctl *ctl)
+{
+	Endosim__ListCases body = ENDOSIM__LIST_CASES__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	req.body_case = ENDOSIM__REQUEST__BODY_LIST_CASES;
+	req.list_cases = &body;
+	r = transact(ctl, false, &req, &rep);
+	if (r) {
+		return r;
+	}
+	print_cases(rep->cases, ctl->json);
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static int cmd_case(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__LoadCase body = ENDOSIM__LOAD_CASE__INIT;
+	char done[160];
+
+	if (argc == 2 && !strcmp(argv[1], "list")) {
+		return case_list(ctl);
+	}
+	if (argc != 3 || strcmp(argv[1], "load")) {
+		fprintf(stderr, "endoctl: case list | case load NAME\n");
+		return EXIT_USAGE;
+	}
+	body.name = argv[2];
+	snprintf(done, sizeof(done), "case %s loaded", argv[2]);
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_LOAD_CASE, &body,
+			      done);
+}
+
+static void print_scene_info(const struct client_scene *s, bool json)
+{
+	const Endosim__SceneInfo *in = s->info;
+
+	if (json) {
+		struct json j;
+
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_string(&j, "name", in->name);
+		json_uint(&j, "scene_id", s->scene_id);
+		json_double(&j, "length_m", in->length_m);
+		json_double(&j, "cecum_s_m", in->cecum_s_m);
+		json_uint(&j, "vertices", s->vertices);
+		json_uint(&j, "triangles", s->triangles);
+		json_uint(&j, "samples", in->n_centreline / 3);
+		json_uint(&j, "segments", in->n_segments);
+		json_uint(&j, "polyps", in->n_polyps);
+		json_object_end(&j);
+		return;
+	}
+	printf("%s: %s\n%.3f m, cecum at %.3f m, %zu centreline samples, "
+	       "%u vertices, %u triangles, %zu segments, %zu polyps\n",
+	       in->name, in->description, in->length_m, in->cecum_s_m,
+	       in->n_centreline / 3, s->vertices, s->triangles,
+	       in->n_segments, in->n_polyps);
+	for (size_t i = 0; i < in->n_regions; i++) {
+		const Endosim__SceneRegion *r = in->regions[i];
+
+		printf("  %-16s %6.3f .. %6.3f m%s\n", r->name, r->s0_m,
+		       r->s1_m, r->span >= 0 ? "  mobile" : "");
+	}
+}
+
+/* Writes the scene as an OBJ that MeshLab, Blender or endosimd read. */
+static int export_scene(const struct client_scene *s, const char *path)
+{
+	struct objio_mesh m = {
+		.name = s->info->name,
+		.pos = (const float(*)[3])s->positions,
+		.nrm = (const float(*)[3])s->normals,
+		.vertices = s->vertices,
+		.tri = (const uint32_t(*)[3])s->indices,
+		.triangles = s->triangles,
+		.centreline = (const double(*)[3])s->info->centreline,
+		.samples = s->info->n_centreline / 3,
+		.step_m = s->info->step_m,
+	};
+	char err[512];
+
+	if (objio_write(path, &m, err, sizeof(err))) {
+		fprintf(stderr, "endoctl: %s\n", err);
+		return EXIT_REFUSED;
+	}
+	printf("wrote %s: %s, %u vertices, %u triangles, %zu centreline "
+	       "points\n", path, m.name, m.vertices, m.triangles, m.samples);
+	return 0;
+}
+
+static int cmd_scene(struct ctl *ctl, int argc, char **argv)
+{
+	struct client_scene *s;
+	Endosim__Status status = ENDOSIM__STATUS__STATUS_OK;
+	int r;
+
+	if (!(argc == 2 && !strcmp(argv[1], "info")) &&
+	    !(argc == 3 && !strcmp(argv[1], "export"))) {
+		fprintf(stderr, "endoctl: scene info | scene export FILE.obj\n");
+		return EXIT_USAGE;
+	}
+	r = connect_daemon(ctl, false);
+	if (r) {
+		return r;
+	}
+	r = client_get_scene(ctl->client, &s, ctl->timeout_ms, &status);
+	if (r == -EACCES || r == -EAGAIN) {
+		fprintf(stderr, "endoctl: %s\n", r == -EAGAIN ?
+			"the case kept changing" : client_status_text(status));
+		return EXIT_REFUSED;
+	}
+	if (r) {
+		return comm_error(r);
+	}
+	if (argc == 2) {
+		print_scene_info(s, ctl->json);
+	} else {
+		r = export_scene(s, argv[2]);
+	}
+	client_scene_free(s);
+	return r;
+}
+
 static int cmd_version(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
@@ -647,6 +846,10 @@ static const struct {
 	{ "set", cmd_set, "SECTION.KEY VALUE: change a live key" },
 	{ "hand", cmd_hand, "F_INS F_ROLL F_UD F_LR [--hold-ms MS]: push the "
 			    "simulated hand (N, N m)" },
+	{ "case", cmd_case, "list | load NAME: the anatomy cases (load: IDLE "
+			    "only)" },
+	{ "scene", cmd_scene, "info | export FILE.obj: the colon the daemon "
+			      "renders" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 };
 

@@ -16,6 +16,7 @@
 #include "haptics.h"
 #include "log.h"
 #include "rt.h"
+#include "scope.h"
 #include "spsc.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -42,6 +43,9 @@ struct loop {
 	double limited[ENDOSIM_AXES];
 	struct endosim_state state;
 	bool scenario_was_done;
+	struct colon *colon;
+	uint64_t scene_id;
+	struct scope_pose pose;
 
 	/* shared */
 	struct rig *rig;
@@ -61,6 +65,10 @@ struct loop {
 	_Atomic uint64_t cmd_slot; /* control -> loop: seq << 8 | cmd, 0 empty */
 	_Atomic uint64_t cmd_done; /* loop -> control: seq << 32 | result */
 	uint32_t cmd_seq;          /* control thread's counter */
+	_Atomic(struct colon *) colon_in;  /* control -> loop */
+	_Atomic(struct colon *) colon_out; /* loop -> control: replaced or
+					      refused */
+	uint64_t scene_id_in;      /* published by colon_in's release */
 };
 
 uint64_t loop_now_ns(void)
@@ -78,7 +86,8 @@ static struct timespec to_timespec(uint64_t ns)
 }
 
 struct loop *loop_create(const struct config *cfg, struct rig *rig,
-			 struct publish *pub)
+			 struct publish *pub, struct colon *colon,
+			 uint64_t scene_id)
 {
 	struct loop *l = calloc(1, sizeof(*l));
 
@@ -97,6 +106,8 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 	l->cfg_seen = seqlock_read_begin(&l->cfg_lock);
 	l->rig = rig;
 	l->pub = pub;
+	l->colon = colon;
+	l->scene_id = scene_id;
 	safety_init(&l->safety);
 	l->pm_qos_fd = -1;
 	l->info.policy = "none";
@@ -211,6 +222,72 @@ static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
 	}
 }
 
+/* Takes a new colon from the control thread, only while IDLE. */
+static void take_colon(struct loop *l)
+{
+	struct colon *in = atomic_exchange_explicit(&l->colon_in, NULL,
+						    memory_order_acq_rel);
+
+	if (!in) {
+		return;
+	}
+	if (l->safety.state != ENDOSIM_STATE_IDLE) {
+		atomic_store_explicit(&l->colon_out, in, memory_order_release);
+		return;
+	}
+	atomic_store_explicit(&l->colon_out, l->colon, memory_order_release);
+	l->colon = in;
+	l->scene_id = l->scene_id_in;
+}
+
+static void kinematics(struct loop *l)
+{
+	const struct scope_params p = {
+		.bending_length_m = l->cfg.scope.bending_length_m,
+		.ud_gain = l->cfg.scope.gain[0],
+		.lr_gain = l->cfg.scope.gain[1],
+		.ud_limit_rad = l->cfg.scope.limit_rad[0],
+		.lr_limit_rad = l->cfg.scope.limit_rad[1],
+	};
+	const struct scope_input in = {
+		.depth_m = l->fb.axis[ENDOSIM_AXIS_INSERTION].position,
+		.roll_rad = l->fb.axis[ENDOSIM_AXIS_ROLL].position,
+		.wheel_ud_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_UD].position,
+		.wheel_lr_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_LR].position,
+	};
+
+	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
+}
+
+static void fill_scope(struct loop *l)
+{
+	struct endosim_scope_state *sc = &l->state.scope;
+	const struct scope_pose *p = &l->pose;
+	const struct centreline *cl = colon_centreline(l->colon);
+	double base = p->base_s_m / centreline_step(cl);
+
+	sc->scene_id = l->scene_id;
+	sc->depth_m = p->depth_m;
+	sc->roll_rad = p->roll_rad;
+	memcpy(sc->bend_rad, p->bend_rad, sizeof(sc->bend_rad));
+	sc->base_s_m = p->base_s_m;
+	sc->tip_s_m = p->tip_s_m;
+	sc->turning_rad = centreline_turning(cl, (size_t)(base + 0.5));
+	memcpy(sc->tip, p->tip, sizeof(sc->tip));
+	memcpy(sc->dir, p->dir, sizeof(sc->dir));
+	memcpy(sc->up, p->up, sizeof(sc->up));
+	sc->spans = (uint32_t)centreline_spans(cl);
+	for (int k = 0; k < ENDOSIM_SPANS; k++) {
+		sc->bow_m[k] = k < (int)sc->spans ?
+				       centreline_bow_amplitude(cl, k) : 0;
+	}
+	for (int i = 0; i < ENDOSIM_TUBE_POINTS; i++) {
+		for (int d = 0; d < 3; d++) {
+			sc->tube[i][d] = (float)p->tube[i][d];
+		}
+	}
+}
+
 static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 {
 	uint32_t old_state = l->safety.state;
@@ -219,9 +296,11 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 
 	fetch_config(l);
 	cmd = take_command(l);
+	take_colon(l);
 	safety_begin_cycle(&l->safety);
 	rig_read(l->rig, now, &l->fb);
 	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
+	kinematics(l);
 	haptics_render(&l->cfg, &l->fb, l->command);
 	safety_filter(&l->safety, &l->cfg, l->command, l->limited, now);
 	rig_write(l->rig, now, l->limited, safety_torque_on(&l->safety));
@@ -235,6 +314,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	}
 	l->scenario_was_done = l->fb.hand_done;
 	fill_state(l, now, latency);
+	fill_scope(l);
 	l->state.publish_ns = loop_now_ns();
 	publish_state(l->pub, &l->state);
 }
@@ -405,6 +485,7 @@ void loop_destroy(struct loop *l)
 		return;
 	}
 	loop_stop(l);
+	colon_destroy(l->colon);
 	if (l->pm_qos_fd >= 0) {
 		close(l->pm_qos_fd);
 	}
@@ -439,6 +520,41 @@ int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
 		}
 		nanosleep(&nap, NULL);
 	}
+}
+
+/* Takes the loop's answer to a swap, if there is one yet. */
+static struct colon *swap_answer(struct loop *l)
+{
+	return atomic_exchange_explicit(&l->colon_out, NULL,
+					memory_order_acq_rel);
+}
+
+int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
+		    struct colon **old, int timeout_ms)
+{
+	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 200000 };
+	struct colon *back;
+
+	l->scene_id_in = scene_id;
+	atomic_store_explicit(&l->colon_in, colon, memory_order_release);
+	while (!(back = swap_answer(l))) {
+		if (loop_now_ns() > deadline) {
+			struct colon *expected = colon;
+
+			if (atomic_compare_exchange_strong(&l->colon_in,
+							   &expected, NULL)) {
+				return -ETIMEDOUT; /* withdrawn */
+			}
+			deadline += 100000000u; /* taken just now */
+		}
+		nanosleep(&nap, NULL);
+	}
+	if (back == colon) {
+		return -EBUSY;
+	}
+	*old = back;
+	return 0;
 }
 
 void loop_set_config(struct loop *l, const struct config *cfg)

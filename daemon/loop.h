@@ -11,10 +11,14 @@
  * skipped and counted. Inside the loop: no allocation, no stdio or syslog,
  * no blocking lock, no bus I/O.
  *
+ * Every cycle it also works out the endoscope's kinematics (scope.h) on
+ * the colon model it owns and publishes them (endosim_shm.h, scope).
+ *
  * Talking to the loop, lock-free:
  *  - commands (enable, disable, estop, reset): loop_command(), the control
  *    thread only, one at a time, answered within a cycle or two;
  *  - live configuration: loop_set_config(), the control thread only;
+ *  - a new colon model: loop_swap_colon(), the control thread only;
  *  - events out (state changes, faults, overruns): loop_pop_event(), the main
  *    thread only, which logs them;
  *  - statistics and heartbeat: any thread.
@@ -25,6 +29,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "colon.h"
 #include "config.h"
 #include "histo.h"
 #include "publish.h"
@@ -73,9 +78,14 @@ struct loop_stats {
 
 struct loop;
 
-/* Allocates everything the loop will use. NULL on ENOMEM (logged). */
+/*
+ * Allocates everything the loop will use. The loop owns COLON (built
+ * before, never NULL), known to clients as SCENE_ID, and frees it in
+ * loop_destroy(). NULL on ENOMEM (logged).
+ */
 struct loop *loop_create(const struct config *cfg, struct rig *rig,
-			 struct publish *pub);
+			 struct publish *pub, struct colon *colon,
+			 uint64_t scene_id);
 
 /* Locks memory and starts the thread. Returns 0 or a negative errno. */
 int loop_start(struct loop *l);
@@ -99,6 +109,19 @@ int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms);
 
 /* Control thread: the loop uses CFG's live keys from its next cycle on. */
 void loop_set_config(struct loop *l, const struct config *cfg);
+
+/*
+ * Control thread, loop running: hands COLON (SCENE_ID) to the loop, which
+ * takes it at the start of its next cycle if the state is IDLE. Waits up
+ * to TIMEOUT_MS (the loop never waits). Returns 0 with *OLD the colon it
+ * replaced (now the caller's to free); -EBUSY when not IDLE (COLON is the
+ * caller's again); -ETIMEDOUT when the loop did not take it (withdrawn,
+ * the caller's again). The loop only reads its colon's mesh, never writes
+ * it, so the caller may keep reading the mesh of the colon it handed over
+ * until it swaps it out.
+ */
+int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
+		    struct colon **old, int timeout_ms);
 
 /* Main thread: the next event, false when there is none. */
 bool loop_pop_event(struct loop *l, struct loop_event *ev);

@@ -3,10 +3,11 @@
  * simulator. Start-up order, signals, systemd notification and watchdog,
  * and the log lines for what the force loop reports.
  *
- * Start-up: configuration (exit 78 on any error, before anything else), the
- * sockets (refusing to run beside another daemon), shared memory, the rig
- * (devices opened and checked), the force loop, the control thread, then
- * READY=1. Motors stay off until an explicit enable.
+ * Start-up: configuration and the case it names (exit 78 on any error,
+ * before anything else), the sockets (refusing to run beside another
+ * daemon), shared memory, the rig (devices opened and checked), the force
+ * loop, the control thread, then READY=1. Motors stay off until an
+ * explicit enable.
  */
 #include <errno.h>
 #include <getopt.h>
@@ -23,6 +24,7 @@
 
 #include "../proto/names.h"
 #include "../proto/version.h"
+#include "cases.h"
 #include "config.h"
 #include "control.h"
 #include "hand.h"
@@ -247,41 +249,70 @@ static bool any_simulated(const struct config *cfg)
 	return false;
 }
 
+/* The configured case, built before anything else starts. */
+static struct colon *load_colon(const struct config *cfg)
+{
+	char err[512];
+	struct colon *c = cases_load(cfg, NULL, err, sizeof(err));
+
+	if (!c) {
+		log_err("case: %s", err);
+		return NULL;
+	}
+	log_info("case %s: %.2f m, %u triangles in %u segments, %.1f MiB",
+		 colon_name(c), centreline_length(colon_centreline(c)),
+		 colon_mesh(c)->triangles, colon_mesh(c)->segments,
+		 (double)colon_bytes(c) / (1 << 20));
+	return c;
+}
+
 static int start(struct daemon *d, const struct options *opt)
 {
 	struct scenario *scn = NULL;
+	struct colon *colon;
 	char err[512];
 
+	colon = load_colon(&d->cfg);
+	if (!colon) {
+		return EX_CONFIG;
+	}
 	if (opt->scenario_path) {
 		scn = scenario_load(opt->scenario_path, err, sizeof(err));
 		if (!scn) {
 			log_err("%s", err);
+			colon_destroy(colon);
 			return EX_CONFIG;
 		}
 	}
 	d->hand = hand_create(&d->cfg, scn);
 	if (!d->hand) {
 		scenario_destroy(scn);
+		colon_destroy(colon);
 		return EX_OSERR;
 	}
 	d->rig = rig_create(&d->cfg, d->hand);
 	if (!d->rig) {
+		colon_destroy(colon);
 		return EX_SOFTWARE;
 	}
 	struct control_deps deps = {
 		.hand = any_simulated(&d->cfg) ? d->hand : NULL,
 		.rig = d->rig,
 		.start_ns = d->start_ns,
+		.colon = colon,
+		.scene_id = 1,
 	};
 
 	d->pub = publish_create(d->cfg.shm.name,
 				1000000000u / (unsigned)d->cfg.loop.rate_hz,
 				d->start_ns);
 	if (!d->pub) {
+		colon_destroy(colon);
 		return EX_UNAVAILABLE;
 	}
-	d->loop = loop_create(&d->cfg, d->rig, d->pub);
+	d->loop = loop_create(&d->cfg, d->rig, d->pub, colon, deps.scene_id);
 	if (!d->loop) {
+		colon_destroy(colon);
 		return EX_OSERR;
 	}
 	deps.loop = d->loop;
@@ -427,6 +458,14 @@ int main(int argc, char **argv)
 		return EX_CONFIG;
 	}
 	if (opt.check_config) {
+		struct colon *c;
+
+		log_init("endosimd", d.cfg.log.level);
+		c = load_colon(&d.cfg);
+		if (!c) {
+			return EX_CONFIG;
+		}
+		colon_destroy(c);
 		printf("%s: configuration ok\n", opt.config_explicit ||
 		       access(opt.config_path, F_OK) == 0 ? opt.config_path
 						  : "built-in defaults");

@@ -211,6 +211,168 @@ int client_receive(struct client *c, Endosim__Reply **reply, int timeout_ms)
 	return read_message(c, reply, now_ms() + timeout_ms);
 }
 
+void client_scene_free(struct client_scene *s)
+{
+	if (!s) {
+		return;
+	}
+	if (s->info_reply) {
+		endosim__reply__free_unpacked(s->info_reply, NULL);
+	}
+	free(s->positions);
+	free(s->normals);
+	free(s->vertex_sample);
+	free(s->vertex_offset);
+	free(s->normal_offset);
+	free(s->indices);
+	free(s);
+}
+
+/* One chunk of scene ID (0: the first); *REP holds an OK scene reply. */
+static int scene_chunk(struct client *c, uint32_t chunk, uint64_t id,
+		       Endosim__Reply **rep, int timeout_ms,
+		       Endosim__Status *status)
+{
+	Endosim__GetScene body = ENDOSIM__GET_SCENE__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	int r;
+
+	body.chunk = chunk;
+	body.scene_id = id;
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_SCENE;
+	req.get_scene = &body;
+	r = client_request(c, &req, rep, timeout_ms);
+	if (r) {
+		return r;
+	}
+	if ((*rep)->status != ENDOSIM__STATUS__STATUS_OK) {
+		if (status) {
+			*status = (*rep)->status;
+		}
+		r = (*rep)->status == ENDOSIM__STATUS__STATUS_REFUSED ? -EAGAIN
+								     : -EACCES;
+	} else if ((*rep)->body_case != ENDOSIM__REPLY__BODY_SCENE ||
+		   (*rep)->scene->chunk != chunk ||
+		   (chunk && !(*rep)->scene->mesh) ||
+		   (!chunk && !(*rep)->scene->info)) {
+		r = -EPROTO;
+	}
+	if (r) {
+		endosim__reply__free_unpacked(*rep, NULL);
+		*rep = NULL;
+	}
+	return r;
+}
+
+static int add_vertices(struct client_scene *s, const Endosim__SceneChunk *m)
+{
+	size_t n = m->n_vertex_sample, first = m->first_vertex;
+
+	if (!n || first + n > s->vertices || m->n_positions != 3 * n ||
+	    m->n_normals != 3 * n || m->n_vertex_offset != 3 * n ||
+	    m->n_normal_offset != 3 * n) {
+		return -EPROTO;
+	}
+	memcpy(s->positions[first], m->positions, 3 * n * sizeof(float));
+	memcpy(s->normals[first], m->normals, 3 * n * sizeof(float));
+	memcpy(s->vertex_offset[first], m->vertex_offset,
+	       3 * n * sizeof(float));
+	memcpy(s->normal_offset[first], m->normal_offset,
+	       3 * n * sizeof(float));
+	memcpy(&s->vertex_sample[first], m->vertex_sample,
+	       n * sizeof(uint32_t));
+	return 0;
+}
+
+static int add_triangles(struct client_scene *s, const Endosim__SceneChunk *m)
+{
+	size_t n = m->n_indices / 3, first = m->first_triangle;
+
+	if (!n || m->n_indices % 3 || first + n > s->triangles) {
+		return -EPROTO;
+	}
+	for (size_t i = 0; i < 3 * n; i++) {
+		if (m->indices[i] >= s->vertices) {
+			return -EPROTO;
+		}
+	}
+	memcpy(s->indices[first], m->indices, 3 * n * sizeof(uint32_t));
+	return 0;
+}
+
+static int scene_alloc(struct client_scene *s)
+{
+	size_t v = s->vertices, t = s->triangles;
+
+	s->positions = malloc(v * sizeof(*s->positions));
+	s->normals = malloc(v * sizeof(*s->normals));
+	s->vertex_sample = malloc(v * sizeof(*s->vertex_sample));
+	s->vertex_offset = malloc(v * sizeof(*s->vertex_offset));
+	s->normal_offset = malloc(v * sizeof(*s->normal_offset));
+	s->indices = malloc(t * sizeof(*s->indices));
+	return s->positions && s->normals && s->vertex_sample &&
+			       s->vertex_offset && s->normal_offset &&
+			       s->indices ? 0 : -ENOMEM;
+}
+
+/* Chunk 0, then the rest; -EAGAIN when the case changed meanwhile. */
+static int fetch_scene(struct client *c, struct client_scene *s,
+		       int timeout_ms, Endosim__Status *status)
+{
+	Endosim__Reply *rep;
+	uint32_t chunks;
+	size_t got_v = 0, got_t = 0;
+	int r = scene_chunk(c, 0, 0, &s->info_reply, timeout_ms, status);
+
+	if (r) {
+		return r;
+	}
+	s->scene_id = s->info_reply->scene->scene_id;
+	s->info = s->info_reply->scene->info;
+	s->vertices = s->info->vertices;
+	s->triangles = s->info->triangles;
+	chunks = s->info_reply->scene->chunks;
+	r = scene_alloc(s);
+	for (uint32_t k = 1; !r && k < chunks; k++) {
+		const Endosim__SceneChunk *m;
+
+		r = scene_chunk(c, k, s->scene_id, &rep, timeout_ms, status);
+		if (r) {
+			break;
+		}
+		m = rep->scene->mesh;
+		r = m->n_indices ? add_triangles(s, m) : add_vertices(s, m);
+		got_v += m->n_vertex_sample;
+		got_t += m->n_indices / 3;
+		endosim__reply__free_unpacked(rep, NULL);
+	}
+	if (!r && (got_v != s->vertices || got_t != s->triangles)) {
+		r = -EPROTO; /* chunks missing or repeated */
+	}
+	return r;
+}
+
+int client_get_scene(struct client *c, struct client_scene **out,
+		     int timeout_ms, Endosim__Status *status)
+{
+	int r = -EAGAIN;
+
+	for (int attempt = 0; attempt < 3 && r == -EAGAIN; attempt++) {
+		struct client_scene *s = calloc(1, sizeof(*s));
+
+		if (!s) {
+			return -ENOMEM;
+		}
+		r = fetch_scene(c, s, timeout_ms, status);
+		if (!r) {
+			*out = s;
+			return 0;
+		}
+		client_scene_free(s);
+	}
+	return r;
+}
+
 const char *client_status_text(Endosim__Status status)
 {
 	static const char *const text[] = {

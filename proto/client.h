@@ -11,6 +11,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "endosim.pb-c.h"
 
@@ -51,6 +52,40 @@ int client_request(struct client *c, Endosim__Request *req,
 
 /* Waits up to TIMEOUT_MS for the next message (e.g. a push). Same returns. */
 int client_receive(struct client *c, Endosim__Reply **reply, int timeout_ms);
+
+/*
+ * A whole scene (GetScene, every chunk), the arrays gathered: the colon
+ * the daemon renders, as the viewer draws it. info points into the reply
+ * of chunk 0 (regions, polyps, segments, centreline); the mesh arrays are
+ * malloc'd. Free with client_scene_free().
+ */
+struct client_scene {
+	uint64_t scene_id;
+	const Endosim__SceneInfo *info;
+	uint32_t vertices;
+	uint32_t triangles;
+	float (*positions)[3];     /* m, undeformed */
+	float (*normals)[3];       /* into the lumen */
+	uint32_t *vertex_sample;   /* centreline sample of each vertex */
+	float (*vertex_offset)[3]; /* in that sample's frame (t, u, v), m */
+	float (*normal_offset)[3];
+	uint32_t (*indices)[3];
+	Endosim__Reply *info_reply; /* owns info */
+};
+
+/*
+ * Fetches the scene chunk by chunk, each within TIMEOUT_MS; starts again
+ * (up to 3 times) when the daemon changes case meanwhile. Returns 0 with
+ * *OUT, or a negative errno: client_request()'s, -EPROTO for a reply that
+ * does not add up (sizes, indices out of range), -EAGAIN when the case
+ * kept changing, -ENOMEM. On a refusal, -EACCES with the status in
+ * *STATUS (may be NULL).
+ */
+int client_get_scene(struct client *c, struct client_scene **out,
+		     int timeout_ms, Endosim__Status *status);
+
+/* NULL is fine. */
+void client_scene_free(struct client_scene *s);
 
 /* "ok", "read-only socket", ...: the meaning of a reply's status. */
 const char *client_status_text(Endosim__Status status);

@@ -24,7 +24,7 @@
 #include "seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 1u
+#define ENDOSIM_SHM_VERSION 2u /* 2: the scope and the colon's bows */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
@@ -80,6 +80,34 @@ struct endosim_axis_state {
 	uint32_t reserved;
 };
 
+#define ENDOSIM_TUBE_POINTS 128 /* the scope's shape, anal verge to tip */
+#define ENDOSIM_SPANS 4         /* mobile colon segments published */
+
+/*
+ * The endoscope as the force loop sees it this cycle, in the colon's
+ * coordinates (m; x to the patient's left, y anterior, z cranial), and
+ * the colon's deformation. s is the material arc length from the anal
+ * verge on the undeformed colon (GetScene's centreline); a viewer bows its
+ * copy of the centreline by bow_m with the daemon's algorithm
+ * (daemon/centreline.h) to draw exactly what the haptics use.
+ */
+struct endosim_scope_state {
+	uint64_t scene_id;    /* GetScene's scene_id of the colon in use */
+	double depth_m;       /* inserted length of tube, clamped */
+	double roll_rad;
+	double bend_rad[2];   /* tip bending: up/down, left/right */
+	double base_s_m;      /* where the bending section starts */
+	double tip_s_m;       /* centreline sample nearest the tip */
+	double turning_rad;   /* integrated curvature up to base_s_m */
+	double tip[3];        /* m */
+	double dir[3];        /* unit view direction */
+	double up[3];         /* unit camera up, normal to dir */
+	uint32_t spans;       /* mobile segments in bow_m */
+	uint32_t reserved;
+	double bow_m[ENDOSIM_SPANS]; /* each mobile segment's bow amplitude */
+	float tube[ENDOSIM_TUBE_POINTS][3]; /* m, evenly along the tube */
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -96,6 +124,7 @@ struct endosim_state {
 	uint32_t scenario_done; /* 1 once a scenario without repeat ended */
 	uint32_t fault_first; /* the enum endosim_fault bit of the first fault */
 	struct endosim_axis_state axis[ENDOSIM_AXES];
+	struct endosim_scope_state scope;
 };
 
 struct endosim_shm {

@@ -14,6 +14,8 @@ TOP=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 : "${BUILD:=build}"
 case "$BUILD" in /*) ;; *) BUILD="$TOP/$BUILD" ;; esac
 ENDOSIMD="$BUILD/endosimd"
+# the shipped cases from the source tree (installed: $(DATADIR)/cases)
+CASES="$TOP/config/cases"
 ENDOCTL="$BUILD/endoctl"
 TOOLS="$BUILD/tests"
 
@@ -90,10 +92,21 @@ wait_for() {
 	return 1
 }
 
-# start_daemon [ARGS...]: endosimd on the simulated rig, in the background.
+# What every daemon of a test gets: its own socket directory and shm name,
+# no socket group (tests need not create one), the source tree's cases.
+DAEMON_ARGS=(--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group=
+	--set "case.directory=$CASES")
+
+# endosimd ARGS...: the daemon in the foreground with DAEMON_ARGS.
+endosimd() {
+	"$ENDOSIMD" "${DAEMON_ARGS[@]}" "$@"
+}
+
+# start_daemon [ARGS...]: endosimd on the simulated rig, in the background
+# (not through the function above: $! must be the daemon's own pid).
 start_daemon() {
-	"$ENDOSIMD" --config "$TOP/config/endosimd.conf" --socket-dir "$SOCK" \
-		--shm-name "$SHM" --set socket.group= "$@" >>"$LOG" 2>&1 &
+	"$ENDOSIMD" "${DAEMON_ARGS[@]}" --config "$TOP/config/endosimd.conf" \
+		"$@" >>"$LOG" 2>&1 &
 	DAEMON_PID=$!
 	if ! wait_for ctl status; then
 		echo "# endosimd did not come up; its log:"

@@ -10,8 +10,10 @@ check "make install into a staging root" make -C "$TOP" --no-print-directory \
 check "daemon in sbin" test -x "$root/usr/sbin/endosimd"
 check "endoctl in bin" test -x "$root/usr/bin/endoctl"
 check "configuration in etc/endosim" test -f "$root/etc/endosim/endosimd.conf"
+check "the cases installed" test -f "$root/usr/share/endosim/cases/normal.case"
 check "the installed configuration validates" \
-	"$root/usr/sbin/endosimd" --check-config --config "$root/etc/endosim/endosimd.conf"
+	"$root/usr/sbin/endosimd" --check-config --config "$root/etc/endosim/endosimd.conf" \
+	--set "case.directory=$root/usr/share/endosim/cases"
 unit="$root/usr/lib/systemd/system/endosimd.service"
 check "unit installed" test -f "$unit"
 check "unit paths substituted" grep -q "^ExecStart=$root/usr/sbin/endosimd --config $root/etc/endosim/endosimd.conf$" "$unit"

@@ -10,7 +10,7 @@ fi
 chmod 0777 "$TMP"
 setpriv --reuid=65534 --regid=65534 --clear-groups --inh-caps=-all \
 	--bounding-set=-all "$ENDOSIMD" --config "$TOP/config/endosimd.conf" \
-	--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group= >>"$LOG" 2>&1 &
+	"${DAEMON_ARGS[@]}" >>"$LOG" 2>&1 &
 DAEMON_PID=$!
 check "comes up without privileges" wait_for ctl status
 check "reports SCHED_OTHER" test "$(status_field .rt_policy)" = SCHED_OTHER

@@ -16,8 +16,8 @@ vg="$TMP/valgrind.log"
 valgrind --leak-check=full --show-leak-kinds=definite,indirect,possible \
 	--errors-for-leak-kinds=definite,indirect,possible --error-exitcode=99 \
 	--log-file="$vg" "$ENDOSIMD" --config "$TOP/config/endosimd.conf" \
-	--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group= \
-	--scenario "$TOP/config/scenarios/demo.scn" >>"$LOG" 2>&1 &
+	"${DAEMON_ARGS[@]}" --scenario "$TOP/config/scenarios/demo.scn" \
+	>>"$LOG" 2>&1 &
 DAEMON_PID=$!
 WAIT_S=30
 check "comes up under valgrind" wait_for ctl status

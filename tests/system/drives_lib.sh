@@ -84,8 +84,8 @@ start_on() {
 refused_at_start() {
 	local conf=$1 want=$2 what=$3 rc
 	shift 3
-	timeout 30 "$ENDOSIMD" --config "$conf" --socket-dir "$SOCK" \
-		--shm-name "$SHM" --set socket.group= "$@" >"$TMP/failed.log" 2>&1
+	timeout 30 "$ENDOSIMD" --config "$conf" "${DAEMON_ARGS[@]}" "$@" \
+		>"$TMP/failed.log" 2>&1
 	rc=$?
 	[ "$rc" = "$want" ] || { echo "exit $rc, expected $want"; return 1; }
 	grep -qF -- "$what" "$TMP/failed.log" || { cat "$TMP/failed.log"; return 1; }

@@ -27,6 +27,17 @@ static void print_once(const struct endosim_state *st)
 		       st->axis[a].position, names_axis(a),
 		       st->axis[a].limited);
 	}
+	printf("scope.depth_m=%.9g\nscope.tip_s_m=%.9g\nscope.spans=%u\n",
+	       st->scope.depth_m, st->scope.tip_s_m, st->scope.spans);
+	printf("scope.tip=%.6f,%.6f,%.6f\n", st->scope.tip[0],
+	       st->scope.tip[1], st->scope.tip[2]);
+	/* the tube's last point is the tip, its first the anal verge */
+	printf("scope.tube_last=%.6f,%.6f,%.6f\n",
+	       st->scope.tube[ENDOSIM_TUBE_POINTS - 1][0],
+	       st->scope.tube[ENDOSIM_TUBE_POINTS - 1][1],
+	       st->scope.tube[ENDOSIM_TUBE_POINTS - 1][2]);
+	printf("scope.tube_first=%.6f,%.6f,%.6f\n", st->scope.tube[0][0],
+	       st->scope.tube[0][1], st->scope.tube[0][2]);
 }
 
 /* Checks a copy against its own invariants and against the previous one. */

@@ -1,0 +1,148 @@
+/*
+ * anatomy.h - a colonoscopy case: the colon's anatomy by its segments from
+ * the anal verge, and its pathologies, read from a case file.
+ *
+ * Case file format (config/cases/NAME.case): lines "key = value" under
+ * section headers; '#' starts a comment; blank lines are ignored.
+ *
+ *   [case]                      once, first
+ *   name = normal               required; letters, digits, '-', '_'
+ *   description = free text     optional
+ *
+ *   [lumen]                     optional, defaults shown
+ *   taenia_angle_deg = 0        where the first of the three taeniae runs,
+ *                               around the centreline from the frame's u
+ *   taenia_depth = 0.10         fraction of the radius the taeniae pull in
+ *   fold_depth = 0.15           fraction of the radius a haustral fold
+ *                               narrows the lumen (midway between taeniae)
+ *   fold_spacing_m = 0.03       distance between folds along the colon
+ *   fold_width_m = 0.005        half-width of a fold
+ *
+ *   [segment NAME]              all nine, in this order: anal_canal, rectum,
+ *                               sigmoid, descending, splenic_flexure,
+ *                               transverse, hepatic_flexure, ascending, cecum
+ *   length_m = 0.37             required, along the centreline
+ *   diameter_m = 0.045          required, lumen diameter
+ *   taenia_depth = 0.1          optional, overrides [lumen] (0: round)
+ *   fold_depth = 0.15           optional, overrides [lumen] (0: no folds)
+ *   mobile = yes                optional (default no): on a mesentery, may
+ *                               bow; not the first or last segment, and
+ *                               never two mobile segments side by side
+ *   mesentery_n_per_m = 150     stiffness of the mesentery (mobile only)
+ *   mesentery_height_m = 0.06   largest bow of the segment (mobile only)
+ *   bend = ANGLE_DEG RADIUS_M PLANE_DEG
+ *                               repeatable, up to ANATOMY_MAX_BENDS: an arc
+ *                               of ANGLE_DEG (0..180) with radius RADIUS_M;
+ *                               PLANE_DEG turns the bending direction about
+ *                               the tangent from the previous bend's (0:
+ *                               the same sense, 180: back, an S; 90 and 270
+ *                               out of that plane). The first bend of the
+ *                               case counts from the patient's anterior.
+ *                               A segment's straight remainder is shared
+ *                               equally before, between and after its bends.
+ *
+ *   [polyp]                     repeatable, up to ANATOMY_MAX_POLYPS
+ *   s_m = 0.62                  required: distance from the anal verge
+ *   angle_deg = 45              required: around the lumen from the frame's u
+ *   diameter_m = 0.008          required
+ *   shape = sessile             sessile (default), pedunculated or flat
+ *
+ * Coordinates (colon.h): metres, x to the patient's left, y anterior, z
+ * cranial; the anal verge at the origin, the colon starting cranially.
+ *
+ * Checks beyond each value's range: every segment present and in order,
+ * bends fit in their segment, no bend tighter than the lumen radius (the
+ * wall would fold on the inside of the bend), mobile segments as above,
+ * polyps inside the colon and smaller than the lumen.
+ *
+ * Errors are one line "FILE:LINE: key: what" (or "FILE:LINE: [section]:
+ * what") in the caller's buffer. Loading reads the file and does not
+ * allocate beyond stdio; struct anatomy is plain data (copy it freely).
+ * Any thread.
+ */
+#ifndef ENDOSIM_ANATOMY_H
+#define ENDOSIM_ANATOMY_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define ANATOMY_SEGMENTS 9
+#define ANATOMY_MAX_BENDS 8
+#define ANATOMY_MAX_POLYPS 32
+#define ANATOMY_NAME 64
+#define ANATOMY_TEXT 160
+
+enum anatomy_segment_id {
+	ANATOMY_ANAL_CANAL = 0,
+	ANATOMY_RECTUM,
+	ANATOMY_SIGMOID,
+	ANATOMY_DESCENDING,
+	ANATOMY_SPLENIC_FLEXURE,
+	ANATOMY_TRANSVERSE,
+	ANATOMY_HEPATIC_FLEXURE,
+	ANATOMY_ASCENDING,
+	ANATOMY_CECUM,
+};
+
+enum anatomy_polyp_shape {
+	ANATOMY_POLYP_SESSILE = 0,
+	ANATOMY_POLYP_PEDUNCULATED,
+	ANATOMY_POLYP_FLAT,
+};
+
+struct anatomy_bend {
+	double angle_rad;  /* 0..pi */
+	double radius_m;   /* of the arc, > lumen radius */
+	double plane_rad;  /* about the tangent, from the previous bend's */
+};
+
+struct anatomy_segment {
+	double length_m;
+	double diameter_m;
+	double taenia_depth;       /* fraction of the radius, 0..0.4 */
+	double fold_depth;         /* fraction of the radius, 0..0.5 */
+	bool mobile;
+	double mesentery_n_per_m;  /* mobile segments: N/m */
+	double mesentery_height_m; /* mobile segments: largest bow, m */
+	struct anatomy_bend bend[ANATOMY_MAX_BENDS];
+	int bends;
+};
+
+struct anatomy_polyp {
+	double s_m;        /* from the anal verge along the centreline */
+	double angle_rad;  /* around the lumen from the frame's u */
+	double diameter_m;
+	int shape;         /* enum anatomy_polyp_shape */
+};
+
+struct anatomy {
+	char name[ANATOMY_NAME];
+	char description[ANATOMY_TEXT];
+	double taenia_angle_rad;
+	double fold_spacing_m;
+	double fold_width_m;
+	struct anatomy_segment seg[ANATOMY_SEGMENTS];
+	struct anatomy_polyp polyp[ANATOMY_MAX_POLYPS];
+	int polyps;
+};
+
+/*
+ * Reads the case file PATH into A. Returns 0, -ENOENT or another negative
+ * errno when it cannot be read, or -EINVAL with one line in ERR.
+ */
+int anatomy_load(struct anatomy *a, const char *path, char *err,
+		 size_t errsize);
+
+/* "anal_canal", ..., "cecum"; "?" when out of range. */
+const char *anatomy_segment_name(int id);
+
+/* "sessile", "pedunculated", "flat"; "?" when out of range. */
+const char *anatomy_polyp_shape_name(int shape);
+
+/* Sum of the segments' lengths, m. */
+double anatomy_length(const struct anatomy *a);
+
+/* Distance from the anal verge to the start of segment ID, m. */
+double anatomy_segment_start(const struct anatomy *a, int id);
+
+#endif

@@ -1,0 +1,45 @@
+/*
+ * cases.h - which colon the daemon runs: the case the configuration names
+ * ([case] file, or [case] directory/name.case) or one loaded by name, and
+ * the list of case files in [case] directory.
+ *
+ * A case name is letters, digits, '-' and '_' (config_case_name_ok()), so
+ * a name never leaves the directory; NAME.case must call itself NAME. A [case] file ending in ".obj" is an
+ * imported mesh (colon_import()) with [case] centreline_file.
+ *
+ * These read files and build the model (~50 ms at the default
+ * resolution, ~0.5 s at 2 million triangles): main or control thread
+ * only, never the force loop. Thread-safe (no shared state).
+ */
+#ifndef ENDOSIM_CASES_H
+#define ENDOSIM_CASES_H
+
+#include <stddef.h>
+
+#include "anatomy.h"
+#include "colon.h"
+#include "config.h"
+
+struct cases_entry {
+	char name[ANATOMY_NAME];
+	char description[ANATOMY_TEXT];
+};
+
+/*
+ * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is
+ * NULL, the configured one. NULL with one line in ERR ("FILE:LINE: ..."
+ * for a broken file).
+ */
+struct colon *cases_load(const struct config *cfg, const char *name,
+			 char *err, size_t errsize);
+
+/*
+ * The cases in DIR (files NAME.case that parse), sorted by name: a
+ * malloc'd array of *N entries in *OUT (free() it). A file that does not
+ * parse is left out and the first such error put in ERR (else ""). Returns
+ * 0 or a negative errno (DIR unreadable, ENOMEM) with ERR set.
+ */
+int cases_list(const char *dir, struct cases_entry **out, size_t *n,
+	       char *err, size_t errsize);
+
+#endif

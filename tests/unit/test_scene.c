@@ -1,0 +1,144 @@
+/*
+ * test_scene.c - GetScene's replies: chunk 0 carries the case and its
+ * centreline, the other chunks cover every vertex and triangle exactly
+ * once, in order, each packed reply within a few MiB even at 2 million
+ * triangles, and what they carry is the colon itself.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "cases.h"
+#include "config.h"
+#include "scene.h"
+
+#define MAX_REPLY_BYTES (4u << 20)
+
+static struct colon *load(const char *name, double step, int ring)
+{
+	struct config cfg;
+	char err[512];
+	struct colon *c;
+
+	config_defaults(&cfg);
+	snprintf(cfg.colon.directory, sizeof(cfg.colon.directory), "%s",
+		 "config/cases");
+	cfg.colon.step_m = step;
+	cfg.colon.ring_vertices = ring;
+	c = cases_load(&cfg, name, err, sizeof(err));
+	if (!c) {
+		print_error("%s\n", err);
+		fail();
+	}
+	return c;
+}
+
+static void check_chunks(const struct colon *c)
+{
+	const struct mesh *m = colon_mesh(c);
+	struct scene *s = scene_create(c, 7);
+	uint32_t next_v = 0, next_t = 0;
+	Endosim__SceneReply *r;
+
+	assert_non_null(s);
+	r = scene_reply(s, 0);
+	assert_non_null(r);
+	assert_int_equal(r->scene_id, 7);
+	assert_int_equal(r->chunks, scene_chunks(s));
+	assert_string_equal(r->info->name, colon_name(c));
+	assert_int_equal(r->info->vertices, m->vertices);
+	assert_int_equal(r->info->triangles, m->triangles);
+	assert_int_equal(r->info->n_centreline,
+			 3 * centreline_count(colon_centreline(c)));
+	assert_memory_equal(&r->info->centreline[3 * 5],
+			    centreline_base(colon_centreline(c), 5)->p,
+			    3 * sizeof(double));
+	assert_int_equal(r->info->n_segments, m->segments);
+	assert_int_equal(r->info->n_span_s, 4);
+	assert_true(endosim__scene_reply__get_packed_size(r) < MAX_REPLY_BYTES);
+	for (uint32_t k = 1; k < scene_chunks(s); k++) {
+		const Endosim__SceneChunk *ch;
+
+		r = scene_reply(s, k);
+		assert_non_null(r);
+		ch = r->mesh;
+		assert_true(endosim__scene_reply__get_packed_size(r) <
+			    MAX_REPLY_BYTES);
+		if (ch->n_indices) {
+			assert_int_equal(next_v, m->vertices);
+			assert_int_equal(ch->first_triangle, next_t);
+			assert_memory_equal(ch->indices, m->tri[next_t],
+					    ch->n_indices * sizeof(uint32_t));
+			next_t += (uint32_t)ch->n_indices / 3;
+			continue;
+		}
+		assert_int_equal(ch->first_vertex, next_v);
+		assert_int_equal(ch->n_positions, 3 * ch->n_vertex_sample);
+		assert_memory_equal(ch->positions, m->pos[next_v],
+				    ch->n_positions * sizeof(float));
+		assert_memory_equal(ch->vertex_sample, &m->sample[next_v],
+				    ch->n_vertex_sample * sizeof(uint32_t));
+		next_v += (uint32_t)ch->n_vertex_sample;
+	}
+	assert_int_equal(next_v, m->vertices);
+	assert_int_equal(next_t, m->triangles);
+	assert_null(scene_reply(s, scene_chunks(s)));
+	scene_destroy(s);
+}
+
+static void test_chunks_cover_default_mesh(void **state)
+{
+	struct colon *c = load("polyps", 0.002, 192);
+	struct scene *s = scene_create(c, 1);
+	Endosim__SceneReply *r = scene_reply(s, 0);
+
+	(void)state;
+	assert_int_equal(r->info->n_polyps, 5);
+	assert_int_equal(r->info->n_regions, 9);
+	assert_string_equal(r->info->regions[8]->name, "cecum");
+	assert_true(r->info->cecum_s_m > 1.3);
+	scene_destroy(s);
+	check_chunks(c);
+	colon_destroy(c);
+}
+
+static void test_chunks_stay_small_at_two_million(void **state)
+{
+	struct colon *c = load("normal", 0.001, 672);
+
+	(void)state;
+	assert_true(colon_mesh(c)->triangles > 2000000);
+	check_chunks(c);
+	colon_destroy(c);
+}
+
+static void test_bad_case_name_refused(void **state)
+{
+	struct config cfg;
+	char err[512];
+
+	(void)state;
+	config_defaults(&cfg);
+	snprintf(cfg.colon.directory, sizeof(cfg.colon.directory), "%s",
+		 "config/cases");
+	assert_null(cases_load(&cfg, "../cases/normal", err, sizeof(err)));
+	assert_non_null(strstr(err, "not a case name"));
+	assert_null(cases_load(&cfg, "nope", err, sizeof(err)));
+	assert_non_null(strstr(err, "config/cases/nope.case: cannot open"));
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_chunks_cover_default_mesh),
+		cmocka_unit_test(test_chunks_stay_small_at_two_million),
+		cmocka_unit_test(test_bad_case_name_refused),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
