@@ -24,7 +24,8 @@
 #include "seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 2u /* 2: the scope and the colon's bows */
+#define ENDOSIM_SHM_VERSION 3u /* 2: the scope and the colon's bows;
+				  3: the haptic rendering's forces */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
@@ -108,6 +109,38 @@ struct endosim_scope_state {
 	float tube[ENDOSIM_TUBE_POINTS][3]; /* m, evenly along the tube */
 };
 
+/*
+ * The haptic rendering this cycle (Koerner and Maenner, section 5): the
+ * god-object contact of the tip, the translational force on the tube, the
+ * torques on the tube and the wheels, each by its part. Forces in N,
+ * torques in N m, along or about the axes of struct endosim_axis_state.
+ * The sum of the parts of an axis is that axis' `command`.
+ */
+struct endosim_haptics_state {
+	double proxy[3];          /* god-object: where the tip may be, m */
+	double normal[3];         /* unit contact normal, into the lumen */
+	double f_static[3];       /* k_wall (proxy - tip) + damping, N */
+	double penetration_m;     /* |proxy - tip| */
+	uint32_t contact;         /* 1 while the wall holds the tip */
+	uint32_t constraints;     /* active constraint planes, 0..3 */
+	double curvature_rad;     /* total turning angle of the inserted tube */
+	/* insertion axis, N */
+	double trans_contact_n;   /* the contact force's virtual work on d */
+	double trans_friction_n;  /* -c_f v sum |r(i) - 2 r(i+1) + r(i+2)|/ds */
+	double trans_loop_n;      /* the mesenteries of bowed segments */
+	/* wheels (up/down, left/right), N m */
+	double wheel_contact_nm[2]; /* the contact force's virtual work */
+	double wheel_tension_nm[2]; /* wire tension from the tube's bends */
+	double wheel_elastic_nm[2]; /* the bending section springing back */
+	double wire_dl_m[2];      /* wire length differences, m */
+	/* roll axis, N m */
+	double tube_contact_nm;   /* the contact force's virtual work */
+	double tube_friction_nm;  /* torsional friction */
+	/* stability */
+	double passivity_energy_j; /* the passivity observer's energy */
+	double passivity_damping;  /* damping it added this cycle, N s/m */
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -125,6 +158,7 @@ struct endosim_state {
 	uint32_t fault_first; /* the enum endosim_fault bit of the first fault */
 	struct endosim_axis_state axis[ENDOSIM_AXES];
 	struct endosim_scope_state scope;
+	struct endosim_haptics_state haptics;
 };
 
 struct endosim_shm {
