@@ -76,14 +76,15 @@ PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
 
 # the colon and the endoscope: case files, centreline, mesh, OBJ, the
 # model that ties them, the scope's kinematics
-COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o
+COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 
 # endosimd: main, configuration, logging, the force loop and what it calls
 # (rig backends, hand, haptics, safety, publish, the colon and the scope),
 # the control thread with the cases and the scene it serves
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
-	      safety.o control.o cases.o scene.o $(COLON_OBJS) $(DRIVE_OBJS)
+	      safety.o godobject.o control.o cases.o scene.o $(COLON_OBJS) \
+	      $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
@@ -100,26 +101,33 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
-	     test_config_drives test_colon test_scope test_scene
+	     test_config_drives test_colon test_scope test_scene \
+	     test_godobject test_haptics
 test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
-test_safety_OBJS = safety.o haptics.o config.o regmap.o log.o names.o
+test_safety_OBJS = safety.o config.o regmap.o log.o names.o
 test_epos4_frame_OBJS = epos4_frame.o
 test_canopen_OBJS = canopen.o
 test_regmap_OBJS = regmap.o
 test_config_drives_OBJS = config.o regmap.o log.o names.o drive.o histo.o
 test_colon_OBJS = $(COLON_OBJS)
+test_godobject_OBJS = $(COLON_OBJS) godobject.o
+test_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o plant.o config.o \
+		    regmap.o log.o names.o
 test_scope_OBJS = $(COLON_OBJS)
 test_scene_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
 		  endosim.pb-c.o $(COLON_OBJS)
-TEST_TOOLS = shm_probe shm_latency obj_import
+TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)
-BENCH_TOOLS = bench_colon
+scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
+BENCH_TOOLS = bench_colon bench_haptics
+bench_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o histo.o hand.o \
+		     scenario.o rig_sim.o plant.o config.o regmap.o log.o names.o
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against
@@ -183,6 +191,12 @@ unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
 	$(BENCH_TOOLS))
 
 # benchmarks: programs that print figures (tests/bench/)
+$(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
+		$(call obj,$(bench_haptics_OBJS))
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< \
+		$(call obj,$(bench_haptics_OBJS)) $(LDFLAGS) $(LDLIBS)
+
 $(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \
 		$(call obj,$(COLON_OBJS))
 	@mkdir -p $(dir $@)

@@ -12,6 +12,7 @@ static void params(const struct config *cfg, struct colon_params *p)
 	p->step_m = cfg->colon.step_m;
 	p->ring_vertices = (uint32_t)cfg->colon.ring_vertices;
 	p->segment_m = cfg->colon.segment_m;
+	p->contact_radius_m = cfg->haptics.scope_radius_m;
 }
 
 static bool ends_with(const char *s, const char *tail)

@@ -19,6 +19,7 @@ struct colon {
 	bool generated;
 	struct centreline *cl;
 	struct mesh *mesh;
+	struct contact *contact;
 	struct colon_region region[COLON_MAX_REGIONS];
 	int regions;
 	double cecum_s;
@@ -211,12 +212,89 @@ static int check_params(const struct colon_params *p, char *err,
 {
 	if (!(p->step_m >= 0.0002 && p->step_m <= 0.01) ||
 	    p->ring_vertices < 8 || p->ring_vertices > 4096 ||
-	    !(p->segment_m >= 0.01 && p->segment_m <= 0.5)) {
+	    !(p->segment_m >= 0.01 && p->segment_m <= 0.5) ||
+	    !(p->contact_radius_m >= 0 && p->contact_radius_m <= 0.02)) {
 		snprintf(err, errsize, "colon: step %g m (0.0002..0.01), "
 			 "ring of %u vertices (8..4096), segments of %g m "
-			 "(0.01..0.5): out of range", p->step_m,
-			 p->ring_vertices, p->segment_m);
+			 "(0.01..0.5), contact radius %g m (0..0.02): out of "
+			 "range", p->step_m, p->ring_vertices, p->segment_m,
+			 p->contact_radius_m);
 		return -EINVAL;
+	}
+	return 0;
+}
+
+/*
+ * The haptics' surface: the mesh as built (before any bow) moved into the
+ * lumen by the tip's radius. Where the wall runs along the colon (the
+ * tube, its folds, the inside of tight flexures) each ring shrinks towards
+ * its centreline sample within the sample's normal plane: rings stay in
+ * their planes, so the surface keeps the mesh's guarantee that no two
+ * rings cross (mesh.h), which an inset along the vertex normals would break
+ * in creases sharper than the radius. In the cecum's cap (the last lumen
+ * radius of a generated colon), where the wall faces along the colon, the
+ * vertex moves along its normal instead; the two blend where the normal is
+ * between 30 and 45 deg from the tangent. The radial part never exceeds
+ * CONTACT_INSET_SHARE of the vertex' distance from the centreline.
+ */
+#define CONTACT_INSET_SHARE 0.8
+#define CAP_FROM 0.5 /* |normal . tangent| where the cap blend starts */
+#define CAP_TO 0.7   /* and where it is all normal */
+
+/* The cecum's cap: the last lumen radius of a generated colon. */
+static bool in_cap(const struct colon *c, uint32_t sample)
+{
+	double s = (double)sample * centreline_step(c->cl);
+	double r = c->anatomy.seg[ANATOMY_CECUM].diameter_m / 2;
+
+	return c->generated && s > centreline_length(c->cl) - r;
+}
+
+static void inset_vertex(const struct colon *c, uint32_t v, double radius_m,
+			 float out[3])
+{
+	const struct mesh *m = c->mesh;
+	const struct centreline_point *q = centreline_base(c->cl, m->sample[v]);
+	double d[3], w[3], n[3], rho, cap = 0;
+
+	vec3_set(d, m->pos[v][0] - q->p[0], m->pos[v][1] - q->p[1],
+		 m->pos[v][2] - q->p[2]);
+	vec3_set(n, m->nrm[v][0], m->nrm[v][1], m->nrm[v][2]);
+	vec3_axpy(w, d, -vec3_dot(d, q->t), q->t);
+	rho = vec3_normalize(w);
+	if (in_cap(c, m->sample[v])) {
+		cap = fmin(fmax((fabs(vec3_dot(n, q->t)) - CAP_FROM) /
+				(CAP_TO - CAP_FROM), 0), 1);
+	}
+	vec3_axpy(d, d, -(1 - cap) * fmin(radius_m, CONTACT_INSET_SHARE * rho),
+		  w);
+	vec3_axpy(d, d, cap * radius_m, n);
+	for (int k = 0; k < 3; k++) {
+		out[k] = (float)(q->p[k] + d[k]);
+	}
+}
+
+static int make_contact(struct colon *c, double radius_m, char *err,
+			size_t errsize)
+{
+	const struct mesh *m = c->mesh;
+	float (*pos)[3] = malloc(m->vertices * sizeof(*pos));
+
+	if (pos) {
+		for (uint32_t v = 0; v < m->vertices; v++) {
+			inset_vertex(c, v, radius_m, pos[v]);
+		}
+		c->contact = contact_create((const float(*)[3])pos,
+					    (const float(*)[3])m->nrm,
+					    m->vertices,
+					    (const uint32_t(*)[3])m->tri,
+					    m->triangles, m->seg, m->segments);
+		free(pos);
+	}
+	if (!c->contact) {
+		snprintf(err, errsize, "%s: out of memory for the contact "
+			 "surface", c->name);
+		return -ENOMEM;
 	}
 	return 0;
 }
@@ -366,7 +444,8 @@ struct colon *colon_create(const struct anatomy *a,
 	}
 	make_rings(c, p->ring_vertices);
 	if (mesh_finish(c->mesh, c->cl, p->segment_m, MESH_FROM_OFFSETS, err,
-			errsize)) {
+			errsize) ||
+	    make_contact(c, p->contact_radius_m, err, errsize)) {
 		goto fail;
 	}
 	return c;
@@ -381,6 +460,7 @@ void colon_destroy(struct colon *c)
 	if (!c) {
 		return;
 	}
+	contact_destroy(c->contact);
 	mesh_destroy(c->mesh);
 	centreline_destroy(c->cl);
 	free(c);
@@ -527,7 +607,8 @@ struct colon *colon_import(const char *obj_path, const char *centreline_path,
 	    make_centreline(c, pts, n, centreline_path ? centreline_path
 						       : obj_path,
 			    p->step_m, err, errsize) ||
-	    make_import_mesh(c, &d, obj_path, p->segment_m, err, errsize)) {
+	    make_import_mesh(c, &d, obj_path, p->segment_m, err, errsize) ||
+	    make_contact(c, p->contact_radius_m, err, errsize)) {
 		goto free_colon;
 	}
 	free(pts);
@@ -591,6 +672,11 @@ struct centreline *colon_centreline(const struct colon *c)
 	return c->cl;
 }
 
+const struct contact *colon_contact(const struct colon *c)
+{
+	return c->contact;
+}
+
 struct mesh *colon_mesh(const struct colon *c)
 {
 	return c->mesh;
@@ -627,5 +713,6 @@ int colon_bow(struct colon *c, int span, double amplitude_m, bool place_mesh)
 
 size_t colon_bytes(const struct colon *c)
 {
-	return sizeof(*c) + mesh_bytes(c->mesh) + centreline_bytes(c->cl);
+	return sizeof(*c) + mesh_bytes(c->mesh) + centreline_bytes(c->cl) +
+	       contact_bytes(c->contact);
 }

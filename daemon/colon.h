@@ -23,6 +23,9 @@
  *
  * Mobile segments are the centreline's spans, in order (colon_bow()).
  *
+ * Contact: each model also carries the contact surface of the haptics
+ * (contact.h), built from its mesh before any bow.
+ *
  * Allocation: colon_create() and colon_import() allocate everything; the
  * rest does not. colon_bow() is safe in the force loop (no allocation, no
  * I/O): ~0.1 us per span sample (the sigmoid: ~20 us); moving the span's
@@ -41,6 +44,7 @@
 
 #include "anatomy.h"
 #include "centreline.h"
+#include "contact.h"
 #include "mesh.h"
 
 #define COLON_MAX_REGIONS ANATOMY_SEGMENTS
@@ -49,10 +53,12 @@ struct colon_params {
 	double step_m;          /* centreline and ring spacing, 0.0002..0.01 */
 	uint32_t ring_vertices; /* per ring, 8..4096 */
 	double segment_m;       /* mesh segment length, 0.01..0.5 */
+	double contact_radius_m; /* the scope tip's radius: the contact
+				    surface's inset (contact.h), 0..0.02 */
 };
 
 #define COLON_PARAMS_DEFAULT { .step_m = 0.002, .ring_vertices = 192, \
-			       .segment_m = 0.04 }
+			       .segment_m = 0.04, .contact_radius_m = 0.0065 }
 
 /* A named stretch of the colon: an anatomical segment, or the whole of an
  * imported colon. */
@@ -94,6 +100,10 @@ const char *colon_name(const struct colon *c);
 const struct anatomy *colon_anatomy(const struct colon *c); /* NULL: import */
 struct centreline *colon_centreline(const struct colon *c);
 struct mesh *colon_mesh(const struct colon *c);
+
+/* The surface the tip's centre touches: the mesh as it was built (the
+ * undeformed placement), inset by contact_radius_m (contact.h). */
+const struct contact *colon_contact(const struct colon *c);
 
 int colon_regions(const struct colon *c);
 const struct colon_region *colon_region(const struct colon *c, int i);

@@ -127,10 +127,24 @@ struct config {
 	} shm;
 	struct {
 		double max[ENDOSIM_AXES];      /* N or N m, both directions */
+		double slew[ENDOSIM_AXES];     /* N/s or N m/s */
 	} limits;
-	struct {
+	struct {                               /* haptics.h */
+		double scope_radius_m;         /* the tip: the contact inset */
+		double wall_stiffness_n_per_m;
+		double wall_damping_n_s_per_m;
+		double tip_lateral_stiffness_n_per_m; /* bending section */
+		int force_shading;             /* 1: interpolated normals */
+		double contact_reach_m;        /* colon searched around the tip */
+		double entry_depth_m;          /* contact from this depth on */
+		double friction_n_s_per_m_rad; /* c_f */
+		double torsion_n_m_s_per_rad2; /* roll friction per turning */
+		double wire_spacing_m;         /* dr */
+		double wire_tension_n_m_per_m; /* k_t */
+		double bending_stiffness_n_m_per_rad;
+		double loop_relax_s;           /* how fast a loop follows */
 		double damping[ENDOSIM_AXES];  /* N s/m or N m s/rad */
-		double end_zone;               /* fraction of travel */
+		int passivity;                 /* 1: passivity observer on */
 	} haptics;
 	struct {
 		int level;                     /* syslog level */

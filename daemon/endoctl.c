@@ -131,6 +131,34 @@ static void json_scope(struct json *j, const Endosim__ScopeStatus *sc)
 	json_object_end(j);
 }
 
+static void json_haptics(struct json *j, const Endosim__HapticsStatus *h)
+{
+	json_object_begin(j, "haptics");
+	json_bool(j, "contact", h->contact);
+	json_uint(j, "constraints", h->constraints);
+	json_vector(j, "proxy", h->proxy, h->n_proxy);
+	json_vector(j, "normal", h->normal, h->n_normal);
+	json_vector(j, "f_static", h->f_static, h->n_f_static);
+	json_double(j, "penetration_m", h->penetration_m);
+	json_double(j, "curvature_rad", h->curvature_rad);
+	json_double(j, "trans_contact_n", h->trans_contact_n);
+	json_double(j, "trans_friction_n", h->trans_friction_n);
+	json_double(j, "trans_loop_n", h->trans_loop_n);
+	json_vector(j, "wheel_contact_nm", h->wheel_contact_nm,
+		    h->n_wheel_contact_nm);
+	json_vector(j, "wheel_tension_nm", h->wheel_tension_nm,
+		    h->n_wheel_tension_nm);
+	json_vector(j, "wheel_elastic_nm", h->wheel_elastic_nm,
+		    h->n_wheel_elastic_nm);
+	json_vector(j, "wire_dl_m", h->wire_dl_m, h->n_wire_dl_m);
+	json_double(j, "tube_contact_nm", h->tube_contact_nm);
+	json_double(j, "tube_friction_nm", h->tube_friction_nm);
+	json_vector(j, "damping", h->damping, h->n_damping);
+	json_double(j, "passivity_energy_j", h->passivity_energy_j);
+	json_double(j, "passivity_damping", h->passivity_damping);
+	json_object_end(j);
+}
+
 static void json_status(const Endosim__StatusReply *s)
 {
 	struct json j;
@@ -156,6 +184,9 @@ static void json_status(const Endosim__StatusReply *s)
 	if (s->scope) {
 		json_scope(&j, s->scope);
 	}
+	if (s->haptics) {
+		json_haptics(&j, s->haptics);
+	}
 	json_object_begin(&j, "axes");
 	for (size_t i = 0; i < s->n_axes; i++) {
 		const Endosim__AxisStatus *a = s->axes[i];
@@ -174,6 +205,27 @@ static void json_status(const Endosim__StatusReply *s)
 	}
 	json_object_end(&j);
 	json_object_end(&j);
+}
+
+static void print_haptics(const Endosim__HapticsStatus *h,
+			  const Endosim__ScopeStatus *sc)
+{
+	printf("contact   %s, %.1f mm into the wall, %u plane(s); tube turning "
+	       "%.2f rad\n", h->contact ? "yes" : "no",
+	       h->penetration_m * 1e3, h->constraints, h->curvature_rad);
+	printf("insertion contact %+.2f N, friction %+.2f N, loop %+.2f N\n",
+	       h->trans_contact_n, h->trans_friction_n, h->trans_loop_n);
+	printf("wheels    contact %+.3f/%+.3f, tension %+.3f/%+.3f, elastic "
+	       "%+.3f/%+.3f N m\n", h->wheel_contact_nm[0],
+	       h->wheel_contact_nm[1], h->wheel_tension_nm[0],
+	       h->wheel_tension_nm[1], h->wheel_elastic_nm[0],
+	       h->wheel_elastic_nm[1]);
+	printf("tube      contact %+.3f N m, friction %+.3f N m; loops",
+	       h->tube_contact_nm, h->tube_friction_nm);
+	for (size_t i = 0; i < sc->n_bow_m; i++) {
+		printf(" %.1f mm", sc->bow_m[i] * 1e3);
+	}
+	printf("\n");
 }
 
 static void print_status(const Endosim__StatusReply *s)
@@ -195,6 +247,11 @@ static void print_status(const Endosim__StatusReply *s)
 		       "%.2f rad\n", sc->depth_m, sc->tip_s_m, sc->tip[0],
 		       sc->tip[1], sc->tip[2], sc->bend_rad[0], sc->bend_rad[1],
 		       sc->turning_rad);
+	}
+	if (s->haptics && s->haptics->n_wheel_contact_nm == 2 &&
+	    s->haptics->n_wheel_tension_nm == 2 && s->scope &&
+	    s->scope->n_bow_m <= 4) {
+		print_haptics(s->haptics, s->scope);
 	}
 	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
 	       "velocity", "hand", "command", "limited", "drive");

@@ -1,24 +1,112 @@
 /*
- * haptics.h - the forces the trainee feels.
+ * haptics.h - the forces the trainee feels: Koerner and Maenner, section 5,
+ * generalised where the brief says how. Every cycle of the force loop, from
+ * the scope's pose (scope.h) in the colon (colon.h):
  *
- * PLACEHOLDER until the haptic-rendering issue: no colon yet, only the rig's
- * own safety brakes near each end of travel and a light viscous damping on
- * every axis. The brakes resist motion towards an end over the last
- * [haptics] end_zone_fraction of the travel, growing to the axis' force
- * limit at the end stop; they never push an axis that rests or moves away
- * from the end (so they cannot kick a carriage that starts at its end), and
- * they only take energy out.
+ * Tip contact (5.1). A god-object proxy (godobject.h) against the colon's
+ * wall inset by the tip's radius (contact.h), only the triangles of the
+ * colon's stretch around the tip considered. The static force
+ *   F_static = K (proxy - tip) - (b_wall / k_wall) K v_n
+ * with n the interpolated normal when force_shading is on (one plane), and
+ * never pulling the tip into the wall. Contact works in the colon's
+ * material (undeformed) placement: the tip is mapped there through the
+ * frame of the centreline sample nearest it, and the force mapped back, so
+ * that a bowed segment needs no moving of triangles.
  *
- * Called by the force loop: pure computation, no allocation, no I/O.
+ * Generalised forces by virtual work: with J the Jacobian of the tip
+ * position in (d, phi, bend_ud, bend_lr) (scope.h), the contact part of
+ * each axis is J^T F_static, and of a wheel that times d bend/d wheel. With
+ * a straight tip this is the paper's n . F_static projection: d tip/d bend
+ * = (Lb/2) n, n the wheel's bending direction.
+ *
+ * Insertion (5.2): the contact part, plus the friction
+ *   F_dyn = -c_f v K,  K = sum_i |r(i) - 2 r(i+1) + r(i+2)| / ds
+ * the total turning angle of the inserted tube: the centreline's up to the
+ * bending section (precomputed, following the bows) plus the bending
+ * section's own bend.
+ *
+ * Wheels (5.3): the contact part, plus the wire tension
+ *   tau_k = k_t dL_k,  dL_k = dr sum_i [n_k(i+1) - n_k(i)] . t(i)
+ * over the inserted tube up to the bending section, n_k the wheel's wire
+ * direction (the centreline's rotation-minimising u, v turned by the roll:
+ * up/down u', left/right v'), plus the bending section springing back,
+ * -k_bend bend_k d bend_k/d wheel_k. A planar bend Theta in a wire's plane
+ * gives |dL| = dr Theta; an S-curve cancels.
+ *
+ * Tube roll: the contact part, and torsional friction -c_r omega K.
+ *
+ * Loops (end of 5.2). Each mobile segment (sigmoid, transverse) that the
+ * tube fills entirely behind the bending section can bow by an amplitude A
+ * (centreline.h); stored tube length dL(A) ~ c A^2 (c measured on the
+ * segment). Its mesentery holds the bow with the energy
+ *   U(A) = k A^2 (1 + (A/h)^2) / 2     (k: stiffness, h: its height)
+ * which resists the tube with the axial force F_m(A) = U'(A) / dL'(A)
+ *   = k/(2c) (1 + 2 (A/h)^2)
+ * (a threshold, then stiffening). When the wall resists the tip with more
+ * than that (the tip is held and the hand pushes), the excess tube goes
+ * into the bow: A grows until the tip's axial resistance, which falls as
+ * the stored length pulls the tip back, equals F_m(A). The tip does not
+ * advance, the curvature integral grows (and with it friction and wire
+ * tension), and the force rises with the loop; withdrawing releases it. A
+ * follows that balance with the time constant loop_relax_s. The part of
+ * the insertion force the loop carries is published as trans_loop_n.
+ *
+ * Every axis: a light virtual damping (the feel of a real scope's
+ * inertia; a margin of stability), -b v.
+ *
+ * Stability: a passivity observer and controller (Hannaford and Ryu 2002)
+ * on each axis: the energy the rendered environment took in, exactly as a
+ * sampled device delivers it, E += -F(n-1) (x(n) - x(n-1)) with F(n-1) the
+ * setpoint the drive held over the last period; when E goes negative (the
+ * environment gave out energy it never got, as a stiff spring held over a
+ * period does) damping on the contact part removes that much.
+ *
+ * Units SI, SI names. The struct and its arrays are allocated by
+ * haptics_create(); the rest never allocates, blocks or prints: force loop.
  */
 #ifndef ENDOSIM_HAPTICS_H
 #define ENDOSIM_HAPTICS_H
 
+#include <stdbool.h>
+
+#include "colon.h"
 #include "config.h"
 #include "rig.h"
+#include "scope.h"
 
-/* COMMAND[a]: the force (N) or torque (N m) to render on each axis. */
-void haptics_render(const struct config *cfg, const struct rig_feedback *fb,
-		    double command[ENDOSIM_AXES]);
+struct haptics;
+
+struct haptics_input {
+	const struct config *cfg;
+	struct colon *colon;           /* its mobile spans are bowed here */
+	const struct scope_pose *pose; /* this cycle's kinematics */
+	const struct rig_feedback *fb; /* axes' positions and velocities */
+	double dt_s;                   /* the loop's period */
+	bool torque_on;                /* the forces reach the hand */
+	const double *applied;         /* N, N m per axis: the setpoints the
+					  drives held over the last period */
+};
+
+/* NULL on ENOMEM. */
+struct haptics *haptics_create(void);
+
+/* NULL is fine. */
+void haptics_destroy(struct haptics *h);
+
+/*
+ * A new colon (or the first): the proxy starts free at the next tip, the
+ * loops straight; measures each mobile segment's stored length per
+ * amplitude (bows and unbows it). Force loop (no allocation).
+ */
+void haptics_reset(struct haptics *h, struct colon *colon);
+
+/*
+ * One cycle: COMMAND (N, N m per axis) and the published parts in OUT
+ * (their sum per axis is COMMAND); bows the colon's mobile segments to
+ * this cycle's loops (the kinematics of the next cycle see them).
+ */
+void haptics_render(struct haptics *h, const struct haptics_input *in,
+		    double command[ENDOSIM_AXES],
+		    struct endosim_haptics_state *out);
 
 #endif

@@ -46,6 +46,7 @@ struct loop {
 	struct colon *colon;
 	uint64_t scene_id;
 	struct scope_pose pose;
+	struct haptics *haptics;
 
 	/* shared */
 	struct rig *rig;
@@ -100,6 +101,13 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 		free(l);
 		return NULL;
 	}
+	l->haptics = haptics_create();
+	if (!l->haptics) {
+		log_err("force loop: out of memory");
+		spsc_free(&l->events);
+		free(l);
+		return NULL;
+	}
 	l->cfg = *cfg;
 	l->cfg_mailbox = *cfg;
 	seqlock_init(&l->cfg_lock);
@@ -108,6 +116,7 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 	l->pub = pub;
 	l->colon = colon;
 	l->scene_id = scene_id;
+	haptics_reset(l->haptics, colon);
 	safety_init(&l->safety);
 	l->pm_qos_fd = -1;
 	l->info.policy = "none";
@@ -238,6 +247,7 @@ static void take_colon(struct loop *l)
 	atomic_store_explicit(&l->colon_out, l->colon, memory_order_release);
 	l->colon = in;
 	l->scene_id = l->scene_id_in;
+	haptics_reset(l->haptics, in);
 }
 
 static void kinematics(struct loop *l)
@@ -257,6 +267,21 @@ static void kinematics(struct loop *l)
 	};
 
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
+}
+
+static void render(struct loop *l)
+{
+	const struct haptics_input in = {
+		.cfg = &l->cfg,
+		.colon = l->colon,
+		.pose = &l->pose,
+		.fb = &l->fb,
+		.dt_s = l->info.period_ns * 1e-9,
+		.torque_on = safety_torque_on(&l->safety),
+		.applied = l->limited, /* last cycle's, not yet filtered */
+	};
+
+	haptics_render(l->haptics, &in, l->command, &l->state.haptics);
 }
 
 static void fill_scope(struct loop *l)
@@ -301,8 +326,9 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	rig_read(l->rig, now, &l->fb);
 	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
-	haptics_render(&l->cfg, &l->fb, l->command);
-	safety_filter(&l->safety, &l->cfg, l->command, l->limited, now);
+	render(l);
+	safety_filter(&l->safety, &l->cfg, l->command, l->limited,
+		      l->info.period_ns * 1e-9, now);
 	rig_write(l->rig, now, l->limited, safety_torque_on(&l->safety));
 
 	post_changes(l, old_state, old_faults, cmd, now);
@@ -486,6 +512,7 @@ void loop_destroy(struct loop *l)
 	}
 	loop_stop(l);
 	colon_destroy(l->colon);
+	haptics_destroy(l->haptics);
 	if (l->pm_qos_fd >= 0) {
 		close(l->pm_qos_fd);
 	}

@@ -110,7 +110,7 @@ bool safety_torque_on(const struct safety *s)
 
 void safety_filter(struct safety *s, const struct config *cfg,
 		   const double command[ENDOSIM_AXES],
-		   double limited[ENDOSIM_AXES], uint64_t now_ns)
+		   double limited[ENDOSIM_AXES], double dt_s, uint64_t now_ns)
 {
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		if (!isfinite(command[a])) {
@@ -119,9 +119,12 @@ void safety_filter(struct safety *s, const struct config *cfg,
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		double lim = cfg->limits.max[a];
+		double step = cfg->limits.slew[a] * dt_s;
+		double want = fmin(fmax(command[a], -lim), lim);
 
 		limited[a] = safety_torque_on(s)
-				     ? fmin(fmax(command[a], -lim), lim)
+				     ? fmin(fmax(want, limited[a] - step),
+					    limited[a] + step)
 				     : 0.0;
 	}
 }

@@ -76,11 +76,13 @@ void safety_check_feedback(struct safety *s, const struct config *cfg,
 bool safety_torque_on(const struct safety *s);
 
 /*
- * LIMITED[a] = COMMAND[a] clamped to +-cfg->limits.max[a], or 0 when torque
- * is off. A non-finite command faults and gives 0 on every axis.
+ * LIMITED[a] = COMMAND[a] clamped to +-cfg->limits.max[a] and, from the
+ * previous LIMITED[a], to cfg->limits.slew[a] per period DT_S; or 0 when
+ * torque is off (at once, not slewed). A non-finite command faults and
+ * gives 0 on every axis.
  */
 void safety_filter(struct safety *s, const struct config *cfg,
 		   const double command[ENDOSIM_AXES],
-		   double limited[ENDOSIM_AXES], uint64_t now_ns);
+		   double limited[ENDOSIM_AXES], double dt_s, uint64_t now_ns);
 
 #endif

@@ -102,8 +102,8 @@ static void jacobian(const struct scope_params *p, const struct centreline *cl,
 		     const struct base *b, const struct arcfn *fn,
 		     struct scope_pose *out)
 {
-	double h = centreline_step(cl), total = centreline_total_arclength(cl);
-	double lo = fmax(0, out->depth_m - h), hi = fmin(total, out->depth_m + h);
+	double h = centreline_step(cl), most = scope_max_depth(p, cl);
+	double lo = fmax(0, out->depth_m - h), hi = fmin(most, out->depth_m + h);
 	double plo[3], phi[3], rel[3], col[3];
 	double k = b->len_m / p->bending_length_m;
 
@@ -183,14 +183,19 @@ void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 	}
 }
 
+double scope_max_depth(const struct scope_params *p,
+		       const struct centreline *cl)
+{
+	return centreline_total_arclength(cl) + p->bending_length_m;
+}
+
 void scope_update(const struct scope_params *p, const struct centreline *cl,
 		  const struct scope_input *in, struct scope_pose *out)
 {
 	struct base b;
 	struct arcfn fn;
 
-	out->depth_m = fmax(0, fmin(in->depth_m,
-				    centreline_total_arclength(cl)));
+	out->depth_m = fmax(0, fmin(in->depth_m, scope_max_depth(p, cl)));
 	out->roll_rad = in->roll_rad;
 	scope_bend(p, in->wheel_ud_rad, in->wheel_lr_rad, out->bend_rad,
 		   out->dbend_dwheel);

@@ -15,7 +15,9 @@
  * u' = cos(phi) u + sin(phi) v, v' = t x u'. Up bends towards u' (the
  * camera's up), right towards v' (the camera's right). When d < Lb, only
  * the inserted part exists: an arc of length d with the same curvature.
- * d is clamped to [0, the centreline's arc length].
+ * d is clamped to [0, scope_max_depth()]: the centreline's arc length and
+ * the bending section beyond it, which leaves the colon's end straight on
+ * (into the cecum's wall, where the haptics push it back).
  *
  * The tip: position, view direction (the arc's end tangent) and up vector
  * (u' carried along the arc), all in the colon's coordinates (m).
@@ -79,6 +81,11 @@ struct scope_pose {
 void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 		double wheel_lr_rad, double bend_rad[2],
 		double dbend_dwheel[2]);
+
+/* The deepest insertion the kinematics follow (m): the centreline's arc
+ * length plus the bending section. */
+double scope_max_depth(const struct scope_params *p,
+		       const struct centreline *cl);
 
 /* Computes OUT for IN along CL. */
 void scope_update(const struct scope_params *p, const struct centreline *cl,

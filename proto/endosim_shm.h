@@ -136,6 +136,8 @@ struct endosim_haptics_state {
 	/* roll axis, N m */
 	double tube_contact_nm;   /* the contact force's virtual work */
 	double tube_friction_nm;  /* torsional friction */
+	/* every axis */
+	double damping[ENDOSIM_AXES]; /* light virtual damping, N or N m */
 	/* stability */
 	double passivity_energy_j; /* the passivity observer's energy */
 	double passivity_damping;  /* damping it added this cycle, N s/m */

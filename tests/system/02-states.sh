@@ -7,7 +7,8 @@ start_daemon || finish
 state() { status_field .state; }
 
 # the simulated hand pushes the carriage gently (about 0.2 m/s, nowhere
-# near the end of travel in this test), so the damping renders a force
+# near the end of travel in this test), so the haptics render a force
+# (the axis' damping, and the friction of the inserted tube)
 check "hand input accepted" ctl hand 1 0 0 0 --hold-ms 5000
 sleep 0.3
 check "IDLE: a force is computed" test "$(status_field '.axes.insertion.command != 0')" = true

@@ -3,10 +3,15 @@
 # hand input through the socket takes over while it holds.
 . "$(dirname "$0")/../common.sh"
 
-start_daemon --scenario "$TOP/config/scenarios/demo.scn" || finish
+# A quick hand that stays in the straight anal canal, short of the
+# rectal wall, so that its own push never reaches hand_insertion_max_n.
+printf '%s\n' '# a quick hand: insert, twist, steer' \
+	'0 insertion target 0.04 2' '0 roll target 0.5 1' \
+	'0 wheel_ud target 0.5 1' '30 end' >"$TMP/hand.scn"
+start_daemon --scenario "$TMP/hand.scn" || finish
 ctl enable >/dev/null
-check "the scenario runs" wait_for status_true '.scenario_time_s > 2'
-check "the hand inserts the scope" wait_for status_true '.axes.insertion.position > 0.05'
+check "the scenario runs" wait_for status_true '.scenario_time_s > 1'
+check "the hand inserts the scope" wait_for status_true '.axes.insertion.position > 0.03'
 check "the hand twists the tube" wait_for status_true '.axes.roll.position > 0.2'
 check "the hand steers up" wait_for status_true '.axes.wheel_ud.position > 0.2' 
 check "live input" ctl hand 0 0 0 0.1 --hold-ms 800

@@ -132,6 +132,7 @@ usb "move EMU-INS 60"
 usb "hand EMU-ROLL 0.01 0.5"
 mb "move 1 30"
 mb "move 2 30"
+check "only the damping renders" only_damping
 ctl set haptics.insertion_damping_n_s_per_m 20 >/dev/null
 ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
 ctl set haptics.wheel_lr_damping_n_m_s_per_rad 0.02 >/dev/null

@@ -65,6 +65,7 @@ check "IDLE, wheels present" \
 
 mb "move 1 30"
 mb "hand 2 0.002 1"
+check "only the damping renders" only_damping
 ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
 ctl enable >/dev/null
 check "enabled: both drives" wait_for wheels_enabled

@@ -79,6 +79,18 @@ start_on() {
 	start_daemon --config "$conf" "$@"
 }
 
+# only_damping: the colon's forces off, so that each axis renders only its
+# light damping, -b v: a steady force at a steady speed, to compare what
+# endosimd sends with what the emulated motors get
+only_damping() {
+	local k
+	for k in friction_n_s_per_m_rad torsion_n_m_s_per_rad2 \
+		wall_stiffness_n_per_m wall_damping_n_s_per_m \
+		wire_tension_n_m_per_m bending_stiffness_n_m_per_rad; do
+		ctl set "haptics.$k" 0 >/dev/null || return 1
+	done
+}
+
 # refused_at_start CONFIG STATUS TEXT [ARGS...]: endosimd exits with STATUS
 # before its force loop runs, saying TEXT
 refused_at_start() {

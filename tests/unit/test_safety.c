@@ -1,5 +1,5 @@
-/* test_safety.c - the state machine, the fault latch, the safety filter and
- * the placeholder forces. */
+/* test_safety.c - the state machine, the fault latch and the safety
+ * filter. */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
@@ -9,7 +9,6 @@
 
 #include <cmocka.h>
 
-#include "haptics.h"
 #include "safety.h"
 
 static struct config cfg;
@@ -124,56 +123,56 @@ static void test_feedback_checks(void **state)
 static void test_filter(void **state)
 {
 	double cmd[ENDOSIM_AXES] = { 100, -0.5, 0.05, -7 };
-	double out[ENDOSIM_AXES];
+	double out[ENDOSIM_AXES] = { 0 };
 	struct safety s;
 
 	(void)state;
 	safety_init(&s);
-	safety_filter(&s, &cfg, cmd, out, 0);
+	safety_filter(&s, &cfg, cmd, out, 1.0, 0);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		assert_true(out[a] == 0.0); /* IDLE: nothing gets through */
 	}
 	safety_command(&s, SAFETY_ENABLE);
-	safety_filter(&s, &cfg, cmd, out, 0);
+	/* a second of slew is enough for any default limit */
+	safety_filter(&s, &cfg, cmd, out, 1.0, 0);
 	assert_true(out[0] == cfg.limits.max[0]);
 	assert_true(out[1] == -0.5);
 	assert_true(out[2] == 0.05);
 	assert_true(out[3] == -cfg.limits.max[3]);
 	cmd[2] = INFINITY;
-	safety_filter(&s, &cfg, cmd, out, 0);
+	safety_filter(&s, &cfg, cmd, out, 1.0, 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_FAULT);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_NONFINITE);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		assert_true(out[a] == 0.0);
+		assert_true(out[a] == 0.0); /* at once, not slewed */
 	}
 }
 
-/* The placeholder end brakes only ever take energy out (F v <= 0), do not
- * push an axis at rest, and reach the limit at the end stop. */
-static void test_placeholder_is_passive(void **state)
+/* A step of command reaches the drive at the slew rate, no faster. */
+static void test_slew(void **state)
 {
-	struct rig_feedback fb;
-	double cmd[ENDOSIM_AXES];
+	double cmd[ENDOSIM_AXES] = { 30, 0.5, -0.08, 0 };
+	double out[ENDOSIM_AXES] = { 0 };
+	double dt = 0.001;
+	struct safety s;
 
 	(void)state;
-	healthy_feedback(&fb, 0);
-	for (double x = 0; x <= 1.8; x += 0.01) {
-		for (double v = -1; v <= 1; v += 0.05) {
-			fb.axis[0].position = x;
-			fb.axis[0].velocity = v;
-			haptics_render(&cfg, &fb, cmd);
-			assert_true(cmd[0] * v <= 0);
-		}
+	safety_init(&s);
+	safety_command(&s, SAFETY_ENABLE);
+	for (int k = 1; k <= 3; k++) {
+		safety_filter(&s, &cfg, cmd, out, dt, 0);
+		assert_float_equal(out[0], k * cfg.limits.slew[0] * dt, 1e-9);
+		assert_float_equal(out[2], -k * cfg.limits.slew[2] * dt, 1e-12);
 	}
-	fb.axis[0].position = 0.0;
-	fb.axis[0].velocity = 0.0;
-	haptics_render(&cfg, &fb, cmd);
-	assert_true(cmd[0] == 0.0);
-	fb.axis[0].position = cfg.rig.travel_max[0];
-	fb.axis[0].velocity = 1.0;
-	cfg.haptics.damping[0] = 0;
-	haptics_render(&cfg, &fb, cmd);
-	assert_float_equal(cmd[0], -cfg.limits.max[0], 1e-9);
+	for (int k = 0; k < 1000; k++) {
+		safety_filter(&s, &cfg, cmd, out, dt, 0);
+	}
+	assert_float_equal(out[0], 30, 1e-9);
+	assert_float_equal(out[1], 0.5, 1e-12);
+	assert_float_equal(out[2], -0.08, 1e-12);
+	cmd[0] = -30;
+	safety_filter(&s, &cfg, cmd, out, dt, 0);
+	assert_float_equal(out[0], 30 - cfg.limits.slew[0] * dt, 1e-9);
 }
 
 int main(void)
@@ -183,7 +182,7 @@ int main(void)
 		cmocka_unit_test(test_fault_latches_until_cause_gone),
 		cmocka_unit_test(test_feedback_checks),
 		cmocka_unit_test(test_filter),
-		cmocka_unit_test(test_placeholder_is_passive),
+		cmocka_unit_test(test_slew),
 	};
 
 	return cmocka_run_group_tests(tests, setup, NULL);

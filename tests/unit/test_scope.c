@@ -172,9 +172,14 @@ static void test_partly_inserted_bending_section(void **state)
 	assert_near(p->depth_m, 0, 0);
 	assert_vec_near(p->tip, o, 1e-12);
 	assert_vec_near(p->dir, z, 1e-12);
-	/* past the end: clamped to the centreline */
+	/* past the end: the bending section leaves the end straight on, as
+	 * far as its own length */
+	pose(cl, 1.05, 0, 0, 0, p);
+	assert_near(p->depth_m, 1.05, 1e-9);
+	vec3_set(want, 0, 0, 1.05);
+	assert_vec_near(p->tip, want, 1e-9);
 	pose(cl, 5, 0, 0, 0, p);
-	assert_near(p->depth_m, 1.0, 1e-9);
+	assert_near(p->depth_m, 1.0 + LB, 1e-9);
 	free(p);
 	centreline_destroy(cl);
 }

@@ -1,0 +1,437 @@
+/*
+ * test_godobject.c - the tip's god-object against analytic walls and the
+ * real colon: a plane (the proxy is the projection of the tip, k delta
+ * along the normal), an edge (it slides along the line of two planes), a
+ * corner (it stops at the point of three), jumps of 5 cm through the
+ * colon's wall and across its folds (it stays inside), and a long random
+ * ride of the scope through every case (it never leaks out).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "anatomy.h"
+#include "colon.h"
+#include "contact.h"
+#include "godobject.h"
+#include "scope.h"
+#include "vec3.h"
+
+#define SKIN 1e-6  /* godobject.c keeps the proxy this far off its planes */
+#define NEAR 1e-5  /* m: "on" a plane, line or point */
+#define COLON_PARAMS_DEFAULT_RADIUS 0.0065 /* COLON_PARAMS_DEFAULT's inset */
+
+/* ------------------------------------------------------------ walls */
+
+/* A square of side 2 HALF centred at C in the plane spanned by E1, E2
+ * (lumen towards E1 x E2), as two triangles appended to the arrays. */
+struct walls {
+	float pos[64][3], nrm[64][3];
+	uint32_t tri[32][3];
+	uint32_t v, t;
+};
+
+static void square(struct walls *w, const double c[3], const double e1[3],
+		   const double e2[3], double half)
+{
+	double n[3];
+	uint32_t v0 = w->v;
+
+	vec3_cross(n, e1, e2);
+	for (int k = 0; k < 4; k++) {
+		double a = (k == 1 || k == 2) ? half : -half;
+		double b = k >= 2 ? half : -half;
+
+		for (int d = 0; d < 3; d++) {
+			w->pos[w->v][d] = (float)(c[d] + a * e1[d] + b * e2[d]);
+			w->nrm[w->v][d] = (float)n[d];
+		}
+		w->v++;
+	}
+	w->tri[w->t][0] = v0;
+	w->tri[w->t][1] = v0 + 1;
+	w->tri[w->t++][2] = v0 + 2;
+	w->tri[w->t][0] = v0;
+	w->tri[w->t][1] = v0 + 2;
+	w->tri[w->t++][2] = v0 + 3;
+}
+
+static struct contact *make_contact(const struct walls *w)
+{
+	const struct mesh_segment seg = {
+		.s0_m = 0, .s1_m = 1, .first = 0, .count = w->t,
+	};
+
+	return contact_create(w->pos, w->nrm, w->v, w->tri, w->t, &seg, 1);
+}
+
+static const double X[3] = { 1, 0, 0 }, Y[3] = { 0, 1, 0 },
+		    Z[3] = { 0, 0, 1 }, O[3] = { 0, 0, 0 };
+
+static void assert_point(const double p[3], double x, double y, double z,
+			 double tol)
+{
+	assert_float_equal(p[0], x, tol);
+	assert_float_equal(p[1], y, tol);
+	assert_float_equal(p[2], z, tol);
+}
+
+/* The floor z = 0, lumen above: the proxy is the tip's projection; free
+ * above the floor. */
+static void test_plane(void **state)
+{
+	struct walls w = { 0 };
+	struct godobject g;
+	struct contact *c;
+	const double start[3] = { 0, 0, 0.01 };
+
+	(void)state;
+	square(&w, O, X, Y, 0.1);
+	c = make_contact(&w);
+	assert_non_null(c);
+	godobject_reset(&g, start);
+	godobject_update(&g, c, (double[3]){ 0.02, 0.01, 0.005 }, 0, 1);
+	assert_false(godobject_contact(&g));
+	assert_point(g.proxy, 0.02, 0.01, 0.005, 1e-12);
+	godobject_update(&g, c, (double[3]){ 0.03, -0.02, -0.004 }, 0, 1);
+	assert_true(godobject_contact(&g));
+	assert_int_equal(g.planes, 1);
+	assert_point(g.proxy, 0.03, -0.02, SKIN, NEAR);
+	assert_point(g.normal[0], 0, 0, 1, 1e-12);
+	/* sliding on the floor follows the tip */
+	for (int i = 0; i < 50; i++) {
+		double goal[3] = { 0.03 - 0.001 * i, -0.02 + 0.0005 * i, -0.004 };
+
+		godobject_update(&g, c, goal, 0, 1);
+		assert_point(g.proxy, goal[0], goal[1], SKIN, NEAR);
+	}
+	/* and lifting the tip releases it */
+	godobject_update(&g, c, (double[3]){ 0, 0, 0.002 }, 0, 1);
+	assert_false(godobject_contact(&g));
+	assert_point(g.proxy, 0, 0, 0.002, 1e-12);
+	contact_destroy(c);
+}
+
+/* The floor z = 0 and the wall x = 0 meet in a concave edge along y: a
+ * tip behind both holds the proxy on the edge, and it slides along it. */
+static void test_edge(void **state)
+{
+	const double wall_c[3] = { 0, 0, 0.1 }, floor_c[3] = { 0.1, 0, 0 };
+	struct walls w = { 0 };
+	struct godobject g;
+	struct contact *c;
+
+	(void)state;
+	square(&w, floor_c, X, Y, 0.1);           /* normal +z */
+	square(&w, wall_c, Y, X, 0.1);            /* normal -z: wrong side */
+	w.v -= 4;                                 /* replace: the wall x = 0 */
+	w.t -= 2;
+	square(&w, wall_c, Y, Z, 0.1);            /* normal +x */
+	c = make_contact(&w);
+	assert_non_null(c);
+	godobject_reset(&g, (double[3]){ 0.02, 0, 0.02 });
+	godobject_update(&g, c, (double[3]){ -0.01, 0.03, -0.02 }, 0, 1);
+	assert_int_equal(g.planes, 2);
+	assert_point(g.proxy, SKIN, 0.03, SKIN, NEAR);
+	for (int i = 1; i <= 40; i++) {
+		double y = 0.03 - 0.002 * i;
+
+		godobject_update(&g, c, (double[3]){ -0.005, y, -0.03 }, 0, 1);
+		assert_int_equal(g.planes, 2);
+		assert_point(g.proxy, SKIN, y, SKIN, NEAR);
+	}
+	/* a tip behind the floor only slides along the floor, off the edge */
+	godobject_update(&g, c, (double[3]){ 0.04, 0, -0.01 }, 0, 1);
+	assert_int_equal(g.planes, 1);
+	assert_point(g.proxy, 0.04, 0, SKIN, NEAR);
+	contact_destroy(c);
+}
+
+/* Three walls x = 0, y = 0, z = 0: the proxy stops in the corner. */
+static void test_corner(void **state)
+{
+	struct walls w = { 0 };
+	struct godobject g;
+	struct contact *c;
+
+	(void)state;
+	square(&w, (double[3]){ 0.1, 0.1, 0 }, X, Y, 0.1);
+	square(&w, (double[3]){ 0, 0.1, 0.1 }, Y, Z, 0.1);
+	square(&w, (double[3]){ 0.1, 0, 0.1 }, Z, X, 0.1);
+	c = make_contact(&w);
+	assert_non_null(c);
+	godobject_reset(&g, (double[3]){ 0.03, 0.02, 0.01 });
+	godobject_update(&g, c, (double[3]){ -0.01, -0.02, -0.03 }, 0, 1);
+	assert_int_equal(g.planes, 3);
+	assert_point(g.proxy, SKIN, SKIN, SKIN, NEAR);
+	/* deeper into the corner: still there */
+	godobject_update(&g, c, (double[3]){ -0.05, -0.01, -0.02 }, 0, 1);
+	assert_point(g.proxy, SKIN, SKIN, SKIN, NEAR);
+	/* out of the corner along x: back to an edge, then a plane */
+	godobject_update(&g, c, (double[3]){ 0.03, -0.01, -0.02 }, 0, 1);
+	assert_int_equal(g.planes, 2);
+	assert_point(g.proxy, 0.03, SKIN, SKIN, NEAR);
+	godobject_update(&g, c, (double[3]){ 0.03, 0.02, -0.02 }, 0, 1);
+	assert_int_equal(g.planes, 1);
+	assert_point(g.proxy, 0.03, 0.02, SKIN, NEAR);
+	contact_destroy(c);
+}
+
+/* ------------------------------------------------------------ the colon */
+
+static struct colon *load_case(const char *name)
+{
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+	const char *dir = getenv("ENDOSIM_CASES");
+	char path[512], err[256];
+	struct anatomy a;
+	struct colon *c;
+
+	snprintf(path, sizeof(path), "%s/%s.case",
+		 dir && *dir ? dir : "config/cases", name);
+	assert_int_equal(anatomy_load(&a, path, err, sizeof(err)), 0);
+	c = colon_create(&a, &p, err, sizeof(err));
+	assert_non_null(c);
+	return c;
+}
+
+/* Moller-Trumbore: does the open segment A -> B cross triangle P? */
+static bool crosses(const double a[3], const double b[3], double p[3][3])
+{
+	double e1[3], e2[3], d[3], h[3], s[3], q[3], det, u, v, t;
+
+	vec3_sub(e1, p[1], p[0]);
+	vec3_sub(e2, p[2], p[0]);
+	vec3_sub(d, b, a);
+	vec3_cross(h, d, e2);
+	det = vec3_dot(e1, h);
+	if (fabs(det) < 1e-20) {
+		return false;
+	}
+	vec3_sub(s, a, p[0]);
+	u = vec3_dot(s, h) / det;
+	vec3_cross(q, s, e1);
+	v = vec3_dot(d, q) / det;
+	t = vec3_dot(e2, q) / det;
+	return u >= 0 && v >= 0 && u + v <= 1 && t > 0 && t < 1;
+}
+
+/*
+ * Ground truth, independent of the code under test: P is inside the
+ * contact surface when a segment from the centreline sample nearest to it
+ * (well inside the lumen) crosses the surface an even number of times.
+ */
+static bool inside_colon(const struct colon *c, const double p[3])
+{
+	const struct centreline *cl = colon_centreline(c);
+	const struct mesh *m = colon_mesh(c);
+	size_t n = centreline_count(cl), best = 0;
+	double best_d = INFINITY, s;
+	int crossings = 0;
+
+	/* not the last samples: the cecum's pole lies on the surface */
+	for (size_t i = 5; i + 25 < n; i++) {
+		double d = vec3_dist(centreline_sample(cl, i)->p, p);
+
+		if (d < best_d) {
+			best_d = d;
+			best = i;
+		}
+	}
+	s = (double)best * centreline_step(cl);
+	for (uint32_t k = 0; k < m->segments; k++) {
+		if (m->seg[k].s1_m < s - 0.15 || m->seg[k].s0_m > s + 0.15) {
+			continue;
+		}
+		for (uint32_t t = m->seg[k].first;
+		     t < m->seg[k].first + m->seg[k].count; t++) {
+			double tri[3][3];
+
+			contact_triangle(colon_contact(c), t, tri);
+			crossings += crosses(centreline_sample(cl, best)->p, p,
+					     tri);
+		}
+	}
+	return !(crossings & 1);
+}
+
+static double uniform(double lo, double hi)
+{
+	return lo + (hi - lo) * rand() / (double)RAND_MAX;
+}
+
+/* From points near the wall, goals 5 cm away in every direction: through
+ * the wall, across folds, along the lumen. The proxy ends inside. */
+static void test_jumps_stay_inside(void **state)
+{
+	struct colon *c = load_case("normal");
+	const struct centreline *cl = colon_centreline(c);
+	const struct contact *ct = colon_contact(c);
+	int held = 0;
+
+	(void)state;
+	srand(3);
+	for (int k = 0; k < 2000; k++) {
+		double s = uniform(0.08, 1.40), start[3], goal[3], dir[3];
+		double r = uniform(0.0, 0.012);
+		struct centreline_point q;
+		struct godobject g;
+
+		centreline_at_s(cl, s, &q);
+		vec3_set(dir, uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+		vec3_normalize(dir);
+		vec3_axpy(start, q.p, r, dir);
+		assert_true(inside_colon(c, start));
+		vec3_set(dir, uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+		vec3_normalize(dir);
+		vec3_axpy(goal, start, 0.05, dir);
+		godobject_reset(&g, start);
+		godobject_update(&g, ct, goal, s - 0.1, s + 0.1);
+		held += godobject_contact(&g);
+		if (!inside_colon(c, g.proxy)) {
+			fail_msg("jump %d from s %.3f: proxy outside", k, s);
+		}
+	}
+	assert_true(held > 1000); /* most 5 cm jumps meet the wall */
+	colon_destroy(c);
+}
+
+/* The point at S, at angle THETA around the centreline from u, RHO from it. */
+static void around(const struct centreline *cl, double s, double theta,
+		   double rho, double out[3])
+{
+	struct centreline_point q;
+
+	centreline_at_s(cl, s, &q);
+	vec3_axpy(out, q.p, rho * cos(theta), q.u);
+	vec3_axpy(out, out, rho * sin(theta), q.v);
+}
+
+/*
+ * Along the lumen near the wall, 5 cm at a time, midway between two
+ * taeniae where the haustral folds stand: from a valley between folds, at
+ * a distance from the centreline that clears the valleys but not the
+ * folds' crests. The proxy meets the first fold and stays inside (it may
+ * slide over the crest, never through it).
+ */
+static void test_jump_across_folds(void **state)
+{
+	struct colon *c = load_case("normal");
+	const struct centreline *cl = colon_centreline(c);
+	double theta = M_PI / 3, inset = COLON_PARAMS_DEFAULT_RADIUS;
+	int stopped = 0, jumps = 0;
+
+	(void)state;
+	for (double s0 = 0.90; s0 < 1.10; s0 += 0.013) {
+		double lo = INFINITY, hi = 0, valley = s0, rho;
+		double start[3], goal[3];
+		struct godobject g;
+
+		for (double s = s0; s <= s0 + 0.05; s += 0.0005) {
+			double r = colon_lumen_radius(c, s, theta) - inset;
+
+			lo = fmin(lo, r);
+			if (s < s0 + 0.03 && r > hi) {
+				hi = r;
+				valley = s;
+			}
+		}
+		rho = (lo + hi) / 2; /* below the valley, above the crests */
+		if (hi - lo < 0.002) {
+			continue;
+		}
+		jumps++;
+		around(cl, valley, theta, rho, start);
+		around(cl, valley + 0.05, theta, rho, goal);
+		assert_true(inside_colon(c, start));
+		godobject_reset(&g, start);
+		godobject_update(&g, colon_contact(c), goal, valley - 0.1,
+				 valley + 0.15);
+		stopped += godobject_contact(&g);
+		assert_true(inside_colon(c, g.proxy));
+	}
+	assert_true(jumps > 5);
+	assert_int_equal(stopped, jumps);
+	colon_destroy(c);
+}
+
+/* A long random ride in every case: insertion, withdrawal, roll and both
+ * wheels to their limits, now and then a 5 cm jump; the proxy never
+ * leaks. The window of s is what the haptics use: around the proxy, the
+ * tip and the bending section. */
+static void ride(const char *name, int steps)
+{
+	struct colon *c = load_case(name);
+	const struct centreline *cl = colon_centreline(c);
+	const struct contact *ct = colon_contact(c);
+	const struct scope_params sp = SCOPE_PARAMS_DEFAULT;
+	struct scope_input in = { .depth_m = 0.05 };
+	struct scope_pose *pose = malloc(sizeof(*pose));
+	double proxy_s = 0.05;
+	struct godobject g;
+	int held = 0;
+
+	scope_update(&sp, cl, &in, pose);
+	godobject_reset(&g, pose->tip);
+	for (int k = 0; k < steps; k++) {
+		double lo, hi;
+
+		if (rand() % 100 == 0) {
+			in.depth_m += uniform(-0.05, 0.05);
+		} else {
+			in.depth_m += uniform(-0.0018, 0.0022);
+			in.roll_rad += uniform(-0.03, 0.03);
+			in.wheel_ud_rad += uniform(-0.03, 0.03);
+			in.wheel_lr_rad += uniform(-0.03, 0.03);
+		}
+		in.depth_m = fmin(fmax(in.depth_m, 0.03), 1.55);
+		in.wheel_ud_rad = fmin(fmax(in.wheel_ud_rad, -1.75), 1.75);
+		in.wheel_lr_rad = fmin(fmax(in.wheel_lr_rad, -1.75), 1.75);
+		scope_update(&sp, cl, &in, pose);
+		lo = fmin(fmin(proxy_s, pose->tip_s_m), pose->base_s_m) - 0.1;
+		hi = fmax(fmax(proxy_s, pose->tip_s_m),
+			  pose->base_s_m + sp.bending_length_m) + 0.1;
+		godobject_update(&g, ct, pose->tip, lo, hi);
+		proxy_s = g.planes ? contact_triangle_s(ct, g.tri[0])
+				   : pose->tip_s_m;
+		held += godobject_contact(&g);
+		if (k % 5 == 0 && !inside_colon(c, g.proxy)) {
+			fail_msg("%s: step %d, depth %.3f: proxy outside", name,
+				 k, in.depth_m);
+		}
+	}
+	printf("%s: %d steps, %d in contact\n", name, steps, held);
+	assert_true(held > steps / 10);
+	free(pose);
+	colon_destroy(c);
+}
+
+static void test_random_ride(void **state)
+{
+	(void)state;
+	srand(11);
+	ride("normal", 6000);
+	ride("tight-flexures", 6000);
+	ride("redundant-sigmoid", 6000);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_plane),
+		cmocka_unit_test(test_edge),
+		cmocka_unit_test(test_corner),
+		cmocka_unit_test(test_jumps_stay_inside),
+		cmocka_unit_test(test_jump_across_folds),
+		cmocka_unit_test(test_random_ride),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
