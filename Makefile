@@ -7,7 +7,8 @@
 #   make test       install missing Debian packages (as root), build with
 #                   gcc and clang (-Werror), run every test
 #   make demo       run the daemon on the simulated rig with the demo scenario
-#   make bench      the figures: loop latency next to cyclictest's, ...
+#   make bench      the figures: loop latency next to cyclictest's, the
+#                   colon model, the haptic step, the drives
 #   make emulators  the drive emulators (tests/emulators/) and the drive
 #                   benchmark program (run tests/bench/drives.sh)
 #   make install    PREFIX=/usr/local DESTDIR= : binaries, config, systemd
@@ -47,7 +48,8 @@ DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev
 DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
 	    valgrind umockdev libumockdev-dev libglib2.0-dev
-DEPS_BENCH = $(DEPS_BUILD) rt-tests
+DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
+	     libglib2.0-dev
 
 # Installs the missing packages of $(1) as root; otherwise names them.
 define ensure_packages
@@ -141,7 +143,7 @@ modbus-emu_OBJS = modbus_emu.o emu.o config.o regmap.o log.o names.o plant.o
 DRIVES_BENCH_OBJS = drives_bench.o rig.o rig_sim.o plant.o hand.o scenario.o \
 		    config.o regmap.o log.o names.o histo.o rt.o $(DRIVE_OBJS)
 
-.PHONY: all test check bench demo install clean deps deps-test deps-bench \
+.PHONY: all test check bench bench-tools demo install clean deps deps-test deps-bench \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
 	emulators
 
@@ -191,6 +193,8 @@ unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
 	$(BENCH_TOOLS))
 
 # benchmarks: programs that print figures (tests/bench/)
+bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS))
+
 $(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
 		$(call obj,$(bench_haptics_OBJS))
 	@mkdir -p $(dir $@)
@@ -288,7 +292,7 @@ demo: deps-build
 	BUILD=$(BUILD) tests/demo.sh
 
 bench: deps-bench
-	$(MAKE) --no-print-directory all unit-tests
+	$(MAKE) --no-print-directory all bench-tools emulators
 	BUILD=$(BUILD) tests/bench/run.sh
 
 # --- install ----------------------------------------------------------------

@@ -93,7 +93,7 @@ modbus() {
 	"$BUILD/emulators/modbus-emu" --config "$T/mb.conf" "${emu[@]}" \
 		>"$T/mb.out" 2>&1 &
 	pid=$!
-	for _ in $(seq 200); do grep -q ready "$T/mb.out" && break; sleep 0.05; done
+	for _ in $(seq 200); do grep -qs ready "$T/mb.out" && break; sleep 0.05; done
 	"$BENCH" -c "$T/mb.conf" --seconds "$SECONDS_EACH" --label "$label" "$@"
 	kill "$pid"
 	wait "$pid" 2>/dev/null

@@ -9,6 +9,14 @@
 #    percentiles computed the same way (1 us histogram bins); the loop's
 #    compute time; the shared-memory publish-to-read latency seen by a
 #    reader process.
+# 2. The colon model: build time, memory, query and kinematics cost
+#    (bench_colon).
+# 3. The haptic step over the demo scenario on the normal case, at the
+#    default resolution and at about 2 million triangles, and the force's
+#    change per cycle while the tip slides (bench_haptics, SCHED_FIFO when
+#    it may).
+# 4. The drives: exchange rates and transaction latency against the
+#    emulators (drives.sh).
 set -u
 . "$(dirname "$0")/../common.sh"
 
@@ -57,3 +65,22 @@ printf 'loop compute time (us): p50 %.0f, p99 %.0f, p99.9 %.0f, max %.1f\n' \
 echo "(endosimd's figures cover the whole daemon run, start-up included; 1 us bins, a percentile is the bin it falls in)"
 "$TOOLS/shm_latency" "$SHM" 5
 stop_daemon
+
+echo
+echo "=== colon model and kinematics ==="
+"$BUILD/tests/bench_colon" "$TOP/config/cases"
+
+# the haptic step at real-time priority where we may, as in the daemon
+rt() { if chrt -f $PRIO true 2>/dev/null; then chrt -f $PRIO "$@"; else "$@"; fi; }
+echo
+echo "=== haptic step on the demo scenario (normal case, default resolution) ==="
+rt "$BUILD/tests/bench_haptics" "$TOP/config/cases/normal.case" \
+	"$TOP/config/scenarios/demo.scn"
+echo
+echo "=== haptic step at about 2 million triangles (ring 1360, step 0.002 m) ==="
+rt "$BUILD/tests/bench_haptics" "$TOP/config/cases/normal.case" \
+	"$TOP/config/scenarios/demo.scn" 1360 0.002
+
+echo
+echo "=== drives against the emulators ==="
+BUILD=$BUILD "$TOP/tests/bench/drives.sh"
