@@ -7,7 +7,7 @@ set -u
 
 SCENARIO="$TOP/config/scenarios/demo.scn"
 LENGTH=$(awk '$2 == "end" || $2 == "repeat" { print $1 }' "$SCENARIO")
-: "${LENGTH:=25}"
+: "${LENGTH:=90}"
 
 echo "endosim demo: endosimd on the simulated rig, scenario $(basename "$SCENARIO") (${LENGTH} s)"
 start_daemon --scenario "$SCENARIO" || exit 1
@@ -32,6 +32,11 @@ jq -rs '
   "deepest insertion: \(map(.axes.insertion.position) | max * 1000 | round / 1000) m; " +
   "largest roll: \(peak(.axes.roll.position) * 100 | round / 100) rad; " +
   "largest tip steer: up/down \(peak(.axes.wheel_ud.position) * 100 | round / 100) rad, left/right \(peak(.axes.wheel_lr.position) * 100 | round / 100) rad",
+  "the tip reached \(map(.scope.tip_s_m) | max * 100 | round / 100) m along the colon (case \(.[0].case)); " +
+  "in contact with the wall \((map(select(.haptics.contact)) | length) * 100 / length | round) % of the time",
+  "largest wall force \(map(.haptics.f_static | map(. * .) | add | sqrt) | max * 10 | round / 10) N; " +
+  "largest insertion friction \(peak(.haptics.trans_friction_n) * 10 | round / 10) N at \(map(.haptics.curvature_rad) | max * 10 | round / 10) rad of turning; " +
+  "largest loop \(map(.scope.bow_m | max) | max * 1000 | round) mm, its force \(peak(.haptics.trans_loop_n) * 10 | round / 10) N",
   "states seen: \(map(.state) | unique | join(", ")); faults: \(map(.fault_bits) | max)"
 ' "$TMP/trace.json"
 if stop_daemon; then
