@@ -93,6 +93,9 @@ DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 # endoctl: the CLI over the sockets
 ENDOCTL_OBJS = endoctl.o json.o objio.o
 
+VIEWER_PKGS = glfw3 epoxy cglm stb
+VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
+
 obj = $(addprefix $(BUILD)/obj/,$(1))
 
 PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
@@ -100,7 +103,9 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
-	     test_config_drives test_colon test_scope test_scene
+	     test_config_drives test_colon test_scope test_scene \
+	     test_model test_lod test_input test_timing \
+	     test_vessels
 test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
@@ -115,6 +120,14 @@ test_colon_OBJS = $(COLON_OBJS)
 test_scope_OBJS = $(COLON_OBJS)
 test_scene_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
 		  endosim.pb-c.o $(COLON_OBJS)
+# the viewer's modules that need no window
+VIEWER_SCENE_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
+		    endosim.pb-c.o $(COLON_OBJS)
+test_model_OBJS = model.o $(VIEWER_SCENE_OBJS)
+test_lod_OBJS = lod.o model.o $(VIEWER_SCENE_OBJS)
+test_input_OBJS = input.o
+test_timing_OBJS = timing.o
+test_vessels_OBJS = vessels.o
 TEST_TOOLS = shm_probe shm_latency obj_import
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
@@ -161,11 +174,15 @@ $(BUILD)/endosimd: $(call obj,$(DAEMON_OBJS) $(PROTO_OBJS))
 $(BUILD)/endoctl: $(call obj,$(ENDOCTL_OBJS) $(PROTO_OBJS))
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(CLIENT_LDLIBS)
 
+$(BUILD)/obj/%.o: viewer/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon $(VIEWER_CFLAGS) -c -o $@ $<
+
 # unit tests: each test file with the modules it exercises
 define unit_test_rule
 $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -Iviewer -o $$@ $$< \
 		$(call obj,$($(1)_OBJS)) $$(LDFLAGS) $$(LDLIBS) -lcmocka
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
