@@ -50,7 +50,7 @@ DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     fonts-dejavu-core
 DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
 	    valgrind umockdev libumockdev-dev libglib2.0-dev \
-	    $(DEPS_SCREEN)
+	    $(DEPS_SCREEN) xdotool
 DEPS_BENCH = $(DEPS_BUILD) rt-tests $(DEPS_SCREEN)
 # a screen for the viewer where there is none (tests, bench, headless demo)
 DEPS_SCREEN = xvfb xauth libgl1-mesa-dri
@@ -218,7 +218,12 @@ endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
-	$(BENCH_TOOLS))
+	$(BENCH_TOOLS) png_stats)
+
+# pixel statistics of the viewer's screenshots (stb_image)
+$(BUILD)/tests/png_stats: tests/tools/png_stats.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
 # benchmarks: programs that print figures (tests/bench/)
 $(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \

@@ -44,7 +44,7 @@
 #define ENDO_FAR_M 0.30        /* darker than a pixel's step beyond */
 #define ENDO_WALL_MARGIN_M 0.003
 #define ENDO_LEVEL_M 0.03, 0.06, 0.12 /* where levels 1, 2, 3 begin */
-#define ENDO_MASK_RADIUS 1.06 /* the image circle, in half-sides of its square */
+#define ENDO_MASK_RADIUS 1.06 /* image circle, in half-sides of its square */
 /* the widest angle from the view direction the image shows */
 #define ENDO_HALF_ANGLE_RAD (ENDO_FOV_DEG / 2 * M_PI / 180 * ENDO_MASK_RADIUS)
 #define ENDO_ALC_REF_M 0.025

@@ -44,6 +44,7 @@
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
+#define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
 #define NS 1000000000ull
 
 enum { VIEW_EMPTY = HUD_VIEWS }; /* clear and swap only: the benchmark's */
@@ -81,6 +82,7 @@ struct app {
 	bool loading, help;
 	uint32_t triangles, triangles_max;
 	uint64_t last_swap_ns, start_ns;
+	uint64_t hand_ns; /* when the hand was last moved */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 };
@@ -346,7 +348,8 @@ static void update_link(struct app *a, uint64_t now)
 	if (a->loading) {
 		load_colon(a, now);
 		a->loading = false;
-	} else if (link_scene_wanted(a->link, held, now)) {
+	} else if (a->status == LINK_LIVE &&
+		   link_scene_wanted(a->link, held, now)) {
 		a->loading = true; /* after a frame that says so */
 	}
 }
@@ -379,7 +382,8 @@ static void drive(struct app *a, const struct input_controls *c,
 		a->hand.engaged = false;
 		return;
 	}
-	dt = a->last_swap_ns ? (double)(now - a->last_swap_ns) / NS : 0;
+	dt = a->hand_ns ? (double)(now - a->hand_ns) / NS : 0;
+	a->hand_ns = now;
 	if (input_step(&a->hand, c, st, fmin(dt, 0.1), now, force)) {
 		rigctl_hand(a->rig, force, HAND_HOLD_MS, now);
 	}
@@ -452,6 +456,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	hud_layout((enum hud_view)a->opt.view, w, h, &lay);
 	draw_views(a, &lay, st, current);
 	fill_info(a, st, now, &in);
+	in.compact |= lay.panel.w < COMPACT_PANEL_PX;
 	draw2d_begin(a->d2d, w, h);
 	if (lay.overview.w && a->colon.model) {
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
@@ -477,6 +482,22 @@ static void account(struct app *a, const struct endosim_state *st,
 	}
 	a->last_swap_ns = swapped;
 	a->frame++;
+}
+
+/* The P key: the frame as endoview-DATE-TIME.png in the current folder. */
+static void capture(int w, int h)
+{
+	char name[64];
+	time_t t = time(NULL);
+	struct tm tm;
+
+	localtime_r(&t, &tm);
+	strftime(name, sizeof(name), "endoview-%Y%m%d-%H%M%S.png", &tm);
+	if (shot_write(name, w, h)) {
+		log_err("%s: cannot write the picture", name);
+	} else {
+		log_info("saved %s", name);
+	}
 }
 
 static int frame(struct app *a)
@@ -509,6 +530,9 @@ static int frame(struct app *a)
 	    shot_write(a->opt.screenshot, w, h)) {
 		log_err("%s: cannot write the screenshot", a->opt.screenshot);
 		err = -EIO;
+	}
+	if (acts.capture) {
+		capture(w, h);
 	}
 	glfwSwapBuffers(a->window);
 	account(a, st, now_ns());

@@ -27,6 +27,7 @@ const char *const hud_keys[] = {
 	"E  X\tenable, disable the motors",
 	"Space  R\temergency stop, reset",
 	"V  O\tview, overview's orbit back",
+	"P\tsave a picture (PNG, here)",
 	"H  Q\tthis help, quit",
 	NULL,
 };
@@ -175,11 +176,11 @@ static const char *state_hint(const struct endosim_state *st)
 {
 	switch (st->state) {
 	case ENDOSIM_STATE_IDLE:
-		return "motors off: E to enable";
+		return "motors off (E: enable)";
 	case ENDOSIM_STATE_ENABLED:
-		return "forces rendered: X to disable, Space to stop";
+		return "forces on (X: off, Space: stop)";
 	default:
-		return "torque off: R to reset when the cause is gone";
+		return "torque off (R: reset once clear)";
 	}
 }
 
@@ -225,11 +226,11 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 		return;
 	}
 	region_words(in->m, sc->tip_s_m, where, sizeof(where));
-	snprintf(text, sizeof(text), "tip in the %s, %.1f cm from the anus",
-		 where, sc->tip_s_m * 100);
+	snprintf(text, sizeof(text), "tip: %s, %.1f cm in", where,
+		 sc->tip_s_m * 100);
 	line(p, FONT_SMALL, white, text);
 	snprintf(text, sizeof(text), "roll %+.0f, tip %+.0f up %+.0f right, "
-		 "tube turns %.0f (deg)", sc->roll_rad * 180 / M_PI,
+		 "turns %.0f deg", sc->roll_rad * 180 / M_PI,
 		 sc->bend_rad[0] * 180 / M_PI, sc->bend_rad[1] * 180 / M_PI,
 		 sc->turning_rad * 180 / M_PI);
 	line(p, FONT_SMALL, dim, text);
@@ -263,6 +264,12 @@ static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
 	}
 }
 
+/* V, shown with DIGITS decimals: no "-0.0" for a hair below zero. */
+static double tidy(double v, int digits)
+{
+	return fabs(v) < 0.5 * pow(10, -digits) ? 0 : v;
+}
+
 static float bar_x(float x0, float w, double v)
 {
 	return x0 + w / 2 + (float)(fmax(-1, fmin(1, v)) * w / 2);
@@ -273,7 +280,8 @@ static float bar_x(float x0, float w, double v)
 static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
 		     int a)
 {
-	float label_w = p->w * 0.24f, value_w = p->w * 0.22f;
+	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
+	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
 	float x0 = p->x + label_w, w = p->w - label_w - value_w;
 	float h = p->small * 0.8f, y = p->y + p->small * 0.25f;
 	float v = bar_x(x0, w, ax->limited / axis_scale[a]);
@@ -289,7 +297,7 @@ static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
 	draw2d_rect(p->d, hand - 1, y + h, 3, 4, amber);
 	draw2d_printf(p->d, FONT_SMALL, x0 + w + 8, p->y + p->small, white,
 		      a == ENDOSIM_AXIS_INSERTION ? "%+.1f N" : "%+.3f N m",
-		      ax->limited);
+		      tidy(ax->limited, a == ENDOSIM_AXIS_INSERTION ? 1 : 3));
 	p->y += p->small * 1.5f;
 }
 

@@ -20,7 +20,6 @@ struct link {
 	struct endosim_state st;
 	bool have_state;
 	bool changed;
-	uint64_t changed_ns;    /* when a new cycle was last seen */
 	uint64_t next_open_ns;  /* earliest time to try to open again */
 	uint64_t next_fetch_ns; /* earliest time to fetch the scene again */
 	char problem[192];
@@ -83,7 +82,6 @@ static void try_open(struct link *l, uint64_t now_ns)
 		l->changed = true; /* a new daemon: its scene ids start again */
 	}
 	l->start_ns = start;
-	l->changed_ns = now_ns;
 	l->problem[0] = '\0';
 }
 
@@ -129,16 +127,14 @@ enum link_status link_update(struct link *l, uint64_t now_ns)
 	if (!l->shm) {
 		return LINK_NO_DAEMON;
 	}
-	if (shm_reader_read(l->shm, &st, READ_TRIES) == 0 &&
-	    (!l->have_state || st.cycle != l->st.cycle)) {
+	if (shm_reader_read(l->shm, &st, READ_TRIES) == 0) {
 		l->st = st;
 		l->have_state = true;
-		l->changed_ns = now_ns;
 	}
 	if (!l->have_state) {
 		return LINK_NO_DAEMON;
 	}
-	if (now_ns - l->changed_ns > (uint64_t)(LINK_STALE_S * NS)) {
+	if (link_stale_s(l, now_ns) > LINK_STALE_S) {
 		return check_stale(l, now_ns);
 	}
 	return LINK_LIVE;
@@ -151,8 +147,9 @@ const struct endosim_state *link_state(const struct link *l)
 
 double link_stale_s(const struct link *l, uint64_t now_ns)
 {
-	return now_ns > l->changed_ns ? (double)(now_ns - l->changed_ns) / NS :
-					0;
+	int64_t age = (int64_t)now_ns - (int64_t)l->st.publish_ns;
+
+	return l->have_state && age > 0 ? (double)age / NS : 0;
 }
 
 const char *link_problem(const struct link *l)

@@ -7,12 +7,15 @@
  * Reading the state never blocks the daemon (the seqlock: a torn copy is
  * retried a few times, then the previous state stays). The link notices a
  * daemon that is not there (no shared memory, its writer gone), one that
- * stopped publishing (stale), and one that came back (a new shared-memory
- * object, a new start time): it reopens the shared memory and, since scene
- * ids start again with a new daemon, fetches the scene again.
+ * stopped publishing (stale: its newest state is older than LINK_STALE_S
+ * on CLOCK_MONOTONIC, the daemon's stamp), and one that came back (a new
+ * shared-memory object, a new start time): it reopens the shared memory
+ * and, since scene ids start again with a new daemon, fetches the scene
+ * again.
  *
- * Fetching the scene is the one call that blocks (up to LINK_SCENE_TIMEOUT_MS
- * per chunk); link_update() never does. Main thread only.
+ * Fetching the scene is the one call that blocks (up to
+ * LINK_SCENE_TIMEOUT_MS per chunk); link_update() never does. Main thread
+ * only.
  */
 #ifndef ENDOVIEW_LINK_H
 #define ENDOVIEW_LINK_H
@@ -23,7 +26,7 @@
 #include "client.h"
 #include "endosim_shm.h"
 
-#define LINK_STALE_S 0.5          /* no new state for this long: stale */
+#define LINK_STALE_S 0.5          /* a state this old: stale */
 #define LINK_RETRY_S 0.5          /* between attempts to (re)open */
 #define LINK_SCENE_TIMEOUT_MS 3000
 
@@ -48,7 +51,7 @@ enum link_status link_update(struct link *l, uint64_t now_ns);
 /* The newest good state, or NULL before the first. */
 const struct endosim_state *link_state(const struct link *l);
 
-/* Seconds since the state last changed (0 while live). */
+/* Age of the newest state in seconds: now less its publish_ns. */
 double link_stale_s(const struct link *l, uint64_t now_ns);
 
 /* Why there is no daemon, in words (empty when there is one). */

@@ -38,6 +38,8 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->toggle_help;
 	case GLFW_KEY_O:
 		return &a->reset_orbit;
+	case GLFW_KEY_P:
+		return &a->capture;
 	case GLFW_KEY_Q:
 	case GLFW_KEY_ESCAPE:
 		return &a->quit;

@@ -6,7 +6,8 @@
  *   keyboard  Up/W Down/S insert, withdraw (Shift: faster); Left/A
  *             Right/D twist; I K tip up, down; J L tip left, right;
  *             E enable, X disable, Space emergency stop, R reset;
- *             V next view, O overview orbit back, H help, Q/Esc quit
+ *             V next view, O overview orbit back, P save a picture,
+ *             H help, Q/Esc quit
  *   mouse     on the endoscopic image: drag to steer (the wheels follow
  *             the pointer), right-drag to twist, scroll to insert;
  *             on the overview: drag to turn it, scroll to zoom
@@ -36,7 +37,7 @@
 /* One-off actions this frame. */
 struct ui_actions {
 	bool command[RIGCTL_RESET + 1]; /* by enum rigctl_command */
-	bool next_view, toggle_help, reset_orbit, quit;
+	bool next_view, toggle_help, reset_orbit, capture, quit;
 };
 
 struct ui;

@@ -9,6 +9,8 @@
 #    percentiles computed the same way (1 us histogram bins); the loop's
 #    compute time; the shared-memory publish-to-read latency seen by a
 #    reader process.
+# 2. The viewer's frame times and the age of the state it shows
+#    (tests/bench/viewer.sh).
 set -u
 . "$(dirname "$0")/../common.sh"
 
@@ -57,3 +59,6 @@ printf 'loop compute time (us): p50 %.0f, p99 %.0f, p99.9 %.0f, max %.1f\n' \
 echo "(endosimd's figures cover the whole daemon run, start-up included; 1 us bins, a percentile is the bin it falls in)"
 "$TOOLS/shm_latency" "$SHM" 5
 stop_daemon
+
+echo
+BUILD="$BUILD" bash "$TOP/tests/bench/viewer.sh"

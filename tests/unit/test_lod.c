@@ -166,7 +166,8 @@ static void import_has_one_level(void **state)
 	(void)state;
 	assert_non_null(l);
 	assert_int_equal(l->levels, 1);
-	assert_memory_equal(l->index, me->tri, me->triangles * sizeof(*me->tri));
+	assert_memory_equal(l->index, me->tri,
+			    me->triangles * sizeof(*me->tri));
 	for (uint32_t k = 0; k < me->segments; k++) {
 		struct lod_range r = lod_segment(l, 3, k);
 

@@ -20,7 +20,7 @@
 #include "vec3.h"
 #include "viewer_fixture.h"
 
-#define MAX_TRIANGLES 16000 /* llvmpipe draws ~1-2 million a second */ /* what llvmpipe draws in a few ms */
+#define MAX_TRIANGLES 16000 /* llvmpipe draws 1-2 million a second */
 
 static struct portal_view camera(const struct model *m, double depth_m,
 				 double *s_m)
