@@ -9,7 +9,7 @@
 #include "vec3.h"
 #include "vessels.h"
 
-#define RELIEF 1.0 /* how much the folds' normals are deepened */
+#define RELIEF 2.0 /* how much the folds' normals are deepened */
 
 enum { POS, NRM, TEX, IDX, BUFFERS };
 
@@ -36,27 +36,20 @@ static uint32_t source(const struct gpumesh *g, uint32_t k)
 }
 
 /*
- * Vertex V's normal for shading: its tilt from the smooth tube's normal
- * (towards the centreline in its sample's plane) deepened by RELIEF, so
- * that folds read as clearly as in a real lumen lit from the lens.
+ * Vertex V's normal for shading: its tilt along the colon (a fold's
+ * flanks) deepened by RELIEF, so that folds read as clearly as in a real
+ * lumen lit from the lens; the more a normal already faces along the
+ * colon (the cecum's dome), the less.
  */
 static void relief(const struct model *m, uint32_t v, float out[3])
 {
 	const struct mesh *me = m->mesh;
-	const struct centreline_point *c = centreline_sample(m->cl,
-							    me->sample[v]);
+	const double *t = centreline_sample(m->cl, me->sample[v])->t;
 	double n[3] = { me->nrm[v][0], me->nrm[v][1], me->nrm[v][2] };
-	double in[3] = { c->p[0] - me->pos[v][0], c->p[1] - me->pos[v][1],
-			 c->p[2] - me->pos[v][2] };
+	double tilt = vec3_dot(n, t);
 
-	vec3_axpy(in, in, -vec3_dot(in, c->t), c->t);
-	if (vec3_normalize(in) > 0) {
-		double d[3];
-
-		vec3_sub(d, n, in);
-		vec3_axpy(n, n, RELIEF, d);
-		vec3_normalize(n);
-	}
+	vec3_axpy(n, n, RELIEF * tilt * (1 - fabs(tilt)), t);
+	vec3_normalize(n);
 	for (int k = 0; k < 3; k++) {
 		out[k] = (float)n[k];
 	}

@@ -13,7 +13,7 @@
 #define PANEL_MIN_PX 220
 #define PANEL_SHARE 0.30
 #define MARGIN_PX 12
-#define INSET_SHARE 0.5 /* of the height, the overview's inset at most */
+#define INSET_SHARE 0.45 /* of the height, the overview's inset at most */
 
 const char *const hud_keys[] = {
 	"Up/W  Down/S\tinsert, withdraw (Shift: faster)",
@@ -371,7 +371,7 @@ static void draw_footer(struct pen *p, const struct hud_info *in,
 {
 	char text[192];
 
-	p->y = bottom - p->small * 2.9f;
+	p->y = fmaxf(p->y + p->small * 0.6f, bottom - p->small * 2.9f);
 	if (*in->rig_problem) {
 		line(p, FONT_SMALL, amber, in->rig_problem);
 	} else {

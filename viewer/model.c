@@ -132,6 +132,22 @@ static void place_as_daemon(struct model *m, const struct client_scene *s,
 	}
 }
 
+/* The last sample whose ring is MODEL_OPEN of the widest near the end. */
+static size_t last_open(const struct mesh *me, double step_m)
+{
+	size_t n = me->samples, near = (size_t)(MODEL_END_M / step_m);
+	size_t i = n - 1;
+	float widest = 0;
+
+	for (size_t k = n > near ? n - near : 0; k < n; k++) {
+		widest = fmaxf(widest, me->sample_rho[k]);
+	}
+	while (i > 0 && me->sample_rho[i] < MODEL_OPEN * widest) {
+		i--;
+	}
+	return i;
+}
+
 static int make_mesh(struct model *m, const struct client_scene *s,
 		     char *err, size_t errsize)
 {
@@ -156,6 +172,7 @@ static int make_mesh(struct model *m, const struct client_scene *s,
 		return -EPROTO;
 	}
 	m->ring = ring_size(m->mesh);
+	m->last_open = last_open(m->mesh, centreline_step(m->cl));
 	return 0;
 }
 
@@ -397,14 +414,31 @@ double model_wall_gap(const struct model *m, size_t *i, const double p[3],
 	return vec3_dot(wall, d) - rho;
 }
 
+/* Back onto the plane of sample last_open from beyond it. */
+static double keep_open(const struct model *m, double p[3])
+{
+	const struct centreline_point *c = centreline_sample(m->cl,
+							    m->last_open);
+	double x[3], past;
+
+	vec3_sub(x, p, c->p);
+	past = vec3_dot(x, c->t);
+	if (past <= 0) {
+		return 0;
+	}
+	vec3_axpy(p, p, -past, c->t);
+	return past;
+}
+
 double model_keep_inside(const struct model *m, size_t i, double p[3],
 			 double margin_m)
 {
-	double d[3], gap = model_wall_gap(m, &i, p, d) - margin_m;
+	double d[3], moved = keep_open(m, p);
+	double gap = model_wall_gap(m, &i, p, d) - margin_m;
 
-	if (gap >= 0) {
-		return 0;
+	if (gap < 0) {
+		vec3_axpy(p, p, gap, d);
+		moved -= gap;
 	}
-	vec3_axpy(p, p, gap, d);
-	return -gap;
+	return moved;
 }

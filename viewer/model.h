@@ -28,6 +28,9 @@
 #define MODEL_MAX_REGIONS 16
 #define MODEL_MAX_POLYPS 32
 #define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow are not placed */
+#define MODEL_END_M 0.15        /* the cecum's dome: a camera stays where */
+#define MODEL_OPEN 0.6          /* the lumen is this share of its widest in
+				   the last MODEL_END_M */
 
 struct model_region {
 	char name[MODEL_NAME]; /* "sigmoid", ...; "colon" for an import */
@@ -60,6 +63,7 @@ struct model {
 	struct model_polyp polyp[MODEL_MAX_POLYPS];
 	int polyps;
 	double placed_error_m; /* largest distance from the scene's vertices */
+	size_t last_open;  /* the last sample whose ring is wide open */
 };
 
 /*
@@ -110,7 +114,9 @@ double model_wall_gap(const struct model *m, size_t *i, const double p[3],
 /*
  * Keeps P (m) inside the lumen near sample I: a point farther from the
  * centreline than the wall less MARGIN_M in its direction is pulled
- * towards the centreline until it is not. Returns how far it moved (m).
+ * towards the centreline until it is not, and one past the plane of
+ * sample last_open (into the cecum's dome) back onto that plane. Returns
+ * how far it moved (m).
  */
 double model_keep_inside(const struct model *m, size_t i, double p[3],
 			 double margin_m);

@@ -16,9 +16,9 @@
 
 #define FOV_DEG 30.0
 #define SCOPE_RADIUS_M 0.0065   /* a 13 mm insertion tube */
-#define TIP_RADIUS_M 0.009
-#define CONTACT_RADIUS_M 0.006
-#define ARROW_M 0.025
+#define TIP_RADIUS_M 0.006
+#define CONTACT_RADIUS_M 0.012  /* larger than the tip: it shows round it */
+#define ARROW_M 0.03
 #define GHOST_GAIN 0.55f
 
 static const float scope_rgb[3] = { OVERVIEW_SCOPE_RGB };

@@ -5,9 +5,12 @@
 # in a colon without bends (tests/cases/straight.case) the endoscopic image
 # is a dark lumen amid lit walls, the lit wall fills it once the tip is
 # steered at the wall, the overview shows the scope's shape growing with
-# the insertion, the HUD is drawn; a stalled daemon reads as stale; the
-# keyboard drives the simulated hand; a daemon that goes away is shown
-# gone, and its successor's colon is fetched. No run has an OpenGL error.
+# the insertion, the HUD is drawn; a loop bows the sigmoid amber in the
+# overview and the HUD warns of it, a contact shows red (a state relayed
+# with both, tests/tools/shm_relay, until the force model makes them); a
+# stalled daemon reads as stale; the keyboard drives the simulated hand; a
+# daemon that goes away is shown gone, and its successor's colon is
+# fetched. No run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -109,6 +112,41 @@ check_status "overview at 60 cm: screenshot" 0 \
 scope_box "$TMP/over60.png"
 check "overview: the scope's shape grows with the insertion" \
 	float_test "$SHARE > 1.3 * $share30 && $TALL > 1.3 * $tall30"
+OVER="rect:$X,$Y,$W,$H"
+
+# --- a loop and a contact, relayed (the force model makes neither yet) --
+stop_daemon
+start_daemon --scenario "$(scenario loop '0 insertion target 0.45 1.5')" ||
+	finish
+ctl enable >/dev/null
+check "the scope goes in 45 cm in the default case" \
+	wait_for status_true '.axes.insertion.position > 0.44'
+check_status "overview, no loop: screenshot" 0 view --view overview \
+	--frames 8 --screenshot "$TMP/plain.png"
+rect_of overview
+OVER="rect:$X,$Y,$W,$H"
+"$TOOLS/shm_relay" "$SHM" "$SHM-relay" --bow 0=0.05 --contact &
+relay=$!
+check "relay: the state with a loop and a contact" \
+	wait_for test -e "/dev/shm$SHM-relay"
+check_status "overview, loop: screenshot" 0 view --view overview \
+	--frames 8 --screenshot "$TMP/loop.png" --shm-name "$SHM-relay"
+kill "$relay"
+wait "$relay"
+for what in amber red; do
+	before=$(png_value "$TMP/plain.png" "$OVER" $what)
+	after=$(png_value "$TMP/loop.png" "$OVER" $what)
+	echo "# overview, $what: $before without, $after with a loop, contact"
+	eval "$what=\$after; ${what}_before=\$before"
+done
+check "loop: the bowed sigmoid turns amber in the overview" \
+	float_test "$amber > 0.003 && $amber > 3 * $amber_before"
+check "contact: the contact point shows red in the overview" \
+	float_test "$red > 0.0002 && $red_before == 0"
+rect_of panel
+check "loop: the HUD warns of it" float_test \
+	"$(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" amber) + \
+	 $(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" red) > 0.002"
 
 # --- a stalled daemon --------------------------------------------------
 kill -STOP "$DAEMON_PID"

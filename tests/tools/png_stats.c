@@ -8,12 +8,14 @@
  * REGION is rect:X,Y,W,H, disc:CX,CY,R or ring:CX,CY,R0,R1 (pixels, the
  * image's top-left origin). For each, one line:
  *
- *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE scope=SHARE box=X0,Y0,X1,Y1
+ *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE scope=SHARE
+ *          box=X0,Y0,X1,Y1
  *
  * LUMA is the mean Rec. 601 luma (0..255); lit the share of pixels with
- * luma above 40; red the share of saturated red (a banner, an alarm); scope
- * the share of the overview's scope green; box the bounding box of the
- * scope-green pixels (-1s when none).
+ * luma above 40; red the share of saturated red (a banner, an alarm, the
+ * contact point); amber the share of amber (a warning, a bowed segment);
+ * scope the share of the overview's scope green; box the bounding box of
+ * the scope-green pixels (-1s when none).
  *
  * Exit 0, 1 when the file cannot be read, 2 on usage.
  */
@@ -30,7 +32,7 @@ struct region {
 };
 
 struct tally {
-	long n, lit, red, scope;
+	long n, lit, red, amber, scope;
 	double luma;
 	int box[4];
 };
@@ -76,6 +78,7 @@ static void count(struct tally *t, const unsigned char *p, int x, int y)
 	t->luma += luma;
 	t->lit += luma > 40;
 	t->red += r > 200 && g < 100 && b < 100;
+	t->amber += r > 120 && g > 0.45 * r && g < 0.8 * r && b < 0.3 * r;
 	t->scope += scope;
 	if (scope) {
 		t->box[0] = t->box[0] < 0 || x < t->box[0] ? x : t->box[0];
@@ -99,9 +102,10 @@ static void report(const char *name, const unsigned char *img, int w, int h,
 		}
 	}
 	n = t.n ? (double)t.n : 1;
-	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f scope=%.4f "
+	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f scope=%.4f "
 	       "box=%d,%d,%d,%d\n", name, t.n, t.luma / n, t.lit / n,
-	       t.red / n, t.scope / n, t.box[0], t.box[1], t.box[2], t.box[3]);
+	       t.red / n, t.amber / n, t.scope / n, t.box[0], t.box[1],
+	       t.box[2], t.box[3]);
 }
 
 int main(int argc, char **argv)

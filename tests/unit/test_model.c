@@ -1,7 +1,8 @@
 /*
  * test_model.c - the viewer's colon (viewer/model.h): rebuilt from what
  * GetScene serves, it is the daemon's colon vertex for vertex, also bowed;
- * it names the region of any s; it keeps a camera inside the lumen.
+ * it names the region of any s; it keeps a camera inside the lumen, out of
+ * the cecum's closed end too.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -117,6 +118,13 @@ static void keeps_inside(void **state)
 	assert_true(fabs(moved + gap - 0.003) < 1e-9);
 	gap = model_wall_gap(f.model, &i, p, d);
 	assert_true(fabs(gap - 0.003) < 0.0005);
+	/* at the cecum's pole: back to where the lumen is open */
+	i = centreline_count(f.model->cl) - 1;
+	memcpy(p, centreline_sample(f.model->cl, i)->p, sizeof(p));
+	assert_true(model_keep_inside(f.model, i, p, 0.003) > 0);
+	i = f.model->last_open;
+	assert_true(i + 5 < centreline_count(f.model->cl));
+	assert_true(p[2] <= centreline_sample(f.model->cl, i)->p[2] + 1e-9);
 	fixture_teardown(&f);
 }
 
