@@ -38,10 +38,10 @@ if has_display; then
 	endoview --socket "$SOCK" --shm-name "$SHM" --view both \
 		>"$TMP/endoview.log" 2>&1 &
 	viewer=$!
-	echo "endoview is open (pid $viewer): the scenario drives the simulated hand;"
-	echo "  take over with its keys (Up/Down insert, Left/Right twist, I/K J/L"
-	echo "  steer, E enable, Space stop, R reset, V view, H help); close its"
-	echo "  window or press Q to end the demo"
+	echo "endoview is open (pid $viewer): the scenario drives the"
+	echo "  simulated hand; take over with its keys (Up/Down insert,"
+	echo "  Left/Right twist, I/K J/L steer, E enable, Space stop, R reset,"
+	echo "  V view, H help); close its window or press Q to end the demo"
 elif start_xvfb; then
 	echo "no display: endoview draws on a virtual screen"
 	shot 9 "$BUILD/demo-1.png" &
@@ -57,7 +57,7 @@ if [ -t 1 ]; then rate=10; else rate=1; fi
 ctl watch --rate $rate --duration "$LENGTH"
 wait "$tracer"
 if [ -n "$viewer" ]; then
-	echo "the scenario is over; the simulated hand is yours until the viewer closes"
+	echo "the scenario is over: the hand is yours until the viewer closes"
 	wait "$viewer"
 fi
 for pid in $shots; do

@@ -77,7 +77,8 @@ static void edit(struct endosim_state *st, const struct edits *e)
 	h->constraints = 1;
 	h->penetration_m = PROXY_BACK_M;
 	for (int d = 0; d < 3; d++) {
-		h->proxy[d] = st->scope.tip[d] - PROXY_BACK_M * st->scope.dir[d];
+		h->proxy[d] = st->scope.tip[d] -
+			      PROXY_BACK_M * st->scope.dir[d];
 		h->normal[d] = -st->scope.dir[d];
 	}
 }
@@ -105,14 +106,15 @@ int main(int argc, char **argv)
 	struct publish *to;
 
 	if (argc < 3 || parse(argc, argv, &e)) {
-		fprintf(stderr, "usage: shm_relay FROM TO [--bow SPAN=METRES]... "
-			"[--contact]\n");
+		fprintf(stderr, "usage: shm_relay FROM TO "
+			"[--bow SPAN=METRES]... [--contact]\n");
 		return 2;
 	}
 	log_init("shm_relay", LOG_NOTICE);
 	from = shm_reader_open(argv[1]);
 	if (!from) {
-		fprintf(stderr, "shm_relay: %s: %s\n", argv[1], strerror(errno));
+		fprintf(stderr, "shm_relay: %s: %s\n", argv[1],
+			strerror(errno));
 		return 1;
 	}
 	hdr = shm_reader_header(from);
