@@ -16,12 +16,12 @@
 
 #define TEXTURE_PX 1024
 #define TEXTURE_SEED 20020101u
-#define EXPOSURE_M2 0.0007 /* a white wall facing the lens at 2.6 cm: 1 */
+#define EXPOSURE_M2 0.0007  /* a white wall facing the lens at 2.6 cm: 1 */
 #define ALC_AROUND 8        /* rays on each cone */
 #define ALC_CONE_RAD 0.4    /* the inner cone's half-angle */
 #define ALC_STEP_M 0.002
 #define ALC_REACH_M 0.08
-#define GLOSS 0.8         /* the wettest mucosa's highlight */
+#define GLOSS 0.8           /* the wettest mucosa's highlight */
 
 static const float mucosa_tint[3] = { 1.0f, 1.0f, 1.0f };
 static const float polyp_tint[3] = { 1.02f, 0.80f, 0.78f };
@@ -221,11 +221,17 @@ static double wall_ahead(const struct model *m, const struct endo_camera *cam)
 	return sqrt((2 * ALC_AROUND + 1) / sum);
 }
 
+/* The light's level for walls WALL_M away (endo.h). */
+static double light_level(double wall_m)
+{
+	double r = wall_m / ENDO_ALC_REF_M;
+
+	return fmax(ENDO_ALC_MIN, fmin(1, r * r));
+}
+
 void endo_camera(const struct model *m, const struct endosim_state *st,
 		 struct endo_camera *cam)
 {
-	double r;
-
 	const struct endosim_scope_state *sc = &st->scope;
 	const struct endosim_haptics_state *h = &st->haptics;
 
@@ -236,8 +242,7 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 	cam->pulled_in_m = model_keep_inside(m, model_sample_at(m, sc->tip_s_m),
 					     cam->eye, ENDO_WALL_MARGIN_M);
 	cam->wall_m = wall_ahead(m, cam);
-	r = cam->wall_m / ENDO_ALC_REF_M;
-	cam->exposure = fmax(ENDO_ALC_MIN, fmin(1, r * r));
+	cam->exposure = light_level(cam->wall_m);
 }
 
 static void set_uniforms(const struct endo *e, const struct endo_camera *cam,

@@ -19,8 +19,8 @@
  * monitor. Light: one point source at the lens, falling off with the
  * square of the distance, so that the lumen ahead is a dark hole; diffuse
  * with a little wrap for the red light scattered in tissue, a sharp
- * specular term for the moist mucosa, bump-mapped by the vessel texture's
- * height (vessels.h) so the highlights break into glints. The haustral
+ * specular term for the moist mucosa, its strength the vessel texture's
+ * moisture (vessels.h) so the highlights break into glints. The haustral
  * folds and the taeniae are the mesh's own relief, lit.
  *
  * Only the segments the portal walk finds (portal.h) are drawn, each at its

@@ -2,13 +2,15 @@
  * vessels.h - the colon's mucosa as a procedural texture: a tileable RGBA
  * image whose colour is the mucosa's albedo (salmon pink, mottled, with
  * the branching submucosal vessels: deep ones broad and bluish-purple,
- * superficial ones fine and red) and whose alpha is a height for bump
- * mapping (the mucosa's fine grooves and the vessels' ridges), so that
- * the moist surface breaks its highlights into glints.
+ * superficial ones fine and red) and whose alpha is the surface's
+ * moisture (fine grain, higher along the vessels), which scales the
+ * specular highlight so that the moist mucosa breaks it into glints.
  *
- * The image repeats in both directions (endoview maps it along the colon
- * once every VESSELS_TILE_M and around it with vessels_around()). Same seed,
- * same image. Pure computation; allocates the image.
+ * The image repeats in both directions: endoview maps it along the colon
+ * once every VESSELS_TILE_M, and around a generated tube VESSELS_AROUND
+ * times (its rings carry their first vertex again where it wraps), around
+ * anything else with vessels_around(). Same seed, same image. Pure
+ * computation; allocates the image.
  */
 #ifndef ENDOVIEW_VESSELS_H
 #define ENDOVIEW_VESSELS_H
