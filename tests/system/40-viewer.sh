@@ -8,9 +8,9 @@
 # the insertion, the HUD is drawn; a loop bows the sigmoid amber in the
 # overview and the HUD warns of it, a contact shows red (a state relayed
 # with both, tests/tools/shm_relay, until the force model makes them); a
-# stalled daemon reads as stale; the keyboard drives the simulated hand; a
-# daemon that goes away is shown gone, and its successor's colon is
-# fetched. No run has an OpenGL error.
+# stalled daemon reads as stale; the keyboard and the mouse drive the
+# simulated hand; a daemon that goes away is shown gone, and its
+# successor's colon is fetched. No run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -68,6 +68,8 @@ check "lumen: the straight colon, live, no OpenGL error" eval \
 	'ran_clean live && [ "$(view_field colon)" = straight ]'
 rect_of endo
 ENDO="rect:$X,$Y,$W,$H" # the same in every run at this size
+ENDO_CX=$CX
+ENDO_CY=$CY
 centre=$(png_value "$TMP/lumen.png" "disc:$CX,$CY,$((W / 10))" mean)
 walls=$(png_value "$TMP/lumen.png" \
 	"ring:$CX,$CY,$((W * 3 / 10)),$((W * 9 / 20))" mean)
@@ -102,7 +104,7 @@ check_status "wall: screenshot" 0 \
 check "wall: no OpenGL error" ran_clean live
 rect_of endo
 wall=$(png_value "$TMP/wall.png" "disc:$CX,$CY,$((W / 10))" mean)
-lit=$(png_value "$TMP/wall.png" "disc:$CX,$CY,$((W * 2 / 5))" lit)
+lit=$(png_value "$TMP/wall.png" "disc:$CX,$CY,$((W * 3 / 10))" lit)
 echo "# wall: mean luma $wall at the centre (lumen: $centre), lit $lit"
 check "wall: the lit wall fills the view" \
 	float_test "$wall > 3 * $centre && $wall > 60 && $lit > 0.9"
@@ -174,6 +176,19 @@ after=$(status_field .axes.insertion.position)
 echo "# the Up key: insertion $before -> $after m"
 check "the Up key inserts the scope (the simulated hand)" \
 	float_test "$after > $before + 0.03"
+# a drag up the image from its middle turns the up/down wheel up
+before=$(status_field .axes.wheel_ud.position)
+xdotool mousemove --window "$window" "$ENDO_CX" "$ENDO_CY" mousedown 1
+for dy in 20 40 60 80 100; do
+	xdotool mousemove --window "$window" "$ENDO_CX" $((ENDO_CY - dy))
+	sleep 0.1
+done
+sleep 1
+after=$(status_field .axes.wheel_ud.position)
+xdotool mouseup 1
+echo "# dragging up: wheel U/D $before -> $after rad"
+check "a drag up the image steers the tip up" \
+	float_test "$after > $before + 0.3"
 stop_daemon
 check "the viewer sees the daemon gone" \
 	wait_for grep -qE "is gone|no endosimd" "$TMP/live.out"
