@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,9 +90,58 @@ static int check_segments(const struct model *m, const Endosim__SceneInfo *in,
 	return 0;
 }
 
+/* Triangle K of a tube of RING vertices a ring, as colon_create() makes
+ * them: two per quad, ring by ring, then the fan to the cecum's pole. */
+static void tube_triangle(uint32_t ring, uint32_t rings, uint32_t k,
+			  uint32_t t[3])
+{
+	uint32_t q = k / 2, i = q / ring, j = q % ring;
+	uint32_t a = i * ring + j, c = i * ring + (j + 1) % ring;
+
+	if (i + 1 >= rings) { /* the fan */
+		j = k - 2 * (rings - 1) * ring;
+		t[0] = (rings - 1) * ring + j;
+		t[1] = rings * ring;
+		t[2] = (rings - 1) * ring + (j + 1) % ring;
+	} else if (k % 2 == 0) {
+		t[0] = a;
+		t[1] = a + ring;
+		t[2] = c;
+	} else {
+		t[0] = a + ring;
+		t[1] = c + ring;
+		t[2] = c;
+	}
+}
+
+/* Every vertex at its place round the ring (j at 2 pi j / RING from u, to
+ * within half a step) and every triangle where colon_create() puts it. */
+static bool tube_laid_out(const struct mesh *me, uint32_t ring)
+{
+	uint32_t t[3];
+
+	for (uint32_t v = 0; v + 1 < me->vertices; v++) {
+		double a = atan2(me->off[v][2], me->off[v][1]) * ring /
+			   (2 * M_PI);
+		double step = remainder(a - v % ring, ring);
+
+		if (fabs(step) > 0.5) {
+			return false;
+		}
+	}
+	for (uint32_t k = 0; k < me->triangles; k++) {
+		tube_triangle(ring, (uint32_t)me->samples - 1, k, t);
+		if (memcmp(t, me->tri[k], sizeof(t))) {
+			return false;
+		}
+	}
+	return true;
+}
+
 /*
- * A tube made by colon_create(): R vertices per sample but the last (the
- * cecum's pole), in ring order, and 2 R triangles per ring but the last.
+ * A tube made by colon_create() (an import of one too): R vertices per
+ * sample but the last (the cecum's pole), in ring order, and its
+ * triangles. 0 for any other mesh.
  */
 static uint32_t ring_size(const struct mesh *me)
 {
@@ -106,7 +156,7 @@ static uint32_t ring_size(const struct mesh *me)
 			return 0;
 		}
 	}
-	return ring;
+	return tube_laid_out(me, ring) ? ring : 0;
 }
 
 /*

@@ -128,6 +128,33 @@ static void keeps_inside(void **state)
 	fixture_teardown(&f);
 }
 
+/* Levels of detail need a tube laid out as colon_create() lays it: one
+ * quad's diagonal the other way makes it any mesh. */
+static void knows_a_tube(void **state)
+{
+	struct fixture f;
+	uint32_t (*tri)[3];
+	struct model *m;
+	char err[256];
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.004, 24);
+	assert_int_equal(f.model->ring, 24);
+	tri = malloc(f.cs.triangles * sizeof(*tri));
+	assert_non_null(tri);
+	memcpy(tri, f.cs.indices, f.cs.triangles * sizeof(*tri));
+	/* (a, b, c), (b, d, c) become (a, b, d), (a, d, c) */
+	tri[0][2] = tri[1][1];
+	tri[1][0] = tri[0][0];
+	f.cs.indices = tri;
+	m = model_create(&f.cs, err, sizeof(err));
+	assert_non_null(m);
+	assert_int_equal(m->ring, 0);
+	model_destroy(m);
+	free(tri);
+	fixture_teardown(&f);
+}
+
 /* A scene that does not add up is refused, with a reason. */
 static void refuses_bad_scene(void **state)
 {
@@ -154,6 +181,7 @@ int main(void)
 		cmocka_unit_test(bows_as_daemon),
 		cmocka_unit_test(names_regions),
 		cmocka_unit_test(keeps_inside),
+		cmocka_unit_test(knows_a_tube),
 		cmocka_unit_test(refuses_bad_scene),
 	};
 
