@@ -5,10 +5,10 @@
 #include <string.h>
 
 /* The scripted hand's grip (endosimd --print-config, [sim] hand_*). */
-const double INPUT_RATE[ENDOSIM_AXES] = { 0.05, 1.5, 1.5, 1.5 };
-const double INPUT_STIFFNESS[ENDOSIM_AXES] = { 400, 0.5, 0.05, 0.05 };
-const double INPUT_DAMPING[ENDOSIM_AXES] = { 40, 0.02, 0.002, 0.002 };
-const double INPUT_STRENGTH[ENDOSIM_AXES] = { 40, 1.0, 0.15, 0.15 };
+const double input_rate[ENDOSIM_AXES] = { 0.05, 1.5, 1.5, 1.5 };
+const double input_stiffness[ENDOSIM_AXES] = { 400, 0.5, 0.05, 0.05 };
+const double input_damping[ENDOSIM_AXES] = { 40, 0.02, 0.002, 0.002 };
+const double input_strength[ENDOSIM_AXES] = { 40, 1.0, 0.15, 0.15 };
 
 #define NS 1e9
 
@@ -40,7 +40,7 @@ static void take_hold(struct input_hand *h, const struct endosim_state *st)
 static void move_target(struct input_hand *h, const struct input_controls *c,
 			const struct endosim_state *st, double dt_s, int a)
 {
-	double lead = INPUT_STRENGTH[a] / INPUT_STIFFNESS[a];
+	double lead = input_strength[a] / input_stiffness[a];
 	double rate = clamp(c->rate[a], -INPUT_FAST, INPUT_FAST);
 
 	if (c->drag[a] && !h->dragging[a]) {
@@ -50,7 +50,7 @@ static void move_target(struct input_hand *h, const struct input_controls *c,
 	if (c->drag[a]) {
 		h->target[a] = h->drag_from[a] + c->drag_by[a];
 	}
-	h->target[a] += rate * INPUT_RATE[a] * dt_s + c->step[a];
+	h->target[a] += rate * input_rate[a] * dt_s + c->step[a];
 	h->target[a] = clamp(h->target[a], st->axis[a].position - lead,
 			     st->axis[a].position + lead);
 }
@@ -80,9 +80,9 @@ bool input_step(struct input_hand *h, const struct input_controls *c,
 		double pull;
 
 		move_target(h, c, st, dt_s, a);
-		pull = INPUT_STIFFNESS[a] * (h->target[a] - ax->position) -
-		       INPUT_DAMPING[a] * ax->velocity;
-		force[a] = clamp(pull, -INPUT_STRENGTH[a], INPUT_STRENGTH[a]);
+		pull = input_stiffness[a] * (h->target[a] - ax->position) -
+		       input_damping[a] * ax->velocity;
+		force[a] = clamp(pull, -input_strength[a], input_strength[a]);
 	}
 	return true;
 }

@@ -10,7 +10,7 @@
  * so that a key held pushes the scope along at a steady pace where the
  * colon lets it and with the hand's full strength where it does not.
  * Rates (keys, sticks; -1..1, or up to INPUT_FAST for a hurried hand)
- * move the target at INPUT_RATE per axis; a drag sets an axis' target to
+ * move the target at input_rate per axis; a drag sets an axis' target to
  * where it was when the drag began plus the drag's offset; a step nudges
  * it once (the scroll wheel). The target never leads its axis by more
  * than the strength over the stiffness, so it does not run away from a
@@ -32,10 +32,10 @@
 #define INPUT_FAST 3.0
 
 /* Per axis: insertion (m), roll, up/down wheel, left/right wheel (rad). */
-extern const double INPUT_RATE[ENDOSIM_AXES];      /* per second */
-extern const double INPUT_STIFFNESS[ENDOSIM_AXES]; /* N/m, N m/rad */
-extern const double INPUT_DAMPING[ENDOSIM_AXES];   /* N s/m, N m s/rad */
-extern const double INPUT_STRENGTH[ENDOSIM_AXES];  /* N, N m */
+extern const double input_rate[ENDOSIM_AXES];      /* per second */
+extern const double input_stiffness[ENDOSIM_AXES]; /* N/m, N m/rad */
+extern const double input_damping[ENDOSIM_AXES];   /* N s/m, N m s/rad */
+extern const double input_strength[ENDOSIM_AXES];  /* N, N m */
 
 /* What the trainee does this frame. */
 struct input_controls {

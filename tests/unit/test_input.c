@@ -46,16 +46,16 @@ static void key_pushes_up_to_strength(void **state)
 	st.axis[a].position = 0.2;
 	c.rate[a] = 1;
 	assert_true(input_step(&h, &c, &st, 0.1, 0, f));
-	assert_true(fabs(h.target[a] - (0.2 + 0.1 * INPUT_RATE[a])) < 1e-12);
-	assert_true(fabs(f[a] - INPUT_STIFFNESS[a] * 0.1 * INPUT_RATE[a]) <
+	assert_true(fabs(h.target[a] - (0.2 + 0.1 * input_rate[a])) < 1e-12);
+	assert_true(fabs(f[a] - input_stiffness[a] * 0.1 * input_rate[a]) <
 		    1e-9);
 	assert_true(f[ENDOSIM_AXIS_ROLL] == 0); /* held where it is */
 	for (int k = 1; k < 1000; k++) {
 		input_step(&h, &c, &st, 0.1, (uint64_t)k * 100 * MS, f);
 	}
-	assert_true(fabs(f[a] - INPUT_STRENGTH[a]) < 1e-9);
+	assert_true(fabs(f[a] - input_strength[a]) < 1e-9);
 	assert_true(h.target[a] - st.axis[a].position <=
-		    INPUT_STRENGTH[a] / INPUT_STIFFNESS[a] + 1e-12);
+		    input_strength[a] / input_stiffness[a] + 1e-12);
 	/* the scope gives way: the pull falls at once */
 	st.axis[a].position = h.target[a];
 	c.rate[a] = 0;
@@ -75,7 +75,7 @@ static void damps_motion(void **state)
 	c.step[ENDOSIM_AXIS_INSERTION] = 1e-9; /* anything, to take hold */
 	st.axis[a].velocity = 2.0;
 	input_step(&h, &c, &st, 0.0, 0, f);
-	assert_true(fabs(f[a] + INPUT_DAMPING[a] * 2.0) < 1e-12);
+	assert_true(fabs(f[a] + input_damping[a] * 2.0) < 1e-12);
 }
 
 /* A drag sets the target from where it was when the drag began. */
