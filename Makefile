@@ -3,12 +3,13 @@
 # The object lists below are the architecture: which module goes into which
 # program. See docs/ARCHITECTURE.md for the threads and the data flow.
 #
-#   make            build build/endosimd and build/endoctl
+#   make            build build/endosimd, build/endoctl and build/endoview
 #   make test       install missing Debian packages (as root), build with
 #                   gcc and clang (-Werror), run every test
 #   make demo       run the daemon on the simulated rig with the demo scenario
+#                   and the viewer beside it (headless: a screenshot)
 #   make bench      the figures: loop latency next to cyclictest's, the
-#                   colon model, the haptic step, the drives
+#                   colon model, the haptic step, the drives, the viewer
 #   make emulators  the drive emulators (tests/emulators/) and the drive
 #                   benchmark program (run tests/bench/drives.sh)
 #   make install    PREFIX=/usr/local DESTDIR= : binaries, config, systemd
@@ -45,11 +46,16 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
-	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev
+	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev \
+	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev \
+	     fonts-dejavu-core
 DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
-	    valgrind umockdev libumockdev-dev libglib2.0-dev
+	    valgrind umockdev libumockdev-dev libglib2.0-dev \
+	    $(DEPS_SCREEN) xdotool
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
-	     libglib2.0-dev
+	     libglib2.0-dev $(DEPS_SCREEN)
+# a screen for the viewer where there is none (tests, bench, headless demo)
+DEPS_SCREEN = xvfb xauth libgl1-mesa-dri
 
 # Installs the missing packages of $(1) as root; otherwise names them.
 define ensure_packages
@@ -96,15 +102,30 @@ DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 # endoctl: the CLI over the sockets
 ENDOCTL_OBJS = endoctl.o json.o objio.o
 
+# endoview: the viewer (viewer/). The link to the daemon (shared memory,
+# the scene, commands and the hand) and the trainee's controls; the colon
+# rebuilt with the daemon's own centreline and mesh, its levels of detail
+# and the portal walk; the endoscopic view, the overview, the HUD
+VIEWER_OBJS = endoview.o link.o rigctl.o ui.o input.o \
+	      model.o lod.o portal.o centreline.o mesh.o \
+	      gpumesh.o endo.o vessels.o overview.o shapes.o \
+	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o
+VIEWER_PKGS = glfw3 epoxy cglm stb
+VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
+VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
+		  2>/dev/null) -lm
+
 obj = $(addprefix $(BUILD)/obj/,$(1))
 
-PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl
+PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl $(BUILD)/endoview
 
 # --- unit tests (cmocka) and helpers --------------------------------------
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
 	     test_config_drives test_colon test_scope test_scene \
-	     test_godobject test_haptics
+	     test_godobject test_haptics \
+	     test_model test_lod test_portal test_input test_timing \
+	     test_vessels
 test_config_OBJS = config.o regmap.o log.o names.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
@@ -122,7 +143,17 @@ test_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o plant.o config.o \
 test_scope_OBJS = $(COLON_OBJS)
 test_scene_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
 		  endosim.pb-c.o $(COLON_OBJS)
-TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen
+# the viewer's modules that need no window
+VIEWER_SCENE_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
+		    endosim.pb-c.o $(COLON_OBJS)
+test_model_OBJS = model.o $(VIEWER_SCENE_OBJS)
+test_lod_OBJS = lod.o model.o $(VIEWER_SCENE_OBJS)
+test_portal_OBJS = portal.o lod.o model.o $(VIEWER_SCENE_OBJS)
+test_input_OBJS = input.o
+test_timing_OBJS = timing.o
+test_vessels_OBJS = vessels.o
+TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen shm_relay
+shm_relay_OBJS = publish.o log.o
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)
@@ -143,7 +174,8 @@ modbus-emu_OBJS = modbus_emu.o emu.o config.o regmap.o log.o names.o plant.o
 DRIVES_BENCH_OBJS = drives_bench.o rig.o rig_sim.o plant.o hand.o scenario.o \
 		    config.o regmap.o log.o names.o histo.o rt.o $(DRIVE_OBJS)
 
-.PHONY: all test check bench bench-tools demo install clean deps deps-test deps-bench \
+.PHONY: all test check bench bench-tools demo install clean deps deps-test \
+	deps-bench deps-build deps-demo \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
 	emulators
 
@@ -171,11 +203,18 @@ $(BUILD)/endosimd: $(call obj,$(DAEMON_OBJS) $(PROTO_OBJS))
 $(BUILD)/endoctl: $(call obj,$(ENDOCTL_OBJS) $(PROTO_OBJS))
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(CLIENT_LDLIBS)
 
+$(BUILD)/obj/%.o: viewer/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon $(VIEWER_CFLAGS) -c -o $@ $<
+
+$(BUILD)/endoview: $(call obj,$(VIEWER_OBJS) $(PROTO_OBJS))
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(VIEWER_LDLIBS)
+
 # unit tests: each test file with the modules it exercises
 define unit_test_rule
 $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -Iviewer -o $$@ $$< \
 		$(call obj,$($(1)_OBJS)) $$(LDFLAGS) $$(LDLIBS) -lcmocka
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
@@ -190,10 +229,16 @@ endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
-	$(BENCH_TOOLS))
+	$(BENCH_TOOLS) png_stats)
+
+# pixel statistics of the viewer's screenshots (stb_image)
+$(BUILD)/tests/png_stats: tests/tools/png_stats.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
 # benchmarks: programs that print figures (tests/bench/)
-bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS))
+bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
+	png_stats)
 
 $(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
 		$(call obj,$(bench_haptics_OBJS))
@@ -262,6 +307,9 @@ deps: deps-test deps-bench
 deps-build:
 	$(call ensure_packages,$(DEPS_BUILD))
 
+deps-demo:
+	$(call ensure_packages,$(DEPS_BUILD) $(DEPS_SCREEN))
+
 deps-test:
 	$(call ensure_packages,$(DEPS_TEST))
 
@@ -287,7 +335,7 @@ asan-build:
 check: all unit-tests emulators clang-build asan-build fuzz-build
 	BUILD=$(BUILD) tests/run.sh
 
-demo: deps-build
+demo: deps-demo
 	$(MAKE) --no-print-directory all
 	BUILD=$(BUILD) tests/demo.sh
 
@@ -305,6 +353,7 @@ install: all
 		$(DESTDIR)$(TMPFILESDIR)
 	install -m 0755 $(BUILD)/endosimd $(DESTDIR)$(SBINDIR)/endosimd
 	install -m 0755 $(BUILD)/endoctl $(DESTDIR)$(BINDIR)/endoctl
+	install -m 0755 $(BUILD)/endoview $(DESTDIR)$(BINDIR)/endoview
 	test -e $(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf || \
 		install -m 0644 config/endosimd.conf \
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf

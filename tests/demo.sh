@@ -1,9 +1,27 @@
 #!/bin/bash
 # demo.sh - `make demo`: endosimd on the simulated rig with the shipped demo
 # scenario (the simulated hand inserts, twists, steers and withdraws), a live
-# status line while it runs, and a summary at the end.
+# status line while it runs, and a summary at the end. With a display, the
+# viewer (endoview) opens beside it and the demo lasts until its window is
+# closed: its keys take the simulated hand over from the scenario. Without
+# one, the viewer draws on a virtual screen (Xvfb) and leaves two
+# screenshots, mid-way and at the deepest.
 set -u
 . "$(dirname "$0")/common.sh"
+. "$TOP/tests/viewer_lib.sh"
+
+# a display the viewer can open
+has_display() {
+	[ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] &&
+		endoview --view empty --size 160x120 --frames 1 >/dev/null 2>&1
+}
+
+# shot SECONDS FILE: a screenshot of both views SECONDS into the scenario.
+shot() {
+	sleep "$1"
+	view --view both --frames 30 --screenshot "$2" &&
+		echo "  screenshot: $2"
+}
 
 SCENARIO="$TOP/config/scenarios/demo.scn"
 LENGTH=$(awk '$2 == "end" || $2 == "repeat" { print $1 }' "$SCENARIO")
@@ -14,11 +32,37 @@ start_daemon --scenario "$SCENARIO" || exit 1
 echo "daemon pid $DAEMON_PID, sockets in $SOCK, shared memory $SHM"
 echo "  in another terminal: $ENDOCTL --socket $SOCK status"
 ctl enable
+viewer=""
+shots=""
+if has_display; then
+	endoview --socket "$SOCK" --shm-name "$SHM" --view both \
+		>"$TMP/endoview.log" 2>&1 &
+	viewer=$!
+	echo "endoview is open (pid $viewer): the scenario drives the"
+	echo "  simulated hand; take over with its keys (Up/Down insert,"
+	echo "  Left/Right twist, I/K J/L steer, E enable, Space stop, R reset,"
+	echo "  V view, H help); close its window or press Q to end the demo"
+elif start_xvfb; then
+	echo "no display: endoview draws on a virtual screen"
+	shot 9 "$BUILD/demo-1.png" &
+	shots="$!"
+	shot 16 "$BUILD/demo-2.png" &
+	shots="$shots $!"
+else
+	echo "no display and no Xvfb: the daemon alone"
+fi
 ctl --json watch --rate 50 --duration "$LENGTH" >"$TMP/trace.json" &
 tracer=$!
 if [ -t 1 ]; then rate=10; else rate=1; fi
 ctl watch --rate $rate --duration "$LENGTH"
 wait "$tracer"
+if [ -n "$viewer" ]; then
+	echo "the scenario is over: the hand is yours until the viewer closes"
+	wait "$viewer"
+fi
+for pid in $shots; do
+	wait "$pid"
+done
 
 echo
 echo "=== summary ==="

@@ -17,6 +17,8 @@
 #    it may).
 # 4. The drives: exchange rates and transaction latency against the
 #    emulators (drives.sh).
+# 5. The viewer's frame times and the age of the state it shows
+#    (tests/bench/viewer.sh).
 set -u
 . "$(dirname "$0")/../common.sh"
 
@@ -84,3 +86,6 @@ rt "$BUILD/tests/bench_haptics" "$TOP/config/cases/normal.case" \
 echo
 echo "=== drives against the emulators ==="
 BUILD=$BUILD "$TOP/tests/bench/drives.sh"
+
+echo
+BUILD="$BUILD" bash "$TOP/tests/bench/viewer.sh"

@@ -1,0 +1,72 @@
+#!/bin/bash
+# viewer.sh - endoview's frame times on this machine (make bench runs it;
+# figures, not verdicts). On a virtual screen (Xvfb; Mesa's llvmpipe
+# unless a GPU is there), with vsync off, the daemon on the simulated rig
+# holding the scope 60 cm in the default case: for each window size and
+# each mesh (the default resolution, and ~2 million triangles), the frame
+# rate and the frame time (p50, p99) of the endoscopic view and of the
+# overview next to an empty frame (clear and swap only) measured in the
+# same run, and the age of the state each frame shows (the swap's time less
+# the state's publish_ns, p50, p99).
+#
+#   VIEWER_FRAMES   frames per run (default 150)
+set -u
+. "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
+
+FRAMES=${VIEWER_FRAMES:-150}
+SIZES="1280x720 640x480"
+SCN="$TMP/hold.scn"
+printf '%s\n' '0 insertion target 0.60 2' >"$SCN"
+
+# measure VIEW SIZE: one run; prints its row.
+measure() {
+	local view=$1 size=$2 fps p50 p99 a50 a99 tris ratio
+	if ! view --view "$view" --size "$size" --frames "$FRAMES"; then
+		echo "  $view $size: endoview failed:"
+		sed 's/^/    /' "$VIEW_OUT"
+		return 1
+	fi
+	fps=$(view_field fps)
+	p50=$(view_field frame_ms_p50)
+	p99=$(view_field frame_ms_p99)
+	a50=$(view_field age_ms_p50)
+	a99=$(view_field age_ms_p99)
+	tris=$(view_field triangles)
+	[ "$view" = empty ] && EMPTY=$p50
+	ratio=$(awk -v a="$p50" -v b="$EMPTY" \
+		'BEGIN { printf "%.2f", (b > 0 ? a / b : 0) }')
+	printf '  %-9s %-9s %7.1f %8.2f %8.2f %7s %9.2f %8.2f %9d\n' \
+		"$view" "$size" "$fps" "$p50" "$p99" "${ratio}x" "$a50" "$a99" \
+		"$tris"
+}
+
+# mesh NAME ARGS...: the daemon with the colon at that resolution, every
+# view at every size.
+mesh() {
+	local name=$1
+	shift
+	start_daemon "$@" --scenario "$SCN" || return 1
+	ctl enable >/dev/null
+	wait_for status_true '.axes.insertion.position > 0.59'
+	echo "colon: $name, $(ctl --json scene info 2>/dev/null |
+		jq -r '"\(.triangles) triangles"' 2>/dev/null)"
+	printf '  %-9s %-9s %7s %8s %8s %7s %9s %8s %9s\n' view size fps \
+		"p50 ms" "p99 ms" "/empty" "age p50" "age p99" triangles
+	for size in $SIZES; do
+		for view in empty endo overview; do
+			measure "$view" "$size"
+		done
+	done
+	stop_daemon
+}
+
+echo "=== endoview: frame times, ${FRAMES} frames a run, vsync off ==="
+start_xvfb 1920x1080 || exit 1
+view --view empty --size 320x240 --frames 1 >/dev/null 2>&1
+echo "renderer: $(sed -n 's/^endoview: OpenGL //p' "$VIEW_OUT"), $(nproc) CPUs"
+mesh "default case, default resolution"
+mesh "default case at ~2 million triangles" \
+	--set case.ring_vertices=672 --set case.step_m=0.001
+echo "(frame: swap to swap; age: the state's publish_ns to the swap that"
+echo " shows it; /empty: the frame's p50 over the empty frame's at that size)"

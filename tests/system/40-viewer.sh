@@ -1,0 +1,210 @@
+#!/bin/bash
+# The viewer, endoview, on a virtual screen of its own (Xvfb, Mesa's
+# llvmpipe), measured from its screenshots' pixels: without a daemon it
+# shows its banner and exits cleanly; with the daemon on the simulated rig
+# in a colon without bends (tests/cases/straight.case) the endoscopic image
+# is a dark lumen amid lit walls, the lit wall fills it once the tip is
+# steered at the wall, the overview shows the scope's shape growing with
+# the insertion, the HUD is drawn; a loop bows the sigmoid amber in the
+# overview and the HUD warns of it, a contact shows red (a state relayed
+# with both, tests/tools/shm_relay, until the force model makes them); a
+# stalled daemon reads as stale; the keyboard and the mouse drive the
+# simulated hand; a daemon that goes away is shown gone, and its
+# successor's colon is fetched. No run has an OpenGL error.
+. "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
+
+start_xvfb || finish
+STRAIGHT=(--set "case.directory=$TOP/tests/cases" --set case.name=straight)
+SMALL=(--size 640x480)
+
+# scenario NAME LINE...: a scenario file for the simulated hand; its path.
+scenario() {
+	local f="$TMP/$1.scn"
+	shift
+	printf '%s\n' "$@" >"$f"
+	echo "$f"
+}
+
+# rect_of VIEW: X Y W H CX CY of a view in the last run's layout.
+rect_of() {
+	read -r X Y W H < <(view_rect "$1")
+	CX=$((X + W / 2))
+	CY=$((Y + H / 2))
+}
+
+# the last run: frames drawn, no OpenGL error, the daemon seen as $1
+ran_clean() {
+	[ "$(view_field gl_errors)" = 0 ] && [ "$(view_field daemon)" = "$1" ]
+}
+
+# scope_box FILE: the overview's scope-green pixels' share and box height.
+scope_box() {
+	local box
+	rect_of overview
+	read -r SHARE box < <("$PNG_STATS" "$1" "rect:$X,$Y,$W,$H" |
+		sed -n 's/.* scope=\([^ ]*\) box=\([^ ]*\)/\1 \2/p')
+	IFS=, read -r _ Y0 _ Y1 <<<"$box"
+	TALL=$((Y1 - Y0))
+}
+
+# --- no daemon -----------------------------------------------------------
+check_status "no daemon: draws its frames and exits cleanly" 0 \
+	view "${SMALL[@]}" --frames 8 --screenshot "$TMP/none.png"
+check "no daemon: says so, no OpenGL error" ran_clean none
+rect_of endo
+check "no daemon: the red NO DAEMON banner across the image" float_test \
+	"$(png_value "$TMP/none.png" "rect:$X,$Y,$W,$H" red) > 0.002"
+
+# --- down a straight lumen ---------------------------------------------
+start_daemon "${STRAIGHT[@]}" \
+	--scenario "$(scenario lumen '0 insertion target 0.30 1.5')" || finish
+ctl enable >/dev/null
+check "the scope goes in 30 cm" \
+	wait_for status_true '.axes.insertion.position > 0.29'
+check_status "lumen: screenshot" 0 \
+	view "${SMALL[@]}" --view endo --frames 20 --screenshot "$TMP/lumen.png"
+check "lumen: the straight colon, live, no OpenGL error" eval \
+	'ran_clean live && [ "$(view_field colon)" = straight ]'
+rect_of endo
+ENDO="rect:$X,$Y,$W,$H" # the same in every run at this size
+ENDO_CX=$CX
+ENDO_CY=$CY
+centre=$(png_value "$TMP/lumen.png" "disc:$CX,$CY,$((W / 10))" mean)
+walls=$(png_value "$TMP/lumen.png" \
+	"ring:$CX,$CY,$((W * 3 / 10)),$((W * 9 / 20))" mean)
+echo "# lumen: mean luma $centre at the centre, $walls on the ring around"
+check "lumen: a dark hole at the centre, lit walls around it" \
+	float_test "$centre < 0.35 * $walls && $walls > 40"
+check "lumen: thousands of triangles drawn of the colon's 290 000" \
+	float_test "$(view_field triangles) > 1000 && \
+		    $(view_field triangles) < 20000"
+rect_of panel
+check "the HUD is drawn beside the image" float_test \
+	"$(png_value "$TMP/lumen.png" "rect:$X,$Y,$W,$H" lit) > 0.01"
+check_status "overview at 30 cm: screenshot" 0 \
+	view "${SMALL[@]}" --view overview --frames 8 \
+	--screenshot "$TMP/over30.png"
+scope_box "$TMP/over30.png"
+share30=$SHARE
+tall30=$TALL
+check "overview: the scope's green along its shape" \
+	float_test "$share30 > 0.001 && $tall30 > 0.1 * $H"
+
+# --- steered at the wall, deeper -----------------------------------------
+stop_daemon
+start_daemon "${STRAIGHT[@]}" --scenario "$(scenario wall \
+	'0 insertion target 0.60 1.5' '0 wheel_ud target 0.6 1.0')" || finish
+ctl enable >/dev/null
+check "the scope goes in 60 cm, the tip turns up 60 deg" wait_for \
+	status_true '.axes.insertion.position > 0.59 and
+		     .axes.wheel_ud.position > 0.58'
+check_status "wall: screenshot" 0 \
+	view "${SMALL[@]}" --view endo --frames 20 --screenshot "$TMP/wall.png"
+check "wall: no OpenGL error" ran_clean live
+rect_of endo
+wall=$(png_value "$TMP/wall.png" "disc:$CX,$CY,$((W / 10))" mean)
+lit=$(png_value "$TMP/wall.png" "disc:$CX,$CY,$((W * 3 / 10))" lit)
+echo "# wall: mean luma $wall at the centre (lumen: $centre), lit $lit"
+check "wall: the lit wall fills the view" \
+	float_test "$wall > 3 * $centre && $wall > 60 && $lit > 0.9"
+check_status "overview at 60 cm: screenshot" 0 \
+	view "${SMALL[@]}" --view overview --frames 8 \
+	--screenshot "$TMP/over60.png"
+scope_box "$TMP/over60.png"
+check "overview: the scope's shape grows with the insertion" \
+	float_test "$SHARE > 1.3 * $share30 && $TALL > 1.3 * $tall30"
+OVER="rect:$X,$Y,$W,$H"
+
+# --- a loop and a contact, relayed (the force model makes neither yet) --
+stop_daemon
+start_daemon --scenario "$(scenario loop '0 insertion target 0.45 1.5')" ||
+	finish
+ctl enable >/dev/null
+check "the scope goes in 45 cm in the default case" \
+	wait_for status_true '.axes.insertion.position > 0.44'
+check_status "overview, no loop: screenshot" 0 view --view overview \
+	--frames 8 --screenshot "$TMP/plain.png"
+rect_of overview
+OVER="rect:$X,$Y,$W,$H"
+"$TOOLS/shm_relay" "$SHM" "$SHM-relay" --bow 0=0.05 --contact &
+relay=$!
+check "relay: the state with a loop and a contact" \
+	wait_for test -e "/dev/shm$SHM-relay"
+check_status "overview, loop: screenshot" 0 view --view overview \
+	--frames 8 --screenshot "$TMP/loop.png" --shm-name "$SHM-relay"
+kill "$relay"
+wait "$relay"
+for what in amber red; do
+	before=$(png_value "$TMP/plain.png" "$OVER" $what)
+	after=$(png_value "$TMP/loop.png" "$OVER" $what)
+	echo "# overview, $what: $before without, $after with a loop, contact"
+	eval "$what=\$after; ${what}_before=\$before"
+done
+check "loop: the bowed sigmoid turns amber in the overview" \
+	float_test "$amber > 0.003 && $amber > 3 * $amber_before"
+check "contact: the contact point shows red in the overview" \
+	float_test "$red > 0.0002 && $red_before == 0"
+rect_of panel
+check "loop: the HUD warns of it" float_test \
+	"$(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" amber) + \
+	 $(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" red) > 0.002"
+
+# --- a stalled daemon --------------------------------------------------
+kill -STOP "$DAEMON_PID"
+check_status "stalled daemon: screenshot" 0 \
+	view "${SMALL[@]}" --frames 15 --screenshot "$TMP/stale.png"
+kill -CONT "$DAEMON_PID"
+check "stalled daemon: seen stale, no OpenGL error" ran_clean stale
+stop_daemon
+
+# --- the keyboard's hand; the daemon gone and back -----------------------
+start_daemon "${STRAIGHT[@]}" || finish
+(cd "$TMP" && endoview --socket "$SOCK" --shm-name "$SHM" \
+	"${SMALL[@]}" >"$TMP/live.out" 2>&1) &
+viewer=$!
+# loaded N: the live viewer has loaded a colon N times.
+loaded() { [ "$(grep -c "colon straight" "$TMP/live.out")" -ge "$1" ]; }
+WAIT_S=20 check "live viewer: the colon is loaded" wait_for loaded 1
+window=$(xdotool search --sync --name '^endoview$' | head -n 1)
+xdotool windowfocus --sync "$window"
+before=$(status_field .axes.insertion.position)
+xdotool keydown Up
+sleep 1.5
+xdotool keyup Up
+after=$(status_field .axes.insertion.position)
+echo "# the Up key: insertion $before -> $after m"
+check "the Up key inserts the scope (the simulated hand)" \
+	float_test "$after > $before + 0.03"
+# a drag up the image from its middle turns the up/down wheel up
+before=$(status_field .axes.wheel_ud.position)
+xdotool mousemove --window "$window" "$ENDO_CX" "$ENDO_CY" mousedown 1
+for dy in 20 40 60 80 100; do
+	xdotool mousemove --window "$window" "$ENDO_CX" $((ENDO_CY - dy))
+	sleep 0.1
+done
+sleep 1
+after=$(status_field .axes.wheel_ud.position)
+xdotool mouseup 1
+echo "# dragging up: wheel U/D $before -> $after rad"
+check "a drag up the image steers the tip up" \
+	float_test "$after > $before + 0.3"
+stop_daemon
+check "the viewer sees the daemon gone" \
+	wait_for grep -qE "is gone|no endosimd" "$TMP/live.out"
+xdotool key p
+check "P saves the picture" wait_for grep -q "saved endoview-" "$TMP/live.out"
+picture=$(ls "$TMP"/endoview-*.png 2>/dev/null | head -n 1)
+check "the picture shows the NO DAEMON banner" float_test \
+	"$(png_value "$picture" "$ENDO" red) > 0.002"
+start_daemon "${STRAIGHT[@]}" || finish
+WAIT_S=20 check "the daemon back: its colon is fetched again" \
+	wait_for loaded 2
+xdotool key q
+wait "$viewer"
+check "Q quits the viewer cleanly" test $? = 0
+if grep -qE "ERROR: (Address|Leak)Sanitizer|runtime error:" \
+	"$TMP"/*.out "$VIEW_OUT" 2>/dev/null; then
+	fail "sanitizer report in endoview's output"
+fi
+finish

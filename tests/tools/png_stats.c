@@ -1,0 +1,137 @@
+/*
+ * png_stats - pixel statistics of a region of a PNG (endoview's
+ * screenshots), for the viewer's system tests. Reads the file with
+ * stb_image.
+ *
+ *   png_stats FILE.png REGION...
+ *
+ * REGION is rect:X,Y,W,H, disc:CX,CY,R or ring:CX,CY,R0,R1 (pixels, the
+ * image's top-left origin). For each, one line:
+ *
+ *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE scope=SHARE
+ *          box=X0,Y0,X1,Y1
+ *
+ * LUMA is the mean Rec. 601 luma (0..255); lit the share of pixels with
+ * luma above 40; red the share of saturated red (a banner, an alarm, the
+ * contact point); amber the share of amber (a warning, a bowed segment);
+ * scope the share of the overview's scope green; box the bounding box of
+ * the scope-green pixels (-1s when none).
+ *
+ * Exit 0, 1 when the file cannot be read, 2 on usage.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image.h>
+
+struct region {
+	char kind;            /* 'r', 'd', 'g' (rect, disc, ring) */
+	double a, b, c, d;
+};
+
+struct tally {
+	long n, lit, red, amber, scope;
+	double luma;
+	int box[4];
+};
+
+static int parse(const char *s, struct region *r)
+{
+	if (sscanf(s, "rect:%lf,%lf,%lf,%lf", &r->a, &r->b, &r->c, &r->d) ==
+	    4) {
+		r->kind = 'r';
+	} else if (sscanf(s, "disc:%lf,%lf,%lf", &r->a, &r->b, &r->c) == 3) {
+		r->kind = 'd';
+	} else if (sscanf(s, "ring:%lf,%lf,%lf,%lf", &r->a, &r->b, &r->c,
+			  &r->d) == 4) {
+		r->kind = 'g';
+	} else {
+		return -1;
+	}
+	return 0;
+}
+
+static int inside(const struct region *r, int x, int y)
+{
+	double dx = x + 0.5 - r->a, dy = y + 0.5 - r->b, d = hypot(dx, dy);
+
+	switch (r->kind) {
+	case 'r':
+		return x >= r->a && x < r->a + r->c && y >= r->b &&
+		       y < r->b + r->d;
+	case 'd':
+		return d <= r->c;
+	default:
+		return d >= r->c && d <= r->d;
+	}
+}
+
+static void count(struct tally *t, const unsigned char *p, int x, int y)
+{
+	int r = p[0], g = p[1], b = p[2];
+	double luma = 0.299 * r + 0.587 * g + 0.114 * b;
+	int scope = g > 120 && g > r + 50 && g > b + 50;
+
+	t->n++;
+	t->luma += luma;
+	t->lit += luma > 40;
+	t->red += r > 200 && g < 100 && b < 100;
+	t->amber += r > 120 && g > 0.45 * r && g < 0.8 * r && b < 0.3 * r;
+	t->scope += scope;
+	if (scope) {
+		t->box[0] = t->box[0] < 0 || x < t->box[0] ? x : t->box[0];
+		t->box[1] = t->box[1] < 0 || y < t->box[1] ? y : t->box[1];
+		t->box[2] = x > t->box[2] ? x : t->box[2];
+		t->box[3] = y > t->box[3] ? y : t->box[3];
+	}
+}
+
+static void report(const char *name, const unsigned char *img, int w, int h,
+		   const struct region *r)
+{
+	struct tally t = { .box = { -1, -1, -1, -1 } };
+	double n;
+
+	for (int y = 0; y < h; y++) {
+		for (int x = 0; x < w; x++) {
+			if (inside(r, x, y)) {
+				count(&t, &img[3 * ((size_t)y * w + x)], x, y);
+			}
+		}
+	}
+	n = t.n ? (double)t.n : 1;
+	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f scope=%.4f "
+	       "box=%d,%d,%d,%d\n", name, t.n, t.luma / n, t.lit / n,
+	       t.red / n, t.amber / n, t.scope / n, t.box[0], t.box[1],
+	       t.box[2], t.box[3]);
+}
+
+int main(int argc, char **argv)
+{
+	struct region r;
+	unsigned char *img;
+	int w, h, channels;
+
+	if (argc < 3) {
+		fprintf(stderr, "usage: png_stats FILE.png REGION...\n");
+		return 2;
+	}
+	img = stbi_load(argv[1], &w, &h, &channels, 3);
+	if (!img) {
+		fprintf(stderr, "png_stats: %s: %s\n", argv[1],
+			stbi_failure_reason());
+		return 1;
+	}
+	for (int k = 2; k < argc; k++) {
+		if (parse(argv[k], &r)) {
+			fprintf(stderr, "png_stats: bad region %s\n", argv[k]);
+			stbi_image_free(img);
+			return 2;
+		}
+		report(argv[k], img, w, h, &r);
+	}
+	stbi_image_free(img);
+	return 0;
+}

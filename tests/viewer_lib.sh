@@ -1,0 +1,85 @@
+# viewer_lib.sh - for the tests, the demo and the benchmark that run
+# endoview (source it after common.sh): a virtual screen of their own
+# (Xvfb, stopped with the daemon on exit), endoview on the test's daemon,
+# and what endoview prints when it exits:
+#
+#   endoview: frames=N ... gl_errors=N daemon=live|stale|none colon=NAME
+#   endoview: layout endo=X,Y,W,H overview=X,Y,W,H panel=X,Y,W,H
+#
+# (rectangles in the screenshot's pixels, top-left origin; W = 0: not shown).
+
+ENDOVIEW="$BUILD/endoview"
+PNG_STATS="$TOOLS/png_stats"
+VIEW_OUT="$TMP/endoview.out"
+XVFB_PID=""
+
+# start_xvfb [WxH]: an X server of our own on the first free display from
+# :90; exports DISPLAY.
+start_xvfb() {
+	local size=${1:-1920x1080} n
+	for n in $(seq 90 130); do
+		if [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; then
+			continue
+		fi
+		Xvfb ":$n" -screen 0 "${size}x24" -nolisten tcp -noreset \
+			>"$TMP/xvfb.log" 2>&1 &
+		XVFB_PID=$!
+		if wait_for test -e "/tmp/.X11-unix/X$n"; then
+			export DISPLAY=":$n"
+			return 0
+		fi
+		kill "$XVFB_PID" 2>/dev/null
+		wait "$XVFB_PID" 2>/dev/null
+		XVFB_PID=""
+	done
+	echo "# no display for Xvfb; its log:"
+	sed 's/^/#   /' "$TMP/xvfb.log"
+	return 1
+}
+
+stop_xvfb() {
+	if [ -n "$XVFB_PID" ]; then
+		kill "$XVFB_PID" 2>/dev/null
+		wait "$XVFB_PID" 2>/dev/null
+		XVFB_PID=""
+	fi
+}
+trap 'stop_xvfb; cleanup' EXIT
+
+# endoview ARGS...: the viewer. In the sanitizer build without leak
+# checks: Mesa's drivers, unloaded as the viewer exits, leave allocations
+# that LeakSanitizer can neither name nor be told to ignore (the other
+# checks stay on, and the viewer's modules that need no window are leak
+# checked by their unit tests).
+endoview() {
+	ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+		"$ENDOVIEW" "$@"
+}
+
+# view ARGS...: endoview on this test's daemon (whether it runs or not),
+# in the foreground; its output in $VIEW_OUT.
+view() {
+	endoview --socket "$SOCK" --shm-name "$SHM" --no-vsync "$@" \
+		>"$VIEW_OUT" 2>&1
+}
+
+# view_field KEY: a value of endoview's closing line ("frames", "fps", ...).
+view_field() {
+	grep '^endoview: frames=' "$VIEW_OUT" | tr ' ' '\n' | sed -n "s/^$1=//p"
+}
+
+# view_rect NAME: "X Y W H" of the view NAME (endo, overview, panel).
+view_rect() {
+	grep '^endoview: layout' "$VIEW_OUT" | tr ' ' '\n' |
+		sed -n "s/^$1=//p" | tr ',' ' '
+}
+
+# png_value FILE REGION KEY: one statistic of png_stats.
+png_value() {
+	"$PNG_STATS" "$1" "$2" | sed -n "s/.* $3=\([^ ]*\).*/\1/p"
+}
+
+# float_test EXPR: awk's verdict on a comparison of numbers.
+float_test() {
+	awk "BEGIN { exit !($1) }"
+}

@@ -1,0 +1,643 @@
+/*
+ * endoview - the colonoscopy simulator's monitor: the endoscopic image, the
+ * scope's shape in the colon, the forces, and the trainee's hands on the
+ * simulated rig. See README.md ("The viewer") and docs/ARCHITECTURE.md.
+ *
+ *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
+ *            [--size WxH] [--screenshot FILE.png] [--frames N]
+ *            [--no-vsync] [--font FILE.ttf] [--stats]
+ *
+ * A separate process: it only reads the daemon's shared memory and asks
+ * the sockets, so whatever happens to it, the force loop goes on.
+ *
+ * Exit status: 0 done; 1 no window, an OpenGL error, or the screenshot
+ * could not be written; 2 usage.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+
+#include "draw2d.h"
+#include "endo.h"
+#include "font.h"
+#include "gfx.h"
+#include "gpumesh.h"
+#include "hud.h"
+#include "input.h"
+#include "link.h"
+#include "lod.h"
+#include "log.h"
+#include "model.h"
+#include "overview.h"
+#include "rigctl.h"
+#include "shot.h"
+#include "timing.h"
+#include "ui.h"
+#include "version.h"
+
+#define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
+#define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
+#define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
+#define NS 1000000000ull
+
+enum { VIEW_EMPTY = HUD_VIEWS }; /* clear and swap only: the benchmark's */
+
+struct options {
+	const char *socket, *shm_name, *screenshot, *font;
+	int view, width, height;
+	long frames;
+	bool vsync, stats;
+};
+
+/* The colon as fetched, in its three forms. */
+struct colon_set {
+	struct model *model;
+	struct lod *lod;
+	struct gpumesh *gpu;
+};
+
+struct app {
+	struct options opt;
+	GLFWwindow *window;
+	struct link *link;
+	struct rigctl *rig;
+	struct ui *ui;
+	struct font *font;
+	struct draw2d *d2d;
+	struct endo *endo;
+	struct overview *overview;
+	struct hud *hud;
+	struct timing *timing;
+	struct colon_set colon;
+	struct input_hand hand;
+	struct overview_orbit orbit;
+	enum link_status status;
+	bool loading, help;
+	uint32_t triangles, triangles_max;
+	uint64_t last_swap_ns, start_ns;
+	uint64_t hand_ns; /* when the hand was last moved */
+	long frame;
+	long timed_from; /* the first frame the figures count */
+};
+
+static uint64_t now_ns(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (uint64_t)ts.tv_sec * NS + (uint64_t)ts.tv_nsec;
+}
+
+/* ------------------------------------------------------------ options */
+
+static void usage(FILE *f)
+{
+	fprintf(f,
+		"usage: endoview [--socket PATH] [--shm-name NAME]\n"
+		"                [--view endo|overview|both] [--size WxH]\n"
+		"                [--screenshot FILE.png] [--frames N]\n"
+		"                [--no-vsync] [--font FILE.ttf] [--stats]\n"
+		"  --socket PATH     endosimd's socket directory (or socket);\n"
+		"                    default $%s, else %s\n"
+		"  --shm-name NAME   its shared memory (default %s)\n"
+		"  --view V          endo (default), overview, or both\n"
+		"  --size WxH        window size (default 1280x720)\n"
+		"  --screenshot F    write the last frame to F (PNG)\n"
+		"  --frames N        draw N frames, then exit (default with\n"
+		"                    --screenshot: 45)\n"
+		"  --no-vsync        draw as fast as possible\n"
+		"  --font F          a TrueType font for the HUD\n"
+		"  --stats           print the frame figures at exit\n",
+		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME);
+}
+
+static int parse_view(const char *s)
+{
+	static const char *const names[] = { "endo", "overview", "both",
+					     "empty" };
+
+	for (int k = 0; k < 4; k++) {
+		if (!strcmp(s, names[k])) {
+			return k;
+		}
+	}
+	return -1;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+	if (sscanf(s, "%dx%d", w, h) != 2 || *w < 160 || *h < 120 ||
+	    *w > 8192 || *h > 8192) {
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int parse(int argc, char **argv, struct options *o)
+{
+	static const struct option longs[] = {
+		{ "socket", required_argument, NULL, 's' },
+		{ "shm-name", required_argument, NULL, 'm' },
+		{ "view", required_argument, NULL, 'v' },
+		{ "size", required_argument, NULL, 'z' },
+		{ "screenshot", required_argument, NULL, 'o' },
+		{ "frames", required_argument, NULL, 'n' },
+		{ "no-vsync", no_argument, NULL, 'V' },
+		{ "font", required_argument, NULL, 'f' },
+		{ "stats", no_argument, NULL, 'S' },
+		{ "help", no_argument, NULL, 'h' },
+		{ "version", no_argument, NULL, 'R' },
+		{ 0 },
+	};
+	int c;
+
+	*o = (struct options){ .view = HUD_VIEW_ENDO, .width = 1280,
+			       .height = 720, .vsync = true, .frames = -1,
+			       .font = FONT_DEFAULT_PATH };
+	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
+		switch (c) {
+		case 's':
+			o->socket = optarg;
+			break;
+		case 'm':
+			o->shm_name = optarg;
+			break;
+		case 'v':
+			o->view = parse_view(optarg);
+			if (o->view < 0) {
+				return -EINVAL;
+			}
+			break;
+		case 'z':
+			if (parse_size(optarg, &o->width, &o->height)) {
+				return -EINVAL;
+			}
+			break;
+		case 'o':
+			o->screenshot = optarg;
+			break;
+		case 'n':
+			o->frames = strtol(optarg, NULL, 10);
+			if (o->frames < 1) {
+				return -EINVAL;
+			}
+			break;
+		case 'V':
+			o->vsync = false;
+			break;
+		case 'f':
+			o->font = optarg;
+			break;
+		case 'S':
+			o->stats = true;
+			break;
+		case 'h':
+			usage(stdout);
+			exit(0);
+		case 'R':
+			printf("endoview %s\n", ENDOSIM_VERSION);
+			exit(0);
+		default:
+			return -EINVAL;
+		}
+	}
+	if (optind != argc) {
+		return -EINVAL;
+	}
+	if (o->screenshot && o->frames < 0) {
+		o->frames = 45;
+	}
+	return 0;
+}
+
+/* ------------------------------------------------------------ window */
+
+static void on_glfw_error(int code, const char *text)
+{
+	log_err("GLFW (0x%x): %s", code, text);
+}
+
+static GLFWwindow *open_window(const struct options *o)
+{
+	GLFWwindow *w;
+
+	glfwSetErrorCallback(on_glfw_error);
+	if (!glfwInit()) {
+		log_err("no window system (is DISPLAY set?)");
+		return NULL;
+	}
+	glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+	glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+	glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+	glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+	/* screenshots are for tests: have each GL error reported as it happens */
+	glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT,
+		       o->screenshot ? GLFW_TRUE : GLFW_FALSE);
+	glfwWindowHint(GLFW_VISIBLE, o->screenshot ? GLFW_FALSE : GLFW_TRUE);
+	w = glfwCreateWindow(o->width, o->height, "endoview", NULL, NULL);
+	if (!w) {
+		log_err("no OpenGL 3.3 core context");
+		glfwTerminate();
+		return NULL;
+	}
+	glfwMakeContextCurrent(w);
+	glfwSwapInterval(o->vsync ? 1 : 0);
+	gfx_debug_init();
+	log_info("OpenGL %s on %s", glGetString(GL_VERSION),
+		 glGetString(GL_RENDERER));
+	return w;
+}
+
+static int make_renderers(struct app *a)
+{
+	float small, large;
+
+	hud_font_px(a->opt.height, &small, &large);
+	a->font = font_create(a->opt.font, small, large);
+	if (!a->font) {
+		log_warn("font %s: %s: the HUD has no text", a->opt.font,
+			 strerror(errno));
+	}
+	a->d2d = draw2d_create(a->font);
+	a->endo = endo_create();
+	a->overview = overview_create();
+	a->hud = hud_create();
+	a->timing = timing_create();
+	a->ui = ui_create(a->window);
+	if (!a->d2d || !a->endo || !a->overview || !a->hud || !a->timing ||
+	    !a->ui) {
+		log_err("cannot set up the views");
+		return -ENOMEM;
+	}
+	return 0;
+}
+
+static void colon_free(struct colon_set *c)
+{
+	gpumesh_destroy(c->gpu);
+	lod_destroy(c->lod);
+	model_destroy(c->model);
+	memset(c, 0, sizeof(*c));
+}
+
+/* Fetches the scene the state names and builds what draws it. */
+static void load_colon(struct app *a, uint64_t now)
+{
+	struct client_scene *s = NULL;
+	struct colon_set c = { 0 };
+	char err[256];
+
+	if (link_fetch_scene(a->link, &s, now)) {
+		return;
+	}
+	c.model = model_create(s, err, sizeof(err));
+	if (!c.model) {
+		log_err("%s", err);
+		goto free_scene;
+	}
+	c.lod = lod_create(c.model->mesh, c.model->ring);
+	c.gpu = c.lod ? gpumesh_create(c.model, c.lod) : NULL;
+	if (!c.gpu) {
+		log_err("%s: cannot draw its mesh", c.model->name);
+		colon_free(&c);
+		goto free_scene;
+	}
+	colon_free(&a->colon);
+	a->colon = c;
+	a->timed_from = a->frame + WARM_UP_FRAMES;
+	log_info("colon %s: %u triangles, %u segments, %s", c.model->name,
+		 c.model->mesh->triangles, c.model->mesh->segments,
+		 c.model->ring ? "levels of detail" : "one level (imported)");
+free_scene:
+	client_scene_free(s);
+}
+
+/* ------------------------------------------------------------ frame */
+
+/* The colon is the one the state is about: bow it as the state says. */
+static bool colon_current(struct app *a, const struct endosim_state *st)
+{
+	const struct endosim_scope_state *sc = st ? &st->scope : NULL;
+	uint32_t first, count;
+
+	if (!a->colon.model || !sc ||
+	    sc->scene_id != a->colon.model->scene_id) {
+		return false;
+	}
+	model_bow(a->colon.model, sc->bow_m,
+		  (int)(sc->spans < ENDOSIM_SPANS ? sc->spans : ENDOSIM_SPANS),
+		  &first, &count);
+	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
+	return true;
+}
+
+static void update_link(struct app *a, uint64_t now)
+{
+	uint64_t held = a->colon.model ? a->colon.model->scene_id : 0;
+
+	a->status = link_update(a->link, now);
+	if (link_daemon_changed(a->link)) {
+		held = 0; /* a new daemon's scene ids start again */
+		colon_free(&a->colon);
+	}
+	if (a->loading) {
+		load_colon(a, now);
+		a->loading = false;
+	} else if (a->status == LINK_LIVE &&
+		   link_scene_wanted(a->link, held, now)) {
+		a->loading = true; /* after a frame that says so */
+	}
+}
+
+static void act(struct app *a, const struct ui_actions *act, uint64_t now)
+{
+	for (int k = 0; k <= RIGCTL_RESET; k++) {
+		if (act->command[k]) {
+			rigctl_command(a->rig, (enum rigctl_command)k, now);
+		}
+	}
+	if (act->next_view) {
+		a->opt.view = (a->opt.view + 1) % HUD_VIEWS;
+	}
+	if (act->toggle_help) {
+		a->help = !a->help;
+	}
+	if (act->reset_orbit) {
+		a->orbit = (struct overview_orbit){ .zoom = 1 };
+	}
+}
+
+/* The trainee's hand, while the daemon is there to take it. */
+static void drive(struct app *a, const struct input_controls *c,
+		  const struct endosim_state *st, uint64_t now)
+{
+	double force[ENDOSIM_AXES], dt;
+
+	if (!st || a->status != LINK_LIVE) {
+		a->hand.engaged = false;
+		return;
+	}
+	dt = a->hand_ns ? (double)(now - a->hand_ns) / NS : 0;
+	a->hand_ns = now;
+	if (input_step(&a->hand, c, st, fmin(dt, 0.1), now, force)) {
+		rigctl_hand(a->rig, force, HAND_HOLD_MS, now);
+	}
+}
+
+static void fill_info(const struct app *a, const struct endosim_state *st,
+		      uint64_t now, struct hud_info *in)
+{
+	*in = (struct hud_info){
+		.link = a->status,
+		.link_problem = link_problem(a->link),
+		.stale_s = link_stale_s(a->link, now),
+		.st = st,
+		.m = a->colon.model,
+		.loading = a->loading,
+		.rig_problem = rigctl_problem(a->rig),
+		.rig_said = rigctl_said(a->rig),
+		.driving = a->hand.engaged && rigctl_driving(a->rig),
+		.fps = timing_fps(a->timing),
+		.triangles = a->triangles,
+		.age_ms = st && a->status == LINK_LIVE ?
+				  (double)((int64_t)now_ns() -
+					   (int64_t)st->publish_ns) / 1e6 : 0,
+		.help = a->help,
+		.compact = a->opt.view == HUD_VIEW_BOTH,
+	};
+}
+
+static void draw_views(struct app *a, const struct hud_layout *lay,
+		       const struct endosim_state *st, bool current)
+{
+	const struct colon_set *c = &a->colon;
+	struct endo_camera cam;
+	struct endo_stats es;
+
+	a->triangles = 0;
+	if (!c->model) {
+		return;
+	}
+	if (lay->endo.w && current) {
+		endo_camera(c->model, st, &cam);
+		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, lay->endo,
+			  &es);
+		a->triangles += es.triangles;
+	}
+	if (lay->overview.w) {
+		a->triangles += overview_draw(a->overview, c->model, c->lod,
+					      c->gpu, current ? st : NULL,
+					      &a->orbit, lay->overview);
+	}
+	if (a->triangles > a->triangles_max) {
+		a->triangles_max = a->triangles;
+	}
+}
+
+static void render(struct app *a, const struct endosim_state *st,
+		   bool current, uint64_t now)
+{
+	struct hud_layout lay;
+	struct hud_info in;
+	int w, h;
+
+	glfwGetFramebufferSize(a->window, &w, &h);
+	glViewport(0, 0, w, h);
+	glClearColor(0, 0, 0, 1);
+	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+	if (a->opt.view == VIEW_EMPTY || w <= 0 || h <= 0) {
+		return; /* the benchmark's empty frame, or a minimised window */
+	}
+	hud_layout((enum hud_view)a->opt.view, w, h, &lay);
+	draw_views(a, &lay, st, current);
+	fill_info(a, st, now, &in);
+	in.compact |= lay.panel.w < COMPACT_PANEL_PX;
+	draw2d_begin(a->d2d, w, h);
+	if (lay.overview.w && a->colon.model) {
+		overview_labels(a->overview, a->colon.model, a->d2d, h);
+	}
+	hud_draw(a->hud, a->d2d, &lay, &in, w, h, (double)now / NS);
+	draw2d_end(a->d2d);
+}
+
+/* After the swap: the frame's time and the age of the state it showed. */
+static void account(struct app *a, const struct endosim_state *st,
+		    uint64_t swapped)
+{
+	bool timed = a->frame >= a->timed_from && !a->loading;
+
+	if (timed && a->last_swap_ns) {
+		timing_add(a->timing, TIMING_FRAME,
+			   (double)(swapped - a->last_swap_ns) / 1e6);
+	}
+	if (timed && st && a->status == LINK_LIVE &&
+	    swapped > st->publish_ns) {
+		timing_add(a->timing, TIMING_AGE,
+			   (double)(swapped - st->publish_ns) / 1e6);
+	}
+	a->last_swap_ns = swapped;
+	a->frame++;
+}
+
+/* The P key: the frame as endoview-DATE-TIME.png in the current folder. */
+static void capture(int w, int h)
+{
+	char name[64];
+	time_t t = time(NULL);
+	struct tm tm;
+
+	localtime_r(&t, &tm);
+	strftime(name, sizeof(name), "endoview-%Y%m%d-%H%M%S.png", &tm);
+	if (shot_write(name, w, h)) {
+		log_err("%s: cannot write the picture", name);
+	} else {
+		log_info("saved %s", name);
+	}
+}
+
+static int frame(struct app *a)
+{
+	const struct endosim_state *st;
+	struct input_controls c;
+	struct ui_actions acts;
+	uint64_t now = now_ns();
+	struct hud_layout lay;
+	bool current;
+	int w, h, err = 0;
+
+	glfwPollEvents();
+	update_link(a, now);
+	st = link_state(a->link);
+	current = colon_current(a, st);
+	glfwGetFramebufferSize(a->window, &w, &h);
+	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
+	ui_frame(a->ui, &lay, &c, &acts, &a->orbit);
+	act(a, &acts, now);
+	drive(a, &c, st, now);
+	if (st && a->status == LINK_LIVE) {
+		hud_record(a->hud, st, (double)now / NS);
+	}
+	render(a, st, current, now);
+	if (gfx_check("frame")) {
+		err = -EIO;
+	}
+	if (a->opt.screenshot && a->frame + 1 == a->opt.frames &&
+	    shot_write(a->opt.screenshot, w, h)) {
+		log_err("%s: cannot write the screenshot", a->opt.screenshot);
+		err = -EIO;
+	}
+	if (acts.capture) {
+		capture(w, h);
+	}
+	glfwSwapBuffers(a->window);
+	account(a, st, now_ns());
+	return acts.quit ? 1 : err;
+}
+
+/* ------------------------------------------------------------ main */
+
+static const char *status_name(enum link_status s)
+{
+	return s == LINK_LIVE ? "live" : s == LINK_STALE ? "stale" : "none";
+}
+
+static void print_rect(const char *name, struct endo_rect r, int fb_h)
+{
+	printf(" %s=%d,%d,%d,%d", name, r.x, fb_h - r.y - r.h, r.w, r.h);
+}
+
+/* The closing lines: the figures, and where each view lies in the image
+ * (top-left origin, as in the PNG). */
+static void report(const struct app *a)
+{
+	const struct timing *t = a->timing;
+	double secs = (double)(a->last_swap_ns - a->start_ns) / NS;
+	struct hud_layout lay;
+	int w, h;
+
+	printf("endoview: frames=%ld seconds=%.2f fps=%.1f "
+	       "frame_ms_p50=%.2f frame_ms_p99=%.2f age_ms_p50=%.2f "
+	       "age_ms_p99=%.2f triangles=%u triangles_max=%u gl_errors=%lu "
+	       "daemon=%s colon=%s\n", a->frame, secs,
+	       secs > 0 ? (double)a->frame / secs : 0,
+	       timing_quantile(t, TIMING_FRAME, 0.5),
+	       timing_quantile(t, TIMING_FRAME, 0.99),
+	       timing_quantile(t, TIMING_AGE, 0.5),
+	       timing_quantile(t, TIMING_AGE, 0.99), a->triangles,
+	       a->triangles_max, gfx_errors_total(), status_name(a->status),
+	       a->colon.model ? a->colon.model->name : "none");
+	glfwGetFramebufferSize(a->window, &w, &h);
+	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
+	printf("endoview: layout");
+	print_rect("endo", lay.endo, h);
+	print_rect("overview", lay.overview, h);
+	print_rect("panel", lay.panel, h);
+	printf("\n");
+}
+
+static int run(struct app *a)
+{
+	int r = 0;
+
+	a->start_ns = now_ns();
+	a->orbit.zoom = 1;
+	a->timed_from = WARM_UP_FRAMES;
+	while (r == 0 && (a->opt.frames < 0 || a->frame < a->opt.frames)) {
+		r = frame(a);
+	}
+	if (a->opt.frames > 0 || a->opt.stats) {
+		report(a);
+	}
+	return r < 0 ? r : 0;
+}
+
+static void cleanup(struct app *a)
+{
+	colon_free(&a->colon);
+	ui_destroy(a->ui);
+	timing_destroy(a->timing);
+	hud_destroy(a->hud);
+	overview_destroy(a->overview);
+	endo_destroy(a->endo);
+	draw2d_destroy(a->d2d);
+	font_destroy(a->font);
+	if (a->window) {
+		glfwDestroyWindow(a->window);
+		glfwTerminate();
+	}
+	rigctl_destroy(a->rig);
+	link_destroy(a->link);
+}
+
+int main(int argc, char **argv)
+{
+	struct app a = { 0 };
+	int r = 1;
+
+	log_init("endoview", LOG_INFO);
+	if (parse(argc, argv, &a.opt)) {
+		usage(stderr);
+		return 2;
+	}
+	a.link = link_create(a.opt.socket, a.opt.shm_name);
+	a.rig = rigctl_create(a.opt.socket);
+	if (!a.link || !a.rig) {
+		log_err("out of memory");
+		goto out;
+	}
+	a.window = open_window(&a.opt);
+	if (!a.window || make_renderers(&a)) {
+		goto out;
+	}
+	r = run(&a) ? 1 : 0;
+out:
+	cleanup(&a);
+	return r;
+}

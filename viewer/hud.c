@@ -1,0 +1,467 @@
+/* hud.c - see hud.h. */
+#include "hud.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "names.h"
+
+#define CHART_SAMPLES 512
+#define CHART_DRAWN 240 /* samples across the chart */
+#define PANEL_MIN_PX 220
+#define PANEL_SHARE 0.30
+#define MARGIN_PX 12
+#define INSET_SHARE 0.45 /* of the height, the overview's inset at most */
+
+const char *const hud_keys[] = {
+	"Up/W  Down/S\tinsert, withdraw (Shift: faster)",
+	"Left/A  Right/D\ttwist the tube",
+	"I  K\ttip up, down (up/down wheel)",
+	"J  L\ttip left, right (left/right wheel)",
+	"mouse\tdrag the image to steer, right-drag",
+	"\tto twist, scroll to insert",
+	"gamepad\tleft stick insert, twist;",
+	"\tright stick steer",
+	"E  X\tenable, disable the motors",
+	"Space  R\temergency stop, reset",
+	"V  O\tview, overview's orbit back",
+	"P\tsave a picture (PNG, here)",
+	"H  Q\tthis help, quit",
+	NULL,
+};
+
+static const float white[4] = { 0.90f, 0.92f, 0.95f, 1 };
+static const float dim[4] = { 0.55f, 0.58f, 0.66f, 1 };
+static const float green[4] = { 0.30f, 0.90f, 0.42f, 1 };
+static const float amber[4] = { 1.00f, 0.70f, 0.15f, 1 };
+static const float red[4] = { 1.00f, 0.27f, 0.22f, 1 };
+static const float track[4] = { 1, 1, 1, 0.09f };
+static const float shade[4] = { 0, 0, 0, 0.72f };
+static const float axis_rgb[ENDOSIM_AXES][4] = {
+	{ 0.35f, 0.75f, 1.00f, 1 }, { 0.85f, 0.55f, 1.00f, 1 },
+	{ 1.00f, 0.80f, 0.30f, 1 }, { 0.40f, 1.00f, 0.70f, 1 },
+};
+/* bar and chart scale per axis: N, N m */
+static const double axis_scale[ENDOSIM_AXES] = { 40, 1.0, 0.15, 0.15 };
+static const char *const axis_label[ENDOSIM_AXES] = {
+	"insertion", "roll", "wheel U/D", "wheel L/R",
+};
+
+struct sample {
+	double t_s;
+	float force[ENDOSIM_AXES]; /* limited, as share of axis_scale */
+};
+
+struct hud {
+	struct sample chart[CHART_SAMPLES];
+	unsigned int next, count;
+};
+
+/* Where the next line goes. */
+struct pen {
+	struct draw2d *d;
+	float x, y, w;    /* left, top of the next line, width */
+	float small, large;
+};
+
+void hud_font_px(int h, float *small_px, float *large_px)
+{
+	*small_px = fmaxf(10, (float)h / 46);
+	*large_px = fmaxf(14, (float)h / 26);
+}
+
+void hud_layout(enum hud_view view, int w, int h, struct hud_layout *out)
+{
+	int panel = (int)fmax(PANEL_MIN_PX, PANEL_SHARE * w);
+	int side = w - panel < h ? w - panel : h;
+	int inset;
+
+	side = side > 0 ? side : 0;
+	panel = w - side;
+	memset(out, 0, sizeof(*out));
+	out->panel = (struct endo_rect){ 0, 0, panel, h };
+	if (view == HUD_VIEW_OVERVIEW) {
+		out->overview = (struct endo_rect){ panel, 0, side, h };
+		return;
+	}
+	out->endo = (struct endo_rect){ panel, (h - side) / 2, side, side };
+	if (view == HUD_VIEW_BOTH) {
+		inset = (int)fmin(panel, INSET_SHARE * h);
+		out->overview = (struct endo_rect){ 0, 0, panel, inset };
+		out->panel.y = inset;
+		out->panel.h = h - inset;
+	}
+}
+
+struct hud *hud_create(void)
+{
+	return calloc(1, sizeof(struct hud));
+}
+
+void hud_destroy(struct hud *h)
+{
+	free(h);
+}
+
+void hud_record(struct hud *h, const struct endosim_state *st, double t_s)
+{
+	const struct sample *last = &h->chart[(h->next + CHART_SAMPLES - 1) %
+					      CHART_SAMPLES];
+	struct sample *s = &h->chart[h->next];
+
+	if (h->count && t_s - last->t_s < HUD_CHART_S / CHART_DRAWN) {
+		return; /* a point every few pixels is enough */
+	}
+	s->t_s = t_s;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		s->force[a] = (float)(st->axis[a].limited / axis_scale[a]);
+	}
+	h->next = (h->next + 1) % CHART_SAMPLES;
+	h->count += h->count < CHART_SAMPLES;
+}
+
+/* TEXT on the next line, cut short where the panel ends. */
+static void line(struct pen *p, enum font_size size, const float rgb[4],
+		 const char *text)
+{
+	float px = size == FONT_LARGE ? p->large : p->small;
+	char cut[256];
+	size_t n = (size_t)snprintf(cut, sizeof(cut), "%s", text);
+
+	while (n > 1 && draw2d_text_width(p->d, size, cut) > p->w) {
+		cut[--n] = '\0';
+	}
+	draw2d_text(p->d, size, p->x, p->y + px, rgb, cut);
+	p->y += px * 1.35f;
+}
+
+static void gap(struct pen *p)
+{
+	p->y += p->small * 0.6f;
+}
+
+/* "FAULT: stale-feedback (wheel_ud)" and the like. */
+static void state_words(const struct endosim_state *st, char *buf,
+			size_t size, const float **rgb)
+{
+	char faults[96];
+
+	switch (st->state) {
+	case ENDOSIM_STATE_ENABLED:
+		snprintf(buf, size, "ENABLED");
+		*rgb = green;
+		return;
+	case ENDOSIM_STATE_FAULT:
+		names_faults(st->fault_first ? st->fault_first : st->fault_bits,
+			     faults, sizeof(faults));
+		snprintf(buf, size, "FAULT: %s%s%s%s", faults,
+			 st->fault_axis >= 0 ? " (" : "",
+			 st->fault_axis >= 0 ? names_axis(st->fault_axis) : "",
+			 st->fault_axis >= 0 ? ")" : "");
+		*rgb = red;
+		return;
+	case ENDOSIM_STATE_ESTOP:
+		snprintf(buf, size, "EMERGENCY STOP");
+		*rgb = red;
+		return;
+	default:
+		snprintf(buf, size, "%s", names_state(st->state));
+		*rgb = dim;
+	}
+}
+
+static const char *state_hint(const struct endosim_state *st)
+{
+	switch (st->state) {
+	case ENDOSIM_STATE_IDLE:
+		return "motors off (E: enable)";
+	case ENDOSIM_STATE_ENABLED:
+		return "forces on (X: off, Space: stop)";
+	default:
+		return "torque off (R: reset once clear)";
+	}
+}
+
+static void draw_state(struct pen *p, const struct hud_info *in)
+{
+	const float *rgb = dim;
+	char text[160];
+
+	snprintf(text, sizeof(text), "endosim  %s", in->m ? in->m->name : "");
+	line(p, FONT_SMALL, dim, text);
+	if (!in->st || in->link == LINK_NO_DAEMON) {
+		line(p, FONT_LARGE, red, "NO DAEMON");
+		line(p, FONT_SMALL, dim, in->link_problem);
+		return;
+	}
+	state_words(in->st, text, sizeof(text), &rgb);
+	line(p, FONT_LARGE, in->link == LINK_STALE ? amber : rgb, text);
+	line(p, FONT_SMALL, dim, state_hint(in->st));
+}
+
+static void region_words(const struct model *m, double s_m, char *buf,
+			 size_t size)
+{
+	const struct model_region *rg = model_region_at(m, s_m);
+	size_t n;
+
+	n = (size_t)snprintf(buf, size, "%s", rg->name);
+	for (size_t k = 0; k < n && k < size; k++) {
+		buf[k] = buf[k] == '_' ? ' ' : buf[k];
+	}
+}
+
+static void draw_where(struct pen *p, const struct hud_info *in)
+{
+	const struct endosim_scope_state *sc = &in->st->scope;
+	char where[MODEL_NAME], text[160];
+
+	snprintf(text, sizeof(text), "insertion %.1f cm", sc->depth_m * 100);
+	line(p, FONT_LARGE, white, text);
+	if (!in->m) {
+		line(p, FONT_SMALL, dim, in->loading ? "loading the colon..." :
+						       "no colon yet");
+		return;
+	}
+	region_words(in->m, sc->tip_s_m, where, sizeof(where));
+	snprintf(text, sizeof(text), "tip: %s, %.1f cm in", where,
+		 sc->tip_s_m * 100);
+	line(p, FONT_SMALL, white, text);
+	snprintf(text, sizeof(text), "roll %+.0f, tip %+.0f up %+.0f right, "
+		 "turns %.0f deg", sc->roll_rad * 180 / M_PI,
+		 sc->bend_rad[0] * 180 / M_PI, sc->bend_rad[1] * 180 / M_PI,
+		 sc->turning_rad * 180 / M_PI);
+	line(p, FONT_SMALL, dim, text);
+}
+
+/* The largest bow of a mobile segment, if it is a loop worth saying. */
+static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
+{
+	const struct endosim_scope_state *sc = &in->st->scope;
+	double worst = 0;
+	int span = -1;
+	char text[160];
+
+	for (uint32_t k = 0; k < sc->spans && k < ENDOSIM_SPANS; k++) {
+		if (fabs(sc->bow_m[k]) > worst) {
+			worst = fabs(sc->bow_m[k]);
+			span = (int)k;
+		}
+	}
+	if (worst < HUD_LOOP_WARN_M || !in->m) {
+		return;
+	}
+	for (int i = 0; i < in->m->regions; i++) {
+		if (in->m->region[i].span == span) {
+			snprintf(text, sizeof(text),
+				 "LOOP: the %s bows %.1f cm",
+				 in->m->region[i].name, worst * 100);
+			line(p, FONT_LARGE, fmod(t_s, 1.0) < 0.6 ? amber : red,
+			     text);
+		}
+	}
+}
+
+/* V, shown with DIGITS decimals: no "-0.0" for a hair below zero. */
+static double tidy(double v, int digits)
+{
+	return fabs(v) < 0.5 * pow(10, -digits) ? 0 : v;
+}
+
+static float bar_x(float x0, float w, double v)
+{
+	return x0 + w / 2 + (float)(fmax(-1, fmin(1, v)) * w / 2);
+}
+
+/* One axis: label, a bar of what the drive gets (the force model's ask
+ * as a line, the hand's push as a tick), the value. */
+static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
+		     int a)
+{
+	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
+	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
+	float x0 = p->x + label_w, w = p->w - label_w - value_w;
+	float h = p->small * 0.8f, y = p->y + p->small * 0.25f;
+	float v = bar_x(x0, w, ax->limited / axis_scale[a]);
+	float c = bar_x(x0, w, ax->command / axis_scale[a]);
+	float hand = bar_x(x0, w, ax->hand / axis_scale[a]);
+	float mid = x0 + w / 2;
+
+	draw2d_text(p->d, FONT_SMALL, p->x, p->y + p->small, dim,
+		    axis_label[a]);
+	draw2d_rect(p->d, x0, y, w, h, track);
+	draw2d_rect(p->d, fminf(mid, v), y, fabsf(v - mid), h, axis_rgb[a]);
+	draw2d_rect(p->d, c - 1, y - 2, 2, h + 4, white);
+	draw2d_rect(p->d, hand - 1, y + h, 3, 4, amber);
+	draw2d_printf(p->d, FONT_SMALL, x0 + w + 8, p->y + p->small, white,
+		      a == ENDOSIM_AXIS_INSERTION ? "%+.1f N" : "%+.3f N m",
+		      tidy(ax->limited, a == ENDOSIM_AXIS_INSERTION ? 1 : 3));
+	p->y += p->small * 1.5f;
+}
+
+static void draw_parts(struct pen *p, const struct endosim_haptics_state *h)
+{
+	char text[192];
+
+	snprintf(text, sizeof(text), "push: contact %+.1f, friction %+.1f, "
+		 "loop %+.1f N", h->trans_contact_n, h->trans_friction_n,
+		 h->trans_loop_n);
+	line(p, FONT_SMALL, dim, text);
+	for (int k = 0; k < 2; k++) {
+		snprintf(text, sizeof(text), "%s: contact %+.3f, wire %+.3f, "
+			 "spring %+.3f N m",
+			 axis_label[ENDOSIM_AXIS_WHEEL_UD + k],
+			 h->wheel_contact_nm[k], h->wheel_tension_nm[k],
+			 h->wheel_elastic_nm[k]);
+		line(p, FONT_SMALL, dim, text);
+	}
+	snprintf(text, sizeof(text), "wall: %s, %.1f mm in, %u constraint%s",
+		 h->contact ? "touching" : "clear", h->penetration_m * 1000,
+		 h->constraints, h->constraints == 1 ? "" : "s");
+	line(p, FONT_SMALL, h->contact ? amber : dim, text);
+}
+
+static void draw_chart(struct pen *p, const struct hud *h, double t_s)
+{
+	float ch = p->small * 5, x0 = p->x, w = p->w;
+	float mid = p->y + ch / 2;
+
+	draw2d_rect(p->d, x0, p->y, w, ch, track);
+	draw2d_rect(p->d, x0, mid, w, 1, track);
+	for (unsigned int k = 1; k < h->count; k++) {
+		const struct sample *a = &h->chart[(h->next + CHART_SAMPLES -
+						    k) % CHART_SAMPLES];
+		const struct sample *b = &h->chart[(h->next + CHART_SAMPLES -
+						    k - 1) % CHART_SAMPLES];
+		float xa = x0 + w - (float)((t_s - a->t_s) / HUD_CHART_S) * w;
+		float xb = x0 + w - (float)((t_s - b->t_s) / HUD_CHART_S) * w;
+
+		if (xb < x0) {
+			break;
+		}
+		for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
+			draw2d_line(p->d, xb, mid - b->force[ax] * ch / 2, xa,
+				    mid - a->force[ax] * ch / 2, 1.5f,
+				    axis_rgb[ax]);
+		}
+	}
+	p->y += ch + p->small * 0.5f;
+}
+
+static void draw_help(struct pen *p)
+{
+	for (int k = 0; hud_keys[k]; k++) {
+		const char *tab = strchr(hud_keys[k], '\t');
+		char key[48];
+
+		snprintf(key, sizeof(key), "%.*s", (int)(tab - hud_keys[k]),
+			 hud_keys[k]);
+		draw2d_text(p->d, FONT_SMALL, p->x, p->y + p->small, amber,
+			    key);
+		draw2d_text(p->d, FONT_SMALL, p->x + p->w * 0.32f,
+			    p->y + p->small, white, tab + 1);
+		p->y += p->small * 1.3f;
+	}
+}
+
+static void draw_footer(struct pen *p, const struct hud_info *in,
+			float bottom)
+{
+	char text[192];
+
+	p->y = fmaxf(p->y + p->small * 0.6f, bottom - p->small * 2.9f);
+	if (*in->rig_problem) {
+		line(p, FONT_SMALL, amber, in->rig_problem);
+	} else {
+		line(p, FONT_SMALL, dim, *in->rig_said ? in->rig_said :
+				in->driving ? "your hand drives the rig" :
+					      "H: keys");
+	}
+	snprintf(text, sizeof(text), "%.0f fps, %u triangles, state %.1f ms "
+		 "old", in->fps, in->triangles, in->age_ms);
+	line(p, FONT_SMALL, dim, text);
+}
+
+static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
+		       double t_s)
+{
+	draw_state(p, in);
+	gap(p);
+	if (in->st && in->link != LINK_NO_DAEMON) {
+		draw_where(p, in);
+		draw_loop(p, in, t_s);
+		gap(p);
+		if (in->help) {
+			draw_help(p);
+			return;
+		}
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			draw_bar(p, &in->st->axis[a], a);
+		}
+		if (!in->compact) {
+			draw_parts(p, &in->st->haptics);
+			gap(p);
+			draw_chart(p, h, t_s);
+		}
+	} else if (in->help) {
+		draw_help(p);
+	}
+}
+
+/* A banner across the middle of R (GL's origin) in a framebuffer FB_H high. */
+static void banner(struct draw2d *d, struct endo_rect r, int fb_h,
+		   const char *title, const char *text, const float rgb[4])
+{
+	float large = draw2d_px(d, FONT_LARGE);
+	float small = draw2d_px(d, FONT_SMALL);
+	float bh = large * 1.6f + small * 2.2f;
+	float top = (float)(fb_h - r.y - r.h) + ((float)r.h - bh) / 2;
+	float tw = draw2d_text_width(d, FONT_LARGE, title);
+	float sw = draw2d_text_width(d, FONT_SMALL, text);
+
+	draw2d_rect(d, (float)r.x, top, (float)r.w, bh, shade);
+	draw2d_rect(d, (float)r.x, top, (float)r.w, 3, rgb);
+	draw2d_text(d, FONT_LARGE, (float)r.x + ((float)r.w - tw) / 2,
+		    top + large * 1.3f, rgb, title);
+	draw2d_text(d, FONT_SMALL, (float)r.x + ((float)r.w - sw) / 2,
+		    top + large * 1.5f + small * 1.2f, white, text);
+}
+
+static void banners(struct draw2d *d, const struct hud_layout *lay,
+		    const struct hud_info *in, int fb_h)
+{
+	struct endo_rect r = lay->endo.w ? lay->endo : lay->overview;
+	char text[192];
+
+	if (in->link == LINK_NO_DAEMON) {
+		banner(d, r, fb_h, "NO DAEMON", *in->link_problem ?
+			in->link_problem : "waiting for endosimd", red);
+	} else if (in->link == LINK_STALE) {
+		snprintf(text, sizeof(text), "no new state for %.1f s: the "
+			 "force loop has stopped publishing", in->stale_s);
+		banner(d, r, fb_h, "DAEMON STALE", text, amber);
+	} else if (in->loading || !in->m) {
+		banner(d, r, fb_h, "LOADING THE COLON", in->link_problem,
+		       amber);
+	}
+}
+
+void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
+	      const struct hud_info *in, int w, int hgt, double t_s)
+{
+	struct endo_rect r = lay->panel;
+	float top = (float)(hgt - r.y - r.h);
+	struct pen p = {
+		.d = d, .x = (float)r.x + MARGIN_PX, .y = top + MARGIN_PX,
+		.w = (float)r.w - 2 * MARGIN_PX,
+		.small = draw2d_px(d, FONT_SMALL),
+		.large = draw2d_px(d, FONT_LARGE),
+	};
+
+	(void)w;
+	draw_panel(h, &p, in, t_s);
+	draw_footer(&p, in, top + (float)r.h - MARGIN_PX);
+	banners(d, lay, in, hgt);
+}

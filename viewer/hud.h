@@ -1,0 +1,91 @@
+/*
+ * hud.h - endoview's window layout and its head-up display: the panel
+ * beside the endoscopic image with the daemon's state (IDLE, ENABLED,
+ * FAULT with its cause, ESTOP), the insertion depth and where the tip is
+ * (the colon's segment), the force on each axis as bars (what the force
+ * model asks for, what the safety filter lets through), the parts of the
+ * force (contact, friction, loop; the wheels' contact, wire tension,
+ * elastic return), a strip chart of the last seconds, a loop warning,
+ * the frame rate, and the keys; banners over the image when the daemon is
+ * missing or stale, or the colon is loading.
+ *
+ * Layout: the image is a square as high as the window (less room for the
+ * panel in a narrow window) on the right, the panel on the left; with
+ * both views, the overview is an inset at the bottom of the panel and the
+ * panel above it compact (no parts of the force, no chart).
+ *
+ * Main thread, with the GL context current (it draws through draw2d.h).
+ */
+#ifndef ENDOVIEW_HUD_H
+#define ENDOVIEW_HUD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "draw2d.h"
+#include "endo.h"
+#include "endosim_shm.h"
+#include "link.h"
+#include "model.h"
+
+#define HUD_LOOP_WARN_M 0.02 /* a bow this large is a loop worth saying */
+#define HUD_CHART_S 6.0      /* seconds in the strip chart */
+
+enum hud_view {
+	HUD_VIEW_ENDO = 0, /* the endoscopic image and the panel */
+	HUD_VIEW_OVERVIEW, /* the overview in the image's place */
+	HUD_VIEW_BOTH,     /* the image, the overview inset in the panel */
+	HUD_VIEWS,
+};
+
+/* Rectangles in framebuffer pixels, GL's origin; w = 0: not shown. */
+struct hud_layout {
+	struct endo_rect endo;
+	struct endo_rect overview;
+	struct endo_rect panel;
+};
+
+/* What the frame knows, for the display. */
+struct hud_info {
+	enum link_status link;
+	const char *link_problem;  /* why there is no daemon */
+	double stale_s;
+	const struct endosim_state *st; /* NULL: none yet */
+	const struct model *m;     /* NULL: no colon yet */
+	bool loading;              /* the colon is being fetched */
+	const char *rig_problem;   /* why the viewer cannot command */
+	const char *rig_said;      /* the last command's outcome */
+	bool driving;              /* hand input goes through */
+	double fps;
+	uint32_t triangles;
+	double age_ms;             /* of the state shown */
+	bool help;                 /* the keys in place of the forces */
+	bool compact;              /* no room for the force's parts, chart */
+};
+
+struct hud;
+
+/* The layout of VIEW in a W x H framebuffer. */
+void hud_layout(enum hud_view view, int w, int h, struct hud_layout *out);
+
+/* Font sizes (pixels) that suit an H pixels high framebuffer. */
+void hud_font_px(int h, float *small_px, float *large_px);
+
+/* NULL on ENOMEM. */
+struct hud *hud_create(void);
+
+/* NULL is fine. */
+void hud_destroy(struct hud *h);
+
+/* Adds the state to the strip chart at time T_S (s, monotonic). */
+void hud_record(struct hud *h, const struct endosim_state *st, double t_s);
+
+/* Queues the HUD for the framebuffer of W x H into D (between
+ * draw2d_begin() and draw2d_end()). */
+void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
+	      const struct hud_info *in, int w, int hgt, double t_s);
+
+/* The key help, one line per key, NULL-terminated. */
+extern const char *const hud_keys[];
+
+#endif

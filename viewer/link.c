@@ -1,0 +1,203 @@
+/* link.c - see link.h. */
+#include "link.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+#include "shm_reader.h"
+
+#define READ_TRIES 8
+#define NS 1000000000ull
+
+struct link {
+	char *socket;      /* as given, NULL: the default */
+	char shm_name[128];
+	struct shm_reader *shm;
+	uint64_t start_ns; /* of the daemon whose state we hold */
+	struct endosim_state st;
+	bool have_state;
+	bool changed;
+	uint64_t next_open_ns;  /* earliest time to try to open again */
+	uint64_t next_fetch_ns; /* earliest time to fetch the scene again */
+	char problem[192];
+};
+
+struct link *link_create(const char *socket, const char *shm_name)
+{
+	struct link *l = calloc(1, sizeof(*l));
+
+	if (!l) {
+		return NULL;
+	}
+	snprintf(l->shm_name, sizeof(l->shm_name), "%s",
+		 shm_name ? shm_name : ENDOSIM_SHM_DEFAULT_NAME);
+	l->socket = socket ? strdup(socket) : NULL;
+	if (socket && !l->socket) {
+		free(l);
+		return NULL;
+	}
+	snprintf(l->problem, sizeof(l->problem), "waiting for endosimd");
+	return l;
+}
+
+void link_destroy(struct link *l)
+{
+	if (!l) {
+		return;
+	}
+	shm_reader_close(l->shm);
+	free(l->socket);
+	free(l);
+}
+
+static void say(struct link *l, const char *why)
+{
+	if (strcmp(l->problem, why)) {
+		log_notice("%s", why);
+	}
+	snprintf(l->problem, sizeof(l->problem), "%s", why);
+}
+
+static void try_open(struct link *l, uint64_t now_ns)
+{
+	char why[192];
+	uint64_t start;
+
+	l->next_open_ns = now_ns + (uint64_t)(LINK_RETRY_S * NS);
+	l->shm = shm_reader_open(l->shm_name);
+	if (!l->shm) {
+		snprintf(why, sizeof(why), errno == ENOENT ?
+			 "no endosimd: no shared memory %s" :
+			 "shared memory %s: %s", l->shm_name,
+			 errno == EPROTO ? "another layout version" :
+					   strerror(errno));
+		say(l, why);
+		return;
+	}
+	start = shm_reader_header(l->shm)->start_ns;
+	if (l->have_state && start != l->start_ns) {
+		l->changed = true; /* a new daemon: its scene ids start again */
+	}
+	l->start_ns = start;
+	l->problem[0] = '\0';
+}
+
+static void drop(struct link *l, const char *why)
+{
+	shm_reader_close(l->shm);
+	l->shm = NULL;
+	say(l, why);
+}
+
+/* Stale: is its writer gone, or has another daemon replaced it? */
+static enum link_status check_stale(struct link *l, uint64_t now_ns)
+{
+	char why[96];
+
+	if (!shm_reader_writer_alive(l->shm)) {
+		snprintf(why, sizeof(why), "endosimd (pid %d) is gone",
+			 (int)shm_reader_header(l->shm)->writer_pid);
+		drop(l, why);
+		return LINK_NO_DAEMON;
+	}
+	if (now_ns >= l->next_open_ns) {
+		struct shm_reader *old = l->shm;
+
+		try_open(l, now_ns);
+		if (!l->shm) {
+			l->shm = old; /* nothing newer: keep what we have */
+			l->problem[0] = '\0';
+		} else {
+			shm_reader_close(old);
+		}
+	}
+	return LINK_STALE;
+}
+
+enum link_status link_update(struct link *l, uint64_t now_ns)
+{
+	struct endosim_state st;
+
+	if (!l->shm && now_ns >= l->next_open_ns) {
+		try_open(l, now_ns);
+	}
+	if (!l->shm) {
+		return LINK_NO_DAEMON;
+	}
+	if (shm_reader_read(l->shm, &st, READ_TRIES) == 0) {
+		l->st = st;
+		l->have_state = true;
+	}
+	if (!l->have_state) {
+		return LINK_NO_DAEMON;
+	}
+	if (link_stale_s(l, now_ns) > LINK_STALE_S) {
+		return check_stale(l, now_ns);
+	}
+	return LINK_LIVE;
+}
+
+const struct endosim_state *link_state(const struct link *l)
+{
+	return l->have_state ? &l->st : NULL;
+}
+
+double link_stale_s(const struct link *l, uint64_t now_ns)
+{
+	int64_t age = (int64_t)now_ns - (int64_t)l->st.publish_ns;
+
+	return l->have_state && age > 0 ? (double)age / NS : 0;
+}
+
+const char *link_problem(const struct link *l)
+{
+	return l->problem;
+}
+
+bool link_scene_wanted(const struct link *l, uint64_t held_id,
+		       uint64_t now_ns)
+{
+	return l->shm && l->have_state && l->st.scope.scene_id &&
+	       l->st.scope.scene_id != held_id && now_ns >= l->next_fetch_ns;
+}
+
+int link_fetch_scene(struct link *l, struct client_scene **out,
+		     uint64_t now_ns)
+{
+	Endosim__Status status = ENDOSIM__STATUS__STATUS_OK;
+	char path[108], why[192];
+	struct client *c;
+	int r;
+
+	l->next_fetch_ns = now_ns + (uint64_t)(LINK_RETRY_S * NS);
+	r = client_socket_path(l->socket, false, path, sizeof(path));
+	c = r ? NULL : client_connect(path);
+	if (!c) {
+		r = r ? r : -errno;
+		snprintf(why, sizeof(why), "scene: %s: %s", path, strerror(-r));
+		say(l, why);
+		return r;
+	}
+	r = client_get_scene(c, out, LINK_SCENE_TIMEOUT_MS, &status);
+	client_close(c);
+	if (r) {
+		snprintf(why, sizeof(why), "scene from %s: %s", path,
+			 r == -EACCES ? client_status_text(status) :
+					strerror(-r));
+		say(l, why);
+		return r;
+	}
+	l->problem[0] = '\0';
+	return 0;
+}
+
+bool link_daemon_changed(struct link *l)
+{
+	bool changed = l->changed;
+
+	l->changed = false;
+	return changed;
+}

@@ -1,0 +1,124 @@
+/*
+ * model.h - the colon as endoview holds it: the scene that GetScene served
+ * (proto/client.h), rebuilt with the daemon's own modules (centreline.h,
+ * mesh.h) so that a bowed mobile segment is placed exactly as the haptics
+ * place it.
+ *
+ * The centreline is made from the scene's undeformed samples and first
+ * frame, the mobile spans from its span table; the mesh from each vertex'
+ * sample and offset, finished (mesh_finish()) into the same vertex and
+ * triangle order and the same segment table as the daemon's, with the
+ * scene's normals. model_bow() then bows the spans to the amplitudes the
+ * force loop publishes (struct endosim_scope_state bow_m) with
+ * centreline_bow() and mesh_place(), as colon_bow() does in the daemon.
+ *
+ * Main thread only. model_create() allocates; the rest does not.
+ */
+#ifndef ENDOVIEW_MODEL_H
+#define ENDOVIEW_MODEL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "centreline.h"
+#include "client.h"
+#include "mesh.h"
+
+#define MODEL_NAME 64
+#define MODEL_MAX_REGIONS 16
+#define MODEL_MAX_POLYPS 32
+#define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow are not placed */
+#define MODEL_END_M 0.15        /* the cecum's dome: a camera stays where */
+#define MODEL_OPEN 0.6          /* the lumen is this share of its widest in
+				   the last MODEL_END_M */
+
+struct model_region {
+	char name[MODEL_NAME]; /* "sigmoid", ...; "colon" for an import */
+	double s0_m, s1_m;
+	int span;              /* its mobile span, -1 if fixed */
+	double max_bow_m;      /* the mesentery's height (mobile only) */
+};
+
+enum model_polyp_shape {
+	MODEL_POLYP_SESSILE = 0,
+	MODEL_POLYP_PEDUNCULATED,
+	MODEL_POLYP_FLAT,
+};
+
+struct model_polyp {
+	double s_m;        /* from the anal verge */
+	double angle_rad;  /* around the lumen from the frame's u */
+	double diameter_m;
+	int shape;         /* enum model_polyp_shape */
+};
+
+struct model {
+	uint64_t scene_id;
+	char name[MODEL_NAME];
+	struct centreline *cl;
+	struct mesh *mesh;
+	uint32_t ring;     /* vertices per ring of a generated tube; 0 if not */
+	struct model_region region[MODEL_MAX_REGIONS];
+	int regions;
+	struct model_polyp polyp[MODEL_MAX_POLYPS];
+	int polyps;
+	double placed_error_m; /* largest distance from the scene's vertices */
+	size_t last_open;  /* the last sample whose ring is wide open */
+};
+
+/*
+ * Builds the model of scene S (which the caller still owns and may free
+ * afterwards). NULL with one line in ERR on a scene that does not add up
+ * (e.g. a segment table that differs from the daemon's) or ENOMEM.
+ */
+struct model *model_create(const struct client_scene *s, char *err,
+			   size_t errsize);
+
+/* NULL is fine. */
+void model_destroy(struct model *m);
+
+/*
+ * Bows span k (0 <= k < SPANS) to BOW_M[k] wherever it differs from the
+ * placed one by MODEL_BOW_STEP_M or more, and places the vertices that
+ * move. Returns the vertices moved as [*FIRST, *FIRST + *COUNT) (count 0:
+ * none), for the caller to upload.
+ */
+void model_bow(struct model *m, const double *bow_m, int spans,
+	       uint32_t *first, uint32_t *count);
+
+/* The region holding S_M (clamped to the colon). */
+const struct model_region *model_region_at(const struct model *m,
+					   double s_m);
+
+/* The centreline sample nearest the material position S_M. */
+size_t model_sample_at(const struct model *m, double s_m);
+
+/*
+ * The wall at sample I towards ANGLE_RAD (around the lumen from the
+ * frame's u), as placed now: the point P (m) and the unit normal N into
+ * the lumen. For a mesh that is not a generated tube, the ring's vertex
+ * nearest that direction.
+ */
+void model_wall(const struct model *m, size_t i, double angle_rad,
+		double p[3], double n[3]);
+
+/*
+ * How far P (m) lies inside the wall (negative: outside), measured from
+ * the centreline in the plane of the sample near *I whose normal plane
+ * passes nearest P; *I becomes that sample (a hint for the next point).
+ * With D, the unit direction from the centreline to P in that plane.
+ */
+double model_wall_gap(const struct model *m, size_t *i, const double p[3],
+		      double d[3]);
+
+/*
+ * Keeps P (m) inside the lumen near sample I: a point farther from the
+ * centreline than the wall less MARGIN_M in its direction is pulled
+ * towards the centreline until it is not, and one past the plane of
+ * sample last_open (into the cecum's dome) back onto that plane. Returns
+ * how far it moved (m).
+ */
+double model_keep_inside(const struct model *m, size_t i, double p[3],
+			 double margin_m);
+
+#endif

@@ -1,0 +1,61 @@
+/*
+ * overview.h - the colon from outside, like a magnetic scope-position
+ * display: the colon translucent (a ghost: its silhouette bright, the
+ * walls facing the viewer nearly clear), the mobile segments turning amber
+ * as they bow, the scope's shape inside it (the published tube polyline)
+ * in green with its tip, and the contact point with the wall's normal
+ * while the wall holds the tip.
+ *
+ * Seen from the patient's front by default (the patient's left on the
+ * viewer's right, cranial up, as a frontal radiograph); the orbit turns
+ * and zooms the view. The colon is drawn at a coarse level of detail
+ * (lod.h) whatever the mesh's resolution.
+ *
+ * Main thread, with the GL context current.
+ */
+#ifndef ENDOVIEW_OVERVIEW_H
+#define ENDOVIEW_OVERVIEW_H
+
+#include <stdint.h>
+
+#include "draw2d.h"
+#include "endo.h"
+#include "endosim_shm.h"
+#include "gpumesh.h"
+#include "lod.h"
+#include "model.h"
+
+#define OVERVIEW_SCOPE_RGB 0.20f, 0.95f, 0.30f /* the scope's green */
+
+struct overview_orbit {
+	double yaw_rad;   /* 0: from the front; about the cranial axis */
+	double pitch_rad; /* up from the horizontal */
+	double zoom;      /* 1: the whole colon fits */
+};
+
+struct overview;
+
+/* NULL on failure (logged). */
+struct overview *overview_create(void);
+
+/* NULL is fine. */
+void overview_destroy(struct overview *o);
+
+/*
+ * Draws the overview of M (placed as it is now) with the scope of ST into
+ * R, clearing it first; returns the triangles drawn. ST may be NULL (the
+ * colon alone).
+ */
+uint32_t overview_draw(struct overview *o, const struct model *m,
+		       const struct lod *l, const struct gpumesh *g,
+		       const struct endosim_state *st,
+		       const struct overview_orbit *orbit, struct endo_rect r);
+
+/*
+ * Queues the names of the colon's regions at their places in the last
+ * overview drawn, for a framebuffer FB_H pixels high.
+ */
+void overview_labels(const struct overview *o, const struct model *m,
+		     struct draw2d *d, int fb_h);
+
+#endif

@@ -1,0 +1,217 @@
+/* rigctl.c - see rigctl.h. */
+#include "rigctl.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "client.h"
+#include "log.h"
+
+#define NS 1000000000ull
+
+struct rigctl {
+	char *socket;
+	struct client *c;
+	uint64_t next_try_ns;
+	bool hand_refused; /* until the next connection */
+	bool driving;
+	char problem[192];
+	char said[256];
+};
+
+struct rigctl *rigctl_create(const char *socket)
+{
+	struct rigctl *r = calloc(1, sizeof(*r));
+
+	if (!r) {
+		return NULL;
+	}
+	r->socket = socket ? strdup(socket) : NULL;
+	if (socket && !r->socket) {
+		free(r);
+		return NULL;
+	}
+	return r;
+}
+
+void rigctl_destroy(struct rigctl *r)
+{
+	if (!r) {
+		return;
+	}
+	client_close(r->c);
+	free(r->socket);
+	free(r);
+}
+
+static void say_problem(struct rigctl *r, const char *why)
+{
+	if (strcmp(r->problem, why)) {
+		log_notice("%s", why);
+	}
+	snprintf(r->problem, sizeof(r->problem), "%s", why);
+}
+
+static int connect_rw(struct rigctl *r, uint64_t now_ns)
+{
+	char path[108], why[192];
+	int err;
+
+	if (r->c) {
+		return 0;
+	}
+	if (now_ns < r->next_try_ns) {
+		return -EAGAIN;
+	}
+	r->next_try_ns = now_ns + (uint64_t)(RIGCTL_RETRY_S * NS);
+	err = client_socket_path(r->socket, true, path, sizeof(path));
+	r->c = err ? NULL : client_connect(path);
+	if (!r->c) {
+		err = err ? err : -errno;
+		snprintf(why, sizeof(why), "%s: %s: viewing only", path,
+			 err == -EACCES ? "no permission (not in the endosim "
+					  "group)" : strerror(-err));
+		say_problem(r, why);
+		return err;
+	}
+	r->problem[0] = '\0';
+	r->hand_refused = false;
+	return 0;
+}
+
+/* Sends REQ; a failed exchange drops the connection. *REP on success. */
+static int exchange(struct rigctl *r, Endosim__Request *req,
+		    Endosim__Reply **rep, uint64_t now_ns)
+{
+	char why[192];
+	int err = connect_rw(r, now_ns);
+
+	if (err) {
+		return err;
+	}
+	err = client_request(r->c, req, rep, RIGCTL_TIMEOUT_MS);
+	if (err) {
+		client_close(r->c);
+		r->c = NULL;
+		r->driving = false;
+		snprintf(why, sizeof(why), "control socket: %s",
+			 strerror(-err));
+		say_problem(r, why);
+	}
+	return err;
+}
+
+static const char *reason(const Endosim__Reply *rep)
+{
+	return rep->error && *rep->error ? rep->error :
+					   client_status_text(rep->status);
+}
+
+int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
+		uint32_t hold_ms, uint64_t now_ns)
+{
+	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	char why[192];
+	int err;
+
+	if (r->hand_refused) {
+		return -EACCES;
+	}
+	body.n_force = ENDOSIM_AXES;
+	body.force = (double *)force;
+	body.hold_ms = hold_ms;
+	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
+	req.hand_input = &body;
+	err = exchange(r, &req, &rep, now_ns);
+	if (err) {
+		return err;
+	}
+	r->driving = rep->status == ENDOSIM__STATUS__STATUS_OK;
+	if (!r->driving && rep->status != ENDOSIM__STATUS__STATUS_BAD_VALUE) {
+		snprintf(why, sizeof(why), "hand input refused: %s",
+			 reason(rep));
+		say_problem(r, why);
+		r->hand_refused = true;
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return r->driving ? 0 : -EACCES;
+}
+
+static const char *const command_name[] = {
+	[RIGCTL_ENABLE] = "enable", [RIGCTL_DISABLE] = "disable",
+	[RIGCTL_ESTOP] = "estop", [RIGCTL_RESET] = "reset",
+};
+
+static void command_body(Endosim__Request *req, enum rigctl_command cmd)
+{
+	static Endosim__Enable enable = ENDOSIM__ENABLE__INIT;
+	static Endosim__Disable disable = ENDOSIM__DISABLE__INIT;
+	static Endosim__EStop estop = ENDOSIM__ESTOP__INIT;
+	static Endosim__ResetFault reset = ENDOSIM__RESET_FAULT__INIT;
+
+	switch (cmd) {
+	case RIGCTL_ENABLE:
+		req->body_case = ENDOSIM__REQUEST__BODY_ENABLE;
+		req->enable = &enable;
+		break;
+	case RIGCTL_DISABLE:
+		req->body_case = ENDOSIM__REQUEST__BODY_DISABLE;
+		req->disable = &disable;
+		break;
+	case RIGCTL_ESTOP:
+		req->body_case = ENDOSIM__REQUEST__BODY_ESTOP;
+		req->estop = &estop;
+		break;
+	case RIGCTL_RESET:
+		req->body_case = ENDOSIM__REQUEST__BODY_RESET_FAULT;
+		req->reset_fault = &reset;
+		break;
+	}
+}
+
+int rigctl_command(struct rigctl *r, enum rigctl_command cmd,
+		   uint64_t now_ns)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int err;
+
+	command_body(&req, cmd);
+	r->next_try_ns = 0; /* the trainee asked: try now */
+	err = exchange(r, &req, &rep, now_ns);
+	if (err) {
+		snprintf(r->said, sizeof(r->said), "%s: %s", command_name[cmd],
+			 r->problem);
+		return err;
+	}
+	if (rep->status == ENDOSIM__STATUS__STATUS_OK) {
+		snprintf(r->said, sizeof(r->said), "%s: done",
+			 command_name[cmd]);
+	} else {
+		snprintf(r->said, sizeof(r->said), "%s refused: %s",
+			 command_name[cmd], reason(rep));
+		err = -EACCES;
+	}
+	log_info("%s", r->said);
+	endosim__reply__free_unpacked(rep, NULL);
+	return err;
+}
+
+const char *rigctl_problem(const struct rigctl *r)
+{
+	return r->problem;
+}
+
+const char *rigctl_said(const struct rigctl *r)
+{
+	return r->said;
+}
+
+bool rigctl_driving(const struct rigctl *r)
+{
+	return r->driving;
+}

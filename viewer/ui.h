@@ -1,0 +1,59 @@
+/*
+ * ui.h - what the trainee does in endoview's window: GLFW's keyboard,
+ * mouse and gamepad turned into the simulated hand's controls (input.h),
+ * commands to the daemon (rigctl.h) and the viewer's own actions.
+ *
+ *   keyboard  Up/W Down/S insert, withdraw (Shift: faster); Left/A
+ *             Right/D twist; I K tip up, down; J L tip left, right;
+ *             E enable, X disable, Space emergency stop, R reset;
+ *             V next view, O overview orbit back, P save a picture,
+ *             H help, Q/Esc quit
+ *   mouse     on the endoscopic image: drag to steer (the wheels follow
+ *             the pointer), right-drag to twist, scroll to insert;
+ *             on the overview: drag to turn it, scroll to zoom
+ *   gamepad   left stick: insert (up), twist; right stick: steer;
+ *             Start enable, Back disable, B emergency stop, Y reset
+ *
+ * Main thread; GLFW's callbacks of the window are ui's.
+ */
+#ifndef ENDOVIEW_UI_H
+#define ENDOVIEW_UI_H
+
+#include <stdbool.h>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+
+#include "hud.h"
+#include "input.h"
+#include "overview.h"
+#include "rigctl.h"
+
+#define UI_STEER_RAD_PER_PX 0.008 /* wheel turn per pixel of drag */
+#define UI_TWIST_RAD_PER_PX 0.01
+#define UI_SCROLL_M 0.005         /* insertion per step of the wheel */
+#define UI_DEAD_ZONE 0.15         /* of a stick */
+
+/* One-off actions this frame. */
+struct ui_actions {
+	bool command[RIGCTL_RESET + 1]; /* by enum rigctl_command */
+	bool next_view, toggle_help, reset_orbit, capture, quit;
+};
+
+struct ui;
+
+/* Takes the window's key, scroll and character callbacks. NULL: ENOMEM. */
+struct ui *ui_create(GLFWwindow *w);
+
+/* NULL is fine. */
+void ui_destroy(struct ui *u);
+
+/*
+ * After glfwPollEvents(): the hand's controls C and the actions A of this
+ * frame; drags on the overview turn ORBIT. LAY says which view is where.
+ */
+void ui_frame(struct ui *u, const struct hud_layout *lay,
+	      struct input_controls *c, struct ui_actions *a,
+	      struct overview_orbit *orbit);
+
+#endif
