@@ -6,10 +6,9 @@
 # is a dark lumen amid lit walls, the lit wall fills it once the tip is
 # steered at the wall, the overview shows the scope's shape growing with
 # the insertion, the HUD is drawn; a loop bows the sigmoid amber in the
-# overview and the HUD warns of it, a contact shows red (a state relayed
-# with both, tests/tools/shm_relay, until the force model makes them); a
-# stalled daemon reads as stale; the keyboard and the mouse drive the
-# simulated hand; a daemon that goes away is shown gone, and its
+# overview and the HUD warns of it, a contact shows red (the demo's course,
+# pushed straight into the splenic flexure); a stalled daemon reads as
+# stale; the keyboard and the mouse drive the simulated hand; a daemon that goes away is shown gone, and its
 # successor's colon is fetched. No run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
@@ -93,12 +92,14 @@ check "overview: the scope's green along its shape" \
 
 # --- steered at the wall, deeper -----------------------------------------
 stop_daemon
+# (the wheel stops where the hand's spring meets the wheel motor's
+# 0.1 N m: the wall pushes back harder than the motor can)
 start_daemon "${STRAIGHT[@]}" --scenario "$(scenario wall \
-	'0 insertion target 0.60 1.5' '0 wheel_ud target 0.6 1.0')" || finish
+	'0 insertion target 0.60 1.5' '2 wheel_ud target 0.6 1.0')" || finish
 ctl enable >/dev/null
-check "the scope goes in 60 cm, the tip turns up 60 deg" wait_for \
-	status_true '.axes.insertion.position > 0.59 and
-		     .axes.wheel_ud.position > 0.58'
+check "the scope goes in 60 cm, the tip turns up into the wall" wait_for \
+	status_true '.axes.insertion.position > 0.58 and
+		     .axes.wheel_ud.position > 0.45 and .haptics.contact'
 check_status "wall: screenshot" 0 \
 	view "${SMALL[@]}" --view endo --frames 20 --screenshot "$TMP/wall.png"
 check "wall: no OpenGL error" ran_clean live
@@ -116,25 +117,34 @@ check "overview: the scope's shape grows with the insertion" \
 	float_test "$SHARE > 1.3 * $share30 && $TALL > 1.3 * $tall30"
 OVER="rect:$X,$Y,$W,$H"
 
-# --- a loop and a contact, relayed (the force model makes neither yet) --
+# --- a loop and a contact, from the force model ------------------------
+# The shipped demo's course at 10 cm/s (scenario_gen): steered through the
+# sigmoid, then pushed straight into the splenic flexure, which holds the
+# tip while the sigmoid bows. Before: the same course held at 40 cm.
 stop_daemon
-start_daemon --scenario "$(scenario loop '0 insertion target 0.45 1.5')" ||
-	finish
+"$TOOLS/scenario_gen" "$TOP/config/cases/normal.case" 0.1 >"$TMP/fast.scn"
+awk '/^#/ || $1 <= 4.5' "$TMP/fast.scn" >"$TMP/held.scn"
+echo '60 end' >>"$TMP/held.scn"
+start_daemon --scenario "$TMP/held.scn" || finish
 ctl enable >/dev/null
-check "the scope goes in 45 cm in the default case" \
-	wait_for status_true '.axes.insertion.position > 0.44'
+check "the scope goes in 40 cm in the default case, along the lumen" \
+	wait_for status_true '.axes.insertion.position > 0.39 and
+			      .scenario_time_s > 6'
+check "held there: no loop, no contact" \
+	status_true '.scope.bow_m[0] == 0 and (.haptics.contact | not)'
 check_status "overview, no loop: screenshot" 0 view --view overview \
 	--frames 8 --screenshot "$TMP/plain.png"
 rect_of overview
 OVER="rect:$X,$Y,$W,$H"
-"$TOOLS/shm_relay" "$SHM" "$SHM-relay" --bow 0=0.05 --contact &
-relay=$!
-check "relay: the state with a loop and a contact" \
-	wait_for test -e "/dev/shm$SHM-relay"
+stop_daemon
+start_daemon --scenario "$TMP/fast.scn" || finish
+ctl enable >/dev/null
+WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the sigmoid bows 5 cm" \
+	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
 check_status "overview, loop: screenshot" 0 view --view overview \
-	--frames 8 --screenshot "$TMP/loop.png" --shm-name "$SHM-relay"
-kill "$relay"
-wait "$relay"
+	--frames 8 --screenshot "$TMP/loop.png"
+check "the loop and the contact held through the screenshot" \
+	status_true '.scope.bow_m[0] > 0.04 and .haptics.contact'
 for what in amber red; do
 	before=$(png_value "$TMP/plain.png" "$OVER" $what)
 	after=$(png_value "$TMP/loop.png" "$OVER" $what)
