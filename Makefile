@@ -87,12 +87,13 @@ PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
 COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 
 # endosimd: main, configuration, logging, the force loop and what it calls
-# (rig backends, hand, haptics, safety, publish, the colon and the scope),
-# the control thread with the cases and the scene it serves
+# (rig backends, hand, haptics, safety with its fault words and the test
+# commands' injections, publish, the colon and the scope), the control
+# thread with the cases and the scene it serves
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
-	      safety.o godobject.o control.o cases.o scene.o $(COLON_OBJS) \
-	      $(DRIVE_OBJS)
+	      safety.o faults.o inject.o godobject.o control.o cases.o \
+	      scene.o $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
@@ -100,7 +101,7 @@ DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 	     canopen.o drive_modbus.o
 
 # endoctl: the CLI over the sockets
-ENDOCTL_OBJS = endoctl.o json.o objio.o
+ENDOCTL_OBJS = endoctl.o json.o objio.o inject.o
 
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon
@@ -131,7 +132,7 @@ test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
 test_scenario_OBJS = scenario.o names.o
-test_safety_OBJS = safety.o config.o regmap.o log.o names.o
+test_safety_OBJS = safety.o inject.o config.o regmap.o log.o names.o
 test_epos4_frame_OBJS = epos4_frame.o
 test_canopen_OBJS = canopen.o
 test_regmap_OBJS = regmap.o

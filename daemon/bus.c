@@ -22,6 +22,7 @@
 
 /* Loop to bus: the newest command. */
 struct bus_cmd {
+	uint64_t stamp_ns;             /* the loop's cycle that posted it */
 	double setpoint[ENDOSIM_AXES]; /* N or N m, by rig axis */
 	bool enable;
 	uint32_t enable_gen;           /* rising edges of enable so far */
@@ -330,6 +331,27 @@ static void check_drives(struct bus *b)
 	}
 }
 
+/*
+ * Commands the force loop stopped renewing (a stalled or dead loop) are
+ * not followed: a bus error latched, every drive brought down at once.
+ */
+static void check_command_age(struct bus *b)
+{
+	uint64_t now = drive_now_ns();
+	uint64_t max_age = (uint64_t)(b->p.feedback_max_age_s * 1e9);
+	char why[160];
+
+	if (!b->cmd.enable || any_latch(b) || now <= b->cmd.stamp_ns ||
+	    now - b->cmd.stamp_ns <= max_age) {
+		return;
+	}
+	snprintf(why, sizeof(why), "no command from the force loop for %.0f "
+		 "ms (limit %.0f ms): drives stopped",
+		 (double)(now - b->cmd.stamp_ns) / 1e6, max_age / 1e6);
+	latch(b, -1, LATCH_BUS, ETIME, why);
+	take_all_down(b, -1);
+}
+
 static void exchange(struct bus *b)
 {
 	struct drive_sample sample[DRIVE_MAX];
@@ -478,6 +500,7 @@ static void *bus_main(void *arg)
 
 	while (!atomic_load_explicit(&b->stop, memory_order_acquire)) {
 		take_command(b);
+		check_command_age(b);
 		if (b->connected) {
 			steer(b);
 		}
@@ -576,8 +599,8 @@ void bus_fetch(struct bus *b, struct rig_feedback *fb)
 	}
 }
 
-void bus_post(struct bus *b, const double setpoint[ENDOSIM_AXES],
-	      bool enable)
+void bus_post(struct bus *b, uint64_t now_ns,
+	      const double setpoint[ENDOSIM_AXES], bool enable)
 {
 	struct bus_cmd cmd;
 
@@ -586,6 +609,7 @@ void bus_post(struct bus *b, const double setpoint[ENDOSIM_AXES],
 	}
 	b->loop_enable = enable;
 	memcpy(cmd.setpoint, setpoint, sizeof(cmd.setpoint));
+	cmd.stamp_ns = now_ns;
 	cmd.enable = enable;
 	cmd.enable_gen = b->loop_gen;
 	cmd.fault_ack = b->loop_seen_seq;

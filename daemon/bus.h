@@ -68,11 +68,13 @@ void bus_stop(struct bus *b);
 void bus_fetch(struct bus *b, struct rig_feedback *fb);
 
 /*
- * Force loop: the newest command: SETPOINT per rig axis (N or N m), and
- * whether the drives may produce torque. Never blocks.
+ * Force loop: the newest command of its cycle at NOW_NS: SETPOINT per rig
+ * axis (N or N m), and whether the drives may produce torque. Never
+ * blocks. A command older than the bus' feedback_max_age_s while enabled
+ * (the loop stalled) is a bus error: the bus brings its drives down.
  */
-void bus_post(struct bus *b, const double setpoint[ENDOSIM_AXES],
-	      bool enable);
+void bus_post(struct bus *b, uint64_t now_ns,
+	      const double setpoint[ENDOSIM_AXES], bool enable);
 
 /* True when rig axis AXIS is on this bus. Any thread. */
 bool bus_has_axis(const struct bus *b, int axis);

@@ -14,6 +14,8 @@
 /* Object dictionary entries the drive layer uses (index; subindex 0). */
 enum {
 	CANOPEN_DEVICE_TYPE = 0x1000,    /* UNSIGNED32; low word 402: a drive */
+	CANOPEN_HEARTBEAT_CONSUMER = 0x1016, /* :01 UNSIGNED32: producer node
+						 << 16 | time in ms */
 	CANOPEN_ERROR_CODE = 0x603F,     /* UNSIGNED16: the drive's fault */
 	CANOPEN_CONTROLWORD = 0x6040,    /* UNSIGNED16 */
 	CANOPEN_STATUSWORD = 0x6041,     /* UNSIGNED16 */
@@ -31,6 +33,8 @@ enum {
 
 #define CANOPEN_DEVICE_PROFILE_DRIVE 402
 #define CANOPEN_MODE_CST 10 /* cyclic synchronous torque */
+#define CANOPEN_MASTER_NODE 0x7F /* the producer the drive listens for */
+#define CANOPEN_ERROR_HEARTBEAT 0x8130 /* life guard or heartbeat error */
 
 /* SI unit velocity 0x60A9 without its prefix byte: revolutions per minute. */
 #define CANOPEN_SI_UNIT_RPM 0x00B44700u

@@ -68,7 +68,10 @@ static const char *const yes_no[] = { "no", "yes", NULL };
 	   "exchanges per second at most (the bus may allow fewer)"),         \
 	KD(sec, "rated_torque_unit_n_m", epos4[i].rated_torque_unit_n_m,     \
 	   1e-6, 1e-9, 1, "N m", 0,                                          \
-	   "what one unit of the rated torque 0x6076 is (EPOS4: 1 uN m)")
+	   "what one unit of the rated torque 0x6076 is (EPOS4: 1 uN m)"),   \
+	KD(sec, "watchdog_s", epos4[i].watchdog_s, 0.1, 0, 65.535, "s", 0,   \
+	   "heartbeat consumer time 0x1016:01 written at enable: the drive " \
+	   "faults when the daemon falls silent this long; 0: off")
 
 /* [modbus.NAME]: the Modbus wheel drive of axis I and its register map. */
 #define MODBUS_DRIVE_KEYS(sec, i)                                            \
@@ -103,6 +106,11 @@ static const struct config_key keys[] = {
 	KI("loop", "cpu_dma_latency_us", loop.cpu_dma_latency_us, 0, -1, 100000,
 	   "us", 0, "hold /dev/cpu_dma_latency at this while running (keeps "
 	   "CPUs out of deep idle states); -1: leave alone"),
+	KI("loop", "overrun_budget", loop.overrun_budget, 50, 1,
+	   CONFIG_OVERRUN_BUDGET_MAX, "periods", 0, "more periods skipped than this "
+	   "within overrun_window_s is a fault"),
+	KD("loop", "overrun_window_s", loop.overrun_window_s, 1.0, 0.01, 60,
+	   "s", 0, "the window of overrun_budget"),
 
 	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
 	   "sim: every axis simulated; drives: as each [axis.*] says"),
@@ -176,6 +184,18 @@ static const struct config_key keys[] = {
 	   "N m", 0, "strongest thumb torque on the up/down wheel"),
 	KD("sim", "hand_wheel_lr_max_n_m", sim.hand_max[I_LR], 0.3, 0, 10,
 	   "N m", 0, "strongest thumb torque on the left/right wheel"),
+	KD("sim", "hand_insertion_max_speed_m_s", sim.hand_max_speed[I_INS],
+	   1.5, 0.01, 100, "m/s", 0, "the hand's push fades to nothing at "
+	   "this speed (a muscle's force-velocity limit)"),
+	KD("sim", "hand_roll_max_speed_rad_s", sim.hand_max_speed[I_ROLL], 15,
+	   0.01, 1000, "rad/s", 0, "the hand's twist fades to nothing at "
+	   "this speed"),
+	KD("sim", "hand_wheel_ud_max_speed_rad_s", sim.hand_max_speed[I_UD],
+	   15, 0.01, 1000, "rad/s", 0, "the thumb fades to nothing at this "
+	   "speed, up/down wheel"),
+	KD("sim", "hand_wheel_lr_max_speed_rad_s", sim.hand_max_speed[I_LR],
+	   15, 0.01, 1000, "rad/s", 0, "the thumb fades to nothing at this "
+	   "speed, left/right wheel"),
 	KD("sim", "hand_hold_s", sim.hand_hold_s, 0.25, 0.01, 10, "s", 0,
 	   "live hand input holds this long unless refreshed"),
 
@@ -208,6 +228,22 @@ static const struct config_key keys[] = {
 	   "N m", LIVE, "largest torque on the up/down wheel"),
 	KD("limits", "wheel_lr_max_torque_n_m", limits.max[I_LR], 0.1, 0, 1,
 	   "N m", LIVE, "largest torque on the left/right wheel"),
+	KD("limits", "enable_ramp_s", limits.enable_ramp_s, 1.0, 0, 10, "s",
+	   LIVE, "after enable, forces rise from nothing to full over this"),
+	KD("limits", "insertion_max_speed_m_s", limits.max_speed[I_INS], 2.0,
+	   0.01, 100, "m/s", 0, "a faster carriage is a runaway: a fault"),
+	KD("limits", "roll_max_speed_rad_s", limits.max_speed[I_ROLL], 30,
+	   0.01, 1000, "rad/s", 0, "a faster roll is a runaway: a fault"),
+	KD("limits", "wheel_ud_max_speed_rad_s", limits.max_speed[I_UD], 30,
+	   0.01, 1000, "rad/s", 0, "a faster up/down wheel is a runaway"),
+	KD("limits", "wheel_lr_max_speed_rad_s", limits.max_speed[I_LR], 30,
+	   0.01, 1000, "rad/s", 0, "a faster left/right wheel is a runaway"),
+	KD("limits", "travel_margin_fraction", limits.travel_margin, 0.02, 0,
+	   100, "", 0, "a position beyond either end of [rig] travel by more "
+	   "than this share of it is a fault"),
+	KD("limits", "saturation_s", limits.saturation_s, 5, 0.01, 3600, "s",
+	   0, "a force held beyond its limit longer than this, torque on, is "
+	   "a fault"),
 
 	KD("limits", "insertion_slew_n_per_s", limits.slew[I_INS], 4000, 1,
 	   1e6, "N/s", LIVE, "fastest change of the carriage force"),
@@ -329,6 +365,10 @@ static const struct config_key keys[] = {
 	   "this)"),
 	KD("case", "segment_m", colon.segment_m, 0.04, 0.01, 0.5, "m", 0,
 	   "length of the mesh segments that index triangles along the colon"),
+
+	KE("debug", "test_commands", debug.test_commands, 0, yes_no, 0,
+	   "accept the test-only fault injections (endoctl debug): never on "
+	   "a rig a person touches"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
 	   "m", LIVE, "length of the bending section behind the tip"),

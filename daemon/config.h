@@ -27,6 +27,7 @@
 #define CONFIG_CASE_DIR "/usr/local/share/endosim/cases"
 #endif
 #define CONFIG_STR 128 /* longest string value, bytes with the NUL */
+#define CONFIG_OVERRUN_BUDGET_MAX 1000 /* [loop] overrun_budget */
 
 enum config_backend {
 	CONFIG_BACKEND_SIM = 0,    /* every axis simulated */
@@ -65,6 +66,7 @@ struct config_epos4 {
 	double feedback_max_age_s;    /* older feedback is a fault */
 	double max_rate_hz;           /* the bus thread's exchange rate cap */
 	double rated_torque_unit_n_m; /* SI value of one unit of 0x6076 */
+	double watchdog_s;            /* heartbeat consumer time 0x1016 */
 };
 
 /* The Modbus line or connection all modbus axes share ([modbus]). */
@@ -97,6 +99,8 @@ struct config {
 		int priority;     /* SCHED_FIFO priority, 1..99 */
 		int cpu;          /* CPU to pin the loop to, -1: any */
 		int cpu_dma_latency_us; /* PM QoS held while running, -1: none */
+		int overrun_budget;     /* periods skipped within ... */
+		double overrun_window_s; /* ... this window: a fault */
 	} loop;
 	struct {
 		int backend;                   /* enum config_backend */
@@ -111,6 +115,7 @@ struct config {
 		double hand_stiffness[ENDOSIM_AXES]; /* N/m or N m/rad */
 		double hand_damping[ENDOSIM_AXES];   /* N s/m or N m s/rad */
 		double hand_max[ENDOSIM_AXES]; /* N or N m */
+		double hand_max_speed[ENDOSIM_AXES]; /* m/s or rad/s */
 		double hand_hold_s;            /* default hold of live input */
 	} sim;
 	struct {
@@ -128,6 +133,10 @@ struct config {
 	struct {
 		double max[ENDOSIM_AXES];      /* N or N m, both directions */
 		double slew[ENDOSIM_AXES];     /* N/s or N m/s */
+		double enable_ramp_s;          /* torque rises over this */
+		double max_speed[ENDOSIM_AXES]; /* m/s or rad/s: a runaway */
+		double travel_margin;          /* fraction of the travel */
+		double saturation_s;           /* longest hold at a limit */
 	} limits;
 	struct {                               /* haptics.h */
 		double scope_radius_m;         /* the tip: the contact inset */
@@ -162,6 +171,9 @@ struct config {
 		int ring_vertices;
 		double segment_m;              /* mesh segments along s */
 	} colon;
+	struct {
+		int test_commands;   /* 1: DebugInject accepted (tests only) */
+	} debug;
 	struct {
 		double bending_length_m;
 		double gain[2];      /* tip rad per wheel rad: ud, lr */

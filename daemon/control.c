@@ -20,6 +20,8 @@
 #include "../proto/names.h"
 #include "../proto/version.h"
 #include "cases.h"
+#include "faults.h"
+#include "inject.h"
 #include "log.h"
 #include "scene.h"
 
@@ -53,7 +55,9 @@ struct reply_buf {
 	Endosim__StatusReply status;
 	Endosim__AxisStatus axes[ENDOSIM_AXES];
 	Endosim__AxisStatus *axes_p[ENDOSIM_AXES];
-	char fault_text[640];
+	Endosim__Fault faults[ENDOSIM_FAULT_BITS];
+	Endosim__Fault *faults_p[ENDOSIM_FAULT_BITS];
+	char fault_lines[ENDOSIM_FAULT_BITS][640];
 	Endosim__StatsReply stats;
 	Endosim__Histogram latency, compute;
 	Endosim__BusStats buses[ENDOSIM_AXES];
@@ -96,6 +100,7 @@ struct control {
 	bool running;
 	_Atomic bool alive;
 	_Atomic bool stop;
+	bool end;                /* a test command: the thread ends */
 };
 
 /* ---------------------------------------------------------------- sockets */
@@ -338,24 +343,47 @@ static void accept_client(struct control *c, int lfd, bool rw)
 
 /* ---------------------------------------------------------------- replies */
 
-/* The first fault: its bits, axis, time, and the device's own words. */
-static void fault_text(struct control *c, const struct endosim_state *st,
-		       char *buf, size_t size)
+/* One latched fault, bit number K, into the reply's slot N. */
+static void fill_fault(struct control *c, const struct endosim_state *st,
+		       int k, size_t n)
 {
-	char names[128], what[400];
+	const struct endosim_fault_cause *fc = &st->safety.cause[k];
+	Endosim__Fault *f = &c->rb.faults[n];
 
-	if (!st->fault_bits) {
-		buf[0] = '\0';
-		return;
+	endosim__fault__init(f);
+	faults_format(c->deps.rig, c->deps.start_ns, 1u << k, fc,
+		      c->rb.fault_lines[n], sizeof(c->rb.fault_lines[n]));
+	f->code = (uint32_t)k;
+	f->name = (char *)names_fault(1u << k);
+	f->axis = fc->axis >= 0 ? (char *)names_axis(fc->axis) : "";
+	f->time_s = (double)(fc->first_ns - c->deps.start_ns) / 1e9;
+	f->text = c->rb.fault_lines[n];
+	f->active = st->safety.active & 1u << k;
+	f->value = fc->value;
+	f->limit = fc->limit;
+	f->detail = fc->detail;
+	c->rb.faults_p[n] = f;
+}
+
+/* Every latched fault, the first one first; its line is the fault text. */
+static void fill_faults(struct control *c, const struct endosim_state *st,
+			Endosim__StatusReply *s)
+{
+	size_t n = 0;
+
+	if (st->fault_first) {
+		fill_fault(c, st, __builtin_ctz(st->fault_first), n++);
 	}
-	names_faults(st->fault_bits, names, sizeof(names));
-	rig_describe(c->deps.rig, st->fault_first, st->fault_axis,
-		     st->fault_detail, what, sizeof(what));
-	snprintf(buf, size, "%s%s%s (detail %u) at %.3f s: %s", names,
-		 st->fault_axis >= 0 ? " on " : "",
-		 st->fault_axis >= 0 ? names_axis(st->fault_axis) : "",
-		 st->fault_detail,
-		 (double)(st->fault_ns - c->deps.start_ns) / 1e9, what);
+	for (int k = 0; k < ENDOSIM_FAULT_BITS; k++) {
+		if ((st->fault_bits & 1u << k) && 1u << k != st->fault_first) {
+			fill_fault(c, st, k, n++);
+		}
+	}
+	s->n_faults = n;
+	s->faults = c->rb.faults_p;
+	s->fault_text = n ? c->rb.fault_lines[0] : "";
+	s->active_faults = st->safety.active;
+	s->ramp = st->safety.ramp;
 }
 
 static void update_loop_rate(struct control *c, uint64_t now)
@@ -439,8 +467,7 @@ static void build_status(struct control *c, Endosim__Reply *rep)
 	endosim__status_reply__init(s);
 	s->state = (Endosim__DaemonState)st.state;
 	s->fault_bits = st.fault_bits;
-	fault_text(c, &st, rb->fault_text, sizeof(rb->fault_text));
-	s->fault_text = rb->fault_text;
+	fill_faults(c, &st, s);
 	s->cycle = st.cycle;
 	s->stamp_ns = st.stamp_ns;
 	s->rt_policy = (char *)info->policy;
@@ -870,6 +897,35 @@ static void on_load_case(struct control *c, struct client *cl,
 		   (int)cl->uid, colon_mesh(colon)->triangles);
 }
 
+static void on_debug(struct control *c, struct client *cl,
+		     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__DebugInject *d = req->debug_inject;
+	const char *name = inject_name(d->action);
+	int r;
+
+	if (!c->cfg.debug.test_commands) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "test commands are off ([debug] test_commands = no)");
+		return;
+	}
+	log_warn("test command %s on axis %d, value %g (uid %d)",
+		 name ? name : "?", d->axis, d->value, (int)cl->uid);
+	if (d->action == ENDOSIM__DEBUG_ACTION__DEBUG_ACTION_END_CONTROL) {
+		c->end = true;
+		return;
+	}
+	r = loop_debug(c->deps.loop, d->action, d->axis, d->value,
+		       COMMAND_TIMEOUT_MS);
+	if (r == -EINVAL) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "no such test command, axis or stage");
+	} else if (r) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
+		       "the force loop did not take the command");
+	}
+}
+
 struct handler {
 	Endosim__Request__BodyCase body;
 	bool writes; /* refused on the read-only socket */
@@ -891,6 +947,7 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_RESET_FAULT, true, on_reset },
 	{ ENDOSIM__REQUEST__BODY_HAND_INPUT, true, on_hand_input },
 	{ ENDOSIM__REQUEST__BODY_RESET_STATS, true, on_reset_stats },
+	{ ENDOSIM__REQUEST__BODY_DEBUG_INJECT, true, on_debug },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -1083,7 +1140,7 @@ static void *control_main(void *arg)
 	struct epoll_event evs[MAX_EVENTS];
 	int timeout = 0;
 
-	while (!atomic_load(&c->stop)) {
+	while (!atomic_load(&c->stop) && !c->end) {
 		int n = epoll_wait(c->ep, evs, MAX_EVENTS, timeout);
 
 		for (int i = 0; i < n; i++) {
@@ -1170,6 +1227,11 @@ struct control *control_create(const struct config *cfg,
 	if (alloc_buffers(c) || open_sockets(c)) {
 		control_destroy(c);
 		return NULL;
+	}
+	if (cfg->debug.test_commands) {
+		log_warn("[debug] test_commands = yes: clients may inject "
+			 "faults and stall the force loop; never on a rig a "
+			 "person touches");
 	}
 	log_info("listening on %s (read-only) and %s (read-write)", c->ro_path,
 		 c->rw_path);

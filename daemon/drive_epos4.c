@@ -7,7 +7,8 @@
  * One exchange is four request/reply pairs (the device takes one request
  * at a time): WriteObject target torque 0x6071 (when enabled), ReadObject
  * position 0x6064, velocity 0x606C and statusword 0x6041; the error code
- * 0x603F is read once when a fault appears.
+ * 0x603F is read once when a fault appears. Bringing a drive up sets its
+ * heartbeat consumer 0x1016:01 to [epos4.NAME] watchdog_s.
  */
 #include <errno.h>
 #include <libusb.h>
@@ -380,10 +381,28 @@ static int epos4_exchange(struct drive *d, const double *setpoint,
 	return read_fault(e, s);
 }
 
+/*
+ * The drive's communication watchdog: a heartbeat consumer that faults the
+ * drive (0x8130) when the daemon falls silent for watchdog_s, so that a
+ * dead daemon leaves no torque on (see the README on a real EPOS4 on USB).
+ */
+static int set_watchdog(struct epos4 *e)
+{
+	uint32_t hb = (uint32_t)CANOPEN_MASTER_NODE << 16 |
+		      (uint32_t)lround(e->cfg.watchdog_s * 1e3);
+
+	if (e->cfg.watchdog_s <= 0) {
+		return 0;
+	}
+	return sdo(e, true, CANOPEN_HEARTBEAT_CONSUMER, 1, &hb);
+}
+
 static int set_mode(struct epos4 *e)
 {
 	uint32_t shown;
 	int r = write_object(e, CANOPEN_TARGET_TORQUE, 0);
+
+	r = r ? r : set_watchdog(e);
 
 	r = r ? r : write_object(e, CANOPEN_MODE, CANOPEN_MODE_CST);
 	r = r ? r : read_object(e, CANOPEN_MODE_DISPLAY, &shown);

@@ -24,6 +24,7 @@
 #include "../proto/endosim_shm.h"
 #include "../proto/names.h"
 #include "../proto/version.h"
+#include "inject.h"
 #include "json.h"
 #include "objio.h"
 
@@ -159,6 +160,27 @@ static void json_haptics(struct json *j, const Endosim__HapticsStatus *h)
 	json_object_end(j);
 }
 
+static void json_faults(struct json *j, const Endosim__StatusReply *s)
+{
+	json_array_begin(j, "faults");
+	for (size_t i = 0; i < s->n_faults; i++) {
+		const Endosim__Fault *f = s->faults[i];
+
+		json_object_begin(j, NULL);
+		json_uint(j, "code", f->code);
+		json_string(j, "name", f->name);
+		json_string(j, "axis", f->axis);
+		json_double(j, "time_s", f->time_s);
+		json_string(j, "text", f->text);
+		json_bool(j, "active", f->active);
+		json_double(j, "value", f->value);
+		json_double(j, "limit", f->limit);
+		json_uint(j, "detail", f->detail);
+		json_object_end(j);
+	}
+	json_array_end(j);
+}
+
 static void json_status(const Endosim__StatusReply *s)
 {
 	struct json j;
@@ -168,6 +190,9 @@ static void json_status(const Endosim__StatusReply *s)
 	json_string(&j, "state", names_state((uint32_t)s->state));
 	json_uint(&j, "fault_bits", s->fault_bits);
 	json_string(&j, "fault", s->fault_text);
+	json_faults(&j, s);
+	json_uint(&j, "active_faults", s->active_faults);
+	json_double(&j, "ramp", s->ramp);
 	json_uint(&j, "cycle", s->cycle);
 	json_uint(&j, "stamp_ns", s->stamp_ns);
 	json_string(&j, "rt_policy", s->rt_policy);
@@ -232,6 +257,17 @@ static void print_status(const Endosim__StatusReply *s)
 {
 	printf("state     %s\n", names_state((uint32_t)s->state));
 	printf("fault     %s\n", *s->fault_text ? s->fault_text : "none");
+	for (size_t i = 0; i < s->n_faults; i++) {
+		const Endosim__Fault *f = s->faults[i];
+
+		printf("%s %s%s\n", i ? "          " : "  latched",
+		       f->text, f->active ? "  [still present]" : "");
+	}
+	if (s->state == ENDOSIM__DAEMON_STATE__DAEMON_STATE_ENABLED &&
+	    s->ramp < 1.0) {
+		printf("ramp      forces at %.0f%% (rising after enable)\n",
+		       s->ramp * 100.0);
+	}
 	printf("rig       %s, %s priority %d, %.1f Hz (configured %.0f), "
 	       "overruns %llu\n", s->rig, s->rt_policy, s->rt_priority,
 	       s->loop_hz, s->loop_rate_hz, (unsigned long long)s->overruns);
@@ -850,6 +886,43 @@ static int cmd_scene(struct ctl *ctl, int argc, char **argv)
 	return r;
 }
 
+/* The axis called NAME, "all" (-1), or -2. */
+static int debug_axis(const char *name)
+{
+	return !strcmp(name, "all") ? -1
+	       : names_axis_find(name) >= 0 ? names_axis_find(name) : -2;
+}
+
+static int cmd_debug(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__DebugInject body = ENDOSIM__DEBUG_INJECT__INIT;
+	int action = argc >= 2 ? inject_find(argv[1]) : -1;
+	bool axisless = action == INJECT_STALL || action == INJECT_END_CONTROL;
+	int ai = 2, vi = axisless ? 2 : 3;
+	char done[160], *end = NULL;
+
+	body.axis = -1;
+	if (!axisless && argc > ai) {
+		body.axis = debug_axis(argv[ai]);
+	}
+	if (argc > vi) {
+		body.value = strtod(argv[vi], &end);
+	}
+	if (action < 0 || argc > vi + 1 || body.axis < -1 || (end && *end) ||
+	    (!axisless && argc < 3 && action != INJECT_CLEAR)) {
+		fprintf(stderr, "endoctl: debug ACTION [AXIS|all] [VALUE], with "
+			"[debug] test_commands = yes in endosimd; ACTION: clear, "
+			"drive-fault, drive-gone, stale, bus-error, speed, "
+			"position, force, nan (VALUE: 1 feedback, 2 pose, "
+			"3 haptics, 4 command), stall SECONDS, end-control\n");
+		return EXIT_USAGE;
+	}
+	body.action = (Endosim__DebugAction)action;
+	snprintf(done, sizeof(done), "test command %s done", argv[1]);
+	return simple_command(ctl, ENDOSIM__REQUEST__BODY_DEBUG_INJECT, &body,
+			      done);
+}
+
 static int cmd_version(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
@@ -908,6 +981,8 @@ static const struct {
 	{ "scene", cmd_scene, "info | export FILE.obj: the colon the daemon "
 			      "renders" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
+	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
+			      "tests only" },
 };
 
 static void usage(FILE *out)

@@ -15,6 +15,7 @@ struct hand {
 	double stiffness[ENDOSIM_AXES];
 	double damping[ENDOSIM_AXES];
 	double max[ENDOSIM_AXES];
+	double max_speed[ENDOSIM_AXES];
 	struct scenario *scenario;
 	seqlock_t lock;       /* guards mailbox */
 	struct live mailbox;  /* written by the control thread */
@@ -32,6 +33,7 @@ struct hand *hand_create(const struct config *cfg, struct scenario *scn)
 		h->stiffness[a] = cfg->sim.hand_stiffness[a];
 		h->damping[a] = cfg->sim.hand_damping[a];
 		h->max[a] = cfg->sim.hand_max[a];
+		h->max_speed[a] = cfg->sim.hand_max_speed[a];
 	}
 	h->scenario = scn;
 	seqlock_init(&h->lock);
@@ -79,6 +81,20 @@ static double clamp(double v, double lim)
 	return fmin(fmax(v, -lim), lim);
 }
 
+/*
+ * What a hand can push with at speed V: its strength LIM, fading to
+ * nothing at its top speed VMAX along the push (a muscle's force-velocity
+ * curve, linearised); braking, it holds its full strength.
+ */
+static double muscle(double f, double v, double lim, double vmax)
+{
+	f = clamp(f, lim);
+	if (f * v > 0) {
+		f *= fmax(0.0, 1.0 - fabs(v) / vmax);
+	}
+	return f;
+}
+
 void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		 const double pos[ENDOSIM_AXES], const double vel[ENDOSIM_AXES],
 		 double force[ENDOSIM_AXES])
@@ -88,7 +104,8 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 	fetch_live(h);
 	if (now_ns < h->cached.until_ns) {
 		for (int a = 0; a < ENDOSIM_AXES; a++) {
-			force[a] = clamp(h->cached.force[a], h->max[a]);
+			force[a] = muscle(h->cached.force[a], vel[a], h->max[a],
+					  h->max_speed[a]);
 		}
 		return;
 	}
@@ -107,6 +124,6 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		} else if (cmd[a].mode == SCENARIO_FORCE) {
 			f = cmd[a].value;
 		}
-		force[a] = clamp(f, h->max[a]);
+		force[a] = muscle(f, vel[a], h->max[a], h->max_speed[a]);
 	}
 }

@@ -5,7 +5,9 @@
  * viewer's keyboard or gamepad). Live input, while it holds, overrides the
  * scenario on every axis.
  *
- * Every force is clamped to the configured strongest push of a hand.
+ * Every force is clamped to the configured strongest push of a hand, and
+ * fades along the motion to nothing at the hand's top speed, as a
+ * muscle's does: a hand alone never moves an axis faster than that.
  */
 #ifndef ENDOSIM_HAND_H
 #define ENDOSIM_HAND_H

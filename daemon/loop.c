@@ -14,6 +14,7 @@
 
 #include "../proto/seqlock.h"
 #include "haptics.h"
+#include "inject.h"
 #include "log.h"
 #include "rt.h"
 #include "scope.h"
@@ -47,6 +48,9 @@ struct loop {
 	uint64_t scene_id;
 	struct scope_pose pose;
 	struct haptics *haptics;
+	uint64_t skipped;          /* periods skipped before this cycle */
+	struct inject inject;      /* test commands' sabotage */
+	uint64_t debug_seen;
 
 	/* shared */
 	struct rig *rig;
@@ -70,6 +74,12 @@ struct loop {
 	_Atomic(struct colon *) colon_out; /* loop -> control: replaced or
 					      refused */
 	uint64_t scene_id_in;      /* published by colon_in's release */
+	_Atomic uint32_t fail_bits; /* main -> loop: a thread died */
+	_Atomic uint32_t fail_detail;
+	seqlock_t debug_lock;      /* control -> loop: a test command */
+	struct loop_debug debug_box;
+	_Atomic uint64_t debug_done; /* loop -> control: seq << 32 | result */
+	uint32_t debug_seq;        /* control thread's counter */
 };
 
 uint64_t loop_now_ns(void)
@@ -112,6 +122,8 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 	l->cfg_mailbox = *cfg;
 	seqlock_init(&l->cfg_lock);
 	l->cfg_seen = seqlock_read_begin(&l->cfg_lock);
+	seqlock_init(&l->debug_lock);
+	l->debug_seen = seqlock_read_begin(&l->debug_lock);
 	l->rig = rig;
 	l->pub = pub;
 	l->colon = colon;
@@ -147,7 +159,7 @@ static void fetch_config(struct loop *l)
 }
 
 /* Takes a posted command, if any, and answers it. Returns the command. */
-static uint32_t take_command(struct loop *l)
+static uint32_t take_command(struct loop *l, uint64_t now)
 {
 	uint64_t slot = atomic_load_explicit(&l->cmd_slot, memory_order_acquire);
 	uint32_t cmd, seq;
@@ -163,7 +175,7 @@ static uint32_t take_command(struct loop *l)
 		histo_reset(&l->compute);
 		r = 0;
 	} else {
-		r = safety_command(&l->safety, (enum safety_cmd)cmd);
+		r = safety_command(&l->safety, (enum safety_cmd)cmd, now);
 	}
 	atomic_store_explicit(&l->cmd_done,
 			      (uint64_t)seq << 32 | (uint32_t)r,
@@ -185,6 +197,8 @@ static void post_changes(struct loop *l, uint32_t old_state,
 				.stamp_ns = now, .code = LOOP_EV_FAULT,
 				.arg = bit, .axis = s->cause[k].axis,
 				.detail = s->cause[k].detail,
+				.value = s->cause[k].value,
+				.limit = s->cause[k].limit,
 			};
 			post(l, &ev);
 			added &= ~bit;
@@ -204,15 +218,17 @@ static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
 {
 	struct endosim_state *st = &l->state;
 	const struct safety *s = &l->safety;
+	const struct endosim_fault_cause *first = safety_first(s);
 
 	st->cycle = atomic_load_explicit(&l->heartbeat, memory_order_relaxed);
 	st->stamp_ns = now;
 	st->state = s->state;
 	st->fault_bits = s->faults;
 	st->fault_first = s->fault_bit;
-	st->fault_axis = s->fault_axis;
-	st->fault_detail = s->fault_detail;
-	st->fault_ns = s->fault_ns;
+	st->fault_axis = first ? first->axis : -1;
+	st->fault_detail = first ? first->detail : 0;
+	st->fault_ns = first ? first->first_ns : 0;
+	safety_publish(s, now, &st->safety);
 	st->overruns = atomic_load_explicit(&l->overruns, memory_order_relaxed);
 	st->latency_ns = (uint32_t)(latency < UINT32_MAX ? latency : UINT32_MAX);
 	st->scenario_time_s = l->fb.hand_time_s;
@@ -313,6 +329,80 @@ static void fill_scope(struct loop *l)
 	}
 }
 
+/* Takes a test command, if any (the control thread checked it is allowed). */
+static void take_debug(struct loop *l, uint64_t now)
+{
+	uint64_t seq = seqlock_read_begin(&l->debug_lock);
+	struct loop_debug d;
+	int r = 0;
+
+	if (seq == l->debug_seen) {
+		return;
+	}
+	d = l->debug_box;
+	if (seqlock_read_retry(&l->debug_lock, seq)) {
+		return; /* torn: next cycle */
+	}
+	l->debug_seen = seq;
+	if (d.action != INJECT_STALL) {
+		r = inject_start(&l->inject, d.action, d.axis, d.value, now);
+	}
+	atomic_store_explicit(&l->debug_done,
+			      (uint64_t)d.seq << 32 | (uint32_t)r,
+			      memory_order_release);
+	if (d.action == INJECT_STALL && d.value > 0) {
+		struct timespec ts = to_timespec((uint64_t)(d.value * 1e9));
+
+		while (clock_nanosleep(CLOCK_MONOTONIC, 0, &ts, &ts) == EINTR) {
+		}
+	}
+}
+
+/* The loop's own causes: its overruns, a daemon thread that died. */
+static void check_loop(struct loop *l, uint64_t now)
+{
+	uint32_t bits = atomic_load_explicit(&l->fail_bits,
+					     memory_order_acquire);
+
+	safety_check_overruns(&l->safety, &l->cfg, l->skipped, now);
+	l->skipped = 0;
+	if (bits) {
+		struct endosim_fault_cause c = {
+			.first_ns = now, .axis = -1,
+			.detail = atomic_load(&l->fail_detail),
+		};
+
+		safety_fault(&l->safety, bits, &c);
+	}
+}
+
+/* A non-finite value in the scope's pose or the haptic parts is a fault. */
+static void check_pipeline(struct loop *l, uint64_t now)
+{
+	const struct scope_pose *p = &l->pose;
+	const struct endosim_haptics_state *h = &l->state.haptics;
+	const double pose[] = {
+		p->depth_m, p->roll_rad, p->bend_rad[0], p->bend_rad[1],
+		p->base_s_m, p->tip_s_m, p->tip[0], p->tip[1], p->tip[2],
+		p->dir[0], p->dir[1], p->dir[2], p->up[0], p->up[1], p->up[2],
+	};
+	const double parts[] = {
+		h->proxy[0], h->proxy[1], h->proxy[2], h->f_static[0],
+		h->f_static[1], h->f_static[2], h->penetration_m,
+		h->curvature_rad, h->trans_contact_n, h->trans_friction_n,
+		h->trans_loop_n, h->wheel_contact_nm[0], h->wheel_contact_nm[1],
+		h->wheel_tension_nm[0], h->wheel_tension_nm[1],
+		h->wheel_elastic_nm[0], h->wheel_elastic_nm[1],
+		h->tube_contact_nm, h->tube_friction_nm, h->passivity_energy_j,
+		h->passivity_damping,
+	};
+
+	safety_check_finite(&l->safety, pose, sizeof(pose) / sizeof(pose[0]),
+			    -1, ENDOSIM_STAGE_KINEMATICS, now);
+	safety_check_finite(&l->safety, parts, sizeof(parts) / sizeof(parts[0]),
+			    -1, ENDOSIM_STAGE_HAPTICS, now);
+}
+
 static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 {
 	uint32_t old_state = l->safety.state;
@@ -320,13 +410,19 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	uint32_t cmd;
 
 	fetch_config(l);
-	cmd = take_command(l);
+	cmd = take_command(l, now);
+	take_debug(l, now);
 	take_colon(l);
 	safety_begin_cycle(&l->safety);
+	check_loop(l, now);
 	rig_read(l->rig, now, &l->fb);
+	inject_feedback(&l->inject, &l->fb);
 	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
+	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
 	render(l);
+	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);
+	check_pipeline(l, now);
 	safety_filter(&l->safety, &l->cfg, l->command, l->limited,
 		      l->info.period_ns * 1e-9, now);
 	rig_write(l->rig, now, l->limited, safety_torque_on(&l->safety));
@@ -385,6 +481,7 @@ static void *loop_main(void *arg)
 		uint64_t latency = now > next ? now - next : 0;
 
 		skipped = skip_overrun(&next, now, period);
+		l->skipped = skipped;
 		if (skipped) {
 			struct loop_event ev = { .stamp_ns = now,
 						 .code = LOOP_EV_OVERRUN,
@@ -589,6 +686,34 @@ void loop_set_config(struct loop *l, const struct config *cfg)
 	seqlock_write_begin(&l->cfg_lock);
 	memcpy(&l->cfg_mailbox, cfg, sizeof(*cfg));
 	seqlock_write_end(&l->cfg_lock);
+}
+
+int loop_debug(struct loop *l, int action, int axis, double value,
+	       int timeout_ms)
+{
+	uint32_t seq = ++l->debug_seq;
+	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	seqlock_write_begin(&l->debug_lock);
+	l->debug_box = (struct loop_debug){ seq, action, axis, value };
+	seqlock_write_end(&l->debug_lock);
+	while (loop_now_ns() < deadline) {
+		uint64_t done = atomic_load_explicit(&l->debug_done,
+						     memory_order_acquire);
+
+		if ((uint32_t)(done >> 32) == seq) {
+			return (int32_t)(uint32_t)done;
+		}
+		nanosleep(&nap, NULL);
+	}
+	return -ETIMEDOUT;
+}
+
+void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)
+{
+	atomic_store(&l->fail_detail, detail);
+	atomic_fetch_or_explicit(&l->fail_bits, bit, memory_order_release);
 }
 
 bool loop_pop_event(struct loop *l, struct loop_event *ev)

@@ -21,6 +21,9 @@
  *  - a new colon model: loop_swap_colon(), the control thread only;
  *  - events out (state changes, faults, overruns): loop_pop_event(), the main
  *    thread only, which logs them;
+ *  - a fault from outside (a daemon thread died): loop_fail(), the main
+ *    thread;
+ *  - test commands (inject.h): loop_debug(), the control thread only;
  *  - statistics and heartbeat: any thread.
  */
 #ifndef ENDOSIM_LOOP_H
@@ -60,6 +63,16 @@ struct loop_event {
 	uint32_t cmd;      /* enum loop_cmd that caused it, 0: none */
 	int32_t axis;      /* -1: none or global */
 	uint32_t detail;
+	double value;      /* a fault's: what tripped it (endosim_shm.h) */
+	double limit;
+};
+
+/* A test command for the loop (inject.h). */
+struct loop_debug {
+	uint32_t seq;
+	int action;        /* enum inject_action */
+	int axis;          /* -1: every axis */
+	double value;
 };
 
 struct loop_info {
@@ -122,6 +135,21 @@ void loop_set_config(struct loop *l, const struct config *cfg);
  */
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 		    struct colon **old, int timeout_ms);
+
+/*
+ * Control thread, only when [debug] test_commands allows it: hands the
+ * loop one injection (enum inject_action; INJECT_STALL sleeps the loop
+ * VALUE s after answering) and waits up to TIMEOUT_MS for its answer.
+ * Returns 0, -EINVAL (inject_start() refused it) or -ETIMEDOUT.
+ */
+int loop_debug(struct loop *l, int action, int axis, double value,
+	       int timeout_ms);
+
+/*
+ * Main thread: latches fault BIT (ENDOSIM_FAULT_INTERNAL: a daemon thread
+ * died) with DETAIL from the next cycle on, for good: torque off.
+ */
+void loop_fail(struct loop *l, uint32_t bit, uint32_t detail);
 
 /* Main thread: the next event, false when there is none. */
 bool loop_pop_event(struct loop *l, struct loop_event *ev);

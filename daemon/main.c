@@ -27,6 +27,7 @@
 #include "cases.h"
 #include "config.h"
 #include "control.h"
+#include "faults.h"
 #include "hand.h"
 #include "log.h"
 #include "loop.h"
@@ -199,6 +200,25 @@ static int load_config(int argc, char **argv, const struct options *opt,
 
 /* ------------------------------------------------------------ events */
 
+/* One line per fault; a cause that keeps latching again is rate-limited. */
+static void log_fault(const struct daemon *d, const struct loop_event *ev)
+{
+	static struct log_ratelimit rl[ENDOSIM_FAULT_BITS];
+	struct endosim_fault_cause c = {
+		.first_ns = ev->stamp_ns, .axis = ev->axis,
+		.detail = ev->detail, .value = ev->value, .limit = ev->limit,
+	};
+	struct log_ratelimit *r = &rl[__builtin_ctz(ev->arg)];
+	char text[512];
+
+	if (!r->interval_ns) {
+		*r = (struct log_ratelimit)LOG_RATELIMIT_INIT(60, 5);
+	}
+	faults_format(d->rig, d->start_ns, ev->arg, &c, text, sizeof(text));
+	log_ratelimited(r, LOG_ERR, "FAULT %s: torque off on every axis; "
+			"'endoctl reset' once the cause is gone", text);
+}
+
 static void log_event(const struct daemon *d, const struct loop_event *ev)
 {
 	static struct log_ratelimit overrun_rl = LOG_RATELIMIT_INIT(10, 3);
@@ -207,7 +227,6 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 		[LOOP_CMD_ESTOP] = "emergency stop", [LOOP_CMD_RESET] = "reset",
 	};
 	double t = (double)(ev->stamp_ns - d->start_ns) / 1e9;
-	char what[400];
 
 	switch (ev->code) {
 	case LOOP_EV_STATE:
@@ -217,13 +236,7 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 								  : "fault", t);
 		break;
 	case LOOP_EV_FAULT:
-		rig_describe(d->rig, ev->arg, ev->axis, ev->detail, what,
-			     sizeof(what));
-		log_err("FAULT %s%s%s (detail %u) at %.3f s: %s: torque off on "
-			"every axis; 'endoctl reset' once the cause is gone",
-			names_fault(ev->arg), ev->axis >= 0 ? " on " : "",
-			ev->axis >= 0 ? names_axis(ev->axis) : "", ev->detail,
-			t, what);
+		log_fault(d, ev);
 		break;
 	case LOOP_EV_OVERRUN:
 		log_ratelimited(&overrun_rl, LOG_WARNING,
@@ -381,13 +394,41 @@ static void watchdog(struct daemon *d, uint64_t usec, uint64_t *last_beat,
 	}
 }
 
+/*
+ * The control thread ended by itself: nobody can command the daemon any
+ * more. The force loop latches an internal fault (torque off within a
+ * cycle, drives brought down), the state is published for any viewer, and
+ * endosimd stops with EX_SOFTWARE so that systemd restarts it.
+ */
+static int control_died(struct daemon *d)
+{
+	struct timespec nap = { .tv_nsec = 1000000 };
+	struct endosim_state st;
+	struct loop_event ev;
+
+	loop_fail(d->loop, ENDOSIM_FAULT_INTERNAL, 1);
+	for (int i = 0; i < 200; i++) {
+		if (!publish_read(d->pub, &st) &&
+		    (st.fault_bits & ENDOSIM_FAULT_INTERNAL)) {
+			break;
+		}
+		nanosleep(&nap, NULL);
+	}
+	while (loop_pop_event(d->loop, &ev)) {
+		log_event(d, &ev);
+	}
+	log_err("control thread ended: torque off; stopping (exit %d) for "
+		"systemd to restart endosimd", EX_SOFTWARE);
+	return EX_SOFTWARE;
+}
+
 static int run(struct daemon *d)
 {
 	uint64_t wd_usec = 0, last_beat = 0, last_ping = 0, junk;
 	struct signalfd_siginfo si;
 	struct loop_event ev;
 	struct pollfd pfd[2];
-	int sig_fd, tick_fd;
+	int sig_fd, tick_fd, r = 0;
 
 	if (open_fds(&sig_fd, &tick_fd)) {
 		return EX_OSERR;
@@ -422,7 +463,7 @@ static int run(struct daemon *d)
 			log_event(d, &ev);
 		}
 		if (!control_alive(d->control)) {
-			log_err("control thread ended: stopping, torque off");
+			r = control_died(d);
 			break;
 		}
 		watchdog(d, wd_usec, &last_beat, &last_ping);
@@ -430,7 +471,7 @@ static int run(struct daemon *d)
 	sd_notify(0, "STOPPING=1");
 	close(sig_fd);
 	close(tick_fd);
-	return 0;
+	return r;
 }
 
 static void block_signals(void)

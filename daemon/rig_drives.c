@@ -60,7 +60,7 @@ static void drives_write(struct rig *rig, uint64_t now_ns,
 
 	rig_write(r->sim, now_ns, setpoint, enable);
 	for (int b = 0; b < r->buses; b++) {
-		bus_post(r->bus[b], setpoint, enable);
+		bus_post(r->bus[b], now_ns, setpoint, enable);
 	}
 }
 

@@ -92,9 +92,23 @@ static void sim_describe(struct rig *rig, uint32_t fault_bit, int axis,
 			 uint32_t detail, char *buf, size_t size)
 {
 	(void)rig;
-	(void)fault_bit;
 	(void)axis;
-	(void)detail;
+	switch (fault_bit) {
+	case ENDOSIM_FAULT_DRIVE:
+		snprintf(buf, size, "simulated axis: drive fault 0x%04x",
+			 detail);
+		return;
+	case ENDOSIM_FAULT_DRIVE_GONE:
+		snprintf(buf, size, "simulated axis: device gone");
+		return;
+	case ENDOSIM_FAULT_STALE:
+		snprintf(buf, size, "simulated axis: no feedback for %u ms",
+			 detail);
+		return;
+	case ENDOSIM_FAULT_BUS:
+		snprintf(buf, size, "simulated axis: a transaction failed");
+		return;
+	}
 	snprintf(buf, size, "simulated axis");
 }
 

@@ -24,8 +24,10 @@
 #include "seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 3u /* 2: the scope and the colon's bows;
-				  3: the haptic rendering's forces */
+#define ENDOSIM_SHM_VERSION 4u /* 2: the scope and the colon's bows;
+				  3: the haptic rendering's forces;
+				  4: the safety monitors and every latched
+				     fault with its time, axis and values */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
@@ -60,7 +62,10 @@ enum endosim_fault {
 	ENDOSIM_FAULT_SATURATION = 1u << 7,  /* command saturated too long */
 	ENDOSIM_FAULT_NONFINITE = 1u << 8,   /* NaN or inf in the pipeline */
 	ENDOSIM_FAULT_INTERNAL = 1u << 9,    /* a daemon thread died */
+	ENDOSIM_FAULT_ESTOP = 1u << 10,      /* emergency stop (state ESTOP) */
 };
+
+#define ENDOSIM_FAULT_BITS 16 /* room for the causes above and to come */
 
 /* Per-axis drive status bits (endosim_axis_state.drive_status). */
 enum endosim_drive_status {
@@ -143,6 +148,50 @@ struct endosim_haptics_state {
 	double passivity_damping;  /* damping it added this cycle, N s/m */
 };
 
+/*
+ * One latched fault cause: endosim_safety_state.cause[k] describes bit
+ * 1 << k of fault_bits, as first seen since the last reset (first_ns 0:
+ * not latched). VALUE and LIMIT are what tripped it, in the units of the
+ * cause: position (m, rad) and the travel end it passed; speed (m/s, rad/s)
+ * and its limit; command (N, N m) and the force limit; periods skipped
+ * within the window (at least that many) and the budget. DETAIL is the backend's code for drive causes, the window or
+ * time in ms for the overrun and saturation causes, the stage of the force
+ * pipeline (enum endosim_stage) for a non-finite value.
+ */
+struct endosim_fault_cause {
+	uint64_t first_ns;    /* CLOCK_MONOTONIC when it latched; 0: never */
+	int32_t axis;         /* -1: global, or a device of no single axis */
+	uint32_t detail;
+	double value;
+	double limit;
+};
+
+/* Where in the force pipeline a non-finite value was found. */
+enum endosim_stage {
+	ENDOSIM_STAGE_FEEDBACK = 1,   /* the rig's positions, speeds, hand */
+	ENDOSIM_STAGE_KINEMATICS = 2, /* the scope's pose */
+	ENDOSIM_STAGE_HAPTICS = 3,    /* the haptic rendering's parts */
+	ENDOSIM_STAGE_COMMAND = 4,    /* the force to render per axis */
+	ENDOSIM_STAGE_OUTPUT = 5,     /* the setpoint after the safety filter */
+};
+
+/*
+ * The safety monitors this cycle (daemon/safety.h) and every latched fault.
+ * Torque on an axis is, while ENABLED, its command times RAMP, clamped to
+ * the axis' force limit: RAMP rises from 0 to 1 over [limits]
+ * enable_ramp_s after each enable, so a session never starts with a step.
+ */
+struct endosim_safety_state {
+	uint32_t active;          /* fault causes present this cycle */
+	uint32_t overrun_periods; /* periods skipped within the window */
+	uint64_t enabled_ns;      /* CLOCK_MONOTONIC of the last enable */
+	double ramp;              /* 0..1, 0 unless ENABLED */
+	double saturated_s[ENDOSIM_AXES]; /* time each axis has been held at
+					     its force limit, s */
+	uint64_t faults_latched;  /* fault causes latched since start */
+	struct endosim_fault_cause cause[ENDOSIM_FAULT_BITS];
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -161,6 +210,7 @@ struct endosim_state {
 	struct endosim_axis_state axis[ENDOSIM_AXES];
 	struct endosim_scope_state scope;
 	struct endosim_haptics_state haptics;
+	struct endosim_safety_state safety;
 };
 
 struct endosim_shm {

@@ -20,7 +20,7 @@ static const char *const axis_names[ENDOSIM_AXES] = {
 static const char *const fault_names[] = {
 	"drive", "drive-gone", "stale-feedback", "bus-error",
 	"overrun-budget", "travel", "runaway", "saturation",
-	"non-finite", "internal",
+	"non-finite", "internal", "estop",
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

@@ -37,7 +37,14 @@
  *   quit
  * The state file (--state) has one line per device: serial, present, CiA
  * 402 state, statusword, mode, target torque (per mille), torque applied
- * (N m), position (counts), velocity (rpm), requests served.
+ * (N m), position (counts), velocity (rpm), requests served, the error
+ * code 0x603F and the heartbeat consumer time (ms).
+ *
+ * Communication watchdog: with a heartbeat consumer time set in 0x1016:01
+ * (low 16 bits, ms), a drive in operation enabled that receives no request
+ * for that long faults with 0x8130 (life guard or heartbeat error) and
+ * drops its torque. Every request counts as a heartbeat: over USB the
+ * master's requests are the only sign of life the emulated drive sees.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -95,6 +102,8 @@ struct dev {
 	uint32_t rated;      /* uN m */
 	uint16_t error;
 	bool sticky;
+	uint32_t heartbeat;  /* 0x1016:01, low 16 bits: ms; 0: off */
+	double last_request_s;
 	uint32_t inject_abort;
 	bool inject_crc;
 	struct emu_motor motor;
@@ -136,6 +145,7 @@ static void power_up(struct dev *d)
 	d->mode = 0;
 	d->target = 0;
 	d->max_torque = 1000;
+	d->heartbeat = 0;
 	d->inject_abort = 0;
 	d->inject_crc = false;
 	epos4_decoder_reset(&d->dec);
@@ -204,11 +214,14 @@ static int32_t rpm(const struct dev *d)
 static uint32_t od_read(struct emu *e, struct dev *d, uint16_t index,
 			uint8_t sub, uint32_t *value)
 {
-	if (sub != 0 && index != 0x1018) {
+	if (sub != 0 && index != 0x1018 && index != CANOPEN_HEARTBEAT_CONSUMER) {
 		return 0x06090011;
 	}
 	switch (index) {
 	case CANOPEN_DEVICE_TYPE: *value = 0x00020192; return 0;
+	case CANOPEN_HEARTBEAT_CONSUMER:
+		*value = sub == 0 ? 1 : d->heartbeat;
+		return sub <= 1 ? 0 : 0x06090011;
 	case 0x1018: /* identity: vendor, product, revision, serial */
 		*value = sub == 1 ? 0xFB : sub == 2 ? 0x0640 : sub == 4 ? 1 : 0;
 		return sub >= 1 && sub <= 4 ? 0 : 0x06090011;
@@ -240,6 +253,10 @@ static bool valid_mode(int8_t m)
 static uint32_t od_write(struct dev *d, uint16_t index, uint8_t sub,
 			 uint32_t value)
 {
+	if (index == CANOPEN_HEARTBEAT_CONSUMER && sub == 1) {
+		d->heartbeat = value;
+		return 0;
+	}
 	if (sub != 0) {
 		return index == 0x1018 ? 0x06010002 : 0x06090011;
 	}
@@ -278,6 +295,7 @@ static void serve(struct emu *e, struct dev *d, const struct epos4_frame *req,
 		return;
 	}
 	d->requests++;
+	d->last_request_s = emu_now_s();
 	if (node != d->node && node != 0) {
 		abort = 0x06020000;
 	} else if (op == EPOS4_OP_READ_OBJECT) {
@@ -788,13 +806,26 @@ static void write_state(struct emu *e)
 		g_string_append_printf(
 			s, "serial=%s present=%d state=%s sw=0x%04x mode=%d "
 			"target_permille=%d torque_nm=%.9g counts=%d rpm=%d "
-			"requests=%llu\n", d->serial, d->present, state,
-			statusword(d), d->mode, d->target, drive_torque_nm(d),
-			counts(e, d), rpm(d), d->requests);
+			"requests=%llu error=0x%04x heartbeat_ms=%u\n",
+			d->serial, d->present, state, statusword(d), d->mode,
+			d->target, drive_torque_nm(d), counts(e, d), rpm(d),
+			d->requests, d->error, d->heartbeat & 0xFFFF);
 		g_free(state);
 	}
 	emu_state_write(e->state_path, s->str);
 	g_string_free(s, TRUE);
+}
+
+/* The drive's own watchdog: silence while enabled is a fault. */
+static void watchdog(struct dev *d, double now)
+{
+	double limit_s = (d->heartbeat & 0xFFFF) / 1e3;
+
+	if (d->present && limit_s > 0 && d->state == CANOPEN_OPERATION_ENABLED &&
+	    now - d->last_request_s > limit_s) {
+		d->error = CANOPEN_ERROR_HEARTBEAT;
+		d->state = CANOPEN_FAULT;
+	}
 }
 
 static gboolean tick(gpointer data)
@@ -807,6 +838,7 @@ static gboolean tick(gpointer data)
 	for (int i = 0; i < e->n; i++) {
 		struct dev *d = &e->dev[i];
 
+		watchdog(d, now);
 		d->motor.drive_nm = drive_torque_nm(d);
 		emu_motor_advance(&d->motor, now - e->last_s);
 	}

@@ -26,6 +26,7 @@
  *   clear SLAVE                  the cause of a sticky fault goes away
  *   exception SLAVE [CODE]       the next request gets exception CODE (4)
  *   mute SLAVE on|off            the drive stops / resumes answering
+ *   nan SLAVE on|off             its velocity register (f32) reads NaN
  *   hand SLAVE TORQUE [HZ]       the hand's torque on the motor, N m
  *   move SLAVE RPM               the hand turns the motor at RPM exactly
  *   place SLAVE COUNTS           the motor is put at COUNTS
@@ -71,6 +72,7 @@ struct slave {
 	bool sticky;
 	bool reset_was_set;
 	bool mute;
+	bool nan;
 	int exception_next;
 	unsigned long requests;
 };
@@ -175,11 +177,32 @@ static double counts(const struct slave *s)
 	return round(s->motor.plant.x * s->cpr / (2.0 * M_PI));
 }
 
+/*
+ * A float register that reads NaN: 1.0f written in the register's word
+ * and byte order, its exponent then set to all ones (0x3F80 -> 0x7FC0).
+ */
+static void put_nan(struct slave *s, int sig)
+{
+	const struct regmap_reg *r = &s->cfg->reg[sig];
+	uint16_t *w = words_at(s->map, r);
+
+	if (r->type != REGMAP_F32 || !w) {
+		return;
+	}
+	put(s, sig, 1.0);
+	for (int i = 0; i < 2; i++) {
+		w[i] = w[i] == 0x3F80 ? 0x7FC0 : w[i] == 0x803F ? 0xC07F : w[i];
+	}
+}
+
 /* What the master will read: the motor as the drive measures it. */
 static void before_reply(struct slave *s)
 {
 	put(s, REGMAP_POSITION, counts(s));
 	put(s, REGMAP_VELOCITY, s->motor.plant.v * s->cpr / (2.0 * M_PI));
+	if (s->nan) {
+		put_nan(s, REGMAP_VELOCITY);
+	}
 	put(s, REGMAP_FAULT, s->fault);
 }
 
@@ -401,6 +424,8 @@ static void change(struct mbemu *e, struct slave *s, int n, char **w,
 		s->exception_next = n > 2 ? atoi(w[2]) : 4;
 	} else if (!strcmp(w[0], "mute") && n > 2) {
 		s->mute = !strcmp(w[2], "on");
+	} else if (!strcmp(w[0], "nan") && n > 2) {
+		s->nan = !strcmp(w[2], "on");
 	} else if (!strcmp(w[0], "hand") && n > 2) {
 		emu_motor_hand(&s->motor, args);
 	} else if (!strcmp(w[0], "move") && n > 2) {

@@ -17,6 +17,10 @@ R=0.015 # the pinion, m
 cat >"$TMP/rig.conf" <<EOF
 [rig]
 backend = drives
+[limits]
+; the emulated motors turn on and on, far past the rig's travel: a bench,
+; not a rig (tests/system/45-fault-travel.sh checks the travel)
+travel_margin_fraction = 100
 [axis.insertion]
 backend = epos4-usb
 gear_radius_m = $R
@@ -140,6 +144,7 @@ ctl set haptics.wheel_lr_damping_n_m_s_per_rad 0.02 >/dev/null
 check "enable: every drive in torque mode" enable_all
 check "EPOS4 in cyclic synchronous torque (mode 10)" \
 	[ "$(usb_get EMU-INS mode)" = 10 ]
+check "forces in full once the enable ramp is over" wait_for status_true '.ramp == 1'
 sleep 0.5
 
 # 60 rpm at the motor: 2 pi rad/s on a 1.5 cm pinion

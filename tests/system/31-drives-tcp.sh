@@ -11,6 +11,10 @@ PORT=$((20000 + $$ % 20000))
 cat >"$TMP/rig.conf" <<EOF
 [rig]
 backend = drives
+[limits]
+; the emulated motors turn on and on, far past the rig's travel: a bench,
+; not a rig (tests/system/45-fault-travel.sh checks the travel)
+travel_margin_fraction = 100
 [axis.wheel_ud]
 backend = modbus
 [axis.wheel_lr]
@@ -69,6 +73,7 @@ check "only the damping renders" only_damping
 ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
 ctl enable >/dev/null
 check "enabled: both drives" wait_for wheels_enabled
+check "forces in full once the enable ramp is over" wait_for status_true '.ramp == 1'
 sleep 0.3
 lim=$(status_field .axes.wheel_ud.limited)
 check "wheel_ud torque rendered ($lim N m)" nonzero "$lim" 0.005

@@ -1,5 +1,6 @@
-/* test_safety.c - the state machine, the fault latch and the safety
- * filter. */
+/* test_safety.c - the state machine, the fault latch, the safety filter
+ * (slew, enable ramp), the fault monitors (motion, overruns, saturation,
+ * non-finite values) and the test commands' injections. */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
@@ -9,6 +10,7 @@
 
 #include <cmocka.h>
 
+#include "inject.h"
 #include "safety.h"
 
 static struct config cfg;
@@ -19,6 +21,9 @@ static int setup(void **state)
 	config_defaults(&cfg);
 	return 0;
 }
+
+#define MS 1000000ull
+#define S 1000000000ull
 
 static void healthy_feedback(struct rig_feedback *fb, uint64_t now)
 {
@@ -38,20 +43,27 @@ static void test_transitions(void **state)
 	safety_init(&s);
 	assert_int_equal(s.state, ENDOSIM_STATE_IDLE);
 	assert_false(safety_torque_on(&s));
-	assert_int_equal(safety_command(&s, SAFETY_ENABLE), 0);
+	assert_int_equal(safety_command(&s, SAFETY_ENABLE, 0), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_ENABLED);
 	assert_true(safety_torque_on(&s));
-	assert_int_equal(safety_command(&s, SAFETY_DISABLE), 0);
+	assert_int_equal(safety_command(&s, SAFETY_DISABLE, 0), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_IDLE);
-	assert_int_equal(safety_command(&s, SAFETY_ENABLE), 0);
-	assert_int_equal(safety_command(&s, SAFETY_ESTOP), 0);
+	assert_int_equal(safety_command(&s, SAFETY_ENABLE, 0), 0);
+	assert_int_equal(safety_command(&s, SAFETY_ESTOP, 7 * S), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_ESTOP);
+	/* the emergency stop is latched with its time, never "present" */
+	assert_int_equal(s.faults, ENDOSIM_FAULT_ESTOP);
+	assert_int_equal(safety_first(&s)->first_ns, 7 * S);
+	safety_begin_cycle(&s);
+	assert_int_equal(s.active, 0);
 	assert_false(safety_torque_on(&s));
-	assert_int_equal(safety_command(&s, SAFETY_ENABLE), -EPERM);
-	assert_int_equal(safety_command(&s, SAFETY_DISABLE), 0);
+	assert_int_equal(safety_command(&s, SAFETY_ENABLE, 0), -EPERM);
+	assert_int_equal(safety_command(&s, SAFETY_DISABLE, 0), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_ESTOP);
-	assert_int_equal(safety_command(&s, SAFETY_RESET), 0);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_IDLE);
+	assert_int_equal(s.faults, 0);
+	assert_null(safety_first(&s));
 }
 
 static void test_fault_latches_until_cause_gone(void **state)
@@ -62,7 +74,7 @@ static void test_fault_latches_until_cause_gone(void **state)
 
 	(void)state;
 	safety_init(&s);
-	safety_command(&s, SAFETY_ENABLE);
+	safety_command(&s, SAFETY_ENABLE, 0);
 	/* cycle 1: the up/down wheel's drive vanishes */
 	safety_begin_cycle(&s);
 	healthy_feedback(&fb, now);
@@ -70,24 +82,25 @@ static void test_fault_latches_until_cause_gone(void **state)
 	safety_check_feedback(&s, &cfg, &fb, now);
 	assert_int_equal(s.state, ENDOSIM_STATE_FAULT);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_DRIVE_GONE);
-	assert_int_equal(s.fault_axis, ENDOSIM_AXIS_WHEEL_UD);
-	assert_int_equal(s.fault_ns, now);
+	assert_int_equal(safety_first(&s)->axis, ENDOSIM_AXIS_WHEEL_UD);
+	assert_int_equal(safety_first(&s)->first_ns, now);
 	assert_false(safety_torque_on(&s));
 	/* cycle 2: still gone; reset is refused, enable too */
 	safety_begin_cycle(&s);
 	safety_check_feedback(&s, &cfg, &fb, now + 1000000);
 	safety_begin_cycle(&s);
-	assert_int_equal(safety_command(&s, SAFETY_RESET), -EBUSY);
-	assert_int_equal(safety_command(&s, SAFETY_ENABLE), -EPERM);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), -EBUSY);
+	assert_int_equal(safety_command(&s, SAFETY_ENABLE, 0), -EPERM);
 	/* cycle 3: back; the fault stays latched until reset */
 	healthy_feedback(&fb, now + 2000000);
 	safety_check_feedback(&s, &cfg, &fb, now + 2000000);
 	assert_int_equal(s.state, ENDOSIM_STATE_FAULT);
 	safety_begin_cycle(&s);
-	assert_int_equal(safety_command(&s, SAFETY_RESET), 0);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
 	assert_int_equal(s.state, ENDOSIM_STATE_IDLE);
 	assert_int_equal(s.faults, 0);
-	assert_int_equal(s.fault_axis, -1);
+	assert_null(safety_first(&s));
+	assert_int_equal(s.latched, 1);
 }
 
 static void test_feedback_checks(void **state)
@@ -105,17 +118,25 @@ static void test_feedback_checks(void **state)
 	fb.axis[ENDOSIM_AXIS_ROLL].stamp_ns = now - age - 1;
 	safety_check_feedback(&s, &cfg, &fb, now);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_STALE);
-	assert_int_equal(s.fault_axis, ENDOSIM_AXIS_ROLL);
+	assert_int_equal(safety_first(&s)->axis, ENDOSIM_AXIS_ROLL);
 	safety_init(&s);
 	healthy_feedback(&fb, now);
 	fb.axis[ENDOSIM_AXIS_INSERTION].status |= ENDOSIM_DRIVE_FAULT;
 	fb.axis[ENDOSIM_AXIS_INSERTION].fault_detail = 0x3210;
 	safety_check_feedback(&s, &cfg, &fb, now);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_DRIVE);
-	assert_int_equal(s.fault_detail, 0x3210);
+	assert_int_equal(safety_first(&s)->detail, 0x3210);
 	safety_init(&s);
 	healthy_feedback(&fb, now);
 	fb.axis[ENDOSIM_AXIS_WHEEL_LR].velocity = NAN;
+	safety_check_feedback(&s, &cfg, &fb, now);
+	assert_int_equal(s.faults, ENDOSIM_FAULT_NONFINITE);
+	assert_int_equal(safety_first(&s)->detail, ENDOSIM_STAGE_FEEDBACK);
+	assert_int_equal(safety_first(&s)->axis, ENDOSIM_AXIS_WHEEL_LR);
+	/* the simulated hand's force is feedback too */
+	safety_init(&s);
+	healthy_feedback(&fb, now);
+	fb.axis[ENDOSIM_AXIS_ROLL].hand = -INFINITY;
 	safety_check_feedback(&s, &cfg, &fb, now);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_NONFINITE);
 }
@@ -127,12 +148,13 @@ static void test_filter(void **state)
 	struct safety s;
 
 	(void)state;
+	cfg.limits.enable_ramp_s = 0; /* no ramp: full force at once */
 	safety_init(&s);
 	safety_filter(&s, &cfg, cmd, out, 1.0, 0);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		assert_true(out[a] == 0.0); /* IDLE: nothing gets through */
 	}
-	safety_command(&s, SAFETY_ENABLE);
+	safety_command(&s, SAFETY_ENABLE, 0);
 	/* a second of slew is enough for any default limit */
 	safety_filter(&s, &cfg, cmd, out, 1.0, 0);
 	assert_true(out[0] == cfg.limits.max[0]);
@@ -146,6 +168,227 @@ static void test_filter(void **state)
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		assert_true(out[a] == 0.0); /* at once, not slewed */
 	}
+	config_defaults(&cfg);
+}
+
+/*
+ * After enable a constant command comes through as command * t / T over
+ * the ramp time T, then in full; disabling drops it at once, and the next
+ * enable ramps again from nothing.
+ */
+static void test_enable_ramp(void **state)
+{
+	double cmd[ENDOSIM_AXES] = { 10, 0.5, -0.05, 0 };
+	double out[ENDOSIM_AXES];
+	double ramp_s = cfg.limits.enable_ramp_s;
+	uint64_t t0 = 3 * S;
+	struct safety s;
+
+	(void)state;
+	assert_true(ramp_s > 0);
+	safety_init(&s);
+	safety_command(&s, SAFETY_ENABLE, t0);
+	for (int k = 0; k <= 12; k++) {
+		double t = ramp_s * k / 10.0, scale = fmin(t / ramp_s, 1.0);
+
+		safety_filter(&s, &cfg, cmd, out, 0.1, t0 + (uint64_t)(t * 1e9));
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			assert_float_equal(out[a], cmd[a] * scale, 1e-9);
+		}
+	}
+	assert_int_equal(s.enabled_ns, t0);
+	safety_command(&s, SAFETY_DISABLE, 0);
+	safety_filter(&s, &cfg, cmd, out, 0.1, t0 + 5 * S);
+	assert_true(out[0] == 0.0);
+	safety_command(&s, SAFETY_ENABLE, 0);
+	safety_filter(&s, &cfg, cmd, out, 0.1, t0 + 6 * S);
+	assert_true(out[0] == 0.0); /* the first cycle of a new ramp */
+	safety_filter(&s, &cfg, cmd, out, 0.1,
+		      t0 + 6 * S + (uint64_t)(ramp_s * 0.5e9));
+	assert_float_equal(out[0], cmd[0] * 0.5, 1e-9);
+	assert_int_equal(s.faults, 0);
+}
+
+/*
+ * A force held beyond its limit while torque is on faults once it has been
+ * held longer than saturation_s, in that cycle with zero on every axis;
+ * dropping below the limit or torque off restarts the clock.
+ */
+static void test_saturation(void **state)
+{
+	double cmd[ENDOSIM_AXES] = { 0, 0, 0.5, 0 }; /* 5 x the wheel's */
+	double out[ENDOSIM_AXES];
+	uint64_t hold = (uint64_t)(cfg.limits.saturation_s * 1e9), t;
+	struct safety s;
+
+	(void)state;
+	cfg.limits.enable_ramp_s = 0;
+	safety_init(&s);
+	safety_command(&s, SAFETY_ENABLE, 0);
+	for (t = S; t <= S + hold; t += 100 * MS) {
+		safety_filter(&s, &cfg, cmd, out, 0.1, t);
+		assert_int_equal(s.state, ENDOSIM_STATE_ENABLED);
+		assert_true(out[2] == cfg.limits.max[2]);
+	}
+	/* below the limit for one cycle: the clock starts again */
+	cmd[2] = 0.05;
+	safety_filter(&s, &cfg, cmd, out, 0.1, t);
+	cmd[2] = -0.5;
+	for (t += MS; t <= 2 * S + 2 * hold; t += 100 * MS) {
+		safety_filter(&s, &cfg, cmd, out, 0.1, t);
+		if (s.state == ENDOSIM_STATE_FAULT) {
+			break;
+		}
+	}
+	assert_int_equal(s.faults, ENDOSIM_FAULT_SATURATION);
+	assert_true(t > S + 2 * hold);
+	assert_int_equal(safety_first(&s)->axis, ENDOSIM_AXIS_WHEEL_UD);
+	assert_float_equal(safety_first(&s)->value, -0.5, 1e-12);
+	assert_float_equal(safety_first(&s)->limit, cfg.limits.max[2], 1e-12);
+	assert_true(safety_first(&s)->detail > hold / MS);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		assert_true(out[a] == 0.0);
+	}
+	/* torque off: the clock stops, the cause is gone, reset works */
+	safety_begin_cycle(&s);
+	safety_filter(&s, &cfg, cmd, out, 0.1, t + MS);
+	safety_begin_cycle(&s);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
+	config_defaults(&cfg);
+}
+
+/* Outside the travel by more than the margin; faster than the limit. */
+static void test_motion(void **state)
+{
+	double span = cfg.rig.travel_max[0] - cfg.rig.travel_min[0];
+	double margin = cfg.limits.travel_margin * span;
+	struct rig_feedback fb;
+	struct safety s;
+
+	(void)state;
+	safety_init(&s);
+	healthy_feedback(&fb, 0);
+	fb.axis[0].position = cfg.rig.travel_max[0] + margin * 0.99;
+	fb.axis[1].velocity = -cfg.limits.max_speed[1] * 0.99;
+	safety_check_motion(&s, &cfg, &fb, 0);
+	assert_int_equal(s.faults, 0);
+	fb.axis[0].position = cfg.rig.travel_min[0] - margin * 1.01;
+	safety_check_motion(&s, &cfg, &fb, 1);
+	assert_int_equal(s.faults, ENDOSIM_FAULT_TRAVEL);
+	assert_int_equal(safety_first(&s)->axis, 0);
+	assert_float_equal(safety_first(&s)->limit,
+			   cfg.rig.travel_min[0] - margin, 1e-12);
+	fb.axis[1].velocity = -cfg.limits.max_speed[1] * 1.01;
+	safety_check_motion(&s, &cfg, &fb, 2);
+	assert_int_equal(s.faults,
+			 ENDOSIM_FAULT_TRAVEL | ENDOSIM_FAULT_RUNAWAY);
+	assert_int_equal(s.cause[__builtin_ctz(ENDOSIM_FAULT_RUNAWAY)].axis, 1);
+	assert_int_equal(s.cause[__builtin_ctz(ENDOSIM_FAULT_RUNAWAY)].first_ns,
+			 2);
+	/* the first fault stays the first */
+	assert_int_equal(s.fault_bit, ENDOSIM_FAULT_TRAVEL);
+}
+
+/*
+ * The budget: N periods skipped within the window are allowed, N + 1 are
+ * a fault, present until the window has moved past them.
+ */
+static void test_overrun_budget(void **state)
+{
+	int budget = cfg.loop.overrun_budget;
+	uint64_t window = (uint64_t)(cfg.loop.overrun_window_s * 1e9);
+	uint64_t t = 10 * S;
+	struct safety s;
+
+	(void)state;
+	safety_init(&s);
+	/* the budget, one period at a time, well inside the window */
+	for (int i = 0; i < budget; i++) {
+		safety_check_overruns(&s, &cfg, 1, t + (uint64_t)i * MS);
+	}
+	assert_int_equal(s.faults, 0);
+	assert_int_equal(s.overrun_window, budget);
+	/* spread out over more than the window: never a fault */
+	safety_init(&s);
+	for (int i = 0; i < 4 * budget; i++) {
+		t += window / (uint64_t)budget + MS;
+		safety_check_overruns(&s, &cfg, 1, t);
+	}
+	assert_int_equal(s.faults, 0);
+	/* one period past the budget */
+	safety_init(&s);
+	for (int i = 0; i <= budget; i++) {
+		assert_int_equal(s.faults, 0);
+		safety_check_overruns(&s, &cfg, 1, t + (uint64_t)i * MS);
+	}
+	assert_int_equal(s.faults, ENDOSIM_FAULT_OVERRUN);
+	assert_float_equal(safety_first(&s)->value, budget + 1, 0);
+	assert_float_equal(safety_first(&s)->limit, budget, 0);
+	/* a single long stall; present until the window passes */
+	safety_init(&s);
+	safety_begin_cycle(&s);
+	safety_check_overruns(&s, &cfg, 2000, t);
+	assert_int_equal(s.faults, ENDOSIM_FAULT_OVERRUN);
+	safety_begin_cycle(&s);
+	safety_check_overruns(&s, &cfg, 0, t + window);
+	safety_begin_cycle(&s);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), -EBUSY);
+	safety_check_overruns(&s, &cfg, 0, t + window + MS);
+	safety_begin_cycle(&s);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
+}
+
+/* A NaN or infinity anywhere: its stage and axis are kept. */
+static void test_finite(void **state)
+{
+	double pose[4] = { 0.1, 0.2, NAN, 0.4 };
+	struct safety s;
+
+	(void)state;
+	safety_init(&s);
+	safety_check_finite(&s, pose, 2, -1, ENDOSIM_STAGE_KINEMATICS, 5);
+	assert_int_equal(s.faults, 0);
+	safety_check_finite(&s, pose, 4, -1, ENDOSIM_STAGE_KINEMATICS, 5);
+	assert_int_equal(s.state, ENDOSIM_STATE_FAULT);
+	assert_int_equal(s.faults, ENDOSIM_FAULT_NONFINITE);
+	assert_int_equal(safety_first(&s)->detail, ENDOSIM_STAGE_KINEMATICS);
+	assert_int_equal(safety_first(&s)->axis, -1);
+	assert_true(isnan(safety_first(&s)->value));
+}
+
+/* The test commands alter the feedback and the pipeline, until cleared. */
+static void test_inject(void **state)
+{
+	double cmd[ENDOSIM_AXES] = { 1, 2, 3, 4 };
+	struct endosim_haptics_state h = { 0 };
+	struct scope_pose pose = { 0 };
+	struct rig_feedback fb;
+	struct inject in = { 0 };
+
+	(void)state;
+	assert_int_equal(inject_start(&in, INJECT_DRIVE_GONE, 1, 0, 0), 0);
+	assert_int_equal(inject_start(&in, INJECT_STALE, 2, 0, 5 * S), 0);
+	assert_int_equal(inject_start(&in, INJECT_FORCE, -1, 9, 0), 0);
+	assert_int_equal(inject_start(&in, INJECT_NAN, 3,
+				      ENDOSIM_STAGE_KINEMATICS, 0), 0);
+	assert_int_equal(inject_start(&in, INJECT_NAN, 3, 7, 0), -EINVAL);
+	assert_int_equal(inject_start(&in, INJECT_STALL, 0, 1, 0), -EINVAL);
+	assert_int_equal(inject_start(&in, INJECT_SPEED, 4, 1, 0), -EINVAL);
+	healthy_feedback(&fb, 9 * S);
+	inject_feedback(&in, &fb);
+	assert_int_equal(fb.axis[1].status & ENDOSIM_DRIVE_PRESENT, 0);
+	assert_int_equal(fb.axis[2].stamp_ns, 5 * S);
+	assert_int_equal(fb.axis[0].stamp_ns, 9 * S);
+	inject_pipeline(&in, &pose, &h, cmd);
+	assert_true(cmd[0] == 9 && cmd[3] == 9);
+	assert_true(isnan(pose.tip[0]));
+	assert_int_equal(inject_start(&in, INJECT_CLEAR, -1, 0, 0), 0);
+	healthy_feedback(&fb, 9 * S);
+	inject_feedback(&in, &fb);
+	assert_int_equal(fb.axis[1].status, ENDOSIM_DRIVE_PRESENT);
+	assert_int_equal(fb.axis[2].stamp_ns, 9 * S);
+	assert_int_equal(inject_find("drive-gone"), INJECT_DRIVE_GONE);
+	assert_int_equal(inject_find("nonsense"), -1);
 }
 
 /* A step of command reaches the drive at the slew rate, no faster. */
@@ -157,8 +400,9 @@ static void test_slew(void **state)
 	struct safety s;
 
 	(void)state;
+	cfg.limits.enable_ramp_s = 0; /* the slew alone */
 	safety_init(&s);
-	safety_command(&s, SAFETY_ENABLE);
+	safety_command(&s, SAFETY_ENABLE, 0);
 	for (int k = 1; k <= 3; k++) {
 		safety_filter(&s, &cfg, cmd, out, dt, 0);
 		assert_float_equal(out[0], k * cfg.limits.slew[0] * dt, 1e-9);
@@ -173,6 +417,7 @@ static void test_slew(void **state)
 	cmd[0] = -30;
 	safety_filter(&s, &cfg, cmd, out, dt, 0);
 	assert_float_equal(out[0], 30 - cfg.limits.slew[0] * dt, 1e-9);
+	config_defaults(&cfg);
 }
 
 int main(void)
@@ -183,6 +428,12 @@ int main(void)
 		cmocka_unit_test(test_feedback_checks),
 		cmocka_unit_test(test_filter),
 		cmocka_unit_test(test_slew),
+		cmocka_unit_test(test_enable_ramp),
+		cmocka_unit_test(test_saturation),
+		cmocka_unit_test(test_motion),
+		cmocka_unit_test(test_overrun_budget),
+		cmocka_unit_test(test_finite),
+		cmocka_unit_test(test_inject),
 	};
 
 	return cmocka_run_group_tests(tests, setup, NULL);
