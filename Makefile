@@ -153,7 +153,10 @@ test_portal_OBJS = portal.o lod.o model.o $(VIEWER_SCENE_OBJS)
 test_input_OBJS = input.o
 test_timing_OBJS = timing.o
 test_vessels_OBJS = vessels.o
-TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen
+TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
+	     notify_listen
+fault_watch_OBJS =
+notify_listen_OBJS =
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)

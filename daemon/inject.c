@@ -115,10 +115,31 @@ void inject_feedback(const struct inject *in, struct rig_feedback *fb)
 	}
 }
 
-void inject_pipeline(const struct inject *in, struct scope_pose *pose,
+/* The rendering's contact force, poisoned while any axis asks for it. */
+static void poison_haptics(struct inject *in,
+			   struct endosim_haptics_state *haptics)
+{
+	bool want = false;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		want |= nan_at(&in->axis[a], ENDOSIM_STAGE_HAPTICS);
+	}
+	if (want && !in->haptics_nan) {
+		in->haptics_saved = haptics->f_static[0];
+	} else if (!want && in->haptics_nan) {
+		haptics->f_static[0] = in->haptics_saved;
+	}
+	in->haptics_nan = want;
+	if (want) {
+		haptics->f_static[0] = NAN;
+	}
+}
+
+void inject_pipeline(struct inject *in, struct scope_pose *pose,
 		     struct endosim_haptics_state *haptics,
 		     double command[ENDOSIM_AXES])
 {
+	poison_haptics(in, haptics);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		const struct inject_axis *ia = &in->axis[a];
 
@@ -127,9 +148,6 @@ void inject_pipeline(const struct inject *in, struct scope_pose *pose,
 		}
 		if (nan_at(ia, ENDOSIM_STAGE_KINEMATICS)) {
 			pose->tip[a % 3] = NAN;
-		}
-		if (nan_at(ia, ENDOSIM_STAGE_HAPTICS)) {
-			haptics->f_static[a % 3] = NAN;
 		}
 		if (has(ia, INJECT_FORCE)) {
 			command[a] = ia->value[INJECT_FORCE];

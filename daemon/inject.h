@@ -17,6 +17,7 @@
 #ifndef ENDOSIM_INJECT_H
 #define ENDOSIM_INJECT_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "../proto/endosim_shm.h"
@@ -47,6 +48,8 @@ struct inject_axis {
 
 struct inject {
 	struct inject_axis axis[ENDOSIM_AXES];
+	bool haptics_nan;      /* a haptic part holds a NaN of ours ... */
+	double haptics_saved;  /* ... instead of this */
 };
 
 /*
@@ -60,8 +63,11 @@ int inject_start(struct inject *in, int action, int axis, double value,
 /* The feedback as the injections make it read. */
 void inject_feedback(const struct inject *in, struct rig_feedback *fb);
 
-/* The pose, the haptic parts and the command as the injections make them. */
-void inject_pipeline(const struct inject *in, struct scope_pose *pose,
+/*
+ * The pose, the haptic parts and the command as the injections make them
+ * (a haptic part poisoned with a NaN gets its value back when cleared).
+ */
+void inject_pipeline(struct inject *in, struct scope_pose *pose,
 		     struct endosim_haptics_state *haptics,
 		     double command[ENDOSIM_AXES]);
 

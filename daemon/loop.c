@@ -49,6 +49,7 @@ struct loop {
 	struct scope_pose pose;
 	struct haptics *haptics;
 	uint64_t skipped;          /* periods skipped before this cycle */
+	uint64_t stall_ns;         /* a test command: sleep after the cycle */
 	struct inject inject;      /* test commands' sabotage */
 	uint64_t debug_seen;
 
@@ -344,17 +345,23 @@ static void take_debug(struct loop *l, uint64_t now)
 		return; /* torn: next cycle */
 	}
 	l->debug_seen = seq;
-	if (d.action != INJECT_STALL) {
+	if (d.action == INJECT_STALL) {
+		l->stall_ns = d.value > 0 ? (uint64_t)(d.value * 1e9) : 0;
+	} else {
 		r = inject_start(&l->inject, d.action, d.axis, d.value, now);
 	}
 	atomic_store_explicit(&l->debug_done,
 			      (uint64_t)d.seq << 32 | (uint32_t)r,
 			      memory_order_release);
-	if (d.action == INJECT_STALL && d.value > 0) {
-		struct timespec ts = to_timespec((uint64_t)(d.value * 1e9));
+}
 
-		while (clock_nanosleep(CLOCK_MONOTONIC, 0, &ts, &ts) == EINTR) {
-		}
+/* A test command's stall, once this cycle is published. */
+static void stall(struct loop *l)
+{
+	struct timespec ts = to_timespec(l->stall_ns);
+
+	l->stall_ns = 0;
+	while (clock_nanosleep(CLOCK_MONOTONIC, 0, &ts, &ts) == EINTR) {
 	}
 }
 
@@ -499,6 +506,9 @@ static void *loop_main(void *arg)
 		l->state.compute_ns = (uint32_t)compute;
 		atomic_fetch_add_explicit(&l->heartbeat, 1,
 					  memory_order_release);
+		if (l->stall_ns) {
+			stall(l);
+		}
 	}
 	/* last act: nothing energised */
 	memset(l->limited, 0, sizeof(l->limited));

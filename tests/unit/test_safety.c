@@ -382,7 +382,15 @@ static void test_inject(void **state)
 	inject_pipeline(&in, &pose, &h, cmd);
 	assert_true(cmd[0] == 9 && cmd[3] == 9);
 	assert_true(isnan(pose.tip[0]));
+	/* a haptic part poisoned gets its value back once cleared */
+	h.f_static[0] = 2.5;
+	assert_int_equal(inject_start(&in, INJECT_NAN, 0,
+				      ENDOSIM_STAGE_HAPTICS, 0), 0);
+	inject_pipeline(&in, &pose, &h, cmd);
+	assert_true(isnan(h.f_static[0]));
 	assert_int_equal(inject_start(&in, INJECT_CLEAR, -1, 0, 0), 0);
+	inject_pipeline(&in, &pose, &h, cmd);
+	assert_true(h.f_static[0] == 2.5);
 	healthy_feedback(&fb, 9 * S);
 	inject_feedback(&in, &fb);
 	assert_int_equal(fb.axis[1].status, ENDOSIM_DRIVE_PRESENT);

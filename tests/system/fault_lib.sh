@@ -1,0 +1,180 @@
+# fault_lib.sh - what the fault-injection tests (tests/system/4N-*.sh,
+# 5N-*.sh) add to drives_lib.sh: a daemon that accepts the test commands
+# ([debug] test_commands = yes), on the simulated rig or with its wheels on
+# the Modbus emulator, every axis moving and torque on; a witness reading
+# shared memory while a fault is injected (tests/tools/fault_watch.c); and
+# the checks each cause must pass:
+#
+#  - the fault latches with its cause (bit, axis) and its words in the
+#    status and in one journal line;
+#  - torque is zero on every axis in the very cycle that published it
+#    (the published state's own stamps), and in every state after;
+#  - the daemon keeps running and answering;
+#  - reset is refused while the cause persists, and recovers once it is
+#    gone; the next enable works.
+#
+# Timing is only ever checked against the configured limits with generous
+# margins: these tests are about what happens, not how fast.
+
+. "$(dirname "${BASH_SOURCE[0]}")/drives_lib.sh"
+
+SOAK="$TOP/config/scenarios/soak.scn"
+# the emulated wheel motors: held near 0 by a springy hand, well damped,
+# so that they stay inside the travel when their drives let go
+MB_MOTOR=(-o hold=0.05 -o viscous=0.005)
+WATCH_PID=""
+PERIOD_NS=1000000
+
+# start_sim [ARGS...]: the simulated rig, the hand moving every axis,
+# enabled, forces in full
+start_sim() {
+	start_daemon --set debug.test_commands=yes --scenario "$SOAK" "$@" &&
+		ctl enable >/dev/null && wait_for status_true '.ramp == 1'
+}
+
+# mb_rig_conf: insertion and roll simulated, the wheels on Modbus RTU
+# drives (the emulator on a pty) with their own watchdog register
+mb_rig_conf() {
+	cat >"$TMP/mb-rig.conf" <<CONF
+[rig]
+backend = drives
+[debug]
+test_commands = yes
+[axis.wheel_ud]
+backend = modbus
+[axis.wheel_lr]
+backend = modbus
+[modbus]
+device = $TMP/tty
+response_timeout_s = 0.2
+feedback_max_age_s = 0.5
+[modbus.wheel_ud]
+slave = 1
+torque = holding 0x0000 i16 scale=1e-5
+enable = coil 0x0000
+fault_reset = coil 0x0001
+watchdog = holding 0x0001 u16 scale=0.001
+watchdog_s = 0.2
+position = input 0x0000 i32 cdab
+velocity = input 0x0002 f32 cdab
+fault = input 0x0004 u16
+[modbus.wheel_lr]
+slave = 2
+torque = holding 0x0010 i32 scale=1e-6
+enable = holding 0x0012 u16
+fault_reset = holding 0x0013 u16
+watchdog = holding 0x0014 u16 scale=0.001
+watchdog_s = 0.2
+position = holding 0x0020 i32
+velocity = holding 0x0022 i32
+fault = holding 0x0024 u16
+CONF
+	echo "$TMP/mb-rig.conf"
+}
+
+wheels_on() {
+	state_is ENABLED && [ "$(mb_get 1 enabled)$(mb_get 2 enabled)" = 11 ]
+}
+
+# wheels_off: both emulated drives disabled with no torque applied
+wheels_off() {
+	[ "$(mb_get 1 enabled)$(mb_get 2 enabled)" = 00 ] &&
+		[ "$(mb_get 1 torque_nm)$(mb_get 2 torque_nm)" = 00 ]
+}
+
+# start_mb_rig [ARGS...]: the Modbus emulator, then endosimd on it with the
+# hand on every axis (the scenario on the simulated ones, a sine on the
+# wheels), enabled, forces in full
+start_mb_rig() {
+	local conf
+	conf=$(mb_rig_conf)
+	start_modbus "$conf" --pty "$TMP/tty" "${MB_MOTOR[@]}" || return 1
+	start_on "$conf" --scenario "$SOAK" "$@" || return 1
+	mb "hand 1 0.004 1"
+	mb "hand 2 0.004 1.3"
+	ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.02 >/dev/null
+	ctl set haptics.wheel_lr_damping_n_m_s_per_rad 0.02 >/dev/null
+	ctl enable >/dev/null && wait_for wheels_on &&
+		wait_for status_true '.ramp == 1'
+}
+
+# watch_fault BITS [TIMEOUT_S]: the witness, reading shm until one of BITS
+# latches (started before the injection; returns once it reads)
+watch_fault() {
+	rm -f "$TMP/watch.ready"
+	"$TOOLS/fault_watch" "$SHM" "$1" "${2:-10}" --ready "$TMP/watch.ready" \
+		>"$TMP/watch.out" 2>&1 &
+	WATCH_PID=$!
+	wait_for test -e "$TMP/watch.ready"
+}
+
+# watched KEY: what the witness saw
+watched() {
+	sed -n "s/^$1=//p" "$TMP/watch.out"
+}
+
+witness_done() {
+	wait "$WATCH_PID"
+}
+
+# witnessed WHAT BIT_NAME AXIS: the witness saw BIT_NAME latch on AXIS
+# ("none": global) with torque zero in the cycle that published it and in
+# every state after, torque having been on before
+witnessed() {
+	local what=$1 bit=$2 axis=$3
+	check "$what: latched ($bit)" witness_done
+	check "$what: torque was on before it ($(watched before_limited))" \
+		nonzero "$(watched before_limited)" 1e-9
+	check "$what: torque zero on every axis in the cycle that published it" \
+		[ "$(watched fault_limited)" = 0 ]
+	check "$what: ... the very cycle that found it (delay $(watched publish_delay_ns) ns)" \
+		[ "$(watched publish_delay_ns)" = 0 ]
+	check "$what: no state with a fault or not ENABLED had torque" \
+		[ "$(watched torque_violations)" = 0 ]
+	check "$what: cause $bit on $axis" \
+		[ "$(watched fault_bit)/$(watched fault_axis)" = "$bit/$axis" ]
+}
+
+# expect_fault WHAT BIT_NAME AXIS TEXT...: witnessed, and the daemon
+# answers in $EXPECT_STATE (FAULT) saying each TEXT in its status and in
+# one journal line
+expect_fault() {
+	local what=$1 bit=$2 axis=$3 t
+	shift 3
+	witnessed "$what" "$bit" "$axis"
+	check "$what: the daemon answers, in ${EXPECT_STATE:-FAULT}" \
+		state_is "${EXPECT_STATE:-FAULT}"
+	check "$what: torque zero in the status" \
+		status_true '[.axes[].limited] | all(. == 0)'
+	for t in "$bit" "$@"; do
+		check "$what: status says '$t'" fault_says "$t"
+		check "$what: the journal says '$t'" journal_says "$bit" "$t"
+	done
+}
+
+# journal_says BIT_NAME TEXT: the newest journal line of that fault says TEXT
+journal_says() {
+	grep "error: FAULT $1 " "$LOG" | tail -n 1 | grep -qF -- "$2"
+}
+
+# recovers WHAT: reset works (the cause is gone), IDLE, enabled again
+recovers() {
+	check "$1: reset once the cause is gone" wait_for reset_ok
+	check "$1: IDLE, no fault left" \
+		[ "$(status_field .state)/$(status_field .fault_bits)" = IDLE/0 ]
+	check "$1: enabled again" ctl enable
+}
+
+# refused_while WHAT: reset refused while the cause persists
+refused_while() {
+	sleep 0.2
+	check "$1: reset refused while the cause persists" reset_refused
+	check "$1: still FAULT" state_is FAULT
+	check "$1: the status marks the cause present" \
+		status_true '.faults[0].active'
+}
+
+# debug ACTION [AXIS] [VALUE]: a test command
+debug() {
+	ctl debug "$@" >/dev/null
+}
