@@ -14,6 +14,8 @@
  * forwards the ioctls here; everything else passes through). Mind: the
  * client's ioctls block while this emulator is stopped, and the preload
  * library ends the client when the emulator dies: stop the client first.
+ * A client that dies (even in the middle of an ioctl) leaves the emulator
+ * running: its memory can no longer be read, and what it asked is dropped.
  * An unplug is emulated with the "unplug" command, never by killing this.
  *
  * Each device decodes the EPOS4 frame protocol (epos4_frame.h), answers
@@ -433,6 +435,14 @@ static void finish_in(struct dev *d, int status, int length)
 	d->pending_in = (struct urb_ref){ 0 };
 }
 
+/* The URB's buffer in the client; NULL when the client is gone. */
+static UMockdevIoctlData *urb_buffer(UMockdevIoctlData *urb)
+{
+	return umockdev_ioctl_data_resolve(
+		urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
+		(gsize)urb_of(urb)->buffer_length, NULL);
+}
+
 /* Copies waiting reply bytes into the pending IN URB. */
 static void feed_in(struct dev *d)
 {
@@ -444,9 +454,13 @@ static void feed_in(struct dev *d)
 	}
 	n = (size_t)urb_of(urb)->buffer_length;
 	n = n < d->reply_len ? n : d->reply_len;
-	buf = umockdev_ioctl_data_resolve(
-		urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
-		(gsize)urb_of(urb)->buffer_length, NULL);
+	buf = urb_buffer(urb);
+	if (!buf) { /* its client died: the transfer dies with it */
+		g_object_unref(urb);
+		g_object_unref(d->pending_in.client);
+		d->pending_in = (struct urb_ref){ 0 };
+		return;
+	}
 	umockdev_ioctl_data_update(buf, 0, d->reply, (gint)n);
 	g_object_unref(buf);
 	memmove(d->reply, d->reply + n, d->reply_len - n);
@@ -478,13 +492,17 @@ static size_t string_descriptor(const struct dev *d, int index, uint8_t *out)
 static void control_urb(struct dev *d, UMockdevIoctlClient *client,
 			UMockdevIoctlData *urb)
 {
-	struct usbdevfs_urb *u = urb_of(urb);
-	UMockdevIoctlData *buf = umockdev_ioctl_data_resolve(
-		urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
-		(gsize)u->buffer_length, NULL);
-	const uint8_t *setup = buf->data;
+	UMockdevIoctlData *buf = urb_buffer(urb);
+	const uint8_t *setup;
 	uint8_t desc[256];
-	size_t n, want = (size_t)(setup[6] | setup[7] << 8);
+	size_t n, want;
+
+	if (!buf) {
+		g_object_unref(urb);
+		return;
+	}
+	setup = buf->data;
+	want = (size_t)(setup[6] | setup[7] << 8);
 
 	if (setup[0] == 0x80 && setup[1] == 6 && setup[3] == 3) {
 		n = string_descriptor(d, setup[2], desc);
@@ -512,10 +530,9 @@ static void submit(struct emu *e, struct dev *d, UMockdevIoctlClient *client,
 	} else if (u->endpoint & 0x80) {
 		d->pending_in = (struct urb_ref){ g_object_ref(client), urb };
 		feed_in(d);
+	} else if (!(buf = urb_buffer(urb))) {
+		g_object_unref(urb);
 	} else {
-		buf = umockdev_ioctl_data_resolve(
-			urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
-			(gsize)u->buffer_length, NULL);
 		receive(e, d, buf->data, (size_t)u->buffer_length);
 		g_object_unref(buf);
 		complete_urb(urb, 0, u->buffer_length);
@@ -543,6 +560,11 @@ static void reap(struct dev *d, UMockdevIoctlClient *client,
 	}
 	d->ready = g_list_remove(d->ready, r);
 	slot = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), NULL);
+	if (!slot) {
+		drop_ref(r);
+		umockdev_ioctl_client_complete(client, -1, ENODEV);
+		return;
+	}
 	umockdev_ioctl_data_set_ptr(slot, 0, r->urb);
 	g_object_unref(slot);
 	drop_ref(r);
@@ -575,6 +597,10 @@ static void capabilities(UMockdevIoctlClient *client, UMockdevIoctlData *arg)
 		       USBDEVFS_CAP_REAP_AFTER_DISCONNECT |
 		       USBDEVFS_CAP_ZERO_PACKET;
 
+	if (!c) {
+		umockdev_ioctl_client_complete(client, -1, ENODEV);
+		return;
+	}
 	umockdev_ioctl_data_update(c, 0, (guint8 *)&caps, sizeof(caps));
 	g_object_unref(c);
 	umockdev_ioctl_client_complete(client, 0, 0);
@@ -583,14 +609,21 @@ static void capabilities(UMockdevIoctlClient *client, UMockdevIoctlData *arg)
 static void dispatch(struct emu *e, struct dev *d, UMockdevIoctlClient *client,
 		     gulong request, UMockdevIoctlData *arg)
 {
+	UMockdevIoctlData *urb;
+
 	switch (request) {
 	case USBDEVFS_GET_CAPABILITIES:
 		capabilities(client, arg);
 		break;
 	case USBDEVFS_SUBMITURB:
-		submit(e, d, client,
-		       umockdev_ioctl_data_resolve(
-			       arg, 0, sizeof(struct usbdevfs_urb), NULL));
+		urb = umockdev_ioctl_data_resolve(arg, 0,
+						  sizeof(struct usbdevfs_urb),
+						  NULL);
+		if (!urb) { /* the client died: nothing to submit */
+			umockdev_ioctl_client_complete(client, -1, ENODEV);
+			break;
+		}
+		submit(e, d, client, urb);
 		umockdev_ioctl_client_complete(client, 0, 0);
 		break;
 	case USBDEVFS_REAPURB:

@@ -27,11 +27,14 @@
  * It reads every 50 us, at SCHED_FIFO priority 1 where it may (below the
  * daemon's threads, above ordinary processes), so as to see every cycle.
  *
- * Exit 0 when the fault appeared, 1 on timeout, 2 on usage or no shm.
+ * SIGTERM or SIGINT end the watch early, with the report.
+ *
+ * Exit 0 when the fault appeared, 1 otherwise, 2 on usage or no shm.
  */
 #include <errno.h>
 #include <math.h>
 #include <sched.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -46,6 +49,14 @@ struct watch {
 	uint64_t watch_ns;
 	bool have_before, faulted;
 };
+
+static volatile sig_atomic_t stop;
+
+static void on_signal(int sig)
+{
+	(void)sig;
+	stop = 1;
+}
 
 static double now_s(void)
 {
@@ -146,9 +157,11 @@ int main(int argc, char **argv)
 			strerror(errno));
 		return 2;
 	}
+	signal(SIGTERM, on_signal);
+	signal(SIGINT, on_signal);
 	sched_setscheduler(0, SCHED_FIFO, &(struct sched_param){ 1 });
 	t_end = now_s() + timeout;
-	while (now_s() < (w.faulted ? t_fault + after : t_end)) {
+	while (!stop && now_s() < (w.faulted ? t_fault + after : t_end)) {
 		nanosleep(&(struct timespec){ .tv_nsec = 50000 }, NULL);
 		if (shm_reader_read(r, &w.st, 100) || w.st.cycle == last) {
 			continue;
