@@ -279,10 +279,14 @@ emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS)) \
 	$(BUILD)/bench/drives-bench
 
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
-FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario
+FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
+	       fuzz_epos4
 fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o regmap.o log.o names.o
 fuzz_config_OBJS = config.o regmap.o log.o names.o
 fuzz_scenario_OBJS = scenario.o names.o
+fuzz_anatomy_OBJS = $(COLON_OBJS)
+fuzz_objio_OBJS = $(COLON_OBJS)
+fuzz_epos4_OBJS = epos4_frame.o
 FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined
 FUZZ_SECONDS ?= 60
 
