@@ -49,11 +49,12 @@ DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev \
 	     fonts-dejavu-core
-DEPS_TEST = $(DEPS_BUILD) clang libcmocka-dev socat jq procps systemd \
-	    valgrind umockdev libumockdev-dev libglib2.0-dev \
+# libFuzzer's runtime is only a recommendation of clang: named here
+DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq \
+	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
 	    $(DEPS_SCREEN) xdotool
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
-	     libglib2.0-dev $(DEPS_SCREEN)
+	     libglib2.0-dev clang libclang-rt-14-dev $(DEPS_SCREEN)
 # a screen for the viewer where there is none (tests, bench, headless demo)
 DEPS_SCREEN = xvfb xauth libgl1-mesa-dri
 
@@ -347,7 +348,7 @@ demo: deps-demo
 	BUILD=$(BUILD) tests/demo.sh
 
 bench: deps-bench
-	$(MAKE) --no-print-directory all bench-tools emulators
+	$(MAKE) --no-print-directory all bench-tools emulators fuzz-build
 	BUILD=$(BUILD) tests/bench/run.sh
 
 # --- install ----------------------------------------------------------------

@@ -3,6 +3,8 @@
 # tests: they print numbers and judge nothing.
 #
 #   BENCH_SECONDS   duration of the loop-latency runs (default 30)
+#   SOAK_SECONDS    duration of the soak run (default 600)
+#   FUZZ_SECONDS    each fuzz target's run (default 60)
 #
 # 1. Force-loop wake-up latency next to cyclictest's, both at SCHED_FIFO 80
 #    and 1 kHz, run at the same time on the same machine, their
@@ -89,3 +91,13 @@ BUILD=$BUILD "$TOP/tests/bench/drives.sh"
 
 echo
 BUILD="$BUILD" bash "$TOP/tests/bench/viewer.sh"
+
+# The soak: the loop and the daemon's memory over a long run with the
+# scenario looping and clients subscribed (tests/bench/soak.sh).
+echo
+"$TOP/tests/bench/soak.sh"
+
+# The fuzzers: executions and coverage of each target in its time.
+echo
+echo "=== fuzzers: ${FUZZ_SECONDS:-60} s each (make fuzz) ==="
+FUZZ_SECONDS=${FUZZ_SECONDS:-60} "$TOP/tests/fuzz/run.sh" "$BUILD/fuzz"
