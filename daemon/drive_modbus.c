@@ -313,6 +313,8 @@ static int connect_bus(struct mb *m)
 		return drive_fail(&m->d, -1, -ENXIO, "cannot switch to RS-485 "
 				  "mode: %s", modbus_strerror(errno));
 	}
+	/* a reply to a daemon that died mid-transaction must not answer us */
+	modbus_flush(m->ctx);
 	return 0;
 }
 
