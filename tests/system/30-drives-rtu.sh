@@ -12,11 +12,16 @@
 
 R=0.015 # the pinion, m
 
-# Generous timeouts: the emulators are ordinary processes on a shared
-# machine; these tests are about what happens, not how fast.
+# Generous timeouts (and drive watchdogs): the emulators are ordinary
+# processes on a shared machine; these tests are about what happens, not
+# how fast.
 cat >"$TMP/rig.conf" <<EOF
 [rig]
 backend = drives
+; the free emulated roll motor (5e-4 kg m^2) must not meet the end brakes,
+; whose 1 N m, late on a slow bus, would kick it into a runaway
+roll_min_rad = -100
+roll_max_rad = 100
 [limits]
 ; the emulated motors turn on and on, far past the rig's travel: a bench,
 ; not a rig (tests/system/45-fault-travel.sh checks the travel)
@@ -38,10 +43,12 @@ direction = reversed
 serial = EMU-INS
 timeout_s = 0.5
 feedback_max_age_s = 1
+watchdog_s = 1
 [epos4.roll]
 serial = EMU-ROLL
 timeout_s = 0.5
 feedback_max_age_s = 1
+watchdog_s = 1
 [modbus]
 device = $TMP/tty
 response_timeout_s = 0.5

@@ -54,7 +54,7 @@ torque = holding 0x0000 i16 scale=1e-5
 enable = coil 0x0000
 fault_reset = coil 0x0001
 watchdog = holding 0x0001 u16 scale=0.001
-watchdog_s = 0.2
+watchdog_s = 0.5
 position = input 0x0000 i32 cdab
 velocity = input 0x0002 f32 cdab
 fault = input 0x0004 u16
@@ -64,7 +64,7 @@ torque = holding 0x0010 i32 scale=1e-6
 enable = holding 0x0012 u16
 fault_reset = holding 0x0013 u16
 watchdog = holding 0x0014 u16 scale=0.001
-watchdog_s = 0.2
+watchdog_s = 0.5
 position = holding 0x0020 i32
 velocity = holding 0x0022 i32
 fault = holding 0x0024 u16
