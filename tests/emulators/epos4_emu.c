@@ -790,6 +790,7 @@ static void change(struct emu *e, struct dev *d, int n, char **w,
 	} else if (!strcmp(w[0], "move") && n >= 3) {
 		d->motor.moving = true;
 		d->motor.move_rad_s = atof(w[2]) * 2.0 * M_PI / 60.0;
+		d->motor.plant.v = d->motor.move_rad_s; /* from now on */
 	} else if (!strcmp(w[0], "place") && n >= 3) {
 		d->motor.plant.x = atof(w[2]) * 2.0 * M_PI / e->cpr;
 	} else {

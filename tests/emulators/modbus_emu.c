@@ -431,6 +431,7 @@ static void change(struct mbemu *e, struct slave *s, int n, char **w,
 	} else if (!strcmp(w[0], "move") && n > 2) {
 		s->motor.moving = true;
 		s->motor.move_rad_s = atof(w[2]) * 2.0 * M_PI / 60.0;
+		s->motor.plant.v = s->motor.move_rad_s; /* from now on */
 	} else if (!strcmp(w[0], "place") && n > 2) {
 		s->motor.plant.x = atof(w[2]) * 2.0 * M_PI / s->cpr;
 	} else {

@@ -169,7 +169,22 @@ mb_get() {
 
 # --- cleaning up ----------------------------------------------------------------
 
+# drives_diagnose: after a failure, whether the emulators still ran and
+# what they said (the daemon under the USB emulator dies with it)
+drives_diagnose() {
+	local pid name
+	for name in EPOS4 MODBUS; do
+		pid=${name}_PID
+		[ -n "${!pid}" ] || continue
+		kill -0 "${!pid}" 2>/dev/null || echo "# the $name emulator had died"
+	done
+	for name in usb mb; do
+		[ -s "$TMP/$name.err" ] && sed "s/^/# $name emulator: /" "$TMP/$name.err" | tail -n 5
+	done
+}
+
 drives_cleanup() {
+	[ "$FAILED" -gt 0 ] && drives_diagnose
 	# the daemon first: under the preload library it ends with the emulator
 	if [ -n "$DAEMON_PID" ]; then
 		kill -KILL "$DAEMON_PID" 2>/dev/null
