@@ -24,7 +24,7 @@ roll_min_rad = -100
 roll_max_rad = 100
 [limits]
 ; the emulated motors turn on and on, far past the rig's travel: a bench,
-; not a rig (tests/system/45-fault-travel.sh checks the travel), turned
+; not a rig (tests/system/55-fault-travel.sh checks the travel), turned
 ; at a set speed however hard the end brakes push back at their limit
 travel_margin_fraction = 100
 saturation_s = 3600

@@ -13,7 +13,7 @@ cat >"$TMP/rig.conf" <<EOF
 backend = drives
 [limits]
 ; the emulated motors turn on and on, far past the rig's travel: a bench,
-; not a rig (tests/system/45-fault-travel.sh checks the travel), turned
+; not a rig (tests/system/55-fault-travel.sh checks the travel), turned
 ; at a set speed however hard the end brakes push back at their limit
 travel_margin_fraction = 100
 saturation_s = 3600
