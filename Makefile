@@ -81,7 +81,8 @@ endef
 PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
 
 # the wire: protocol, framing, client library, shared-memory reader
-PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o
+PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o \
+	     session_file.o
 
 # the colon and the endoscope: case files, centreline, mesh, OBJ, the
 # model that ties them, the scope's kinematics
@@ -125,10 +126,11 @@ PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl $(BUILD)/endoview
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
 	     test_config_drives test_colon test_scope test_scene \
-	     test_godobject test_haptics \
+	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
 	     test_vessels
 test_config_OBJS = config.o regmap.o log.o names.o
+test_session_file_OBJS = session_file.o
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o

@@ -1,0 +1,460 @@
+/* session_file.c - the training session file (session_file.h). */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "session_file.h"
+
+#define FRAME_OVERHEAD 12u /* type, length, crc */
+
+static void fcopy(float *dst, const double *src, size_t n)
+{
+	for (size_t i = 0; i < n; i++) {
+		dst[i] = (float)src[i];
+	}
+}
+
+static void dcopy(double *dst, const float *src, size_t n)
+{
+	for (size_t i = 0; i < n; i++) {
+		dst[i] = src[i];
+	}
+}
+
+void session_record_from_state(const struct endosim_state *in,
+			       struct session_record *out)
+{
+	const struct endosim_scope_state *sc = &in->scope;
+	const struct endosim_haptics_state *h = &in->haptics;
+
+	memset(out, 0, sizeof(*out));
+	out->cycle = in->cycle;
+	out->stamp_ns = in->stamp_ns;
+	out->state = in->state;
+	out->fault_bits = in->fault_bits;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		out->position[a] = (float)in->axis[a].position;
+		out->velocity[a] = (float)in->axis[a].velocity;
+		out->hand[a] = (float)in->axis[a].hand;
+		out->command[a] = (float)in->axis[a].command;
+		out->limited[a] = (float)in->axis[a].limited;
+	}
+	out->ramp = (float)in->safety.ramp;
+	out->depth_m = (float)sc->depth_m;
+	out->roll_rad = (float)sc->roll_rad;
+	fcopy(out->bend_rad, sc->bend_rad, 2);
+	out->base_s_m = (float)sc->base_s_m;
+	out->tip_s_m = (float)sc->tip_s_m;
+	out->turning_rad = (float)sc->turning_rad;
+	fcopy(out->tip, sc->tip, 3);
+	fcopy(out->dir, sc->dir, 3);
+	fcopy(out->up, sc->up, 3);
+	fcopy(out->bow_m, sc->bow_m, ENDOSIM_SPANS);
+	out->spans = sc->spans;
+	fcopy(out->proxy, h->proxy, 3);
+	fcopy(out->normal, h->normal, 3);
+	fcopy(out->f_static, h->f_static, 3);
+	out->penetration_m = (float)h->penetration_m;
+	out->contact = h->contact;
+	out->curvature_rad = (float)h->curvature_rad;
+	out->trans_contact_n = (float)h->trans_contact_n;
+	out->trans_friction_n = (float)h->trans_friction_n;
+	out->trans_loop_n = (float)h->trans_loop_n;
+	fcopy(out->wheel_contact_nm, h->wheel_contact_nm, 2);
+	fcopy(out->wheel_tension_nm, h->wheel_tension_nm, 2);
+	fcopy(out->wheel_elastic_nm, h->wheel_elastic_nm, 2);
+	out->tube_contact_nm = (float)h->tube_contact_nm;
+	out->tube_friction_nm = (float)h->tube_friction_nm;
+	out->scenario_time_s = (float)in->scenario_time_s;
+	out->latency_ns = in->latency_ns;
+	out->compute_ns = in->compute_ns;
+}
+
+void session_record_to_state(const struct session_record *in,
+			     struct endosim_state *out)
+{
+	struct endosim_scope_state *sc = &out->scope;
+	struct endosim_haptics_state *h = &out->haptics;
+
+	memset(out, 0, sizeof(*out));
+	out->cycle = in->cycle;
+	out->stamp_ns = in->stamp_ns;
+	out->publish_ns = in->stamp_ns;
+	out->state = in->state;
+	out->fault_bits = in->fault_bits;
+	out->fault_axis = -1;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		out->axis[a].position = in->position[a];
+		out->axis[a].velocity = in->velocity[a];
+		out->axis[a].hand = in->hand[a];
+		out->axis[a].command = in->command[a];
+		out->axis[a].limited = in->limited[a];
+		out->axis[a].feedback_ns = in->stamp_ns;
+	}
+	out->safety.ramp = in->ramp;
+	sc->depth_m = in->depth_m;
+	sc->roll_rad = in->roll_rad;
+	dcopy(sc->bend_rad, in->bend_rad, 2);
+	sc->base_s_m = in->base_s_m;
+	sc->tip_s_m = in->tip_s_m;
+	sc->turning_rad = in->turning_rad;
+	dcopy(sc->tip, in->tip, 3);
+	dcopy(sc->dir, in->dir, 3);
+	dcopy(sc->up, in->up, 3);
+	dcopy(sc->bow_m, in->bow_m, ENDOSIM_SPANS);
+	sc->spans = in->spans;
+	dcopy(h->proxy, in->proxy, 3);
+	dcopy(h->normal, in->normal, 3);
+	dcopy(h->f_static, in->f_static, 3);
+	h->penetration_m = in->penetration_m;
+	h->contact = in->contact;
+	h->curvature_rad = in->curvature_rad;
+	h->trans_contact_n = in->trans_contact_n;
+	h->trans_friction_n = in->trans_friction_n;
+	h->trans_loop_n = in->trans_loop_n;
+	dcopy(h->wheel_contact_nm, in->wheel_contact_nm, 2);
+	dcopy(h->wheel_tension_nm, in->wheel_tension_nm, 2);
+	dcopy(h->wheel_elastic_nm, in->wheel_elastic_nm, 2);
+	h->tube_contact_nm = in->tube_contact_nm;
+	h->tube_friction_nm = in->tube_friction_nm;
+	out->scenario_time_s = in->scenario_time_s;
+	out->latency_ns = in->latency_ns;
+	out->compute_ns = in->compute_ns;
+}
+
+uint32_t session_crc32(uint32_t crc, const void *data, size_t n)
+{
+	const unsigned char *p = data;
+
+	crc = ~crc;
+	while (n--) {
+		crc ^= *p++;
+		for (int k = 0; k < 8; k++) {
+			crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+		}
+	}
+	return ~crc;
+}
+
+static void put_u32(unsigned char *p, uint32_t v)
+{
+	p[0] = (unsigned char)v;
+	p[1] = (unsigned char)(v >> 8);
+	p[2] = (unsigned char)(v >> 16);
+	p[3] = (unsigned char)(v >> 24);
+}
+
+static uint32_t get_u32(const unsigned char *p)
+{
+	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+	       (uint32_t)p[3] << 24;
+}
+
+size_t session_frame_put(unsigned char *buf, size_t size, size_t used,
+			 uint32_t type, const void *payload, uint32_t length)
+{
+	size_t need = FRAME_OVERHEAD + length;
+	unsigned char *p = buf + used;
+
+	if (used > size || size - used < need) {
+		return 0;
+	}
+	put_u32(p, type);
+	put_u32(p + 4, length);
+	if (length) {
+		memcpy(p + 8, payload, length);
+	}
+	put_u32(p + 8 + length, session_crc32(0, p, 8 + (size_t)length));
+	return need;
+}
+
+static int write_all(int fd, const void *data, size_t n)
+{
+	const unsigned char *p = data;
+
+	while (n) {
+		ssize_t w = write(fd, p, n);
+
+		if (w < 0) {
+			if (errno == EINTR) {
+				continue;
+			}
+			return -errno;
+		}
+		if (w == 0) {
+			return -EIO;
+		}
+		p += w;
+		n -= (size_t)w;
+	}
+	return 0;
+}
+
+int session_file_write_magic(int fd)
+{
+	return write_all(fd, SESSION_FILE_MAGIC, 8);
+}
+
+int session_file_write_frame(int fd, uint32_t type, const void *payload,
+			     uint32_t length)
+{
+	unsigned char head[8], tail[4];
+	uint32_t crc;
+	int r;
+
+	put_u32(head, type);
+	put_u32(head + 4, length);
+	crc = session_crc32(0, head, 8);
+	crc = session_crc32(crc, payload, length);
+	put_u32(tail, crc);
+	r = write_all(fd, head, 8);
+	if (r == 0 && length) {
+		r = write_all(fd, payload, length);
+	}
+	return r ? r : write_all(fd, tail, 4);
+}
+
+/* --- reading ---------------------------------------------------------- */
+
+/* Reads the whole of FD into a new buffer. */
+static int slurp(int fd, unsigned char **out, size_t *len)
+{
+	struct stat st;
+	size_t cap, n = 0;
+	unsigned char *buf;
+
+	if (fstat(fd, &st) < 0) {
+		return -errno;
+	}
+	cap = st.st_size > 0 ? (size_t)st.st_size + 1 : 4096;
+	buf = malloc(cap);
+	if (!buf) {
+		return -ENOMEM;
+	}
+	for (;;) {
+		ssize_t r;
+
+		if (n == cap) {
+			unsigned char *b = realloc(buf, cap * 2);
+
+			if (!b) {
+				free(buf);
+				return -ENOMEM;
+			}
+			buf = b;
+			cap *= 2;
+		}
+		r = read(fd, buf + n, cap - n);
+		if (r < 0) {
+			if (errno == EINTR) {
+				continue;
+			}
+			r = -errno;
+			free(buf);
+			return (int)r;
+		}
+		if (r == 0) {
+			break;
+		}
+		n += (size_t)r;
+	}
+	*out = buf;
+	*len = n;
+	return 0;
+}
+
+/* The next good frame at OFF of DATA (LEN bytes), or false. */
+static bool next_frame(const unsigned char *data, size_t len, size_t off,
+		       uint32_t *type, const unsigned char **payload,
+		       uint32_t *length)
+{
+	uint32_t n;
+
+	if (len - off < FRAME_OVERHEAD) {
+		return false;
+	}
+	n = get_u32(data + off + 4);
+	if (n > SESSION_FRAME_MAX || len - off - FRAME_OVERHEAD < n) {
+		return false;
+	}
+	if (session_crc32(0, data + off, 8 + (size_t)n) !=
+	    get_u32(data + off + 8 + n)) {
+		return false;
+	}
+	*type = get_u32(data + off);
+	*payload = data + off + 8;
+	*length = n;
+	return true;
+}
+
+static char *text_copy(char **dst, char *room, const unsigned char *src,
+		       uint32_t n)
+{
+	memcpy(room, src, n);
+	room[n] = '\0';
+	*dst = room;
+	return room + n + 1;
+}
+
+int session_file_read(const char *path, struct session_file *out)
+{
+	unsigned char *data = NULL;
+	size_t len = 0, off, n_rec = 0, n_ev = 0, text = 0, good;
+	const unsigned char *payload;
+	uint32_t type, length;
+	char size[32], *room;
+	unsigned char *store;
+	int fd, r;
+
+	memset(out, 0, sizeof(*out));
+	fd = open(path, O_RDONLY | O_CLOEXEC);
+	if (fd < 0) {
+		return -errno;
+	}
+	r = slurp(fd, &data, &len);
+	close(fd);
+	if (r) {
+		return r;
+	}
+	if (len < 8 || memcmp(data, SESSION_FILE_MAGIC, 8) != 0 ||
+	    !next_frame(data, len, 8, &type, &payload, &length) ||
+	    type != SESSION_FRAME_HEADER) {
+		free(data);
+		return -EBADMSG;
+	}
+	/* first pass: count, and find where the good frames end */
+	for (off = 8; next_frame(data, len, off, &type, &payload, &length);
+	     off += FRAME_OVERHEAD + length) {
+		if (type == SESSION_FRAME_RECORD) {
+			if (length != sizeof(struct session_record)) {
+				free(data);
+				return -EPROTO;
+			}
+			n_rec++;
+		} else if (type == SESSION_FRAME_EVENT) {
+			if (length < sizeof(struct session_event)) {
+				break; /* damaged: stop as at a cut */
+			}
+			n_ev++;
+			text += length - sizeof(struct session_event) + 1;
+		} else if (type == SESSION_FRAME_HEADER ||
+			   type == SESSION_FRAME_CONFIG ||
+			   type == SESSION_FRAME_CASE ||
+			   type == SESSION_FRAME_END) {
+			text += (size_t)length + 1;
+		}
+	}
+	good = off;
+	store = malloc(n_rec * sizeof(struct session_record) +
+		       n_ev * sizeof(struct session_file_event) + text + 1);
+	if (!store) {
+		free(data);
+		return -ENOMEM;
+	}
+	out->storage = store;
+	out->records = (struct session_record *)store;
+	out->events = (struct session_file_event *)
+		(store + n_rec * sizeof(struct session_record));
+	room = (char *)(out->events + n_ev);
+	for (off = 8; off < good; off += FRAME_OVERHEAD + length) {
+		next_frame(data, len, off, &type, &payload, &length);
+		switch (type) {
+		case SESSION_FRAME_RECORD:
+			memcpy(&out->records[out->n_records++], payload,
+			       length);
+			break;
+		case SESSION_FRAME_EVENT: {
+			struct session_file_event *e =
+				&out->events[out->n_events++];
+
+			memcpy(&e->ev, payload, sizeof(e->ev));
+			room = text_copy(&e->text, room,
+					 payload + sizeof(e->ev),
+					 length - (uint32_t)sizeof(e->ev));
+			break;
+		}
+		case SESSION_FRAME_HEADER:
+			if (!out->header) {
+				room = text_copy(&out->header, room, payload,
+						 length);
+			}
+			break;
+		case SESSION_FRAME_CONFIG:
+			room = text_copy(&out->config, room, payload, length);
+			break;
+		case SESSION_FRAME_CASE:
+			room = text_copy(&out->case_text, room, payload,
+					 length);
+			break;
+		case SESSION_FRAME_END:
+			room = text_copy(&out->end, room, payload, length);
+			break;
+		default:
+			break; /* a type of a later format: skipped */
+		}
+	}
+	out->bytes_read = good;
+	out->bytes_ignored = len - good;
+	free(data);
+	if (session_text_get(out->header, "record_size", size,
+			     sizeof(size)) == 0 &&
+	    strtoul(size, NULL, 10) != sizeof(struct session_record)) {
+		session_file_close(out);
+		return -EPROTO;
+	}
+	return 0;
+}
+
+void session_file_close(struct session_file *f)
+{
+	free(f->storage);
+	memset(f, 0, sizeof(*f));
+}
+
+int session_text_get(const char *text, const char *key, char *out,
+		     size_t size)
+{
+	size_t k = strlen(key);
+
+	for (const char *p = text; p && *p;) {
+		const char *nl = strchr(p, '\n');
+		size_t n = nl ? (size_t)(nl - p) : strlen(p);
+
+		if (n > k && strncmp(p, key, k) == 0 && p[k] == '=') {
+			size_t v = n - k - 1;
+
+			if (size == 0) {
+				return -ENOSPC;
+			}
+			if (v >= size) {
+				v = size - 1;
+			}
+			memcpy(out, p + k + 1, v);
+			out[v] = '\0';
+			return 0;
+		}
+		p = nl ? nl + 1 : p + n;
+	}
+	return -ENOENT;
+}
+
+size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns)
+{
+	size_t lo = 0, hi = f->n_records;
+
+	/* the first record after STAMP_NS, then one back */
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (f->records[mid].stamp_ns <= stamp_ns) {
+			lo = mid + 1;
+		} else {
+			hi = mid;
+		}
+	}
+	return lo ? lo - 1 : 0;
+}

@@ -1,0 +1,211 @@
+/*
+ * session_file.h - the training session file: what endosimd records, what
+ * endoctl (show, export, report) and endoview (--replay) read.
+ *
+ * The layout is documented for people in docs/SESSION_FORMAT.md; this
+ * header is the contract for code. In short:
+ *
+ *   file   = magic "ENDOSES1" (8 bytes), then frames, nothing else
+ *   frame  = u32 type, u32 length, LENGTH bytes of payload,
+ *            u32 CRC-32 (IEEE, as zlib's crc32) of type, length and payload
+ *
+ * all little-endian. A reader stops at the first frame that is cut short
+ * or whose CRC does not match: a file cut by a crash or a full disk reads
+ * up to its last complete frame. Types never change meaning; a reader
+ * skips types it does not know.
+ *
+ * Frame types, in the order a writer puts them:
+ *   HEADER  (1)  once, first: "key=value\n" lines (UTF-8), see below
+ *   CONFIG  (2)  once: the effective configuration, as --print-config
+ *   CASE    (3)  once: the case file's text (the colon recorded on)
+ *   RECORD  (4)  one per force-loop cycle: struct session_record
+ *   EVENT   (5)  faults, enables, parameter changes, drops: struct
+ *                session_event and its text
+ *   END     (6)  once, last, when the session stopped cleanly: the final
+ *                metrics as "key=value\n" lines
+ *
+ * Header keys: format (1), id, trainee, case, started (UTC, ISO 8601),
+ * start_ns (CLOCK_MONOTONIC of the first record's clock), period_ns,
+ * version (endosimd's), record_size (sizeof(struct session_record)), and
+ * the case's resolution: step_m, ring_vertices, segment_m.
+ *
+ * Threads: nothing here is for the force loop. session_file_write_*()
+ * calls write(2) and may block; the reader allocates. Neither keeps state
+ * between calls beyond its own struct.
+ */
+#ifndef ENDOSIM_SESSION_FILE_H
+#define ENDOSIM_SESSION_FILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "endosim_shm.h"
+
+#define SESSION_FILE_MAGIC "ENDOSES1"
+#define SESSION_FILE_FORMAT 1u
+
+enum session_frame_type {
+	SESSION_FRAME_HEADER = 1,
+	SESSION_FRAME_CONFIG = 2,
+	SESSION_FRAME_CASE = 3,
+	SESSION_FRAME_RECORD = 4,
+	SESSION_FRAME_EVENT = 5,
+	SESSION_FRAME_END = 6,
+};
+
+/* Largest payload a reader accepts (a case file, the configuration). */
+#define SESSION_FRAME_MAX (4u << 20)
+
+/*
+ * One force-loop cycle as published (struct endosim_state), compact:
+ * floats for the physical values (a float's 7 digits are far below the
+ * rig's resolution), SI units as in endosim_shm.h. 304 bytes.
+ */
+struct session_record {
+	uint64_t cycle;
+	uint64_t stamp_ns;        /* CLOCK_MONOTONIC of the cycle's wake-up */
+	uint32_t state;           /* enum endosim_state_id */
+	uint32_t fault_bits;      /* enum endosim_fault, latched */
+	float position[ENDOSIM_AXES]; /* m, rad */
+	float velocity[ENDOSIM_AXES]; /* m/s, rad/s */
+	float hand[ENDOSIM_AXES];     /* N, N m: the simulated hand */
+	float command[ENDOSIM_AXES];  /* N, N m: rendered */
+	float limited[ENDOSIM_AXES];  /* N, N m: sent to the drives */
+	float ramp;               /* enable ramp, 0..1 */
+	/* the scope (struct endosim_scope_state) */
+	float depth_m;
+	float roll_rad;
+	float bend_rad[2];
+	float base_s_m;
+	float tip_s_m;
+	float turning_rad;
+	float tip[3];
+	float dir[3];
+	float up[3];
+	float bow_m[ENDOSIM_SPANS];
+	/* the haptics (struct endosim_haptics_state) */
+	float proxy[3];
+	float normal[3];
+	float f_static[3];        /* N */
+	float penetration_m;
+	uint32_t contact;         /* 1 while the wall holds the tip */
+	uint32_t spans;           /* mobile segments in bow_m */
+	float curvature_rad;
+	float trans_contact_n;
+	float trans_friction_n;
+	float trans_loop_n;
+	float wheel_contact_nm[2];
+	float wheel_tension_nm[2];
+	float wheel_elastic_nm[2];
+	float tube_contact_nm;
+	float tube_friction_nm;
+	float scenario_time_s;
+	uint32_t latency_ns;
+	uint32_t compute_ns;
+	uint32_t reserved[2];     /* 0 */
+};
+
+_Static_assert(sizeof(struct session_record) == 304,
+	       "session_record: its size is part of the file format");
+
+/* What a session's event is (struct session_event.kind). */
+enum session_event_kind {
+	SESSION_EVENT_STATE = 1,   /* value: the new enum endosim_state_id */
+	SESSION_EVENT_FAULT = 2,   /* axis, detail: the cause's bit number */
+	SESSION_EVENT_PARAM = 3,   /* text: "section.key=value" */
+	SESSION_EVENT_DROPS = 4,   /* value: records dropped so far */
+	SESSION_EVENT_NOTE = 5,    /* text: anything else worth keeping */
+};
+
+/* An event's fixed part; its text (not NUL-terminated) follows it. */
+struct session_event {
+	uint64_t stamp_ns;        /* CLOCK_MONOTONIC */
+	uint32_t kind;            /* enum session_event_kind */
+	int32_t axis;             /* -1: none or global */
+	uint32_t detail;
+	uint32_t reserved;
+	double value;
+};
+
+_Static_assert(sizeof(struct session_event) == 32,
+	       "session_event: its size is part of the file format");
+
+/* Fills OUT from one published state. Never allocates; any thread. */
+void session_record_from_state(const struct endosim_state *in,
+			       struct session_record *out);
+
+/*
+ * The inverse, for a replay: fills the fields of OUT that a record holds
+ * and zeroes the rest (the scope's tube is not recorded: rebuild it with
+ * the scope's kinematics on the recorded case).
+ */
+void session_record_to_state(const struct session_record *in,
+			     struct endosim_state *out);
+
+/* --- writing ---------------------------------------------------------- */
+
+/* Writes the magic to FD (a new, empty file). 0 or -errno. */
+int session_file_write_magic(int fd);
+
+/* Writes one frame to FD. 0 or -errno (a short write is -EIO). */
+int session_file_write_frame(int fd, uint32_t type, const void *payload,
+			     uint32_t length);
+
+/*
+ * Frames are also built in memory, so that a writer can gather many
+ * records into one write(2): appends one frame to BUF (of SIZE bytes,
+ * USED of them filled). Returns the bytes it took, or 0 when it does not
+ * fit (BUF unchanged).
+ */
+size_t session_frame_put(unsigned char *buf, size_t size, size_t used,
+			 uint32_t type, const void *payload, uint32_t length);
+
+/* --- reading ---------------------------------------------------------- */
+
+/*
+ * A session file in memory. The arrays point into one allocation;
+ * session_file_close() frees it. HEADER, CONFIG, CASE and END are
+ * NUL-terminated copies of their frames' text (NULL when absent: END is
+ * absent from a file cut short).
+ */
+struct session_file {
+	char *header;
+	char *config;
+	char *case_text;
+	char *end;
+	struct session_record *records;
+	size_t n_records;
+	struct session_file_event {
+		struct session_event ev;
+		char *text;           /* NUL-terminated, maybe empty */
+	} *events;
+	size_t n_events;
+	size_t bytes_read;        /* up to the end of the last good frame */
+	size_t bytes_ignored;     /* after it: a cut or damaged tail */
+	void *storage;
+};
+
+/*
+ * Reads PATH. 0, or -errno: -ENOENT, -EACCES, ... ; -EBADMSG when it is
+ * not a session file (no magic or no header frame), -EPROTO for a record
+ * size or format it does not know. Logs nothing: the caller says it.
+ */
+int session_file_read(const char *path, struct session_file *out);
+
+/* Frees what session_file_read() allocated; safe on a zeroed struct. */
+void session_file_close(struct session_file *f);
+
+/*
+ * The value of KEY in "key=value\n" TEXT (a header or an end frame),
+ * copied into OUT (SIZE bytes, NUL-terminated). 0, or -ENOENT.
+ */
+int session_text_get(const char *text, const char *key, char *out,
+		     size_t size);
+
+/* The index of the last record at or before STAMP_NS (0 if none is). */
+size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns);
+
+/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32()) of N bytes. */
+uint32_t session_crc32(uint32_t crc, const void *data, size_t n);
+
+#endif

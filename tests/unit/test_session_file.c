@@ -1,0 +1,245 @@
+/* test_session_file.c - the session file: frames written and read back,
+ * a file cut at every byte reads up to its last complete frame, damage
+ * stops the reader, the record's round trip through a published state. */
+#include <errno.h>
+#include <fcntl.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "session_file.h"
+
+#define RECORDS 50
+
+static char path[64];
+static const char header[] = "format=1\nid=7\ntrainee=A. Trainee\n"
+			     "record_size=304\n";
+#define HEADER_FRAME (12 + sizeof(header) - 1)
+
+static int setup(void **state)
+{
+	(void)state;
+	snprintf(path, sizeof(path), "/tmp/test_session_file.%d", getpid());
+	return 0;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	unlink(path);
+	return 0;
+}
+
+/* A session of RECORDS records and one event after the 10th; its size. */
+static size_t write_session(bool end)
+{
+	int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+	struct session_event ev = { .stamp_ns = 10500, .kind = 2,
+				    .axis = 1, .value = 0.5 };
+	unsigned char ebuf[sizeof(ev) + 5];
+	off_t size;
+
+	assert_true(fd >= 0);
+	assert_int_equal(session_file_write_magic(fd), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_HEADER,
+						  header, strlen(header)), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_CASE,
+						  "segment rectum 0.15\n", 20),
+			 0);
+	for (int i = 0; i < RECORDS; i++) {
+		struct session_record r = { .cycle = (uint64_t)i,
+					    .stamp_ns = 1000u * (uint64_t)i,
+					    .depth_m = 0.01f * (float)i };
+
+		assert_int_equal(session_file_write_frame(
+					 fd, SESSION_FRAME_RECORD, &r,
+					 sizeof(r)), 0);
+		if (i == 10) {
+			memcpy(ebuf, &ev, sizeof(ev));
+			memcpy(ebuf + sizeof(ev), "drive", 5);
+			assert_int_equal(session_file_write_frame(
+						 fd, SESSION_FRAME_EVENT, ebuf,
+						 sizeof(ebuf)), 0);
+		}
+	}
+	if (end) {
+		assert_int_equal(session_file_write_frame(
+					 fd, SESSION_FRAME_END, "cecum_s=3\n",
+					 10), 0);
+	}
+	size = lseek(fd, 0, SEEK_CUR);
+	close(fd);
+	return (size_t)size;
+}
+
+static void test_round_trip(void **state)
+{
+	struct session_file f;
+	char v[64];
+
+	(void)state;
+	write_session(true);
+	assert_int_equal(session_file_read(path, &f), 0);
+	assert_int_equal(f.n_records, RECORDS);
+	assert_int_equal(f.n_events, 1);
+	assert_int_equal(f.bytes_ignored, 0);
+	for (int i = 0; i < RECORDS; i++) {
+		assert_int_equal(f.records[i].cycle, i);
+		assert_true(f.records[i].depth_m == 0.01f * (float)i);
+	}
+	assert_int_equal(f.events[0].ev.kind, 2);
+	assert_int_equal(f.events[0].ev.axis, 1);
+	assert_string_equal(f.events[0].text, "drive");
+	assert_string_equal(f.case_text, "segment rectum 0.15\n");
+	assert_null(f.config);
+	assert_string_equal(f.end, "cecum_s=3\n");
+	assert_int_equal(session_text_get(f.header, "trainee", v, sizeof(v)),
+			 0);
+	assert_string_equal(v, "A. Trainee");
+	assert_int_equal(session_text_get(f.header, "train", v, sizeof(v)),
+			 -ENOENT);
+	assert_int_equal(session_text_get(f.end, "cecum_s", v, sizeof(v)), 0);
+	assert_string_equal(v, "3");
+	/* seek: the last record at or before a time */
+	assert_int_equal(session_file_seek(&f, 0), 0);
+	assert_int_equal(session_file_seek(&f, 2999), 2);
+	assert_int_equal(session_file_seek(&f, 3000), 3);
+	assert_int_equal(session_file_seek(&f, 1u << 30), RECORDS - 1);
+	session_file_close(&f);
+	session_file_close(&f); /* safe twice */
+}
+
+/*
+ * Cut the file at every length: each reads (or is refused as no session
+ * file before its header is whole) with exactly the records that were
+ * complete, never more, never a crash.
+ */
+static void test_cut_everywhere(void **state)
+{
+	size_t full = write_session(false);
+	size_t rec_frame = 12 + sizeof(struct session_record);
+	size_t head = 8 + HEADER_FRAME + 12 + 20; /* magic, header, case */
+	struct session_file f;
+
+	(void)state;
+	for (size_t n = 0; n <= full; n++) {
+		size_t expect;
+		int r;
+
+		assert_int_equal(truncate(path, (off_t)n), 0);
+		r = session_file_read(path, &f);
+		if (n < 8 + HEADER_FRAME) {
+			assert_int_equal(r, -EBADMSG);
+			write_session(false);
+			continue;
+		}
+		assert_int_equal(r, 0);
+		expect = n < head ? 0 : (n - head) / rec_frame;
+		/* the event after record 10 takes 12 + 37 bytes */
+		if (expect > 11) {
+			expect = n < head + 11 * rec_frame + 49
+					 ? 11
+					 : (n - head - 49) / rec_frame;
+		}
+		assert_int_equal(f.n_records, expect);
+		assert_int_equal(f.bytes_read + f.bytes_ignored, n);
+		assert_null(f.end);
+		session_file_close(&f);
+		write_session(false);
+	}
+}
+
+/* A flipped byte in a record: the reader stops before it. */
+static void test_damage_stops(void **state)
+{
+	size_t head = 8 + HEADER_FRAME + 12 + 20;
+	size_t rec_frame = 12 + sizeof(struct session_record);
+	struct session_file f;
+	unsigned char b;
+	int fd;
+
+	(void)state;
+	write_session(true);
+	fd = open(path, O_RDWR);
+	assert_true(fd >= 0);
+	assert_int_equal(pread(fd, &b, 1, (off_t)(head + 5 * rec_frame + 30)),
+			 1);
+	b ^= 0x10;
+	assert_int_equal(pwrite(fd, &b, 1,
+				(off_t)(head + 5 * rec_frame + 30)), 1);
+	close(fd);
+	assert_int_equal(session_file_read(path, &f), 0);
+	assert_int_equal(f.n_records, 5);
+	assert_true(f.bytes_ignored > 0);
+	session_file_close(&f);
+	/* not a session file at all */
+	fd = open(path, O_WRONLY | O_TRUNC);
+	assert_int_equal(write(fd, "[rig]\nbackend=sim\n", 18), 18);
+	close(fd);
+	assert_int_equal(session_file_read(path, &f), -EBADMSG);
+	assert_int_equal(session_file_read("/nonexistent/x", &f), -ENOENT);
+}
+
+/* A published state survives the round trip to float precision. */
+static void test_record_state(void **state)
+{
+	struct endosim_state s, back;
+	struct session_record r;
+
+	(void)state;
+	memset(&s, 0, sizeof(s));
+	s.cycle = 123456789;
+	s.stamp_ns = 987654321012ull;
+	s.state = ENDOSIM_STATE_ENABLED;
+	s.axis[0].position = 0.4321;
+	s.axis[2].limited = -0.0987;
+	s.scope.tip_s_m = 1.234;
+	s.scope.dir[2] = 1;
+	s.scope.bow_m[1] = 0.027;
+	s.scope.spans = 2;
+	s.haptics.contact = 1;
+	s.haptics.trans_loop_n = 8.4;
+	s.safety.ramp = 0.5;
+	session_record_from_state(&s, &r);
+	session_record_to_state(&r, &back);
+	assert_int_equal(back.cycle, s.cycle);
+	assert_int_equal(back.stamp_ns, s.stamp_ns);
+	assert_int_equal(back.state, s.state);
+	assert_float_equal(back.axis[0].position, 0.4321, 1e-7);
+	assert_float_equal(back.axis[2].limited, -0.0987, 1e-8);
+	assert_float_equal(back.scope.tip_s_m, 1.234, 1e-6);
+	assert_true(back.scope.dir[2] == 1.0);
+	assert_float_equal(back.scope.bow_m[1], 0.027, 1e-8);
+	assert_int_equal(back.scope.spans, 2);
+	assert_int_equal(back.haptics.contact, 1);
+	assert_float_equal(back.haptics.trans_loop_n, 8.4, 1e-6);
+	assert_true(back.safety.ramp == 0.5);
+}
+
+/* The CRC is zlib's: the check value of "123456789". */
+static void test_crc(void **state)
+{
+	(void)state;
+	assert_int_equal(session_crc32(0, "123456789", 9), 0xCBF43926u);
+	assert_int_equal(session_crc32(session_crc32(0, "1234", 4), "56789",
+				       5), 0xCBF43926u);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_crc),
+		cmocka_unit_test(test_round_trip),
+		cmocka_unit_test(test_cut_everywhere),
+		cmocka_unit_test(test_damage_stops),
+		cmocka_unit_test(test_record_state),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}
