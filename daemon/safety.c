@@ -151,6 +151,7 @@ void safety_check_motion(struct safety *s, const struct config *cfg,
 		double margin = cfg->limits.travel_margin * (hi - lo);
 		double vmax = cfg->limits.max_speed[a];
 
+		s->speed[a] = isfinite(v) ? v : 0.0;
 		if (x < lo - margin) {
 			fault(s, ENDOSIM_FAULT_TRAVEL, a, 0, x, lo - margin,
 			      now_ns);
@@ -263,6 +264,14 @@ void safety_filter(struct safety *s, const struct config *cfg,
 		double lim = cfg->limits.max[a];
 		double step = cfg->limits.slew[a] * dt_s;
 		double want = fmin(fmax(command[a] * s->ramp, -lim), lim);
+		double v = s->speed[a], vmax = cfg->limits.max_speed[a];
+
+		if (want * v > 0) { /* pushing the way it moves */
+			double fade = (SAFETY_FADE_END - fabs(v) / vmax) /
+				      (SAFETY_FADE_END - SAFETY_FADE_START);
+
+			want *= fmin(fmax(fade, 0.0), 1.0);
+		}
 
 		limited[a] = safety_torque_on(s)
 				     ? fmin(fmax(want, limited[a] - step),

@@ -61,6 +61,7 @@ struct safety {
 	uint64_t enabled_ns;   /* start of the enable ramp */
 	double ramp;           /* 0..1 this cycle */
 	uint64_t saturated_since[ENDOSIM_AXES]; /* 0: not saturated */
+	double speed[ENDOSIM_AXES]; /* m/s, rad/s: the last checked motion */
 	struct {
 		uint64_t ns;   /* when */
 		uint64_t n;    /* periods skipped then */
@@ -69,6 +70,10 @@ struct safety {
 	uint32_t overrun_size; /* the ring's length: budget + 1 */
 	uint64_t overrun_window; /* periods skipped within the window */
 };
+
+/* The speed fade: shares of [limits] *_max_speed_* (see safety_filter). */
+#define SAFETY_FADE_START 0.5
+#define SAFETY_FADE_END 0.8
 
 void safety_init(struct safety *s);
 
@@ -118,7 +123,11 @@ bool safety_torque_on(const struct safety *s);
 
 /*
  * LIMITED[a] = COMMAND[a] times the enable ramp, clamped to
- * +-cfg->limits.max[a] and, from the previous LIMITED[a], to
+ * +-cfg->limits.max[a], faded out when it would drive the axis faster
+ * (in the direction it moves: from SAFETY_FADE_START to SAFETY_FADE_END of
+ * [limits] max speed, as last seen by safety_check_motion(), so that the
+ * rig's own torque never makes a runaway of an axis a hand let go) and,
+ * from the previous LIMITED[a], to
  * cfg->limits.slew[a] per period DT_S; or 0 when torque is off (at once,
  * not slewed). A non-finite command faults and gives 0 on every axis; so
  * does a command held beyond the limit for longer than [limits]

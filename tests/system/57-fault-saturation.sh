@@ -9,10 +9,16 @@
 . "$(dirname "$0")/fault_lib.sh"
 
 # 10 mN m: the scripted hand (its grip 0.05 N m/rad) holds the wheel
-# against it 0.2 rad off its target, not far off, never fast
+# against it 0.2 rad off its target, not far off, never fast. The force
+# model's own wheel torques (the wall's contact, wire tension, the bending
+# spring) are off: they would saturate so small a limit by themselves.
 check "simulated rig up, enabled, every axis moving" \
 	start_sim --set limits.saturation_s=0.5 \
-	--set limits.wheel_ud_max_torque_n_m=0.01
+	--set limits.wheel_ud_max_torque_n_m=0.01 \
+	--set haptics.wall_stiffness_n_per_m=0 \
+	--set haptics.wall_damping_n_s_per_m=0 \
+	--set haptics.wire_tension_n_m_per_m=0 \
+	--set haptics.bending_stiffness_n_m_per_rad=0
 watch_fault 0x80
 debug force wheel_ud 0.5
 check "sim saturation: the drive gets the limit, no more" \

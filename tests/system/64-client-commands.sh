@@ -35,7 +35,7 @@ for kv in limits.insertion_max_force_n:0:100 limits.roll_max_torque_n_m:0:5 \
 	limits.wheel_ud_max_torque_n_m:0:1 limits.wheel_lr_max_torque_n_m:0:1 \
 	limits.enable_ramp_s:0:10 scope.bending_length_m:0.01:0.3 \
 	scope.ud_gain_rad_per_rad:0:20 scope.ud_limit_rad:0:3.1416 \
-	haptics.end_zone_fraction:0.001:0.5 log.level:debug:err; do
+	haptics.wall_stiffness_n_per_m:0:20000 log.level:debug:err; do
 	IFS=: read -r key lo hi <<<"$kv"
 	was=$(ctl get "$key")
 	for v in "$lo" "$hi"; do

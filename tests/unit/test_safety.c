@@ -399,6 +399,44 @@ static void test_inject(void **state)
 	assert_int_equal(inject_find("nonsense"), -1);
 }
 
+/*
+ * The speed fade: torque that drives an axis the way it moves fades from
+ * full at SAFETY_FADE_START of its max speed to nothing at SAFETY_FADE_END;
+ * torque against the motion is never faded.
+ */
+static void test_speed_fade(void **state)
+{
+	double cmd[ENDOSIM_AXES] = { 0, 0, 0.08, 0 };
+	double out[ENDOSIM_AXES] = { 0 };
+	double vmax = cfg.limits.max_speed[2];
+	double mid = (SAFETY_FADE_START + SAFETY_FADE_END) / 2;
+	struct rig_feedback fb;
+	struct safety s;
+
+	(void)state;
+	cfg.limits.enable_ramp_s = 0;
+	safety_init(&s);
+	safety_command(&s, SAFETY_ENABLE, 0);
+	healthy_feedback(&fb, 0);
+	const struct {
+		double v_share;   /* speed as a share of the max, signed */
+		double expect;    /* the share of the command let through */
+	} cases[] = {
+		{ 0.0, 1.0 }, { SAFETY_FADE_START, 1.0 }, { mid, 0.5 },
+		{ SAFETY_FADE_END, 0.0 }, { 0.99, 0.0 },
+		{ -mid, 1.0 }, { -0.99, 1.0 }, /* braking: never faded */
+	};
+	for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+		fb.axis[2].velocity = cases[k].v_share * vmax;
+		safety_check_motion(&s, &cfg, &fb, 0);
+		/* a second of slew: the filter's steady value */
+		safety_filter(&s, &cfg, cmd, out, 1.0, 0);
+		assert_float_equal(out[2], 0.08 * cases[k].expect, 1e-12);
+	}
+	assert_int_equal(s.faults, 0);
+	config_defaults(&cfg);
+}
+
 /* A step of command reaches the drive at the slew rate, no faster. */
 static void test_slew(void **state)
 {
@@ -436,6 +474,7 @@ int main(void)
 		cmocka_unit_test(test_feedback_checks),
 		cmocka_unit_test(test_filter),
 		cmocka_unit_test(test_slew),
+		cmocka_unit_test(test_speed_fade),
 		cmocka_unit_test(test_enable_ramp),
 		cmocka_unit_test(test_saturation),
 		cmocka_unit_test(test_motion),
