@@ -95,7 +95,7 @@ COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
 	      safety.o faults.o inject.o godobject.o control.o cases.o \
-	      scene.o $(COLON_OBJS) $(DRIVE_OBJS)
+	      scene.o metrics.o $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
@@ -128,9 +128,10 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
-	     test_vessels
+	     test_vessels test_metrics
 test_config_OBJS = config.o regmap.o log.o names.o
 test_session_file_OBJS = session_file.o
+test_metrics_OBJS = metrics.o $(COLON_OBJS)
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
