@@ -1209,7 +1209,7 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 {
 	const char *out_path = NULL;
 	struct session_file f = { 0 };
-	bool csv = false;
+	bool csv = false, events = false;
 	Endosim__Reply *rep;
 	FILE *out = stdout;
 	int r;
@@ -1217,6 +1217,8 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 	for (int i = 3; i < argc; i++) {
 		if (!strcmp(argv[i], "--csv")) {
 			csv = true;
+		} else if (!strcmp(argv[i], "--events")) {
+			events = true;
 		} else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
 			out_path = argv[++i];
 		} else {
@@ -1225,8 +1227,8 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 		}
 	}
 	if (!csv) {
-		fprintf(stderr, "endoctl: session export ID --csv [--out "
-			"FILE]\n");
+		fprintf(stderr, "endoctl: session export ID --csv [--events] "
+			"[--out FILE]\n");
 		return EXIT_USAGE;
 	}
 	r = session_file(ctl, argv[2], &rep, &f);
@@ -1237,7 +1239,8 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 		fprintf(stderr, "endoctl: %s: %s\n", out_path, strerror(errno));
 		r = EXIT_REFUSED;
 	}
-	if (out && (sessionview_csv(out, &f) ||
+	if (out && ((events ? sessionview_events_csv(out, &f)
+			    : sessionview_csv(out, &f)) ||
 		    (out_path && fclose(out)))) {
 		fprintf(stderr, "endoctl: %s: write error\n",
 			out_path ? out_path : "stdout");
@@ -1268,8 +1271,8 @@ static int cmd_session(struct ctl *ctl, int argc, char **argv)
 		return session_export(ctl, argc, argv);
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
-		" | stop | status | list | show ID | export ID --csv [--out "
-		"FILE]\n");
+		" | stop | status | list | show ID | export ID --csv [--events] "
+		"[--out FILE]\n");
 	return EXIT_USAGE;
 }
 
@@ -1297,7 +1300,8 @@ static const struct {
 			      "renders" },
 	{ "session", cmd_session, "start [--trainee NAME] [--case NAME] | stop "
 				  "| status | list | show ID | export ID "
-				  "--csv [--out FILE]: training sessions" },
+				  "--csv [--events] [--out FILE]: training "
+				  "sessions" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -260,16 +260,26 @@ static void put_value(FILE *out, const struct session_record *r,
 	}
 }
 
-int sessionview_csv(FILE *out, const struct session_file *f)
+/* The session's start: the header's start_ns, else its first record. */
+static uint64_t start_ns(const struct session_file *f)
 {
 	char v[32];
-	uint64_t t0 = 0;
 
 	if (!session_text_get(f->header, "start_ns", v, sizeof(v))) {
-		t0 = strtoull(v, NULL, 10);
-	} else if (f->n_records) {
-		t0 = f->records[0].stamp_ns;
+		return strtoull(v, NULL, 10);
 	}
+	return f->n_records ? f->records[0].stamp_ns : 0;
+}
+
+static double since(uint64_t t0, uint64_t stamp_ns)
+{
+	return (double)(int64_t)(stamp_ns - t0) / 1e9;
+}
+
+int sessionview_csv(FILE *out, const struct session_file *f)
+{
+	uint64_t t0 = start_ns(f);
+
 	fprintf(out, "t_s");
 	for (size_t c = 0; c < COLUMNS; c++) {
 		fprintf(out, ",%s", columns[c].name);
@@ -278,10 +288,51 @@ int sessionview_csv(FILE *out, const struct session_file *f)
 	for (size_t i = 0; i < f->n_records; i++) {
 		const struct session_record *r = &f->records[i];
 
-		fprintf(out, "%.6f", (double)(int64_t)(r->stamp_ns - t0) / 1e9);
+		fprintf(out, "%.6f", since(t0, r->stamp_ns));
 		for (size_t c = 0; c < COLUMNS; c++) {
 			put_value(out, r, &columns[c]);
 		}
+		fputc('\n', out);
+	}
+	return ferror(out) ? -EIO : 0;
+}
+
+static const char *event_kind(uint32_t kind)
+{
+	static const char *const names[] = {
+		[SESSION_EVENT_STATE] = "state", [SESSION_EVENT_FAULT] = "fault",
+		[SESSION_EVENT_PARAM] = "param", [SESSION_EVENT_DROPS] = "drops",
+		[SESSION_EVENT_NOTE] = "note",
+	};
+
+	return kind < sizeof(names) / sizeof(names[0]) && names[kind] ?
+		       names[kind] : "unknown";
+}
+
+/* TEXT as a CSV field: quoted, its quotes doubled. */
+static void put_quoted(FILE *out, const char *text)
+{
+	fputc('"', out);
+	for (; *text; text++) {
+		if (*text == '"') {
+			fputc('"', out);
+		}
+		fputc(*text, out);
+	}
+	fputc('"', out);
+}
+
+int sessionview_events_csv(FILE *out, const struct session_file *f)
+{
+	uint64_t t0 = start_ns(f);
+
+	fprintf(out, "t_s,kind,axis,detail,value,text\n");
+	for (size_t i = 0; i < f->n_events; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+
+		fprintf(out, "%.6f,%s,%d,%u,%.9g,", since(t0, ev->stamp_ns),
+			event_kind(ev->kind), ev->axis, ev->detail, ev->value);
+		put_quoted(out, f->events[i].text);
 		fputc('\n', out);
 	}
 	return ferror(out) ? -EIO : 0;

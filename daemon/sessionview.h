@@ -40,4 +40,11 @@ void sessionview_json(struct json *j, const char *key,
  */
 int sessionview_csv(FILE *out, const struct session_file *f);
 
+/*
+ * The events of F as CSV: t_s (from the session's start), kind (state,
+ * fault, param, drops, note), axis, detail, value, text (quoted). 0 or
+ * -EIO.
+ */
+int sessionview_events_csv(FILE *out, const struct session_file *f);
+
 #endif
