@@ -28,6 +28,7 @@
 #include "inject.h"
 #include "json.h"
 #include "objio.h"
+#include "report.h"
 #include "sessionpb.h"
 #include "sessionview.h"
 
@@ -1251,6 +1252,35 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 	return r;
 }
 
+/* The instructor's HTML report (report.h) of session ID into DIR. */
+static int session_report(struct ctl *ctl, const char *id, const char *dir)
+{
+	struct session_file f = { 0 };
+	struct metrics_result m;
+	Endosim__Reply *rep;
+	bool recomputed;
+	int r = session_file(ctl, id, &rep, &f);
+
+	if (r) {
+		return r;
+	}
+	r = sessionview_metrics(&f, &m, &recomputed);
+	if (!r) {
+		r = report_write(&f, &m, dir);
+	}
+	if (r) {
+		fprintf(stderr, "endoctl: report in %s: %s\n", dir,
+			strerror(-r));
+		r = EXIT_REFUSED;
+	} else {
+		printf("wrote %s/index.html%s\n", dir, recomputed ?
+		       " (metrics recomputed: the file was cut short)" : "");
+	}
+	session_file_close(&f);
+	endosim__reply__free_unpacked(rep, NULL);
+	return r;
+}
+
 static int cmd_session(struct ctl *ctl, int argc, char **argv)
 {
 	const char *sub = argc >= 2 ? argv[1] : "";
@@ -1270,9 +1300,12 @@ static int cmd_session(struct ctl *ctl, int argc, char **argv)
 	if (argc >= 3 && !strcmp(sub, "export")) {
 		return session_export(ctl, argc, argv);
 	}
+	if (argc == 5 && !strcmp(sub, "report") && !strcmp(argv[3], "--out")) {
+		return session_report(ctl, argv[2], argv[4]);
+	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
 		" | stop | status | list | show ID | export ID --csv [--events] "
-		"[--out FILE]\n");
+		"[--out FILE] | report ID --out DIR\n");
 	return EXIT_USAGE;
 }
 
@@ -1300,8 +1333,8 @@ static const struct {
 			      "renders" },
 	{ "session", cmd_session, "start [--trainee NAME] [--case NAME] | stop "
 				  "| status | list | show ID | export ID "
-				  "--csv [--events] [--out FILE]: training "
-				  "sessions" },
+				  "--csv [--events] [--out FILE] | report "
+				  "ID --out DIR: training sessions" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -7,81 +7,60 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
-#include "anatomy.h"
-#include "colon.h"
+#include "report.h"
 
 /* ------------------------------------------------------------ metrics */
 
-static double header_double(const char *header, const char *key, double def)
+/*
+ * KEY's number in section [session] of the file's CONFIG frame (as
+ * --print-config writes it: "key = value ; help"), or DEF.
+ */
+static double session_key(const struct session_file *f, const char *key,
+			  double def)
 {
-	char v[64];
+	const char *sec = f->config ? strstr(f->config, "[session]\n") : NULL;
+	const char *end = sec ? strstr(sec + 1, "\n[") : NULL;
+	size_t n = strlen(key);
 
-	return session_text_get(header, key, v, sizeof(v)) ? def
-							   : strtod(v, NULL);
+	for (const char *l = sec; l && (!end || l < end); l = strchr(l, '\n')) {
+		l += *l == '\n';
+		if (!strncmp(l, key, n) && !strncmp(l + n, " = ", 3)) {
+			return strtod(l + n + 3, NULL);
+		}
+	}
+	return def;
 }
 
-/* The colon of the file's CASE frame at its header's resolution, or NULL. */
-static struct colon *rebuild_colon(const struct session_file *f)
+/* The metrics' parameters the session was recorded with. */
+static void file_params(const struct session_file *f,
+			struct metrics_params *p)
 {
-	struct colon_params p = COLON_PARAMS_DEFAULT;
-	char path[] = "/tmp/endoctl-case.XXXXXX", err[512];
-	struct colon *c = NULL;
-	struct anatomy a;
-	size_t n = f->case_text ? strlen(f->case_text) : 0;
-	int fd = n ? mkstemp(path) : -1;
-
-	if (fd < 0) {
-		return NULL;
-	}
-	p.step_m = header_double(f->header, "step_m", p.step_m);
-	p.ring_vertices = (uint32_t)header_double(f->header, "ring_vertices",
-						  p.ring_vertices);
-	p.segment_m = header_double(f->header, "segment_m", p.segment_m);
-	if (write(fd, f->case_text, n) == (ssize_t)n &&
-	    !anatomy_load(&a, path, err, sizeof(err))) {
-		c = colon_create(&a, &p, err, sizeof(err));
-	}
-	close(fd);
-	unlink(path);
-	return c;
+	metrics_params_default(p);
+	p->force_threshold_n = session_key(f, "force_threshold_n",
+					   p->force_threshold_n);
+	p->loop_threshold_m = session_key(f, "loop_threshold_m",
+					  p->loop_threshold_m);
+	p->view_distance_m = session_key(f, "view_distance_m",
+					 p->view_distance_m);
+	p->fov_rad = session_key(f, "fov_deg", p->fov_rad * 180 / M_PI) *
+		     M_PI / 180;
+	p->view_rate_hz = session_key(f, "view_rate_hz", p->view_rate_hz);
 }
 
 int sessionview_metrics(const struct session_file *f,
 			struct metrics_result *out, bool *recomputed)
 {
 	struct metrics_params p;
-	struct colon *colon;
-	struct metrics *m;
-	size_t e = 0;
+	char err[512];
 
 	*recomputed = false;
 	if (f->end && !metrics_parse(f->end, out)) {
 		return 0;
 	}
-	metrics_params_default(&p);
-	colon = rebuild_colon(f);
-	m = metrics_create(colon, &p);
-	if (!m) {
-		colon_destroy(colon);
-		return -ENOMEM;
-	}
-	for (size_t i = 0; i < f->n_records; i++) {
-		for (; e < f->n_events && f->events[e].ev.stamp_ns <=
-						  f->records[i].stamp_ns; e++) {
-			metrics_event(m, &f->events[e].ev, f->events[e].text);
-		}
-		metrics_record(m, &f->records[i]);
-	}
-	for (; e < f->n_events; e++) {
-		metrics_event(m, &f->events[e].ev, f->events[e].text);
-	}
-	metrics_result(m, out);
-	metrics_destroy(m);
-	colon_destroy(colon);
+	file_params(f, &p);
 	*recomputed = true;
-	return 0;
+	return report_metrics(f, &p, out, err, sizeof(err));
 }
 
 static void print_episodes(FILE *out, const char *what,

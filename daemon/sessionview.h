@@ -19,7 +19,8 @@
 /*
  * The metrics of the session in F: parsed from its END frame, or, for a
  * file without one (a crash), computed again over its records and events
- * (*RECOMPUTED true) on the colon rebuilt from its CASE frame and header
+ * (*RECOMPUTED true, report_metrics()) with the thresholds of its CONFIG
+ * frame's [session], on the colon rebuilt from its CASE frame and header
  * (without a colon when that fails: no mucosa or polyps then). 0 or
  * -errno.
  */

@@ -5,7 +5,7 @@
 # cut mid-record reads up to its last complete record (show recomputes its
 # metrics, export gives the same records as before the cut); SIGTERM during
 # a session ends its file cleanly; SIGKILL leaves a file without END that
-# still shows; ids count on across restarts.
+# still shows; ids count on across restarts; reports of both kinds.
 . "$(dirname "$0")/../common.sh"
 
 SESS="$TMP/sessions"
@@ -91,6 +91,11 @@ start_daemon --session-dir "$SESS" || finish
 check_status "after a restart, session 2 shows" 0 ctl --json session show 2
 check "... ended cleanly, with its metrics from END" \
 	jq -e '.ended and (has("note") | not) and .metrics.records > 500' "$OUT"
+check_status "its report" 0 ctl session report 2 --out "$TMP/report"
+check "... an HTML page naming the trainee" grep -q "term" "$TMP/report/index.html"
+check_status "the report of the cut file too" 0 ctl session report 1 --out "$TMP/cut"
+check "... saying its metrics were recomputed" grep -q "recomputed" "$OUT"
+check_status "report without --out: usage" 2 ctl session report 2
 
 # --- SIGKILL during a session: no END, still readable -----------------------
 ctl session start --trainee crash >/dev/null
