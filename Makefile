@@ -52,7 +52,7 @@ DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 # libFuzzer's runtime is only a recommendation of clang: named here
 DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq \
 	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
-	    $(DEPS_SCREEN) xdotool
+	    $(DEPS_SCREEN) xdotool chromium
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
 	     libglib2.0-dev clang libclang-rt-14-dev $(DEPS_SCREEN)
 # a screen for the viewer where there is none (tests, bench, headless demo)
@@ -91,19 +91,24 @@ COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 # endosimd: main, configuration, logging, the force loop and what it calls
 # (rig backends, hand, haptics, safety with its fault words and the test
 # commands' injections, publish, the colon and the scope), the control
-# thread with the cases and the scene it serves
+# thread with the cases and the scene it serves, the recorder thread of
+# training sessions with their directory and metrics
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
 	      safety.o faults.o inject.o godobject.o control.o cases.o \
-	      scene.o $(COLON_OBJS) $(DRIVE_OBJS)
+	      scene.o recorder.o sessiondir.o sessionpb.o metrics.o \
+	      $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
 DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 	     canopen.o drive_modbus.o
 
-# endoctl: the CLI over the sockets
-ENDOCTL_OBJS = endoctl.o json.o objio.o inject.o
+# endoctl: the CLI over the sockets; what it makes of a session file (its
+# metrics, again over the records of a file cut short, on the colon rebuilt
+# from the file; CSV; the instructor's report)
+ENDOCTL_OBJS = endoctl.o json.o inject.o sessionpb.o sessionview.o \
+	       metrics.o report.o $(COLON_OBJS)
 
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon
@@ -128,9 +133,11 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
-	     test_vessels
+	     test_vessels test_metrics test_report
 test_config_OBJS = config.o regmap.o log.o names.o
 test_session_file_OBJS = session_file.o
+test_metrics_OBJS = metrics.o $(COLON_OBJS)
+test_report_OBJS = report.o metrics.o names.o session_file.o $(COLON_OBJS)
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o
@@ -157,13 +164,15 @@ test_input_OBJS = input.o
 test_timing_OBJS = timing.o
 test_vessels_OBJS = vessels.o
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
-	     notify_listen
+	     notify_listen session_synth session_report
 fault_watch_OBJS =
 notify_listen_OBJS =
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)
 scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
+session_synth_OBJS = $(COLON_OBJS) metrics.o
+session_report_OBJS = $(COLON_OBJS) metrics.o report.o
 BENCH_TOOLS = bench_colon bench_haptics
 bench_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o histo.o hand.o \
 		     scenario.o rig_sim.o plant.o config.o regmap.o log.o names.o

@@ -1,0 +1,50 @@
+#!/bin/bash
+# A session on a disk too slow for it (the test-only [session]
+# write_limit_bytes_per_s at 100 kB/s, a third of the 316 kB/s a session
+# writes, with a ring of 0.5 s): records are dropped and counted, not
+# waited for. The force loop is not disturbed (no fault, overruns no more
+# than without a session), the drops are reported (session status, the
+# file's DROPS events, the metrics), and the file reads: every cycle is
+# either recorded or counted as dropped.
+. "$(dirname "$0")/../common.sh"
+
+SESS="$TMP/sessions"
+start_daemon --session-dir "$SESS" --scenario "$TOP/config/scenarios/demo.scn" \
+	--set session.write_limit_bytes_per_s=100000 --set session.ring_s=0.5 \
+	|| finish
+check "the daemon warns that it writes as if to a slow disk" \
+	grep -q "write_limit_bytes_per_s = 100000" "$LOG"
+ctl enable >/dev/null
+before=$(status_field .overruns)
+sleep 3
+quiet=$(($(status_field .overruns) - before))
+ctl session start >/dev/null
+before=$(status_field .overruns)
+sleep 3
+check_status "status while the disk lags" 0 ctl --json session status
+check "... drops counted and reported" jq -e '.recording and .drops > 500' "$OUT"
+sleep 1
+check "the force loop was not disturbed: ENABLED, no fault" \
+	test "$(status_field '.state + "/" + (.fault_bits | tostring)')" = ENABLED/0
+during=$(($(status_field .overruns) - before))
+echo "# overruns: $quiet in 3 s without a session, $during in 4 s with it"
+check "... overruns: $during in 4 s, no more than 50 above the 3 s before" \
+	test "$during" -le $((quiet + 50))
+check_status "stop" 0 ctl --json session stop
+drops=$(jq .drops "$OUT")
+records=$(jq .records "$OUT")
+echo "# $records records written, $drops dropped"
+check "stop reports the drops" test "$drops" -gt 1000
+check_status "the file reads" 0 ctl --json session show 1
+check "... with its END, and the metrics count the drops" \
+	jq -e --argjson d "$drops" '.ended and .metrics.drops == $d' "$OUT"
+ctl session export 1 --csv --events --out "$TMP/events.csv"
+check "the file's DROPS events count up to the drops" \
+	test "$(awk -F, '$2 == "drops" { v = $5 } END { print v }' \
+		"$TMP/events.csv")" = "$drops"
+ctl session export 1 --csv --out "$TMP/s.csv"
+span=$(awk -F, 'NR == 2 { first = $2 } END { print $2 - first + 1 }' "$TMP/s.csv")
+n=$(($(wc -l <"$TMP/s.csv") - 1))
+check "records ($n) + drops ($drops) cover the cycles ($span), with gaps" \
+	test "$n" = "$records" -a $((n + drops)) -ge "$span" -a "$n" -lt "$span"
+finish

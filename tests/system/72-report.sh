@@ -1,0 +1,71 @@
+#!/bin/bash
+# The instructor's report (issue 8) rendered by a browser: a session file
+# of a scripted colonoscopy on the polyps case (tests/tools/session_synth:
+# insertion with a sigmoid loop and excessive force, a fault, the cecum, a
+# withdrawal of ~6.5 min), its report (tests/tools/session_report, the
+# code of `endoctl session report`), rendered in headless Chromium: the
+# screenshot is not blank (dark text, the red threshold lines), the
+# rendered DOM holds the four plots with their episode bands, the
+# trainee's name escaped, no script. The screenshot stays in
+# $REPORT_SHOT (default $TMP/report.png) to be looked at.
+. "$(dirname "$0")/../common.sh"
+
+CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$CHROMIUM" ]; then
+	fail "chromium is installed (Debian package chromium; make deps-test)"
+	finish
+fi
+SHOT=${REPORT_SHOT:-$TMP/report.png}
+TRAINEE="Dr. <b>O'Brien</b> & Co"
+
+# the browser's profile and caches in the test's directory
+chrome() {
+	HOME="$TMP" "$CHROMIUM" --headless --no-sandbox --disable-gpu \
+		--user-data-dir="$TMP/chromium" --hide-scrollbars "$@" \
+		2>>"$TMP/chromium.log"
+}
+
+check "session_synth writes a session file" \
+	"$TOOLS/session_synth" "$CASES/polyps.case" "$TMP/s.endoses" "$TRAINEE"
+check "session_report writes DIR/index.html" \
+	sh -c '"$1" "$2" "$3" >"$4" && test -s "$3/index.html"' _ \
+	"$TOOLS/session_report" "$TMP/s.endoses" "$TMP/report" "$TMP/metrics"
+check "the recomputed metrics reach the cecum" \
+	grep -q '^cecum_s=[0-9]' "$TMP/metrics"
+check "the recomputed metrics find all 5 polyps" \
+	grep -q '^polyps_seen=5$' "$TMP/metrics"
+
+check "headless Chromium renders a screenshot" \
+	chrome --screenshot="$SHOT" --window-size=1280,2000 \
+	"file://$TMP/report/index.html"
+if [ -s "$SHOT" ]; then
+	read -r _ _ _ lit red _ < <("$TOOLS/png_stats" "$SHOT" rect:0,0,1280,2000)
+	lit=${lit#lit=}
+	red=${red#red=}
+	check "the screenshot has text (dark pixels: lit $lit < 0.999)" \
+		awk -v v="$lit" 'BEGIN { exit !(v < 0.999) }'
+	check "the screenshot has the plots' red marks (red $red > 0.00005)" \
+		awk -v v="$red" 'BEGIN { exit !(v > 0.00005) }'
+fi
+
+chrome --dump-dom "file://$TMP/report/index.html" >"$TMP/dom.html"
+check "the rendered DOM has the four plots" \
+	test "$(grep -o '<svg class="plot"' "$TMP/dom.html" | wc -l)" -eq 4
+for id in plot-force plot-torque plot-tip plot-bow; do
+	check "the DOM has $id with a drawn series" \
+		sh -c 'sed -n "/<figure id=\"$1\">/,/<\/figure>/p" "$2" |
+			grep -q "<path class=\"series\" [^>]*d=\"M[0-9]"' \
+		_ "$id" "$TMP/dom.html"
+done
+check "the DOM has force episode bands" \
+	grep -q '<rect class="band force"' "$TMP/dom.html"
+check "the DOM has loop episode bands" \
+	grep -q '<rect class="band loop"' "$TMP/dom.html"
+check "the DOM marks the fault" grep -q 'class="event fault"' "$TMP/dom.html"
+check "the DOM has the withdrawal marked good (>= 6 min)" \
+	grep -q '<tr class="good"><th>Withdrawal time' "$TMP/dom.html"
+check "the trainee's name is escaped" \
+	grep -qF 'Dr. &lt;b&gt;O'"'"'Brien&lt;/b&gt; &amp; Co' "$TMP/dom.html"
+check "the page has no script and no external asset" \
+	sh -c "! grep -qiE '<script|src=|href=\"http' '$TMP/report/index.html'"
+finish

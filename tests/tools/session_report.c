@@ -1,0 +1,47 @@
+/*
+ * session_report - the report of a session file, until endoctl's
+ * `session report` does the same (report.h):
+ *
+ *   session_report FILE.endoses DIR
+ *
+ * recomputes the metrics from the records (report_metrics()), prints them
+ * as key=value lines and writes DIR/index.html.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "report.h"
+
+int main(int argc, char **argv)
+{
+	static char text[1 << 14];
+	struct session_file f = { 0 };
+	struct metrics_params p;
+	struct metrics_result m;
+	char err[256] = "";
+	int r;
+
+	if (argc != 3) {
+		fprintf(stderr, "usage: session_report FILE DIR\n");
+		return 2;
+	}
+	r = session_file_read(argv[1], &f);
+	if (r) {
+		fprintf(stderr, "session_report: %s: %s\n", argv[1], strerror(-r));
+		return 1;
+	}
+	metrics_params_default(&p);
+	r = report_metrics(&f, &p, &m, err, sizeof(err));
+	if (err[0]) {
+		fprintf(stderr, "session_report: %s\n", err);
+	}
+	if (!r && metrics_format(&m, text, sizeof(text)) > 0) {
+		fputs(text, stdout);
+	}
+	r = r ? r : report_write(&f, &m, argv[2]);
+	if (r) {
+		fprintf(stderr, "session_report: %s: %s\n", argv[2], strerror(-r));
+	}
+	session_file_close(&f);
+	return r ? 1 : 0;
+}

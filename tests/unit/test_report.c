@@ -1,0 +1,195 @@
+/*
+ * test_report.c - the instructor's report from a synthetic session in
+ * memory: the page holds its four plots, the episodes as bands, the
+ * events, the segments' names; text from the file is escaped; a spike of
+ * one record in 20 000 survives the decimation; the metrics recomputed
+ * from the file (report_metrics()) find what the records hold.
+ *
+ * Reads tests/cases/straight.case: run from the source tree. Writes to
+ * $TMPDIR.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "geom_assert.h"
+#include "report.h"
+
+#define N_REC 20000 /* 20 s at 1 kHz */
+
+static char case_text[1 << 16];
+static char header[] =
+	"format=1\nid=7\ntrainee=<script>alert(1)</script> & O'Neil\n"
+	"case=straight\nstarted=2026-11-20T10:00:00Z\nstep_m=0.002\n"
+	"ring_vertices=48\nsegment_m=0.04\nversion=test\n";
+static struct session_record records[N_REC];
+static struct session_file_event events[2];
+
+static void load_case(void)
+{
+	FILE *f = fopen("tests/cases/straight.case", "r");
+	size_t n;
+
+	assert_non_null(f);
+	n = fread(case_text, 1, sizeof(case_text) - 1, f);
+	case_text[n] = '\0';
+	fclose(f);
+}
+
+/* 5 N, 20 N from 5 to 8 s, one record of 40 N at 12.345 s; the sigmoid
+ * bowed 2 cm from 14 to 16 s; the tip at 1 cm/s along the axis. */
+static void make_session(struct session_file *f)
+{
+	load_case();
+	for (int k = 0; k < N_REC; k++) {
+		struct session_record *r = &records[k];
+		double t = k * 1e-3;
+
+		memset(r, 0, sizeof(*r));
+		r->stamp_ns = 1000000000ull + (uint64_t)k * 1000000ull;
+		r->depth_m = r->tip_s_m = (float)(0.01 * t + 0.05);
+		r->tip[2] = r->tip_s_m;
+		r->dir[2] = 1;
+		r->limited[0] = (float)(k == 12345 ? 40 : t >= 5 && t < 8 ? 20 : 5);
+		r->limited[1] = (float)(0.01 * sin(t));
+		r->spans = 2;
+		r->bow_m[0] = (float)(t >= 14 && t < 16 ? 0.02 : 0);
+	}
+	events[0] = (struct session_file_event){
+		.ev = { .stamp_ns = 1000000000ull, .kind = SESSION_EVENT_STATE,
+			.axis = -1, .value = 1 },
+		.text = "",
+	};
+	events[1] = (struct session_file_event){
+		.ev = { .stamp_ns = 1000000000ull + 9000000000ull,
+			.kind = SESSION_EVENT_FAULT, .axis = 0, .detail = 7 },
+		.text = "<evil> note",
+	};
+	*f = (struct session_file){
+		.header = header, .case_text = case_text, .records = records,
+		.n_records = N_REC, .events = events, .n_events = 2,
+	};
+}
+
+static char *slurp(const char *path)
+{
+	FILE *f = fopen(path, "r");
+	static char buf[1 << 22];
+	size_t n;
+
+	assert_non_null(f);
+	n = fread(buf, 1, sizeof(buf) - 1, f);
+	buf[n] = '\0';
+	fclose(f);
+	return buf;
+}
+
+static int count(const char *hay, const char *needle)
+{
+	int n = 0;
+
+	for (const char *p = strstr(hay, needle); p; p = strstr(p + 1, needle)) {
+		n++;
+	}
+	return n;
+}
+
+static void test_recomputed_metrics(void **state)
+{
+	struct session_file f;
+	struct metrics_params p;
+	struct metrics_result m;
+	char err[256];
+
+	(void)state;
+	make_session(&f);
+	metrics_params_default(&p);
+	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_string_equal(err, "");
+	assert_int_equal(m.records, N_REC);
+	assert_int_equal(m.force_episodes, 1);
+	assert_near(m.force[0].start_s, 5.0, 1.001e-3);
+	assert_near(m.force[0].end_s, 8.0, 1.001e-3);
+	assert_near(m.peak_insertion_n, 40, 1e-6);
+	assert_int_equal(m.loop_episodes, 1);
+	assert_near(m.longest_loop_s, 2.0, 1.001e-3);
+	assert_true(m.cecum_s < 0);
+}
+
+static void test_report_page(void **state)
+{
+	struct session_file f;
+	struct metrics_params p;
+	struct metrics_result m;
+	char dir[256], path[300], err[256], cmd[320];
+	const char *tmp = getenv("TMPDIR");
+	const char *html, *force, *path_end;
+	static char series[1 << 16];
+
+	(void)state;
+	make_session(&f);
+	metrics_params_default(&p);
+	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	snprintf(dir, sizeof(dir), "%s/endosim-report-%d",
+		 tmp && *tmp ? tmp : "/tmp", (int)getpid());
+	assert_int_equal(report_write(&f, &m, dir), 0); /* creates DIR */
+	snprintf(path, sizeof(path), "%s/index.html", dir);
+	html = slurp(path);
+	assert_int_equal(count(html, "<svg class=\"plot\""), 4);
+	assert_non_null(strstr(html, "id=\"plot-force\""));
+	assert_non_null(strstr(html, "id=\"plot-torque\""));
+	assert_non_null(strstr(html, "id=\"plot-tip\""));
+	assert_non_null(strstr(html, "id=\"plot-bow\""));
+	/* one force and one loop episode, a band on each of the 4 plots */
+	assert_int_equal(count(html, "<rect class=\"band force\" x="), 4);
+	assert_int_equal(count(html, "<rect class=\"band loop\" x="), 4);
+	assert_int_equal(count(html, "class=\"event fault\""), 4);
+	assert_non_null(strstr(html, ">sigmoid</text>"));
+	assert_non_null(strstr(html, "&lt;script&gt;alert(1)&lt;/script&gt; "
+				     "&amp; O&#39;Neil"));
+	assert_null(strstr(html, "<script"));
+	assert_null(strstr(html, "<evil>"));
+	assert_non_null(strstr(html, "&lt;evil&gt; note"));
+	assert_null(strstr(html, "src="));
+	/* the spike's pixel: 40 N on the axis 0..40 N is the plot's top */
+	force = strstr(html, "id=\"plot-force\"");
+	force = strstr(force, "<path class=\"series\"");
+	assert_non_null(force);
+	path_end = strstr(force, "\"/>");
+	assert_non_null(path_end);
+	snprintf(series, sizeof(series), "%.*s", (int)(path_end - force), force);
+	assert_non_null(strstr(series, ",34.0"));
+	assert_true(count(series, " L") <= 2 * 951);
+	snprintf(cmd, sizeof(cmd), "rm -r '%s'", dir);
+	assert_int_equal(system(cmd), 0);
+}
+
+static void test_report_unwritable(void **state)
+{
+	struct session_file f;
+	struct metrics_result m = { 0 };
+
+	(void)state;
+	make_session(&f);
+	assert_true(report_write(&f, &m, "/proc/no/such/dir") < 0);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_recomputed_metrics),
+		cmocka_unit_test(test_report_page),
+		cmocka_unit_test(test_report_unwritable),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
