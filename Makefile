@@ -157,16 +157,20 @@ test_input_OBJS = input.o
 test_timing_OBJS = timing.o
 test_vessels_OBJS = vessels.o
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
-	     notify_listen
+	     notify_listen session_synth
 fault_watch_OBJS =
 notify_listen_OBJS =
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)
 scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
+# the force loop off line (tests/tools/offline.h): simulated rig and hand,
+# kinematics, haptics
+OFFLINE_OBJS = offline.o $(COLON_OBJS) godobject.o haptics.o hand.o \
+	       scenario.o rig_sim.o plant.o config.o regmap.o log.o
+session_synth_OBJS = $(OFFLINE_OBJS) cases.o state_text.o
 BENCH_TOOLS = bench_colon bench_haptics
-bench_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o histo.o hand.o \
-		     scenario.o rig_sim.o plant.o config.o regmap.o log.o names.o
+bench_haptics_OBJS = $(OFFLINE_OBJS) histo.o names.o
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against
@@ -225,11 +229,16 @@ $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
 
-# test tools: separate processes the tests and benchmarks run
+# test tools: separate processes the tests and benchmarks run; the
+# modules they share
+$(BUILD)/obj/%.o: tests/tools/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon -c -o $@ $<
+
 define test_tool_rule
 $(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -Itests/tools -o $$@ $$< \
 		$(call obj,$($(1)_OBJS) $(PROTO_OBJS)) $$(LDFLAGS) $$(LDLIBS)
 endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
@@ -249,7 +258,7 @@ bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
 $(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
 		$(call obj,$(bench_haptics_OBJS))
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< \
+	$(CC) $(ALL_CFLAGS) -Idaemon -Itests/tools -o $@ $< \
 		$(call obj,$(bench_haptics_OBJS)) $(LDFLAGS) $(LDLIBS)
 
 $(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \

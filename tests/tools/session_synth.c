@@ -1,0 +1,272 @@
+/*
+ * session_synth - a session file (docs/SESSION_FORMAT.md) without a
+ * daemon: a scenario played on a case by endosimd's own force-loop parts
+ * off line (offline.h: the simulated rig and hand, the kinematics, the
+ * haptics), one RECORD per 1 ms cycle as the daemon publishes it, for the
+ * replay's and the metrics' tests.
+ *
+ *   session_synth [--at T]... [--trainee NAME] CASE SCENARIO OUT [SECONDS]
+ *
+ * CASE: a case file (the colon at the default resolution); SCENARIO: the
+ * simulated hand's script; OUT: the file written; SECONDS: how much of the
+ * scenario (default: all of it). The file holds HEADER (every key of the
+ * format), CONFIG (the defaults with [case] file = CASE, as endosimd
+ * --print-config prints them), CASE (the file's text), a STATE event
+ * (ENABLED) at the first record, the RECORDs, and END (cycles,
+ * duration_s).
+ *
+ * --at T (repeatable): the truth at T seconds after the first record,
+ * printed to stdout as state_text.h's lines each prefixed "T: ": the
+ * record's fields as the file holds them (through
+ * session_record_from_state() and back), and the tube the daemon would
+ * have published for that cycle (not in the file).
+ *
+ * Exit status: 0, 1 on a failure (said on stderr), 2 usage.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cases.h"
+#include "offline.h"
+#include "session_file.h"
+#include "state_text.h"
+#include "version.h"
+
+#define MAX_AT 32
+#define BATCH (64u << 10)
+#define SCENE_ID 1
+
+struct synth {
+	const char *case_path, *scenario, *out, *trainee;
+	double seconds;
+	double at[MAX_AT];
+	int n_at;
+	struct config cfg;
+	struct colon *colon;
+	int fd;
+	unsigned char *buf;
+	size_t used;
+};
+
+static void usage(void)
+{
+	fprintf(stderr, "usage: session_synth [--at T]... [--trainee NAME] "
+		"CASE SCENARIO OUT [SECONDS]\n");
+	exit(2);
+}
+
+static void parse(int argc, char **argv, struct synth *s)
+{
+	static const struct option longs[] = {
+		{ "at", required_argument, NULL, 'a' },
+		{ "trainee", required_argument, NULL, 't' },
+		{ 0 },
+	};
+	int c;
+
+	s->trainee = "synth";
+	s->seconds = -1;
+	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
+		if (c == 'a' && s->n_at < MAX_AT) {
+			s->at[s->n_at++] = atof(optarg);
+		} else if (c == 't') {
+			s->trainee = optarg;
+		} else {
+			usage();
+		}
+	}
+	if (argc - optind < 3 || argc - optind > 4) {
+		usage();
+	}
+	s->case_path = argv[optind];
+	s->scenario = argv[optind + 1];
+	s->out = argv[optind + 2];
+	if (argc - optind == 4) {
+		s->seconds = atof(argv[optind + 3]);
+	}
+}
+
+/* The whole of PATH, NUL-terminated (free() it); NULL with errno. */
+static char *slurp(const char *path)
+{
+	FILE *f = fopen(path, "r");
+	char *text = NULL;
+	size_t size = 0;
+	FILE *m = f ? open_memstream(&text, &size) : NULL;
+	char chunk[4096];
+	size_t n;
+
+	while (m && (n = fread(chunk, 1, sizeof(chunk), f)) > 0) {
+		fwrite(chunk, 1, n, m);
+	}
+	if (m) {
+		fclose(m);
+	}
+	if (f) {
+		fclose(f);
+	}
+	return text;
+}
+
+static int put(struct synth *s, uint32_t type, const void *p, uint32_t n)
+{
+	if (s->used + n + 12 > BATCH) {
+		if (write(s->fd, s->buf, s->used) != (ssize_t)s->used) {
+			return -EIO;
+		}
+		s->used = 0;
+	}
+	if (n + 12 > BATCH) {
+		return session_file_write_frame(s->fd, type, p, n);
+	}
+	s->used += session_frame_put(s->buf, BATCH, s->used, type, p, n);
+	return 0;
+}
+
+static int put_text(struct synth *s, uint32_t type, const char *text)
+{
+	return put(s, type, text, (uint32_t)strlen(text));
+}
+
+static int write_head(struct synth *s)
+{
+	const struct config *c = &s->cfg;
+	char header[1024], started[32], *config = NULL, *text;
+	size_t size = 0;
+	time_t now = time(NULL);
+	struct tm tm;
+	FILE *m = open_memstream(&config, &size);
+	int r;
+
+	if (!m) {
+		return -ENOMEM;
+	}
+	config_print(c, m);
+	fclose(m);
+	gmtime_r(&now, &tm);
+	strftime(started, sizeof(started), "%Y-%m-%dT%H:%M:%SZ", &tm);
+	snprintf(header, sizeof(header), "format=%u\nid=1\ntrainee=%s\n"
+		 "case=%s\nstarted=%s\nstart_ns=%llu\nperiod_ns=%llu\n"
+		 "version=%s\nrecord_size=%zu\nstep_m=%.17g\n"
+		 "ring_vertices=%d\nsegment_m=%.17g\n", SESSION_FILE_FORMAT,
+		 s->trainee, colon_name(s->colon), started,
+		 (unsigned long long)OFFLINE_START_NS,
+		 (unsigned long long)OFFLINE_PERIOD_NS, ENDOSIM_VERSION,
+		 sizeof(struct session_record), c->colon.step_m,
+		 (int)c->colon.ring_vertices, c->colon.segment_m);
+	text = slurp(s->case_path);
+	r = session_file_write_magic(s->fd);
+	r = r ? r : put_text(s, SESSION_FRAME_HEADER, header);
+	r = r ? r : put_text(s, SESSION_FRAME_CONFIG, config);
+	r = r ? r : !text ? -errno : put_text(s, SESSION_FRAME_CASE, text);
+	free(text);
+	free(config);
+	return r;
+}
+
+static int put_event(struct synth *s, uint64_t stamp_ns, uint32_t kind,
+		     double value)
+{
+	struct session_event ev = { .stamp_ns = stamp_ns, .kind = kind,
+				    .axis = -1, .value = value };
+
+	return put(s, SESSION_FRAME_EVENT, &ev, sizeof(ev));
+}
+
+/* The truth at cycle K (from 0), if one was asked for then. */
+static void truth(const struct synth *s, long k, const struct endosim_state *st)
+{
+	struct session_record rec;
+	struct endosim_state back;
+	char prefix[32];
+
+	for (int i = 0; i < s->n_at; i++) {
+		if (llround(s->at[i] * 1e9 / OFFLINE_PERIOD_NS) != k) {
+			continue;
+		}
+		session_record_from_state(st, &rec);
+		session_record_to_state(&rec, &back);
+		memcpy(back.scope.tube, st->scope.tube, sizeof(back.scope.tube));
+		snprintf(prefix, sizeof(prefix), "%g: ", s->at[i]);
+		state_text_print(stdout, prefix, &back);
+	}
+}
+
+static int run(struct synth *s, struct offline *o, long cycles)
+{
+	struct endosim_state st;
+	struct session_record rec;
+	char end[128];
+	int r = write_head(s);
+
+	for (long k = 0; !r && k < cycles; k++) {
+		offline_step(o);
+		offline_state(o, SCENE_ID, &st);
+		if (k == 0) {
+			r = put_event(s, st.stamp_ns, SESSION_EVENT_STATE,
+				      ENDOSIM_STATE_ENABLED);
+		}
+		session_record_from_state(&st, &rec);
+		r = r ? r : put(s, SESSION_FRAME_RECORD, &rec, sizeof(rec));
+		truth(s, k, &st);
+	}
+	snprintf(end, sizeof(end), "cycles=%ld\nduration_s=%.3f\n", cycles,
+		 cycles > 0 ? (double)(cycles - 1) * OFFLINE_PERIOD_NS * 1e-9 :
+			      0.0);
+	r = r ? r : put_text(s, SESSION_FRAME_END, end);
+	if (!r && write(s->fd, s->buf, s->used) != (ssize_t)s->used) {
+		r = -EIO;
+	}
+	return r;
+}
+
+int main(int argc, char **argv)
+{
+	struct synth s = { .fd = -1 };
+	struct offline *o = NULL;
+	char err[512];
+	int r = 1;
+
+	parse(argc, argv, &s);
+	config_defaults(&s.cfg);
+	snprintf(s.cfg.colon.file, sizeof(s.cfg.colon.file), "%s",
+		 s.case_path);
+	s.colon = cases_load(&s.cfg, NULL, err, sizeof(err));
+	o = s.colon ? offline_create(&s.cfg, s.colon, s.scenario, err,
+				     sizeof(err)) : NULL;
+	if (!o) {
+		fprintf(stderr, "session_synth: %s\n", err);
+		goto out;
+	}
+	if (s.seconds < 0) {
+		s.seconds = offline_length_s(o);
+	}
+	s.buf = malloc(BATCH);
+	s.fd = open(s.out, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+	if (!s.buf || s.fd < 0) {
+		fprintf(stderr, "session_synth: %s: %s\n", s.out,
+			strerror(errno));
+		goto out;
+	}
+	r = run(&s, o, lround(s.seconds * 1e9 / OFFLINE_PERIOD_NS) + 1);
+	if (r) {
+		fprintf(stderr, "session_synth: %s: %s\n", s.out,
+			strerror(-r));
+	}
+	r = r ? 1 : 0;
+out:
+	if (s.fd >= 0) {
+		close(s.fd);
+	}
+	free(s.buf);
+	offline_destroy(o);
+	colon_destroy(s.colon);
+	return r;
+}
