@@ -108,12 +108,16 @@ ENDOCTL_OBJS = endoctl.o json.o objio.o inject.o
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon
 # rebuilt with the daemon's own centreline and mesh, its levels of detail
-# and the portal walk; the endoscopic view, the overview, the HUD
+# and the portal walk; the endoscopic view, the overview, the HUD; the
+# replay of a session file, its colon built and served and its scope's
+# tube made by the daemon's own modules (case, colon, scene, kinematics)
 VIEWER_OBJS = endoview.o link.o rigctl.o ui.o input.o \
-	      model.o lod.o portal.o centreline.o mesh.o \
+	      model.o lod.o portal.o \
 	      gpumesh.o endo.o vessels.o overview.o shapes.o \
-	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o
-VIEWER_PKGS = glfw3 epoxy cglm stb
+	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o \
+	      replay.o state_text.o scene.o cases.o config.o regmap.o \
+	      $(COLON_OBJS)
+VIEWER_PKGS = glfw3 epoxy cglm stb inih
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
 VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
 		  2>/dev/null) -lm

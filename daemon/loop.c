@@ -269,20 +269,15 @@ static void take_colon(struct loop *l)
 
 static void kinematics(struct loop *l)
 {
-	const struct scope_params p = {
-		.bending_length_m = l->cfg.scope.bending_length_m,
-		.ud_gain = l->cfg.scope.gain[0],
-		.lr_gain = l->cfg.scope.gain[1],
-		.ud_limit_rad = l->cfg.scope.limit_rad[0],
-		.lr_limit_rad = l->cfg.scope.limit_rad[1],
-	};
 	const struct scope_input in = {
 		.depth_m = l->fb.axis[ENDOSIM_AXIS_INSERTION].position,
 		.roll_rad = l->fb.axis[ENDOSIM_AXIS_ROLL].position,
 		.wheel_ud_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_UD].position,
 		.wheel_lr_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_LR].position,
 	};
+	struct scope_params p;
 
+	scope_params_config(&l->cfg, &p);
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
 }
 

@@ -42,12 +42,7 @@ struct offline *offline_create(const struct config *cfg, struct colon *colon,
 	}
 	o->cfg = *cfg;
 	o->colon = colon;
-	o->sp = (struct scope_params){
-		.bending_length_m = cfg->scope.bending_length_m,
-		.ud_gain = cfg->scope.gain[0], .lr_gain = cfg->scope.gain[1],
-		.ud_limit_rad = cfg->scope.limit_rad[0],
-		.lr_limit_rad = cfg->scope.limit_rad[1],
-	};
+	scope_params_config(cfg, &o->sp);
 	scn = scenario_load(scenario, err, errsize);
 	o->hand = scn ? hand_create(&o->cfg, scn) : NULL;
 	o->rig = o->hand ? rig_sim_create(&o->cfg, o->hand) : NULL;
