@@ -91,19 +91,24 @@ COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 # endosimd: main, configuration, logging, the force loop and what it calls
 # (rig backends, hand, haptics, safety with its fault words and the test
 # commands' injections, publish, the colon and the scope), the control
-# thread with the cases and the scene it serves
+# thread with the cases and the scene it serves, the recorder thread of
+# training sessions with their directory and metrics
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
 	      safety.o faults.o inject.o godobject.o control.o cases.o \
-	      scene.o $(COLON_OBJS) $(DRIVE_OBJS)
+	      scene.o recorder.o sessiondir.o sessionpb.o metrics.o \
+	      $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
 DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 	     canopen.o drive_modbus.o
 
-# endoctl: the CLI over the sockets
-ENDOCTL_OBJS = endoctl.o json.o objio.o inject.o
+# endoctl: the CLI over the sockets; what it makes of a session file (its
+# metrics, again over the records of a file cut short, on the colon rebuilt
+# from the file; CSV)
+ENDOCTL_OBJS = endoctl.o json.o inject.o sessionpb.o sessionview.o \
+	       metrics.o $(COLON_OBJS)
 
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon
@@ -132,9 +137,10 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
-	     test_vessels
+	     test_vessels test_metrics
 test_config_OBJS = config.o regmap.o log.o names.o
 test_session_file_OBJS = session_file.o
+test_metrics_OBJS = metrics.o $(COLON_OBJS)
 test_frame_OBJS = frame.o endosim.pb-c.o
 test_seqlock_OBJS = publish.o shm_reader.o log.o
 test_plant_OBJS = plant.o

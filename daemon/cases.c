@@ -74,6 +74,24 @@ struct colon *cases_load(const struct config *cfg, const char *name,
 	return load_case_file(path, name, &p, err, errsize);
 }
 
+int cases_path(const struct config *cfg, const char *name, char *buf,
+	       size_t size)
+{
+	int n;
+
+	if (!name && *cfg->colon.file) {
+		n = snprintf(buf, size, "%s", cfg->colon.file);
+	} else {
+		name = name ? name : cfg->colon.name;
+		if (!config_case_name_ok(name)) {
+			return -EINVAL;
+		}
+		n = snprintf(buf, size, "%s/%s.case", cfg->colon.directory,
+			     name);
+	}
+	return n < 0 || (size_t)n >= size ? -ENAMETOOLONG : 0;
+}
+
 static int by_name(const void *a, const void *b)
 {
 	return strcmp(((const struct cases_entry *)a)->name,

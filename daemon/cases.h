@@ -37,6 +37,14 @@ struct colon *cases_load(const struct config *cfg, const char *name,
 			 char *err, size_t errsize);
 
 /*
+ * The file cases_load(CFG, NAME, ...) reads, into BUF: DIRECTORY/NAME.case,
+ * or the configured [case] file (a .case, or an .obj mesh) when NAME is
+ * NULL. 0, or -EINVAL for a NAME that is not a case name, -ENAMETOOLONG.
+ */
+int cases_path(const struct config *cfg, const char *name, char *buf,
+	       size_t size);
+
+/*
  * The cases in DIR (files NAME.case that parse), sorted by name: a
  * malloc'd array of *N entries in *OUT (free() it). A file that does not
  * parse is left out and the first such error put in ERR (else ""). Returns

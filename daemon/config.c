@@ -370,6 +370,28 @@ static const struct config_key keys[] = {
 	   "accept the test-only fault injections (endoctl debug): never on "
 	   "a rig a person touches"),
 
+	KS("session", "directory", session.directory, CONFIG_SESSION_DIR, 0,
+	   "where training sessions are recorded (ID.endoses), created if "
+	   "missing"),
+	KD("session", "ring_s", session.ring_s, 4.0, 0.1, 60, "s", 0,
+	   "the ring between the force loop and the recorder, in seconds of "
+	   "cycles: how long a stalled disk is ridden out before records drop"),
+	KD("session", "write_limit_bytes_per_s", session.write_limit_bytes_per_s,
+	   0, 0, 1e9, "B/s", 0,
+	   "for tests only: the recorder writes at most this fast (a slow "
+	   "disk); 0: unlimited"),
+	KD("session", "force_threshold_n", session.force_threshold_n, 15, 0.1,
+	   1000, "N", 0, "metrics: insertion force above this is an episode of "
+	   "excessive pressure"),
+	KD("session", "loop_threshold_m", session.loop_threshold_m, 0.01, 0.0001,
+	   1, "m", 0, "metrics: a mobile segment bowed more than this is a loop"),
+	KD("session", "view_distance_m", session.view_distance_m, 0.06, 0.001,
+	   1, "m", 0, "metrics: mucosa nearer the camera than this is seen"),
+	KD("session", "fov_deg", session.fov_deg, 140, 1, 359, "deg", 0,
+	   "metrics: the camera's full field of view"),
+	KD("session", "view_rate_hz", session.view_rate_hz, 20, 0.1, 1000, "Hz",
+	   0, "metrics: how often the mucosa and polyps seen are evaluated"),
+
 	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
 	   "m", LIVE, "length of the bending section behind the tip"),
 	KD("scope", "ud_gain_rad_per_rad", scope.gain[0], 1.8, 0, 20, "rad/rad",

@@ -26,6 +26,7 @@
 #ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
 #define CONFIG_CASE_DIR "/usr/local/share/endosim/cases"
 #endif
+#define CONFIG_SESSION_DIR "/var/lib/endosim/sessions"
 #define CONFIG_STR 128 /* longest string value, bytes with the NUL */
 #define CONFIG_OVERRUN_BUDGET_MAX 1000 /* [loop] overrun_budget */
 
@@ -174,6 +175,16 @@ struct config {
 	struct {
 		int test_commands;   /* 1: DebugInject accepted (tests only) */
 	} debug;
+	struct {                           /* [session]: recorder.h */
+		char directory[CONFIG_STR];    /* ID.endoses files */
+		double ring_s;                 /* the record ring, s of cycles */
+		double write_limit_bytes_per_s; /* tests: a slow disk; 0 none */
+		double force_threshold_n;      /* metrics.h struct metrics_params */
+		double loop_threshold_m;
+		double view_distance_m;
+		double fov_deg;
+		double view_rate_hz;
+	} session;
 	struct {
 		double bending_length_m;
 		double gain[2];      /* tip rad per wheel rad: ud, lr */

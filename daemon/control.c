@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <grp.h>
+#include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -24,6 +25,8 @@
 #include "inject.h"
 #include "log.h"
 #include "scene.h"
+#include "sessiondir.h"
+#include "sessionpb.h"
 
 #define MAX_EVENTS 32
 #define MAX_PEER_GROUPS 256
@@ -77,6 +80,15 @@ struct reply_buf {
 	Endosim__CaseEntry **case_entries_p;
 	struct cases_entry *cases;
 	char case_error[512];
+	Endosim__SessionReply session_reply;
+	Endosim__SessionInfo session;
+	struct recorder_info rinfo;        /* what session points into */
+	struct sessionpb_metrics metrics;
+	Endosim__SessionListReply session_list;
+	Endosim__SessionInfo *list_infos;
+	Endosim__SessionInfo **list_infos_p;
+	struct sessiondir_entry *list_entries;
+	struct sessiondir_entry shown;     /* SessionShow's file */
 };
 
 struct control {
@@ -92,6 +104,7 @@ struct control {
 	gid_t command_gid;       /* who may command besides root */
 	struct reply_buf rb;
 	struct colon *colon;     /* the loop's now: read its mesh only */
+	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
 	uint64_t scene_id;
 	struct scene *scene;     /* GetScene's replies, made on demand */
 	uint64_t rate_t0_ns, rate_cycle0;
@@ -657,6 +670,7 @@ static void on_set_param(struct control *c, struct client *cl,
 	}
 	loop_set_config(c->deps.loop, &c->cfg);
 	atomic_store(&log_max_level, c->cfg.log.level);
+	recorder_param(c->deps.recorder, sp->key, sp->value);
 	log_notice("%s set from %s to %s (uid %d)", sp->key, before, sp->value,
 		   (int)cl->uid);
 }
@@ -863,38 +877,353 @@ static int swap_colon(struct control *c, struct colon *colon)
 	return 0;
 }
 
-static void on_load_case(struct control *c, struct client *cl,
-			 const Endosim__Request *req, Endosim__Reply *rep)
+/* Loads case NAME (IDLE only, never during a session). 0, or -1 refused. */
+static int load_case(struct control *c, struct client *cl, const char *name,
+		     Endosim__Reply *rep)
 {
-	const char *name = req->load_case->name;
+	struct recorder_info ri;
 	struct endosim_state st;
 	struct colon *colon;
 	int r;
 
+	recorder_info(c->deps.recorder, &ri);
+	if (ri.recording) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "a session is recording: 'session stop' first");
+		return -1;
+	}
 	if (!publish_read(c->deps.pub, &st) &&
 	    st.state != ENDOSIM_STATE_IDLE) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
 		       "a case loads only while IDLE: disable first");
-		return;
+		return -1;
 	}
 	colon = cases_load(&c->cfg, name, c->rb.error, sizeof(c->rb.error));
 	if (!colon) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, c->rb.error);
-		return;
+		return -1;
 	}
 	r = swap_colon(c, colon);
 	if (r == -EBUSY) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
 		       "a case loads only while IDLE: disable first");
-		return;
+		return -1;
 	}
 	if (r) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
 		       "the force loop did not take the new case");
-		return;
+		return -1;
 	}
+	cases_path(&c->cfg, name, c->case_path, sizeof(c->case_path));
 	log_notice("case %s loaded (uid %d): %u triangles", name,
 		   (int)cl->uid, colon_mesh(colon)->triangles);
+	return 0;
+}
+
+static void on_load_case(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	load_case(c, cl, req->load_case->name, rep);
+}
+
+/* ---------------------------------------------------------------- sessions */
+
+/* A trainee's name: shorter than SIZE, no control characters. */
+static bool session_name_ok(const char *s, size_t size)
+{
+	if (strlen(s) >= size) {
+		return false;
+	}
+	for (; *s; s++) {
+		if ((unsigned char)*s < 0x20 || *s == 0x7f) {
+			return false;
+		}
+	}
+	return true;
+}
+
+/* The effective configuration as --print-config prints it (malloc'd). */
+static char *config_text(const struct config *cfg)
+{
+	char *text = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&text, &len);
+
+	if (!f) {
+		return NULL;
+	}
+	config_print(cfg, f);
+	if (fclose(f)) {
+		free(text);
+		return NULL;
+	}
+	return text;
+}
+
+/* The case file's text (malloc'd); an imported mesh: its paths. */
+static char *case_text(const struct control *c)
+{
+	const char *path = c->case_path;
+	size_t n = strlen(path);
+	char *text = NULL;
+	FILE *f;
+	long len;
+
+	if (n > 4 && !strcmp(path + n - 4, ".obj")) {
+		return asprintf(&text, "# an imported mesh\nobj=%s\n"
+				"centreline=%s\n", path,
+				c->cfg.colon.centreline_file) < 0 ? NULL : text;
+	}
+	f = fopen(path, "re");
+	if (!f || fseek(f, 0, SEEK_END) || (len = ftell(f)) < 0 ||
+	    len > (long)SESSION_FRAME_MAX || fseek(f, 0, SEEK_SET) ||
+	    !(text = calloc(1, (size_t)len + 1)) ||
+	    fread(text, 1, (size_t)len, f) != (size_t)len) {
+		free(text);
+		text = NULL;
+	}
+	if (f) {
+		fclose(f);
+	}
+	return text;
+}
+
+/* The reply's SessionInfo for the recorder's session IN. */
+static Endosim__SessionInfo *fill_session(struct control *c,
+					  const struct recorder_info *in)
+{
+	struct reply_buf *rb = &c->rb;
+	Endosim__SessionInfo *s = &rb->session;
+
+	rb->rinfo = *in;
+	endosim__session_info__init(s);
+	s->id = rb->rinfo.id;
+	s->trainee = rb->rinfo.trainee;
+	s->case_name = rb->rinfo.case_name;
+	s->started = rb->rinfo.started;
+	s->start_ns = rb->rinfo.start_ns;
+	s->end_ns = rb->rinfo.end_ns;
+	s->duration_s = (double)((rb->rinfo.end_ns ? rb->rinfo.end_ns
+						   : loop_now_ns()) -
+				 rb->rinfo.start_ns) / 1e9;
+	s->records = rb->rinfo.records;
+	s->drops = rb->rinfo.drops;
+	s->bytes = rb->rinfo.bytes;
+	s->path = rb->rinfo.path;
+	s->recording = rb->rinfo.recording;
+	s->ended = !rb->rinfo.recording;
+	sessionpb_from_metrics(&rb->metrics, &rb->rinfo.metrics);
+	s->metrics = &rb->metrics.msg;
+	return s;
+}
+
+static void session_reply(struct control *c, Endosim__Reply *rep,
+			  Endosim__SessionInfo *s)
+{
+	endosim__session_reply__init(&c->rb.session_reply);
+	c->rb.session_reply.session = s;
+	rep->body_case = ENDOSIM__REPLY__BODY_SESSION;
+	rep->session = &c->rb.session_reply;
+}
+
+static int start_session(struct control *c, const char *trainee,
+			 struct recorder_info *info)
+{
+	struct recorder_session s = {
+		.colon = c->colon,
+		.period_ns = loop_get_info(c->deps.loop)->period_ns,
+		.step_m = c->cfg.colon.step_m,
+		.segment_m = c->cfg.colon.segment_m,
+		.ring_vertices = c->cfg.colon.ring_vertices,
+	};
+	char *cfg = config_text(&c->cfg), *cs = case_text(c);
+	int r = -ENOMEM;
+
+	snprintf(s.trainee, sizeof(s.trainee), "%s", trainee);
+	snprintf(s.case_name, sizeof(s.case_name), "%s", colon_name(c->colon));
+	if (cfg && cs) {
+		s.config_text = cfg;
+		s.case_text = cs;
+		r = recorder_start(c->deps.recorder, &s, info);
+	}
+	free(cfg);
+	free(cs);
+	return r;
+}
+
+static void on_session_start(struct control *c, struct client *cl,
+			     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__SessionStart *ss = req->session_start;
+	struct recorder_info info;
+	int r;
+
+	recorder_info(c->deps.recorder, &info);
+	if (!session_name_ok(ss->trainee, RECORDER_NAME)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "trainee: at most 63 bytes, no control characters");
+		return;
+	}
+	if (*ss->case_name && !config_case_name_ok(ss->case_name)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "case: letters, digits, '-' and '_'");
+		return;
+	}
+	if (info.recording) {
+		snprintf(c->rb.error, sizeof(c->rb.error), "session %" PRIu64
+			 " is recording: 'session stop' first", info.id);
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, c->rb.error);
+		return;
+	}
+	if (*ss->case_name && load_case(c, cl, ss->case_name, rep)) {
+		return;
+	}
+	r = start_session(c, ss->trainee, &info);
+	if (r) {
+		snprintf(c->rb.error, sizeof(c->rb.error), "cannot record in "
+			 "%s: %s", c->cfg.session.directory, strerror(-r));
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, c->rb.error);
+		return;
+	}
+	log_notice("session %" PRIu64 " started (uid %d): trainee '%s', case "
+		   "%s, %s", info.id, (int)cl->uid, info.trainee,
+		   info.case_name, info.path);
+	session_reply(c, rep, fill_session(c, &info));
+}
+
+static void on_session_stop(struct control *c, struct client *cl,
+			    const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct recorder_info info;
+	int r = recorder_stop(c->deps.recorder, &info);
+
+	(void)req;
+	if (r == -ENOENT) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "no session is recording");
+		return;
+	}
+	log_notice("session %" PRIu64 " stopped (uid %d): %" PRIu64
+		   " records, %" PRIu64 " dropped, %s", info.id, (int)cl->uid,
+		   info.records, info.drops, info.path);
+	if (r) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+		       "the session file could not be finished (see the log)");
+		return;
+	}
+	session_reply(c, rep, fill_session(c, &info));
+}
+
+static void on_session_status(struct control *c, struct client *cl,
+			      const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct recorder_info info;
+
+	(void)cl;
+	(void)req;
+	recorder_info(c->deps.recorder, &info);
+	session_reply(c, rep, info.active ? fill_session(c, &info) : NULL);
+}
+
+static void free_session_list(struct reply_buf *rb)
+{
+	free(rb->list_infos);
+	free(rb->list_infos_p);
+	free(rb->list_entries);
+	rb->list_infos = NULL;
+	rb->list_infos_p = NULL;
+	rb->list_entries = NULL;
+}
+
+/* A listed session; the recorder's own one with what it knows. */
+static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
+		       const struct recorder_info *ri)
+{
+	endosim__session_info__init(s);
+	s->id = e->id;
+	s->trainee = e->trainee;
+	s->case_name = e->case_name;
+	s->started = e->started;
+	s->bytes = e->bytes;
+	s->ended = e->ended;
+	if (ri->active && ri->id == e->id) {
+		s->recording = ri->recording;
+		s->records = ri->records;
+		s->drops = ri->drops;
+		s->start_ns = ri->start_ns;
+		s->end_ns = ri->end_ns;
+	}
+}
+
+static void on_session_list(struct control *c, struct client *cl,
+			    const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	struct recorder_info ri;
+	size_t n;
+	int r;
+
+	(void)cl;
+	(void)req;
+	free_session_list(rb);
+	recorder_info(c->deps.recorder, &ri);
+	r = sessiondir_list(c->cfg.session.directory, &rb->list_entries, &n);
+	rb->list_infos = r ? NULL : calloc(n + 1, sizeof(*rb->list_infos));
+	rb->list_infos_p = r ? NULL : calloc(n + 1, sizeof(*rb->list_infos_p));
+	if (r || !rb->list_infos || !rb->list_infos_p) {
+		snprintf(rb->error, sizeof(rb->error), "%s: %s",
+			 c->cfg.session.directory, strerror(r ? -r : ENOMEM));
+		free_session_list(rb);
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
+		return;
+	}
+	for (size_t i = 0; i < n; i++) {
+		fill_entry(&rb->list_infos[i], &rb->list_entries[i], &ri);
+		rb->list_infos_p[i] = &rb->list_infos[i];
+	}
+	endosim__session_list_reply__init(&rb->session_list);
+	rb->session_list.n_sessions = n;
+	rb->session_list.sessions = rb->list_infos_p;
+	rb->session_list.directory = c->cfg.session.directory;
+	rep->body_case = ENDOSIM__REPLY__BODY_SESSION_LIST;
+	rep->session_list = &rb->session_list;
+}
+
+static void on_session_show(struct control *c, struct client *cl,
+			    const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	uint64_t id = req->session_show->id;
+	struct sessiondir_entry *e = &rb->shown;
+	Endosim__SessionInfo *s;
+	struct recorder_info ri;
+	int r;
+
+	(void)cl;
+	recorder_info(c->deps.recorder, &ri);
+	r = sessiondir_stat(c->cfg.session.directory, id, e);
+	if (r) {
+		snprintf(rb->error, sizeof(rb->error), "no session %" PRIu64
+			 " in %s%s", id, c->cfg.session.directory,
+			 r == -ENOENT ? "" : r == -EBADMSG ? ": not a session "
+			 "file" : ": unreadable");
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, rb->error);
+		return;
+	}
+	if (ri.active && ri.id == id) {
+		s = fill_session(c, &ri);
+	} else {
+		memset(&rb->rinfo, 0, sizeof(rb->rinfo));
+		fill_entry(&rb->session, e, &rb->rinfo);
+		sessiondir_path(c->cfg.session.directory, id, rb->rinfo.path,
+				sizeof(rb->rinfo.path));
+		s = &rb->session;
+		s->path = rb->rinfo.path;
+	}
+	s->ended = e->ended;
+	s->bytes = s->recording ? s->bytes : e->bytes;
+	s->trainee = s->trainee ? s->trainee : "";
+	session_reply(c, rep, s);
 }
 
 static void on_debug(struct control *c, struct client *cl,
@@ -948,6 +1277,11 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_HAND_INPUT, true, on_hand_input },
 	{ ENDOSIM__REQUEST__BODY_RESET_STATS, true, on_reset_stats },
 	{ ENDOSIM__REQUEST__BODY_DEBUG_INJECT, true, on_debug },
+	{ ENDOSIM__REQUEST__BODY_SESSION_START, true, on_session_start },
+	{ ENDOSIM__REQUEST__BODY_SESSION_STOP, true, on_session_stop },
+	{ ENDOSIM__REQUEST__BODY_SESSION_STATUS, false, on_session_status },
+	{ ENDOSIM__REQUEST__BODY_SESSION_LIST, false, on_session_list },
+	{ ENDOSIM__REQUEST__BODY_SESSION_SHOW, false, on_session_show },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -1220,6 +1554,7 @@ struct control *control_create(const struct config *cfg,
 	c->deps = *deps;
 	c->colon = deps->colon;
 	c->scene_id = deps->scene_id;
+	cases_path(cfg, NULL, c->case_path, sizeof(c->case_path));
 	c->ro_fd = c->rw_fd = c->ep = c->wake_fd = -1;
 	c->max_clients = cfg->socket.max_clients;
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
@@ -1307,6 +1642,7 @@ void control_destroy(struct control *c)
 	free(c->rb.entries_p);
 	free(c->rb.values);
 	free_case_list(&c->rb);
+	free_session_list(&c->rb);
 	scene_destroy(c->scene);
 	free(c);
 }

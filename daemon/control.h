@@ -29,6 +29,7 @@
 #include "hand.h"
 #include "loop.h"
 #include "publish.h"
+#include "recorder.h"
 #include "rig.h"
 
 struct control_deps {
@@ -39,6 +40,7 @@ struct control_deps {
 	uint64_t start_ns;       /* CLOCK_MONOTONIC at daemon start */
 	struct colon *colon;     /* the loop's colon at start (loop owns it) */
 	uint64_t scene_id;       /* its GetScene id */
+	struct recorder *recorder; /* training sessions */
 };
 
 struct control;

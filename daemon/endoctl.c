@@ -12,6 +12,7 @@
  */
 #include <errno.h>
 #include <getopt.h>
+#include <inttypes.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -27,6 +28,8 @@
 #include "inject.h"
 #include "json.h"
 #include "objio.h"
+#include "sessionpb.h"
+#include "sessionview.h"
 
 enum {
 	EXIT_REFUSED = 1,
@@ -958,6 +961,318 @@ static int cmd_version(struct ctl *ctl, int argc, char **argv)
 	return r;
 }
 
+/* ------------------------------------------------------------ sessions */
+
+/* A session request; *REP is its OK reply. */
+static int session_request(struct ctl *ctl, bool write,
+			   Endosim__Request__BodyCase body, void *msg,
+			   Endosim__Reply **rep)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+
+	req.body_case = body;
+	req.enable = msg; /* one member of the oneof's union */
+	return transact(ctl, write, &req, rep);
+}
+
+static const char *session_state(const Endosim__SessionInfo *s)
+{
+	return s->recording ? "recording" : s->ended ? "ended" : "cut short";
+}
+
+/* The session's facts as JSON members (the object is the caller's). */
+static void json_session_facts(struct json *j, const Endosim__SessionInfo *s)
+{
+	json_uint(j, "id", s->id);
+	json_string(j, "trainee", s->trainee);
+	json_string(j, "case", s->case_name);
+	json_string(j, "started", s->started);
+	json_string(j, "state", session_state(s));
+	json_bool(j, "recording", s->recording);
+	json_bool(j, "ended", s->ended);
+	json_double(j, "duration_s", s->duration_s);
+	json_uint(j, "records", s->records);
+	json_uint(j, "drops", s->drops);
+	json_uint(j, "bytes", s->bytes);
+	json_string(j, "path", s->path);
+}
+
+static void print_session_facts(const Endosim__SessionInfo *s)
+{
+	printf("session %" PRIu64 " (%s): trainee '%s', case %s, started %s\n"
+	       "file %s, %" PRIu64 " bytes\n", s->id, session_state(s),
+	       s->trainee, s->case_name, s->started, s->path, s->bytes);
+	if (s->recording || s->records) {
+		printf("%.1f s, %" PRIu64 " records, %" PRIu64 " dropped\n",
+		       s->duration_s, s->records, s->drops);
+	}
+}
+
+/* The session and the metrics M (NULL: none) on stdout. */
+static void print_session(const struct ctl *ctl, const Endosim__SessionInfo *s,
+			  const struct metrics_result *m, const char *note)
+{
+	struct json j;
+
+	if (!ctl->json) {
+		print_session_facts(s);
+		if (note) {
+			printf("%s\n", note);
+		}
+		if (m) {
+			sessionview_print(stdout, m);
+		}
+		return;
+	}
+	json_init(&j, stdout);
+	json_object_begin(&j, NULL);
+	json_session_facts(&j, s);
+	if (note) {
+		json_string(&j, "note", note);
+	}
+	if (m) {
+		sessionview_json(&j, "metrics", m);
+	}
+	json_object_end(&j);
+}
+
+static int session_start(struct ctl *ctl, int argc, char **argv)
+{
+	Endosim__SessionStart body = ENDOSIM__SESSION_START__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	for (int i = 2; i < argc; i += 2) {
+		if (i + 1 < argc && !strcmp(argv[i], "--trainee")) {
+			body.trainee = argv[i + 1];
+		} else if (i + 1 < argc && !strcmp(argv[i], "--case")) {
+			body.case_name = argv[i + 1];
+		} else {
+			fprintf(stderr, "endoctl: session start [--trainee "
+				"NAME] [--case NAME]\n");
+			return EXIT_USAGE;
+		}
+	}
+	r = session_request(ctl, true, ENDOSIM__REQUEST__BODY_SESSION_START,
+			    &body, &rep);
+	if (r) {
+		return r;
+	}
+	print_session(ctl, rep->session->session, NULL, NULL);
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+/* Stop, status: the recorder's session with its live or final metrics. */
+static int session_current(struct ctl *ctl, bool stop)
+{
+	Endosim__SessionStop stop_body = ENDOSIM__SESSION_STOP__INIT;
+	Endosim__SessionStatus status_body = ENDOSIM__SESSION_STATUS__INIT;
+	const Endosim__SessionInfo *s;
+	struct metrics_result m;
+	Endosim__Reply *rep;
+	int r;
+
+	r = stop ? session_request(ctl, true,
+				   ENDOSIM__REQUEST__BODY_SESSION_STOP,
+				   &stop_body, &rep)
+		 : session_request(ctl, false,
+				   ENDOSIM__REQUEST__BODY_SESSION_STATUS,
+				   &status_body, &rep);
+	if (r) {
+		return r;
+	}
+	s = rep->session->session;
+	if (!s) {
+		printf(ctl->json ? "{\"recording\":false,\"id\":0}\n"
+				 : "no session since endosimd started\n");
+	} else {
+		if (s->metrics) {
+			sessionpb_to_metrics(s->metrics, &m);
+		}
+		print_session(ctl, s, s->metrics ? &m : NULL, NULL);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+static void print_session_list(const struct ctl *ctl,
+			       const Endosim__SessionListReply *l)
+{
+	struct json j;
+
+	if (!ctl->json) {
+		printf("%6s  %-20s  %-10s  %-18s  %10s  %s\n", "ID", "STARTED",
+		       "STATE", "CASE", "BYTES", "TRAINEE");
+		for (size_t i = 0; i < l->n_sessions; i++) {
+			const Endosim__SessionInfo *s = l->sessions[i];
+
+			printf("%6" PRIu64 "  %-20s  %-10s  %-18s  %10" PRIu64
+			       "  %s\n", s->id, s->started, session_state(s),
+			       s->case_name, s->bytes, s->trainee);
+		}
+		return;
+	}
+	json_init(&j, stdout);
+	json_object_begin(&j, NULL);
+	json_string(&j, "directory", l->directory);
+	json_array_begin(&j, "sessions");
+	for (size_t i = 0; i < l->n_sessions; i++) {
+		json_object_begin(&j, NULL);
+		json_session_facts(&j, l->sessions[i]);
+		json_object_end(&j);
+	}
+	json_array_end(&j);
+	json_object_end(&j);
+}
+
+static int session_list(struct ctl *ctl)
+{
+	Endosim__SessionList body = ENDOSIM__SESSION_LIST__INIT;
+	Endosim__Reply *rep;
+	int r = session_request(ctl, false, ENDOSIM__REQUEST__BODY_SESSION_LIST,
+				&body, &rep);
+
+	if (r) {
+		return r;
+	}
+	print_session_list(ctl, rep->session_list);
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+/* The session ID's facts from endosimd (*REP), its file read into F. */
+static int session_file(struct ctl *ctl, const char *id_text,
+			Endosim__Reply **rep, struct session_file *f)
+{
+	Endosim__SessionShow body = ENDOSIM__SESSION_SHOW__INIT;
+	const char *path;
+	char *end;
+	int r;
+
+	body.id = strtoull(id_text, &end, 10);
+	if (*end || !body.id) {
+		fprintf(stderr, "endoctl: '%s' is not a session id\n", id_text);
+		return EXIT_USAGE;
+	}
+	r = session_request(ctl, false, ENDOSIM__REQUEST__BODY_SESSION_SHOW,
+			    &body, rep);
+	if (r) {
+		return r;
+	}
+	path = (*rep)->session->session->path;
+	r = session_file_read(path, f);
+	if (r) {
+		fprintf(stderr, "endoctl: %s: %s\n", path, r == -EBADMSG ?
+			"not a session file" : r == -EPROTO ?
+			"a format this endoctl does not know" : strerror(-r));
+		endosim__reply__free_unpacked(*rep, NULL);
+		return EXIT_REFUSED;
+	}
+	return 0;
+}
+
+static int session_show(struct ctl *ctl, const char *id)
+{
+	struct session_file f = { 0 };
+	const Endosim__SessionInfo *s;
+	struct metrics_result m;
+	Endosim__Reply *rep;
+	char note[160] = "";
+	bool recomputed;
+	int r = session_file(ctl, id, &rep, &f);
+
+	if (r) {
+		return r;
+	}
+	s = rep->session->session;
+	if (s->recording && s->metrics) {
+		sessionpb_to_metrics(s->metrics, &m); /* live */
+	} else if (sessionview_metrics(&f, &m, &recomputed)) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		r = EXIT_REFUSED;
+		goto out;
+	} else if (recomputed) {
+		snprintf(note, sizeof(note), "no END frame (cut short, %zu "
+			 "bytes after the last complete record ignored): "
+			 "metrics recomputed from %zu records", f.bytes_ignored,
+			 f.n_records);
+	}
+	print_session(ctl, s, &m, *note ? note : NULL);
+out:
+	session_file_close(&f);
+	endosim__reply__free_unpacked(rep, NULL);
+	return r;
+}
+
+static int session_export(struct ctl *ctl, int argc, char **argv)
+{
+	const char *out_path = NULL;
+	struct session_file f = { 0 };
+	bool csv = false;
+	Endosim__Reply *rep;
+	FILE *out = stdout;
+	int r;
+
+	for (int i = 3; i < argc; i++) {
+		if (!strcmp(argv[i], "--csv")) {
+			csv = true;
+		} else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+			out_path = argv[++i];
+		} else {
+			csv = false;
+			break;
+		}
+	}
+	if (!csv) {
+		fprintf(stderr, "endoctl: session export ID --csv [--out "
+			"FILE]\n");
+		return EXIT_USAGE;
+	}
+	r = session_file(ctl, argv[2], &rep, &f);
+	if (r) {
+		return r;
+	}
+	if (out_path && !(out = fopen(out_path, "we"))) {
+		fprintf(stderr, "endoctl: %s: %s\n", out_path, strerror(errno));
+		r = EXIT_REFUSED;
+	}
+	if (out && (sessionview_csv(out, &f) ||
+		    (out_path && fclose(out)))) {
+		fprintf(stderr, "endoctl: %s: write error\n",
+			out_path ? out_path : "stdout");
+		r = EXIT_REFUSED;
+	}
+	session_file_close(&f);
+	endosim__reply__free_unpacked(rep, NULL);
+	return r;
+}
+
+static int cmd_session(struct ctl *ctl, int argc, char **argv)
+{
+	const char *sub = argc >= 2 ? argv[1] : "";
+
+	if (!strcmp(sub, "start")) {
+		return session_start(ctl, argc, argv);
+	}
+	if (argc == 2 && (!strcmp(sub, "stop") || !strcmp(sub, "status"))) {
+		return session_current(ctl, !strcmp(sub, "stop"));
+	}
+	if (argc == 2 && !strcmp(sub, "list")) {
+		return session_list(ctl);
+	}
+	if (argc == 3 && !strcmp(sub, "show")) {
+		return session_show(ctl, argv[2]);
+	}
+	if (argc >= 3 && !strcmp(sub, "export")) {
+		return session_export(ctl, argc, argv);
+	}
+	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
+		" | stop | status | list | show ID | export ID --csv [--out "
+		"FILE]\n");
+	return EXIT_USAGE;
+}
+
 /* ------------------------------------------------------------ main */
 
 static const struct {
@@ -980,6 +1295,9 @@ static const struct {
 			    "only)" },
 	{ "scene", cmd_scene, "info | export FILE.obj: the colon the daemon "
 			      "renders" },
+	{ "session", cmd_session, "start [--trainee NAME] [--case NAME] | stop "
+				  "| status | list | show ID | export ID "
+				  "--csv [--out FILE]: training sessions" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -56,6 +56,7 @@ struct loop {
 	/* shared */
 	struct rig *rig;
 	struct publish *pub;
+	struct recorder_tap *tap;  /* NULL: no recorder */
 	pthread_t thread;
 	bool running;
 	int pm_qos_fd;             /* /dev/cpu_dma_latency, held open */
@@ -418,6 +419,9 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	fill_scope(l);
 	l->state.publish_ns = loop_now_ns();
 	publish_state(l->pub, &l->state);
+	if (l->tap) {
+		recorder_tap_push(l->tap, &l->state);
+	}
 }
 
 static void prefault_stack(void)
@@ -536,6 +540,11 @@ static void hold_cpu_latency(struct loop *l)
 		return;
 	}
 	l->pm_qos_fd = fd;
+}
+
+void loop_set_tap(struct loop *l, struct recorder_tap *tap)
+{
+	l->tap = tap;
 }
 
 int loop_start(struct loop *l)

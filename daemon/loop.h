@@ -24,6 +24,8 @@
  *  - a fault from outside (a daemon thread died): loop_fail(), the main
  *    thread;
  *  - test commands (inject.h): loop_debug(), the control thread only;
+ *  - records out to the recorder (recorder.h) while a session records:
+ *    loop_set_tap() before the loop starts;
  *  - statistics and heartbeat: any thread.
  */
 #ifndef ENDOSIM_LOOP_H
@@ -36,6 +38,7 @@
 #include "config.h"
 #include "histo.h"
 #include "publish.h"
+#include "recorder.h"
 #include "rig.h"
 #include "safety.h"
 
@@ -99,6 +102,12 @@ struct loop;
 struct loop *loop_create(const struct config *cfg, struct rig *rig,
 			 struct publish *pub, struct colon *colon,
 			 uint64_t scene_id);
+
+/*
+ * Main thread, before loop_start(): after publishing each cycle the loop
+ * hands its state to TAP (recorder_tap_push()). NULL: no recorder.
+ */
+void loop_set_tap(struct loop *l, struct recorder_tap *tap);
 
 /* Locks memory and starts the thread. Returns 0 or a negative errno. */
 int loop_start(struct loop *l);

@@ -32,6 +32,7 @@
 #include "log.h"
 #include "loop.h"
 #include "publish.h"
+#include "recorder.h"
 #include "rig.h"
 #include "scenario.h"
 
@@ -53,6 +54,7 @@ struct daemon {
 	struct publish *pub;
 	struct rig *rig;
 	struct loop *loop;
+	struct recorder *recorder;
 };
 
 static void usage(FILE *out)
@@ -64,6 +66,7 @@ static void usage(FILE *out)
 		"      --print-config    print the effective configuration and exit\n"
 		"      --socket-dir DIR  override [socket] directory\n"
 		"      --shm-name NAME   override [shm] name (e.g. /endosim-test)\n"
+		"      --session-dir DIR override [session] directory\n"
 		"      --set KEY=VALUE   override any key, e.g. --set loop.rate_hz=500\n"
 		"      --scenario FILE   simulated hand follows this scenario\n"
 		"  -V, --version         print the version and exit\n"
@@ -98,7 +101,15 @@ static int override_pair(struct config *cfg, const char *pair)
 	return override(cfg, key, eq + 1);
 }
 
-enum { OPT_CHECK = 256, OPT_PRINT, OPT_SOCKDIR, OPT_SHM, OPT_SET, OPT_SCN };
+enum {
+	OPT_CHECK = 256,
+	OPT_PRINT,
+	OPT_SOCKDIR,
+	OPT_SHM,
+	OPT_SET,
+	OPT_SCN,
+	OPT_SESSDIR,
+};
 
 static const struct option long_opts[] = {
 	{ "config", required_argument, NULL, 'c' },
@@ -106,6 +117,7 @@ static const struct option long_opts[] = {
 	{ "print-config", no_argument, NULL, OPT_PRINT },
 	{ "socket-dir", required_argument, NULL, OPT_SOCKDIR },
 	{ "shm-name", required_argument, NULL, OPT_SHM },
+	{ "session-dir", required_argument, NULL, OPT_SESSDIR },
 	{ "set", required_argument, NULL, OPT_SET },
 	{ "scenario", required_argument, NULL, OPT_SCN },
 	{ "version", no_argument, NULL, 'V' },
@@ -137,6 +149,7 @@ static int parse_options(int argc, char **argv, struct options *opt)
 		case OPT_SOCKDIR:
 		case OPT_SHM:
 		case OPT_SET:
+		case OPT_SESSDIR:
 			break;
 		case 'V':
 			printf("endosimd %s\n", ENDOSIM_VERSION);
@@ -169,6 +182,8 @@ static int apply_overrides(int argc, char **argv, struct config *cfg)
 			r = override(cfg, "socket.directory", optarg);
 		} else if (c == OPT_SHM) {
 			r = override(cfg, "shm.name", optarg);
+		} else if (c == OPT_SESSDIR) {
+			r = override(cfg, "session.directory", optarg);
 		} else if (c == OPT_SET) {
 			r = override_pair(cfg, optarg);
 		}
@@ -328,8 +343,14 @@ static int start(struct daemon *d, const struct options *opt)
 		colon_destroy(colon);
 		return EX_OSERR;
 	}
+	d->recorder = recorder_create(&d->cfg, d->rig, d->pub, d->start_ns);
+	if (!d->recorder) {
+		return EX_CANTCREAT;
+	}
+	loop_set_tap(d->loop, recorder_tap(d->recorder));
 	deps.loop = d->loop;
 	deps.pub = d->pub;
+	deps.recorder = d->recorder;
 	d->control = control_create(&d->cfg, &deps);
 	if (!d->control) {
 		return EX_UNAVAILABLE;
@@ -337,7 +358,8 @@ static int start(struct daemon *d, const struct options *opt)
 	if (rig_start(d->rig)) {
 		return EX_UNAVAILABLE;
 	}
-	if (loop_start(d->loop) || control_start(d->control)) {
+	if (loop_start(d->loop) || recorder_run(d->recorder, d->loop) ||
+	    control_start(d->control)) {
 		return EX_OSERR;
 	}
 	return 0;
@@ -349,6 +371,7 @@ static void stop(struct daemon *d)
 		loop_stop(d->loop); /* torque zero, drives disabled */
 	}
 	control_destroy(d->control);
+	recorder_destroy(d->recorder); /* a session's END, after the loop */
 	loop_destroy(d->loop);
 	publish_destroy(d->pub);
 	rig_destroy(d->rig);

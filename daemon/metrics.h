@@ -4,8 +4,8 @@
  * way live in endosimd's recorder thread and afterwards from a session
  * file (endoctl session show/report on a file cut short).
  *
- * What is measured (definitions, thresholds and units in metrics.c's
- * comments and in docs/SESSION_FORMAT.md):
+ * What is measured (definitions, thresholds, units and the limits of each
+ * method in docs/METRICS.md; the formulas also in metrics.c):
  *   - time to the cecum: from the first record to the first with the tip
  *     in the cecum segment; insertion time (to the cecum) and withdrawal
  *     time (from the cecum until the tip leaves the rectum or the session
@@ -45,9 +45,25 @@ struct metrics_params {
 	double view_distance_m;    /* mucosa nearer than this can be seen */
 	double fov_rad;            /* the camera's full field of view */
 	double view_rate_hz;       /* mucosa and polyps evaluated this often */
+	/* episodes: above the threshold for at least min_episode_s; one
+	 * ends when the value falls below METRICS_HYSTERESIS x threshold */
+	double min_episode_s;
+	/* the lumen is lost when its direction 3 cm ahead is further than
+	 * this from the view direction (default: half the field of view) */
+	double lumen_angle_rad;
+	/* the discomfort index' scales: a bow of discomfort_bow_m, or a
+	 * wall-contact force of discomfort_force_n, held for 1 s adds 1 */
+	double discomfort_bow_m;
+	double discomfort_force_n;
 };
 
-/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 20 Hz. */
+#define METRICS_HYSTERESIS 0.9      /* an episode ends below 0.9 x threshold */
+#define METRICS_LOOKAHEAD_M 0.03    /* the lumen ahead: this far beyond tip_s */
+#define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
+				       colon; a case: the rectum's start) */
+
+/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 20 Hz, 0.2 s, 70 deg, 0.03 m,
+ * 5 N. */
 void metrics_params_default(struct metrics_params *p);
 
 struct metrics_episode {
@@ -76,6 +92,7 @@ struct metrics_result {
 	double mucosa_seen;        /* share 0..1 of the mesh's area */
 	uint32_t polyps_seen;
 	uint32_t polyps_total;
+	uint32_t polyps_seen_mask; /* bit k: the case's polyp k was seen */
 	uint32_t n_force;          /* episodes kept below */
 	uint32_t n_loop;
 	struct metrics_episode force[METRICS_MAX_EPISODES];
@@ -86,8 +103,13 @@ struct metrics;
 
 /*
  * COLON: the colon the session is on (kept, not copied: it must outlive
- * the metrics); NULL computes everything but the mucosa and polyps.
- * Returns NULL on allocation failure.
+ * the metrics). Only what never changes after colon_create() is read (the
+ * undeformed centreline, the mesh's offsets, normals and triangles), never
+ * the bowed state, so the force loop may bow COLON meanwhile: the metrics
+ * bow a private copy of the centreline. NULL computes everything but what
+ * needs the colon's geometry: the cecum (and so the insertion and
+ * withdrawal times), the lumen, the mucosa and the polyps. Returns NULL
+ * on allocation failure.
  */
 struct metrics *metrics_create(const struct colon *colon,
 			       const struct metrics_params *p);
@@ -102,6 +124,11 @@ void metrics_event(struct metrics *m, const struct session_event *ev,
 
 /* The metrics so far (at the end: the session's). */
 void metrics_result(const struct metrics *m, struct metrics_result *out);
+
+/* The share 0..1 of the mesh's area between material S0_M and S1_M (by
+ * each vertex' centreline sample) seen so far; 0 without a colon. */
+double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
+				   double s1_m);
 
 /*
  * RESULT as "key=value\n" lines (the END frame, `session show`); returns

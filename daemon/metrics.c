@@ -1,0 +1,860 @@
+/*
+ * metrics.c - the training metrics (metrics.h; for people: docs/METRICS.md).
+ *
+ * Times t count from the first record's stamp_ns. A record stands for the
+ * instant of its stamp: a condition that holds from record j to the record
+ * before k lasts t_k - t_j, so a 1 kHz stream gives every time to 1 ms.
+ *
+ *   cecum_s          t of the first record with tip_s_m >= colon_cecum_s()
+ *   insertion_s      cecum_s, or duration_s while the cecum is not reached
+ *   withdrawal_s     from cecum_s to the first later record with the tip
+ *                    out (tip_s_m below the rectum's start, or depth_m <=
+ *                    0), or to the last record
+ *   insertion force  F = |limited[0]| (N): peak over all records, mean over
+ *                    the records with depth_m > 0
+ *   episodes         start: the first record with x > threshold; end: the
+ *                    first record after it with x < METRICS_HYSTERESIS x
+ *                    threshold; kept when end - start >= min_episode_s;
+ *                    peak: the largest x in between. Force: x = F, loops:
+ *                    x = max over the spans of |bow_m[k]|
+ *   discomfort       sum over records of dt (b / discomfort_bow_m +
+ *                    |f_static| contact / discomfort_force_n), dt the time
+ *                    to the next record (b as for loops; f_static only
+ *                    while contact): "discomfort-seconds"
+ *   lumen lost       while inserted, the time of records where the
+ *                    centreline point METRICS_LOOKAHEAD_M beyond tip_s (on
+ *                    the bowed centreline, clamped to the cecum's pole) is
+ *                    further than lumen_angle_rad off dir, or the tip
+ *                    presses into a wall facing it (contact, normal . dir
+ *                    < -cos 45 deg)
+ *   mucosa seen      each vertex carries a third of the area of its
+ *                    triangles; a vertex is seen at an evaluated pose when
+ *                    it lies within view_distance_m of the tip, within
+ *                    fov_rad / 2 of dir, and its normal faces the tip; the
+ *                    share is the seen vertices' area over the whole area
+ *   polyps seen      a polyp's centre (its wall point lifted by its radius
+ *                    along the wall's normal) within view_distance_m plus
+ *                    its radius, within fov_rad / 2 of dir, on the lumen's
+ *                    side of the wall, at an evaluated pose
+ *
+ * Poses are evaluated (mucosa, polyps) at most view_rate_hz times a second
+ * and only while inserted. The published tip is on the bowed centreline;
+ * the mesh is kept as offsets in the frames of the undeformed one, so the
+ * vertices near tip_s are placed here on a private centreline bowed by the
+ * record's bow_m (the daemon's algorithm, centreline_bow()).
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "metrics.h"
+#include "vec3.h"
+
+#define REDOUT_COS 0.7071067811865476 /* the wall within 45 deg of head-on */
+#define POLE_GAP_M 0.01 /* nearer the lumen point than this: at the pole */
+#define BOW_STEP_M 1e-4 /* rebow the private centreline beyond this */
+
+struct episodes {
+	double on, off, min_s;
+	bool active;              /* above the threshold now */
+	bool counted;             /* ... and for at least min_s */
+	double start_s, peak;
+	uint32_t count, kept;
+	double total_s, longest_s, largest;
+	struct metrics_episode ep[METRICS_MAX_EPISODES];
+};
+
+struct view {
+	struct centreline *cl;    /* private: bowed by the records' bow_m */
+	const struct mesh *mesh;  /* the colon's: offsets only */
+	float *area;              /* per vertex: a third of its triangles' */
+	unsigned char *seen;      /* per vertex */
+	double total_area, seen_area;
+	double reach_m;           /* samples this far from tip_s are tested */
+	int polyps;
+	uint32_t polyp_vertex[ANATOMY_MAX_POLYPS];
+	double polyp_r[ANATOMY_MAX_POLYPS];
+	double next_s;            /* time of the next evaluation */
+};
+
+struct metrics {
+	struct metrics_params p;
+	const struct colon *colon;
+	double cecum_s_m, exit_s_m;
+	struct view view;         /* cl NULL without a colon */
+	uint64_t first_ns;
+	double last_s, prev_s;
+	uint64_t records, inserted;
+	uint64_t drops;
+	double cecum_s, out_s;    /* < 0: not yet */
+	double max_tip_s_m;
+	double peak_n, sum_n;
+	double discomfort;
+	double lumen_lost_s;
+	bool lost;                /* the previous record's */
+	double prev_load;         /* the previous record's discomfort rate */
+	uint32_t polyps_seen_mask;
+	struct episodes force, loop;
+};
+
+void metrics_params_default(struct metrics_params *p)
+{
+	*p = (struct metrics_params){
+		.force_threshold_n = 15,
+		.loop_threshold_m = 0.01,
+		.view_distance_m = 0.06,
+		.fov_rad = 140 * M_PI / 180,
+		.view_rate_hz = 20,
+		.min_episode_s = 0.2,
+		.lumen_angle_rad = 70 * M_PI / 180,
+		.discomfort_bow_m = 0.03,
+		.discomfort_force_n = 5,
+	};
+}
+
+/* ------------------------------------------------------------ episodes */
+
+static void episodes_init(struct episodes *e, double threshold, double min_s)
+{
+	memset(e, 0, sizeof(*e));
+	e->on = threshold;
+	e->off = METRICS_HYSTERESIS * threshold;
+	e->min_s = min_s;
+}
+
+static void episodes_confirm(struct episodes *e)
+{
+	e->counted = true;
+	e->count++;
+	if (e->kept < METRICS_MAX_EPISODES) {
+		e->ep[e->kept++] = (struct metrics_episode){
+			.start_s = e->start_s, .end_s = -1, .peak = e->peak,
+		};
+	}
+}
+
+/* The current episode's entry, NULL when it is not kept. */
+static struct metrics_episode *episodes_current(struct episodes *e)
+{
+	if (!e->counted || e->kept == 0 ||
+	    e->ep[e->kept - 1].start_s != e->start_s) {
+		return NULL;
+	}
+	return &e->ep[e->kept - 1];
+}
+
+static void episodes_close(struct episodes *e, double t)
+{
+	struct metrics_episode *cur;
+	double d = t - e->start_s;
+
+	if (!e->counted && d >= e->min_s) {
+		episodes_confirm(e);
+	}
+	if (e->counted) {
+		cur = episodes_current(e);
+		if (cur) {
+			cur->end_s = t;
+			cur->peak = e->peak;
+		}
+		e->total_s += d;
+		e->longest_s = fmax(e->longest_s, d);
+		e->largest = fmax(e->largest, e->peak);
+	}
+	e->active = false;
+	e->counted = false;
+}
+
+static void episodes_update(struct episodes *e, double t, double x)
+{
+	struct metrics_episode *cur;
+
+	if (!e->active) {
+		if (x > e->on) {
+			e->active = true;
+			e->counted = false;
+			e->start_s = t;
+			e->peak = x;
+		}
+		return;
+	}
+	if (x < e->off) {
+		episodes_close(e, t);
+		return;
+	}
+	e->peak = fmax(e->peak, x);
+	if (!e->counted && t - e->start_s >= e->min_s) {
+		episodes_confirm(e);
+	}
+	cur = episodes_current(e);
+	if (cur) {
+		cur->peak = e->peak;
+	}
+}
+
+/* The episodes as they stand at time NOW (one still going counts so far). */
+static void episodes_result(const struct episodes *e, double now,
+			    uint32_t *count, double *total_s,
+			    double *longest_s, double *largest,
+			    uint32_t *kept, struct metrics_episode *out)
+{
+	double d = now - e->start_s;
+
+	*count = e->count;
+	*total_s = e->total_s;
+	*longest_s = e->longest_s;
+	*largest = e->largest;
+	*kept = e->kept;
+	memcpy(out, e->ep, sizeof(e->ep));
+	if (e->active && e->counted) {
+		*total_s += d;
+		*longest_s = fmax(*longest_s, d);
+		*largest = fmax(*largest, e->peak);
+	}
+}
+
+/* ---------------------------------------------------------------- view */
+
+/* Vertex V's offset placed in the frame of CL's sample. */
+static void vertex_place(const struct mesh *me, const struct centreline *cl,
+			 uint32_t v, double p[3], double n[3])
+{
+	const struct centreline_point *c = centreline_sample(cl, me->sample[v]);
+
+	vec3_copy(p, c->p);
+	vec3_axpy(p, p, me->off[v][0], c->t);
+	vec3_axpy(p, p, me->off[v][1], c->u);
+	vec3_axpy(p, p, me->off[v][2], c->v);
+	if (n) {
+		vec3_scale(n, c->t, me->noff[v][0]);
+		vec3_axpy(n, n, me->noff[v][1], c->u);
+		vec3_axpy(n, n, me->noff[v][2], c->v);
+	}
+}
+
+/* Each vertex' share of the area, on the undeformed colon; the reach. */
+static void view_areas(struct view *w)
+{
+	const struct mesh *me = w->mesh;
+	double rho = 0;
+
+	for (uint32_t k = 0; k < me->triangles; k++) {
+		double a[3], b[3], c[3], x[3];
+
+		vertex_place(me, w->cl, me->tri[k][0], a, NULL);
+		vertex_place(me, w->cl, me->tri[k][1], b, NULL);
+		vertex_place(me, w->cl, me->tri[k][2], c, NULL);
+		vec3_sub(b, b, a);
+		vec3_sub(c, c, a);
+		vec3_cross(x, b, c);
+		for (int j = 0; j < 3; j++) {
+			w->area[me->tri[k][j]] += (float)(vec3_norm(x) / 6);
+		}
+		w->total_area += vec3_norm(x) / 2;
+	}
+	for (uint32_t v = 0; v < me->vertices; v++) {
+		double o = hypot(hypot(me->off[v][0], me->off[v][1]),
+				 me->off[v][2]);
+
+		rho = fmax(rho, o);
+	}
+	w->reach_m = rho;
+}
+
+/* The ring vertex nearest the polyp's angle: where the viewer draws it. */
+static uint32_t polyp_vertex(const struct mesh *me, double step,
+			     const struct anatomy_polyp *p)
+{
+	size_t i = (size_t)lround(p->s_m / step);
+	uint32_t ring;
+	double k;
+
+	i = i + 1 < me->samples ? i : me->samples - 2; /* the pole: no ring */
+	ring = me->sample_first[i + 1] - me->sample_first[i];
+	k = fmod(p->angle_rad / (2 * M_PI), 1.0);
+	k = k < 0 ? k + 1 : k;
+	return me->sample_first[i] + (uint32_t)lround(k * ring) % ring;
+}
+
+static int view_init(struct view *w, const struct colon *c)
+{
+	const struct centreline *src = colon_centreline(c);
+	const struct anatomy *a = colon_anatomy(c);
+	size_t n = centreline_count(src);
+	double (*pts)[3], range[CENTRELINE_MAX_SPANS][2];
+	char err[128];
+
+	pts = malloc(n * sizeof(*pts));
+	if (!pts) {
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < n; i++) {
+		vec3_copy(pts[i], centreline_base(src, i)->p);
+	}
+	w->cl = centreline_create((const double(*)[3])pts, n,
+				  centreline_step(src),
+				  centreline_base(src, 0)->u, err, sizeof(err));
+	free(pts);
+	for (int k = 0; k < centreline_spans(src); k++) {
+		centreline_span_range(src, k, &range[k][0], &range[k][1]);
+	}
+	if (!w->cl || centreline_set_spans(w->cl, (const double(*)[2])range,
+					   centreline_spans(src))) {
+		return -ENOMEM;
+	}
+	w->mesh = colon_mesh(c);
+	w->area = calloc(w->mesh->vertices, sizeof(*w->area));
+	w->seen = calloc(w->mesh->vertices, 1);
+	if (!w->area || !w->seen) {
+		return -ENOMEM;
+	}
+	view_areas(w);
+	for (int k = 0; a && k < a->polyps && k < ANATOMY_MAX_POLYPS; k++) {
+		w->polyp_vertex[k] = polyp_vertex(w->mesh, centreline_step(src),
+						  &a->polyp[k]);
+		w->polyp_r[k] = a->polyp[k].diameter_m / 2;
+		w->polyps = k + 1;
+	}
+	return 0;
+}
+
+static void view_free(struct view *w)
+{
+	centreline_destroy(w->cl);
+	free(w->area);
+	free(w->seen);
+}
+
+/* The private centreline bowed as in R. */
+static void view_bow(struct view *w, const struct session_record *r)
+{
+	int spans = centreline_spans(w->cl);
+
+	for (int k = 0; k < spans && k < (int)r->spans &&
+			k < ENDOSIM_SPANS; k++) {
+		double b = r->bow_m[k];
+
+		if (isfinite(b) &&
+		    fabs(b - centreline_bow_amplitude(w->cl, k)) > BOW_STEP_M) {
+			centreline_bow(w->cl, k, b);
+		}
+	}
+}
+
+struct pose {
+	double tip[3], dir[3];
+	double range_m, cos_half;
+};
+
+/* X (a point's offset from the tip) in the camera's range and cone. */
+static bool pose_sees(const struct pose *c, const double x[3], double range)
+{
+	double d = vec3_norm(x);
+
+	return d <= range && vec3_dot(x, c->dir) >= c->cos_half * d;
+}
+
+static void view_mucosa(struct view *w, const struct pose *c, double tip_s)
+{
+	const struct mesh *me = w->mesh;
+	double step = centreline_step(w->cl), reach = c->range_m + w->reach_m;
+	long i0 = lround((tip_s - reach) / step);
+	long i1 = lround((tip_s + reach) / step) + 1;
+
+	i0 = i0 < 0 ? 0 : i0;
+	i1 = i1 > (long)me->samples ? (long)me->samples : i1;
+	for (long i = i0; i < i1; i++) {
+		for (uint32_t v = me->sample_first[i];
+		     v < me->sample_first[i + 1]; v++) {
+			double p[3], n[3], x[3];
+
+			if (w->seen[v]) {
+				continue;
+			}
+			vertex_place(me, w->cl, v, p, n);
+			vec3_sub(x, p, c->tip);
+			if (pose_sees(c, x, c->range_m) &&
+			    vec3_dot(n, x) < 0) {
+				w->seen[v] = 1;
+				w->seen_area += w->area[v];
+			}
+		}
+	}
+}
+
+static uint32_t view_polyps(const struct view *w, const struct pose *c)
+{
+	uint32_t mask = 0;
+
+	for (int k = 0; k < w->polyps; k++) {
+		double p[3], n[3], x[3];
+
+		vertex_place(w->mesh, w->cl, w->polyp_vertex[k], p, n);
+		vec3_normalize(n);
+		vec3_sub(x, p, c->tip);
+		if (vec3_dot(n, x) >= 0) {
+			continue; /* behind the wall */
+		}
+		vec3_axpy(x, x, w->polyp_r[k], n);
+		if (pose_sees(c, x, c->range_m + w->polyp_r[k])) {
+			mask |= 1u << k;
+		}
+	}
+	return mask;
+}
+
+static void view_pose(const struct metrics *m, const struct session_record *r,
+		      struct pose *c)
+{
+	for (int j = 0; j < 3; j++) {
+		c->tip[j] = r->tip[j];
+		c->dir[j] = r->dir[j];
+	}
+	vec3_normalize(c->dir);
+	c->range_m = m->p.view_distance_m;
+	c->cos_half = cos(m->p.fov_rad / 2);
+}
+
+static void view_evaluate(struct metrics *m, const struct session_record *r,
+			  double t)
+{
+	struct view *w = &m->view;
+	struct pose c;
+
+	if (t < w->next_s) {
+		return;
+	}
+	w->next_s = t + 1 / m->p.view_rate_hz;
+	view_bow(w, r);
+	view_pose(m, r, &c);
+	view_mucosa(w, &c, r->tip_s_m);
+	m->polyps_seen_mask |= view_polyps(w, &c);
+}
+
+/* --------------------------------------------------------------- lumen */
+
+/* The bowed centreline's point at material S_M: the undeformed one moved
+ * by each span's A sin^2(pi (s - s0) / (s1 - s0)) e (centreline.h). */
+static void bowed_point(const struct metrics *m,
+			const struct session_record *r, double s_m,
+			double out[3])
+{
+	const struct centreline *cl = m->view.cl;
+	struct centreline_point q;
+
+	centreline_at_s(cl, s_m, &q); /* the private copy; see below */
+	vec3_copy(out, q.p);
+	for (int k = 0; k < centreline_spans(cl) && k < (int)r->spans &&
+			k < ENDOSIM_SPANS; k++) {
+		double s0, s1, e[3], w, b = r->bow_m[k];
+
+		centreline_span_range(cl, k, &s0, &s1);
+		if (s_m <= s0 || s_m >= s1 || !isfinite(b)) {
+			continue;
+		}
+		w = sin(M_PI * (s_m - s0) / (s1 - s0));
+		centreline_bow_direction(cl, k, e);
+		/* the private copy is bowed by its own amplitude: replace */
+		vec3_axpy(out, out, (b - centreline_bow_amplitude(cl, k)) * w * w,
+			  e);
+	}
+}
+
+static bool lumen_lost(const struct metrics *m, const struct session_record *r)
+{
+	double s = fmin(r->tip_s_m + METRICS_LOOKAHEAD_M,
+			centreline_length(m->view.cl));
+	double a[3], x[3], dir[3], d;
+
+	if (r->contact) {
+		double n[3] = { r->normal[0], r->normal[1], r->normal[2] };
+
+		for (int j = 0; j < 3; j++) {
+			dir[j] = r->dir[j];
+		}
+		if (vec3_dot(n, dir) < -REDOUT_COS * vec3_norm(dir) * vec3_norm(n)) {
+			return true;
+		}
+	}
+	bowed_point(m, r, s, a);
+	for (int j = 0; j < 3; j++) {
+		x[j] = a[j] - r->tip[j];
+		dir[j] = r->dir[j];
+	}
+	d = vec3_norm(x);
+	if (d < POLE_GAP_M) {
+		return false;
+	}
+	return vec3_dot(x, dir) < cos(m->p.lumen_angle_rad) * d * vec3_norm(dir);
+}
+
+/* -------------------------------------------------------------- public */
+
+struct metrics *metrics_create(const struct colon *colon,
+			       const struct metrics_params *p)
+{
+	struct metrics *m = calloc(1, sizeof(*m));
+
+	if (!m) {
+		return NULL;
+	}
+	m->p = *p;
+	m->colon = colon;
+	m->cecum_s = -1;
+	m->out_s = -1;
+	m->exit_s_m = METRICS_EXIT_S_M;
+	episodes_init(&m->force, p->force_threshold_n, p->min_episode_s);
+	episodes_init(&m->loop, p->loop_threshold_m, p->min_episode_s);
+	if (!colon) {
+		return m;
+	}
+	m->cecum_s_m = colon_cecum_s(colon);
+	if (colon_anatomy(colon)) {
+		m->exit_s_m = anatomy_segment_start(colon_anatomy(colon),
+						    ANATOMY_RECTUM);
+	}
+	if (view_init(&m->view, colon)) {
+		metrics_destroy(m);
+		return NULL;
+	}
+	return m;
+}
+
+void metrics_destroy(struct metrics *m)
+{
+	if (!m) {
+		return;
+	}
+	view_free(&m->view);
+	free(m);
+}
+
+static double record_bow(const struct session_record *r)
+{
+	double b = 0;
+
+	for (uint32_t k = 0; k < r->spans && k < ENDOSIM_SPANS; k++) {
+		if (isfinite(r->bow_m[k])) {
+			b = fmax(b, fabs(r->bow_m[k]));
+		}
+	}
+	return b;
+}
+
+/* The discomfort index' rate (1/s) at R. */
+static double record_load(const struct metrics *m,
+			  const struct session_record *r)
+{
+	double f = 0;
+
+	if (r->contact) {
+		f = hypot(hypot(r->f_static[0], r->f_static[1]),
+			  r->f_static[2]);
+	}
+	return record_bow(r) / m->p.discomfort_bow_m +
+	       (isfinite(f) ? f : 0) / m->p.discomfort_force_n;
+}
+
+/* The cecum, then the way out. */
+static void record_progress(struct metrics *m, const struct session_record *r,
+			    double t)
+{
+	if (!m->colon) {
+		return;
+	}
+	if (m->cecum_s < 0 && r->tip_s_m >= m->cecum_s_m) {
+		m->cecum_s = t;
+	} else if (m->cecum_s >= 0 && m->out_s < 0 &&
+		   (r->tip_s_m < m->exit_s_m || r->depth_m <= 0)) {
+		m->out_s = t;
+	}
+}
+
+void metrics_record(struct metrics *m, const struct session_record *r)
+{
+	double t, dt, f = fabs(r->limited[0]);
+	bool inserted = r->depth_m > 0;
+
+	if (m->records == 0) {
+		m->first_ns = r->stamp_ns;
+	}
+	t = (double)(int64_t)(r->stamp_ns - m->first_ns) * 1e-9;
+	dt = m->records ? t - m->last_s : 0;
+	/* the previous record's state holds until this one */
+	m->discomfort += m->prev_load * dt;
+	m->lumen_lost_s += m->lost ? dt : 0;
+	m->records++;
+	m->last_s = t;
+	f = isfinite(f) ? f : 0;
+	m->peak_n = fmax(m->peak_n, f);
+	if (inserted) {
+		m->inserted++;
+		m->sum_n += f;
+		m->max_tip_s_m = fmax(m->max_tip_s_m, r->tip_s_m);
+	}
+	record_progress(m, r, t);
+	episodes_update(&m->force, t, f);
+	episodes_update(&m->loop, t, record_bow(r));
+	m->prev_load = record_load(m, r);
+	m->lost = m->colon && inserted && lumen_lost(m, r);
+	if (m->colon && inserted) {
+		view_evaluate(m, r, t);
+	}
+}
+
+void metrics_event(struct metrics *m, const struct session_event *ev,
+		   const char *text)
+{
+	(void)text;
+	if (ev->kind == SESSION_EVENT_DROPS && ev->value > (double)m->drops) {
+		m->drops = (uint64_t)ev->value;
+	}
+}
+
+static uint32_t popcount32(uint32_t x)
+{
+	uint32_t n = 0;
+
+	for (; x; x &= x - 1) {
+		n++;
+	}
+	return n;
+}
+
+void metrics_result(const struct metrics *m, struct metrics_result *out)
+{
+	double now = m->last_s;
+
+	memset(out, 0, sizeof(*out));
+	out->duration_s = now;
+	out->records = m->records;
+	out->drops = m->drops;
+	out->cecum_s = m->cecum_s;
+	out->insertion_s = m->cecum_s >= 0 ? m->cecum_s : now;
+	if (m->cecum_s >= 0) {
+		out->withdrawal_s = (m->out_s >= 0 ? m->out_s : now) -
+				    m->cecum_s;
+	}
+	out->max_tip_s_m = m->max_tip_s_m;
+	out->peak_insertion_n = m->peak_n;
+	out->mean_insertion_n = m->inserted ? m->sum_n / (double)m->inserted : 0;
+	episodes_result(&m->force, now, &out->force_episodes,
+			&out->force_episode_s, &(double){ 0 },
+			&(double){ 0 }, &out->n_force, out->force);
+	episodes_result(&m->loop, now, &out->loop_episodes, &(double){ 0 },
+			&out->longest_loop_s, &out->largest_loop_m,
+			&out->n_loop, out->loop);
+	out->discomfort = m->discomfort;
+	out->lumen_lost_s = m->lumen_lost_s;
+	if (m->view.total_area > 0) {
+		out->mucosa_seen = m->view.seen_area / m->view.total_area;
+	}
+	out->polyps_seen_mask = m->polyps_seen_mask;
+	out->polyps_seen = popcount32(m->polyps_seen_mask);
+	out->polyps_total = (uint32_t)m->view.polyps;
+}
+
+double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
+				   double s1_m)
+{
+	const struct mesh *me = m->view.mesh;
+	double step, seen = 0, all = 0;
+
+	if (!m->view.cl) {
+		return 0;
+	}
+	step = centreline_step(m->view.cl);
+	for (uint32_t v = 0; v < me->vertices; v++) {
+		double s = me->sample[v] * step;
+
+		if (s >= s0_m && s <= s1_m) {
+			all += m->view.area[v];
+			seen += m->view.seen[v] ? m->view.area[v] : 0;
+		}
+	}
+	return all > 0 ? seen / all : 0;
+}
+
+/* ------------------------------------------------------- format, parse */
+
+#define FIELD_D(name) { #name, offsetof(struct metrics_result, name), 'd' }
+#define FIELD_U(name) { #name, offsetof(struct metrics_result, name), 'u' }
+#define FIELD_L(name) { #name, offsetof(struct metrics_result, name), 'l' }
+
+static const struct field {
+	const char *key;
+	size_t offset;
+	char type; /* d double, u uint32_t, l uint64_t */
+} fields[] = {
+	FIELD_D(duration_s), FIELD_L(records), FIELD_L(drops),
+	FIELD_D(cecum_s), FIELD_D(insertion_s), FIELD_D(withdrawal_s),
+	FIELD_D(max_tip_s_m), FIELD_D(peak_insertion_n),
+	FIELD_D(mean_insertion_n), FIELD_U(force_episodes),
+	FIELD_D(force_episode_s), FIELD_U(loop_episodes),
+	FIELD_D(longest_loop_s), FIELD_D(largest_loop_m), FIELD_D(discomfort),
+	FIELD_D(lumen_lost_s), FIELD_D(mucosa_seen), FIELD_U(polyps_seen),
+	FIELD_U(polyps_total), FIELD_U(polyps_seen_mask),
+};
+
+#define NFIELDS (sizeof(fields) / sizeof(fields[0]))
+
+static int put(char *buf, size_t size, size_t *used, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+
+static int put(char *buf, size_t size, size_t *used, const char *fmt, ...)
+{
+	va_list ap;
+	int n;
+
+	va_start(ap, fmt);
+	n = vsnprintf(buf + *used, size > *used ? size - *used : 0, fmt, ap);
+	va_end(ap);
+	if (n < 0 || *used + (size_t)n >= size) {
+		return -ENOSPC;
+	}
+	*used += (size_t)n;
+	return 0;
+}
+
+static int put_field(const struct metrics_result *r, const struct field *f,
+		     char *buf, size_t size, size_t *used)
+{
+	const char *at = (const char *)r + f->offset;
+
+	switch (f->type) {
+	case 'd':
+		return put(buf, size, used, "%s=%.9g\n", f->key,
+			   *(const double *)at);
+	case 'u':
+		return put(buf, size, used, "%s=%u\n", f->key,
+			   *(const uint32_t *)at);
+	default:
+		return put(buf, size, used, "%s=%llu\n", f->key,
+			   (unsigned long long)*(const uint64_t *)at);
+	}
+}
+
+static int put_episodes(const char *kind, const struct metrics_episode *ep,
+			uint32_t n, char *buf, size_t size, size_t *used)
+{
+	for (uint32_t i = 0; i < n; i++) {
+		if (put(buf, size, used, "%s_episode.%u=%.9g,%.9g,%.9g\n", kind,
+			i, ep[i].start_s, ep[i].end_s, ep[i].peak)) {
+			return -ENOSPC;
+		}
+	}
+	return 0;
+}
+
+int metrics_format(const struct metrics_result *result, char *buf,
+		   size_t size)
+{
+	size_t used = 0;
+
+	if (size) {
+		buf[0] = '\0';
+	}
+	for (size_t i = 0; i < NFIELDS; i++) {
+		if (put_field(result, &fields[i], buf, size, &used)) {
+			return -ENOSPC;
+		}
+	}
+	if (put_episodes("force", result->force, result->n_force, buf, size,
+			 &used) ||
+	    put_episodes("loop", result->loop, result->n_loop, buf, size,
+			 &used)) {
+		return -ENOSPC;
+	}
+	return (int)used;
+}
+
+static int parse_number(const char *v, char type, void *at)
+{
+	char *end;
+
+	errno = 0;
+	if (type == 'd') {
+		*(double *)at = strtod(v, &end);
+	} else {
+		unsigned long long x = strtoull(v, &end, 10);
+
+		if (type == 'u' && x > UINT32_MAX) {
+			return -EINVAL;
+		}
+		if (type == 'u') {
+			*(uint32_t *)at = (uint32_t)x;
+		} else {
+			*(uint64_t *)at = x;
+		}
+	}
+	return errno || end == v || *end ? -EINVAL : 0;
+}
+
+/* "KIND_episode.N=start,end,peak" into LIST (N < METRICS_MAX_EPISODES). */
+static int parse_episode(const char *index, const char *v,
+			 struct metrics_episode *list, uint32_t *n)
+{
+	struct metrics_episode e;
+	char *end;
+	unsigned long i = strtoul(index, &end, 10);
+	int used = 0;
+
+	if (end == index || *end || i >= METRICS_MAX_EPISODES ||
+	    sscanf(v, "%lf,%lf,%lf%n", &e.start_s, &e.end_s, &e.peak,
+		   &used) != 3 || v[used]) {
+		return -EINVAL;
+	}
+	list[i] = e;
+	*n = *n > i + 1 ? *n : (uint32_t)i + 1;
+	return 0;
+}
+
+static int parse_line(char *line, struct metrics_result *out)
+{
+	char *v = strchr(line, '=');
+
+	if (!v) {
+		return -EINVAL;
+	}
+	*v++ = '\0';
+	if (!strncmp(line, "force_episode.", 14)) {
+		return parse_episode(line + 14, v, out->force, &out->n_force);
+	}
+	if (!strncmp(line, "loop_episode.", 13)) {
+		return parse_episode(line + 13, v, out->loop, &out->n_loop);
+	}
+	for (size_t i = 0; i < NFIELDS; i++) {
+		if (!strcmp(line, fields[i].key)) {
+			return parse_number(v, fields[i].type,
+					    (char *)out + fields[i].offset);
+		}
+	}
+	return 0; /* a later version's key */
+}
+
+int metrics_parse(const char *text, struct metrics_result *out)
+{
+	char line[256];
+
+	memset(out, 0, sizeof(*out));
+	out->cecum_s = -1;
+	while (*text) {
+		size_t n = strcspn(text, "\n");
+
+		if (n >= sizeof(line)) {
+			return -EINVAL;
+		}
+		memcpy(line, text, n);
+		line[n] = '\0';
+		text += n + (text[n] == '\n');
+		if (n && parse_line(line, out)) {
+			return -EINVAL;
+		}
+	}
+	return 0;
+}

@@ -1,0 +1,136 @@
+/*
+ * recorder.h - training sessions: the recorder thread that writes every
+ * force-loop cycle of a session into a session file (proto/session_file.h,
+ * docs/SESSION_FORMAT.md) and computes the session's metrics (metrics.h)
+ * live, outside the force loop.
+ *
+ * Data flow:
+ *
+ *   force loop --recorder_tap_push()--> record ring (SPSC, [session]
+ *   ring_s of cycles) --> recorder thread: metrics, events, frames
+ *   gathered in a buffer, write(2) every ~100 ms or when full
+ *
+ * The force loop's only part is recorder_tap_push(): while a session is
+ * recording it converts the published state into a record and pushes it;
+ * a full ring (a slow disk) drops the record and counts it. It never
+ * waits, allocates or writes. The recorder writes a DROPS event whenever
+ * that count grows, so a file says where it has gaps.
+ *
+ * The recorder derives STATE and FAULT events from the records' state and
+ * fault bits, takes PARAM events from the control thread
+ * (recorder_param()), and at stop writes the END frame (the final
+ * metrics), fsyncs and closes. One session at a time.
+ *
+ * Threads: recorder_tap_push() is the force loop's; recorder_start(),
+ * recorder_stop(), recorder_param() and recorder_info() the control
+ * thread's (they may block briefly on the recorder's mutex; start writes
+ * the file's first frames, stop waits for the last ones and the fsync);
+ * create, run and destroy the main thread's.
+ */
+#ifndef ENDOSIM_RECORDER_H
+#define ENDOSIM_RECORDER_H
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "../proto/endosim_shm.h"
+#include "../proto/session_file.h"
+#include "colon.h"
+#include "config.h"
+#include "metrics.h"
+#include "publish.h"
+#include "rig.h"
+#include "spsc.h"
+
+#define RECORDER_NAME 64 /* trainee and case names, bytes with the NUL */
+#define RECORDER_PATH 256
+
+/* What the force loop sees of the recorder. */
+struct recorder_tap {
+	struct spsc ring;            /* struct session_record */
+	_Atomic bool recording;
+	_Atomic uint64_t drops;      /* records the ring had no room for */
+};
+
+/*
+ * Force loop, after publishing ST: pushes its record while a session is
+ * recording, else does nothing. Never blocks or allocates.
+ */
+void recorder_tap_push(struct recorder_tap *t, const struct endosim_state *st);
+
+/* What a session starts with (the control thread fills it). */
+struct recorder_session {
+	char trainee[RECORDER_NAME];
+	char case_name[RECORDER_NAME];
+	const char *config_text;     /* as --print-config prints it */
+	const char *case_text;       /* the case file's text */
+	const struct colon *colon;   /* the metrics' colon: must stay until
+					recorder_stop() (no case loads during
+					a session) */
+	uint32_t period_ns;
+	double step_m, segment_m;    /* the colon's resolution */
+	int ring_vertices;
+};
+
+/* A session, running or just ended, as endoctl shows it. */
+struct recorder_info {
+	bool active;                 /* false: no session since start-up */
+	bool recording;
+	uint64_t id;
+	char trainee[RECORDER_NAME];
+	char case_name[RECORDER_NAME];
+	char started[32];            /* UTC, ISO 8601 */
+	char path[RECORDER_PATH];
+	uint64_t start_ns, end_ns;   /* CLOCK_MONOTONIC; end 0 while running */
+	uint64_t records;            /* written so far */
+	uint64_t drops;
+	uint64_t bytes;              /* file size so far */
+	struct metrics_result metrics; /* live: refreshed every ~100 ms */
+};
+
+struct recorder;
+struct loop;
+
+/*
+ * Allocates the ring ([session] ring_s at the loop's rate) and the write
+ * buffer; creates [session] directory if it is missing. A new fault's
+ * cause is read from PUB and put into words with RIG, its time counted
+ * from START_NS (the daemon's start), as in the journal. NULL on failure
+ * (logged).
+ */
+struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
+				 struct publish *pub, uint64_t start_ns);
+
+/* The tap for loop_set_tap(). */
+struct recorder_tap *recorder_tap(struct recorder *r);
+
+/* Starts the recorder thread (SCHED_OTHER); LOOP paces the stop. 0/-errno. */
+int recorder_run(struct recorder *r, const struct loop *loop);
+
+/*
+ * Opens the next session file (ID = largest existing + 1), writes HEADER,
+ * CONFIG and CASE, and starts recording from the next cycle. 0; -EBUSY (a
+ * session is recording); -errno from the file (logged). *INFO: the session.
+ */
+int recorder_start(struct recorder *r, const struct recorder_session *s,
+		   struct recorder_info *info);
+
+/*
+ * Stops recording: the ring drained into the file, the END frame with the
+ * final metrics, fsync, close. Waits for it (bounded by the disk). 0;
+ * -ENOENT when no session is recording; -EIO when the file could not be
+ * finished (logged). *INFO: the session as it ended.
+ */
+int recorder_stop(struct recorder *r, struct recorder_info *info);
+
+/* The current or last session; INFO->active false if none yet. */
+void recorder_info(struct recorder *r, struct recorder_info *info);
+
+/* A live parameter changed (SetParam): a PARAM event while recording. */
+void recorder_param(struct recorder *r, const char *key, const char *value);
+
+/* Stops a running session (as recorder_stop()) and the thread; frees. */
+void recorder_destroy(struct recorder *r);
+
+#endif

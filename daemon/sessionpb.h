@@ -1,0 +1,33 @@
+/*
+ * sessionpb.h - the training metrics (metrics.h struct metrics_result) on
+ * the wire (endosim.proto SessionMetrics), both ways: endosimd fills
+ * replies with it, endoctl reads them back into the same struct it fills
+ * from a session file, so that both print alike.
+ *
+ * No allocation: the message and its episodes live in struct
+ * sessionpb_metrics, whose arrays the message points into. Any thread but
+ * the force loop.
+ */
+#ifndef ENDOSIM_SESSIONPB_H
+#define ENDOSIM_SESSIONPB_H
+
+#include "endosim.pb-c.h"
+#include "metrics.h"
+
+struct sessionpb_metrics {
+	Endosim__SessionMetrics msg;
+	Endosim__MetricsEpisode force[METRICS_MAX_EPISODES];
+	Endosim__MetricsEpisode loop[METRICS_MAX_EPISODES];
+	Endosim__MetricsEpisode *force_p[METRICS_MAX_EPISODES];
+	Endosim__MetricsEpisode *loop_p[METRICS_MAX_EPISODES];
+};
+
+/* OUT->msg becomes R on the wire; it points into OUT. */
+void sessionpb_from_metrics(struct sessionpb_metrics *out,
+			    const struct metrics_result *r);
+
+/* The inverse (episodes beyond METRICS_MAX_EPISODES are left out). */
+void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
+			  struct metrics_result *out);
+
+#endif

@@ -1,0 +1,288 @@
+/* sessionview.c - see sessionview.h. */
+#include "sessionview.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "anatomy.h"
+#include "colon.h"
+
+/* ------------------------------------------------------------ metrics */
+
+static double header_double(const char *header, const char *key, double def)
+{
+	char v[64];
+
+	return session_text_get(header, key, v, sizeof(v)) ? def
+							   : strtod(v, NULL);
+}
+
+/* The colon of the file's CASE frame at its header's resolution, or NULL. */
+static struct colon *rebuild_colon(const struct session_file *f)
+{
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+	char path[] = "/tmp/endoctl-case.XXXXXX", err[512];
+	struct colon *c = NULL;
+	struct anatomy a;
+	size_t n = f->case_text ? strlen(f->case_text) : 0;
+	int fd = n ? mkstemp(path) : -1;
+
+	if (fd < 0) {
+		return NULL;
+	}
+	p.step_m = header_double(f->header, "step_m", p.step_m);
+	p.ring_vertices = (uint32_t)header_double(f->header, "ring_vertices",
+						  p.ring_vertices);
+	p.segment_m = header_double(f->header, "segment_m", p.segment_m);
+	if (write(fd, f->case_text, n) == (ssize_t)n &&
+	    !anatomy_load(&a, path, err, sizeof(err))) {
+		c = colon_create(&a, &p, err, sizeof(err));
+	}
+	close(fd);
+	unlink(path);
+	return c;
+}
+
+int sessionview_metrics(const struct session_file *f,
+			struct metrics_result *out, bool *recomputed)
+{
+	struct metrics_params p;
+	struct colon *colon;
+	struct metrics *m;
+	size_t e = 0;
+
+	*recomputed = false;
+	if (f->end && !metrics_parse(f->end, out)) {
+		return 0;
+	}
+	metrics_params_default(&p);
+	colon = rebuild_colon(f);
+	m = metrics_create(colon, &p);
+	if (!m) {
+		colon_destroy(colon);
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < f->n_records; i++) {
+		for (; e < f->n_events && f->events[e].ev.stamp_ns <=
+						  f->records[i].stamp_ns; e++) {
+			metrics_event(m, &f->events[e].ev, f->events[e].text);
+		}
+		metrics_record(m, &f->records[i]);
+	}
+	for (; e < f->n_events; e++) {
+		metrics_event(m, &f->events[e].ev, f->events[e].text);
+	}
+	metrics_result(m, out);
+	metrics_destroy(m);
+	colon_destroy(colon);
+	*recomputed = true;
+	return 0;
+}
+
+static void print_episodes(FILE *out, const char *what,
+			   const struct metrics_episode *ep, uint32_t n,
+			   const char *unit)
+{
+	for (uint32_t i = 0; i < n; i++) {
+		fprintf(out, "  %s %u: %.2f .. ", what, i + 1, ep[i].start_s);
+		if (ep[i].end_s < 0) {
+			fprintf(out, "(going)");
+		} else {
+			fprintf(out, "%.2f s", ep[i].end_s);
+		}
+		fprintf(out, ", peak %.3g %s\n", ep[i].peak, unit);
+	}
+}
+
+void sessionview_print(FILE *out, const struct metrics_result *m)
+{
+	fprintf(out, "duration          %.2f s, %" PRIu64 " records, %" PRIu64
+		" dropped\n", m->duration_s, m->records, m->drops);
+	if (m->cecum_s >= 0) {
+		fprintf(out, "cecum reached     at %.2f s\n", m->cecum_s);
+	} else {
+		fprintf(out, "cecum reached     no (deepest %.3f m)\n",
+			m->max_tip_s_m);
+	}
+	fprintf(out, "insertion time    %.2f s\nwithdrawal time   %.2f s\n",
+		m->insertion_s, m->withdrawal_s);
+	fprintf(out, "insertion force   peak %.2f N, mean %.2f N\n",
+		m->peak_insertion_n, m->mean_insertion_n);
+	fprintf(out, "force episodes    %u, %.2f s in all\n", m->force_episodes,
+		m->force_episode_s);
+	print_episodes(out, "force", m->force, m->n_force, "N");
+	fprintf(out, "loops             %u, longest %.2f s, largest %.3f m\n",
+		m->loop_episodes, m->longest_loop_s, m->largest_loop_m);
+	print_episodes(out, "loop", m->loop, m->n_loop, "m");
+	fprintf(out, "discomfort index  %.3g\nlumen lost        %.2f s\n",
+		m->discomfort, m->lumen_lost_s);
+	fprintf(out, "mucosa seen       %.1f %%\npolyps seen       %u of %u\n",
+		100 * m->mucosa_seen, m->polyps_seen, m->polyps_total);
+}
+
+static void json_episodes(struct json *j, const char *key,
+			  const struct metrics_episode *ep, uint32_t n)
+{
+	json_array_begin(j, key);
+	for (uint32_t i = 0; i < n; i++) {
+		json_object_begin(j, NULL);
+		json_double(j, "start_s", ep[i].start_s);
+		json_double(j, "end_s", ep[i].end_s);
+		json_double(j, "peak", ep[i].peak);
+		json_object_end(j);
+	}
+	json_array_end(j);
+}
+
+void sessionview_json(struct json *j, const char *key,
+		      const struct metrics_result *m)
+{
+	json_object_begin(j, key);
+	json_double(j, "duration_s", m->duration_s);
+	json_uint(j, "records", m->records);
+	json_uint(j, "drops", m->drops);
+	json_double(j, "cecum_s", m->cecum_s);
+	json_double(j, "insertion_s", m->insertion_s);
+	json_double(j, "withdrawal_s", m->withdrawal_s);
+	json_double(j, "max_tip_s_m", m->max_tip_s_m);
+	json_double(j, "peak_insertion_n", m->peak_insertion_n);
+	json_double(j, "mean_insertion_n", m->mean_insertion_n);
+	json_uint(j, "force_episodes", m->force_episodes);
+	json_double(j, "force_episode_s", m->force_episode_s);
+	json_episodes(j, "force", m->force, m->n_force);
+	json_uint(j, "loop_episodes", m->loop_episodes);
+	json_double(j, "longest_loop_s", m->longest_loop_s);
+	json_double(j, "largest_loop_m", m->largest_loop_m);
+	json_episodes(j, "loops", m->loop, m->n_loop);
+	json_double(j, "discomfort", m->discomfort);
+	json_double(j, "lumen_lost_s", m->lumen_lost_s);
+	json_double(j, "mucosa_seen", m->mucosa_seen);
+	json_uint(j, "polyps_seen", m->polyps_seen);
+	json_uint(j, "polyps_total", m->polyps_total);
+	json_object_end(j);
+}
+
+/* ------------------------------------------------------------ CSV */
+
+enum col_type { COL_U64, COL_U32, COL_F32 };
+
+struct column {
+	const char *name;          /* with its unit as a suffix */
+	enum col_type type;
+	size_t offset;             /* into struct session_record */
+};
+
+#define R(field) offsetof(struct session_record, field)
+#define F(name, field) { name, COL_F32, R(field) }
+#define U(name, field) { name, COL_U32, R(field) }
+#define AXES(what, field, lin, rot)                                          \
+	F("insertion_" what "_" lin, field[0]),                              \
+	F("roll_" what "_" rot, field[1]),                                   \
+	F("wheel_ud_" what "_" rot, field[2]),                               \
+	F("wheel_lr_" what "_" rot, field[3])
+#define XYZ(what, field, unit)                                               \
+	F(what "_x_" unit, field[0]), F(what "_y_" unit, field[1]),          \
+	F(what "_z_" unit, field[2])
+
+static const struct column columns[] = {
+	{ "cycle", COL_U64, R(cycle) },
+	U("state", state),
+	U("fault_bits", fault_bits),
+	AXES("position", position, "m", "rad"),
+	AXES("velocity", velocity, "m_per_s", "rad_per_s"),
+	AXES("hand", hand, "n", "nm"),
+	AXES("command", command, "n", "nm"),
+	AXES("limited", limited, "n", "nm"),
+	F("ramp", ramp),
+	F("depth_m", depth_m),
+	F("roll_rad", roll_rad),
+	F("bend_ud_rad", bend_rad[0]),
+	F("bend_lr_rad", bend_rad[1]),
+	F("base_s_m", base_s_m),
+	F("tip_s_m", tip_s_m),
+	F("turning_rad", turning_rad),
+	XYZ("tip", tip, "m"),
+	XYZ("dir", dir, "1"),
+	XYZ("up", up, "1"),
+	F("bow0_m", bow_m[0]), F("bow1_m", bow_m[1]),
+	F("bow2_m", bow_m[2]), F("bow3_m", bow_m[3]),
+	XYZ("proxy", proxy, "m"),
+	XYZ("normal", normal, "1"),
+	XYZ("f_static", f_static, "n"),
+	F("penetration_m", penetration_m),
+	U("contact", contact),
+	U("spans", spans),
+	F("curvature_rad", curvature_rad),
+	F("trans_contact_n", trans_contact_n),
+	F("trans_friction_n", trans_friction_n),
+	F("trans_loop_n", trans_loop_n),
+	F("wheel_contact_ud_nm", wheel_contact_nm[0]),
+	F("wheel_contact_lr_nm", wheel_contact_nm[1]),
+	F("wheel_tension_ud_nm", wheel_tension_nm[0]),
+	F("wheel_tension_lr_nm", wheel_tension_nm[1]),
+	F("wheel_elastic_ud_nm", wheel_elastic_nm[0]),
+	F("wheel_elastic_lr_nm", wheel_elastic_nm[1]),
+	F("tube_contact_nm", tube_contact_nm),
+	F("tube_friction_nm", tube_friction_nm),
+	F("scenario_time_s", scenario_time_s),
+	U("latency_ns", latency_ns),
+	U("compute_ns", compute_ns),
+};
+
+#define COLUMNS (sizeof(columns) / sizeof(columns[0]))
+
+static void put_value(FILE *out, const struct session_record *r,
+		      const struct column *c)
+{
+	const unsigned char *p = (const unsigned char *)r + c->offset;
+	uint64_t u64;
+	uint32_t u32;
+	float f;
+
+	switch (c->type) {
+	case COL_U64:
+		memcpy(&u64, p, sizeof(u64));
+		fprintf(out, ",%" PRIu64, u64);
+		break;
+	case COL_U32:
+		memcpy(&u32, p, sizeof(u32));
+		fprintf(out, ",%" PRIu32, u32);
+		break;
+	case COL_F32:
+		memcpy(&f, p, sizeof(f));
+		fprintf(out, ",%.7g", (double)f);
+		break;
+	}
+}
+
+int sessionview_csv(FILE *out, const struct session_file *f)
+{
+	char v[32];
+	uint64_t t0 = 0;
+
+	if (!session_text_get(f->header, "start_ns", v, sizeof(v))) {
+		t0 = strtoull(v, NULL, 10);
+	} else if (f->n_records) {
+		t0 = f->records[0].stamp_ns;
+	}
+	fprintf(out, "t_s");
+	for (size_t c = 0; c < COLUMNS; c++) {
+		fprintf(out, ",%s", columns[c].name);
+	}
+	fputc('\n', out);
+	for (size_t i = 0; i < f->n_records; i++) {
+		const struct session_record *r = &f->records[i];
+
+		fprintf(out, "%.6f", (double)(int64_t)(r->stamp_ns - t0) / 1e9);
+		for (size_t c = 0; c < COLUMNS; c++) {
+			put_value(out, r, &columns[c]);
+		}
+		fputc('\n', out);
+	}
+	return ferror(out) ? -EIO : 0;
+}

@@ -1,0 +1,664 @@
+/*
+ * test_metrics.c - the training metrics against synthetic record streams
+ * whose answers follow from the geometry and the timing alone:
+ *   - a tip moving at constant speed v reaches the cecum at s_c / v and is
+ *     out again (s below the rectum's start s_x) (s_c - s_x) / v later;
+ *   - force plateaus above the threshold at known times: count, start,
+ *     end, peak; a dip within the hysteresis does not split one, a spike
+ *     shorter than min_episode_s is no episode;
+ *   - a bow ramp: loop count, longest, largest;
+ *   - the discomfort of a constant bow and wall force: rate x time;
+ *   - the lumen on a straight colon: lost when dir points at the wall or
+ *     presses head-on into it, kept down the lumen or 30 deg off it;
+ *   - the mucosa seen on a straight colon (geometry in each test);
+ *   - the polyps of the polyps case: seen when looked at from 3 cm, not
+ *     when behind the camera or beyond view_distance_m;
+ *   - metrics_format() and metrics_parse() round trip.
+ * Times are to one record (1 ms at 1 kHz).
+ *
+ * Case files are read from $ENDOSIM_CASES (default config/cases) and
+ * tests/cases: run from the source tree.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "anatomy.h"
+#include "colon.h"
+#include "geom_assert.h"
+#include "metrics.h"
+#include "vec3.h"
+
+#define RATE_HZ 1000
+#define REC_TOL (1.0001 / RATE_HZ) /* one record */
+
+static struct colon *build(const char *dir, const char *name)
+{
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+	const char *env = getenv("ENDOSIM_CASES");
+	struct anatomy a;
+	struct colon *c;
+	char path[512], err[256];
+
+	if (!strcmp(dir, "config/cases") && env && *env) {
+		dir = env;
+	}
+	snprintf(path, sizeof(path), "%s/%s.case", dir, name);
+	if (anatomy_load(&a, path, err, sizeof(err))) {
+		print_error("%s\n", err);
+		fail();
+	}
+	p.ring_vertices = 96;
+	c = colon_create(&a, &p, err, sizeof(err));
+	if (!c) {
+		print_error("%s\n", err);
+		fail();
+	}
+	return c;
+}
+
+/* Record K (at K / RATE_HZ s), inserted, at rest. */
+static struct session_record rec(uint64_t k)
+{
+	return (struct session_record){
+		.cycle = k,
+		.stamp_ns = 5000000000ull + k * (1000000000ull / RATE_HZ),
+		.state = 1,
+		.depth_m = 0.1f,
+		.spans = 2,
+		.dir = { 0, 0, 1 },
+	};
+}
+
+static double t_of(uint64_t k)
+{
+	return (double)k / RATE_HZ;
+}
+
+/* The tip on CL's centreline at S, looking along the tangent rotated by
+ * ANGLE about u (0: down the lumen). */
+static void place(struct session_record *r, const struct centreline *cl,
+		  double s, double angle)
+{
+	struct centreline_point q;
+	double d[3];
+
+	centreline_at_s(cl, s, &q);
+	vec3_rotate(d, q.t, q.u, angle);
+	for (int j = 0; j < 3; j++) {
+		r->tip[j] = (float)q.p[j];
+		r->dir[j] = (float)d[j];
+		r->up[j] = (float)q.u[j];
+	}
+	r->tip_s_m = (float)s;
+	r->depth_m = (float)s;
+}
+
+static struct metrics *metrics_at(const struct colon *c, double rate_hz)
+{
+	struct metrics_params p;
+	struct metrics *m;
+
+	metrics_params_default(&p);
+	p.view_rate_hz = rate_hz;
+	m = metrics_create(c, &p);
+	assert_non_null(m);
+	return m;
+}
+
+/* --------------------------------------------------------- the cecum */
+
+static void test_cecum_insertion_withdrawal(void **state)
+{
+	struct colon *c = build("config/cases", "normal");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+	double v = 0.0937, sc = colon_cecum_s(c);
+	double sx = anatomy_segment_start(colon_anatomy(c), ANATOMY_RECTUM);
+	double deep = sc + 0.03, t_turn = deep / v;
+	uint64_t k = 0, n_in = (uint64_t)(t_turn * RATE_HZ);
+
+	(void)state;
+	for (; k <= n_in; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, v * t_of(k), 0);
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_near(res.cecum_s, sc / v, REC_TOL);
+	assert_near(res.insertion_s, sc / v, REC_TOL);
+	/* not out yet: the withdrawal counts up to now */
+	assert_near(res.withdrawal_s, t_of(n_in) - res.cecum_s, 1e-9);
+	for (; v * (t_of(k) - t_turn) < deep; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, deep - v * (t_of(k) - t_turn), 0);
+		metrics_record(m, &r);
+	}
+	for (uint64_t j = 0; j < RATE_HZ; j++, k++) { /* a second outside */
+		struct session_record r = rec(k);
+
+		r.depth_m = 0;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_near(res.withdrawal_s, t_turn + (deep - sx) / v - sc / v,
+		    2 * REC_TOL);
+	assert_near(res.duration_s, t_of(k - 1), 1e-9);
+	assert_int_equal(res.records, k);
+	assert_near(res.max_tip_s_m, deep, 1e-4);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+static void test_cecum_not_reached(void **state)
+{
+	struct colon *c = build("config/cases", "normal");
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+
+	(void)state;
+	for (uint64_t k = 0; k < 2000; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, colon_centreline(c), 0.5, 0);
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_true(res.cecum_s < 0);
+	assert_near(res.insertion_s, t_of(1999), 1e-9);
+	assert_near(res.withdrawal_s, 0, 0);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/* ---------------------------------------------------------- episodes */
+
+/* 5 N, with plateaus of 20 N (2.0-3.5 s, a dip to 14 N at 2.5 s inside
+ * the hysteresis) and 25 N (6.0-7.0 s, 30 N at 6.2-6.3 s), a 40 N spike
+ * of 0.1 s at 8 s (shorter than min_episode_s), 10 s in all. */
+static double force_at(double t)
+{
+	if (t >= 2.0 && t < 3.5) {
+		return t >= 2.5 && t < 2.55 ? 14 : 20;
+	}
+	if (t >= 6.0 && t < 7.0) {
+		return t >= 6.2 && t < 6.3 ? 30 : 25;
+	}
+	return t >= 8.0 && t < 8.1 ? 40 : 5;
+}
+
+static void test_force_episodes(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+	double sum = 0;
+
+	(void)state;
+	for (uint64_t k = 0; k < 10 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		/* the sign does not matter: |limited[0]| */
+		r.limited[0] = (float)(k % 2 ? force_at(t_of(k)) :
+					       -force_at(t_of(k)));
+		sum += force_at(t_of(k));
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_int_equal(res.force_episodes, 2);
+	assert_int_equal(res.n_force, 2);
+	assert_near(res.force[0].start_s, 2.0, REC_TOL);
+	assert_near(res.force[0].end_s, 3.5, REC_TOL);
+	assert_near(res.force[0].peak, 20, 1e-6);
+	assert_near(res.force[1].start_s, 6.0, REC_TOL);
+	assert_near(res.force[1].end_s, 7.0, REC_TOL);
+	assert_near(res.force[1].peak, 30, 1e-6);
+	assert_near(res.force_episode_s, 2.5, 2 * REC_TOL);
+	assert_near(res.peak_insertion_n, 40, 1e-6);
+	/* 5 N x 10 s + 15 x 1.5 - 6 x 0.05 + 20 x 1 + 5 x 0.1 + 35 x 0.1 */
+	assert_near(res.mean_insertion_n, sum / (10 * RATE_HZ), 1e-9);
+	assert_near(res.mean_insertion_n, (50 + 22.5 - 0.3 + 20 + 0.5 + 3.5) /
+				  10, 0.01);
+	metrics_destroy(m);
+}
+
+static void test_force_episode_running(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+
+	(void)state;
+	for (uint64_t k = 0; k < 3 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		r.limited[0] = t_of(k) >= 1.0 ? 18.0f : 0.0f;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_int_equal(res.force_episodes, 1);
+	assert_true(res.force[0].end_s < 0);
+	assert_near(res.force_episode_s, t_of(3 * RATE_HZ - 1) - 1.0,
+		    REC_TOL);
+	metrics_destroy(m);
+}
+
+/* Span 0 ramps 0 -> 4 cm over 4 s and back over 4 s; span 1 holds 5 mm,
+ * then 2 cm from 9 to 9.5 s. Threshold 1 cm, off below 9 mm. */
+static void test_loop_episodes(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+
+	(void)state;
+	for (uint64_t k = 0; k < 10 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+		double t = t_of(k);
+
+		r.bow_m[0] = (float)(t < 4 ? 0.01 * t :
+				     t < 8 ? 0.04 - 0.01 * (t - 4) : 0);
+		r.bow_m[1] = t >= 9 && t < 9.5 ? 0.02f : 0.005f;
+		r.bow_m[2] = 0.5f; /* beyond spans: ignored */
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_int_equal(res.loop_episodes, 2);
+	assert_near(res.loop[0].start_s, 1.0, 2 * REC_TOL);
+	assert_near(res.loop[0].end_s, 8 - 0.9, 2 * REC_TOL);
+	assert_near(res.loop[0].peak, 0.04, 1e-6);
+	assert_near(res.loop[1].start_s, 9.0, REC_TOL);
+	assert_near(res.loop[1].end_s, 9.5, REC_TOL);
+	assert_near(res.loop[1].peak, 0.02, 1e-6);
+	assert_near(res.longest_loop_s, 6.1, 3 * REC_TOL);
+	assert_near(res.largest_loop_m, 0.04, 1e-6);
+	metrics_destroy(m);
+}
+
+static void test_episodes_beyond_the_list(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+	uint32_t n = METRICS_MAX_EPISODES + 6;
+
+	(void)state;
+	/* N pulses of 0.5 s above 15 N, 0.5 s apart */
+	for (uint64_t k = 0; k < n * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		r.limited[0] = (k % RATE_HZ) < RATE_HZ / 2 ? 20.0f : 0.0f;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_int_equal(res.force_episodes, n);
+	assert_int_equal(res.n_force, METRICS_MAX_EPISODES);
+	assert_near(res.force_episode_s, 0.5 * n, n * REC_TOL);
+	metrics_destroy(m);
+}
+
+/* -------------------------------------------------------- discomfort */
+
+static void test_discomfort_constant(void **state)
+{
+	struct metrics_params p;
+	struct metrics *m;
+	struct metrics_result res;
+	double rate;
+
+	(void)state;
+	metrics_params_default(&p);
+	m = metrics_create(NULL, &p);
+	/* 2 s: a 1.5 cm bow and 5 N on the wall; 1 s more without contact */
+	for (uint64_t k = 0; k <= 3 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		r.bow_m[1] = -0.015f; /* either way */
+		r.contact = t_of(k) < 2.0;
+		r.f_static[0] = 3;
+		r.f_static[1] = 4;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	rate = 0.015 / p.discomfort_bow_m + 5 / p.discomfort_force_n;
+	assert_near(res.discomfort,
+		    rate * 2.0 + 0.015 / p.discomfort_bow_m * 1.0, 1e-5);
+	assert_near(res.discomfort, 3.5, 1e-5); /* the defaults' numbers */
+	metrics_destroy(m);
+}
+
+/* ------------------------------------------------------------- lumen */
+
+static void test_lumen_lost_straight(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+	uint64_t k = 0;
+
+	(void)state;
+	/* 1 s down the lumen, 1 s 30 deg off it: kept */
+	for (; k < 2 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.3 + 0.02 * t_of(k), k < RATE_HZ ? 0 : M_PI / 6);
+		metrics_record(m, &r);
+	}
+	/* 0.5 s at the wall (90 deg) and 0.25 s at 75 deg: lost */
+	for (; k < 2.75 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.3 + 0.02 * t_of(k),
+		      k < 2.5 * RATE_HZ ? M_PI / 2 : 75 * M_PI / 180);
+		metrics_record(m, &r);
+	}
+	/* 0.25 s down the lumen but pressing head-on into a wall: lost */
+	for (; k < 3 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.3 + 0.02 * t_of(k), 0);
+		r.contact = 1;
+		for (int j = 0; j < 3; j++) {
+			r.normal[j] = -r.dir[j];
+		}
+		metrics_record(m, &r);
+	}
+	/* 0.5 s outside, looking anywhere: not counted; then 0.5 s kept */
+	for (; k < 4 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.01, M_PI / 2);
+		if (k < 3.5 * RATE_HZ) {
+			r.depth_m = 0;
+		} else {
+			place(&r, cl, 0.05, 0);
+		}
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_near(res.lumen_lost_s, 1.0, 2 * REC_TOL);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/* ------------------------------------------------------------ mucosa */
+
+/*
+ * A camera on the axis looking forward sees a wall point at radius R and
+ * axial distance x ahead when x >= R / tan(70 deg) = 0.36 R (the cone) and
+ * x^2 + R^2 <= (6 cm)^2; the backs of the haustral folds (slope < 0.7)
+ * face it once x < 1.4 R. Moved from the anal verge to 1 cm before the
+ * cecum's pole in 2 mm steps it sees everything but the first 0.36 R of
+ * the anal canal (R = 12.5 mm: 3.5 cm^2 of ~2400 cm^2): > 99 %.
+ */
+static void test_mucosa_forward_sweep(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 2 * RATE_HZ);
+	struct metrics_result res;
+	double len = centreline_length(cl);
+	uint64_t k = 0;
+
+	(void)state;
+	for (double s = 0.001; s <= len - 0.01; s += 0.002, k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, s, 0);
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_true(res.mucosa_seen > 0.99);
+	assert_true(res.mucosa_seen <= 1.0 + 1e-9);
+	assert_near(metrics_mucosa_seen_between(m, 0.1, len), 1.0, 1e-3);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/*
+ * One pose at s = 0.3 m (the sigmoid, R = 22.5 mm nominal, 16.6 mm at the
+ * folds' and taeniae's deepest) looking back: nothing ahead of it is seen;
+ * behind it the band 0.36 R <= x <= sqrt(0.06^2 - R^2), 0.79 to 0.86 of the
+ * 6 cm from 0.24 to 0.3 m. Looking forward instead, the mirror image.
+ */
+static void test_mucosa_backward_sees_nothing_ahead(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	double band;
+
+	(void)state;
+	for (uint64_t k = 0; k < 10; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.3, M_PI);
+		metrics_record(m, &r);
+	}
+	assert_near(metrics_mucosa_seen_between(m, 0.3 + 0.001, 2), 0, 0);
+	band = metrics_mucosa_seen_between(m, 0.24, 0.3);
+	assert_true(band > 0.74 && band < 0.90);
+	metrics_destroy(m);
+
+	m = metrics_at(c, 20);
+	for (uint64_t k = 0; k < 10; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, 0.3, 0);
+		metrics_record(m, &r);
+	}
+	assert_near(metrics_mucosa_seen_between(m, 0, 0.3 - 0.001), 0, 0);
+	band = metrics_mucosa_seen_between(m, 0.3, 0.36);
+	assert_true(band > 0.74 && band < 0.90);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/*
+ * The sigmoid bowed 4 cm: a camera on the bowed centreline (where the
+ * daemon publishes it) sees what it sees unbowed; one left on the
+ * undeformed centreline is 4 cm off the bowed axis, outside the lumen
+ * (R = 22.5 mm), facing the wall's outside, and sees almost nothing.
+ */
+static double seen_at(struct colon *c, double bow, bool on_bowed)
+{
+	struct metrics *m = metrics_at(c, 20);
+	double share;
+
+	colon_bow(c, 0, on_bowed ? bow : 0, false);
+	for (uint64_t k = 0; k < 4; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, colon_centreline(c), 0.35, 0);
+		r.bow_m[0] = (float)bow;
+		metrics_record(m, &r);
+	}
+	colon_bow(c, 0, 0, false);
+	share = metrics_mucosa_seen_between(m, 0.35, 0.41);
+	metrics_destroy(m);
+	return share;
+}
+
+static void test_mucosa_follows_the_bow(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	double straight = seen_at(c, 0, true);
+
+	(void)state;
+	assert_true(straight > 0.74);
+	assert_near(seen_at(c, 0.04, true), straight, 0.05);
+	assert_true(seen_at(c, 0.04, false) < 0.2);
+	colon_destroy(c);
+}
+
+/* ------------------------------------------------------------ polyps */
+
+/* Where the polyps case's polyp K sits on the undeformed wall. */
+static void polyp_at(const struct colon *c, int k, double out[3])
+{
+	const struct anatomy_polyp *p = &colon_anatomy(c)->polyp[k];
+	struct centreline_point q;
+	double r = colon_lumen_radius(c, p->s_m, p->angle_rad);
+
+	centreline_at_s(colon_centreline(c), p->s_m, &q);
+	vec3_copy(out, q.p);
+	vec3_axpy(out, out, r * cos(p->angle_rad), q.u);
+	vec3_axpy(out, out, r * sin(p->angle_rad), q.v);
+}
+
+static void test_polyps_seen(void **state)
+{
+	struct colon *c = build("config/cases", "polyps");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+	uint64_t k = 0;
+
+	(void)state;
+	assert_int_equal(colon_anatomy(c)->polyps, 5);
+	for (int i = 0; i < 5; i++) {
+		double s = colon_anatomy(c)->polyp[i].s_m, at[3], d[3];
+		struct session_record r = rec(k);
+
+		/* 0, 2, 4: looked at from 3 cm; 1: behind the camera; 3:
+		 * looked at from 10 cm, beyond view_distance_m */
+		place(&r, cl, s - (i == 3 ? 0.10 : 0.03), i == 1 ? M_PI : 0);
+		polyp_at(c, i, at);
+		if (i != 1) {
+			for (int j = 0; j < 3; j++) {
+				d[j] = at[j] - r.tip[j];
+			}
+			vec3_normalize(d);
+			for (int j = 0; j < 3; j++) {
+				r.dir[j] = (float)d[j];
+			}
+		}
+		for (int j = 0; j < 100; j++, k++) {
+			r.stamp_ns = rec(k).stamp_ns;
+			metrics_record(m, &r);
+		}
+		metrics_result(m, &res);
+		assert_int_equal(res.polyps_seen_mask >> i & 1,
+				 i == 0 || i == 2 || i == 4);
+	}
+	assert_int_equal(res.polyps_seen, 3);
+	assert_int_equal(res.polyps_total, 5);
+	assert_int_equal(res.polyps_seen_mask, 0x15);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/* ------------------------------------------------------- drops, text */
+
+static void test_drops(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct session_event ev = { .kind = SESSION_EVENT_DROPS, .value = 12 };
+	struct metrics_result res;
+
+	(void)state;
+	metrics_event(m, &ev, "");
+	ev.value = 40;
+	metrics_event(m, &ev, "");
+	ev.kind = SESSION_EVENT_NOTE;
+	ev.value = 99;
+	metrics_event(m, &ev, "a note");
+	metrics_result(m, &res);
+	assert_int_equal(res.drops, 40);
+	metrics_destroy(m);
+}
+
+static void assert_rel(double a, double b)
+{
+	assert_near(a, b, 1e-8 * fmax(1, fabs(b)));
+}
+
+static void test_format_parse(void **state)
+{
+	struct metrics_result in = {
+		.duration_s = 1234.5678, .records = 1234568, .drops = 3,
+		.cecum_s = 456.25, .insertion_s = 456.25,
+		.withdrawal_s = 401.001, .max_tip_s_m = 1.4812,
+		.peak_insertion_n = 23.75, .mean_insertion_n = 4.321,
+		.force_episodes = 70, .force_episode_s = 12.5,
+		.loop_episodes = 2, .longest_loop_s = 6.1,
+		.largest_loop_m = 0.0412, .discomfort = 321.09876,
+		.lumen_lost_s = 77.7, .mucosa_seen = 0.873456789,
+		.polyps_seen = 3, .polyps_total = 5, .polyps_seen_mask = 0x15,
+		.n_force = METRICS_MAX_EPISODES, .n_loop = 2,
+	}, out;
+	static char buf[16384];
+	int n;
+
+	(void)state;
+	for (uint32_t i = 0; i < in.n_force; i++) {
+		in.force[i] = (struct metrics_episode){ 10.0 * i + 0.125,
+							10.0 * i + 1.5,
+							15.5 + i / 3.0 };
+	}
+	in.loop[0] = (struct metrics_episode){ 1.001, 7.1, 0.04 };
+	in.loop[1] = (struct metrics_episode){ 9, -1, 0.02 };
+	n = metrics_format(&in, buf, sizeof(buf));
+	assert_true(n > 0 && (size_t)n == strlen(buf));
+	assert_non_null(strstr(buf, "withdrawal_s=401.001\n"));
+	assert_non_null(strstr(buf, "loop_episode.1=9,-1,0.02\n"));
+	assert_int_equal(metrics_parse(buf, &out), 0);
+	assert_rel(out.duration_s, in.duration_s);
+	assert_int_equal(out.records, in.records);
+	assert_int_equal(out.drops, in.drops);
+	assert_rel(out.withdrawal_s, in.withdrawal_s);
+	assert_rel(out.discomfort, in.discomfort);
+	assert_rel(out.mucosa_seen, in.mucosa_seen);
+	assert_int_equal(out.force_episodes, 70);
+	assert_int_equal(out.polyps_seen_mask, 0x15);
+	assert_int_equal(out.n_force, in.n_force);
+	assert_int_equal(out.n_loop, 2);
+	for (uint32_t i = 0; i < in.n_force; i++) {
+		assert_rel(out.force[i].start_s, in.force[i].start_s);
+		assert_rel(out.force[i].end_s, in.force[i].end_s);
+		assert_rel(out.force[i].peak, in.force[i].peak);
+	}
+	assert_rel(out.loop[1].end_s, -1);
+	/* too small a buffer, malformed text, a later version's key */
+	assert_int_equal(metrics_format(&in, buf, 100), -ENOSPC);
+	assert_int_equal(metrics_parse("records=12\nnonsense\n", &out),
+			 -EINVAL);
+	assert_int_equal(metrics_parse("records=twelve\n", &out), -EINVAL);
+	assert_int_equal(metrics_parse("force_episode.64=1,2,3\n", &out),
+			 -EINVAL);
+	assert_int_equal(metrics_parse("force_episode.0=1,2\n", &out),
+			 -EINVAL);
+	assert_int_equal(metrics_parse("records=12\nfuture_key=x\n", &out), 0);
+	assert_int_equal(out.records, 12);
+	assert_true(out.cecum_s < 0);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_cecum_insertion_withdrawal),
+		cmocka_unit_test(test_cecum_not_reached),
+		cmocka_unit_test(test_force_episodes),
+		cmocka_unit_test(test_force_episode_running),
+		cmocka_unit_test(test_loop_episodes),
+		cmocka_unit_test(test_episodes_beyond_the_list),
+		cmocka_unit_test(test_discomfort_constant),
+		cmocka_unit_test(test_lumen_lost_straight),
+		cmocka_unit_test(test_mucosa_forward_sweep),
+		cmocka_unit_test(test_mucosa_backward_sees_nothing_ahead),
+		cmocka_unit_test(test_mucosa_follows_the_bow),
+		cmocka_unit_test(test_polyps_seen),
+		cmocka_unit_test(test_drops),
+		cmocka_unit_test(test_format_parse),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
