@@ -1,0 +1,148 @@
+#!/bin/bash
+# endoview --replay: a session file played without the daemon, on a
+# virtual screen of its own (Xvfb, Mesa's llvmpipe). The file is written
+# by session_synth (the demo's course on the normal case, by the force
+# loop's own parts off line), which also prints the truth at a few times:
+# the record's fields as the file holds them and the tube the daemon would
+# have published. At those times the replay shows exactly the record's
+# fields, and its tube, rebuilt by the kinematics from the record, lies on
+# the published one; a playing replay runs its clock by a fixed step per
+# frame in a headless run; the endoscopic image shows the lumen and the
+# HUD its replay lines and timeline; a file cut short replays up to its
+# last complete record; a file that is not a session and a missing one are
+# refused with a reason; no run has an OpenGL error. Then a recording by
+# the daemon itself (endoctl session start/stop) replays to the records
+# that `endoctl session export --csv` lists.
+. "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
+
+start_xvfb || finish
+FILE="$TMP/demo.endoses"
+TRUTH="$TMP/truth.txt"
+TIMES=(3 12.5 24)
+TUBE_TOL_M=0.00001 # a float's rounding of the recorded axes, through the arc
+
+# replay ARGS...: endoview on a session file, headless; output in $VIEW_OUT.
+replay() {
+	endoview --no-vsync --size 640x480 --replay "$@" >"$VIEW_OUT" 2>&1
+}
+
+# shown KEY: a field of the state the last replay's last frame showed.
+shown() {
+	sed -n "s/^state: $1=//p" "$VIEW_OUT"
+}
+
+# fields FILE PREFIX: the state lines after PREFIX, less the tube.
+fields() {
+	sed -n "s/^$2//p" "$1" | grep -v '^tube='
+}
+
+# tube_gap T: the largest coordinate difference (m) between the tube shown
+# and the truth's at T.
+tube_gap() {
+	paste -d, <(shown tube | tr ';' '\n') \
+		<(sed -n "s/^$1: tube=//p" "$TRUTH" | tr ';' '\n') |
+		awk -F, '{ for (i = 1; i <= 3; i++) { d = $i - $(i + 3);
+			   d = d < 0 ? -d : d; m = d > m ? d : m } }
+			 END { printf "%.3g\n", NR == 128 ? m : 1 }'
+}
+
+ran_clean() {
+	[ "$(view_field gl_errors)" = 0 ] &&
+		[ "$(view_field daemon)" = replay ] &&
+		[ "$(view_field colon)" = normal ]
+}
+
+# --- a synthetic session ---------------------------------------------------
+at=()
+for t in "${TIMES[@]}"; do
+	at+=(--at "$t")
+done
+check_status "session_synth: 25 s of the demo on the normal case" 0 \
+	"$TOOLS/session_synth" "${at[@]}" "$CASES/normal.case" \
+	"$TOP/config/scenarios/demo.scn" "$FILE" 25
+cp "$OUT" "$TRUTH"
+
+# --- (a) the states shown are the records --------------------------------
+for t in "${TIMES[@]}"; do
+	check_status "replay paused at $t s: draws and exits 0" 0 \
+		replay "$FILE" --seek "$t" --paused --frames 6 \
+		--screenshot "$TMP/at-$t.png" --print-state
+	check "at $t s: the colon from the file's case, no OpenGL error" \
+		ran_clean
+	check "at $t s: every field shown is the record's (cycle $(shown cycle))" \
+		diff <(fields "$VIEW_OUT" 'state: ') <(fields "$TRUTH" "$t: ")
+	gap=$(tube_gap "$t")
+	echo "# at $t s: the tube by the kinematics within $gap m of the published"
+	check "at $t s: the rebuilt tube lies on the daemon's published tube" \
+		float_test "$gap < $TUBE_TOL_M"
+done
+check "the course moves: deeper at 24 s than at 3 s" float_test \
+	"$(fields "$TRUTH" '24: ' | sed -n 's/^depth_m=//p') > \
+	 $(fields "$TRUTH" '3: ' | sed -n 's/^depth_m=//p') + 0.2"
+
+# playing: 30 frames of 1/60 s at x2 from 10 s reach 11 s, cycle 11001
+check_status "replay playing at x2 from 10 s, 31 frames" 0 \
+	replay "$FILE" --seek 10 --speed 2 --frames 31 --print-state
+check "playing: the clock ran 1 s in 30 headless frames (cycle 11001)" \
+	eval '[ "$(shown cycle)" = 11001 ] && ran_clean'
+
+# --- (b) what it looks like ---------------------------------------------
+SHOT="$TMP/at-12.5.png"
+replay "$FILE" --seek 12.5 --paused --frames 2
+read -r X Y W H < <(view_rect endo)
+# the lumen somewhere in the image: its darkest sixteenth against its
+# brightest
+read -r dark bright < <(for i in 0 1 2 3; do for j in 0 1 2 3; do
+	png_value "$SHOT" "rect:$((X + i * W / 4)),$((Y + j * H / 4)),$((W / 4)),$((H / 4))" mean
+done; done | sort -g | sed -n '1p;$p' | tr '\n' ' ')
+echo "# at 12.5 s: mean luma $dark in the image's darkest sixteenth, $bright in its brightest"
+check "the endoscopic image: a dark lumen amid lit walls" \
+	float_test "$dark < 0.4 * $bright && $bright > 60"
+read -r TX TY TW TH < <(view_rect timeline)
+read -r PX PY PW PH < <(view_rect panel)
+lines="rect:$TX,$((PY + TH)),$TW,$((TY - PY - TH))"
+check "the HUD: the replay's lines (amber REPLAY) above the timeline" \
+	float_test "$(png_value "$SHOT" "$lines" amber) > 0.005 && \
+		    $(png_value "$SHOT" "$lines" lit) > 0.03"
+left=$(png_value "$SHOT" "rect:$TX,$TY,$((TW * 45 / 100)),$TH" lit)
+right=$(png_value "$SHOT" "rect:$((TX + TW * 55 / 100)),$TY,$((TW * 45 / 100)),$TH" lit)
+echo "# the timeline at 12.5 of 25 s: lit $left before the middle, $right after"
+check "the timeline: filled up to the middle, at 12.5 s of 25" \
+	float_test "$left > 0.3 && $right < 0.2"
+check_status "overview and both views: draw and exit 0" 0 \
+	replay "$FILE" --seek 24 --view both --frames 4 \
+	--screenshot "$TMP/both.png"
+check "both views: no OpenGL error" ran_clean
+read -r X Y W H < <(view_rect overview)
+check "both views: the scope's green in the overview" float_test \
+	"$(png_value "$TMP/both.png" "rect:$X,$Y,$W,$H" scope) > 0.001"
+
+# --- (c) a file cut short ------------------------------------------------
+size=$(stat -c %s "$FILE")
+cp "$FILE" "$TMP/cut.endoses"
+# the END frame and half of the last record (316 bytes a frame) go
+truncate -s $((size - 200)) "$TMP/cut.endoses"
+check_status "a file cut mid-record replays" 0 \
+	replay "$TMP/cut.endoses" --seek 1000 --paused --frames 3 --print-state
+records=$(sed -n 's/.* records=\([0-9]*\).*/\1/p' "$VIEW_OUT")
+check "cut: up to its last complete record, cycle 25000 of 25001" \
+	eval '[ "$(shown cycle)" = 25000 ] && [ "$records" = 25000 ] && ran_clean'
+check "cut: the bytes after it are said to be ignored" \
+	grep -q 'replay t=.* bytes_ignored=[1-9]' "$VIEW_OUT"
+
+# --- (d) not a session -----------------------------------------------------
+check_status "a file that is not a session: refused, exit 1" 1 \
+	replay "$TOP/README.md" --frames 2
+check "not a session: says so" grep -q 'README.md: not a session file' \
+	"$VIEW_OUT"
+check_status "a missing file: refused, exit 1" 1 \
+	replay "$TMP/none.endoses" --frames 2
+check "missing: says so" grep -q 'none.endoses: No such file' "$VIEW_OUT"
+head -c 8 "$FILE" >"$TMP/magic.endoses"
+check_status "the magic alone: refused, exit 1" 1 \
+	replay "$TMP/magic.endoses" --frames 2
+check_status "a bad --speed: usage, exit 2" 2 \
+	replay "$FILE" --speed fast
+
+finish
