@@ -12,7 +12,10 @@
 # last complete record; a file that is not a session and a missing one are
 # refused with a reason; no run has an OpenGL error. Then a recording by
 # the daemon itself (endoctl session start/stop) replays to the records
-# that `endoctl session export --csv` lists.
+# that `endoctl session export --csv` lists (cycle, depth, tip, limited
+# forces, contact, bows), and its rebuilt tube ends at the recorded tip
+# (the daemon's own tube is not recorded: that comparison is the
+# synthetic session's).
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -144,5 +147,70 @@ check_status "the magic alone: refused, exit 1" 1 \
 	replay "$TMP/magic.endoses" --frames 2
 check_status "a bad --speed: usage, exit 2" 2 \
 	replay "$FILE" --speed fast
+
+# --- a recording by the daemon ------------------------------------------
+# csv_state CYCLE: from `endoctl session export --csv`, the fields of the
+# record of CYCLE named as --print-state names them.
+csv_state() {
+	awk -F, -v cycle="$1" '
+		NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+		$col["cycle"] == cycle {
+			v = "cycle=" $col["cycle"] "\ndepth_m=" $col["depth_m"]
+			v = v "\ntip_s_m=" $col["tip_s_m"] "\ntip=" $col["tip_x_m"]
+			v = v "," $col["tip_y_m"] "," $col["tip_z_m"] "\nlimited="
+			v = v $col["insertion_limited_n"] "," $col["roll_limited_nm"]
+			v = v "," $col["wheel_ud_limited_nm"] ","
+			v = v $col["wheel_lr_limited_nm"] "\ncontact=" $col["contact"]
+			v = v "\nbow_m=" $col["bow0_m"] "," $col["bow1_m"] ","
+			v = v $col["bow2_m"] "," $col["bow3_m"]
+			print v }' "$TMP/export.csv"
+}
+
+# same_numbers A B: the key=value lines of A and B hold the same keys and
+# numbers within the CSV's 7 digits.
+same_numbers() {
+	paste -d= "$1" "$2" | awk -F= '
+		{ if ($1 != $3) bad = 1; n = split($2, a, ","); split($4, b, ",")
+		  for (i = 1; i <= n; i++) { d = a[i] - b[i]; d = d < 0 ? -d : d
+			m = a[i] < 0 ? -a[i] : a[i]
+			if (d > 1e-6 * m + 1e-9) bad = 1 } }
+		END { exit bad || NR == 0 }'
+}
+
+mkdir -p "$TMP/sessions"
+start_daemon --set "session.directory=$TMP/sessions" \
+	--scenario "$TOP/config/scenarios/demo.scn" || finish
+ctl enable >/dev/null
+check "the daemon records a session" ctl session start --trainee Ada
+check "8 s of the demo's course recorded" \
+	wait_for status_true '.scenario_time_s > 8.5'
+check "the session stops" ctl session stop
+REC=$(ls "$TMP"/sessions/*.endoses 2>/dev/null | head -n 1)
+ctl session export 1 --csv >"$TMP/export.csv"
+t0=$(awk -F, 'NR == 2 { print $1 }' "$TMP/export.csv")
+for t in 2 7.5; do
+	check_status "the daemon's recording replayed at $t s" 0 \
+		replay "${REC:-none}" --seek "$t" --paused --frames 4 \
+		--screenshot "$TMP/rec-$t.png" --print-state
+	want=$(awk -F, -v t="$t" -v t0="$t0" \
+		'NR > 1 && $1 <= t0 + t + 5e-7 { c = $2 } END { print c }' \
+		"$TMP/export.csv")
+	check "at $t s: the record at that time (cycle $want), no OpenGL error" \
+		eval '[ "$(shown cycle)" = "$want" ] && ran_clean'
+	csv_state "$want" >"$TMP/csv.txt"
+	for k in cycle depth_m tip_s_m tip limited contact bow_m; do
+		echo "$k=$(shown "$k")"
+	done >"$TMP/shown.txt"
+	check "at $t s: depth, tip, limited forces, contact, bows as exported" \
+		same_numbers "$TMP/shown.txt" "$TMP/csv.txt"
+	gap=$(paste -d, <(shown tube | tr ';' '\n' | tail -n 1) \
+		<(shown tip) | awk -F, '{ for (i = 1; i <= 3; i++) {
+			d = $i - $(i + 3); d = d < 0 ? -d : d; m = d > m ? d : m }
+			printf "%.3g\n", m }')
+	check "at $t s: the rebuilt tube ends at the recorded tip ($gap m)" \
+		float_test "$gap < $TUBE_TOL_M"
+done
+check "the recording's trainee and case in the HUD's replay line" \
+	float_test "$(png_value "$TMP/rec-7.5.png" "$lines" amber) > 0.005"
 
 finish
