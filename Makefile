@@ -113,12 +113,16 @@ ENDOCTL_OBJS = endoctl.o json.o inject.o sessionpb.o sessionview.o \
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon
 # rebuilt with the daemon's own centreline and mesh, its levels of detail
-# and the portal walk; the endoscopic view, the overview, the HUD
+# and the portal walk; the endoscopic view, the overview, the HUD; the
+# replay of a session file, its colon built and served and its scope's
+# tube made by the daemon's own modules (case, colon, scene, kinematics)
 VIEWER_OBJS = endoview.o link.o rigctl.o ui.o input.o \
-	      model.o lod.o portal.o centreline.o mesh.o \
+	      model.o lod.o portal.o \
 	      gpumesh.o endo.o vessels.o overview.o shapes.o \
-	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o
-VIEWER_PKGS = glfw3 epoxy cglm stb
+	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o \
+	      replay.o state_text.o scene.o cases.o config.o regmap.o \
+	      $(COLON_OBJS)
+VIEWER_PKGS = glfw3 epoxy cglm stb inih
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
 VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
 		  2>/dev/null) -lm
@@ -164,18 +168,22 @@ test_input_OBJS = input.o
 test_timing_OBJS = timing.o
 test_vessels_OBJS = vessels.o
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
-	     notify_listen session_synth session_report
+	     notify_listen session_synth session_script session_report
 fault_watch_OBJS =
 notify_listen_OBJS =
 shm_probe_OBJS =
 shm_latency_OBJS = histo.o
 obj_import_OBJS = $(COLON_OBJS)
 scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
-session_synth_OBJS = $(COLON_OBJS) metrics.o
+session_script_OBJS = $(COLON_OBJS) metrics.o
 session_report_OBJS = $(COLON_OBJS) metrics.o report.o
+# the force loop off line (tests/tools/offline.h): simulated rig and hand,
+# kinematics, haptics
+OFFLINE_OBJS = offline.o $(COLON_OBJS) godobject.o haptics.o hand.o \
+	       scenario.o rig_sim.o plant.o config.o regmap.o log.o
+session_synth_OBJS = $(OFFLINE_OBJS) cases.o state_text.o
 BENCH_TOOLS = bench_colon bench_haptics
-bench_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o histo.o hand.o \
-		     scenario.o rig_sim.o plant.o config.o regmap.o log.o names.o
+bench_haptics_OBJS = $(OFFLINE_OBJS) histo.o names.o
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against
@@ -234,11 +242,16 @@ $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
 
-# test tools: separate processes the tests and benchmarks run
+# test tools: separate processes the tests and benchmarks run; the
+# modules they share
+$(BUILD)/obj/%.o: tests/tools/%.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Idaemon -c -o $@ $<
+
 define test_tool_rule
 $(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -Itests/tools -o $$@ $$< \
 		$(call obj,$($(1)_OBJS) $(PROTO_OBJS)) $$(LDFLAGS) $$(LDLIBS)
 endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
@@ -258,7 +271,7 @@ bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
 $(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
 		$(call obj,$(bench_haptics_OBJS))
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< \
+	$(CC) $(ALL_CFLAGS) -Idaemon -Itests/tools -o $@ $< \
 		$(call obj,$(bench_haptics_OBJS)) $(LDFLAGS) $(LDLIBS)
 
 $(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \

@@ -552,23 +552,14 @@ static int check(struct parser *p)
 	return 0;
 }
 
-int anatomy_load(struct anatomy *a, const char *path, char *err,
-		 size_t errsize)
+/* Reads the open stream F (the file PATH) into A. */
+static int load_stream(struct anatomy *a, FILE *f, const char *path,
+		       char *err, size_t errsize)
 {
-	struct parser *p;
-	FILE *f;
+	struct parser *p = calloc(1, sizeof(*p));
 	int r;
 
-	f = fopen(path, "r");
-	if (!f) {
-		r = -errno;
-		snprintf(err, errsize, "%s: cannot open: %s", path,
-			 strerror(-r));
-		return r;
-	}
-	p = calloc(1, sizeof(*p));
 	if (!p) {
-		fclose(f);
 		snprintf(err, errsize, "%s: out of memory", path);
 		return -ENOMEM;
 	}
@@ -583,6 +574,41 @@ int anatomy_load(struct anatomy *a, const char *path, char *err,
 		r = check(p);
 	}
 	free(p);
+	return r;
+}
+
+static int cannot_open(const char *path, char *err, size_t errsize)
+{
+	int r = -errno;
+
+	snprintf(err, errsize, "%s: cannot open: %s", path, strerror(-r));
+	return r;
+}
+
+int anatomy_load(struct anatomy *a, const char *path, char *err,
+		 size_t errsize)
+{
+	FILE *f = fopen(path, "r");
+	int r;
+
+	if (!f) {
+		return cannot_open(path, err, errsize);
+	}
+	r = load_stream(a, f, path, err, errsize);
+	fclose(f);
+	return r;
+}
+
+int anatomy_parse(struct anatomy *a, const char *text, const char *name,
+		  char *err, size_t errsize)
+{
+	FILE *f = fmemopen((void *)text, strlen(text), "r");
+	int r;
+
+	if (!f) {
+		return cannot_open(name, err, errsize);
+	}
+	r = load_stream(a, f, name, err, errsize);
 	fclose(f);
 	return r;
 }

@@ -133,6 +133,13 @@ struct anatomy {
 int anatomy_load(struct anatomy *a, const char *path, char *err,
 		 size_t errsize);
 
+/*
+ * The same for a case file's TEXT (NUL-terminated, e.g. a session file's
+ * CASE frame); NAME stands for the file in ERR's "NAME:LINE: ...".
+ */
+int anatomy_parse(struct anatomy *a, const char *text, const char *name,
+		  char *err, size_t errsize);
+
 /* "anal_canal", ..., "cecum"; "?" when out of range. */
 const char *anatomy_segment_name(int id);
 

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void params(const struct config *cfg, struct colon_params *p)
+void cases_colon_params(const struct config *cfg, struct colon_params *p)
 {
 	p->step_m = cfg->colon.step_m;
 	p->ring_vertices = (uint32_t)cfg->colon.ring_vertices;
@@ -55,7 +55,7 @@ struct colon *cases_load(const struct config *cfg, const char *name,
 	struct colon_params p;
 	char path[2 * CONFIG_STR + 8];
 
-	params(cfg, &p);
+	cases_colon_params(cfg, &p);
 	if (!name && *cfg->colon.file) {
 		if (ends_with(cfg->colon.file, ".obj")) {
 			return colon_import(cfg->colon.file, *cl ? cl : NULL,

@@ -25,6 +25,9 @@ struct cases_entry {
 	char description[ANATOMY_TEXT];
 };
 
+/* The colon's resolution and contact radius as CFG sets them. */
+void cases_colon_params(const struct config *cfg, struct colon_params *p);
+
 /*
  * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is
  * NULL, the configured one. NULL with one line in ERR ("FILE:LINE: ..."

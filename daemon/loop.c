@@ -270,20 +270,15 @@ static void take_colon(struct loop *l)
 
 static void kinematics(struct loop *l)
 {
-	const struct scope_params p = {
-		.bending_length_m = l->cfg.scope.bending_length_m,
-		.ud_gain = l->cfg.scope.gain[0],
-		.lr_gain = l->cfg.scope.gain[1],
-		.ud_limit_rad = l->cfg.scope.limit_rad[0],
-		.lr_limit_rad = l->cfg.scope.limit_rad[1],
-	};
 	const struct scope_input in = {
 		.depth_m = l->fb.axis[ENDOSIM_AXIS_INSERTION].position,
 		.roll_rad = l->fb.axis[ENDOSIM_AXIS_ROLL].position,
 		.wheel_ud_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_UD].position,
 		.wheel_lr_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_LR].position,
 	};
+	struct scope_params p;
 
+	scope_params_config(&l->cfg, &p);
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
 }
 
@@ -304,31 +299,8 @@ static void render(struct loop *l)
 
 static void fill_scope(struct loop *l)
 {
-	struct endosim_scope_state *sc = &l->state.scope;
-	const struct scope_pose *p = &l->pose;
-	const struct centreline *cl = colon_centreline(l->colon);
-	double base = p->base_s_m / centreline_step(cl);
-
-	sc->scene_id = l->scene_id;
-	sc->depth_m = p->depth_m;
-	sc->roll_rad = p->roll_rad;
-	memcpy(sc->bend_rad, p->bend_rad, sizeof(sc->bend_rad));
-	sc->base_s_m = p->base_s_m;
-	sc->tip_s_m = p->tip_s_m;
-	sc->turning_rad = centreline_turning(cl, (size_t)(base + 0.5));
-	memcpy(sc->tip, p->tip, sizeof(sc->tip));
-	memcpy(sc->dir, p->dir, sizeof(sc->dir));
-	memcpy(sc->up, p->up, sizeof(sc->up));
-	sc->spans = (uint32_t)centreline_spans(cl);
-	for (int k = 0; k < ENDOSIM_SPANS; k++) {
-		sc->bow_m[k] = k < (int)sc->spans ?
-				       centreline_bow_amplitude(cl, k) : 0;
-	}
-	for (int i = 0; i < ENDOSIM_TUBE_POINTS; i++) {
-		for (int d = 0; d < 3; d++) {
-			sc->tube[i][d] = (float)p->tube[i][d];
-		}
-	}
+	l->state.scope.scene_id = l->scene_id;
+	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
 }
 
 /* Takes a test command, if any (the control thread checked it is allowed). */

@@ -226,3 +226,20 @@ Endosim__SceneReply *scene_reply(struct scene *s, uint32_t chunk)
 	s->reply.mesh = &s->chunk;
 	return &s->reply;
 }
+
+void scene_client(struct scene *s, struct client_scene *out)
+{
+	const struct mesh *m = colon_mesh(s->colon);
+
+	memset(out, 0, sizeof(*out));
+	out->scene_id = s->id;
+	out->info = &s->info;
+	out->vertices = m->vertices;
+	out->triangles = m->triangles;
+	out->positions = m->pos;
+	out->normals = m->nrm;
+	out->vertex_sample = m->sample;
+	out->vertex_offset = m->off;
+	out->normal_offset = m->noff;
+	out->indices = m->tri;
+}

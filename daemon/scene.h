@@ -15,6 +15,7 @@
 
 #include <stdint.h>
 
+#include "client.h"
 #include "colon.h"
 #include "endosim.pb-c.h"
 
@@ -38,5 +39,13 @@ uint32_t scene_chunks(const struct scene *s);
  * when there is no such chunk.
  */
 Endosim__SceneReply *scene_reply(struct scene *s, uint32_t chunk);
+
+/*
+ * What client_get_scene() would gather from S's replies (proto/client.h),
+ * without a socket: for a viewer that builds the colon itself (endoview
+ * --replay) and for tests. OUT points into S and its colon: valid while
+ * both live, never for client_scene_free().
+ */
+void scene_client(struct scene *s, struct client_scene *out);
 
 #endif

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "config.h"
 #include "vec3.h"
 
 #define SERIES_BELOW 0.05 /* rad: the arc's functions by their series */
@@ -183,6 +184,17 @@ void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 	}
 }
 
+void scope_params_config(const struct config *cfg, struct scope_params *out)
+{
+	*out = (struct scope_params){
+		.bending_length_m = cfg->scope.bending_length_m,
+		.ud_gain = cfg->scope.gain[0],
+		.lr_gain = cfg->scope.gain[1],
+		.ud_limit_rad = cfg->scope.limit_rad[0],
+		.lr_limit_rad = cfg->scope.limit_rad[1],
+	};
+}
+
 double scope_max_depth(const struct scope_params *p,
 		       const struct centreline *cl)
 {
@@ -207,4 +219,33 @@ void scope_update(const struct scope_params *p, const struct centreline *cl,
 	jacobian(p, cl, &b, &fn, out);
 	out->tip_s_m = nearest_s(cl, &b, out->tip);
 	tube(cl, &b, out->depth_m, out);
+}
+
+_Static_assert(SCOPE_TUBE_POINTS == ENDOSIM_TUBE_POINTS,
+	       "the published tube is the kinematics' tube");
+
+void scope_publish(const struct scope_pose *p, const struct centreline *cl,
+		   struct endosim_scope_state *out)
+{
+	double base = p->base_s_m / centreline_step(cl);
+
+	out->depth_m = p->depth_m;
+	out->roll_rad = p->roll_rad;
+	memcpy(out->bend_rad, p->bend_rad, sizeof(out->bend_rad));
+	out->base_s_m = p->base_s_m;
+	out->tip_s_m = p->tip_s_m;
+	out->turning_rad = centreline_turning(cl, (size_t)(base + 0.5));
+	memcpy(out->tip, p->tip, sizeof(out->tip));
+	memcpy(out->dir, p->dir, sizeof(out->dir));
+	memcpy(out->up, p->up, sizeof(out->up));
+	out->spans = (uint32_t)centreline_spans(cl);
+	for (int k = 0; k < ENDOSIM_SPANS; k++) {
+		out->bow_m[k] = k < (int)out->spans ?
+					centreline_bow_amplitude(cl, k) : 0;
+	}
+	for (int i = 0; i < ENDOSIM_TUBE_POINTS; i++) {
+		for (int d = 0; d < 3; d++) {
+			out->tube[i][d] = (float)p->tube[i][d];
+		}
+	}
 }

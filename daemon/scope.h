@@ -37,6 +37,7 @@
 #include <math.h>
 
 #include "centreline.h"
+#include "endosim_shm.h"
 
 #define SCOPE_TUBE_POINTS 128
 
@@ -77,6 +78,11 @@ struct scope_pose {
 	double tube[SCOPE_TUBE_POINTS][3]; /* anal verge to tip, equal arcs */
 };
 
+struct config;
+
+/* The parameters as the configuration's [scope] section sets them. */
+void scope_params_config(const struct config *cfg, struct scope_params *out);
+
 /* The tip's bending angles (rad) for wheel angles (rad): gain, limits. */
 void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 		double wheel_lr_rad, double bend_rad[2],
@@ -90,5 +96,15 @@ double scope_max_depth(const struct scope_params *p,
 /* Computes OUT for IN along CL. */
 void scope_update(const struct scope_params *p, const struct centreline *cl,
 		  const struct scope_input *in, struct scope_pose *out);
+
+/*
+ * The published form of pose P on CL (endosim_shm.h): depth, roll, bends,
+ * base and tip s, the centreline's turning at the base, the tip's frame,
+ * each mobile span's bow as CL holds it now, and the tube. Leaves
+ * OUT->scene_id alone. The force loop calls it after the haptics, so the
+ * bows are this cycle's while the pose was made on last cycle's.
+ */
+void scope_publish(const struct scope_pose *p, const struct centreline *cl,
+		   struct endosim_scope_state *out);
 
 #endif

@@ -5,13 +5,16 @@
  *
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
- *            [--no-vsync] [--font FILE.ttf] [--stats]
+ *            [--no-vsync] [--font FILE.ttf] [--stats] [--print-state]
+ *            [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * A separate process: it only reads the daemon's shared memory and asks
- * the sockets, so whatever happens to it, the force loop goes on.
+ * the sockets, so whatever happens to it, the force loop goes on. With
+ * --replay it plays a recorded session instead (replay.h), with no daemon
+ * and no socket.
  *
- * Exit status: 0 done; 1 no window, an OpenGL error, or the screenshot
- * could not be written; 2 usage.
+ * Exit status: 0 done; 1 no window, an OpenGL error, the screenshot could
+ * not be written, or a session file that cannot be replayed; 2 usage.
  */
 #include <errno.h>
 #include <getopt.h>
@@ -36,8 +39,10 @@
 #include "log.h"
 #include "model.h"
 #include "overview.h"
+#include "replay.h"
 #include "rigctl.h"
 #include "shot.h"
+#include "state_text.h"
 #include "timing.h"
 #include "ui.h"
 #include "version.h"
@@ -46,14 +51,18 @@
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
 #define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
 #define NS 1000000000ull
+#define HEADLESS_FRAME_S (1.0 / 60) /* a replay's step per frame with --frames */
+#define REPLAY_MAX_STEP_S 0.25      /* the clock skips no more after a stall */
+#define CHART_STEP_S (HUD_CHART_S / 200) /* a replay's chart: one record per */
 
 enum { VIEW_EMPTY = HUD_VIEWS }; /* clear and swap only: the benchmark's */
 
 struct options {
-	const char *socket, *shm_name, *screenshot, *font;
+	const char *socket, *shm_name, *screenshot, *font, *replay;
 	int view, width, height;
 	long frames;
-	bool vsync, stats;
+	double seek_s, speed;
+	bool vsync, stats, print_state, paused;
 };
 
 /* The colon as fetched, in its three forms. */
@@ -66,8 +75,10 @@ struct colon_set {
 struct app {
 	struct options opt;
 	GLFWwindow *window;
-	struct link *link;
-	struct rigctl *rig;
+	struct link *link;      /* live; NULL in a replay */
+	struct rigctl *rig;     /* live; NULL in a replay */
+	struct replay *replay;  /* NULL: live */
+	struct hud_replay hr;
 	struct ui *ui;
 	struct font *font;
 	struct draw2d *d2d;
@@ -83,6 +94,8 @@ struct app {
 	uint32_t triangles, triangles_max;
 	uint64_t last_swap_ns, start_ns;
 	uint64_t hand_ns; /* when the hand was last moved */
+	uint64_t replay_ns; /* the replay's clock last run on */
+	const struct endosim_state *shown; /* in the last frame */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 };
@@ -104,6 +117,9 @@ static void usage(FILE *f)
 		"                [--view endo|overview|both] [--size WxH]\n"
 		"                [--screenshot FILE.png] [--frames N]\n"
 		"                [--no-vsync] [--font FILE.ttf] [--stats]\n"
+		"                [--print-state]\n"
+		"                [--replay FILE [--seek S] [--speed X] "
+		"[--paused]]\n"
 		"  --socket PATH     endosimd's socket directory (or socket);\n"
 		"                    default $%s, else %s\n"
 		"  --shm-name NAME   its shared memory (default %s)\n"
@@ -114,7 +130,12 @@ static void usage(FILE *f)
 		"                    --screenshot: 45)\n"
 		"  --no-vsync        draw as fast as possible\n"
 		"  --font F          a TrueType font for the HUD\n"
-		"  --stats           print the frame figures at exit\n",
+		"  --stats           print the frame figures at exit\n"
+		"  --print-state     print the last frame's state at exit\n"
+		"  --replay FILE     play a recorded session (no daemon)\n"
+		"  --seek S          start S seconds into it\n"
+		"  --speed X         at X times real time (0.25 to 8)\n"
+		"  --paused          start paused\n",
 		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME);
 }
 
@@ -140,6 +161,14 @@ static int parse_size(const char *s, int *w, int *h)
 	return 0;
 }
 
+static int parse_number(const char *s, double *out)
+{
+	char *end;
+
+	*out = strtod(s, &end);
+	return end == s || *end || !isfinite(*out) || *out < 0 ? -EINVAL : 0;
+}
+
 static int parse(int argc, char **argv, struct options *o)
 {
 	static const struct option longs[] = {
@@ -152,6 +181,11 @@ static int parse(int argc, char **argv, struct options *o)
 		{ "no-vsync", no_argument, NULL, 'V' },
 		{ "font", required_argument, NULL, 'f' },
 		{ "stats", no_argument, NULL, 'S' },
+		{ "print-state", no_argument, NULL, 'P' },
+		{ "replay", required_argument, NULL, 'r' },
+		{ "seek", required_argument, NULL, 'k' },
+		{ "speed", required_argument, NULL, 'x' },
+		{ "paused", no_argument, NULL, 'p' },
 		{ "help", no_argument, NULL, 'h' },
 		{ "version", no_argument, NULL, 'R' },
 		{ 0 },
@@ -160,7 +194,7 @@ static int parse(int argc, char **argv, struct options *o)
 
 	*o = (struct options){ .view = HUD_VIEW_ENDO, .width = 1280,
 			       .height = 720, .vsync = true, .frames = -1,
-			       .font = FONT_DEFAULT_PATH };
+			       .font = FONT_DEFAULT_PATH, .speed = 1 };
 	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
 		switch (c) {
 		case 's':
@@ -197,6 +231,22 @@ static int parse(int argc, char **argv, struct options *o)
 			break;
 		case 'S':
 			o->stats = true;
+			break;
+		case 'P':
+			o->print_state = true;
+			break;
+		case 'r':
+			o->replay = optarg;
+			break;
+		case 'k':
+		case 'x':
+			if (parse_number(optarg, c == 'k' ? &o->seek_s :
+							    &o->speed)) {
+				return -EINVAL;
+			}
+			break;
+		case 'p':
+			o->paused = true;
 			break;
 		case 'h':
 			usage(stdout);
@@ -287,27 +337,23 @@ static void colon_free(struct colon_set *c)
 	memset(c, 0, sizeof(*c));
 }
 
-/* Fetches the scene the state names and builds what draws it. */
-static void load_colon(struct app *a, uint64_t now)
+/* Builds what draws scene S (the caller keeps S). 0 or -1, logged. */
+static int build_colon(struct app *a, const struct client_scene *s)
 {
-	struct client_scene *s = NULL;
 	struct colon_set c = { 0 };
 	char err[256];
 
-	if (link_fetch_scene(a->link, &s, now)) {
-		return;
-	}
 	c.model = model_create(s, err, sizeof(err));
 	if (!c.model) {
 		log_err("%s", err);
-		goto free_scene;
+		return -1;
 	}
 	c.lod = lod_create(c.model->mesh, c.model->ring);
 	c.gpu = c.lod ? gpumesh_create(c.model, c.lod) : NULL;
 	if (!c.gpu) {
 		log_err("%s: cannot draw its mesh", c.model->name);
 		colon_free(&c);
-		goto free_scene;
+		return -1;
 	}
 	colon_free(&a->colon);
 	a->colon = c;
@@ -315,7 +361,18 @@ static void load_colon(struct app *a, uint64_t now)
 	log_info("colon %s: %u triangles, %u segments, %s", c.model->name,
 		 c.model->mesh->triangles, c.model->mesh->segments,
 		 c.model->ring ? "levels of detail" : "one level (imported)");
-free_scene:
+	return 0;
+}
+
+/* Fetches the scene the state names and builds what draws it. */
+static void load_colon(struct app *a, uint64_t now)
+{
+	struct client_scene *s = NULL;
+
+	if (link_fetch_scene(a->link, &s, now)) {
+		return;
+	}
+	build_colon(a, s);
 	client_scene_free(s);
 }
 
@@ -356,12 +413,36 @@ static void update_link(struct app *a, uint64_t now)
 	}
 }
 
+/* A replay's keys and timeline. */
+static void act_replay(struct replay *r, const struct ui_actions *act)
+{
+	double speed = replay_speed(r);
+
+	if (act->toggle_pause) {
+		replay_set_paused(r, !replay_paused(r));
+	}
+	for (int k = 0; k < act->speed_steps; k++) {
+		speed *= 2;
+	}
+	for (int k = 0; k > act->speed_steps; k--) {
+		speed /= 2;
+	}
+	replay_set_speed(r, speed);
+	replay_seek(r, act->seek_home ? 0 :
+		       act->seek_end ? replay_duration(r) :
+		       act->seek_to >= 0 ? act->seek_to * replay_duration(r) :
+					   replay_time(r) + act->seek_by_s);
+}
+
 static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 {
-	for (int k = 0; k <= RIGCTL_RESET; k++) {
+	for (int k = 0; a->rig && k <= RIGCTL_RESET; k++) {
 		if (act->command[k]) {
 			rigctl_command(a->rig, (enum rigctl_command)k, now);
 		}
+	}
+	if (a->replay) {
+		act_replay(a->replay, act);
 	}
 	if (act->next_view) {
 		a->opt.view = (a->opt.view + 1) % HUD_VIEWS;
@@ -391,9 +472,63 @@ static void drive(struct app *a, const struct input_controls *c,
 	}
 }
 
+/* The replay's state at its clock, run on since the last frame (by a
+ * fixed step per frame in a headless run, so that it is reproducible);
+ * its strip chart, from the records. */
+static const struct endosim_state *update_replay(struct app *a, uint64_t now)
+{
+	struct replay *r = a->replay;
+	double dt = a->opt.frames > 0 ? HEADLESS_FRAME_S :
+			fmin((double)(now - a->replay_ns) / NS,
+			     REPLAY_MAX_STEP_S);
+	double t;
+
+	if (a->frame > 0) {
+		replay_advance(r, dt);
+	}
+	a->replay_ns = now;
+	t = replay_time(r);
+	hud_chart_clear(a->hud);
+	for (double c = fmax(0, t - HUD_CHART_S); c <= t; c += CHART_STEP_S) {
+		struct endosim_state past;
+
+		replay_record_at(r, c, &past);
+		hud_record(a->hud, &past, c);
+	}
+	a->hr = (struct hud_replay){
+		.trainee = replay_trainee(r), .case_name = replay_case(r),
+		.t_s = t, .duration_s = replay_duration(r),
+		.speed = replay_speed(r), .paused = replay_paused(r),
+		.records = replay_records(r),
+	};
+	return replay_state(r);
+}
+
+static void fill_replay_info(const struct app *a, const struct endosim_state *st,
+			     struct hud_info *in)
+{
+	*in = (struct hud_info){
+		.link = LINK_LIVE,
+		.link_problem = "",
+		.st = st,
+		.m = a->colon.model,
+		.rig_problem = "",
+		.rig_said = "Space pause, + - speed, Left Right seek; H: keys",
+		.fps = timing_fps(a->timing),
+		.triangles = a->triangles,
+		.help = a->help,
+		.compact = a->opt.view == HUD_VIEW_BOTH,
+		.replay = &a->hr,
+	};
+}
+
 static void fill_info(const struct app *a, const struct endosim_state *st,
 		      uint64_t now, struct hud_info *in)
 {
+	if (a->replay) {
+		fill_replay_info(a, st, in);
+		return;
+	}
 	*in = (struct hud_info){
 		.link = a->status,
 		.link_problem = link_problem(a->link),
@@ -463,7 +598,8 @@ static void render(struct app *a, const struct endosim_state *st,
 	if (lay.overview.w && a->colon.model) {
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
 	}
-	hud_draw(a->hud, a->d2d, &lay, &in, w, h, (double)now / NS);
+	hud_draw(a->hud, a->d2d, &lay, &in, w, h,
+		 a->replay ? replay_time(a->replay) : (double)now / NS);
 	draw2d_end(a->d2d);
 }
 
@@ -513,15 +649,19 @@ static int frame(struct app *a)
 	int w, h, err = 0;
 
 	glfwPollEvents();
-	update_link(a, now);
-	st = link_state(a->link);
-	current = colon_current(a, st);
 	glfwGetFramebufferSize(a->window, &w, &h);
 	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
 	ui_frame(a->ui, &lay, &c, &acts, &a->orbit);
 	act(a, &acts, now);
-	drive(a, &c, st, now);
-	if (st && a->status == LINK_LIVE) {
+	if (a->replay) {
+		st = update_replay(a, now);
+	} else {
+		update_link(a, now);
+		st = link_state(a->link);
+		drive(a, &c, st, now);
+	}
+	current = colon_current(a, st);
+	if (st && a->status == LINK_LIVE && !a->replay) {
 		hud_record(a->hud, st, (double)now / NS);
 	}
 	render(a, st, current, now);
@@ -537,15 +677,19 @@ static int frame(struct app *a)
 		capture(w, h);
 	}
 	glfwSwapBuffers(a->window);
+	a->shown = st;
 	account(a, st, now_ns());
 	return acts.quit ? 1 : err;
 }
 
 /* ------------------------------------------------------------ main */
 
-static const char *status_name(enum link_status s)
+static const char *status_name(const struct app *a)
 {
-	return s == LINK_LIVE ? "live" : s == LINK_STALE ? "stale" : "none";
+	enum link_status s = a->status;
+
+	return a->replay ? "replay" : s == LINK_LIVE ? "live" :
+	       s == LINK_STALE ? "stale" : "none";
 }
 
 static void print_rect(const char *name, struct endo_rect r, int fb_h)
@@ -571,7 +715,7 @@ static void report(const struct app *a)
 	       timing_quantile(t, TIMING_FRAME, 0.99),
 	       timing_quantile(t, TIMING_AGE, 0.5),
 	       timing_quantile(t, TIMING_AGE, 0.99), a->triangles,
-	       a->triangles_max, gfx_errors_total(), status_name(a->status),
+	       a->triangles_max, gfx_errors_total(), status_name(a),
 	       a->colon.model ? a->colon.model->name : "none");
 	glfwGetFramebufferSize(a->window, &w, &h);
 	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
@@ -579,7 +723,24 @@ static void report(const struct app *a)
 	print_rect("endo", lay.endo, h);
 	print_rect("overview", lay.overview, h);
 	print_rect("panel", lay.panel, h);
+	print_rect("timeline", lay.timeline, h);
 	printf("\n");
+}
+
+/* The replay's clock, and the state the last frame showed. */
+static void report_state(const struct app *a)
+{
+	if (a->replay) {
+		printf("endoview: replay t=%.3f duration=%.3f speed=%g "
+		       "paused=%d records=%zu bytes_ignored=%zu\n",
+		       replay_time(a->replay), replay_duration(a->replay),
+		       replay_speed(a->replay), replay_paused(a->replay),
+		       replay_records(a->replay),
+		       replay_bytes_ignored(a->replay));
+	}
+	if (a->opt.print_state && a->shown) {
+		state_text_print(stdout, "state: ", a->shown);
+	}
 }
 
 static int run(struct app *a)
@@ -589,12 +750,16 @@ static int run(struct app *a)
 	a->start_ns = now_ns();
 	a->orbit.zoom = 1;
 	a->timed_from = WARM_UP_FRAMES;
+	if (a->replay && build_colon(a, replay_scene(a->replay))) {
+		return -EINVAL;
+	}
 	while (r == 0 && (a->opt.frames < 0 || a->frame < a->opt.frames)) {
 		r = frame(a);
 	}
 	if (a->opt.frames > 0 || a->opt.stats) {
 		report(a);
 	}
+	report_state(a);
 	return r < 0 ? r : 0;
 }
 
@@ -614,6 +779,26 @@ static void cleanup(struct app *a)
 	}
 	rigctl_destroy(a->rig);
 	link_destroy(a->link);
+	replay_destroy(a->replay);
+}
+
+static int open_replay(struct app *a)
+{
+	char err[512];
+
+	a->replay = replay_open(a->opt.replay, err, sizeof(err));
+	if (!a->replay) {
+		log_err("%s", err);
+		return -1;
+	}
+	replay_seek(a->replay, a->opt.seek_s);
+	replay_set_speed(a->replay, a->opt.speed);
+	replay_set_paused(a->replay, a->opt.paused);
+	log_info("replay of %s: %s on %s, %zu records, %.1f s%s", a->opt.replay,
+		 replay_trainee(a->replay), replay_case(a->replay),
+		 replay_records(a->replay), replay_duration(a->replay),
+		 replay_bytes_ignored(a->replay) ? ", its tail cut short" : "");
+	return 0;
 }
 
 int main(int argc, char **argv)
@@ -626,15 +811,23 @@ int main(int argc, char **argv)
 		usage(stderr);
 		return 2;
 	}
-	a.link = link_create(a.opt.socket, a.opt.shm_name);
-	a.rig = rigctl_create(a.opt.socket);
-	if (!a.link || !a.rig) {
-		log_err("out of memory");
+	if (a.opt.replay && open_replay(&a)) {
 		goto out;
+	}
+	if (!a.opt.replay) {
+		a.link = link_create(a.opt.socket, a.opt.shm_name);
+		a.rig = rigctl_create(a.opt.socket);
+		if (!a.link || !a.rig) {
+			log_err("out of memory");
+			goto out;
+		}
 	}
 	a.window = open_window(&a.opt);
 	if (!a.window || make_renderers(&a)) {
 		goto out;
+	}
+	if (a.replay) {
+		ui_set_replay(a.ui);
 	}
 	r = run(&a) ? 1 : 0;
 out:

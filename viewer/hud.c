@@ -32,6 +32,19 @@ const char *const hud_keys[] = {
 	NULL,
 };
 
+const char *const hud_replay_keys[] = {
+	"Space\tpause, play",
+	"+  -  ]  [\tfaster, slower (x0.25 to x8)",
+	"Left  Right\tseek 5 s back, on (Shift: 30 s)",
+	"Home  End\tthe start, the end",
+	"mouse\tclick the timeline to seek;",
+	"\tdrag the overview to turn it",
+	"V  O\tview, overview's orbit back",
+	"P\tsave a picture (PNG, here)",
+	"H  Q\tthis help, quit",
+	NULL,
+};
+
 static const float white[4] = { 0.90f, 0.92f, 0.95f, 1 };
 static const float dim[4] = { 0.55f, 0.58f, 0.66f, 1 };
 static const float green[4] = { 0.30f, 0.90f, 0.42f, 1 };
@@ -72,6 +85,20 @@ void hud_font_px(int h, float *small_px, float *large_px)
 	*large_px = fmaxf(14, (float)h / 26);
 }
 
+/* Under the panel's first lines: name, state, and a replay's two. */
+static void timeline_rect(struct hud_layout *out, int h)
+{
+	float small, large, top;
+	struct endo_rect p = out->panel;
+
+	hud_font_px(h, &small, &large);
+	top = MARGIN_PX + 1.35f * (3 * small + large) + small * 0.3f;
+	out->timeline = (struct endo_rect){
+		p.x + MARGIN_PX, p.y + p.h - (int)(top + small),
+		p.w - 2 * MARGIN_PX, (int)small,
+	};
+}
+
 void hud_layout(enum hud_view view, int w, int h, struct hud_layout *out)
 {
 	int panel = (int)fmax(PANEL_MIN_PX, PANEL_SHARE * w);
@@ -84,6 +111,7 @@ void hud_layout(enum hud_view view, int w, int h, struct hud_layout *out)
 	out->panel = (struct endo_rect){ 0, 0, panel, h };
 	if (view == HUD_VIEW_OVERVIEW) {
 		out->overview = (struct endo_rect){ panel, 0, side, h };
+		timeline_rect(out, h);
 		return;
 	}
 	out->endo = (struct endo_rect){ panel, (h - side) / 2, side, side };
@@ -93,6 +121,7 @@ void hud_layout(enum hud_view view, int w, int h, struct hud_layout *out)
 		out->panel.y = inset;
 		out->panel.h = h - inset;
 	}
+	timeline_rect(out, h);
 }
 
 struct hud *hud_create(void)
@@ -103,6 +132,11 @@ struct hud *hud_create(void)
 void hud_destroy(struct hud *h)
 {
 	free(h);
+}
+
+void hud_chart_clear(struct hud *h)
+{
+	h->next = h->count = 0;
 }
 
 void hud_record(struct hud *h, const struct endosim_state *st, double t_s)
@@ -198,7 +232,36 @@ static void draw_state(struct pen *p, const struct hud_info *in)
 	}
 	state_words(in->st, text, sizeof(text), &rgb);
 	line(p, FONT_LARGE, in->link == LINK_STALE ? amber : rgb, text);
-	line(p, FONT_SMALL, dim, state_hint(in->st));
+	if (!in->replay) {
+		line(p, FONT_SMALL, dim, state_hint(in->st));
+	}
+}
+
+/* REPLAY, who and what; the clock; the timeline at LAY's. */
+static void draw_replay(struct pen *p, const struct hud_replay *r,
+			const struct hud_layout *lay, int fb_h)
+{
+	struct endo_rect tl = lay->timeline;
+	float top = (float)(fb_h - tl.y - tl.h);
+	float at = r->duration_s > 0 ? (float)(r->t_s / r->duration_s) : 0;
+	char text[192];
+
+	snprintf(text, sizeof(text), "REPLAY  %s%s%s", r->trainee,
+		 *r->trainee ? ", " : "", r->case_name);
+	line(p, FONT_SMALL, amber, text);
+	snprintf(text, sizeof(text), "%.1f / %.1f s   x%g%s", r->t_s,
+		 r->duration_s, r->speed, r->paused ? "   PAUSED" : "");
+	line(p, FONT_SMALL, r->paused ? amber : white, text);
+	draw2d_rect(p->d, (float)tl.x, top, (float)tl.w, (float)tl.h, track);
+	draw2d_rect(p->d, (float)tl.x, top + tl.h * 0.25f, at * tl.w,
+		    tl.h * 0.5f, axis_rgb[0]);
+	for (double s = 10; s < r->duration_s; s += 10) {
+		draw2d_rect(p->d, tl.x + (float)(s / r->duration_s) * tl.w,
+			    top + tl.h * 0.7f, 1, tl.h * 0.3f, dim);
+	}
+	draw2d_rect(p->d, tl.x + at * tl.w - 1.5f, top - 2, 3,
+		    (float)tl.h + 4, white);
+	p->y = fmaxf(p->y, top + (float)tl.h) + p->small * 0.3f;
 }
 
 static void region_words(const struct model *m, double s_m, char *buf,
@@ -350,14 +413,14 @@ static void draw_chart(struct pen *p, const struct hud *h, double t_s)
 	p->y += ch + p->small * 0.5f;
 }
 
-static void draw_help(struct pen *p)
+static void draw_help(struct pen *p, const char *const *keys)
 {
-	for (int k = 0; hud_keys[k]; k++) {
-		const char *tab = strchr(hud_keys[k], '\t');
+	for (int k = 0; keys[k]; k++) {
+		const char *tab = strchr(keys[k], '\t');
 		char key[48];
 
-		snprintf(key, sizeof(key), "%.*s", (int)(tab - hud_keys[k]),
-			 hud_keys[k]);
+		snprintf(key, sizeof(key), "%.*s", (int)(tab - keys[k]),
+			 keys[k]);
 		draw2d_text(p->d, FONT_SMALL, p->x, p->y + p->small, amber,
 			    key);
 		draw2d_text(p->d, FONT_SMALL, p->x + p->w * 0.32f,
@@ -379,22 +442,33 @@ static void draw_footer(struct pen *p, const struct hud_info *in,
 				in->driving ? "your hand drives the rig" :
 					      "H: keys");
 	}
-	snprintf(text, sizeof(text), "%.0f fps, %u triangles, state %.1f ms "
-		 "old", in->fps, in->triangles, in->age_ms);
+	if (in->replay) {
+		snprintf(text, sizeof(text), "%.0f fps, %u triangles, cycle "
+			 "%llu", in->fps, in->triangles,
+			 in->st ? (unsigned long long)in->st->cycle : 0ull);
+	} else {
+		snprintf(text, sizeof(text), "%.0f fps, %u triangles, state "
+			 "%.1f ms old", in->fps, in->triangles, in->age_ms);
+	}
 	line(p, FONT_SMALL, dim, text);
 }
 
 static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
-		       double t_s)
+		       const struct hud_layout *lay, int fb_h, double t_s)
 {
+	const char *const *keys = in->replay ? hud_replay_keys : hud_keys;
+
 	draw_state(p, in);
+	if (in->replay && in->st) {
+		draw_replay(p, in->replay, lay, fb_h);
+	}
 	gap(p);
 	if (in->st && in->link != LINK_NO_DAEMON) {
 		draw_where(p, in);
 		draw_loop(p, in, t_s);
 		gap(p);
 		if (in->help) {
-			draw_help(p);
+			draw_help(p, keys);
 			return;
 		}
 		for (int a = 0; a < ENDOSIM_AXES; a++) {
@@ -406,7 +480,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 			draw_chart(p, h, t_s);
 		}
 	} else if (in->help) {
-		draw_help(p);
+		draw_help(p, keys);
 	}
 }
 
@@ -461,7 +535,7 @@ void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 	};
 
 	(void)w;
-	draw_panel(h, &p, in, t_s);
+	draw_panel(h, &p, in, lay, hgt, t_s);
 	draw_footer(&p, in, top + (float)r.h - MARGIN_PX);
 	banners(d, lay, in, hgt);
 }

@@ -9,6 +9,12 @@
  * the frame rate, and the keys; banners over the image when the daemon is
  * missing or stale, or the colon is loading.
  *
+ * A replay (endoview --replay) shows the recorded state, fault and forces
+ * the same way, with the replay's lines in place of the state's hint
+ * (REPLAY, the trainee and the case; the time, the duration, the speed,
+ * PAUSED) and under them the timeline, a bar to click along; the chart
+ * is the record's last seconds; the footer gives the replay's keys.
+ *
  * Layout: the image is a square as high as the window (less room for the
  * panel in a narrow window) on the right, the panel on the left; with
  * both views, the overview is an inset at the bottom of the panel and the
@@ -43,6 +49,16 @@ struct hud_layout {
 	struct endo_rect endo;
 	struct endo_rect overview;
 	struct endo_rect panel;
+	struct endo_rect timeline; /* a replay's, in the panel under its lines */
+};
+
+/* A replay's clock and what it plays. */
+struct hud_replay {
+	const char *trainee, *case_name;
+	double t_s, duration_s;  /* from the first record */
+	double speed;
+	bool paused;
+	size_t records;
 };
 
 /* What the frame knows, for the display. */
@@ -61,6 +77,7 @@ struct hud_info {
 	double age_ms;             /* of the state shown */
 	bool help;                 /* the keys in place of the forces */
 	bool compact;              /* no room for the force's parts, chart */
+	const struct hud_replay *replay; /* NULL: live */
 };
 
 struct hud;
@@ -80,12 +97,16 @@ void hud_destroy(struct hud *h);
 /* Adds the state to the strip chart at time T_S (s, monotonic). */
 void hud_record(struct hud *h, const struct endosim_state *st, double t_s);
 
+/* Empties the strip chart (a replay's seek). */
+void hud_chart_clear(struct hud *h);
+
 /* Queues the HUD for the framebuffer of W x H into D (between
  * draw2d_begin() and draw2d_end()). */
 void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 	      const struct hud_info *in, int w, int hgt, double t_s);
 
-/* The key help, one line per key, NULL-terminated. */
+/* The key help, one line per key, NULL-terminated: live, replay. */
 extern const char *const hud_keys[];
+extern const char *const hud_replay_keys[];
 
 #endif

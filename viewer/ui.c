@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum drag_on { DRAG_NONE, DRAG_ENDO, DRAG_OVERVIEW };
+enum drag_on { DRAG_NONE, DRAG_ENDO, DRAG_OVERVIEW, DRAG_TIMELINE };
 
 struct ui {
 	GLFWwindow *window;
@@ -16,6 +16,7 @@ struct ui {
 	double from_x, from_y;     /* framebuffer pixels, top-left origin */
 	double last_x, last_y;
 	unsigned char pad[GLFW_GAMEPAD_BUTTON_LAST + 1];
+	bool replay;
 };
 
 /* The one-off action KEY stands for, or NULL. */
@@ -48,13 +49,56 @@ static bool *action_of(struct ui_actions *a, int key)
 	}
 }
 
+/* A replay's key; false when KEY is not one. Seeking repeats. */
+static bool replay_key(struct ui_actions *a, int key, int action, int mods)
+{
+	double by = mods & GLFW_MOD_SHIFT ? UI_SEEK_LONG_S : UI_SEEK_S;
+	bool press = action == GLFW_PRESS;
+
+	switch (key) {
+	case GLFW_KEY_SPACE:
+		a->toggle_pause |= press;
+		return true;
+	case GLFW_KEY_EQUAL:
+	case GLFW_KEY_KP_ADD:
+	case GLFW_KEY_RIGHT_BRACKET:
+		a->speed_steps += press;
+		return true;
+	case GLFW_KEY_MINUS:
+	case GLFW_KEY_KP_SUBTRACT:
+	case GLFW_KEY_LEFT_BRACKET:
+		a->speed_steps -= press;
+		return true;
+	case GLFW_KEY_LEFT:
+	case GLFW_KEY_RIGHT:
+		a->seek_by_s += key == GLFW_KEY_LEFT ? -by : by;
+		return true;
+	case GLFW_KEY_HOME:
+		a->seek_home |= press;
+		return true;
+	case GLFW_KEY_END:
+		a->seek_end |= press;
+		return true;
+	case GLFW_KEY_E:
+	case GLFW_KEY_X:
+	case GLFW_KEY_R:
+		return true; /* no rig to command */
+	default:
+		return false;
+	}
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
 	struct ui *u = glfwGetWindowUserPointer(w);
-	bool *what = action_of(&u->pending, key);
+	bool *what;
 
 	(void)scancode;
-	(void)mods;
+	if (action == GLFW_RELEASE ||
+	    (u->replay && replay_key(&u->pending, key, action, mods))) {
+		return;
+	}
+	what = action_of(&u->pending, key);
 	if (what && action == GLFW_PRESS) {
 		*what = true;
 	}
@@ -81,6 +125,11 @@ struct ui *ui_create(GLFWwindow *w)
 	glfwSetKeyCallback(w, on_key);
 	glfwSetScrollCallback(w, on_scroll);
 	return u;
+}
+
+void ui_set_replay(struct ui *u)
+{
+	u->replay = true;
 }
 
 void ui_destroy(struct ui *u)
@@ -192,7 +241,9 @@ static void start_drag(struct ui *u, const struct hud_layout *lay,
 {
 	u->from_x = u->last_x = x;
 	u->from_y = u->last_y = y;
-	u->on = inside(lay->endo, x, y, fb_h)	    ? DRAG_ENDO :
+	u->on = u->replay && inside(lay->timeline, x, y, fb_h) ?
+			DRAG_TIMELINE :
+		inside(lay->endo, x, y, fb_h)	  ? DRAG_ENDO :
 		inside(lay->overview, x, y, fb_h) ? DRAG_OVERVIEW :
 						      DRAG_NONE;
 }
@@ -215,7 +266,8 @@ static void drag_endo(const struct ui *u, double x, double y,
 }
 
 static void mouse(struct ui *u, const struct hud_layout *lay,
-		  struct input_controls *c, struct overview_orbit *orbit)
+		  struct input_controls *c, struct ui_actions *a,
+		  struct overview_orbit *orbit)
 {
 	int button = pressed_button(u), fb_h;
 	double x, y;
@@ -227,6 +279,9 @@ static void mouse(struct ui *u, const struct hud_layout *lay,
 	u->button = button;
 	if (button >= 0 && u->on == DRAG_ENDO) {
 		drag_endo(u, x, y, c);
+	} else if (button >= 0 && u->on == DRAG_TIMELINE) {
+		a->seek_to = fmax(0, fmin(1, (x - lay->timeline.x) /
+					   lay->timeline.w));
 	} else if (button >= 0 && u->on == DRAG_OVERVIEW) {
 		orbit->yaw_rad += (x - u->last_x) * 0.01;
 		orbit->pitch_rad = fmax(-1.5, fmin(1.5, orbit->pitch_rad +
@@ -250,9 +305,10 @@ void ui_frame(struct ui *u, const struct hud_layout *lay,
 	memset(c, 0, sizeof(*c));
 	*a = u->pending;
 	memset(&u->pending, 0, sizeof(u->pending));
+	a->seek_to = -1;
 	keyboard(u, c);
 	gamepad(u, c, a);
-	mouse(u, lay, c, orbit);
+	mouse(u, lay, c, a, orbit);
 	if (glfwWindowShouldClose(u->window)) {
 		a->quit = true;
 	}

@@ -14,6 +14,13 @@
  *   gamepad   left stick: insert (up), twist; right stick: steer;
  *             Start enable, Back disable, B emergency stop, Y reset
  *
+ * In a replay (ui_set_replay()) the keys drive the replay's clock instead
+ * of the rig: Space pause, + - (or ] [) speed, Left Right seek 5 s back
+ * or on (Shift: 30 s), Home the start, End the end; a click or a drag on
+ * the timeline (struct hud_layout timeline) seeks there. V, O, P, H, Q and
+ * the overview's mouse stay; the hand's controls are still made but a
+ * replay does not use them.
+ *
  * Main thread; GLFW's callbacks of the window are ui's.
  */
 #ifndef ENDOVIEW_UI_H
@@ -34,10 +41,18 @@
 #define UI_SCROLL_M 0.005         /* insertion per step of the wheel */
 #define UI_DEAD_ZONE 0.15         /* of a stick */
 
+#define UI_SEEK_S 5.0       /* Left, Right in a replay */
+#define UI_SEEK_LONG_S 30.0 /* with Shift */
+
 /* One-off actions this frame. */
 struct ui_actions {
 	bool command[RIGCTL_RESET + 1]; /* by enum rigctl_command */
 	bool next_view, toggle_help, reset_orbit, capture, quit;
+	/* a replay's */
+	bool toggle_pause, seek_home, seek_end;
+	int speed_steps;     /* +1 faster, -1 slower, per key */
+	double seek_by_s;    /* Left, Right */
+	double seek_to;      /* 0..1 along the timeline; < 0: none */
 };
 
 struct ui;
@@ -47,6 +62,9 @@ struct ui *ui_create(GLFWwindow *w);
 
 /* NULL is fine. */
 void ui_destroy(struct ui *u);
+
+/* The keys and the timeline drive a replay from now on. */
+void ui_set_replay(struct ui *u);
 
 /*
  * After glfwPollEvents(): the hand's controls C and the actions A of this

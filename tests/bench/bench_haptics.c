@@ -5,10 +5,11 @@
  *
  *   bench_haptics CASE_FILE SCENARIO [RING_VERTICES STEP_M]
  *
- * The force loop's own parts run as in the daemon, off line: the simulated
- * rig (plants and the scripted hand) advances one 1 ms period per step,
- * so every run sees the same motion; only the haptic step is timed
- * (CLOCK_MONOTONIC around scope_update() and haptics_render()).
+ * The force loop's own parts run as in the daemon, off line
+ * (tests/tools/offline.h): the simulated rig (plants and the scripted
+ * hand) advances one 1 ms period per step, so every run sees the same
+ * motion; only the haptic step is timed (CLOCK_MONOTONIC around
+ * scope_update() and haptics_render()).
  * Smoothness: the change of the contact force F_static between two
  * consecutive cycles while the tip touches and slides (moves more than 1
  * mm/s along the wall): p50, p99 and the largest, with force shading on
@@ -18,26 +19,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "anatomy.h"
 #include "colon.h"
 #include "config.h"
-#include "hand.h"
-#include "haptics.h"
 #include "histo.h"
-#include "rig.h"
-#include "scenario.h"
-#include "scope.h"
+#include "offline.h"
 #include "vec3.h"
-
-static uint64_t now_ns(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
 
 struct run {
 	struct histo step;
@@ -60,77 +48,44 @@ static double percentile_ns(const struct histo *h, double q)
 static void simulate(const struct config *cfg, struct colon *colon,
 		     const char *scenario_path, struct run *r)
 {
-	const struct scope_params sp = {
-		.bending_length_m = cfg->scope.bending_length_m,
-		.ud_gain = cfg->scope.gain[0], .lr_gain = cfg->scope.gain[1],
-		.ud_limit_rad = cfg->scope.limit_rad[0],
-		.lr_limit_rad = cfg->scope.limit_rad[1],
-	};
 	char err[256];
-	struct scenario *scn = scenario_load(scenario_path, err, sizeof(err));
-	struct hand *hand = scn ? hand_create(cfg, scn) : NULL;
-	struct rig *rig = hand ? rig_sim_create(cfg, hand) : NULL;
-	struct haptics *h = haptics_create();
-	static struct scope_pose pose;
-	struct endosim_haptics_state out, prev = { 0 };
-	struct rig_feedback fb;
-	double cmd[ENDOSIM_AXES], lim[ENDOSIM_AXES] = { 0 };
-	uint64_t t = 1000000000ull;
+	struct offline *o = offline_create(cfg, colon, scenario_path, err,
+					   sizeof(err));
+	struct endosim_haptics_state prev = { 0 };
 	double len;
 
-	if (!rig || !h) {
-		fprintf(stderr, "bench_haptics: %s\n", scn ? "out of memory" : err);
+	if (!o) {
+		fprintf(stderr, "bench_haptics: %s\n", err);
 		exit(1);
 	}
-	len = scenario_length(hand_scenario(hand));
-	haptics_reset(h, colon);
+	len = offline_length_s(o);
 	memset(r, 0, sizeof(*r));
-	for (long i = 0; i < (long)(len * 1000); i++, t += 1000000) {
-		const struct haptics_input in = {
-			.cfg = cfg, .colon = colon, .pose = &pose, .fb = &fb,
-			.dt_s = 0.001, .torque_on = true, .applied = lim,
-		};
-		struct scope_input si;
-		uint64_t t0;
+	for (long i = 0; i < (long)(len * 1000); i++) {
+		const struct offline_cycle *c = offline_step(o);
+		const struct endosim_haptics_state *out = &c->haptics;
 
-		rig_read(rig, t, &fb);
-		si = (struct scope_input){
-			fb.axis[0].position, fb.axis[1].position,
-			fb.axis[2].position, fb.axis[3].position,
-		};
-		t0 = now_ns();
-		scope_update(&sp, colon_centreline(colon), &si, &pose);
-		haptics_render(h, &in, cmd, &out);
-		histo_add(&r->step, now_ns() - t0);
-		for (int a = 0; a < ENDOSIM_AXES; a++) {
-			lim[a] = fmin(fmax(cmd[a], -cfg->limits.max[a]),
-				      cfg->limits.max[a]);
-		}
-		rig_write(rig, t, lim, true);
-
-		if (out.contact) {
-			double df[3], sliding[3], v = fb.axis[0].velocity;
+		histo_add(&r->step, c->step_ns);
+		if (out->contact) {
+			double df[3], sliding[3], v = c->fb.axis[0].velocity;
 
 			r->contact++;
-			r->max_f = fmax(r->max_f, vec3_norm(out.f_static));
+			r->max_f = fmax(r->max_f, vec3_norm(out->f_static));
 			/* the tip's motion along the wall, from the carriage */
-			vec3_axpy(sliding, pose.dir, -vec3_dot(pose.dir,
-				  out.normal), out.normal);
+			vec3_axpy(sliding, c->pose.dir, -vec3_dot(c->pose.dir,
+				  out->normal), out->normal);
 			if (prev.contact &&
 			    fabs(v) * vec3_norm(sliding) > 0.001) {
-				vec3_sub(df, out.f_static, prev.f_static);
+				vec3_sub(df, out->f_static, prev.f_static);
 				r->max_df = fmax(r->max_df, vec3_norm(df));
 				/* the histogram's "us" bins hold mN here */
 				histo_add(&r->df, (uint64_t)(vec3_norm(df) * 1e6));
 				r->sliding++;
 			}
 		}
-		prev = out;
+		prev = *out;
 	}
 	r->seconds = len;
-	haptics_destroy(h);
-	rig->ops->destroy(rig); /* rig.c would bring every backend */
-	hand_destroy(hand);
+	offline_destroy(o);
 }
 
 int main(int argc, char **argv)

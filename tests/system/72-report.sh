@@ -1,6 +1,6 @@
 #!/bin/bash
 # The instructor's report (issue 8) rendered by a browser: a session file
-# of a scripted colonoscopy on the polyps case (tests/tools/session_synth:
+# of a scripted colonoscopy on the polyps case (tests/tools/session_script:
 # insertion with a sigmoid loop and excessive force, a fault, the cecum, a
 # withdrawal of ~6.5 min), its report (tests/tools/session_report, the
 # code of `endoctl session report`), rendered in headless Chromium: the
@@ -25,8 +25,8 @@ chrome() {
 		2>>"$TMP/chromium.log"
 }
 
-check "session_synth writes a session file" \
-	"$TOOLS/session_synth" "$CASES/polyps.case" "$TMP/s.endoses" "$TRAINEE"
+check "session_script writes a session file" \
+	"$TOOLS/session_script" "$CASES/polyps.case" "$TMP/s.endoses" "$TRAINEE"
 check "session_report writes DIR/index.html" \
 	sh -c '"$1" "$2" "$3" >"$4" && test -s "$3/index.html"' _ \
 	"$TOOLS/session_report" "$TMP/s.endoses" "$TMP/report" "$TMP/metrics"

@@ -1,282 +1,272 @@
 /*
- * session_synth - writes a session file (session_file.h) of a scripted,
- * plausible colonoscopy, for the report's tests without the daemon:
+ * session_synth - a session file (docs/SESSION_FORMAT.md) without a
+ * daemon: a scenario played on a case by endosimd's own force-loop parts
+ * off line (offline.h: the simulated rig and hand, the kinematics, the
+ * haptics), one RECORD per 1 ms cycle as the daemon publishes it, for the
+ * replay's and the metrics' tests.
  *
- *   session_synth CASE_FILE OUT.endoses [TRAINEE]
+ *   session_synth [--at T]... [--trainee NAME] CASE SCENARIO OUT [SECONDS]
  *
- * 100 Hz records: idle for 2 s, enabled; insertion at ~3 cm/s along the
- * centreline (stop and go), a sigmoid loop pushed to 3.5 cm with the
- * insertion force above 15 N, then reduced; a small transverse loop; a
- * fault with a re-enable at the splenic flexure; 10 s at the cecum; a
- * withdrawal of ~6.5 min looking around the wall (the view 35 deg off the
- * lumen, circling); an END frame with the metrics computed on the way.
- * The tip's pose is on the centreline bowed as recorded, like the daemon's.
+ * CASE: a case file (the colon at the default resolution); SCENARIO: the
+ * simulated hand's script; OUT: the file written; SECONDS: how much of the
+ * scenario (default: all of it). The file holds HEADER (every key of the
+ * format), CONFIG (the defaults with [case] file = CASE, as endosimd
+ * --print-config prints them), CASE (the file's text), a STATE event
+ * (ENABLED) at the first record, the RECORDs, and END (cycles,
+ * duration_s).
+ *
+ * --at T (repeatable): the truth at T seconds after the first record,
+ * printed to stdout as state_text.h's lines each prefixed "T: ": the
+ * record's fields as the file holds them (through
+ * session_record_from_state() and back), and the tube the daemon would
+ * have published for that cycle (not in the file).
+ *
+ * Exit status: 0, 1 on a failure (said on stderr), 2 usage.
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
-#include "colon.h"
-#include "metrics.h"
+#include "cases.h"
+#include "offline.h"
 #include "session_file.h"
-#include "vec3.h"
+#include "state_text.h"
+#include "version.h"
 
-#define PERIOD_NS 10000000ull
-#define START_NS 1000000000000ull
+#define MAX_AT 32
+#define BATCH (64u << 10)
+#define SCENE_ID 1
 
 struct synth {
-	int fd;
+	const char *case_path, *scenario, *out, *trainee;
+	double seconds;
+	double at[MAX_AT];
+	int n_at;
+	struct config cfg;
 	struct colon *colon;
-	struct metrics *metrics;
-	uint64_t k;
-	double s, bow[2];
-	uint32_t state;
+	int fd;
+	unsigned char *buf;
+	size_t used;
 };
 
-static double ramp(double t, double t0, double t1)
+static void usage(void)
 {
-	return fmin(1, fmax(0, (t - t0) / (t1 - t0)));
+	fprintf(stderr, "usage: session_synth [--at T]... [--trainee NAME] "
+		"CASE SCENARIO OUT [SECONDS]\n");
+	exit(2);
 }
 
-static int put_event(struct synth *y, uint32_t kind, int axis,
-		     uint32_t detail, double value, const char *text)
+static void parse(int argc, char **argv, struct synth *s)
 {
-	unsigned char buf[256];
-	struct session_event ev = {
-		.stamp_ns = START_NS + y->k * PERIOD_NS, .kind = kind,
-		.axis = axis, .detail = detail, .value = value,
+	static const struct option longs[] = {
+		{ "at", required_argument, NULL, 'a' },
+		{ "trainee", required_argument, NULL, 't' },
+		{ 0 },
 	};
-	size_t n = strlen(text);
+	int c;
 
-	memcpy(buf, &ev, sizeof(ev));
-	memcpy(buf + sizeof(ev), text, n);
-	metrics_event(y->metrics, &ev, text);
-	return session_file_write_frame(y->fd, SESSION_FRAME_EVENT, buf,
-					(uint32_t)(sizeof(ev) + n));
-}
-
-/* The pose at S, looking LOOK rad off the lumen, circling at PHASE. */
-static void pose(struct synth *y, struct session_record *r, double look,
-		 double phase)
-{
-	const struct centreline *cl = colon_centreline(y->colon);
-	struct centreline_point q;
-	double axis[3], d[3];
-
-	colon_bow(y->colon, 0, y->bow[0], false);
-	colon_bow(y->colon, 1, y->bow[1], false);
-	centreline_at_s(cl, y->s, &q);
-	vec3_scale(axis, q.u, cos(phase));
-	vec3_axpy(axis, axis, sin(phase), q.v);
-	vec3_rotate(d, q.t, axis, look);
-	for (int j = 0; j < 3; j++) {
-		r->tip[j] = (float)q.p[j];
-		r->dir[j] = (float)d[j];
-		r->up[j] = (float)q.u[j];
-	}
-	r->depth_m = (float)(y->s + fabs(y->bow[0]) + fabs(y->bow[1]));
-	r->tip_s_m = (float)y->s;
-	r->base_s_m = (float)fmax(0, y->s - 0.09);
-	r->bow_m[0] = (float)y->bow[0];
-	r->bow_m[1] = (float)y->bow[1];
-	r->spans = 2;
-}
-
-/* Forces: friction with depth, the loops' mesentery, wall contact. */
-static void forces(struct synth *y, struct session_record *r, double t,
-		   double v)
-{
-	double f = 2 + 3 * y->s + 400 * (y->bow[0] + y->bow[1]) +
-		   0.8 * sin(t * 2.1);
-
-	f = v >= 0 ? f : -0.6 * f;
-	r->limited[0] = r->command[0] = (float)(y->state == 1 ? f : 0);
-	r->limited[1] = (float)(y->state == 1 ? 0.02 * sin(t * 0.13) +
-				0.01 * sin(t * 0.9) : 0);
-	r->limited[2] = (float)(y->state == 1 ? 0.05 * sin(t * 0.05) * (0.2 + y->s) : 0);
-	r->limited[3] = (float)(y->state == 1 ? 0.03 * cos(t * 0.07) * (0.2 + y->s) : 0);
-	r->contact = fmod(t, 23) < 1.5;
-	r->f_static[0] = r->contact ? 2.5f : 0;
-	r->normal[2] = 1;
-	r->velocity[0] = (float)v;
-	r->state = y->state;
-	r->ramp = y->state == 1;
-}
-
-static int put_record(struct synth *y, double t, double v, double look,
-		      double phase)
-{
-	struct session_record r;
-
-	memset(&r, 0, sizeof(r));
-	r.cycle = y->k;
-	r.stamp_ns = START_NS + y->k * PERIOD_NS;
-	pose(y, &r, look, phase);
-	forces(y, &r, t, v);
-	r.scenario_time_s = (float)t;
-	metrics_record(y->metrics, &r);
-	y->k++;
-	return session_file_write_frame(y->fd, SESSION_FRAME_RECORD, &r,
-					sizeof(r));
-}
-
-static int set_state(struct synth *y, uint32_t state)
-{
-	y->state = state;
-	return put_event(y, SESSION_EVENT_STATE, -1, 0, state, "");
-}
-
-/* Insertion to the cecum, with the loops and the fault on the way. */
-static int insert(struct synth *y, double cecum_s)
-{
-	double t0 = (double)y->k * PERIOD_NS * 1e-9, t = t0, v;
-	int r = 0;
-	bool faulted = false;
-
-	while (!r && y->s < cecum_s + 0.02) {
-		t = (double)y->k * PERIOD_NS * 1e-9;
-		v = 0.03 * (1 + 0.6 * sin((t - t0) / 3));
-		/* the sigmoid loop: the tip held at 0.40 m while pushing */
-		y->bow[0] = 0.035 * ramp(t, t0 + 12, t0 + 20) *
-			    (1 - ramp(t, t0 + 26, t0 + 32));
-		y->bow[1] = 0.013 * ramp(t, t0 + 52, t0 + 55) *
-			    (1 - ramp(t, t0 + 60, t0 + 63));
-		if (t > t0 + 12 && t < t0 + 32) {
-			v = t < t0 + 26 ? 0.002 : -0.01;
+	s->trainee = "synth";
+	s->seconds = -1;
+	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
+		if (c == 'a' && s->n_at < MAX_AT) {
+			s->at[s->n_at++] = atof(optarg);
+		} else if (c == 't') {
+			s->trainee = optarg;
+		} else {
+			usage();
 		}
-		if (!faulted && y->s > 0.65) {
-			faulted = true;
-			r = put_event(y, SESSION_EVENT_FAULT, 0, 7,
-				      0, "insertion force saturated 0.5 s");
-			r = r ? r : set_state(y, 3);
-		}
-		if (y->state == 3 && t > t0 + 40) {
-			r = set_state(y, 0);
-			r = r ? r : set_state(y, 1);
-		}
-		v = y->state == 1 ? v : 0;
-		y->s += v * PERIOD_NS * 1e-9;
-		r = r ? r : put_record(y, t, v, 0.15 * sin(t), t);
 	}
-	return r;
+	if (argc - optind < 3 || argc - optind > 4) {
+		usage();
+	}
+	s->case_path = argv[optind];
+	s->scenario = argv[optind + 1];
+	s->out = argv[optind + 2];
+	if (argc - optind == 4) {
+		s->seconds = atof(argv[optind + 3]);
+	}
 }
 
-static int withdraw(struct synth *y, double cecum_s)
+/* The whole of PATH, NUL-terminated (free() it); NULL with errno. */
+static char *slurp(const char *path)
 {
-	double t0 = (double)y->k * PERIOD_NS * 1e-9, t;
-	int r = 0;
+	FILE *f = fopen(path, "r");
+	char *text = NULL;
+	size_t size = 0;
+	FILE *m = f ? open_memstream(&text, &size) : NULL;
+	char chunk[4096];
+	size_t n;
 
-	while (!r && y->s > 0.01) {
-		t = (double)y->k * PERIOD_NS * 1e-9 - t0;
-		if (t < 10) { /* looking around the cecum */
-			r = put_record(y, t + t0, 0, 0.6, t * 1.3);
-			continue;
-		}
-		y->s -= (cecum_s / 390) * PERIOD_NS * 1e-9;
-		r = put_record(y, t + t0, -cecum_s / 390, 0.6, t * 2.6);
+	while (m && (n = fread(chunk, 1, sizeof(chunk), f)) > 0) {
+		fwrite(chunk, 1, n, m);
 	}
-	for (int i = 0; !r && i < 300; i++) { /* out */
-		y->s = 0;
-		r = put_record(y, (double)y->k * PERIOD_NS * 1e-9, 0, 0, 0);
+	if (m) {
+		fclose(m);
 	}
-	return r;
+	if (f) {
+		fclose(f);
+	}
+	return text;
 }
 
-static int write_head(struct synth *y, const char *case_path,
-		      const char *trainee, char *case_text, size_t n)
+static int put(struct synth *s, uint32_t type, const void *p, uint32_t n)
 {
-	char head[1024];
-	FILE *f = fopen(case_path, "r");
-	size_t got;
-
-	if (!f) {
-		return -errno;
+	if (s->used + n + 12 > BATCH) {
+		if (write(s->fd, s->buf, s->used) != (ssize_t)s->used) {
+			return -EIO;
+		}
+		s->used = 0;
 	}
-	got = fread(case_text, 1, n - 1, f);
-	fclose(f);
-	case_text[got] = '\0';
-	snprintf(head, sizeof(head), "format=1\nid=42\ntrainee=%s\ncase=%s\n"
-		 "started=2026-11-20T09:30:00Z\nstart_ns=%llu\nperiod_ns=%llu\n"
-		 "version=synth\nrecord_size=%zu\nstep_m=0.002\n"
-		 "ring_vertices=96\nsegment_m=0.04\n", trainee,
-		 colon_name(y->colon), START_NS, PERIOD_NS,
-		 sizeof(struct session_record));
-	if (session_file_write_magic(y->fd) ||
-	    session_file_write_frame(y->fd, SESSION_FRAME_HEADER, head,
-				     (uint32_t)strlen(head)) ||
-	    session_file_write_frame(y->fd, SESSION_FRAME_CONFIG, "[loop]\n",
-				     7) ||
-	    session_file_write_frame(y->fd, SESSION_FRAME_CASE, case_text,
-				     (uint32_t)got)) {
-		return -EIO;
+	if (n + 12 > BATCH) {
+		return session_file_write_frame(s->fd, type, p, n);
 	}
+	s->used += session_frame_put(s->buf, BATCH, s->used, type, p, n);
 	return 0;
 }
 
-static int run(struct synth *y, const char *case_path, const char *trainee)
+static int put_text(struct synth *s, uint32_t type, const char *text)
 {
-	static char case_text[1 << 16], end[1 << 14];
-	struct metrics_result res;
-	double cecum_s = colon_cecum_s(y->colon);
-	int r = write_head(y, case_path, trainee, case_text, sizeof(case_text));
+	return put(s, type, text, (uint32_t)strlen(text));
+}
 
-	for (int i = 0; !r && i < 200; i++) {
-		r = put_record(y, (double)y->k * PERIOD_NS * 1e-9, 0, 0, 0);
+static int write_head(struct synth *s)
+{
+	const struct config *c = &s->cfg;
+	char header[1024], started[32], *config = NULL, *text;
+	size_t size = 0;
+	time_t now = time(NULL);
+	struct tm tm;
+	FILE *m = open_memstream(&config, &size);
+	int r;
+
+	if (!m) {
+		return -ENOMEM;
 	}
-	r = r ? r : set_state(y, 1);
-	r = r ? r : put_event(y, SESSION_EVENT_PARAM, -1, 0, 0,
-			      "haptics.friction_n_s_per_m_rad=0.8");
-	r = r ? r : insert(y, cecum_s);
-	r = r ? r : withdraw(y, cecum_s);
-	r = r ? r : set_state(y, 0);
-	if (r) {
-		return r;
+	config_print(c, m);
+	fclose(m);
+	gmtime_r(&now, &tm);
+	strftime(started, sizeof(started), "%Y-%m-%dT%H:%M:%SZ", &tm);
+	snprintf(header, sizeof(header), "format=%u\nid=1\ntrainee=%s\n"
+		 "case=%s\nstarted=%s\nstart_ns=%llu\nperiod_ns=%llu\n"
+		 "version=%s\nrecord_size=%zu\nstep_m=%.17g\n"
+		 "ring_vertices=%d\nsegment_m=%.17g\n", SESSION_FILE_FORMAT,
+		 s->trainee, colon_name(s->colon), started,
+		 (unsigned long long)OFFLINE_START_NS,
+		 (unsigned long long)OFFLINE_PERIOD_NS, ENDOSIM_VERSION,
+		 sizeof(struct session_record), c->colon.step_m,
+		 (int)c->colon.ring_vertices, c->colon.segment_m);
+	text = slurp(s->case_path);
+	r = session_file_write_magic(s->fd);
+	r = r ? r : put_text(s, SESSION_FRAME_HEADER, header);
+	r = r ? r : put_text(s, SESSION_FRAME_CONFIG, config);
+	r = r ? r : !text ? -errno : put_text(s, SESSION_FRAME_CASE, text);
+	free(text);
+	free(config);
+	return r;
+}
+
+static int put_event(struct synth *s, uint64_t stamp_ns, uint32_t kind,
+		     double value)
+{
+	struct session_event ev = { .stamp_ns = stamp_ns, .kind = kind,
+				    .axis = -1, .value = value };
+
+	return put(s, SESSION_FRAME_EVENT, &ev, sizeof(ev));
+}
+
+/* The truth at cycle K (from 0), if one was asked for then. */
+static void truth(const struct synth *s, long k, const struct endosim_state *st)
+{
+	struct session_record rec;
+	struct endosim_state back;
+	char prefix[32];
+
+	for (int i = 0; i < s->n_at; i++) {
+		if (llround(s->at[i] * 1e9 / OFFLINE_PERIOD_NS) != k) {
+			continue;
+		}
+		session_record_from_state(st, &rec);
+		session_record_to_state(&rec, &back);
+		memcpy(back.scope.tube, st->scope.tube, sizeof(back.scope.tube));
+		snprintf(prefix, sizeof(prefix), "%g: ", s->at[i]);
+		state_text_print(stdout, prefix, &back);
 	}
-	metrics_result(y->metrics, &res);
-	r = metrics_format(&res, end, sizeof(end));
-	if (r < 0) {
-		return r;
+}
+
+static int run(struct synth *s, struct offline *o, long cycles)
+{
+	struct endosim_state st;
+	struct session_record rec;
+	char end[128];
+	int r = write_head(s);
+
+	for (long k = 0; !r && k < cycles; k++) {
+		offline_step(o);
+		offline_state(o, SCENE_ID, &st);
+		if (k == 0) {
+			r = put_event(s, st.stamp_ns, SESSION_EVENT_STATE,
+				      ENDOSIM_STATE_ENABLED);
+		}
+		session_record_from_state(&st, &rec);
+		r = r ? r : put(s, SESSION_FRAME_RECORD, &rec, sizeof(rec));
+		truth(s, k, &st);
 	}
-	fputs(end, stdout);
-	return session_file_write_frame(y->fd, SESSION_FRAME_END, end,
-					(uint32_t)r);
+	snprintf(end, sizeof(end), "cycles=%ld\nduration_s=%.3f\n", cycles,
+		 cycles > 0 ? (double)(cycles - 1) * OFFLINE_PERIOD_NS * 1e-9 :
+			      0.0);
+	r = r ? r : put_text(s, SESSION_FRAME_END, end);
+	if (!r && write(s->fd, s->buf, s->used) != (ssize_t)s->used) {
+		r = -EIO;
+	}
+	return r;
 }
 
 int main(int argc, char **argv)
 {
-	struct colon_params cp = COLON_PARAMS_DEFAULT;
-	struct metrics_params mp;
-	struct synth y = { .fd = -1 };
-	struct anatomy a;
-	char err[256];
-	int r;
+	struct synth s = { .fd = -1 };
+	struct offline *o = NULL;
+	char err[512];
+	int r = 1;
 
-	if (argc < 3) {
-		fprintf(stderr, "usage: session_synth CASE OUT [TRAINEE]\n");
-		return 2;
-	}
-	cp.ring_vertices = 96;
-	if (anatomy_load(&a, argv[1], err, sizeof(err)) ||
-	    !(y.colon = colon_create(&a, &cp, err, sizeof(err)))) {
+	parse(argc, argv, &s);
+	config_defaults(&s.cfg);
+	snprintf(s.cfg.colon.file, sizeof(s.cfg.colon.file), "%s",
+		 s.case_path);
+	s.colon = cases_load(&s.cfg, NULL, err, sizeof(err));
+	o = s.colon ? offline_create(&s.cfg, s.colon, s.scenario, err,
+				     sizeof(err)) : NULL;
+	if (!o) {
 		fprintf(stderr, "session_synth: %s\n", err);
-		return 1;
+		goto out;
 	}
-	metrics_params_default(&mp);
-	y.metrics = metrics_create(y.colon, &mp);
-	y.fd = open(argv[2], O_WRONLY | O_CREAT | O_TRUNC, 0644);
-	r = y.fd < 0 || !y.metrics ? -errno :
-	    run(&y, argv[1], argc > 3 ? argv[3] : "");
+	if (s.seconds < 0) {
+		s.seconds = offline_length_s(o);
+	}
+	s.buf = malloc(BATCH);
+	s.fd = open(s.out, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+	if (!s.buf || s.fd < 0) {
+		fprintf(stderr, "session_synth: %s: %s\n", s.out,
+			strerror(errno));
+		goto out;
+	}
+	r = run(&s, o, lround(s.seconds * 1e9 / OFFLINE_PERIOD_NS) + 1);
 	if (r) {
-		fprintf(stderr, "session_synth: %s: %s\n", argv[2], strerror(-r));
+		fprintf(stderr, "session_synth: %s: %s\n", s.out,
+			strerror(-r));
 	}
-	if (y.fd >= 0) {
-		close(y.fd);
+	r = r ? 1 : 0;
+out:
+	if (s.fd >= 0) {
+		close(s.fd);
 	}
-	metrics_destroy(y.metrics);
-	colon_destroy(y.colon);
-	return r ? 1 : 0;
+	free(s.buf);
+	offline_destroy(o);
+	colon_destroy(s.colon);
+	return r;
 }

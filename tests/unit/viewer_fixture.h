@@ -44,21 +44,9 @@ static inline struct colon *fixture_colon(const char *dir, const char *name,
 /* What client_get_scene() would have gathered for F's colon. */
 static inline void fixture_scene(struct fixture *f, uint64_t id)
 {
-	const struct mesh *m = colon_mesh(f->colon);
-
 	f->scene = scene_create(f->colon, id);
 	assert_non_null(f->scene);
-	memset(&f->cs, 0, sizeof(f->cs));
-	f->cs.scene_id = id;
-	f->cs.info = scene_reply(f->scene, 0)->info;
-	f->cs.vertices = m->vertices;
-	f->cs.triangles = m->triangles;
-	f->cs.positions = m->pos;
-	f->cs.normals = m->nrm;
-	f->cs.vertex_sample = m->sample;
-	f->cs.vertex_offset = m->off;
-	f->cs.normal_offset = m->noff;
-	f->cs.indices = m->tri;
+	scene_client(f->scene, &f->cs);
 }
 
 /* The case NAME from DIR at STEP_M, RING, and the viewer's model of it. */

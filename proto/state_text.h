@@ -1,0 +1,26 @@
+/*
+ * state_text.h - a published state (struct endosim_state) as "key=value"
+ * lines, one field a line, for tests and tools to compare: endoview
+ * --print-state writes the state its last frame showed, session_synth the
+ * truth it recorded. Numbers as %.9g, which a float reads back exactly, so
+ * two states made from the same session record print the same text.
+ *
+ * Keys: cycle, stamp_ns, state, fault_bits, scenario_time_s, position,
+ * velocity, hand, command, limited (4 axes, comma-separated), ramp,
+ * depth_m, roll_rad, bend_rad (2), base_s_m, tip_s_m, turning_rad, tip,
+ * dir, up (3), bow_m (4), spans, proxy, normal, f_static (3),
+ * penetration_m, contact; and, last, tube: the 128 points as "x,y,z"
+ * separated by ';'.
+ */
+#ifndef ENDOSIM_STATE_TEXT_H
+#define ENDOSIM_STATE_TEXT_H
+
+#include <stdio.h>
+
+#include "endosim_shm.h"
+
+/* Writes ST to F, each line prefixed with PREFIX (may be ""). */
+void state_text_print(FILE *f, const char *prefix,
+		      const struct endosim_state *st);
+
+#endif

@@ -1,0 +1,284 @@
+/* replay.c - see replay.h. */
+#include "replay.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "anatomy.h"
+#include "cases.h"
+#include "colon.h"
+#include "config.h"
+#include "log.h"
+#include "scene.h"
+#include "scope.h"
+#include "session_file.h"
+
+#define NS 1e9
+
+struct replay {
+	struct session_file f;
+	struct config cfg;
+	struct colon *colon;
+	struct scene *scene;
+	struct client_scene cs;
+	char trainee[64], case_name[64];
+	double t_s, speed;
+	bool paused;
+	size_t shown;     /* the record in st, SIZE_MAX: none yet */
+	struct endosim_state st;
+	struct scope_pose pose;
+};
+
+static const char *read_error(int r)
+{
+	switch (r) {
+	case -EBADMSG:
+		return "not a session file";
+	case -EPROTO:
+		return "a session file of a format or record size this viewer "
+		       "does not know";
+	default:
+		return strerror(-r);
+	}
+}
+
+/* The scope's parameters and the contact radius, from CONFIG. */
+static void read_config(struct replay *r, const char *path)
+{
+	char err[256];
+	FILE *f;
+
+	config_defaults(&r->cfg);
+	if (!r->f.config || !*r->f.config) {
+		return;
+	}
+	f = fmemopen(r->f.config, strlen(r->f.config), "r");
+	if (!f || config_load_stream(&r->cfg, f, "CONFIG", err, sizeof(err))) {
+		log_warn("%s: its configuration: %s: the scope's defaults "
+			 "instead", path, f ? err : strerror(errno));
+		config_defaults(&r->cfg);
+	}
+	if (f) {
+		fclose(f);
+	}
+}
+
+/* The header's resolution over the configuration's. */
+static int header_params(const struct replay *r, struct colon_params *p,
+			 char *err, size_t errsize)
+{
+	char v[64];
+
+	cases_colon_params(&r->cfg, p);
+	if (!session_text_get(r->f.header, "step_m", v, sizeof(v))) {
+		p->step_m = strtod(v, NULL);
+	}
+	if (!session_text_get(r->f.header, "ring_vertices", v, sizeof(v))) {
+		p->ring_vertices = (uint32_t)strtoul(v, NULL, 10);
+	}
+	if (!session_text_get(r->f.header, "segment_m", v, sizeof(v))) {
+		p->segment_m = strtod(v, NULL);
+	}
+	if (!(p->step_m > 0) || !(p->segment_m > 0) || !p->ring_vertices) {
+		snprintf(err, errsize, "its header's resolution does not add up");
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int build_colon(struct replay *r, const char *path, char *err,
+		       size_t errsize)
+{
+	struct colon_params p;
+	struct anatomy a;
+	char why[256];
+
+	if (!r->f.case_text || !*r->f.case_text) {
+		snprintf(err, errsize, "%s: no case recorded", path);
+		return -EINVAL;
+	}
+	if (header_params(r, &p, why, sizeof(why)) ||
+	    anatomy_parse(&a, r->f.case_text, "CASE", why, sizeof(why)) ||
+	    !(r->colon = colon_create(&a, &p, why, sizeof(why)))) {
+		snprintf(err, errsize, "%s: its colon: %s", path, why);
+		return -EINVAL;
+	}
+	r->scene = scene_create(r->colon, REPLAY_SCENE_ID);
+	if (!r->scene) {
+		snprintf(err, errsize, "%s: out of memory", path);
+		return -ENOMEM;
+	}
+	scene_client(r->scene, &r->cs);
+	return 0;
+}
+
+struct replay *replay_open(const char *path, char *err, size_t errsize)
+{
+	struct replay *r = calloc(1, sizeof(*r));
+	int e;
+
+	if (!r) {
+		snprintf(err, errsize, "%s: out of memory", path);
+		return NULL;
+	}
+	r->speed = 1;
+	r->shown = SIZE_MAX;
+	e = session_file_read(path, &r->f);
+	if (e) {
+		snprintf(err, errsize, "%s: %s", path, read_error(e));
+		goto fail;
+	}
+	if (!r->f.n_records) {
+		snprintf(err, errsize, "%s: no record to replay", path);
+		goto fail;
+	}
+	session_text_get(r->f.header, "trainee", r->trainee,
+			 sizeof(r->trainee));
+	session_text_get(r->f.header, "case", r->case_name,
+			 sizeof(r->case_name));
+	read_config(r, path);
+	if (build_colon(r, path, err, errsize)) {
+		goto fail;
+	}
+	return r;
+fail:
+	replay_destroy(r);
+	return NULL;
+}
+
+void replay_destroy(struct replay *r)
+{
+	if (!r) {
+		return;
+	}
+	scene_destroy(r->scene);
+	colon_destroy(r->colon);
+	session_file_close(&r->f);
+	free(r);
+}
+
+const struct client_scene *replay_scene(struct replay *r)
+{
+	return &r->cs;
+}
+
+const char *replay_trainee(const struct replay *r)
+{
+	return r->trainee;
+}
+
+const char *replay_case(const struct replay *r)
+{
+	return r->case_name;
+}
+
+size_t replay_records(const struct replay *r)
+{
+	return r->f.n_records;
+}
+
+size_t replay_bytes_ignored(const struct replay *r)
+{
+	return r->f.bytes_ignored;
+}
+
+double replay_duration(const struct replay *r)
+{
+	const struct session_record *rec = r->f.records;
+
+	return (double)(rec[r->f.n_records - 1].stamp_ns - rec[0].stamp_ns) /
+	       NS;
+}
+
+double replay_time(const struct replay *r)
+{
+	return r->t_s;
+}
+
+void replay_seek(struct replay *r, double t_s)
+{
+	r->t_s = fmax(0, fmin(t_s, replay_duration(r)));
+}
+
+void replay_advance(struct replay *r, double dt_s)
+{
+	if (!r->paused) {
+		replay_seek(r, r->t_s + dt_s * r->speed);
+	}
+}
+
+void replay_set_paused(struct replay *r, bool paused)
+{
+	r->paused = paused;
+}
+
+bool replay_paused(const struct replay *r)
+{
+	return r->paused;
+}
+
+void replay_set_speed(struct replay *r, double speed)
+{
+	r->speed = fmax(REPLAY_SPEED_MIN, fmin(REPLAY_SPEED_MAX, speed));
+}
+
+double replay_speed(const struct replay *r)
+{
+	return r->speed;
+}
+
+/* The record shown at T_S. */
+static size_t index_at(const struct replay *r, double t_s)
+{
+	return session_file_seek(&r->f, r->f.records[0].stamp_ns +
+						(uint64_t)llround(fmax(0, t_s) *
+								  NS));
+}
+
+void replay_record_at(const struct replay *r, double t_s,
+		      struct endosim_state *out)
+{
+	session_record_to_state(&r->f.records[index_at(r, t_s)], out);
+	out->scope.scene_id = REPLAY_SCENE_ID;
+}
+
+/* The tube of record I: its pose on the colon bowed as the cycle before
+ * left it (the record before, when it is that cycle's). */
+static void rebuild_tube(struct replay *r, size_t i)
+{
+	const struct session_record *rec = &r->f.records[i];
+	const struct session_record *bows =
+		i > 0 && rec[-1].cycle + 1 == rec->cycle ? &rec[-1] : rec;
+	const struct scope_input in = {
+		rec->position[0], rec->position[1], rec->position[2],
+		rec->position[3],
+	};
+	const struct centreline *cl = colon_centreline(r->colon);
+	struct scope_params sp;
+
+	scope_params_config(&r->cfg, &sp);
+	for (int k = 0; k < centreline_spans(cl) && k < ENDOSIM_SPANS; k++) {
+		colon_bow(r->colon, k, bows->bow_m[k], false);
+	}
+	scope_update(&sp, cl, &in, &r->pose);
+	for (int p = 0; p < ENDOSIM_TUBE_POINTS; p++) {
+		for (int d = 0; d < 3; d++) {
+			r->st.scope.tube[p][d] = (float)r->pose.tube[p][d];
+		}
+	}
+}
+
+const struct endosim_state *replay_state(struct replay *r)
+{
+	size_t i = index_at(r, r->t_s);
+
+	if (i != r->shown) {
+		replay_record_at(r, r->t_s, &r->st);
+		rebuild_tube(r, i);
+		r->shown = i;
+	}
+	return &r->st;
+}

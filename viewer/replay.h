@@ -1,0 +1,94 @@
+/*
+ * replay.h - endoview --replay: a recorded session (docs/SESSION_FORMAT.md,
+ * proto/session_file.h) played back without the daemon.
+ *
+ * replay_open() reads the file and rebuilds the colon it was recorded on
+ * with the daemon's own code: the CASE frame parsed as a case file
+ * (anatomy_parse()), built at the HEADER's resolution (step_m,
+ * ring_vertices, segment_m) with the CONFIG frame's contact radius
+ * (colon_create()), and served as GetScene would serve it (scene.h), so
+ * the viewer's model, levels of detail and views are made exactly as in
+ * live mode. The scope's parameters (bending length, wheel gains and
+ * limits) come from CONFIG too; a CONFIG this viewer cannot read leaves
+ * the defaults (logged).
+ *
+ * The clock: the replay's time t (s) counts from the first record's stamp
+ * to the last's (the duration); it runs at a speed (x0.25 .. x8) unless
+ * paused, and stops at the end. The state shown at t is the last record
+ * at or before it (session_file_seek()), as session_record_to_state()
+ * gives it, with the scope's tube rebuilt: the records keep the insertion,
+ * roll and wheels and each mobile span's bow, not the tube, so the tube
+ * is scope_update() on the colon's centreline bowed as the record before
+ * says (the force loop makes its pose before the haptics bow the colon,
+ * and publishes the bows after: a cycle's tube is on last cycle's bows).
+ *
+ * Main thread only. replay_open() allocates (the file, the colon: ~0.1 s
+ * at the default resolution); the rest does not.
+ */
+#ifndef ENDOVIEW_REPLAY_H
+#define ENDOVIEW_REPLAY_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "client.h"
+#include "endosim_shm.h"
+
+#define REPLAY_SCENE_ID 1
+#define REPLAY_SPEED_MIN 0.25
+#define REPLAY_SPEED_MAX 8.0
+
+struct replay;
+
+/*
+ * Opens the session file PATH. NULL with one line in ERR: the file cannot
+ * be read, is not a session file, has a format this viewer does not know,
+ * holds no record, or its case does not build.
+ */
+struct replay *replay_open(const char *path, char *err, size_t errsize);
+
+/* NULL is fine. */
+void replay_destroy(struct replay *r);
+
+/* The colon as GetScene would serve it (id REPLAY_SCENE_ID); valid while
+ * R lives, not for client_scene_free(). */
+const struct client_scene *replay_scene(struct replay *r);
+
+/* The header's trainee and case ("" when absent). */
+const char *replay_trainee(const struct replay *r);
+const char *replay_case(const struct replay *r);
+
+/* The records read, and how many bytes were cut or damaged after them. */
+size_t replay_records(const struct replay *r);
+size_t replay_bytes_ignored(const struct replay *r);
+
+/* Seconds from the first record to the last. */
+double replay_duration(const struct replay *r);
+
+/* The clock's time (s), 0 .. duration. */
+double replay_time(const struct replay *r);
+
+/* Moves the clock to T_S (clamped to 0 .. duration). */
+void replay_seek(struct replay *r, double t_s);
+
+/* Runs the clock on by DT_S of real time times the speed, unless paused. */
+void replay_advance(struct replay *r, double dt_s);
+
+void replay_set_paused(struct replay *r, bool paused);
+bool replay_paused(const struct replay *r);
+
+/* Sets the speed, clamped to REPLAY_SPEED_MIN .. REPLAY_SPEED_MAX. */
+void replay_set_speed(struct replay *r, double speed);
+double replay_speed(const struct replay *r);
+
+/* The state at the clock's time, the tube rebuilt (see above); valid
+ * until the next call. */
+const struct endosim_state *replay_state(struct replay *r);
+
+/* The record at T_S as a state, without the tube (zeroed): cheap, for the
+ * strip chart. */
+void replay_record_at(const struct replay *r, double t_s,
+		      struct endosim_state *out);
+
+#endif
