@@ -182,8 +182,10 @@ start_daemon --set "session.directory=$TMP/sessions" \
 	--scenario "$TOP/config/scenarios/demo.scn" || finish
 ctl enable >/dev/null
 check "the daemon records a session" ctl session start --trainee Ada
+WAIT_S=15
 check "8 s of the demo's course recorded" \
 	wait_for status_true '.scenario_time_s > 8.5'
+WAIT_S=5
 check "the session stops" ctl session stop
 REC=$(ls "$TMP"/sessions/*.endoses 2>/dev/null | head -n 1)
 ctl session export 1 --csv >"$TMP/export.csv"
