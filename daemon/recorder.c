@@ -518,7 +518,10 @@ int recorder_start(struct recorder *r, const struct recorder_session *s,
 	if (e) {
 		return e;
 	}
-	fd = create_file(r, &in);
+	fd = sessiondir_prepare(r->dir);
+	if (fd == 0) {
+		fd = create_file(r, &in);
+	}
 	if (fd < 0) {
 		log_err("session: cannot create a file in %s: %s", r->dir,
 			strerror(-fd));
@@ -620,12 +623,12 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	/* touched now, so that the loop's first pushes do not fault pages */
 	memset(r->tap.ring.records, 0, (r->tap.ring.mask + 1) *
 	       sizeof(struct session_record));
+	/* the rig works without it: only `session start` will be refused */
 	e = sessiondir_prepare(cfg->session.directory);
 	if (e) {
-		log_err("[session] directory %s: cannot create: %s",
-			cfg->session.directory, strerror(-e));
-		recorder_destroy(r);
-		return NULL;
+		log_warn("[session] directory %s: cannot create: %s: no "
+			 "session can be recorded until it can",
+			 cfg->session.directory, strerror(-e));
 	}
 	snprintf(r->dir, sizeof(r->dir), "%s", cfg->session.directory);
 	r->write_limit = cfg->session.write_limit_bytes_per_s;

@@ -95,7 +95,7 @@ wait_for() {
 # What every daemon of a test gets: its own socket directory and shm name,
 # no socket group (tests need not create one), the source tree's cases.
 DAEMON_ARGS=(--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group=
-	--set "case.directory=$CASES")
+	--set "case.directory=$CASES" --session-dir "$TMP/sessions")
 
 # endosimd ARGS...: the daemon in the foreground with DAEMON_ARGS.
 endosimd() {

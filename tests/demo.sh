@@ -5,7 +5,10 @@
 # viewer (endoview) opens beside it and the demo lasts until its window is
 # closed: its keys take the simulated hand over from the scenario. Without
 # one, the viewer draws on a virtual screen (Xvfb) and leaves two
-# screenshots, mid-way and at the deepest.
+# screenshots, mid-way and at the deepest. The run is recorded as a
+# training session: its metrics and the instructor's report
+# ($BUILD/demo-report/index.html) come at the end, and
+# `endoview --replay` plays it again.
 set -u
 . "$(dirname "$0")/common.sh"
 . "$TOP/tests/viewer_lib.sh"
@@ -28,10 +31,12 @@ LENGTH=$(awk '$2 == "end" || $2 == "repeat" { print $1 }' "$SCENARIO")
 : "${LENGTH:=90}"
 
 echo "endosim demo: endosimd on the simulated rig, scenario $(basename "$SCENARIO") (${LENGTH} s)"
-start_daemon --scenario "$SCENARIO" || exit 1
+SESSIONS="$BUILD/demo-sessions"
+start_daemon --scenario "$SCENARIO" --session-dir "$SESSIONS" || exit 1
 echo "daemon pid $DAEMON_PID, sockets in $SOCK, shared memory $SHM"
 echo "  in another terminal: $ENDOCTL --socket $SOCK status"
 ctl enable
+ctl session start --trainee "demo (the scripted hand)"
 viewer=""
 shots=""
 if has_display; then
@@ -83,6 +88,15 @@ jq -rs '
   "largest loop \(map(.scope.bow_m | max) | max * 1000 | round) mm, its force \(peak(.haptics.trans_loop_n) * 10 | round / 10) N",
   "states seen: \(map(.state) | unique | join(", ")); faults: \(map(.fault_bits) | max)"
 ' "$TMP/trace.json"
+
+echo
+echo "=== the training session ==="
+ctl session stop
+id=$(ctl --json session list | jq -r '.sessions | max_by(.id) | .id')
+file=$(ctl --json session show "$id" | jq -r '.path')
+ctl session report "$id" --out "$BUILD/demo-report" &&
+	echo "the instructor's report: $BUILD/demo-report/index.html"
+echo "replay it: $BUILD/endoview --replay $file"
 if stop_daemon; then
 	echo "endosimd stopped cleanly (torque off, exit 0)"
 else

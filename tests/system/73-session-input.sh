@@ -111,4 +111,13 @@ check "... recomputed from its records (at least the 0.5 s written)" \
 ctl session start >/dev/null
 check "ids count on: the next is 4" grep -q "^session 4 " <(ctl session status)
 ctl session stop >/dev/null
+
+# --- a session directory that cannot be made: the rig runs, sessions refused
+stop_daemon
+check "a session directory that cannot be made: the daemon still comes up" \
+	start_daemon --session-dir /proc/endosim-sessions
+check "... saying so in its log" grep -q "no session can be recorded" "$LOG"
+check_status "... a session start refused" 1 ctl session start
+check "... saying why" grep -q "endosim-sessions" "$OUT"
+check "... and the rig still enables" ctl enable
 finish
