@@ -305,13 +305,14 @@ emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS)) \
 
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
-	       fuzz_epos4
+	       fuzz_epos4 fuzz_session
 fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o regmap.o log.o names.o
 fuzz_config_OBJS = config.o regmap.o log.o names.o
 fuzz_scenario_OBJS = scenario.o names.o
 fuzz_anatomy_OBJS = $(COLON_OBJS)
 fuzz_objio_OBJS = $(COLON_OBJS)
 fuzz_epos4_OBJS = epos4_frame.o
+fuzz_session_OBJS = session_file.o metrics.o $(COLON_OBJS)
 FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined
 FUZZ_SECONDS ?= 60
 

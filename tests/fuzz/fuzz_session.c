@@ -1,0 +1,32 @@
+/*
+ * fuzz_session - libFuzzer target: a session file on arbitrary contents,
+ * as `endoctl session show/export/report` and `endoview --replay` meet a
+ * damaged or hostile one: the reader (frames, CRCs, record sizes), the
+ * header's keys, a seek, and the END frame's metrics parsed back.
+ */
+#include <stdint.h>
+
+#include "fuzz_file.h"
+#include "metrics.h"
+#include "session_file.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	struct metrics_result m;
+	struct session_file f;
+	char v[64];
+
+	if (session_file_read(fuzz_file(data, size), &f) != 0) {
+		return 0;
+	}
+	session_text_get(f.header, "record_size", v, sizeof(v));
+	session_text_get(f.header, "trainee", v, sizeof(v));
+	if (f.n_records) {
+		session_file_seek(&f, f.records[f.n_records / 2].stamp_ns);
+	}
+	if (f.end) {
+		metrics_parse(f.end, &m);
+	}
+	session_file_close(&f);
+	return 0;
+}
