@@ -40,7 +40,8 @@ count() {
 	passed=$((passed + p))
 	failed=$((failed + f))
 	[ "$f" -eq 0 ] || failed_suites="$failed_suites $suite"
-	printf '%-34s %4d passed, %d failed\n' "$suite" "$p" "$f"
+	printf '%-34s %4d passed, %d failed  (%d s)\n' "$suite" "$p" "$f" \
+		$((SECONDS - started))
 }
 
 # run_suites BUILD_DIR PREFIX: unit and system tests of one build.
@@ -49,6 +50,7 @@ run_suites() {
 	for t in "$build"/tests/test_*; do
 		case "$t" in *.d) continue ;; esac
 		[ -x "$t" ] || continue
+		started=$SECONDS
 		"$t" >"$out" 2>&1
 		rc=$?
 		count "${prefix}unit/$(basename "$t")" $rc
@@ -56,6 +58,7 @@ run_suites() {
 	done
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
+		started=$SECONDS
 		BUILD="$build" timeout 300 bash "$t" >"$out" 2>&1
 		rc=$?
 		count "${prefix}system/$(basename "$t" .sh)" $rc
@@ -68,6 +71,7 @@ if [ -d "$BUILD/asan/tests" ]; then
 	run_suites "$BUILD/asan" "asan/"
 fi
 if [ -d "$BUILD/fuzz" ]; then
+	started=$SECONDS
 	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" >"$out" 2>&1
 	count "fuzz" $?
 	grep -v "passed, .* failed$" "$out" | sed 's/^/    /'
@@ -75,5 +79,6 @@ fi
 if [ -n "$failed_suites" ]; then
 	echo "failed:$failed_suites"
 fi
+echo "(the suites took $((SECONDS / 60)) min $((SECONDS % 60)) s)"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
