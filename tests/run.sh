@@ -5,8 +5,9 @@
 #
 # Suites: the cmocka unit tests and the numbered system tests of the build
 # in $BUILD; the same again for the AddressSanitizer/UBSan build in
-# $BUILD/asan when it exists; a short run of each fuzz target in
-# $BUILD/fuzz when they exist ($FUZZ_SECONDS each, default 5).
+# $BUILD/asan when it exists (with SANITIZED=1: a long test may shorten
+# what checks only timing, not memory, there); a short run of each fuzz
+# target in $BUILD/fuzz when they exist ($FUZZ_SECONDS each, default 5).
 set -u
 
 TOP=$(cd "$(dirname "$0")/.." && pwd)
@@ -59,15 +60,18 @@ run_suites() {
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
 		started=$SECONDS
-		BUILD="$build" timeout 300 bash "$t" >"$out" 2>&1
+		BUILD="$build" SANITIZED=$sanitized timeout 300 bash "$t" \
+			>"$out" 2>&1
 		rc=$?
 		count "${prefix}system/$(basename "$t" .sh)" $rc
 		[ $rc -eq 0 ] || tail -n 40 "$out" | sed 's/^/    /'
 	done
 }
 
+sanitized=
 run_suites "$BUILD" ""
 if [ -d "$BUILD/asan/tests" ]; then
+	sanitized=1 # a system test may shorten what only checks timing
 	run_suites "$BUILD/asan" "asan/"
 fi
 if [ -d "$BUILD/fuzz" ]; then

@@ -20,6 +20,9 @@
 # Scenario times become session times by the first record's scenario clock.
 # Also: live status, a parameter change and the state changes as events,
 # list, show, export to CSV, and the file's size.
+# Under the sanitizers (tests/run.sh's second pass, SANITIZED=1) the course
+# is cut after 15 s: that pass looks for memory errors in the same code,
+# not for the course's timing, which the plain pass has checked.
 . "$(dirname "$0")/../common.sh"
 
 # float_test EXPR: awk's arithmetic truth of EXPR
@@ -40,13 +43,14 @@ check "... recording, records and live metrics coming in" \
 	       .metrics.max_tip_s_m > 0.05 and .drops == 0' "$OUT"
 check_status "a parameter change during the session" 0 \
 	ctl set limits.enable_ramp_s 0.5
-sleep 84
+if [ -n "${SANITIZED:-}" ]; then course_s=10; else course_s=84; fi
+sleep "$course_s"
 ctl disable >/dev/null
 sleep 0.2
 check_status "session stop" 0 ctl --json session stop
-check "... ended, about 89 s, nothing dropped" \
-	jq -e '.ended and .duration_s > 85 and .duration_s < 100 and
-	       .drops == 0' "$OUT"
+check "... ended, about $((course_s + 5)) s, nothing dropped" \
+	jq -e --argjson t "$course_s" '.ended and .duration_s > $t + 1 and
+	       .duration_s < $t + 16 and .drops == 0' "$OUT"
 
 check_status "list" 0 ctl --json session list
 check "... the one session, ended, its trainee and case" \
@@ -67,24 +71,26 @@ echo "# metrics: $(jq -c '.metrics | del(.force, .loops)' "$TMP/show.json")"
 echo "# loops: $(jq -c .metrics.loops "$TMP/show.json"), force: $(jq -c .metrics.force "$TMP/show.json")"
 check "every cycle recorded: consecutive cycles in the CSV" \
 	awk -F, 'NR > 2 && $2 != prev + 1 { exit 1 } { prev = $2 }' "$TMP/s.csv"
-check "cecum reached at $(m cecum_s) s: in [59.2, 61.5] s of the course" \
-	float_test "$(m cecum_s) + $off >= 59.2 && $(m cecum_s) + $off <= 61.5"
-check "insertion time is the time to the cecum; a withdrawal follows" \
-	float_test "$(m insertion_s) == $(m cecum_s) && $(m withdrawal_s) > 10"
-check "loops: $(m loop_episodes), all within [22.4, 31.0] s of the course" \
-	jq -e --argjson off "$off" '.metrics.loop_episodes >= 1 and
-	  (.metrics.loops | all(.start_s + $off >= 22.4 and
-				 .end_s + $off <= 31.0 and .end_s >= 0))' \
-	"$TMP/show.json"
-check "largest loop $(m largest_loop_m) m: over 0.01 m, under 0.06 m" \
-	float_test "$(m largest_loop_m) > 0.01 && $(m largest_loop_m) < 0.06"
-check "force episodes: $(m force_episodes), within the loop's window" \
-	jq -e --argjson off "$off" '.metrics.force_episodes >= 1 and
-	  (.metrics.force | all(.start_s + $off >= 22.4 and
-				 .end_s + $off <= 31.0 and .peak > 10))' \
-	"$TMP/show.json"
-check "a full course sees most of the mucosa ($(m mucosa_seen))" \
-	float_test "$(m mucosa_seen) > 0.5"
+if [ -z "${SANITIZED:-}" ]; then
+	check "cecum reached at $(m cecum_s) s: in [59.2, 61.5] s of the course" \
+		float_test "$(m cecum_s) + $off >= 59.2 && $(m cecum_s) + $off <= 61.5"
+	check "insertion time is the time to the cecum; a withdrawal follows" \
+		float_test "$(m insertion_s) == $(m cecum_s) && $(m withdrawal_s) > 10"
+	check "loops: $(m loop_episodes), all within [22.4, 31.0] s of the course" \
+		jq -e --argjson off "$off" '.metrics.loop_episodes >= 1 and
+		  (.metrics.loops | all(.start_s + $off >= 22.4 and
+					 .end_s + $off <= 31.0 and .end_s >= 0))' \
+		"$TMP/show.json"
+	check "largest loop $(m largest_loop_m) m: over 0.01 m, under 0.06 m" \
+		float_test "$(m largest_loop_m) > 0.01 && $(m largest_loop_m) < 0.06"
+	check "force episodes: $(m force_episodes), within the loop's window" \
+		jq -e --argjson off "$off" '.metrics.force_episodes >= 1 and
+		  (.metrics.force | all(.start_s + $off >= 22.4 and
+					 .end_s + $off <= 31.0 and .peak > 10))' \
+		"$TMP/show.json"
+	check "a full course sees most of the mucosa ($(m mucosa_seen))" \
+		float_test "$(m mucosa_seen) > 0.5"
+fi
 
 ctl session export 1 --csv --events --out "$TMP/events.csv"
 check "events: IDLE first, then ENABLED, then IDLE after the disable" \
@@ -100,6 +106,6 @@ check "the file starts with its magic" test "$(head -c 8 "$f")" = ENDOSES1
 bytes=$(stat -c %s "$f")
 per_min=$(awk -v b="$bytes" -v s="$(m duration_s)" 'BEGIN { printf "%.1f", b / s * 60 / 1e6 }')
 echo "# file: $bytes bytes for $(m duration_s) s: $per_min MB per minute"
-check "about 19 MB a minute (312 bytes a record at 1 kHz)" \
+check "about 19 MB a minute (316 bytes a record with its framing, at 1 kHz)" \
 	float_test "$per_min > 18 && $per_min < 21"
 finish
