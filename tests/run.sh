@@ -47,16 +47,27 @@ count() {
 
 # run_suites BUILD_DIR PREFIX: unit and system tests of one build.
 run_suites() {
-	local build=$1 prefix=$2 t rc
+	local build=$1 prefix=$2 t rc name units
+	# the unit tests need no real time: as many at once as there are CPUs,
+	# each into its own files (output, exit status, seconds), then counted
+	units=$(mktemp -d)
 	for t in "$build"/tests/test_*; do
 		case "$t" in *.d) continue ;; esac
-		[ -x "$t" ] || continue
-		started=$SECONDS
-		"$t" >"$out" 2>&1
-		rc=$?
-		count "${prefix}unit/$(basename "$t")" $rc
-		[ $rc -eq 0 ] || grep -vE 'OK \]|RUN  ' "$out" | tail -n 20 | sed 's/^/    /'
+		[ -x "$t" ] && printf '%s\0' "$t"
+	done | xargs -0 -r -P "$(nproc)" -I{} sh -c \
+		'n=$(basename "$1"); s=$(date +%s); "$1" >"$2/$n.out" 2>&1
+		 echo $? >"$2/$n.rc"; echo $(($(date +%s) - s)) >"$2/$n.s"' \
+		_ {} "$units"
+	for t in "$units"/*.out; do
+		[ -e "$t" ] || continue
+		name=$(basename "$t" .out)
+		cp "$t" "$out"
+		rc=$(cat "$units/$name.rc")
+		started=$((SECONDS - $(cat "$units/$name.s")))
+		count "${prefix}unit/$name" "$rc"
+		[ "$rc" -eq 0 ] || grep -vE 'OK \]|RUN  ' "$out" | tail -n 20 | sed 's/^/    /'
 	done
+	rm -rf "$units"
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
 		started=$SECONDS
