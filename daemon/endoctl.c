@@ -981,13 +981,37 @@ static const char *session_state(const Endosim__SessionInfo *s)
 	return s->recording ? "recording" : s->ended ? "ended" : "cut short";
 }
 
+/*
+ * When an ended session ended, UTC like its start (its start plus its
+ * duration), into OUT; "" while it records or when the start is unreadable.
+ */
+static void session_ended_at(const Endosim__SessionInfo *s, char *out,
+			     size_t size)
+{
+	struct tm tm = { 0 };
+	const char *rest = strptime(s->started, "%Y-%m-%dT%H:%M:%SZ", &tm);
+	time_t t;
+
+	out[0] = '\0';
+	if (s->recording || !rest || *rest || !isfinite(s->duration_s)) {
+		return;
+	}
+	t = timegm(&tm) + (time_t)llround(s->duration_s);
+	gmtime_r(&t, &tm);
+	strftime(out, size, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
 /* The session's facts as JSON members (the object is the caller's). */
 static void json_session_facts(struct json *j, const Endosim__SessionInfo *s)
 {
+	char ended[32];
+
+	session_ended_at(s, ended, sizeof(ended));
 	json_uint(j, "id", s->id);
 	json_string(j, "trainee", s->trainee);
 	json_string(j, "case", s->case_name);
 	json_string(j, "started", s->started);
+	json_string(j, "ended_at", ended);
 	json_string(j, "state", session_state(s));
 	json_bool(j, "recording", s->recording);
 	json_bool(j, "ended", s->ended);
@@ -1000,9 +1024,13 @@ static void json_session_facts(struct json *j, const Endosim__SessionInfo *s)
 
 static void print_session_facts(const Endosim__SessionInfo *s)
 {
-	printf("session %" PRIu64 " (%s): trainee '%s', case %s, started %s\n"
+	char ended[32];
+
+	session_ended_at(s, ended, sizeof(ended));
+	printf("session %" PRIu64 " (%s): trainee '%s', case %s, started %s%s%s\n"
 	       "file %s, %" PRIu64 " bytes\n", s->id, session_state(s),
-	       s->trainee, s->case_name, s->started, s->path, s->bytes);
+	       s->trainee, s->case_name, s->started, *ended ? ", ended " : "",
+	       ended, s->path, s->bytes);
 	if (s->recording || s->records) {
 		printf("%.1f s, %" PRIu64 " records, %" PRIu64 " dropped\n",
 		       s->duration_s, s->records, s->drops);

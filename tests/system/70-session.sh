@@ -58,6 +58,9 @@ check "... the one session, ended, its trainee and case" \
 	       .[0].trainee == "Test Trainee" and .[0].case == "normal"' "$OUT"
 check_status "show 1" 0 ctl --json session show 1
 cp "$OUT" "$TMP/show.json"
+check "its end: its start plus its duration, UTC" \
+	jq -e '(.ended_at | fromdateiso8601) - (.started | fromdateiso8601) -
+	       .duration_s | fabs <= 1' "$TMP/show.json"
 check_status "export 1 --csv" 0 ctl session export 1 --csv --out "$TMP/s.csv"
 m() { jq -r ".metrics.$1" "$TMP/show.json"; }
 check "the CSV has a row per record ($(m records)) and names units" \
