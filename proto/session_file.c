@@ -4,6 +4,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -220,17 +221,21 @@ int session_file_write_frame(int fd, uint32_t type, const void *payload,
 
 /* --- reading ---------------------------------------------------------- */
 
-/* Reads the whole of FD into a new buffer. */
-static int slurp(int fd, unsigned char **out, size_t *len)
+/* The file's bytes: mapped (a regular file), else read into a buffer. */
+struct input {
+	unsigned char *data;
+	size_t len;
+	bool mapped;
+};
+
+/* Reads the whole of FD into a new buffer (a pipe, a device). */
+static int slurp(int fd, const struct stat *st, unsigned char **out,
+		 size_t *len)
 {
-	struct stat st;
 	size_t cap, n = 0;
 	unsigned char *buf;
 
-	if (fstat(fd, &st) < 0) {
-		return -errno;
-	}
-	cap = st.st_size > 0 ? (size_t)st.st_size + 1 : 4096;
+	cap = st->st_size > 0 ? (size_t)st->st_size + 1 : 4096;
 	buf = malloc(cap);
 	if (!buf) {
 		return -ENOMEM;
@@ -265,6 +270,46 @@ static int slurp(int fd, unsigned char **out, size_t *len)
 	*out = buf;
 	*len = n;
 	return 0;
+}
+
+/*
+ * The whole of FD in IN. A regular file is mapped rather than read, so
+ * that a long session is not held twice on the heap (its bytes, then its
+ * records). The writer only appends: a file that grows meanwhile is read
+ * as it was at fstat().
+ */
+static int load(int fd, struct input *in)
+{
+	struct stat st;
+	void *p;
+
+	memset(in, 0, sizeof(*in));
+	if (fstat(fd, &st) < 0) {
+		return -errno;
+	}
+	if (!S_ISREG(st.st_mode)) {
+		return slurp(fd, &st, &in->data, &in->len);
+	}
+	if (st.st_size == 0) {
+		return 0;
+	}
+	p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, fd, 0);
+	if (p == MAP_FAILED) {
+		return -errno;
+	}
+	in->data = p;
+	in->len = (size_t)st.st_size;
+	in->mapped = true;
+	return 0;
+}
+
+static void unload(struct input *in)
+{
+	if (in->mapped) {
+		munmap(in->data, in->len);
+	} else {
+		free(in->data);
+	}
 }
 
 /* The next good frame at OFF of DATA (LEN bytes), or false. */
@@ -302,8 +347,9 @@ static char *text_copy(char **dst, char *room, const unsigned char *src,
 
 int session_file_read(const char *path, struct session_file *out)
 {
-	unsigned char *data = NULL;
-	size_t len = 0, off, n_rec = 0, n_ev = 0, text = 0, good;
+	struct input in;
+	const unsigned char *data;
+	size_t len, off, n_rec = 0, n_ev = 0, text = 0, good;
 	const unsigned char *payload;
 	uint32_t type, length;
 	char size[32], *room;
@@ -315,15 +361,17 @@ int session_file_read(const char *path, struct session_file *out)
 	if (fd < 0) {
 		return -errno;
 	}
-	r = slurp(fd, &data, &len);
+	r = load(fd, &in);
 	close(fd);
 	if (r) {
 		return r;
 	}
+	data = in.data;
+	len = in.len;
 	if (len < 8 || memcmp(data, SESSION_FILE_MAGIC, 8) != 0 ||
 	    !next_frame(data, len, 8, &type, &payload, &length) ||
 	    type != SESSION_FRAME_HEADER) {
-		free(data);
+		unload(&in);
 		return -EBADMSG;
 	}
 	/* first pass: count, and find where the good frames end */
@@ -331,7 +379,7 @@ int session_file_read(const char *path, struct session_file *out)
 	     off += FRAME_OVERHEAD + length) {
 		if (type == SESSION_FRAME_RECORD) {
 			if (length != sizeof(struct session_record)) {
-				free(data);
+				unload(&in);
 				return -EPROTO;
 			}
 			n_rec++;
@@ -352,7 +400,7 @@ int session_file_read(const char *path, struct session_file *out)
 	store = malloc(n_rec * sizeof(struct session_record) +
 		       n_ev * sizeof(struct session_file_event) + text + 1);
 	if (!store) {
-		free(data);
+		unload(&in);
 		return -ENOMEM;
 	}
 	out->storage = store;
@@ -399,7 +447,7 @@ int session_file_read(const char *path, struct session_file *out)
 	}
 	out->bytes_read = good;
 	out->bytes_ignored = len - good;
-	free(data);
+	unload(&in);
 	if (session_text_get(out->header, "record_size", size,
 			     sizeof(size)) == 0 &&
 	    strtoul(size, NULL, 10) != sizeof(struct session_record)) {
