@@ -443,18 +443,15 @@ static int header_text(const struct recorder_session *s,
 		       const struct recorder_info *info, char *buf,
 		       size_t size)
 {
-	int n = snprintf(buf, size,
-			 "format=%u\nid=%" PRIu64 "\ntrainee=%s\ncase=%s\n"
-			 "started=%s\nstart_ns=%" PRIu64 "\nperiod_ns=%u\n"
-			 "version=%s\nrecord_size=%zu\nstep_m=%.9g\n"
-			 "ring_vertices=%d\nsegment_m=%.9g\n",
-			 SESSION_FILE_FORMAT, info->id, s->trainee,
-			 s->case_name, info->started, info->start_ns,
-			 s->period_ns, ENDOSIM_VERSION,
-			 sizeof(struct session_record), s->step_m,
-			 s->ring_vertices, s->segment_m);
+	const struct session_header h = {
+		.id = info->id, .trainee = s->trainee,
+		.case_name = s->case_name, .started = info->started,
+		.start_ns = info->start_ns, .period_ns = s->period_ns,
+		.version = ENDOSIM_VERSION, .step_m = s->step_m,
+		.ring_vertices = s->ring_vertices, .segment_m = s->segment_m,
+	};
 
-	return n < 0 || (size_t)n >= size ? -ENAMETOOLONG : n;
+	return session_header_text(&h, buf, size);
 }
 
 /* The first frames, straight to the file. */

@@ -1,7 +1,9 @@
 /* session_file.c - the training session file (session_file.h). */
 #include <errno.h>
 #include <fcntl.h>
+#include <inttypes.h>
 #include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -193,6 +195,22 @@ static int write_all(int fd, const void *data, size_t n)
 		n -= (size_t)w;
 	}
 	return 0;
+}
+
+int session_header_text(const struct session_header *h, char *buf,
+			size_t size)
+{
+	int n = snprintf(buf, size,
+			 "format=%u\nid=%" PRIu64 "\ntrainee=%s\ncase=%s\n"
+			 "started=%s\nstart_ns=%" PRIu64 "\nperiod_ns=%" PRIu64
+			 "\nversion=%s\nrecord_size=%zu\nstep_m=%.17g\n"
+			 "ring_vertices=%d\nsegment_m=%.17g\n",
+			 SESSION_FILE_FORMAT, h->id, h->trainee, h->case_name,
+			 h->started, h->start_ns, h->period_ns, h->version,
+			 sizeof(struct session_record), h->step_m,
+			 h->ring_vertices, h->segment_m);
+
+	return n < 0 || (size_t)n >= size ? -ENAMETOOLONG : n;
 }
 
 int session_file_write_magic(int fd)

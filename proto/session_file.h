@@ -144,6 +144,28 @@ void session_record_to_state(const struct session_record *in,
 
 /* --- writing ---------------------------------------------------------- */
 
+/* What the HEADER frame says (see the keys above). */
+struct session_header {
+	uint64_t id;
+	const char *trainee;
+	const char *case_name;
+	const char *started;      /* UTC, ISO 8601 */
+	uint64_t start_ns;
+	uint64_t period_ns;
+	const char *version;
+	double step_m;
+	int ring_vertices;
+	double segment_m;
+};
+
+/*
+ * H as the HEADER frame's text into BUF (SIZE bytes, NUL-terminated), with
+ * the format and the record size. Returns its length, or -ENAMETOOLONG
+ * when it does not fit.
+ */
+int session_header_text(const struct session_header *h, char *buf,
+			size_t size);
+
 /* Writes the magic to FD (a new, empty file). 0 or -errno. */
 int session_file_write_magic(int fd);
 

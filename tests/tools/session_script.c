@@ -199,12 +199,14 @@ static int write_head(struct synth *y, const char *case_path,
 	got = fread(case_text, 1, n - 1, f);
 	fclose(f);
 	case_text[got] = '\0';
-	snprintf(head, sizeof(head), "format=1\nid=42\ntrainee=%s\ncase=%s\n"
-		 "started=2026-11-20T09:30:00Z\nstart_ns=%llu\nperiod_ns=%llu\n"
-		 "version=synth\nrecord_size=%zu\nstep_m=0.002\n"
-		 "ring_vertices=96\nsegment_m=0.04\n", trainee,
-		 colon_name(y->colon), START_NS, PERIOD_NS,
-		 sizeof(struct session_record));
+	session_header_text(&(struct session_header){
+				    .id = 42, .trainee = trainee,
+				    .case_name = colon_name(y->colon),
+				    .started = "2026-11-20T09:30:00Z",
+				    .start_ns = START_NS, .period_ns = PERIOD_NS,
+				    .version = "synth", .step_m = 0.002,
+				    .ring_vertices = 96, .segment_m = 0.04 },
+			    head, sizeof(head));
 	if (session_file_write_magic(y->fd) ||
 	    session_file_write_frame(y->fd, SESSION_FRAME_HEADER, head,
 				     (uint32_t)strlen(head)) ||

@@ -139,6 +139,7 @@ static int write_head(struct synth *s)
 {
 	const struct config *c = &s->cfg;
 	char header[1024], started[32], *config = NULL, *text;
+	struct session_header h;
 	size_t size = 0;
 	time_t now = time(NULL);
 	struct tm tm;
@@ -152,15 +153,15 @@ static int write_head(struct synth *s)
 	fclose(m);
 	gmtime_r(&now, &tm);
 	strftime(started, sizeof(started), "%Y-%m-%dT%H:%M:%SZ", &tm);
-	snprintf(header, sizeof(header), "format=%u\nid=1\ntrainee=%s\n"
-		 "case=%s\nstarted=%s\nstart_ns=%llu\nperiod_ns=%llu\n"
-		 "version=%s\nrecord_size=%zu\nstep_m=%.17g\n"
-		 "ring_vertices=%d\nsegment_m=%.17g\n", SESSION_FILE_FORMAT,
-		 s->trainee, colon_name(s->colon), started,
-		 (unsigned long long)OFFLINE_START_NS,
-		 (unsigned long long)OFFLINE_PERIOD_NS, ENDOSIM_VERSION,
-		 sizeof(struct session_record), c->colon.step_m,
-		 (int)c->colon.ring_vertices, c->colon.segment_m);
+	h = (struct session_header){
+		.id = 1, .trainee = s->trainee,
+		.case_name = colon_name(s->colon), .started = started,
+		.start_ns = OFFLINE_START_NS, .period_ns = OFFLINE_PERIOD_NS,
+		.version = ENDOSIM_VERSION, .step_m = c->colon.step_m,
+		.ring_vertices = (int)c->colon.ring_vertices,
+		.segment_m = c->colon.segment_m,
+	};
+	session_header_text(&h, header, sizeof(header));
 	text = slurp(s->case_path);
 	r = session_file_write_magic(s->fd);
 	r = r ? r : put_text(s, SESSION_FRAME_HEADER, header);
