@@ -229,13 +229,48 @@ static void test_record_state(void **state)
 	assert_true(back.safety.ramp == 0.5);
 }
 
-/* The CRC is zlib's: the check value of "123456789". */
+/* CRC-32 a bit at a time, as the standard defines it. */
+static uint32_t crc_by_bits(const unsigned char *p, size_t n)
+{
+	uint32_t crc = ~0u;
+
+	while (n--) {
+		crc ^= *p++;
+		for (int k = 0; k < 8; k++) {
+			crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+		}
+	}
+	return ~crc;
+}
+
+/* The CRC is zlib's: the check value of "123456789", and the bitwise
+ * definition's on every length and alignment around the 8-byte steps,
+ * also when fed in two pieces. */
 static void test_crc(void **state)
 {
+	unsigned char buf[80];
+	uint32_t x = 12345;
+
 	(void)state;
 	assert_int_equal(session_crc32(0, "123456789", 9), 0xCBF43926u);
 	assert_int_equal(session_crc32(session_crc32(0, "1234", 4), "56789",
 				       5), 0xCBF43926u);
+	for (size_t i = 0; i < sizeof(buf); i++) {
+		x = x * 1103515245u + 12345u;
+		buf[i] = (unsigned char)(x >> 16);
+	}
+	for (size_t at = 0; at < 8; at++) {
+		for (size_t n = 0; at + n <= sizeof(buf); n++) {
+			uint32_t want = crc_by_bits(buf + at, n);
+
+			assert_int_equal(session_crc32(0, buf + at, n), want);
+			assert_int_equal(session_crc32(session_crc32(0, buf + at,
+								     n / 3),
+						       buf + at + n / 3,
+						       n - n / 3),
+					 want);
+		}
+	}
 }
 
 int main(void)
