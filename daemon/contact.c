@@ -25,6 +25,11 @@ struct segment {
 	uint32_t triangles;
 };
 
+/* A triangle's bounds and centroid, computed once for the tree's build. */
+struct tri_box {
+	float min[3], max[3], cen[3];
+};
+
 struct contact {
 	uint32_t vertices, triangles, segments, nodes;
 	float (*pos)[3];    /* vertices, m */
@@ -32,6 +37,7 @@ struct contact {
 	uint32_t (*tri)[3];
 	uint32_t *order;    /* triangle indices in leaf order */
 	float *key;         /* scratch while building */
+	struct tri_box *tb; /* scratch while building, per triangle */
 	struct node *node;
 	struct segment *seg;
 };
@@ -41,14 +47,6 @@ struct contact {
 static void vertex(const struct contact *c, uint32_t v, double out[3])
 {
 	vec3_set(out, c->pos[v][0], c->pos[v][1], c->pos[v][2]);
-}
-
-static void centroid(const struct contact *c, uint32_t t, float out[3])
-{
-	for (int d = 0; d < 3; d++) {
-		out[d] = (c->pos[c->tri[t][0]][d] + c->pos[c->tri[t][1]][d] +
-			  c->pos[c->tri[t][2]][d]) / 3.0f;
-	}
 }
 
 /* The plane of triangle T: unit normal into the lumen and offset. Returns
@@ -104,6 +102,33 @@ static bool inside(const struct contact *c, uint32_t t, const double p[3],
 
 /* ------------------------------------------------------------ building */
 
+static float min2(float a, float b)
+{
+	return a < b ? a : b; /* not fminf(): it inlines; the mesh is finite */
+}
+
+static float max2(float a, float b)
+{
+	return a > b ? a : b;
+}
+
+static void tri_boxes(struct contact *c)
+{
+	for (uint32_t t = 0; t < c->triangles; t++) {
+		struct tri_box *b = &c->tb[t];
+
+		for (int d = 0; d < 3; d++) {
+			float p0 = c->pos[c->tri[t][0]][d];
+			float p1 = c->pos[c->tri[t][1]][d];
+			float p2 = c->pos[c->tri[t][2]][d];
+
+			b->min[d] = min2(min2(p0, p1), p2);
+			b->max[d] = max2(max2(p0, p1), p2);
+			b->cen[d] = (p0 + p1 + p2) / 3.0f;
+		}
+	}
+}
+
 static void box_of(const struct contact *c, const uint32_t *tris, uint32_t n,
 		   struct node *nd)
 {
@@ -112,13 +137,11 @@ static void box_of(const struct contact *c, const uint32_t *tris, uint32_t n,
 		nd->max[d] = -FLT_MAX;
 	}
 	for (uint32_t i = 0; i < n; i++) {
-		for (int k = 0; k < 3; k++) {
-			const float *p = c->pos[c->tri[tris[i]][k]];
+		const struct tri_box *b = &c->tb[tris[i]];
 
-			for (int d = 0; d < 3; d++) {
-				nd->min[d] = fminf(nd->min[d], p[d]);
-				nd->max[d] = fmaxf(nd->max[d], p[d]);
-			}
+		for (int d = 0; d < 3; d++) {
+			nd->min[d] = min2(nd->min[d], b->min[d]);
+			nd->max[d] = max2(nd->max[d], b->max[d]);
 		}
 	}
 	for (int d = 0; d < 3; d++) {
@@ -140,7 +163,7 @@ static void swap_pair(float *key, uint32_t *tris, int64_t i, int64_t j)
 
 static float median3(float a, float b, float c)
 {
-	return fmaxf(fminf(a, b), fminf(fmaxf(a, b), c));
+	return max2(min2(a, b), min2(max2(a, b), c));
 }
 
 /*
@@ -200,10 +223,7 @@ static void build(struct contact *c, uint32_t i, uint32_t first, uint32_t n)
 	int axis = longest_axis(nd);
 
 	for (uint32_t k = 0; k < n; k++) {
-		float cen[3];
-
-		centroid(c, c->order[first + k], cen);
-		c->key[k] = cen[axis];
+		c->key[k] = c->tb[c->order[first + k]].cen[axis];
 	}
 	split_median(c->key, c->order + first, n);
 	nd->first = c->nodes;
@@ -225,8 +245,9 @@ static int copy_mesh(struct contact *c, const float (*pos)[3],
 			 sizeof(*c->node));
 	c->seg = malloc(c->segments * sizeof(*c->seg));
 	c->key = malloc(c->triangles * sizeof(*c->key));
+	c->tb = malloc(c->triangles * sizeof(*c->tb));
 	if (!c->pos || !c->nrm || !c->tri || !c->order || !c->node ||
-	    !c->seg || !c->key) {
+	    !c->seg || !c->key || !c->tb) {
 		return -1;
 	}
 	memcpy(c->pos, pos, c->vertices * sizeof(*c->pos));
@@ -240,6 +261,7 @@ static int copy_mesh(struct contact *c, const float (*pos)[3],
 		}
 		c->order[t] = t;
 	}
+	tri_boxes(c);
 	return 0;
 }
 
@@ -277,7 +299,9 @@ struct contact *contact_create(const float (*pos)[3], const float (*nrm)[3],
 		}
 	}
 	free(c->key);
+	free(c->tb);
 	c->key = NULL;
+	c->tb = NULL;
 	return c;
 }
 
@@ -291,6 +315,7 @@ void contact_destroy(struct contact *c)
 	free(c->tri);
 	free(c->order);
 	free(c->key);
+	free(c->tb);
 	free(c->node);
 	free(c->seg);
 	free(c);
