@@ -8,20 +8,26 @@
 # $BUILD/asan when it exists (with SANITIZED=1: a long test may shorten
 # what checks only timing, not memory, there); a short run of each fuzz
 # target in $BUILD/fuzz when they exist ($FUZZ_SECONDS each, default 5).
+#
+# The unit tests need no real time: as many run at once as there are CPUs.
+# The system tests run one at a time: they measure the force loop's timing
+# and talk to emulated drives whose serial framing is a matter of
+# microseconds (tried: two streams at once on two CPUs saved no time and
+# broke the Modbus RTU tests).
 set -u
 
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP" || exit 1
 : "${BUILD:=build}"
-passed=0
-failed=0
-failed_suites=""
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+: >"$work/results" # SUITE PASSED FAILED, one line per suite
+: >"$work/why"     # the failed checks, repeated at the end for CI's tail
 
-# count SUITE EXIT_STATUS: adds the tally the suite printed in $out.
-count() {
-	local suite=$1 rc=$2 p f line
+# record SUITE OUT RC SECONDS: counts the tally the suite printed in OUT,
+# prints its line (and the end of its output when it failed).
+record() {
+	local suite=$1 out=$2 rc=$3 secs=$4 p f line text
 	line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out" | tail -n 1)
 	if [ -n "$line" ]; then
 		p=${line%% passed*}
@@ -38,61 +44,77 @@ count() {
 	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
 		f=1
 	fi
-	passed=$((passed + p))
-	failed=$((failed + f))
-	[ "$f" -eq 0 ] || failed_suites="$failed_suites $suite"
-	printf '%-34s %4d passed, %d failed  (%d s)\n' "$suite" "$p" "$f" \
-		$((SECONDS - started))
+	echo "$suite $p $f" >>"$work/results"
+	text=$(printf '%-34s %4d passed, %d failed  (%d s)' "$suite" "$p" "$f" \
+		"$secs")
+	if [ "$f" -ne 0 ]; then
+		text="$text
+$(grep -vE '^\[ +(OK|RUN) +\]' "$out" | tail -n 40 | sed 's/^/    /')"
+	fi
+	printf '%s\n' "$text"
+	if [ "$f" -ne 0 ]; then
+		printf '%s:\n%s\n' "$suite" "$(grep -E -A1 \
+			'^not ok|^\[  FAILED  \]|ERROR: AddressSanitizer|runtime error' \
+			"$out" | grep -v '^--$' | head -n 12 | sed 's/^/  /')" \
+			>>"$work/why"
+	fi
 }
 
-# run_suites BUILD_DIR PREFIX: unit and system tests of one build.
-run_suites() {
-	local build=$1 prefix=$2 t rc name units
-	# the unit tests need no real time: as many at once as there are CPUs,
-	# each into its own files (output, exit status, seconds), then counted
-	units=$(mktemp -d)
+# unit_tests BUILD_DIR PREFIX: as many at once as there are CPUs, each into
+# its own files (output, exit status, seconds), then recorded in order.
+unit_tests() {
+	local build=$1 prefix=$2 dir=$work/units t name
+	mkdir -p "$dir"
 	for t in "$build"/tests/test_*; do
 		case "$t" in *.d) continue ;; esac
 		[ -x "$t" ] && printf '%s\0' "$t"
 	done | xargs -0 -r -P "$(nproc)" -I{} sh -c \
 		'n=$(basename "$1"); s=$(date +%s); "$1" >"$2/$n.out" 2>&1
 		 echo $? >"$2/$n.rc"; echo $(($(date +%s) - s)) >"$2/$n.s"' \
-		_ {} "$units"
-	for t in "$units"/*.out; do
+		_ {} "$dir"
+	for t in "$dir"/*.out; do
 		[ -e "$t" ] || continue
 		name=$(basename "$t" .out)
-		cp "$t" "$out"
-		rc=$(cat "$units/$name.rc")
-		started=$((SECONDS - $(cat "$units/$name.s")))
-		count "${prefix}unit/$name" "$rc"
-		[ "$rc" -eq 0 ] || grep -vE 'OK \]|RUN  ' "$out" | tail -n 20 | sed 's/^/    /'
+		record "${prefix}unit/$name" "$t" "$(cat "$dir/$name.rc")" \
+			"$(cat "$dir/$name.s")"
 	done
-	rm -rf "$units"
+	rm -rf "$dir"
+}
+
+# system_tests BUILD_DIR PREFIX SANITIZED: in order, one at a time.
+system_tests() {
+	local build=$1 prefix=$2 sanitized=$3 t started rc
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
 		started=$SECONDS
 		BUILD="$build" SANITIZED=$sanitized timeout 300 bash "$t" \
-			>"$out" 2>&1
+			>"$work/system.out" 2>&1
 		rc=$?
-		count "${prefix}system/$(basename "$t" .sh)" $rc
-		[ $rc -eq 0 ] || tail -n 40 "$out" | sed 's/^/    /'
+		record "${prefix}system/$(basename "$t" .sh)" "$work/system.out" \
+			$rc $((SECONDS - started))
 	done
 }
 
-sanitized=
-run_suites "$BUILD" ""
+unit_tests "$BUILD" ""
+system_tests "$BUILD" "" ""
 if [ -d "$BUILD/asan/tests" ]; then
-	sanitized=1 # a system test may shorten what only checks timing
-	run_suites "$BUILD/asan" "asan/"
+	unit_tests "$BUILD/asan" "asan/"
+	# a system test may shorten what only checks timing there
+	system_tests "$BUILD/asan" "asan/" 1
 fi
 if [ -d "$BUILD/fuzz" ]; then
 	started=$SECONDS
-	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" >"$out" 2>&1
-	count "fuzz" $?
-	grep -v "passed, .* failed$" "$out" | sed 's/^/    /'
+	FUZZ_SECONDS=${FUZZ_SECONDS:-5} tests/fuzz/run.sh "$BUILD/fuzz" \
+		>"$work/fuzz.out" 2>&1
+	record "fuzz" "$work/fuzz.out" $? $((SECONDS - started))
+	grep -v "passed, .* failed$" "$work/fuzz.out" | sed 's/^/    /'
 fi
-if [ -n "$failed_suites" ]; then
-	echo "failed:$failed_suites"
+passed=$(awk '{ s += $2 } END { print s + 0 }' "$work/results")
+failed=$(awk '{ s += $3 } END { print s + 0 }' "$work/results")
+if [ "$failed" -ne 0 ]; then
+	echo "what failed:"
+	sed 's/^/  /' "$work/why"
+	echo "failed:$(awk '$3 > 0 { printf " %s", $1 }' "$work/results")"
 fi
 echo "(the suites took $((SECONDS / 60)) min $((SECONDS % 60)) s)"
 echo "$passed passed, $failed failed"

@@ -4,6 +4,7 @@
 # copy, not into the repository). Prints executions and coverage per
 # target, then "N passed, N failed": a target fails when it crashes, leaks
 # or trips a sanitizer; the crashing input is kept in tests/fuzz/crash-*.
+# Runs $FUZZ_JOBS targets at once (default: as many as there are CPUs).
 set -u
 dir=${1:?usage: run.sh BUILD_DIR_OF_FUZZERS}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -12,8 +13,11 @@ passed=0
 failed=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for bin in "$dir"/fuzz_*; do
-	[ -x "$bin" ] || continue
+jobs=${FUZZ_JOBS:-$(nproc)}
+
+# fuzz BIN: one target; its verdict in $tmp/NAME.result, its status in .rc
+fuzz() {
+	local bin=$1 name seeds rc execs cov
 	name=$(basename "$bin")
 	seeds="$here/${name#fuzz_}"
 	mkdir -p "$tmp/$name"
@@ -24,12 +28,31 @@ for bin in "$dir"/fuzz_*; do
 	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$tmp/$name.log")
 	cov=$(grep -oE 'cov: [0-9]+' "$tmp/$name.log" | tail -n 1)
 	if [ $rc -eq 0 ]; then
-		passed=$((passed + 1))
 		echo "ok - $name: ${execs:-?} executions in ${seconds} s, ${cov:-cov: ?} edges"
 	else
-		failed=$((failed + 1))
 		echo "not ok - $name (exit $rc)"
 		grep -E "ERROR|SUMMARY|runtime error" "$tmp/$name.log" | head -n 5 | sed 's/^/#   /'
+	fi >"$tmp/$name.result"
+	echo $rc >"$tmp/$name.rc"
+}
+
+# $FUZZ_JOBS targets at once (default: one per CPU), reported in order
+for bin in "$dir"/fuzz_*; do
+	[ -x "$bin" ] || continue
+	while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do
+		wait -n
+	done
+	fuzz "$bin" &
+done
+wait
+for bin in "$dir"/fuzz_*; do
+	name=$(basename "$bin")
+	[ -e "$tmp/$name.rc" ] || continue
+	cat "$tmp/$name.result"
+	if [ "$(cat "$tmp/$name.rc")" -eq 0 ]; then
+		passed=$((passed + 1))
+	else
+		failed=$((failed + 1))
 	fi
 done
 echo "$passed passed, $failed failed"
