@@ -80,10 +80,11 @@ status_true() {
 	[ "$(status_field "$1")" = true ]
 }
 
-# wait_for COMMAND...: retries for up to $WAIT_S seconds (default 5).
+# wait_for COMMAND...: retries for up to $WAIT_S seconds (default 10: a
+# busy shared machine stalls for seconds at times; a pass costs no more).
 wait_for() {
 	local i
-	for i in $(seq 1 $((${WAIT_S:-5} * 20))); do
+	for i in $(seq 1 $((${WAIT_S:-10} * 20))); do
 		if "$@" >/dev/null 2>&1; then
 			return 0
 		fi
@@ -96,6 +97,14 @@ wait_for() {
 # no socket group (tests need not create one), the source tree's cases.
 DAEMON_ARGS=(--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group=
 	--set "case.directory=$CASES" --session-dir "$TMP/sessions")
+# In the system tests, an overrun budget no stall of a shared VM reaches:
+# stalls of 100-150 ms (steal from a busy host) were seen, which the
+# default budget (50 periods a second) rightly calls a fault on a rig, but
+# which would latch one in tests about something else. 54-fault-overrun
+# tests the budget with its own; the soak bench keeps the default.
+case "$0" in
+*tests/system/*) DAEMON_ARGS+=(--set loop.overrun_budget=1000) ;;
+esac
 
 # endosimd ARGS...: the daemon in the foreground with DAEMON_ARGS.
 endosimd() {

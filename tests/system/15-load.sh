@@ -8,7 +8,11 @@
 # millisecond latencies and hundreds of overruns in a 3 s window; the
 # bounds (p99 at most twice the quiet one plus 250 us, at most 30 more
 # overruns) tell that apart from the tens to hundreds of microseconds this
-# machine's scheduling jitter adds between two windows.
+# machine's scheduling jitter adds between two windows. Under the
+# sanitizers (SANITIZED=1) the twenty clients are instrumented processes
+# that load both CPUs far more than real ones would, so there the bounds
+# are printed but not checked: that run is for memory errors, and the
+# plain build checks the timing.
 . "$(dirname "$0")/../common.sh"
 
 window=3
@@ -44,9 +48,13 @@ wait $pids $cmds
 echo "# quiet: p99 ${quiet_p99} us, ${quiet_over} overruns; loaded: p99 ${load_p99} us, ${load_over} overruns"
 check "every command answered (120 of 120)" test "$(cat "$TMP/answered")" = 120
 check "every subscriber got its pushes" test "$(for i in $(seq 1 20); do wc -l <"$TMP/sub$i"; done | sort -n | head -n 1)" -ge 100
-check "loop latency p99 within noise (${load_p99} us vs ${quiet_p99} us quiet)" \
-	awk -v l="$load_p99" -v q="$quiet_p99" 'BEGIN { exit !(l <= 2 * q + 250) }'
-check "overruns within noise (${load_over} vs ${quiet_over} quiet)" \
-	test "$load_over" -le $((quiet_over + 30))
+if [ -z "${SANITIZED:-}" ]; then
+	check "loop latency p99 within noise (${load_p99} us vs ${quiet_p99} us quiet)" \
+		awk -v l="$load_p99" -v q="$quiet_p99" 'BEGIN { exit !(l <= 2 * q + 250) }'
+	check "overruns within noise (${load_over} vs ${quiet_over} quiet)" \
+		test "$load_over" -le $((quiet_over + 30))
+else
+	echo "# sanitized build: the timing bounds are checked in the plain build"
+fi
 check "no fault" test "$(status_field .fault_bits)" = 0
 finish

@@ -5,7 +5,9 @@
 # waited for. The force loop is not disturbed (no fault, overruns no more
 # than without a session), the drops are reported (session status, the
 # file's DROPS events, the metrics), and the file reads: every cycle is
-# either recorded or counted as dropped.
+# either recorded or counted as dropped. Under the sanitizers (SANITIZED=1)
+# the overruns are printed, not compared: that pass is for memory errors,
+# and the plain build checks the timing.
 . "$(dirname "$0")/../common.sh"
 
 SESS="$TMP/sessions"
@@ -28,8 +30,10 @@ check "the force loop was not disturbed: ENABLED, no fault" \
 	test "$(status_field '.state + "/" + (.fault_bits | tostring)')" = ENABLED/0
 during=$(($(status_field .overruns) - before))
 echo "# overruns: $quiet in 3 s without a session, $during in 4 s with it"
-check "... overruns: $during in 4 s, no more than 50 above the 3 s before" \
-	test "$during" -le $((quiet + 50))
+if [ -z "${SANITIZED:-}" ]; then
+	check "... overruns: $during in 4 s, no more than 50 above the 3 s before" \
+		test "$during" -le $((quiet + 50))
+fi
 check_status "stop" 0 ctl --json session stop
 drops=$(jq .drops "$OUT")
 records=$(jq .records "$OUT")
