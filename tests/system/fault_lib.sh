@@ -166,7 +166,7 @@ very_cycle() {
 		return 0
 	fi
 	id=$(ctl --json session status | jq -e '.id') || return 1
-	WAIT_S=10 wait_for recorded_fault "$id" "$csv" || return 1
+	wait_for recorded_fault "$id" "$csv" || return 1
 	first_faulted "$csv"
 }
 
@@ -181,7 +181,7 @@ recorded_fault() {
 # from a record without the bits
 first_faulted() {
 	awk -F, -v bits="$WATCH_BITS" '
-		function watched(v,  b, m) { # v & bits, without gawk
+		function watched(v,  b) { # v & bits, without gawk
 			for (b = 1; b <= bits; b *= 2) {
 				if (int(bits / b) % 2 && int(v / b) % 2) {
 					return 1
