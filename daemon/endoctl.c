@@ -983,7 +983,8 @@ static const char *session_state(const Endosim__SessionInfo *s)
 
 /*
  * When an ended session ended, UTC like its start (its start plus its
- * duration), into OUT; "" while it records or when the start is unreadable.
+ * duration), into OUT; "" while it records, when its length is not known
+ * (a listing does not read the records) or the start is unreadable.
  */
 static void session_ended_at(const Endosim__SessionInfo *s, char *out,
 			     size_t size)
@@ -993,7 +994,8 @@ static void session_ended_at(const Endosim__SessionInfo *s, char *out,
 	time_t t;
 
 	out[0] = '\0';
-	if (s->recording || !rest || *rest || !isfinite(s->duration_s)) {
+	if (s->recording || !s->records || !rest || *rest ||
+	    !isfinite(s->duration_s)) {
 		return;
 	}
 	t = timegm(&tm) + (time_t)llround(s->duration_s);
@@ -1170,76 +1172,143 @@ static int session_list(struct ctl *ctl)
 	return 0;
 }
 
-/* The session ID's facts from endosimd (*REP), its file read into F. */
-static int session_file(struct ctl *ctl, const char *id_text,
-			Endosim__Reply **rep, struct session_file *f)
-{
-	Endosim__SessionShow body = ENDOSIM__SESSION_SHOW__INIT;
-	const char *path;
-	char *end;
-	int r;
+/*
+ * A session named on the command line, its file read: by ID, with its facts
+ * from endosimd; or by the path of its file (it has a '/': ./3.endoses),
+ * with endosimd not asked (it may be stopped), its facts from the file.
+ */
+struct shown {
+	struct session_file f;
+	const Endosim__SessionInfo *s;
+	Endosim__Reply *rep;        /* by ID */
+	Endosim__SessionInfo local; /* by path */
+	char trainee[64], case_name[64], started[32];
+};
 
-	body.id = strtoull(id_text, &end, 10);
-	if (*end || !body.id) {
-		fprintf(stderr, "endoctl: '%s' is not a session id\n", id_text);
-		return EXIT_USAGE;
-	}
-	r = session_request(ctl, false, ENDOSIM__REQUEST__BODY_SESSION_SHOW,
-			    &body, rep);
-	if (r) {
-		return r;
-	}
-	path = (*rep)->session->session->path;
-	r = session_file_read(path, f);
+static int read_session_file(const char *path, struct session_file *f)
+{
+	int r = session_file_read(path, f);
+
 	if (r) {
 		fprintf(stderr, "endoctl: %s: %s\n", path, r == -EBADMSG ?
 			"not a session file" : r == -EPROTO ?
 			"a format this endoctl does not know" : strerror(-r));
-		endosim__reply__free_unpacked(*rep, NULL);
 		return EXIT_REFUSED;
 	}
 	return 0;
 }
 
+/* SH's facts from its file PATH's own frames: what endosimd would say. */
+static void shown_from_file(struct shown *sh, const char *path)
+{
+	Endosim__SessionInfo *s = &sh->local;
+	const char *h = sh->f.header;
+	char num[32];
+
+	endosim__session_info__init(s);
+	s->id = session_text_get(h, "id", num, sizeof(num)) ? 0
+		: strtoull(num, NULL, 10);
+	if (session_text_get(h, "trainee", sh->trainee, sizeof(sh->trainee))) {
+		sh->trainee[0] = '\0';
+	}
+	if (session_text_get(h, "case", sh->case_name,
+			     sizeof(sh->case_name))) {
+		sh->case_name[0] = '\0';
+	}
+	if (session_text_get(h, "started", sh->started, sizeof(sh->started))) {
+		sh->started[0] = '\0';
+	}
+	s->trainee = sh->trainee;
+	s->case_name = sh->case_name;
+	s->started = sh->started;
+	s->path = (char *)path;
+	s->ended = sh->f.end != NULL;
+	s->bytes = sh->f.bytes_read + sh->f.bytes_ignored;
+	sh->s = s;
+}
+
+static int session_open(struct ctl *ctl, const char *id_text, struct shown *sh)
+{
+	Endosim__SessionShow body = ENDOSIM__SESSION_SHOW__INIT;
+	char *end;
+	int r;
+
+	if (strchr(id_text, '/')) {
+		r = read_session_file(id_text, &sh->f);
+		if (!r) {
+			shown_from_file(sh, id_text);
+		}
+		return r;
+	}
+	body.id = strtoull(id_text, &end, 10);
+	if (*end || !body.id) {
+		fprintf(stderr, "endoctl: '%s' is neither a session id nor a "
+			"session file's path (with a '/')\n", id_text);
+		return EXIT_USAGE;
+	}
+	r = session_request(ctl, false, ENDOSIM__REQUEST__BODY_SESSION_SHOW,
+			    &body, &sh->rep);
+	if (r) {
+		return r;
+	}
+	sh->s = sh->rep->session->session;
+	r = read_session_file(sh->s->path, &sh->f);
+	if (r) {
+		endosim__reply__free_unpacked(sh->rep, NULL);
+		sh->rep = NULL;
+	}
+	return r;
+}
+
+static void session_close(struct shown *sh)
+{
+	session_file_close(&sh->f);
+	if (sh->rep) {
+		endosim__reply__free_unpacked(sh->rep, NULL);
+	}
+}
+
 static int session_show(struct ctl *ctl, const char *id)
 {
-	struct session_file f = { 0 };
-	const Endosim__SessionInfo *s;
+	struct shown sh = { 0 };
+	Endosim__SessionInfo s;
 	struct metrics_result m;
-	Endosim__Reply *rep;
 	char note[160] = "";
 	bool recomputed;
-	int r = session_file(ctl, id, &rep, &f);
+	int r = session_open(ctl, id, &sh);
 
 	if (r) {
 		return r;
 	}
-	s = rep->session->session;
-	if (s->recording && s->metrics) {
-		sessionpb_to_metrics(s->metrics, &m); /* live */
-	} else if (sessionview_metrics(&f, &m, &recomputed)) {
+	s = *sh.s;
+	if (s.recording && s.metrics) {
+		sessionpb_to_metrics(s.metrics, &m); /* live */
+	} else if (sessionview_metrics(&sh.f, &m, &recomputed)) {
 		fprintf(stderr, "endoctl: out of memory\n");
 		r = EXIT_REFUSED;
 		goto out;
 	} else if (recomputed) {
 		snprintf(note, sizeof(note), "no END frame (cut short, %zu "
 			 "bytes after the last complete record ignored): "
-			 "metrics recomputed from %zu records", f.bytes_ignored,
-			 f.n_records);
+			 "metrics recomputed from %zu records",
+			 sh.f.bytes_ignored, sh.f.n_records);
 	}
-	print_session(ctl, s, &m, *note ? note : NULL);
+	if (!s.recording) { /* its length: the file's, as in its metrics */
+		s.duration_s = m.duration_s;
+		s.records = m.records;
+		s.drops = m.drops;
+	}
+	print_session(ctl, &s, &m, *note ? note : NULL);
 out:
-	session_file_close(&f);
-	endosim__reply__free_unpacked(rep, NULL);
+	session_close(&sh);
 	return r;
 }
 
 static int session_export(struct ctl *ctl, int argc, char **argv)
 {
 	const char *out_path = NULL;
-	struct session_file f = { 0 };
+	struct shown sh = { 0 };
 	bool csv = false, events = false;
-	Endosim__Reply *rep;
 	FILE *out = stdout;
 	int r;
 
@@ -1256,11 +1325,11 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 		}
 	}
 	if (!csv) {
-		fprintf(stderr, "endoctl: session export ID --csv [--events] "
+		fprintf(stderr, "endoctl: session export ID|FILE --csv [--events] "
 			"[--out FILE]\n");
 		return EXIT_USAGE;
 	}
-	r = session_file(ctl, argv[2], &rep, &f);
+	r = session_open(ctl, argv[2], &sh);
 	if (r) {
 		return r;
 	}
@@ -1268,33 +1337,31 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 		fprintf(stderr, "endoctl: %s: %s\n", out_path, strerror(errno));
 		r = EXIT_REFUSED;
 	}
-	if (out && ((events ? sessionview_events_csv(out, &f)
-			    : sessionview_csv(out, &f)) ||
+	if (out && ((events ? sessionview_events_csv(out, &sh.f)
+			    : sessionview_csv(out, &sh.f)) ||
 		    (out_path && fclose(out)))) {
 		fprintf(stderr, "endoctl: %s: write error\n",
 			out_path ? out_path : "stdout");
 		r = EXIT_REFUSED;
 	}
-	session_file_close(&f);
-	endosim__reply__free_unpacked(rep, NULL);
+	session_close(&sh);
 	return r;
 }
 
-/* The instructor's HTML report (report.h) of session ID into DIR. */
+/* The instructor's HTML report (report.h) of session ID (or FILE) into DIR. */
 static int session_report(struct ctl *ctl, const char *id, const char *dir)
 {
-	struct session_file f = { 0 };
+	struct shown sh = { 0 };
 	struct metrics_result m;
-	Endosim__Reply *rep;
 	bool recomputed;
-	int r = session_file(ctl, id, &rep, &f);
+	int r = session_open(ctl, id, &sh);
 
 	if (r) {
 		return r;
 	}
-	r = sessionview_metrics(&f, &m, &recomputed);
+	r = sessionview_metrics(&sh.f, &m, &recomputed);
 	if (!r) {
-		r = report_write(&f, &m, dir);
+		r = report_write(&sh.f, &m, dir);
 	}
 	if (r) {
 		fprintf(stderr, "endoctl: report in %s: %s\n", dir,
@@ -1304,8 +1371,7 @@ static int session_report(struct ctl *ctl, const char *id, const char *dir)
 		printf("wrote %s/index.html%s\n", dir, recomputed ?
 		       " (metrics recomputed: the file was cut short)" : "");
 	}
-	session_file_close(&f);
-	endosim__reply__free_unpacked(rep, NULL);
+	session_close(&sh);
 	return r;
 }
 
@@ -1333,7 +1399,8 @@ static int cmd_session(struct ctl *ctl, int argc, char **argv)
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
 		" | stop | status | list | show ID | export ID --csv [--events] "
-		"[--out FILE] | report ID --out DIR\n");
+		"[--out FILE] | report ID --out DIR (ID: or a session file's "
+		"path, read without endosimd)\n");
 	return EXIT_USAGE;
 }
 
@@ -1362,7 +1429,8 @@ static const struct {
 	{ "session", cmd_session, "start [--trainee NAME] [--case NAME] | stop "
 				  "| status | list | show ID | export ID "
 				  "--csv [--events] [--out FILE] | report "
-				  "ID --out DIR: training sessions" },
+				  "ID --out DIR: training sessions (ID: or "
+				  "./N.endoses, without endosimd)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

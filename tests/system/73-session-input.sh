@@ -5,7 +5,8 @@
 # cut mid-record reads up to its last complete record (show recomputes its
 # metrics, export gives the same records as before the cut); SIGTERM during
 # a session ends its file cleanly; SIGKILL leaves a file without END that
-# still shows; ids count on across restarts; reports of both kinds.
+# still shows; ids count on across restarts; reports of both kinds; with
+# endosimd stopped, a session file reads by its path.
 . "$(dirname "$0")/../common.sh"
 
 SESS="$TMP/sessions"
@@ -91,6 +92,12 @@ start_daemon --session-dir "$SESS" || finish
 check_status "after a restart, session 2 shows" 0 ctl --json session show 2
 check "... ended cleanly, with its metrics from END" \
 	jq -e '.ended and (has("note") | not) and .metrics.records > 500' "$OUT"
+check "... its length and end: the file's (not the recorder's any more)" \
+	jq -e '.records == .metrics.records and .ended_at > .started and
+	       ((.ended_at | fromdateiso8601) - (.started | fromdateiso8601) -
+		.duration_s | fabs) <= 1' "$OUT"
+cp "$OUT" "$TMP/show2.json"
+ctl session export 2 --csv --out "$TMP/s2.csv"
 check_status "its report" 0 ctl session report 2 --out "$TMP/report"
 check "... an HTML page naming the trainee" grep -q "term" "$TMP/report/index.html"
 check_status "the report of the cut file too" 0 ctl session report 1 --out "$TMP/cut"
@@ -112,8 +119,30 @@ ctl session start >/dev/null
 check "ids count on: the next is 4" grep -q "^session 4 " <(ctl session status)
 ctl session stop >/dev/null
 
-# --- a session directory that cannot be made: the rig runs, sessions refused
+# --- with endosimd stopped: a session file read by its path ----------------
 stop_daemon
+check_status "endosimd stopped: show by the file's path" 0 \
+	ctl --json session show "$SESS/2.endoses"
+check "... the same session and metrics as endosimd showed" \
+	jq -e --slurpfile d "$TMP/show2.json" '.id == 2 and .ended and
+	       .trainee == "term" and .path == "'"$SESS/2.endoses"'" and
+	       .metrics == $d[0].metrics and .records == .metrics.records and
+	       .ended_at == $d[0].ended_at' "$OUT"
+check_status "... export by the path" 0 \
+	ctl session export "$SESS/2.endoses" --csv --out "$TMP/s2-file.csv"
+check "... the same records as exported through endosimd" \
+	cmp -s "$TMP/s2.csv" "$TMP/s2-file.csv"
+check_status "... the crashed one's report by its path" 0 \
+	ctl session report "$SESS/3.endoses" --out "$TMP/report3"
+check "... recomputed" grep -q "recomputed" "$OUT"
+check_status "a path that is not a session file: refused" 1 \
+	ctl session show "$TMP/s2.csv"
+check "... saying so" grep -q "s2.csv: not a session file" "$OUT"
+check_status "a path that does not exist: refused" 1 \
+	ctl session export "$TMP/none.endoses" --csv
+check "... saying so" grep -q "No such file" "$OUT"
+
+# --- a session directory that cannot be made: the rig runs, sessions refused
 check "a session directory that cannot be made: the daemon still comes up" \
 	start_daemon --session-dir /proc/endosim-sessions
 check "... saying so in its log" grep -q "no session can be recorded" "$LOG"

@@ -37,9 +37,11 @@ start_sim() {
 		wait_for status_true '.ramp == 1'
 }
 
-# record_session: a session recording every cycle from now on
+# record_session: a session recording every cycle from now on, in the
+# file $SESSION_FILE
 record_session() {
-	ctl session start --trainee fault-test >/dev/null
+	SESSION_FILE=$(ctl --json session start --trainee fault-test |
+		jq -er .path)
 }
 
 # mb_rig_conf: insertion and roll simulated, the wheels on Modbus RTU
@@ -159,21 +161,21 @@ very_cycle_seen() {
 # very_cycle: torque zero in the cycle that found the fault, as the witness
 # saw it or, when it missed that cycle, in the recording: the first record
 # with one of the watched bits has no torque on any axis, and the record
-# before it is the cycle before, without them
+# before it is the cycle before, without them. The file is read without
+# endosimd, which a fault may have stopped (60).
 very_cycle() {
-	local csv=$TMP/fault-cycle.csv id
+	local csv=$TMP/fault-cycle.csv
 	if [ "$(watched publish_delay_ns)" = 0 ]; then
 		return 0
 	fi
-	id=$(ctl --json session status | jq -e '.id') || return 1
-	wait_for recorded_fault "$id" "$csv" || return 1
+	wait_for recorded_fault "$csv" || return 1
 	first_faulted "$csv"
 }
 
-# recorded_fault ID CSV: the session's records so far, with a faulted one
+# recorded_fault CSV: the session's records so far, with a faulted one
 recorded_fault() {
-	ctl session export "$1" --csv --out "$2" >/dev/null 2>&1 &&
-		first_faulted "$2" | grep -q '^faulted: '
+	ctl session export "$SESSION_FILE" --csv --out "$1" >/dev/null 2>&1 &&
+		first_faulted "$1" | grep -q '^faulted: '
 }
 
 # first_faulted CSV: prints the first record with a watched bit, with the
