@@ -230,7 +230,8 @@ static void unload_case(struct colon *c)
 }
 
 /* Moller-Trumbore: does the open segment A -> B cross triangle P? */
-static bool crosses(const double a[3], const double b[3], const double p[3][3])
+static bool crosses(const double a[3], const double b[3],
+		    const double p[3][3])
 {
 	double e1[3], e2[3], d[3], h[3], s[3], q[3], det, u, v, t;
 
