@@ -7,28 +7,29 @@
 # bring the drives down while the loop is still stalled. The daemon answers
 # throughout; reset is refused until the window has passed.
 #
-# The budget: 200 periods for the 0.4 s stall (common.sh gives the tests
-# 1000, more than the stalls of a busy VM, which the 4 s stall exceeds).
-# The window is widened to 3 s on the simulated rig so that "refused within
-# the window" does not depend on how fast a loaded machine runs the checks;
+# The budget: 1000 periods (the most) for a 1.5 s stall, as common.sh gives
+# every test, more than the stalls of a busy VM add up to; the 4 s stall
+# exceeds it. The window is widened to 3 s on the simulated rig so that
+# "refused within the window" does not depend on how fast a loaded machine
+# runs the checks (a smaller budget in that window was reached by a VM that
+# skipped 140 periods a second on a bad day);
 # the Modbus stall (4 s) outlasts the wait for the drives to stop however
 # slowly the emulator answers.
 . "$(dirname "$0")/fault_lib.sh"
 
 window_s=3
 check "simulated rig up, enabled, every axis moving" \
-	start_sim --set loop.overrun_window_s=$window_s \
-	--set loop.overrun_budget=200
+	start_sim --set loop.overrun_window_s=$window_s
 budget=$(ctl get loop.overrun_budget)
 watch_fault 0x10
-check "the loop stalled for 0.4 s" ctl debug stall 0.4
+check "the loop stalled for 1.5 s" ctl debug stall 1.5
 check "the daemon answers while its loop is stalled" ctl status
 check "sim stall: FAULT once the loop runs again" wait_for state_is FAULT
 check "sim stall: reset refused within the ${window_s} s window" reset_refused
 expect_fault "sim stall" overrun-budget none "skipped" "budget of $budget"
-check "sim stall: about 400 periods counted ($(watched fault_value))" \
+check "sim stall: about 1500 periods counted ($(watched fault_value))" \
 	awk -v v="$(watched fault_value)" -v b="$budget" \
-	'BEGIN { exit !(v > b && v >= 300 && v <= 2000) }'
+	'BEGIN { exit !(v > b && v >= 1400 && v <= 3000) }'
 recovers "sim stall"
 stop_daemon
 
