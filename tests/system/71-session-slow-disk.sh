@@ -31,8 +31,10 @@ check "the force loop was not disturbed: ENABLED, no fault" \
 during=$(($(status_field .overruns) - before))
 echo "# overruns: $quiet in 3 s without a session, $during in 4 s with it"
 if [ -z "${SANITIZED:-}" ]; then
-	check "... overruns: $during in 4 s, no more than 50 above the 3 s before" \
-		test "$during" -le $((quiet + 50))
+	# a loop that waited for this disk would run a third of its cycles:
+	# some 2700 overruns in 4 s. A shared VM's stalls add up to hundreds.
+	check "... overruns: $during in 4 s, no more than 500 above the 3 s before" \
+		test "$during" -le $((quiet + 500))
 fi
 check_status "stop" 0 ctl --json session stop
 drops=$(jq .drops "$OUT")
