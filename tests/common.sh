@@ -101,7 +101,7 @@ DAEMON_ARGS=(--socket-dir "$SOCK" --shm-name "$SHM" --set socket.group=
 # stalls of 100-150 ms (steal from a busy host) were seen, which the
 # default budget (50 periods a second) rightly calls a fault on a rig, but
 # which would latch one in tests about something else. 54-fault-overrun
-# tests the budget with its own; the soak bench keeps the default.
+# stalls the loop past it; the soak bench keeps the default.
 case "$0" in
 *tests/system/*) DAEMON_ARGS+=(--set loop.overrun_budget=1000) ;;
 esac
