@@ -107,8 +107,8 @@ DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
 # endoctl: the CLI over the sockets; what it makes of a session file (its
 # metrics, again over the records of a file cut short, on the colon rebuilt
 # from the file; CSV; the instructor's report)
-ENDOCTL_OBJS = endoctl.o json.o inject.o sessionpb.o sessionview.o \
-	       metrics.o report.o $(COLON_OBJS)
+ENDOCTL_OBJS = endoctl.o json.o inject.o sessiondir.o sessionpb.o \
+	       sessionview.o metrics.o report.o $(COLON_OBJS)
 
 # endoview: the viewer (viewer/). The link to the daemon (shared memory,
 # the scene, commands and the hand) and the trainee's controls; the colon

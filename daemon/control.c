@@ -1139,13 +1139,7 @@ static void free_session_list(struct reply_buf *rb)
 static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
 		       const struct recorder_info *ri)
 {
-	endosim__session_info__init(s);
-	s->id = e->id;
-	s->trainee = e->trainee;
-	s->case_name = e->case_name;
-	s->started = e->started;
-	s->bytes = e->bytes;
-	s->ended = e->ended;
+	sessionpb_from_entry(s, e);
 	if (ri->active && ri->id == e->id) {
 		s->recording = ri->recording;
 		s->records = ri->records;

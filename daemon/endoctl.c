@@ -29,6 +29,7 @@
 #include "json.h"
 #include "objio.h"
 #include "report.h"
+#include "sessiondir.h"
 #include "sessionpb.h"
 #include "sessionview.h"
 
@@ -1175,56 +1176,24 @@ static int session_list(struct ctl *ctl)
 /*
  * A session named on the command line, its file read: by ID, with its facts
  * from endosimd; or by the path of its file (it has a '/': ./3.endoses),
- * with endosimd not asked (it may be stopped), its facts from the file.
+ * with endosimd not asked (it may be stopped), its facts from the file as
+ * endosimd would give them (sessiondir.h, sessionpb.h).
  */
 struct shown {
 	struct session_file f;
 	const Endosim__SessionInfo *s;
-	Endosim__Reply *rep;        /* by ID */
-	Endosim__SessionInfo local; /* by path */
-	char trainee[64], case_name[64], started[32];
+	Endosim__Reply *rep;           /* by ID */
+	struct sessiondir_entry entry; /* by path */
+	Endosim__SessionInfo local;
 };
 
-static int read_session_file(const char *path, struct session_file *f)
+/* R of reading the session file PATH, said on stderr; the exit status. */
+static int session_file_error(const char *path, int r)
 {
-	int r = session_file_read(path, f);
-
-	if (r) {
-		fprintf(stderr, "endoctl: %s: %s\n", path, r == -EBADMSG ?
-			"not a session file" : r == -EPROTO ?
-			"a format this endoctl does not know" : strerror(-r));
-		return EXIT_REFUSED;
-	}
-	return 0;
-}
-
-/* SH's facts from its file PATH's own frames: what endosimd would say. */
-static void shown_from_file(struct shown *sh, const char *path)
-{
-	Endosim__SessionInfo *s = &sh->local;
-	const char *h = sh->f.header;
-	char num[32];
-
-	endosim__session_info__init(s);
-	s->id = session_text_get(h, "id", num, sizeof(num)) ? 0
-		: strtoull(num, NULL, 10);
-	if (session_text_get(h, "trainee", sh->trainee, sizeof(sh->trainee))) {
-		sh->trainee[0] = '\0';
-	}
-	if (session_text_get(h, "case", sh->case_name,
-			     sizeof(sh->case_name))) {
-		sh->case_name[0] = '\0';
-	}
-	if (session_text_get(h, "started", sh->started, sizeof(sh->started))) {
-		sh->started[0] = '\0';
-	}
-	s->trainee = sh->trainee;
-	s->case_name = sh->case_name;
-	s->started = sh->started;
-	s->path = (char *)path;
-	s->ended = sh->f.end != NULL;
-	s->bytes = sh->f.bytes_read + sh->f.bytes_ignored;
-	sh->s = s;
+	fprintf(stderr, "endoctl: %s: %s\n", path, r == -EBADMSG ?
+		"not a session file" : r == -EPROTO ?
+		"a format this endoctl does not know" : strerror(-r));
+	return EXIT_REFUSED;
 }
 
 static int session_open(struct ctl *ctl, const char *id_text, struct shown *sh)
@@ -1234,11 +1203,17 @@ static int session_open(struct ctl *ctl, const char *id_text, struct shown *sh)
 	int r;
 
 	if (strchr(id_text, '/')) {
-		r = read_session_file(id_text, &sh->f);
+		r = sessiondir_stat_file(id_text, &sh->entry);
 		if (!r) {
-			shown_from_file(sh, id_text);
+			r = session_file_read(id_text, &sh->f);
 		}
-		return r;
+		if (r) {
+			return session_file_error(id_text, r);
+		}
+		sessionpb_from_entry(&sh->local, &sh->entry);
+		sh->local.path = (char *)id_text;
+		sh->s = &sh->local;
+		return 0;
 	}
 	body.id = strtoull(id_text, &end, 10);
 	if (*end || !body.id) {
@@ -1252,8 +1227,9 @@ static int session_open(struct ctl *ctl, const char *id_text, struct shown *sh)
 		return r;
 	}
 	sh->s = sh->rep->session->session;
-	r = read_session_file(sh->s->path, &sh->f);
+	r = session_file_read(sh->s->path, &sh->f);
 	if (r) {
+		r = session_file_error(sh->s->path, r);
 		endosim__reply__free_unpacked(sh->rep, NULL);
 		sh->rep = NULL;
 	}

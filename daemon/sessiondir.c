@@ -180,25 +180,26 @@ static void header_value(const char *text, const char *key, char *out,
 	}
 }
 
-int sessiondir_stat(const char *dir, uint64_t id, struct sessiondir_entry *e)
+int sessiondir_stat_file(const char *path, struct sessiondir_entry *e)
 {
-	char path[4096], *header = malloc(HEADER_MAX);
+	char *header = malloc(HEADER_MAX), id[32];
 	struct stat st;
 	int fd, r;
 
 	if (!header) {
 		return -ENOMEM;
 	}
-	r = sessiondir_path(dir, id, path, sizeof(path));
-	fd = r ? -1 : open(path, O_RDONLY | O_CLOEXEC);
+	fd = open(path, O_RDONLY | O_CLOEXEC);
 	if (fd < 0 || fstat(fd, &st) < 0) {
-		r = r ? r : -errno;
+		r = -errno;
 		goto out;
 	}
 	r = read_header(fd, header, HEADER_MAX);
 	if (!r) {
-		*e = (struct sessiondir_entry){ .id = id,
-						.bytes = (uint64_t)st.st_size };
+		*e = (struct sessiondir_entry){ .bytes = (uint64_t)st.st_size };
+		if (!session_text_get(header, "id", id, sizeof(id))) {
+			e->id = strtoull(id, NULL, 10);
+		}
 		e->ended = sessiondir_ended(fd, (uint64_t)st.st_size);
 		header_value(header, "trainee", e->trainee, sizeof(e->trainee));
 		header_value(header, "case", e->case_name, sizeof(e->case_name));
@@ -209,6 +210,20 @@ out:
 		close(fd);
 	}
 	free(header);
+	return r;
+}
+
+int sessiondir_stat(const char *dir, uint64_t id, struct sessiondir_entry *e)
+{
+	char path[4096];
+	int r = sessiondir_path(dir, id, path, sizeof(path));
+
+	if (!r) {
+		r = sessiondir_stat_file(path, e);
+	}
+	if (!r) {
+		e->id = id; /* its file's name */
+	}
 	return r;
 }
 

@@ -43,6 +43,13 @@ int sessiondir_header(const char *path, char *buf, size_t size);
 bool sessiondir_ended(int fd, uint64_t size);
 
 /*
+ * The entry of the session file PATH, its id from its header (0 when the
+ * header has none). 0; -errno (-ENOENT: no such file); -EBADMSG (not a
+ * session file).
+ */
+int sessiondir_stat_file(const char *path, struct sessiondir_entry *e);
+
+/*
  * The entry of session ID in DIR. 0; -ENOENT (no such session); -EBADMSG
  * (not a session file).
  */

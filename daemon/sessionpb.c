@@ -90,3 +90,15 @@ void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 	out->n_force = episodes_in(out->force, in->force, in->n_force);
 	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
 }
+
+void sessionpb_from_entry(Endosim__SessionInfo *out,
+			  struct sessiondir_entry *e)
+{
+	endosim__session_info__init(out);
+	out->id = e->id;
+	out->trainee = e->trainee;
+	out->case_name = e->case_name;
+	out->started = e->started;
+	out->bytes = e->bytes;
+	out->ended = e->ended;
+}

@@ -2,7 +2,9 @@
  * sessionpb.h - the training metrics (metrics.h struct metrics_result) on
  * the wire (endosim.proto SessionMetrics), both ways: endosimd fills
  * replies with it, endoctl reads them back into the same struct it fills
- * from a session file, so that both print alike.
+ * from a session file, so that both print alike. Likewise a session's
+ * facts (sessiondir.h's entry as a SessionInfo), which endosimd lists and
+ * endoctl reads from a file named by its path.
  *
  * No allocation: the message and its episodes live in struct
  * sessionpb_metrics, whose arrays the message points into. Any thread but
@@ -13,6 +15,7 @@
 
 #include "endosim.pb-c.h"
 #include "metrics.h"
+#include "sessiondir.h"
 
 struct sessionpb_metrics {
 	Endosim__SessionMetrics msg;
@@ -29,5 +32,12 @@ void sessionpb_from_metrics(struct sessionpb_metrics *out,
 /* The inverse (episodes beyond METRICS_MAX_EPISODES are left out). */
 void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 			  struct metrics_result *out);
+
+/*
+ * OUT, initialised, becomes what a listing knows of the session E (id,
+ * trainee, case, start, size, ended); its strings point into E.
+ */
+void sessionpb_from_entry(Endosim__SessionInfo *out,
+			  struct sessiondir_entry *e);
 
 #endif
