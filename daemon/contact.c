@@ -104,7 +104,7 @@ static bool inside(const struct contact *c, uint32_t t, const double p[3],
 
 static float min2(float a, float b)
 {
-	return a < b ? a : b; /* not fminf(): it inlines; the mesh is finite */
+	return a < b ? a : b; /* fminf() is a call; the mesh is finite */
 }
 
 static float max2(float a, float b)

@@ -130,7 +130,6 @@ void session_record_to_state(const struct session_record *in,
 	out->compute_ns = in->compute_ns;
 }
 
-
 static void put_u32(unsigned char *p, uint32_t v)
 {
 	p[0] = (unsigned char)v;

@@ -27,7 +27,7 @@ trap 'rm -rf "$work"' EXIT
 # record SUITE OUT RC SECONDS: counts the tally the suite printed in OUT,
 # prints its line (and the end of its output when it failed).
 record() {
-	local suite=$1 out=$2 rc=$3 secs=$4 p f line text
+	local suite=$1 out=$2 rc=$3 secs=$4 p f line
 	line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out" | tail -n 1)
 	if [ -n "$line" ]; then
 		p=${line%% passed*}
@@ -45,14 +45,10 @@ record() {
 		f=1
 	fi
 	echo "$suite $p $f" >>"$work/results"
-	text=$(printf '%-34s %4d passed, %d failed  (%d s)' "$suite" "$p" "$f" \
-		"$secs")
+	printf '%-34s %4d passed, %d failed  (%d s)\n' "$suite" "$p" "$f" \
+		"$secs"
 	if [ "$f" -ne 0 ]; then
-		text="$text
-$(grep -vE '^\[ +(OK|RUN) +\]' "$out" | tail -n 40 | sed 's/^/    /')"
-	fi
-	printf '%s\n' "$text"
-	if [ "$f" -ne 0 ]; then
+		grep -vE '^\[ +(OK|RUN) +\]' "$out" | tail -n 40 | sed 's/^/    /'
 		printf '%s:\n%s\n' "$suite" "$(grep -E -A1 \
 			'^not ok|^\[  FAILED  \]|ERROR: AddressSanitizer|runtime error' \
 			"$out" | grep -v '^--$' | head -n 12 | sed 's/^/  /')" \

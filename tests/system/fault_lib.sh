@@ -149,9 +149,15 @@ witnessed() {
 		[ "$(watched fault_bit)/$(watched fault_axis)" = "$bit/$axis" ]
 }
 
+# witness_saw_it: the witness read the state of the cycle that found the
+# fault (published 0 ns after the fault's stamp)
+witness_saw_it() {
+	[ "$(watched publish_delay_ns)" = 0 ]
+}
+
 # very_cycle_seen: how the cycle that found the fault was seen
 very_cycle_seen() {
-	if [ "$(watched publish_delay_ns)" = 0 ]; then
+	if witness_saw_it; then
 		echo "by the witness, delay 0 ns"
 	else
 		echo "the witness missed it by $(watched publish_delay_ns) ns: from the recording"
@@ -165,7 +171,7 @@ very_cycle_seen() {
 # endosimd, which a fault may have stopped (60).
 very_cycle() {
 	local csv=$TMP/fault-cycle.csv
-	if [ "$(watched publish_delay_ns)" = 0 ]; then
+	if witness_saw_it; then
 		return 0
 	fi
 	wait_for recorded_fault "$csv" || return 1
