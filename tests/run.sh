@@ -1,7 +1,9 @@
 #!/bin/bash
 # run.sh - runs every test suite and sums them up in one closing line,
-# "N passed, N failed"; exits non-zero when anything failed. Called by
-# `make check` (and so `make test`).
+# "N passed, N failed, N skipped"; exits non-zero when anything failed.
+# Called by `make check` (and so `make test`). A skipped check (one that
+# cannot be made here: common.sh's skip) neither passes nor fails; the
+# suites that skipped any are named at the end, with why.
 #
 # Suites: the cmocka unit tests and the numbered system tests of the build
 # in $BUILD; the same again for the AddressSanitizer/UBSan build in
@@ -21,32 +23,43 @@ cd "$TOP" || exit 1
 : "${BUILD:=build}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-: >"$work/results" # SUITE PASSED FAILED, one line per suite
+: >"$work/results" # SUITE PASSED FAILED SKIPPED, one line per suite
 : >"$work/why"     # the failed checks, repeated at the end for CI's tail
+: >"$work/skips"   # SUITE: WHY, one line per skipped check
 
 # record SUITE OUT RC SECONDS: counts the tally the suite printed in OUT,
 # prints its line (and the end of its output when it failed).
 record() {
-	local suite=$1 out=$2 rc=$3 secs=$4 p f line
-	line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out" | tail -n 1)
+	local suite=$1 out=$2 rc=$3 secs=$4 p f s=0 line
+	line=$(grep -E '^[0-9]+ passed, [0-9]+ failed(, [0-9]+ skipped)?$' \
+		"$out" | tail -n 1)
 	if [ -n "$line" ]; then
 		p=${line%% passed*}
 		f=${line#*passed, }
 		f=${f%% failed*}
+		case "$line" in
+		*skipped)
+			s=${line##*failed, }
+			s=${s% skipped}
+			;;
+		esac
 	else
 		# cmocka: "[  PASSED  ] N test(s)." and "[  FAILED  ] N test(s),"
 		p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$out" | tail -n 1)
 		f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test(s), .*/\1/p' "$out" | tail -n 1)
+		s=$(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' "$out" | tail -n 1)
 		p=${p:-0}
 		f=${f:-0}
+		s=${s:-0}
 	fi
 	# a suite that crashed or exited non-zero without saying so fails once
 	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
 		f=1
 	fi
-	echo "$suite $p $f" >>"$work/results"
-	printf '%-34s %4d passed, %d failed  (%d s)\n' "$suite" "$p" "$f" \
-		"$secs"
+	echo "$suite $p $f $s" >>"$work/results"
+	printf '%-34s %4d passed, %d failed%s  (%d s)\n' "$suite" "$p" "$f" \
+		"$([ "$s" -eq 0 ] || echo ", $s skipped")" "$secs"
+	sed -n "s|^skip - |$suite: |p" "$out" >>"$work/skips"
 	if [ "$f" -ne 0 ]; then
 		grep -vE '^\[ +(OK|RUN) +\]' "$out" | tail -n 40 | sed 's/^/    /'
 		printf '%s:\n%s\n' "$suite" "$(grep -E -A1 \
@@ -107,11 +120,17 @@ if [ -d "$BUILD/fuzz" ]; then
 fi
 passed=$(awk '{ s += $2 } END { print s + 0 }' "$work/results")
 failed=$(awk '{ s += $3 } END { print s + 0 }' "$work/results")
+skipped=$(awk '{ s += $4 } END { print s + 0 }' "$work/results")
+if [ "$skipped" -ne 0 ]; then
+	echo "skipped (not checked here):"
+	sed 's/^/  /' "$work/skips"
+	echo "skipped:$(awk '$4 > 0 { printf " %s", $1 }' "$work/results")"
+fi
 if [ "$failed" -ne 0 ]; then
 	echo "what failed:"
 	sed 's/^/  /' "$work/why"
 	echo "failed:$(awk '$3 > 0 { printf " %s", $1 }' "$work/results")"
 fi
 echo "(the suites took $((SECONDS / 60)) min $((SECONDS % 60)) s)"
-echo "$passed passed, $failed failed"
+echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

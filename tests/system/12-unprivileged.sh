@@ -4,7 +4,7 @@
 . "$(dirname "$0")/../common.sh"
 
 if [ "$(id -u)" != 0 ] || ! command -v setpriv >/dev/null; then
-	pass "skipped: needs root to drop privileges (running as $(id -un))"
+	skip "needs root and setpriv to drop privileges (running as $(id -un))"
 	finish
 fi
 chmod 0777 "$TMP"

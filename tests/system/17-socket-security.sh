@@ -6,7 +6,7 @@
 . "$(dirname "$0")/../common.sh"
 
 if [ "$(id -u)" != 0 ]; then
-	pass "skipped: needs root to act as other users"
+	skip "needs root to act as other users (running as $(id -un))"
 	finish
 fi
 start_daemon --set socket.group=users --set socket.max_clients=6 \
