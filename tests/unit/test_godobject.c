@@ -2,7 +2,10 @@
  * test_godobject.c - the tip's god-object against analytic walls and the
  * real colon: a plane (the proxy is the projection of the tip, k delta
  * along the normal), an edge (it slides along the line of two planes), a
- * corner (it stops at the point of three), jumps of 5 cm through the
+ * corner (it stops at the point of three), walls at oblique angles (a
+ * 120 and a 30 deg crease, a corner of oblique faces: the proxy rests at
+ * the point of the walls nearest the tip, on one plane, the crease or the
+ * apex, as the planes' multipliers say), jumps of 5 cm through the
  * colon's wall and across its folds (it stays inside), and a long random
  * ride of the scope through every case (it never leaks out).
  */
@@ -20,6 +23,7 @@
 #include "anatomy.h"
 #include "colon.h"
 #include "contact.h"
+#include "geom_assert.h"
 #include "godobject.h"
 #include "scope.h"
 #include "vec3.h"
@@ -30,8 +34,9 @@
 
 /* ------------------------------------------------------------ walls */
 
-/* A square of side 2 HALF centred at C in the plane spanned by E1, E2
- * (lumen towards E1 x E2), as two triangles appended to the arrays. */
+/* A parallelogram of sides 2 HALF E1 and 2 HALF E2 centred at C (a square
+ * for unit, orthogonal E1, E2), lumen towards E1 x E2, as two triangles
+ * appended to the arrays. */
 struct walls {
 	float pos[64][3], nrm[64][3];
 	uint32_t tri[32][3];
@@ -45,6 +50,7 @@ static void square(struct walls *w, const double c[3], const double e1[3],
 	uint32_t v0 = w->v;
 
 	vec3_cross(n, e1, e2);
+	vec3_normalize(n); /* E1, E2 need not be orthogonal */
 	for (int k = 0; k < 4; k++) {
 		double a = (k == 1 || k == 2) ? half : -half;
 		double b = k >= 2 ? half : -half;
@@ -181,6 +187,229 @@ static void test_corner(void **state)
 	godobject_update(&g, c, (double[3]){ 0.03, 0.02, -0.02 }, 0, 1);
 	assert_int_equal(g.planes, 1);
 	assert_point(g.proxy, 0.03, 0.02, SKIN, NEAR);
+	contact_destroy(c);
+}
+
+/* ------------------------------------------------------ oblique walls */
+
+/*
+ * The floor z = 0 (x >= 0) and a ramp from the same crease, the y axis,
+ * rising along d = (cos beta, 0, sin beta): a wedge of lumen with the
+ * dihedral angle BETA between them. The ramp's normal into the lumen is
+ * n = Y x d = (sin beta, 0, -cos beta); the floor's is Z; n . Z = -cos beta,
+ * so only at 90 deg are the two constraints independent.
+ */
+struct wedge {
+	struct walls w;
+	struct contact *c;
+	double d[3], n[3];
+};
+
+static void wedge_init(struct wedge *k, double beta)
+{
+	double mid[3];
+
+	memset(&k->w, 0, sizeof(k->w));
+	vec3_set(k->d, cos(beta), 0, sin(beta));
+	vec3_set(k->n, sin(beta), 0, -cos(beta));
+	square(&k->w, (double[3]){ 0.1, 0, 0 }, X, Y, 0.1);
+	vec3_scale(mid, k->d, 0.1);
+	square(&k->w, mid, Y, k->d, 0.1);
+	k->c = make_contact(&k->w);
+	assert_non_null(k->c);
+}
+
+/*
+ * The nearest point of the wedge to G (the proxy's place at rest), in the
+ * three ways it can lie: on the floor below G, on the ramp below G, or on
+ * the crease. Which one holds is the caller's geometry (the multipliers of
+ * the planes that hold it are positive), stated at each call.
+ */
+enum wedge_rest { ON_FLOOR, ON_RAMP, ON_CREASE };
+
+static void wedge_expect(const struct wedge *k, enum wedge_rest where,
+			 const double g[3], double out[3])
+{
+	switch (where) {
+	case ON_FLOOR:
+		vec3_set(out, g[0], g[1], 0);
+		break;
+	case ON_RAMP:
+		vec3_axpy(out, g, -vec3_dot(k->n, g), k->n);
+		break;
+	case ON_CREASE:
+		vec3_set(out, 0, g[1], 0);
+		break;
+	}
+}
+
+/* From START, the tip to GOAL: the proxy rests at the expected point, held
+ * by PLANES planes. */
+static void wedge_push(const struct wedge *k, const double start[3],
+		       const double goal[3], enum wedge_rest where, int planes)
+{
+	struct godobject g;
+	double want[3];
+
+	godobject_reset(&g, start);
+	godobject_update(&g, k->c, goal, 0, 1);
+	wedge_expect(k, where, goal, want);
+	assert_int_equal(g.planes, planes);
+	assert_vec_near(g.proxy, want, NEAR);
+}
+
+/* -(a Z + b n): a goal the floor and the ramp push back with
+ * multipliers a and b, displaced by Y_M along the crease. */
+static void behind_both(const struct wedge *k, double a, double b, double y_m,
+			double out[3])
+{
+	vec3_set(out, 0, y_m, 0);
+	vec3_axpy(out, out, -a, Z);
+	vec3_axpy(out, out, -b, k->n);
+}
+
+/* An obtuse crease (120 deg, n = (0.866, 0, 0.5)): each plane alone, the
+ * crease, and a tip that slides off the floor over the crease onto the
+ * ramp, where the floor's multiplier turns negative and it lets go. */
+static void test_wedge_obtuse(void **state)
+{
+	const double start[3] = { 0.03, 0, 0.02 };
+	struct godobject g;
+	double goal[3];
+	struct wedge k;
+
+	(void)state;
+	wedge_init(&k, 120 * M_PI / 180);
+	/* below the floor, in front of the ramp's plane: the floor alone */
+	wedge_push(&k, start, (double[3]){ 0.03, 0.01, -0.01 }, ON_FLOOR, 1);
+	/* behind the ramp, 4 cm up it, 1 cm deep: the ramp alone */
+	vec3_scale(goal, k.d, 0.04);
+	vec3_axpy(goal, goal, -0.01, k.n);
+	goal[1] = -0.02;
+	wedge_push(&k, start, goal, ON_RAMP, 1);
+	/* pushed into the crease by both: on the crease line */
+	behind_both(&k, 0.01, 0.02, 0.015, goal);
+	wedge_push(&k, start, goal, ON_CREASE, 2);
+	behind_both(&k, 0.02, 0.003, -0.03, goal);
+	wedge_push(&k, start, goal, ON_CREASE, 2);
+	/* along the floor first (it is crossed at x = 1 cm), over the crease:
+	 * on the crease the floor would have to pull (a = -1.6 cm), so the
+	 * proxy rests on the ramp, 1.2 cm above the floor */
+	vec3_set(goal, -0.03, 0.01, -0.001);
+	wedge_push(&k, (double[3]){ 0.03, 0.01, 0.0005 }, goal, ON_RAMP, 1);
+	/* the crease, then sliding along it */
+	godobject_reset(&g, start);
+	for (int i = 0; i <= 20; i++) {
+		double want[3];
+
+		behind_both(&k, 0.01, 0.01, 0.002 * i, goal);
+		godobject_update(&g, k.c, goal, 0, 1);
+		assert_int_equal(g.planes, 2);
+		wedge_expect(&k, ON_CREASE, goal, want);
+		assert_vec_near(g.proxy, want, NEAR);
+	}
+	contact_destroy(k.c);
+}
+
+/* An acute wedge (30 deg, n = (0.5, 0, -0.866)): the lumen narrows to the
+ * crease; a tip behind the ramp is held on the ramp, or, where the ramp's
+ * foot point would be below the floor, in the crease. */
+static void test_wedge_acute(void **state)
+{
+	const double start[3] = { 0.05, 0, 0.01 };
+	double goal[3];
+	struct wedge k;
+
+	(void)state;
+	wedge_init(&k, 30 * M_PI / 180);
+	assert_true(vec3_dot(k.n, start) > 0 && start[2] > 0);
+	/* below the floor: the floor alone (the ramp's half-space holds the
+	 * whole floor) */
+	wedge_push(&k, start, (double[3]){ 0.06, 0.01, -0.01 }, ON_FLOOR, 1);
+	/* behind the ramp, 5 cm up it, 1 cm deep: the ramp alone */
+	vec3_scale(goal, k.d, 0.05);
+	vec3_axpy(goal, goal, -0.01, k.n);
+	wedge_push(&k, start, goal, ON_RAMP, 1);
+	/* behind the ramp, 0.7 cm deep: its foot point (2.4, 1.4) cm */
+	wedge_push(&k, start, (double[3]){ 0.02, 0, 0.02 }, ON_RAMP, 1);
+	/* above the floor, behind the ramp, crossing it first (1.5 cm up
+	 * it); its foot point there (-1.3, -0.74) cm is below the floor:
+	 * then the floor too, both pushing (a = 3.0 cm, b = 4 cm): the
+	 * crease */
+	wedge_push(&k, start, (double[3]){ -0.02, 0.01, 0.005 }, ON_CREASE, 2);
+	/* below the floor, its foot point on the floor behind the ramp
+	 * (a, b > 0 by construction): the crease */
+	behind_both(&k, 0.0373, 0.02, -0.01, goal);
+	wedge_push(&k, start, goal, ON_CREASE, 2);
+	/* above the floor, behind the ramp, its foot point below the
+	 * floor: the crease */
+	behind_both(&k, 0.005, 0.03, 0.02, goal);
+	wedge_push(&k, start, goal, ON_CREASE, 2);
+	contact_destroy(k.c);
+}
+
+/*
+ * A corner of three faces at oblique angles: the cone spanned by the rays
+ * r1 = (1, 0, 0), r2 = (cos 60, sin 60, 0), r3 = (0.5, 0.5, 1)/|.|, its
+ * faces the sectors (r1, r2), (r2, r3), (r3, r1). A tip pushed back by all
+ * three faces holds the proxy at the apex; pushed back by the two faces of
+ * one edge, on that edge at the tip's place along it.
+ */
+static void sector(struct walls *w, const double a[3], const double b[3],
+		   double len)
+{
+	double c[3];
+
+	for (int d = 0; d < 3; d++) {
+		c[d] = len / 2 * (a[d] + b[d]);
+	}
+	square(w, c, a, b, len / 2); /* corners 0, len a, len (a + b), len b */
+}
+
+static void test_corner_oblique(void **state)
+{
+	double r[3][3] = { { 1, 0, 0 }, { 0.5, sqrt(3) / 2, 0 },
+			   { 0.5, 0.5, 1 } };
+	double n[3][3], start[3] = { 0, 0, 0 }, goal[3], want[3];
+	struct walls w = { 0 };
+	struct godobject g;
+	struct contact *c;
+
+	(void)state;
+	vec3_normalize(r[2]);
+	for (int i = 0; i < 3; i++) { /* face i: (r_i, r_i+1), inwards */
+		sector(&w, r[i], r[(i + 1) % 3], 0.1);
+		vec3_cross(n[i], r[i], r[(i + 1) % 3]);
+		vec3_normalize(n[i]);
+		vec3_axpy(start, start, 0.02, r[i]);
+	}
+	c = make_contact(&w);
+	assert_non_null(c);
+	for (int i = 0; i < 3; i++) { /* no two faces at right angles */
+		assert_true(fabs(vec3_dot(n[i], n[(i + 1) % 3])) > 0.15);
+	}
+	/* behind all three: the apex */
+	vec3_set(goal, 0, 0, 0);
+	for (int i = 0; i < 3; i++) {
+		vec3_axpy(goal, goal, -0.01 * (i + 1), n[i]);
+	}
+	godobject_reset(&g, start);
+	godobject_update(&g, c, goal, 0, 1);
+	assert_int_equal(g.planes, 3);
+	assert_vec_near(g.proxy, O, NEAR);
+	/* behind the two faces of edge r_e (faces e and e - 1), 3 cm along
+	 * it: on the edge there */
+	for (int e = 0; e < 3; e++) {
+		int fa = e, fb = (e + 2) % 3; /* the faces that hold r_e */
+
+		vec3_scale(want, r[e], 0.03);
+		vec3_axpy(goal, want, -0.004, n[fa]);
+		vec3_axpy(goal, goal, -0.007, n[fb]);
+		godobject_reset(&g, start);
+		godobject_update(&g, c, goal, 0, 1);
+		assert_int_equal(g.planes, 2);
+		assert_vec_near(g.proxy, want, NEAR);
+	}
 	contact_destroy(c);
 }
 
@@ -465,6 +694,9 @@ int main(void)
 		cmocka_unit_test(test_plane),
 		cmocka_unit_test(test_edge),
 		cmocka_unit_test(test_corner),
+		cmocka_unit_test(test_wedge_obtuse),
+		cmocka_unit_test(test_wedge_acute),
+		cmocka_unit_test(test_corner_oblique),
 		cmocka_unit_test(test_jumps_stay_inside),
 		cmocka_unit_test(test_jump_across_folds),
 		cmocka_unit_test(test_random_ride),

@@ -3,6 +3,7 @@
  * whose answers follow from the geometry and the timing alone:
  *   - a tip moving at constant speed v reaches the cecum at s_c / v and is
  *     out again (s below the rectum's start s_x) (s_c - s_x) / v later;
+ *     with a loop's slack the depth gets there first, the tip decides;
  *   - force plateaus above the threshold at known times: count, start,
  *     end, peak; a dip within the hysteresis does not split one, a spike
  *     shorter than min_episode_s is no episode;
@@ -178,6 +179,42 @@ static void test_cecum_not_reached(void **state)
 	assert_true(res.cecum_s < 0);
 	assert_near(res.insertion_s, t_of(1999), 1e-9);
 	assert_near(res.withdrawal_s, 0, 0);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
+/*
+ * A loop stores tube: the insertion depth runs 12 cm ahead of the tip's
+ * place along the colon. The depth passes the cecum's start at
+ * (s_c - 0.12) / v, the tip at s_c / v: the cecum is the tip's.
+ */
+static void test_cecum_is_the_tips_not_the_depth(void **state)
+{
+	struct colon *c = build("config/cases", "normal");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+	const double v = 0.0937, slack = 0.12, sc = colon_cecum_s(c);
+	bool deep_before = false;
+
+	(void)state;
+	for (uint64_t k = 0; v * t_of(k) <= sc + 0.02; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, v * t_of(k), 0);
+		r.depth_m = (float)(v * t_of(k) + slack);
+		r.bow_m[0] = 0.04f;
+		metrics_record(m, &r);
+		if (r.tip_s_m < sc && r.depth_m >= sc) {
+			deep_before = true;
+			metrics_result(m, &res);
+			assert_true(res.cecum_s < 0);
+		}
+	}
+	assert_true(deep_before);
+	metrics_result(m, &res);
+	assert_near(res.cecum_s, sc / v, REC_TOL);
+	assert_near(res.insertion_s, sc / v, REC_TOL);
 	metrics_destroy(m);
 	colon_destroy(c);
 }
@@ -646,6 +683,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_cecum_insertion_withdrawal),
 		cmocka_unit_test(test_cecum_not_reached),
+		cmocka_unit_test(test_cecum_is_the_tips_not_the_depth),
 		cmocka_unit_test(test_force_episodes),
 		cmocka_unit_test(test_force_episode_running),
 		cmocka_unit_test(test_loop_episodes),
