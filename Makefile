@@ -96,8 +96,8 @@ COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
 DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
 	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
 	      safety.o faults.o inject.o godobject.o control.o cases.o \
-	      scene.o recorder.o sessiondir.o sessionpb.o metrics.o \
-	      $(COLON_OBJS) $(DRIVE_OBJS)
+	      scene.o recorder.o sessiontap.o sessiondir.o sessionpb.o \
+	      metrics.o $(COLON_OBJS) $(DRIVE_OBJS)
 
 # the drive layer: the rig of drives, one bus thread per bus, the drive
 # interface and its backends (EPOS4 on USB, Modbus) with their protocols
@@ -137,7 +137,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
-	     test_vessels test_metrics test_report
+	     test_vessels test_metrics test_report test_course
 test_config_OBJS = config.o regmap.o log.o names.o
 test_session_file_OBJS = session_file.o
 test_metrics_OBJS = metrics.o $(COLON_OBJS)
@@ -167,6 +167,7 @@ test_portal_OBJS = portal.o lod.o model.o $(VIEWER_SCENE_OBJS)
 test_input_OBJS = input.o
 test_timing_OBJS = timing.o
 test_vessels_OBJS = vessels.o
+test_course_OBJS = $(OFFLINE_OBJS) cases.o metrics.o names.o
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report
 fault_watch_OBJS =
@@ -177,13 +178,15 @@ obj_import_OBJS = $(COLON_OBJS)
 scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
 session_script_OBJS = $(COLON_OBJS) metrics.o
 session_report_OBJS = $(COLON_OBJS) metrics.o report.o
-# the force loop off line (tests/tools/offline.h): simulated rig and hand,
-# kinematics, haptics
-OFFLINE_OBJS = offline.o $(COLON_OBJS) godobject.o haptics.o hand.o \
-	       scenario.o rig_sim.o plant.o config.o regmap.o log.o
+# the force loop off line, in lockstep (tests/tools/offline.h): the loop's
+# own cycle (safety, kinematics, haptics) on the simulated rig and hand
+OFFLINE_OBJS = offline.o loop.o sessiontap.o safety.o inject.o publish.o \
+	       rt.o histo.o spsc.o session_file.o $(COLON_OBJS) godobject.o \
+	       haptics.o hand.o scenario.o rig_sim.o plant.o config.o \
+	       regmap.o log.o
 session_synth_OBJS = $(OFFLINE_OBJS) cases.o state_text.o
 BENCH_TOOLS = bench_colon bench_haptics
-bench_haptics_OBJS = $(OFFLINE_OBJS) histo.o names.o
+bench_haptics_OBJS = $(OFFLINE_OBJS) names.o
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against
@@ -237,7 +240,7 @@ $(BUILD)/endoview: $(call obj,$(VIEWER_OBJS) $(PROTO_OBJS))
 define unit_test_rule
 $(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -Iviewer -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Idaemon -Iviewer -Itests/tools -o $$@ $$< \
 		$(call obj,$($(1)_OBJS)) $$(LDFLAGS) $$(LDLIBS) -lcmocka
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
@@ -249,10 +252,12 @@ $(BUILD)/obj/%.o: tests/tools/%.c $(PROTO_GEN)
 	$(CC) $(ALL_CFLAGS) -Idaemon -c -o $@ $<
 
 define test_tool_rule
-$(BUILD)/tests/$(1): tests/tools/$(1).c $(call obj,$($(1)_OBJS) $(PROTO_OBJS))
+$(BUILD)/tests/$(1): tests/tools/$(1).c \
+		$(call obj,$(sort $($(1)_OBJS) $(PROTO_OBJS)))
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$(ALL_CFLAGS) -Idaemon -Itests/tools -o $$@ $$< \
-		$(call obj,$($(1)_OBJS) $(PROTO_OBJS)) $$(LDFLAGS) $$(LDLIBS)
+		$(call obj,$(sort $($(1)_OBJS) $(PROTO_OBJS))) $$(LDFLAGS) \
+		$$(LDLIBS)
 endef
 $(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
 
@@ -313,13 +318,17 @@ fuzz_anatomy_OBJS = $(COLON_OBJS)
 fuzz_objio_OBJS = $(COLON_OBJS)
 fuzz_epos4_OBJS = epos4_frame.o
 fuzz_session_OBJS = session_file.o metrics.o $(COLON_OBJS)
-FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined
+# every UBSan report aborts the target (as in the ASan build): a fuzzer that
+# only printed it would go on and pass
+FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined \
+	      -fno-sanitize-recover=all
 FUZZ_SECONDS ?= 60
 
 define fuzz_rule
 $(BUILD)/$(1): tests/fuzz/$(1).c $(call obj,$($(1)_OBJS))
 	$$(CC) $$(ALL_CFLAGS) -Idaemon -fsanitize=fuzzer,address,undefined \
-		-o $$@ $$< $(call obj,$($(1)_OBJS)) $$(LDLIBS)
+		-fno-sanitize-recover=all -o $$@ $$< \
+		$(call obj,$($(1)_OBJS)) $$(LDLIBS)
 endef
 $(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_rule,$(t))))
 

@@ -18,6 +18,8 @@ static const char *const direction_names[] = { "normal", "reversed", NULL };
 static const char *const transport_names[] = { "rtu", "tcp", NULL };
 static const char *const parity_names[] = { "none", "even", "odd", NULL };
 static const char *const yes_no[] = { "no", "yes", NULL };
+static const char *const overrun_fault_names[] = { "no", "yes", "auto",
+						   NULL };
 
 #define OFF(field) offsetof(struct config, field)
 #define KI(sec, key, field, d, lo, hi, u, fl, h) \
@@ -108,9 +110,12 @@ static const struct config_key keys[] = {
 	   "CPUs out of deep idle states); -1: leave alone"),
 	KI("loop", "overrun_budget", loop.overrun_budget, 50, 1,
 	   CONFIG_OVERRUN_BUDGET_MAX, "periods", 0, "more periods skipped than this "
-	   "within overrun_window_s is a fault"),
+	   "within overrun_window_s misses the budget (see overrun_fault)"),
 	KD("loop", "overrun_window_s", loop.overrun_window_s, 1.0, 0.01, 60,
 	   "s", 0, "the window of overrun_budget"),
+	KE("loop", "overrun_fault", loop.overrun_fault, CONFIG_OVERRUN_AUTO,
+	   overrun_fault_names, 0, "a missed overrun budget is a fault (yes), "
+	   "a warning (no), or auto: a fault when any axis is a real drive"),
 
 	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
 	   "sim: every axis simulated; drives: as each [axis.*] says"),
@@ -288,6 +293,16 @@ static const struct config_key keys[] = {
 	   haptics.bending_stiffness_n_m_per_rad, 0.01, 0, 10, "N m/rad",
 	   LIVE, "the bending section springing back straight, per rad of "
 	   "tip bend"),
+	KD("haptics", "wheel_stop_stiffness_n_m_per_rad",
+	   haptics.stop_stiffness_n_m_per_rad, 0.5, 0, 100, "N m/rad", LIVE,
+	   "each knob's end at the tip's angulation limit: its spring per rad "
+	   "of wheel past the limit"),
+	KD("haptics", "wheel_stop_damping_n_m_s_per_rad",
+	   haptics.stop_damping_n_m_s_per_rad, 4e-3, 0, 1, "N m s/rad", LIVE,
+	   "each knob's end: its damping while the wheel is past the limit"),
+	KD("haptics", "wheel_delay_s", haptics.wheel_delay_s, 0.003, 0, 0.05,
+	   "s", LIVE, "a wheel on a drive: the lag of its torque (feedback "
+	   "age, the command's way); limits the wall on it"),
 	KD("haptics", "loop_relax_s", haptics.loop_relax_s, 0.1, 0.001, 10,
 	   "s", LIVE, "time constant with which a loop follows its force "
 	   "balance"),
@@ -711,6 +726,19 @@ int config_axis_backend(const struct config *cfg, int axis)
 	return cfg->rig.backend == CONFIG_BACKEND_DRIVES
 		       ? cfg->axis[axis].backend
 		       : CONFIG_DRIVE_SIM;
+}
+
+bool config_overrun_faults(const struct config *cfg)
+{
+	if (cfg->loop.overrun_fault != CONFIG_OVERRUN_AUTO) {
+		return cfg->loop.overrun_fault == CONFIG_OVERRUN_FAULT;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (config_axis_backend(cfg, a) != CONFIG_DRIVE_SIM) {
+			return true;
+		}
+	}
+	return false;
 }
 
 double config_feedback_max_age_s(const struct config *cfg, int axis)

@@ -35,6 +35,13 @@ enum config_backend {
 	CONFIG_BACKEND_DRIVES = 1, /* each axis as its [axis.NAME] says */
 };
 
+/* What a missed overrun budget is ([loop] overrun_fault). */
+enum config_overrun_fault {
+	CONFIG_OVERRUN_WARN = 0,  /* no: a warning, counted and logged */
+	CONFIG_OVERRUN_FAULT = 1, /* yes: a fault, latched */
+	CONFIG_OVERRUN_AUTO = 2,  /* a fault unless every axis is simulated */
+};
+
 /* What moves one axis ([axis.NAME] backend). */
 enum config_drive {
 	CONFIG_DRIVE_SIM = 0,
@@ -101,7 +108,8 @@ struct config {
 		int cpu;          /* CPU to pin the loop to, -1: any */
 		int cpu_dma_latency_us; /* PM QoS held while running, -1: none */
 		int overrun_budget;     /* periods skipped within ... */
-		double overrun_window_s; /* ... this window: a fault */
+		double overrun_window_s; /* ... this window: missed */
+		int overrun_fault;      /* enum config_overrun_fault */
 	} loop;
 	struct {
 		int backend;                   /* enum config_backend */
@@ -152,6 +160,9 @@ struct config {
 		double wire_spacing_m;         /* dr */
 		double wire_tension_n_m_per_m; /* k_t */
 		double bending_stiffness_n_m_per_rad;
+		double stop_stiffness_n_m_per_rad; /* each knob's end */
+		double stop_damping_n_m_s_per_rad;
+		double wheel_delay_s;          /* a drive's wheel: its lag */
 		double loop_relax_s;           /* how fast a loop follows */
 		double damping[ENDOSIM_AXES];  /* N s/m or N m s/rad */
 		int passivity;                 /* 1: passivity observer on */
@@ -257,6 +268,13 @@ int config_check(const struct config *cfg, char *err, size_t errsize);
 /* The backend that moves AXIS: CONFIG_DRIVE_SIM unless [rig] backend is
  * drives. */
 int config_axis_backend(const struct config *cfg, int axis);
+
+/*
+ * True when a missed overrun budget latches a fault: [loop] overrun_fault
+ * is yes, or auto with some axis on a real drive. Any thread, the force
+ * loop included (no I/O, no allocation).
+ */
+bool config_overrun_faults(const struct config *cfg);
 
 /* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
 double config_feedback_max_age_s(const struct config *cfg, int axis);

@@ -268,6 +268,11 @@ static void print_status(const Endosim__StatusReply *s)
 		printf("%s %s%s\n", i ? "          " : "  latched",
 		       f->text, f->active ? "  [still present]" : "");
 	}
+	if (s->active_faults & ~s->fault_bits & ENDOSIM_FAULT_OVERRUN) {
+		printf("warning   %s: more periods skipped than the budget "
+		       "allows, not a fault here ([loop] overrun_fault)\n",
+		       names_fault(ENDOSIM_FAULT_OVERRUN));
+	}
 	if (s->state == ENDOSIM__DAEMON_STATE__DAEMON_STATE_ENABLED &&
 	    s->ramp < 1.0) {
 		printf("ramp      forces at %.0f%% (rising after enable)\n",

@@ -407,7 +407,7 @@ static void wire_lengths(const struct haptics_input *in, double dl[2])
 }
 
 /* Total turning angle of the inserted tube: the centreline's up to the
- * bending section, and the section's own bend. */
+ * bending section, and the section's own bend as far as it is inserted. */
 static double tube_turning(const struct haptics_input *in)
 {
 	const struct centreline *cl = colon_centreline(in->colon);
@@ -415,18 +415,30 @@ static double tube_turning(const struct haptics_input *in)
 	double i = floor(p->base_s_m / centreline_step(cl) + 0.5);
 	size_t n = centreline_count(cl);
 	size_t k = i < 0 ? 0 : i >= (double)n ? n - 1 : (size_t)i;
+	double inserted = fmin(fmax(p->depth_m, 0) /
+			       in->cfg->scope.bending_length_m, 1);
 
 	return (p->depth_m > 0 ? centreline_turning(cl, k) : 0) +
-	       hypot(p->bend_rad[0], p->bend_rad[1]);
+	       hypot(p->bend_rad[0], p->bend_rad[1]) * inserted;
 }
 
 /* ---------------------------------------------------------------- forces */
+
+/* Wheel axis A is turned by a drive behind a bus: its torque lags. */
+static bool wheel_lags(const struct config *cfg, int a)
+{
+	return (a == ENDOSIM_AXIS_WHEEL_UD || a == ENDOSIM_AXIS_WHEEL_LR) &&
+	       config_axis_backend(cfg, a) != CONFIG_DRIVE_SIM;
+}
 
 /*
  * Hannaford and Ryu: the energy each axis' rendering took in over the last
  * period (the setpoint held times the way the axis went); when the sum
  * would go negative, damping on the contact part removes the deficit.
- * Returns the damping added on the insertion axis (N s/m).
+ * Not on a wheel whose drive lags: the setpoint held is not known there,
+ * and damping on a phantom deficit kicks the light wheel; its stiffness is
+ * limited instead (wheel_lag_limit). Returns the damping added on the
+ * insertion axis (N s/m).
  */
 static double passivity(struct haptics *h, const struct haptics_input *in,
 			double contact[ENDOSIM_AXES])
@@ -438,7 +450,8 @@ static double passivity(struct haptics *h, const struct haptics_input *in,
 		double v = in->fb->axis[a].velocity;
 		double held = in->applied ? in->applied[a] : 0;
 
-		if (in->torque_on && in->cfg->haptics.passivity) {
+		if (in->torque_on && in->cfg->haptics.passivity &&
+		    !wheel_lags(in->cfg, a)) {
 			h->energy[a] -= held * (x - h->last_x[a]);
 		} else {
 			h->energy[a] = 0;
@@ -476,6 +489,118 @@ static void generalised(const struct scope_pose *p, const double f[3],
 	out[ENDOSIM_AXIS_ROLL] = g[1];
 	out[ENDOSIM_AXIS_WHEEL_UD] = g[2] * p->dbend_dwheel[0];
 	out[ENDOSIM_AXIS_WHEEL_LR] = g[3] * p->dbend_dwheel[1];
+}
+
+/*
+ * How far wheel W (0: up/down, 1: left/right) at WHEEL_RAD is past the
+ * angle at which its bend reaches the limit, rad, signed as the wheel; 0
+ * within it (scope_bend()'s test).
+ */
+static double wheel_beyond(const struct config *cfg, int w, double wheel_rad)
+{
+	double gain = cfg->scope.gain[w], limit = cfg->scope.limit_rad[w];
+	double bend = gain * wheel_rad;
+
+	if (!(gain > 0) || fabs(bend) < limit) {
+		return 0;
+	}
+	return (bend - copysign(limit, bend)) / gain;
+}
+
+/*
+ * The knob's end, D rad past the limit at V rad/s: -k d - b v, only ever
+ * pushing the wheel back; at most the wheel's torque limit beyond the part
+ * of TENSION (N m) that pushes it on, so the tension never pushes through.
+ */
+static double wheel_stop(const struct config *cfg, int w, double d,
+			 double v, double tension)
+{
+	double out = copysign(1, d);
+	double push = cfg->haptics.stop_stiffness_n_m_per_rad * fabs(d) +
+		      cfg->haptics.stop_damping_n_m_s_per_rad * v * out;
+	double most = cfg->limits.max[ENDOSIM_AXIS_WHEEL_UD + w] +
+		      fmax(0, tension * out);
+
+	return -out * fmin(fmax(push, 0), most);
+}
+
+/*
+ * The bending section springing back, -k_bend bend d bend/d wheel; past
+ * the limit, where the bend stays, its spring-back at the limit (the wires
+ * still carry it) and the knob's end.
+ */
+static double wheel_elastic(const struct haptics_input *in, int w,
+			    double tension)
+{
+	const struct config *cfg = in->cfg;
+	const struct scope_pose *p = in->pose;
+	const struct rig_axis_feedback *ax =
+		&in->fb->axis[ENDOSIM_AXIS_WHEEL_UD + w];
+	double k = cfg->haptics.bending_stiffness_n_m_per_rad;
+	double d = wheel_beyond(cfg, w, ax->position);
+
+	if (d == 0) {
+		return -k * p->bend_rad[w] * p->dbend_dwheel[w];
+	}
+	return -k * p->bend_rad[w] * cfg->scope.gain[w] +
+	       wheel_stop(cfg, w, d, ax->velocity, tension);
+}
+
+/*
+ * The wall's stiffness against wheel W's turning, N m/rad, J_w the tip's
+ * way per wheel rad: the spring along the contact's normal n, (J_w . K n)
+ * (n . J_w), or where planes meet (the spring holds the tip every way),
+ * J_w . K J_w if that is more.
+ */
+static double wheel_wall_stiffness(const struct haptics_input *in,
+				   const struct touch *t, int w)
+{
+	const struct scope_pose *p = in->pose;
+	double jw[3], kn[3], kj[3];
+
+	for (int d = 0; d < 3; d++) {
+		jw[d] = p->jacobian[d][2 + w] * p->dbend_dwheel[w];
+	}
+	spring(in->cfg, p->dir, t->normal, kn);
+	spring(in->cfg, p->dir, jw, kj);
+	return fmax(fabs(vec3_dot(jw, kn) * vec3_dot(t->normal, jw)),
+		    vec3_dot(jw, kj));
+}
+
+/*
+ * The stiffness wheel W can render behind its drive's lag, N m/rad: its
+ * virtual damping over the lag (the period's hold and wheel_delay_s),
+ * less what the bending section's spring already takes (haptics.h).
+ */
+static double wheel_stiffness_budget(const struct haptics_input *in, int w)
+{
+	const struct config *cfg = in->cfg;
+	double g = in->pose->dbend_dwheel[w];
+	double lag = in->dt_s / 2 + cfg->haptics.wheel_delay_s;
+
+	return fmax(0, cfg->haptics.damping[ENDOSIM_AXIS_WHEEL_UD + w] / lag -
+			       cfg->haptics.bending_stiffness_n_m_per_rad *
+				       g * g);
+}
+
+/*
+ * The wall on a wheel that a drive turns: spring and damping scaled
+ * together down to the stiffness its lag allows. The simulated rig's
+ * wheels are left alone (no lag beyond the period's hold, which the
+ * passivity observer accounts for exactly).
+ */
+static void wheel_lag_limit(const struct haptics_input *in,
+			    const struct touch *t, double contact[ENDOSIM_AXES])
+{
+	for (int w = 0; w < 2 && t->on; w++) {
+		int a = ENDOSIM_AXIS_WHEEL_UD + w;
+		double k = wheel_wall_stiffness(in, t, w);
+		double most = wheel_stiffness_budget(in, w);
+
+		if (wheel_lags(in->cfg, a) && k > most) {
+			contact[a] *= most / k;
+		}
+	}
 }
 
 /* The contact's stiffness against insertion, J_d^T K J_d, N/m. */
@@ -518,6 +643,7 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 	publish(&t, out);
 	generalised(p, t.force, contact);
 	f_tip = fmax(0, -contact[ENDOSIM_AXIS_INSERTION]);
+	wheel_lag_limit(in, &t, contact);
 	out->passivity_damping = passivity(h, in, contact);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		out->passivity_energy_j += h->energy[a];
@@ -537,8 +663,7 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 		out->wheel_tension_nm[w] = cfg->haptics.wire_tension_n_m_per_m *
 					   out->wire_dl_m[w];
 		out->wheel_elastic_nm[w] =
-			-cfg->haptics.bending_stiffness_n_m_per_rad *
-			p->bend_rad[w] * p->dbend_dwheel[w];
+			wheel_elastic(in, w, out->wheel_tension_nm[w]);
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		out->damping[a] = -cfg->haptics.damping[a] *

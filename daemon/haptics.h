@@ -23,7 +23,8 @@
  *   F_dyn = -c_f v K,  K = sum_i |r(i) - 2 r(i+1) + r(i+2)| / ds
  * the total turning angle of the inserted tube: the centreline's up to the
  * bending section (precomputed, following the bows) plus the bending
- * section's own bend.
+ * section's own bend, over the share of it inserted (min(depth, Lb) / Lb,
+ * as the kinematics bend it: nothing outside the patient rubs).
  *
  * Wheels (5.3): the contact part, plus the wire tension
  *   tau_k = k_t dL_k,  dL_k = dr sum_i [n_k(i+1) - n_k(i)] . t(i)
@@ -32,6 +33,14 @@
  * up/down u', left/right v'), plus the bending section springing back,
  * -k_bend bend_k d bend_k/d wheel_k. A planar bend Theta in a wire's plane
  * gives |dL| = dr Theta; an S-curve cancels.
+ *
+ * The knobs' ends. Past the angle at which its tip reaches the angulation
+ * limit (limit / gain), a wheel meets its stop: d rad past it at v rad/s,
+ *   tau_stop = -k_stop d - b_stop v
+ * only ever pushing the wheel back, at most the wheel's [limits] torque
+ * beyond the tension pushing it on (so the tension cannot push through);
+ * the bending section's spring-back stays at its value at the limit. Both
+ * are published in wheel_elastic_nm.
  *
  * Tube roll: the contact part, and torsional friction -c_r omega K.
  *
@@ -60,6 +69,32 @@
  * setpoint the drive held over the last period; when E goes negative (the
  * environment gave out energy it never got, as a stiff spring held over a
  * period does) damping on the contact part removes that much.
+ *
+ * A wheel behind a lag. A drive on a bus applies a torque computed from a
+ * position some time ago: the period's hold (dt/2 on average) and
+ * [haptics] wheel_delay_s (the feedback's age and the command's way to the
+ * motor: 2-4 ms on Modbus TCP). A spring K rendered T = dt/2 + delay late
+ * acts as K minus a damping K T; Colgate and Schenkel's condition for a
+ * sampled wall (b > K dt/2) becomes b > K T, so with the wheel's virtual
+ * damping b (its own friction is not known: counted as none)
+ *   K_wheel <= b / T
+ * for everything stiff on the wheel (the stop brings its own damping:
+ * 0.5 N m/rad behind 3.5 ms needs 1.75e-3 of its 4e-3). The discrete closed loop of a light
+ * wheel (2e-5 kg m^2) with a K, b command d periods late is unstable just
+ * past b / (dt/2 + d dt) (within 1-7% for b = 2e-4..2e-3, d = 1..3).
+ * The wall alone is ~1-2 N m/rad at a wheel (the bending section's side
+ * spring through (Lb/2 gain)^2): ~30 Hz on that wheel, unstable behind 3 ms
+ * whatever damping is added (a damping above ~J/T is itself unstable when
+ * late). So on a wheel that a drive turns, the wall's part (spring and
+ * damping together, the damping a share of it) is scaled down to the
+ * stiffness left after the bending section's spring: (J_w . K n)(n . J_w)
+ * <= b / T - k_bend (d bend/d wheel)^2, J_w the tip's way per wheel rad,
+ * n the contact's normal. The defaults give ~0.01-0.03 N m/rad there; a
+ * rig that wants a firmer wall raises the wheel's damping (below J / T).
+ * The passivity observer is off on such a wheel: it does not know what the
+ * drive held, and damping a deficit it only imagines kicks the wheel. The
+ * simulated rig applies each command over the next period, which the
+ * observer accounts for exactly: its wheels are left as they were.
  *
  * Units SI, SI names. The struct and its arrays are allocated by
  * haptics_create(); the rest never allocates, blocks or prints: force loop.

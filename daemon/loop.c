@@ -52,11 +52,12 @@ struct loop {
 	uint64_t stall_ns;         /* a test command: sleep after the cycle */
 	struct inject inject;      /* test commands' sabotage */
 	uint64_t debug_seen;
+	bool lockstep;             /* loop_step(): stamps on the caller's clock */
 
 	/* shared */
 	struct rig *rig;
 	struct publish *pub;
-	struct recorder_tap *tap;  /* NULL: no recorder */
+	struct session_tap *tap;   /* NULL: no recorder */
 	pthread_t thread;
 	bool running;
 	int pm_qos_fd;             /* /dev/cpu_dma_latency, held open */
@@ -344,7 +345,11 @@ static void check_loop(struct loop *l, uint64_t now)
 	uint32_t bits = atomic_load_explicit(&l->fail_bits,
 					     memory_order_acquire);
 
-	safety_check_overruns(&l->safety, &l->cfg, l->skipped, now);
+	if (safety_check_overruns(&l->safety, &l->cfg, l->skipped, now)) {
+		post(l, &(struct loop_event){ .stamp_ns = now, .axis = -1,
+			.code = LOOP_EV_OVER_BUDGET,
+			.arg = (uint32_t)l->safety.overrun_window });
+	}
 	l->skipped = 0;
 	if (bits) {
 		struct endosim_fault_cause c = {
@@ -417,10 +422,12 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	l->scenario_was_done = l->fb.hand_done;
 	fill_state(l, now, latency);
 	fill_scope(l);
-	l->state.publish_ns = loop_now_ns();
-	publish_state(l->pub, &l->state);
+	l->state.publish_ns = l->lockstep ? now : loop_now_ns();
+	if (l->pub) {
+		publish_state(l->pub, &l->state);
+	}
 	if (l->tap) {
-		recorder_tap_push(l->tap, &l->state);
+		session_tap_push(l->tap, &l->state);
 	}
 }
 
@@ -443,6 +450,15 @@ static uint64_t skip_overrun(uint64_t *next, uint64_t now, uint64_t period)
 	skipped = (now - *next) / period;
 	*next += skipped * period;
 	return skipped;
+}
+
+/* After a cycle: its compute time (ns) in the histogram, the heartbeat. */
+static void count_cycle(struct loop *l, uint64_t compute)
+{
+	histo_add(&l->compute, compute);
+	l->state.compute_ns = (uint32_t)(compute < UINT32_MAX ? compute :
+								UINT32_MAX);
+	atomic_fetch_add_explicit(&l->heartbeat, 1, memory_order_release);
 }
 
 static void *loop_main(void *arg)
@@ -476,12 +492,7 @@ static void *loop_main(void *arg)
 		}
 		histo_add(&l->latency, latency);
 		cycle(l, now, latency);
-		uint64_t compute = loop_now_ns() - now;
-
-		histo_add(&l->compute, compute);
-		l->state.compute_ns = (uint32_t)compute;
-		atomic_fetch_add_explicit(&l->heartbeat, 1,
-					  memory_order_release);
+		count_cycle(l, loop_now_ns() - now);
 		if (l->stall_ns) {
 			stall(l);
 		}
@@ -542,7 +553,7 @@ static void hold_cpu_latency(struct loop *l)
 	l->pm_qos_fd = fd;
 }
 
-void loop_set_tap(struct loop *l, struct recorder_tap *tap)
+void loop_set_tap(struct loop *l, struct session_tap *tap)
 {
 	l->tap = tap;
 }
@@ -608,14 +619,23 @@ void loop_destroy(struct loop *l)
 	free(l);
 }
 
-int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
+/* Leaves CMD in the slot; returns what was left there. */
+static uint64_t post_command(struct loop *l, enum loop_cmd cmd)
 {
 	uint32_t seq = ++l->cmd_seq & 0xffffff;
 	uint64_t slot = (uint64_t)seq << CMD_SHIFT | (uint64_t)cmd;
+
+	atomic_store_explicit(&l->cmd_slot, slot, memory_order_release);
+	return slot;
+}
+
+int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
+{
+	uint64_t slot = post_command(l, cmd);
+	uint32_t seq = (uint32_t)(slot >> CMD_SHIFT);
 	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
 	struct timespec nap = { .tv_nsec = 100000 };
 
-	atomic_store_explicit(&l->cmd_slot, slot, memory_order_release);
 	for (;;) {
 		uint64_t done = atomic_load_explicit(&l->cmd_done,
 						     memory_order_acquire);
@@ -728,4 +748,26 @@ void loop_get_stats(const struct loop *l, struct loop_stats *st)
 const struct loop_info *loop_get_info(const struct loop *l)
 {
 	return &l->info;
+}
+
+/* --- lockstep --- */
+
+void loop_step(struct loop *l, uint64_t now_ns)
+{
+	uint64_t t0 = loop_now_ns();
+
+	l->lockstep = true;
+	l->skipped = 0;
+	cycle(l, now_ns, 0);
+	count_cycle(l, loop_now_ns() - t0);
+}
+
+void loop_post(struct loop *l, enum loop_cmd cmd)
+{
+	(void)post_command(l, cmd);
+}
+
+const struct endosim_state *loop_state(const struct loop *l)
+{
+	return &l->state;
 }

@@ -38,7 +38,7 @@
 #include "config.h"
 #include "histo.h"
 #include "publish.h"
-#include "recorder.h"
+#include "sessiontap.h"
 #include "rig.h"
 #include "safety.h"
 
@@ -47,6 +47,8 @@ enum loop_event_code {
 	LOOP_EV_FAULT,        /* arg: a new fault bit, its axis and detail */
 	LOOP_EV_OVERRUN,      /* arg: periods skipped */
 	LOOP_EV_SCENARIO_END, /* the scripted hand's scenario ended */
+	LOOP_EV_OVER_BUDGET,  /* arg: periods skipped within the window, over
+				 the budget: a warning (safety.h) */
 };
 
 /* Commands for loop_command(): the safety commands, and one of the loop's. */
@@ -97,7 +99,8 @@ struct loop;
 /*
  * Allocates everything the loop will use. The loop owns COLON (built
  * before, never NULL), known to clients as SCENE_ID, and frees it in
- * loop_destroy(). NULL on ENOMEM (logged).
+ * loop_destroy(). PUB may be NULL (lockstep: nothing published). NULL on
+ * ENOMEM (logged).
  */
 struct loop *loop_create(const struct config *cfg, struct rig *rig,
 			 struct publish *pub, struct colon *colon,
@@ -105,9 +108,9 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 
 /*
  * Main thread, before loop_start(): after publishing each cycle the loop
- * hands its state to TAP (recorder_tap_push()). NULL: no recorder.
+ * hands its state to TAP (session_tap_push()). NULL: no recorder.
  */
-void loop_set_tap(struct loop *l, struct recorder_tap *tap);
+void loop_set_tap(struct loop *l, struct session_tap *tap);
 
 /* Locks memory and starts the thread. Returns 0 or a negative errno. */
 int loop_start(struct loop *l);
@@ -172,5 +175,21 @@ const struct loop_info *loop_get_info(const struct loop *l);
 
 /* CLOCK_MONOTONIC in nanoseconds. */
 uint64_t loop_now_ns(void);
+
+/*
+ * Lockstep: the force loop without its thread, on simulated time, for the
+ * tools and tests that need its behaviour cycle for cycle whatever the
+ * machine does (tests/tools/offline.h). Never together with loop_start().
+ *
+ * loop_step() runs one cycle, exactly as the thread does, at NOW_NS (the
+ * caller's clock: a period after the last call's), with no period
+ * skipped; the state it fills is stamped and published at NOW_NS. Same
+ * inputs, same outputs, bit for bit. loop_post() leaves CMD for the next
+ * cycle without waiting for the answer; loop_state() is the state the last
+ * cycle filled.
+ */
+void loop_step(struct loop *l, uint64_t now_ns);
+void loop_post(struct loop *l, enum loop_cmd cmd);
+const struct endosim_state *loop_state(const struct loop *l);
 
 #endif

@@ -191,6 +191,34 @@ static int apply_overrides(int argc, char **argv, struct config *cfg)
 	return r;
 }
 
+/*
+ * Run from a checkout, the shipped cases are not in the compiled-in [case]
+ * directory but in cases/ beside the configuration file (config/cases
+ * beside config/endosimd.conf): taken from there when the directory was
+ * left at its default and the case is not in it.
+ */
+static void find_case_dir(struct config *cfg, const struct options *opt)
+{
+	const char *conf = opt->config_path, *slash = strrchr(conf, '/');
+	int len = slash ? (int)(slash - conf + 1) : 0;
+	char dir[CONFIG_STR], path[2 * CONFIG_STR + 8];
+
+	if (!opt->config_explicit || *cfg->colon.file ||
+	    strcmp(cfg->colon.directory, CONFIG_CASE_DIR) ||
+	    cases_path(cfg, NULL, path, sizeof(path)) ||
+	    access(path, F_OK) == 0) {
+		return;
+	}
+	if (snprintf(dir, sizeof(dir), "%.*scases", len, conf) >=
+		    (int)sizeof(dir) ||
+	    snprintf(path, sizeof(path), "%s/%s.case", dir, cfg->colon.name) >=
+		    (int)sizeof(path) ||
+	    access(path, F_OK)) {
+		return;
+	}
+	memcpy(cfg->colon.directory, dir, sizeof(dir));
+}
+
 static int load_config(int argc, char **argv, const struct options *opt,
 		       struct config *cfg)
 {
@@ -210,6 +238,7 @@ static int load_config(int argc, char **argv, const struct options *opt,
 		fprintf(stderr, "endosimd: %s\n", err);
 		return -EINVAL;
 	}
+	find_case_dir(cfg, opt);
 	return 0;
 }
 
@@ -232,6 +261,23 @@ static void log_fault(const struct daemon *d, const struct loop_event *ev)
 	faults_format(d->rig, d->start_ns, ev->arg, &c, text, sizeof(text));
 	log_ratelimited(r, LOG_ERR, "FAULT %s: torque off on every axis; "
 			"'endoctl reset' once the cause is gone", text);
+}
+
+/* A missed overrun budget that only warns ([loop] overrun_fault). */
+static void log_over_budget(const struct daemon *d,
+			    const struct loop_event *ev, double t)
+{
+	static struct log_ratelimit rl = LOG_RATELIMIT_INIT(60, 3);
+
+	log_ratelimited(&rl, LOG_WARNING, "force loop over its overrun "
+			"budget at %.3f s: %u periods skipped within %g s, "
+			"budget %d; a warning, not a fault ([loop] "
+			"overrun_fault = %s); a rig needs isolated CPUs and a "
+			"PREEMPT_RT kernel", t, ev->arg,
+			d->cfg.loop.overrun_window_s,
+			d->cfg.loop.overrun_budget,
+			d->cfg.loop.overrun_fault == CONFIG_OVERRUN_WARN
+				? "no" : "auto, every axis simulated");
 }
 
 static void log_event(const struct daemon *d, const struct loop_event *ev)
@@ -261,6 +307,9 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 	case LOOP_EV_SCENARIO_END:
 		log_info("scenario ended at %.3f s", t);
 		break;
+	case LOOP_EV_OVER_BUDGET:
+		log_over_budget(d, ev, t);
+		break;
 	}
 }
 
@@ -280,11 +329,19 @@ static bool any_simulated(const struct config *cfg)
 /* The configured case, built before anything else starts. */
 static struct colon *load_colon(const struct config *cfg)
 {
-	char err[512];
+	char err[512], path[2 * CONFIG_STR + 8];
 	struct colon *c = cases_load(cfg, NULL, err, sizeof(err));
 
 	if (!c) {
 		log_err("case: %s", err);
+		if (!*cfg->colon.file &&
+		    !cases_path(cfg, NULL, path, sizeof(path)) &&
+		    access(path, F_OK)) {
+			log_err("case: no %s.case in %s: name the directory of "
+				"the case files with [case] directory or "
+				"--set case.directory=DIR", cfg->colon.name,
+				cfg->colon.directory);
+		}
 		return NULL;
 	}
 	log_info("case %s: %.2f m, %u triangles in %u segments, %.1f MiB",
@@ -358,7 +415,7 @@ static int start(struct daemon *d, const struct options *opt)
 	if (rig_start(d->rig)) {
 		return EX_UNAVAILABLE;
 	}
-	if (loop_start(d->loop) || recorder_run(d->recorder, d->loop) ||
+	if (loop_start(d->loop) || recorder_run(d->recorder) ||
 	    control_start(d->control)) {
 		return EX_OSERR;
 	}
@@ -541,6 +598,9 @@ int main(int argc, char **argv)
 	}
 	log_init("endosimd", d.cfg.log.level);
 	log_info("endosimd %s starting", ENDOSIM_VERSION);
+	log_info("overrun budget: %d periods within %g s, missing it is a %s",
+		 d.cfg.loop.overrun_budget, d.cfg.loop.overrun_window_s,
+		 config_overrun_faults(&d.cfg) ? "fault" : "warning");
 	block_signals();
 	d.start_ns = loop_now_ns();
 	r = start(&d, &opt);

@@ -38,7 +38,7 @@ struct param {
 };
 
 struct recorder {
-	struct recorder_tap tap;
+	struct session_tap tap;
 	char dir[CONFIG_STR];
 	double write_limit;          /* bytes/s, 0: none */
 	struct metrics_params mp;
@@ -46,7 +46,6 @@ struct recorder {
 	struct publish *pub;
 	uint64_t daemon_start_ns;
 	uint32_t period_ns;
-	const struct loop *loop;
 	pthread_t thread;
 	bool running;
 
@@ -71,21 +70,6 @@ struct recorder {
 	bool seen_record;
 	struct param batch[PARAMS];
 };
-
-/* ------------------------------------------------------------ force loop */
-
-void recorder_tap_push(struct recorder_tap *t, const struct endosim_state *st)
-{
-	struct session_record rec;
-
-	if (!atomic_load_explicit(&t->recording, memory_order_acquire)) {
-		return;
-	}
-	session_record_from_state(st, &rec);
-	if (!spsc_push(&t->ring, &rec)) {
-		atomic_fetch_add_explicit(&t->drops, 1, memory_order_relaxed);
-	}
-}
 
 /* ------------------------------------------------------------ writing */
 
@@ -326,10 +310,12 @@ static void drain(struct recorder *r)
 /* Waits until the loop is past any push begun before recording fell. */
 static void quiesce(struct recorder *r)
 {
-	uint64_t beat = loop_heartbeat(r->loop);
+	uint64_t pass = atomic_load_explicit(&r->tap.passes,
+					     memory_order_acquire);
 	uint64_t deadline = loop_now_ns() + 100000000ull;
 
-	while (loop_heartbeat(r->loop) < beat + 2 && loop_now_ns() < deadline) {
+	while (atomic_load_explicit(&r->tap.passes, memory_order_acquire) <
+		       pass + 2 && loop_now_ns() < deadline) {
 		nap_ns(r->period_ns);
 	}
 }
@@ -645,16 +631,15 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	return r;
 }
 
-struct recorder_tap *recorder_tap(struct recorder *r)
+struct session_tap *recorder_tap(struct recorder *r)
 {
 	return &r->tap;
 }
 
-int recorder_run(struct recorder *r, const struct loop *loop)
+int recorder_run(struct recorder *r)
 {
 	int e;
 
-	r->loop = loop;
 	e = pthread_create(&r->thread, NULL, recorder_main, r);
 	if (e) {
 		log_err("recorder: cannot start thread: %s", strerror(e));

@@ -6,11 +6,11 @@
  *
  * Data flow:
  *
- *   force loop --recorder_tap_push()--> record ring (SPSC, [session]
+ *   force loop --session_tap_push()--> record ring (SPSC, [session]
  *   ring_s of cycles) --> recorder thread: metrics, events, frames
  *   gathered in a buffer, write(2) every ~100 ms or when full
  *
- * The force loop's only part is recorder_tap_push(): while a session is
+ * The force loop's only part is the tap (sessiontap.h): while a session is
  * recording it converts the published state into a record and pushes it;
  * a full ring (a slow disk) drops the record and counts it. It never
  * waits, allocates or writes. The recorder writes a DROPS event whenever
@@ -21,7 +21,7 @@
  * (recorder_param()), and at stop writes the END frame (the final
  * metrics), fsyncs and closes. One session at a time.
  *
- * Threads: recorder_tap_push() is the force loop's; recorder_start(),
+ * Threads: the tap is the force loop's; recorder_start(),
  * recorder_stop(), recorder_param() and recorder_info() the control
  * thread's (they may block briefly on the recorder's mutex; start writes
  * the file's first frames, stop waits for the last ones and the fsync);
@@ -41,23 +41,10 @@
 #include "metrics.h"
 #include "publish.h"
 #include "rig.h"
-#include "spsc.h"
+#include "sessiontap.h"
 
 #define RECORDER_NAME 64 /* trainee and case names, bytes with the NUL */
 #define RECORDER_PATH 256
-
-/* What the force loop sees of the recorder. */
-struct recorder_tap {
-	struct spsc ring;            /* struct session_record */
-	_Atomic bool recording;
-	_Atomic uint64_t drops;      /* records the ring had no room for */
-};
-
-/*
- * Force loop, after publishing ST: pushes its record while a session is
- * recording, else does nothing. Never blocks or allocates.
- */
-void recorder_tap_push(struct recorder_tap *t, const struct endosim_state *st);
 
 /* What a session starts with (the control thread fills it). */
 struct recorder_session {
@@ -90,7 +77,6 @@ struct recorder_info {
 };
 
 struct recorder;
-struct loop;
 
 /*
  * Allocates the ring ([session] ring_s at the loop's rate) and the write
@@ -103,10 +89,13 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 				 struct publish *pub, uint64_t start_ns);
 
 /* The tap for loop_set_tap(). */
-struct recorder_tap *recorder_tap(struct recorder *r);
+struct session_tap *recorder_tap(struct recorder *r);
 
-/* Starts the recorder thread (SCHED_OTHER); LOOP paces the stop. 0/-errno. */
-int recorder_run(struct recorder *r, const struct loop *loop);
+/*
+ * Starts the recorder thread (SCHED_OTHER); a stop waits for the tap's
+ * next two passes (at most 100 ms). 0/-errno.
+ */
+int recorder_run(struct recorder *r);
 
 /*
  * Opens the next session file (ID = largest existing + 1), writes HEADER,

@@ -165,8 +165,9 @@ void safety_check_motion(struct safety *s, const struct config *cfg,
 	}
 }
 
-void safety_check_overruns(struct safety *s, const struct config *cfg,
-			   uint64_t skipped, uint64_t now_ns)
+/* Records SKIPPED at NOW_NS; returns the periods skipped within the window. */
+static uint64_t overrun_window(struct safety *s, const struct config *cfg,
+			       uint64_t skipped, uint64_t now_ns)
 {
 	uint32_t size = (uint32_t)cfg->loop.overrun_budget + 1;
 	uint64_t window = (uint64_t)(cfg->loop.overrun_window_s * 1e9);
@@ -192,12 +193,31 @@ void safety_check_overruns(struct safety *s, const struct config *cfg,
 		}
 		n += s->overrun[k].n;
 	}
-	s->overrun_window = n;
-	if (n > (uint64_t)cfg->loop.overrun_budget) {
-		fault(s, ENDOSIM_FAULT_OVERRUN, -1,
-		      (uint32_t)(cfg->loop.overrun_window_s * 1e3), (double)n,
-		      cfg->loop.overrun_budget, now_ns);
+	return n;
+}
+
+bool safety_check_overruns(struct safety *s, const struct config *cfg,
+			   uint64_t skipped, uint64_t now_ns)
+{
+	uint64_t budget = (uint64_t)cfg->loop.overrun_budget;
+	bool was_over = s->overrun_window > budget;
+
+	s->overrun_window = overrun_window(s, cfg, skipped, now_ns);
+	s->overrun_warning = false;
+	if (s->overrun_window <= budget) {
+		return false;
 	}
+	if (!was_over) {
+		s->overrun_misses++;
+	}
+	if (config_overrun_faults(cfg)) {
+		fault(s, ENDOSIM_FAULT_OVERRUN, -1,
+		      (uint32_t)(cfg->loop.overrun_window_s * 1e3),
+		      (double)s->overrun_window, (double)budget, now_ns);
+		return false;
+	}
+	s->overrun_warning = true;
+	return !was_over;
 }
 
 bool safety_torque_on(const struct safety *s)
@@ -288,7 +308,7 @@ void safety_filter(struct safety *s, const struct config *cfg,
 void safety_publish(const struct safety *s, uint64_t now_ns,
 		    struct endosim_safety_state *out)
 {
-	out->active = s->seen;
+	out->active = s->seen | (s->overrun_warning ? ENDOSIM_FAULT_OVERRUN : 0);
 	out->overrun_periods = (uint32_t)s->overrun_window;
 	out->enabled_ns = s->enabled_ns;
 	out->ramp = safety_torque_on(s) ? s->ramp : 0.0;

@@ -16,7 +16,8 @@
  * transaction, stale, non-finite); the motion (position outside the travel
  * by more than [limits] travel_margin_fraction of it, speed above the
  * axis' [limits] max speed); the force loop's overruns (more than [loop]
- * overrun_budget periods skipped within overrun_window_s); the force
+ * overrun_budget periods skipped within overrun_window_s, when [loop]
+ * overrun_fault makes that a fault, see safety_check_overruns); the force
  * pipeline (a non-finite value anywhere: pose, haptic parts, command,
  * output); the command held beyond the force limit for longer than
  * [limits] saturation_s while torque is on; a daemon thread that died.
@@ -69,6 +70,8 @@ struct safety {
 	uint32_t overrun_next; /* next slot of the ring */
 	uint32_t overrun_size; /* the ring's length: budget + 1 */
 	uint64_t overrun_window; /* periods skipped within the window */
+	uint64_t overrun_misses; /* times the window went over the budget */
+	bool overrun_warning;  /* over the budget now, and only a warning */
 };
 
 /* The speed fade: shares of [limits] *_max_speed_* (see safety_filter). */
@@ -109,9 +112,16 @@ void safety_check_motion(struct safety *s, const struct config *cfg,
 
 /*
  * Counts SKIPPED periods at NOW_NS (0 too: the window moves on) against
- * [loop] overrun_budget within overrun_window_s.
+ * [loop] overrun_budget within overrun_window_s. Over the budget is a miss,
+ * counted once each time the window goes over it (overrun_misses). Where
+ * config_overrun_faults() says so (a real drive, or [loop] overrun_fault =
+ * yes) a miss latches ENDOSIM_FAULT_OVERRUN; otherwise (the simulated rig)
+ * it is a warning: torque stays on, the cause is published as present
+ * (endosim_safety_state.active) while the window is over the budget, and
+ * it does not hold up a reset. Returns true in the cycle a warning begins,
+ * for the caller to log it; false otherwise (a fault logs itself).
  */
-void safety_check_overruns(struct safety *s, const struct config *cfg,
+bool safety_check_overruns(struct safety *s, const struct config *cfg,
 			   uint64_t skipped, uint64_t now_ns);
 
 /* N values at STAGE (enum endosim_stage) for AXIS (-1: none) are finite. */
@@ -137,7 +147,11 @@ void safety_filter(struct safety *s, const struct config *cfg,
 		   const double command[ENDOSIM_AXES],
 		   double limited[ENDOSIM_AXES], double dt_s, uint64_t now_ns);
 
-/* What the monitors publish (endosim_shm.h), into OUT. */
+/*
+ * What the monitors publish (endosim_shm.h), into OUT: `active` holds the
+ * causes present this cycle, a missed overrun budget that only warns
+ * included (it is then not in the latched fault bits).
+ */
 void safety_publish(const struct safety *s, uint64_t now_ns,
 		    struct endosim_safety_state *out);
 

@@ -5,8 +5,8 @@
  *
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
- *            [--no-vsync] [--font FILE.ttf] [--stats] [--print-state]
- *            [--replay FILE [--seek S] [--speed X] [--paused]]
+ *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
+ *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * A separate process: it only reads the daemon's shared memory and asks
  * the sockets, so whatever happens to it, the force loop goes on. With
@@ -62,6 +62,7 @@ struct options {
 	int view, width, height;
 	long frames;
 	double seek_s, speed;
+	double max_fps;         /* 0: as fast as vsync lets it */
 	bool vsync, stats, print_state, paused;
 };
 
@@ -93,6 +94,7 @@ struct app {
 	bool loading, help;
 	uint32_t triangles, triangles_max;
 	uint64_t last_swap_ns, start_ns;
+	uint64_t frame_due_ns; /* --max-fps: the next frame not before */
 	uint64_t hand_ns; /* when the hand was last moved */
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
@@ -116,8 +118,8 @@ static void usage(FILE *f)
 		"usage: endoview [--socket PATH] [--shm-name NAME]\n"
 		"                [--view endo|overview|both] [--size WxH]\n"
 		"                [--screenshot FILE.png] [--frames N]\n"
-		"                [--no-vsync] [--font FILE.ttf] [--stats]\n"
-		"                [--print-state]\n"
+		"                [--no-vsync] [--max-fps N] [--font FILE.ttf]\n"
+		"                [--stats] [--print-state]\n"
 		"                [--replay FILE [--seek S] [--speed X] "
 		"[--paused]]\n"
 		"  --socket PATH     endosimd's socket directory (or socket);\n"
@@ -129,6 +131,9 @@ static void usage(FILE *f)
 		"  --frames N        draw N frames, then exit (default with\n"
 		"                    --screenshot: 45)\n"
 		"  --no-vsync        draw as fast as possible\n"
+		"  --max-fps N       draw N frames a second at most (1 to 1000:\n"
+		"                    leaves CPU to the force loop where the\n"
+		"                    drawing is done in software)\n"
 		"  --font F          a TrueType font for the HUD\n"
 		"  --stats           print the frame figures at exit\n"
 		"  --print-state     print the last frame's state at exit\n"
@@ -179,6 +184,7 @@ static int parse(int argc, char **argv, struct options *o)
 		{ "screenshot", required_argument, NULL, 'o' },
 		{ "frames", required_argument, NULL, 'n' },
 		{ "no-vsync", no_argument, NULL, 'V' },
+		{ "max-fps", required_argument, NULL, 'F' },
 		{ "font", required_argument, NULL, 'f' },
 		{ "stats", no_argument, NULL, 'S' },
 		{ "print-state", no_argument, NULL, 'P' },
@@ -225,6 +231,12 @@ static int parse(int argc, char **argv, struct options *o)
 			break;
 		case 'V':
 			o->vsync = false;
+			break;
+		case 'F':
+			if (parse_number(optarg, &o->max_fps) ||
+			    o->max_fps < 1 || o->max_fps > 1000) {
+				return -EINVAL;
+			}
 			break;
 		case 'f':
 			o->font = optarg;
@@ -743,6 +755,32 @@ static void report_state(const struct app *a)
 	}
 }
 
+/*
+ * --max-fps: waits until the frame's share of a second since the last
+ * one began has passed; a late frame starts the count afresh (no burst of
+ * frames to catch up).
+ */
+static void pace(struct app *a)
+{
+	uint64_t period, now = now_ns();
+	struct timespec ts;
+
+	if (a->opt.max_fps <= 0) {
+		return;
+	}
+	period = (uint64_t)((double)NS / a->opt.max_fps);
+	if (a->frame_due_ns <= now) {
+		a->frame_due_ns = now + period;
+		return;
+	}
+	ts.tv_sec = (time_t)(a->frame_due_ns / NS);
+	ts.tv_nsec = (long)(a->frame_due_ns % NS);
+	while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) ==
+	       EINTR) {
+	}
+	a->frame_due_ns += period;
+}
+
 static int run(struct app *a)
 {
 	int r = 0;
@@ -754,6 +792,7 @@ static int run(struct app *a)
 		return -EINVAL;
 	}
 	while (r == 0 && (a->opt.frames < 0 || a->frame < a->opt.frames)) {
+		pace(a);
 		r = frame(a);
 	}
 	if (a->opt.frames > 0 || a->opt.stats) {

@@ -76,18 +76,21 @@ ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
 ctl enable >/dev/null
 check "enabled: both drives" wait_for wheels_enabled
 check "forces in full once the enable ramp is over" wait_for status_true '.ramp == 1'
-sleep 0.3
+# torque_rendered: the damping's torque on wheel_ud, turned at pi rad/s
+torque_rendered() { nonzero "$(status_field .axes.wheel_ud.limited)" 0.005; }
+check "wheel_ud torque rendered" wait_for torque_rendered
 lim=$(status_field .axes.wheel_ud.limited)
-check "wheel_ud torque rendered ($lim N m)" nonzero "$lim" 0.005
 check "the f32 dcba torque register gets it" \
 	approx "$(mb_get 1 torque_nm)" "$lim" 0.03 1e-6
 check "wheel_ud velocity pi rad/s (i32 counts/s)" \
 	approx "$(status_field .axes.wheel_ud.velocity)" 3.14159265 0.01 0
 p1=$(status_field .axes.wheel_lr.position)
-sleep 0.4
-p2=$(status_field .axes.wheel_lr.position)
-check "wheel_lr position (i32 badc) moves ($p1 -> $p2 rad)" \
-	nonzero "$(awk -v a="$p1" -v b="$p2" 'BEGIN { print b - a }')" 0.001
+# moved_from P: wheel_lr is more than 1 mrad away from P
+moved_from() {
+	nonzero "$(awk -v a="$1" -v b="$(status_field .axes.wheel_lr.position)" \
+		'BEGIN { print b - a }')" 0.001
+}
+check "wheel_lr position (i32 badc) moves (from $p1 rad)" wait_for moved_from "$p1"
 
 # a drive that stops answering
 mb "mute 2 on"

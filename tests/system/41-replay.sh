@@ -84,11 +84,12 @@ check "the course moves: deeper at 24 s than at 3 s" float_test \
 	"$(fields "$TRUTH" '24: ' | sed -n 's/^depth_m=//p') > \
 	 $(fields "$TRUTH" '3: ' | sed -n 's/^depth_m=//p') + 0.2"
 
-# playing: 30 frames of 1/60 s at x2 from 10 s reach 11 s, cycle 11001
+# playing: 30 frames of 1/60 s at x2 from 10 s reach 11 s, cycle 11000
+# (the first record is cycle 0, as the daemon's first cycle)
 check_status "replay playing at x2 from 10 s, 31 frames" 0 \
 	replay "$FILE" --seek 10 --speed 2 --frames 31 --print-state
-check "playing: the clock ran 1 s in 30 headless frames (cycle 11001)" \
-	eval '[ "$(shown cycle)" = 11001 ] && ran_clean'
+check "playing: the clock ran 1 s in 30 headless frames (cycle 11000)" \
+	eval '[ "$(shown cycle)" = 11000 ] && ran_clean'
 
 # --- (b) what it looks like ---------------------------------------------
 SHOT="$TMP/at-12.5.png"
@@ -129,8 +130,8 @@ truncate -s $((size - 200)) "$TMP/cut.endoses"
 check_status "a file cut mid-record replays" 0 \
 	replay "$TMP/cut.endoses" --seek 1000 --paused --frames 3 --print-state
 records=$(sed -n 's/.* records=\([0-9]*\).*/\1/p' "$VIEW_OUT")
-check "cut: up to its last complete record, cycle 25000 of 25001" \
-	eval '[ "$(shown cycle)" = 25000 ] && [ "$records" = 25000 ] && ran_clean'
+check "cut: up to its last complete record, cycle 24999 (of 0-25000)" \
+	eval '[ "$(shown cycle)" = 24999 ] && [ "$records" = 25000 ] && ran_clean'
 check "cut: the bytes after it are said to be ignored" \
 	grep -q 'replay t=.* bytes_ignored=[1-9]' "$VIEW_OUT"
 

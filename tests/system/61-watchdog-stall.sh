@@ -36,7 +36,7 @@ check "... and restarts the service when it fires" \
 
 # a short stall: pings stop, then the loop is back in FAULT
 export NOTIFY_SOCKET="$notify" WATCHDOG_USEC=200000
-check "simulated rig up, enabled" start_sim
+check "simulated rig up, enabled (a missed budget a fault)" start_sim --set loop.overrun_fault=yes
 sleep 0.6
 mark stall
 check "the loop stalled for 1.5 s" ctl debug stall 1.5

@@ -1,13 +1,13 @@
 /*
- * offline.h - endosimd's force loop off line, for the tools and the
- * benchmarks that want its motion without a daemon (bench_haptics,
- * session_synth): the simulated rig (the plants and the scripted hand of a
- * scenario, rig_sim.c) advances one period of OFFLINE_PERIOD_NS per step;
- * the scope's kinematics (scope_update()) and the haptics
- * (haptics_render()) run on the colon as the loop runs them; the command
- * is clamped to the configured limits and written back with the torque on
- * (there is no safety filter, no enable ramp, no fault). Every run sees
- * the same motion.
+ * offline.h - endosimd's force loop off line, in lockstep on simulated
+ * time (loop_step()), for the tools, tests and benchmarks that want its
+ * behaviour cycle for cycle whatever the machine does (session_synth,
+ * bench_haptics, test_course): the loop's own cycle (safety checks and
+ * filter with its enable ramp and clamps, kinematics, haptics) on the
+ * simulated rig (the plants and the scripted hand of a scenario,
+ * rig_sim.c), one period of OFFLINE_PERIOD_NS a step. The loop is enabled
+ * at the first step. Same configuration, colon and scenario: the same
+ * states, bit for bit.
  *
  * Not for the force loop: offline_create() allocates and reads the
  * scenario file. One thread.
@@ -21,29 +21,17 @@
 #include "colon.h"
 #include "config.h"
 #include "endosim_shm.h"
-#include "rig.h"
-#include "scope.h"
 
 #define OFFLINE_PERIOD_NS 1000000ull   /* 1 ms, as the daemon's default */
 #define OFFLINE_START_NS 1000000000ull /* the first cycle's stamp */
-
-/* One cycle, as the force loop saw it. */
-struct offline_cycle {
-	uint64_t cycle;              /* 1, 2, ... */
-	uint64_t stamp_ns;           /* OFFLINE_START_NS, then a period more */
-	struct rig_feedback fb;      /* read at stamp_ns */
-	struct scope_pose pose;      /* on the colon as last cycle bowed it */
-	struct endosim_haptics_state haptics;
-	double command[ENDOSIM_AXES]; /* N, N m: rendered */
-	double limited[ENDOSIM_AXES]; /* clamped to cfg->limits, written */
-	uint64_t step_ns;            /* wall time of kinematics + haptics */
-};
+#define OFFLINE_SCENE_ID 1             /* the colon's scene_id */
 
 struct offline;
 
 /*
- * The loop's parts with CFG (copied) on COLON (not owned; the haptics bow
- * its mobile spans), the hand playing the scenario file SCENARIO. NULL
+ * The loop with CFG (copied; its [loop] rate_hz must give
+ * OFFLINE_PERIOD_NS) on COLON (owned from here on, freed with the loop,
+ * also on failure), the hand playing the scenario file SCENARIO. NULL
  * with one line in ERR.
  */
 struct offline *offline_create(const struct config *cfg, struct colon *colon,
@@ -56,15 +44,19 @@ void offline_destroy(struct offline *o);
 /* The scenario's length (s): how long a run of it lasts. */
 double offline_length_s(const struct offline *o);
 
-/* Runs one cycle; the result stays valid until the next call. */
-const struct offline_cycle *offline_step(struct offline *o);
+/*
+ * Runs one cycle; returns the state it published (as struct endosim_state
+ * in shared memory: cycle 0, 1, ..., as the daemon counts them, stamped
+ * OFFLINE_START_NS and a period more each cycle; compute_ns the cycle's
+ * wall time), valid until the next call.
+ */
+const struct endosim_state *offline_step(struct offline *o);
 
 /*
- * The last cycle as the daemon would have published it (struct
- * endosim_state, loop.c's fill_state() and fill_scope()): ENABLED, no
- * fault, the ramp at 1, scene SCENE_ID; compute_ns the step's time.
+ * Live hand input, as `endoctl hand` gives it: FORCE (N, N m, N m, N m)
+ * from the next cycle on, for HOLD_S seconds of simulated time.
  */
-void offline_state(const struct offline *o, uint64_t scene_id,
-		   struct endosim_state *st);
+void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
+		  double hold_s);
 
 #endif

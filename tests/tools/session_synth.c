@@ -208,8 +208,7 @@ static int run(struct synth *s, struct offline *o, long cycles)
 	int r = write_head(s);
 
 	for (long k = 0; !r && k < cycles; k++) {
-		offline_step(o);
-		offline_state(o, SCENE_ID, &st);
+		st = *offline_step(o);
 		if (k == 0) {
 			r = put_event(s, st.stamp_ns, SESSION_EVENT_STATE,
 				      ENDOSIM_STATE_ENABLED);
@@ -241,7 +240,7 @@ int main(int argc, char **argv)
 		 s.case_path);
 	s.colon = cases_load(&s.cfg, NULL, err, sizeof(err));
 	o = s.colon ? offline_create(&s.cfg, s.colon, s.scenario, err,
-				     sizeof(err)) : NULL;
+				     sizeof(err)) : NULL; /* it owns the colon */
 	if (!o) {
 		fprintf(stderr, "session_synth: %s\n", err);
 		goto out;
@@ -268,6 +267,5 @@ out:
 	}
 	free(s.buf);
 	offline_destroy(o);
-	colon_destroy(s.colon);
 	return r;
 }

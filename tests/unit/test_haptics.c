@@ -1,7 +1,9 @@
 /*
  * test_haptics.c - the haptic rendering against analytic cases:
  *  - friction: a straight tube gives 0, an arc of angle Theta gives
- *    c_f v Theta (1%), the sign follows v;
+ *    c_f v Theta (1%), the sign follows v; a bent tip adds its section's
+ *    turning |bend| = hypot(bend_ud, bend_lr) (the angle between the
+ *    section's base tangent and the view direction);
  *  - wire tension: a planar bend Theta in a wire's plane gives dr Theta
  *    (1%), an S-curve ~0, a bend across a wire ~0, a roll of 90 deg swaps
  *    the wheels;
@@ -9,6 +11,8 @@
  *    projection ((Lb/2) n . F per rad of bend) with a straight tip;
  *  - loops: with the tip held, pushing grows the loop while the tip stays,
  *    the axial force rises monotonically, and withdrawing straightens it;
+ *    at rest under a constant push F the mesentery's law holds,
+ *    F = k/(2c) (1 + 2 (A/h)^2), and the loop carries all of F;
  *  - stability: pressing and holding against the wall puts no energy into
  *    the hand, and where a stiff wall sampled at 1 kHz would (no damping),
  *    the passivity observer keeps it bounded.
@@ -27,6 +31,7 @@
 #include "anatomy.h"
 #include "colon.h"
 #include "config.h"
+#include "geom_assert.h"
 #include "haptics.h"
 #include "plant.h"
 #include "scope.h"
@@ -184,6 +189,99 @@ static void test_friction_arc(void **state)
 			   0.01 * w.cfg.haptics.torsion_n_m_s_per_rad2 * 2 *
 				   theta);
 	world_free(&w);
+}
+
+/*
+ * The friction's curvature with the tip bent: the bending section is one
+ * circular arc whose curvature vector is (bend_ud u' + bend_lr v') / Lb,
+ * so it turns through |bend| = hypot(bend_ud, bend_lr), with bend = gain x
+ * wheel clamped to the limit (scope.h); the integral is the centreline's
+ * turning up to the section plus that. Measured, too, without the formula:
+ * on a straight colon (no turning before the section) a planar arc turns
+ * by the angle between its base tangent and the tip's view direction.
+ */
+static double bend_of(const struct config *cfg, int k, double wheel)
+{
+	double b = cfg->scope.gain[k] * wheel;
+
+	return fmax(-cfg->scope.limit_rad[k], fmin(cfg->scope.limit_rad[k], b));
+}
+
+static void check_bent(double theta_colon, double degrees)
+{
+	static const double wheels[][2] = {
+		{ 0.5, 0 }, { 0, -0.6 }, { 0.4, 0.5 }, { -1.2, 1.2 },
+		{ 2.0, 0 },
+	};
+	const double v = 0.05;
+	struct anatomy a;
+	struct world w;
+
+	smooth_anatomy(&a);
+	if (degrees > 0) {
+		add_bend(&a, ANATOMY_DESCENDING, degrees, 0.06, 0);
+	}
+	world_init(&w, &a);
+	for (size_t i = 0; i < sizeof(wheels) / sizeof(wheels[0]); i++) {
+		double q[4] = { 0.8, 0, wheels[i][0], wheels[i][1] };
+		double qd[4] = { v, 0, 0, 0 };
+		double bend = hypot(bend_of(&w.cfg, 0, wheels[i][0]),
+				    bend_of(&w.cfg, 1, wheels[i][1]));
+		double want = theta_colon + bend;
+		double tol = 0.01 * theta_colon + 1e-6;
+		double f = -w.cfg.haptics.friction_n_s_per_m_rad * v * want;
+
+		step(&w, q, qd);
+		assert_near(w.out.curvature_rad, want, tol);
+		assert_near(w.out.trans_friction_n, f, 0.01 * fabs(f) + 1e-6);
+		if (theta_colon == 0) {
+			struct centreline_point base;
+
+			centreline_at_s(colon_centreline(w.colon),
+					w.pose.base_s_m, &base);
+			assert_near(w.out.curvature_rad,
+				    acos(fmax(-1, fmin(1, vec3_dot(base.t,
+							w.pose.dir)))), 1e-6);
+		}
+	}
+	world_free(&w);
+}
+
+/*
+ * Half the bending section inserted: the kinematics bend only the part
+ * inside (scope.h: the arc's length is min(depth, Lb)), so the tube turns
+ * by half the bend, and nothing outside the patient rubs: at the verge,
+ * no friction whatever the wheels.
+ */
+static void check_bent_shallow(void)
+{
+	const double v = 0.05;
+	struct anatomy a;
+	struct world w;
+
+	smooth_anatomy(&a);
+	world_init(&w, &a);
+	for (int half = 0; half < 2; half++) {
+		double lb = w.cfg.scope.bending_length_m;
+		double q[4] = { half ? lb / 2 : 0, 0, 0.5, 0 };
+		double qd[4] = { v, 0, 0, 0 };
+		double want = half ? bend_of(&w.cfg, 0, 0.5) / 2 : 0;
+
+		step(&w, q, qd);
+		assert_near(w.out.curvature_rad, want, 1e-6);
+		assert_near(w.out.trans_friction_n,
+			    -w.cfg.haptics.friction_n_s_per_m_rad * v * want,
+			    1e-9);
+	}
+	world_free(&w);
+}
+
+static void test_friction_bent_tip(void **state)
+{
+	(void)state;
+	check_bent(0, 0);           /* a straight colon: the bend alone */
+	check_bent(M_PI / 2, 90);   /* a 90 deg arc behind the bend */
+	check_bent_shallow();       /* the section half in, or out */
 }
 
 /* ------------------------------------------------------------ tension */
@@ -387,6 +485,116 @@ static void test_loop_grows_and_returns(void **state)
 	world_free(&w);
 }
 
+/*
+ * The loop's force balance at rest. The hand pushes the carriage (a plant
+ * of 0.5 kg) with a constant force F, the tip held head-on by the cecum,
+ * the mobile transverse of length L behind it bowing by A. At rest the
+ * carriage's force balance gives a command of -F, all of it carried by the
+ * loop, and the mesentery's law (haptics.h)
+ *   F = F_m(A) = k/(2c) (1 + 2 (A/h)^2)
+ * with c the stored length per A^2; for the sin^2 bow of a straight span,
+ * dL = (1/2) int y'^2 = pi^2 A^2 / (4 L) (to 1% at these bows). So
+ *   A = h sqrt((F/f0 - 1) / 2),  f0 = k/(2c) = 2 k L / pi^2,
+ * and, with c out of it, two pushes F1, F2 satisfy
+ *   (F2 - F1) / F1 = 2 (A2^2 - A1^2) / (h^2 + 2 A1^2).
+ */
+#define LOOP_K 100.0  /* N/m, the transverse's mesentery */
+#define LOOP_H 0.07   /* m, its height */
+
+/* The mesentery's axial force at bow A (the law above, c = pi^2/(4L)). */
+static double mesentery_law(double f0, double a)
+{
+	return f0 * (1 + 2 * (a / LOOP_H) * (a / LOOP_H));
+}
+
+/*
+ * The hand pushes with HAND_N from just before the cecum until all rests;
+ * on the way the loop never carries more than its mesentery holds (3%: c's
+ * next term, -(3/16) (pi A / L)^2, is 1% at these bows). Returns the bow.
+ */
+static double rest_bow(struct world *w, double hand_n, double f0)
+{
+	const struct plant_params pp = {
+		.inertia = 0.5, .viscous = 5, .min = 0, .max = 1.8,
+	};
+	const struct centreline *cl = colon_centreline(w->colon);
+	double q[4] = { 0 }, qd[4] = { 0 };
+	struct plant pl;
+
+	plant_init(&pl, &pp, 1.50);
+	for (int i = 0; i < 8000; i++) {
+		double f, bow;
+
+		q[0] = pl.x;
+		qd[0] = pl.v;
+		step(w, q, qd);
+		bow = centreline_bow_amplitude(cl, 0);
+		if (bow > 0.001) {
+			assert_true(-w->out.trans_loop_n <=
+				    1.03 * mesentery_law(f0, bow));
+		}
+		f = fmin(fmax(w->cmd[0], -w->cfg.limits.max[0]),
+			 w->cfg.limits.max[0]);
+		w->applied[0] = f;
+		plant_step(&pl, hand_n + f, DT);
+	}
+	/* at rest, held by the wall */
+	assert_true(fabs(pl.v) < 1e-5);
+	assert_true(w->out.contact);
+	assert_near(w->cmd[ENDOSIM_AXIS_INSERTION], -hand_n, 1e-3 * hand_n);
+	return centreline_bow_amplitude(cl, 0);
+}
+
+/* A straight colon with a mobile transverse of length L: the threshold
+ * f0 = k/(2c) = 2 k L / pi^2. */
+static double loop_world(struct world *w)
+{
+	struct anatomy a;
+	double s0, s1;
+
+	smooth_anatomy(&a);
+	a.seg[ANATOMY_TRANSVERSE].mobile = true;
+	a.seg[ANATOMY_TRANSVERSE].mesentery_n_per_m = LOOP_K;
+	a.seg[ANATOMY_TRANSVERSE].mesentery_height_m = LOOP_H;
+	world_init(w, &a);
+	centreline_span_range(colon_centreline(w->colon), 0, &s0, &s1);
+	return 2 * LOOP_K * (s1 - s0) / (M_PI * M_PI);
+}
+
+static void test_loop_balance_at_rest(void **state)
+{
+	const double share[2] = { 1.5, 3.0 }; /* A = h / 2, A = h */
+	double f0, f[2], bow[2];
+	struct world w;
+
+	(void)state;
+	/* below the threshold no loop: the tip's contact carries it all */
+	f0 = loop_world(&w);
+	assert_near(rest_bow(&w, 0.8 * f0, f0), 0, 0);
+	assert_near(w.out.trans_loop_n, 0, 0);
+	world_free(&w);
+	for (int i = 0; i < 2; i++) {
+		double want = LOOP_H * sqrt((share[i] - 1) / 2);
+
+		f0 = loop_world(&w);
+		f[i] = share[i] * f0;
+		bow[i] = rest_bow(&w, f[i], f0);
+		printf("push %.2f N (threshold %.2f N): loop %.2f mm, the law "
+		       "%.2f mm\n", f[i], f0, bow[i] * 1e3, want * 1e3);
+		assert_near(bow[i], want, 0.03 * want);
+		assert_near(mesentery_law(f0, bow[i]), f[i], 0.03 * f[i]);
+		/* the loop carries the whole push, the tip's contact part
+		 * none */
+		assert_near(w.out.trans_loop_n, -f[i], 1e-3 * f[i]);
+		assert_near(w.out.trans_contact_n, 0, 1e-3 * f[i]);
+		world_free(&w);
+	}
+	/* the law with c out of it */
+	assert_near((f[1] - f[0]) / f[0],
+		    2 * (bow[1] * bow[1] - bow[0] * bow[0]) /
+			    (LOOP_H * LOOP_H + 2 * bow[0] * bow[0]), 0.01);
+}
+
 /* ------------------------------------------------------------ stability */
 
 /* The insertion axis as a plant pushed by a hand against the cecum, from
@@ -495,18 +703,372 @@ static void test_passivity_observer_bounds_active_wall(void **state)
 	active_wall(20000, 0.1, 10);
 }
 
+/* ------------------------------------------------------------ the knobs' ends */
+
+/* The up/down wheel's angle at the tip's angulation limit, rad. */
+static double ud_limit(const struct config *cfg)
+{
+	return cfg->scope.limit_rad[0] / cfg->scope.gain[0];
+}
+
+/* One cycle with the up/down wheel at X rad, V rad/s, the tube at 0.8 m. */
+static void wheel_at(struct world *w, double x, double v)
+{
+	const double q[4] = { 0.8, 0, x, 0 }, qd[4] = { 0, 0, v, 0 };
+
+	step(w, q, qd);
+}
+
+/*
+ * Past the limit by d at wheel speed v the stop is -k d - b v, pushing the
+ * wheel back, on either side; inside the limit it is absent; it never
+ * holds a wheel that leaves faster than its spring pushes; its push is at
+ * most the wheel's torque limit. The bending section's spring off: the
+ * elastic part is the stop alone.
+ */
+static void test_wheel_stop_torque(void **state)
+{
+	static const double cases[][2] = { /* d rad, v rad/s */
+		{ 0.01, 0 }, { 0.05, 2 }, { 0.05, -1 }, { 0.1, 0.5 },
+	};
+	struct anatomy a;
+	struct world w;
+	double k, b, lim, max;
+
+	(void)state;
+	smooth_anatomy(&a);
+	world_init(&w, &a);
+	w.cfg.haptics.bending_stiffness_n_m_per_rad = 0;
+	k = w.cfg.haptics.stop_stiffness_n_m_per_rad;
+	b = w.cfg.haptics.stop_damping_n_m_s_per_rad;
+	lim = ud_limit(&w.cfg);
+	max = w.cfg.limits.max[ENDOSIM_AXIS_WHEEL_UD];
+	assert_true(k > 0 && b > 0);
+	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		double d = cases[i][0], v = cases[i][1], want = -k * d - b * v;
+
+		assert_true(want < 0);
+		wheel_at(&w, lim + d, v);
+		assert_near(w.out.wheel_elastic_nm[0], want, 1e-12);
+		wheel_at(&w, -lim - d, -v);
+		assert_near(w.out.wheel_elastic_nm[0], -want, 1e-12);
+	}
+	for (double x = -0.99 * lim; x < lim; x += lim / 10) {
+		wheel_at(&w, x, 5);
+		assert_near(w.out.wheel_elastic_nm[0], 0, 1e-15);
+	}
+	wheel_at(&w, lim + 0.01, -10 * k * 0.01 / b); /* leaving fast */
+	assert_near(w.out.wheel_elastic_nm[0], 0, 1e-15);
+	wheel_at(&w, lim + 10 * max / k, 0);          /* deep in */
+	assert_near(w.out.wheel_elastic_nm[0], -max, 1e-12);
+	/* and the bending section's spring: as at the limit, past it */
+	w.cfg.haptics.bending_stiffness_n_m_per_rad = 0.01;
+	wheel_at(&w, lim + 0.05, 0);
+	assert_near(w.out.wheel_elastic_nm[0],
+		    -0.01 * w.cfg.scope.limit_rad[0] * w.cfg.scope.gain[0] -
+			    k * 0.05, 1e-12);
+	world_free(&w);
+}
+
+/*
+ * A 90 deg bend in the up/down wire's plane, the wire tension many times
+ * the wheel's torque limit: past the limit on the side the tension pushes,
+ * where the stop's spring reaches it, the stop pushes back with the whole
+ * limit beyond the tension: tension and stop together push the wheel back
+ * with the limit (and the bending section's spring-back). The wall is off:
+ * the wheel's own parts only.
+ */
+static void test_wheel_stop_holds_tension(void **state)
+{
+	struct anatomy a;
+	struct world w;
+	double q[4] = { 0.8, 0, 0, 0 }, zero[4] = { 0 }, t, max, lim, k, back;
+
+	(void)state;
+	smooth_anatomy(&a);
+	add_bend(&a, ANATOMY_DESCENDING, 90, 0.06, 0);
+	world_init(&w, &a);
+	w.cfg.haptics.wall_stiffness_n_per_m = 0;
+	w.cfg.haptics.wall_damping_n_s_per_m = 0;
+	w.cfg.haptics.wire_tension_n_m_per_m = 200;
+	q[1] = roll_into_bend(&w, 0.53 + 0.075);
+	step(&w, q, zero);
+	t = w.out.wheel_tension_nm[0];
+	max = w.cfg.limits.max[ENDOSIM_AXIS_WHEEL_UD];
+	lim = ud_limit(&w.cfg);
+	k = w.cfg.haptics.stop_stiffness_n_m_per_rad;
+	back = w.cfg.haptics.bending_stiffness_n_m_per_rad *
+	       w.cfg.scope.limit_rad[0] * w.cfg.scope.gain[0];
+	assert_true(fabs(t) > 10 * max);
+	q[2] = copysign(lim + 2 * (fabs(t) + max) / k, t);
+	step(&w, q, zero);
+	assert_near(w.out.wheel_tension_nm[0], t, 1e-9 * fabs(t));
+	assert_near(w.cmd[ENDOSIM_AXIS_WHEEL_UD], -copysign(max + back, t),
+		    1e-9);
+	world_free(&w);
+}
+
+/*
+ * The up/down wheel as a plant (the simulated rig's light wheel: 2e-5 kg
+ * m^2, 1e-4 N m s/rad, 5e-4 N m dry), released at rest past its limit, the
+ * torque clamped to the wheel's limit as the safety filter does. With the
+ * wall off and the wire tension at K_T (N m/m; the bend of
+ * test_wheel_stop_holds_tension): the wheel ends at rest where the parts
+ * balance (the stop yields (tension - spring-back) / k when the tension is
+ * the stronger).
+ */
+static void release_wheel(double k_t, double x0_beyond, double *end_beyond,
+			  double *deepest_beyond)
+{
+	const struct plant_params pp = {
+		.inertia = 2e-5, .viscous = 1e-4, .coulomb = 5e-4,
+		.min = -10, .max = 10,
+	};
+	struct anatomy a;
+	struct world w;
+	struct plant pl;
+	double q[4] = { 0.8, 0, 0, 0 }, qd[4] = { 0 }, lim, max, deepest = 0;
+
+	smooth_anatomy(&a);
+	add_bend(&a, ANATOMY_DESCENDING, 90, 0.06, 0);
+	world_init(&w, &a);
+	config_defaults(&w.cfg); /* the wheels' light virtual damping too */
+	w.cfg.haptics.wall_stiffness_n_per_m = 0;
+	w.cfg.haptics.wall_damping_n_s_per_m = 0;
+	w.cfg.haptics.wire_tension_n_m_per_m = k_t;
+	lim = ud_limit(&w.cfg);
+	max = w.cfg.limits.max[ENDOSIM_AXIS_WHEEL_UD];
+	q[1] = roll_into_bend(&w, 0.53 + 0.075);
+	plant_init(&pl, &pp, lim + x0_beyond);
+	for (int i = 0; i < 8000; i++) {
+		q[2] = pl.x;
+		qd[2] = pl.v;
+		step(&w, q, qd);
+		double f = fmin(fmax(w.cmd[ENDOSIM_AXIS_WHEEL_UD], -max), max);
+
+		w.applied[ENDOSIM_AXIS_WHEEL_UD] = f;
+		plant_step(&pl, f, DT);
+		deepest = fmax(deepest, fabs(pl.x) - lim);
+	}
+	assert_true(fabs(pl.v) < 1e-3);
+	*end_beyond = fabs(pl.x) - lim;
+	*deepest_beyond = deepest;
+	world_free(&w);
+}
+
+static void test_wheel_released_past_limit_settles(void **state)
+{
+	struct anatomy a;
+	struct world w;
+	double q[4] = { 0.8, 0, 0, 0 }, zero[4] = { 0 }, beyond, deepest, t;
+	double back, k, max, e0;
+
+	(void)state;
+	/* the tension of the bend per N m/m of k_t, the spring-back, k */
+	smooth_anatomy(&a);
+	add_bend(&a, ANATOMY_DESCENDING, 90, 0.06, 0);
+	world_init(&w, &a);
+	w.cfg.haptics.wire_tension_n_m_per_m = 1;
+	q[1] = roll_into_bend(&w, 0.53 + 0.075);
+	step(&w, q, zero);
+	t = fabs(w.out.wheel_tension_nm[0]);
+	back = w.cfg.haptics.bending_stiffness_n_m_per_rad *
+	       w.cfg.scope.limit_rad[0] * w.cfg.scope.gain[0];
+	k = w.cfg.haptics.stop_stiffness_n_m_per_rad;
+	max = w.cfg.limits.max[ENDOSIM_AXIS_WHEEL_UD];
+	/* the energy at the release: the bending section's spring at the
+	 * limit and the stop's */
+	e0 = back * ud_limit(&w.cfg) / 2 + k * 0.1 * 0.1 / 2;
+	world_free(&w);
+	/* no tension: back inside the limit. Flung across by the spring, it
+	 * meets the other stop, which takes the energy with at least
+	 * max (D - max / 2k) at depth D: D <= e0 / max + max / 2k */
+	release_wheel(0, 0.1, &beyond, &deepest);
+	printf("released 0.1 rad past the limit, no tension: ends %.4f rad "
+	       "inside, at most %.4f rad in a stop (bound %.4f)\n", -beyond,
+	       deepest, e0 / max + max / (2 * k));
+	assert_true(beyond < 0);
+	assert_true(deepest <= e0 / max + max / (2 * k));
+	/* a tension twice the spring-back, pushing the wheel the way it
+	 * went: at rest in the stop, (tension - spring-back) / k deep */
+	release_wheel(2 * back / t, 0.1, &beyond, &deepest);
+	printf("tension twice the spring-back: ends %.4f rad in the stop "
+	       "(k: %.4f)\n", beyond, back / k);
+	assert_near(beyond, back / k, 0.02 * back / k + 1e-3);
+}
+
+/* ------------------------------------------------------------ a lagging wheel */
+
+#define LAG_CYCLES 4 /* the drive applies a command this many periods late */
+
+/* The world's up/down wheel on a Modbus drive lagging LAG_CYCLES periods
+ * (so configured), the wheels' default light damping, no wire tension. */
+static void lagging_wheel_world(struct world *w, const struct anatomy *a)
+{
+	world_init(w, a);
+	w->cfg.rig.backend = CONFIG_BACKEND_DRIVES;
+	w->cfg.axis[ENDOSIM_AXIS_WHEEL_UD].backend = CONFIG_DRIVE_MODBUS;
+	w->cfg.haptics.damping[ENDOSIM_AXIS_WHEEL_UD] = 2e-4;
+	w->cfg.haptics.wheel_delay_s = LAG_CYCLES * DT;
+	w->cfg.haptics.wire_tension_n_m_per_m = 0;
+}
+
+/* The up/down wheel's angle (rad, > 0) at which the tip, bending up in the
+ * straight 5 cm colon at 0.8 m, first touches the wall. */
+static double wall_angle(struct world *w)
+{
+	for (double x = 0; x < 1.5; x += 1e-3) {
+		wheel_at(w, x, 0);
+		if (w->out.contact) {
+			return x;
+		}
+	}
+	fail_msg("the tip never met the wall");
+	return 0;
+}
+
+/* The wall's stiffness on the up/down wheel D rad past WALL, N m/rad (by
+ * a central difference of its contact torque at rest). */
+static double wall_stiffness_at_wheel(struct world *w, double wall, double d)
+{
+	const double h = 1e-4;
+	double lo, hi;
+
+	wheel_at(w, wall + d - h, 0);
+	lo = w->out.wheel_contact_nm[0];
+	wheel_at(w, wall + d + h, 0);
+	hi = w->out.wheel_contact_nm[0];
+	return -(hi - lo) / (2 * h);
+}
+
+/*
+ * The stability condition of haptics.h against its derivation: behind the
+ * lag, the wall on the wheel is no stiffer than the wheel's damping over
+ * the lag (the period's hold and the delay) allows, less the bending
+ * section's spring; on the simulated rig (no lag) the wall is as it was,
+ * many times stiffer.
+ */
+static void test_wheel_wall_stiffness_within_lag(void **state)
+{
+	struct anatomy a;
+	struct world w;
+	double wall, k_lag, k_sim, most, g;
+
+	(void)state;
+	smooth_anatomy(&a);
+	lagging_wheel_world(&w, &a);
+	wall = wall_angle(&w);
+	g = w.cfg.scope.gain[0];
+	most = 2e-4 / (DT / 2 + LAG_CYCLES * DT) -
+	       w.cfg.haptics.bending_stiffness_n_m_per_rad * g * g;
+	k_lag = wall_stiffness_at_wheel(&w, wall, 0.02);
+	w.cfg.rig.backend = CONFIG_BACKEND_SIM;
+	k_sim = wall_stiffness_at_wheel(&w, wall, 0.02);
+	printf("wall at the up/down wheel (%.3f rad): %.3f N m/rad on the "
+	       "simulated rig, %.4f behind %d ms (at most %.4f)\n", wall,
+	       k_sim, k_lag, LAG_CYCLES, most);
+	assert_true(most > 0);
+	assert_true(k_lag > 0.5 * most && k_lag <= 1.05 * most);
+	assert_true(k_sim > 10 * most);
+	world_free(&w);
+}
+
+/*
+ * The up/down wheel as a light, nearly frictionless plant (2e-5 kg m^2,
+ * 1e-4 N m s/rad) whose drive applies each command LAG_CYCLES periods late
+ * (clamped to its torque limit), a thumb pushing it into the wall with
+ * 0.02 N m, released 0.02 rad deeper than it would rest. Returns the
+ * largest swing (rad) about the wheel's end position over the first and
+ * the last 0.5 s of 4 s; the largest speed in LAST_SPEED.
+ */
+static void lagging_wheel_swings(struct world *w, double wall, double *first,
+				 double *last, double *last_speed)
+{
+	const struct plant_params pp = {
+		.inertia = 2e-5, .viscous = 1e-4, .min = -10, .max = 10,
+	};
+	double q[4] = { 0.8, 0, 0, 0 }, qd[4] = { 0 };
+	double lag[LAG_CYCLES] = { 0 }, xs[4000];
+	double max = w->cfg.limits.max[ENDOSIM_AXIS_WHEEL_UD], end;
+	struct plant pl;
+	int n = 4000;
+
+	plant_init(&pl, &pp, wall + 0.06);
+	*first = *last = *last_speed = 0;
+	for (int i = 0; i < n; i++) {
+		q[2] = pl.x;
+		qd[2] = pl.v;
+		step(w, q, qd);
+		w->applied[ENDOSIM_AXIS_WHEEL_UD] = lag[LAG_CYCLES - 1];
+		plant_step(&pl, lag[0] + 0.02, DT);
+		memmove(lag, lag + 1, sizeof(lag) - sizeof(lag[0]));
+		lag[LAG_CYCLES - 1] =
+			fmin(fmax(w->cmd[ENDOSIM_AXIS_WHEEL_UD], -max), max);
+		xs[i] = pl.x;
+		if (i >= n - 500) {
+			*last_speed = fmax(*last_speed, fabs(pl.v));
+		}
+	}
+	end = xs[n - 1];
+	for (int i = 0; i < 500; i++) {
+		*first = fmax(*first, fabs(xs[i] - end));
+		*last = fmax(*last, fabs(xs[n - 500 + i] - end));
+	}
+}
+
+/*
+ * The unlimited wall on this wheel behind 4 ms: a discrete delayed
+ * spring-damper with K ~ 0.9 N m/rad against 2e-5 kg m^2 lies outside the
+ * stable region (haptics.h): the swing grows to the torque limit. Behind
+ * the limit it decays to rest. (Unlimited here: the same wall on the
+ * simulated rig's backend, which the limit leaves alone.)
+ */
+static void test_lagging_wheel_on_wall_settles(void **state)
+{
+	struct anatomy a;
+	struct world w;
+	double wall, f0, f1, v1, u0, u1, uv;
+
+	(void)state;
+	smooth_anatomy(&a);
+	lagging_wheel_world(&w, &a);
+	wall = wall_angle(&w);
+	haptics_reset(w.h, w.colon);
+	lagging_wheel_swings(&w, wall, &f0, &f1, &v1);
+	world_free(&w);
+	lagging_wheel_world(&w, &a);
+	w.cfg.rig.backend = CONFIG_BACKEND_SIM;
+	haptics_reset(w.h, w.colon);
+	lagging_wheel_swings(&w, wall, &u0, &u1, &uv);
+	world_free(&w);
+	printf("wheel on the wall behind %d ms: limited, swing %.4f -> %.6f "
+	       "rad, end speed %.5f rad/s; unlimited, swing %.4f -> %.4f rad, "
+	       "end speed %.2f rad/s\n", LAG_CYCLES, f0, f1, v1, u0, u1, uv);
+	assert_true(f1 < f0 / 100);
+	assert_true(v1 < 1e-3);
+	assert_true(u1 > u0);
+	assert_true(uv > 1);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_friction_straight_is_zero),
 		cmocka_unit_test(test_friction_arc),
+		cmocka_unit_test(test_friction_bent_tip),
 		cmocka_unit_test(test_tension_planar_bend),
 		cmocka_unit_test(test_tension_s_curve_cancels),
 		cmocka_unit_test(test_contact_torque_is_projection),
 		cmocka_unit_test(test_head_on_is_k_delta),
 		cmocka_unit_test(test_loop_grows_and_returns),
+		cmocka_unit_test(test_loop_balance_at_rest),
 		cmocka_unit_test(test_press_and_hold_is_passive),
 		cmocka_unit_test(test_passivity_observer_bounds_active_wall),
+		cmocka_unit_test(test_wheel_stop_torque),
+		cmocka_unit_test(test_wheel_stop_holds_tension),
+		cmocka_unit_test(test_wheel_released_past_limit_settles),
+		cmocka_unit_test(test_wheel_wall_stiffness_within_lag),
+		cmocka_unit_test(test_lagging_wheel_on_wall_settles),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -290,21 +290,24 @@ static void test_motion(void **state)
 }
 
 /*
- * The budget: N periods skipped within the window are allowed, N + 1 are
- * a fault, present until the window has moved past them.
+ * The budget, where a miss is a fault: N periods skipped within the window
+ * are allowed, N + 1 are a fault, present until the window has moved past
+ * them.
  */
 static void test_overrun_budget(void **state)
 {
-	int budget = cfg.loop.overrun_budget;
-	uint64_t window = (uint64_t)(cfg.loop.overrun_window_s * 1e9);
+	struct config c = cfg;
+	int budget = c.loop.overrun_budget;
+	uint64_t window = (uint64_t)(c.loop.overrun_window_s * 1e9);
 	uint64_t t = 10 * S;
 	struct safety s;
 
 	(void)state;
+	c.loop.overrun_fault = CONFIG_OVERRUN_FAULT;
 	safety_init(&s);
 	/* the budget, one period at a time, well inside the window */
 	for (int i = 0; i < budget; i++) {
-		safety_check_overruns(&s, &cfg, 1, t + (uint64_t)i * MS);
+		safety_check_overruns(&s, &c, 1, t + (uint64_t)i * MS);
 	}
 	assert_int_equal(s.faults, 0);
 	assert_int_equal(s.overrun_window, budget);
@@ -312,14 +315,14 @@ static void test_overrun_budget(void **state)
 	safety_init(&s);
 	for (int i = 0; i < 4 * budget; i++) {
 		t += window / (uint64_t)budget + MS;
-		safety_check_overruns(&s, &cfg, 1, t);
+		safety_check_overruns(&s, &c, 1, t);
 	}
 	assert_int_equal(s.faults, 0);
 	/* one period past the budget */
 	safety_init(&s);
 	for (int i = 0; i <= budget; i++) {
 		assert_int_equal(s.faults, 0);
-		safety_check_overruns(&s, &cfg, 1, t + (uint64_t)i * MS);
+		safety_check_overruns(&s, &c, 1, t + (uint64_t)i * MS);
 	}
 	assert_int_equal(s.faults, ENDOSIM_FAULT_OVERRUN);
 	assert_float_equal(safety_first(&s)->value, budget + 1, 0);
@@ -327,15 +330,81 @@ static void test_overrun_budget(void **state)
 	/* a single long stall; present until the window passes */
 	safety_init(&s);
 	safety_begin_cycle(&s);
-	safety_check_overruns(&s, &cfg, 2000, t);
+	safety_check_overruns(&s, &c, 2000, t);
 	assert_int_equal(s.faults, ENDOSIM_FAULT_OVERRUN);
 	safety_begin_cycle(&s);
-	safety_check_overruns(&s, &cfg, 0, t + window);
+	safety_check_overruns(&s, &c, 0, t + window);
 	safety_begin_cycle(&s);
 	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), -EBUSY);
-	safety_check_overruns(&s, &cfg, 0, t + window + MS);
+	safety_check_overruns(&s, &c, 0, t + window + MS);
 	safety_begin_cycle(&s);
 	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
+}
+
+/* One stall of 2 budgets: is it a fault under C? */
+static bool stall_faults(const struct config *c, struct safety *s)
+{
+	uint64_t t = 10 * S;
+	int missed;
+
+	safety_init(s);
+	assert_int_equal(safety_command(s, SAFETY_ENABLE, t), 0);
+	safety_begin_cycle(s);
+	missed = safety_check_overruns(s, c, 2 * c->loop.overrun_budget, t);
+	safety_begin_cycle(s);
+	/* still over the budget: the same miss, no new warning */
+	assert_false(safety_check_overruns(s, c, 1, t + MS));
+	assert_int_equal(s->overrun_misses, 1);
+	assert_int_equal(missed, !(s->faults & ENDOSIM_FAULT_OVERRUN));
+	return s->state == ENDOSIM_STATE_FAULT;
+}
+
+/*
+ * [loop] overrun_fault: auto warns where every axis is simulated and
+ * faults where one is a real drive; yes faults on the simulated rig, no
+ * warns beside a real drive. A warning keeps torque on, is published as
+ * present but not latched, is counted once per miss and lets a reset by.
+ */
+static void test_overrun_fault_setting(void **state)
+{
+	struct config c = cfg;
+	struct endosim_safety_state pub;
+	struct safety s;
+	uint64_t t = 10 * S;
+
+	(void)state;
+	assert_int_equal(c.loop.overrun_fault, CONFIG_OVERRUN_AUTO);
+	assert_false(stall_faults(&c, &s));
+	assert_true(safety_torque_on(&s));
+	assert_int_equal(s.faults, 0);
+	safety_publish(&s, t, &pub);
+	assert_int_equal(pub.active, ENDOSIM_FAULT_OVERRUN);
+	assert_int_equal(safety_command(&s, SAFETY_RESET, t), 0);
+	/* the window passes, then a second miss: counted again */
+	assert_false(safety_check_overruns(&s, &c, 0, t + 2 * S));
+	safety_publish(&s, t + 2 * S, &pub);
+	assert_int_equal(pub.active, 0);
+	assert_true(safety_check_overruns(&s, &c, 2 * c.loop.overrun_budget,
+					  t + 3 * S));
+	assert_int_equal(s.overrun_misses, 2);
+	assert_int_equal(s.faults, 0);
+
+	c.loop.overrun_fault = CONFIG_OVERRUN_FAULT;
+	assert_true(stall_faults(&c, &s));
+	assert_int_equal(s.faults, ENDOSIM_FAULT_OVERRUN);
+	assert_false(safety_torque_on(&s));
+
+	c.loop.overrun_fault = CONFIG_OVERRUN_AUTO;
+	c.rig.backend = CONFIG_BACKEND_DRIVES;
+	assert_false(stall_faults(&c, &s)); /* [axis.*] backend = sim */
+	c.axis[ENDOSIM_AXIS_WHEEL_LR].backend = CONFIG_DRIVE_MODBUS;
+	assert_true(stall_faults(&c, &s));
+	assert_float_equal(safety_first(&s)->value, 2 * c.loop.overrun_budget,
+			   0);
+
+	c.loop.overrun_fault = CONFIG_OVERRUN_WARN;
+	assert_false(stall_faults(&c, &s));
+	assert_true(safety_torque_on(&s));
 }
 
 /* A NaN or infinity anywhere: its stage and axis are kept. */
@@ -479,6 +548,7 @@ int main(void)
 		cmocka_unit_test(test_saturation),
 		cmocka_unit_test(test_motion),
 		cmocka_unit_test(test_overrun_budget),
+		cmocka_unit_test(test_overrun_fault_setting),
 		cmocka_unit_test(test_finite),
 		cmocka_unit_test(test_inject),
 	};
