@@ -38,16 +38,18 @@ check "... and restarts the service when it fires" \
 export NOTIFY_SOCKET="$notify" WATCHDOG_USEC=200000
 check "simulated rig up, enabled (a missed budget a fault)" start_sim --set loop.overrun_fault=yes
 sleep 0.6
-mark stall
+# the marks come once the loop has taken the stall (the command's answer
+# is the loop's): a busy machine that delays the command moves no window
 check "the loop stalled for 1.5 s" ctl debug stall 1.5
+mark stall
 check "the daemon answers while its loop is stalled" ctl status
-sleep 2
+sleep 2.6
 mark after
-check "pinged before the stall ($(pings stall -0.6 0) pings)" \
-	[ "$(pings stall -0.6 0)" -ge 3 ]
-check "no ping while the loop is stalled" [ "$(pings stall 0.3 1.3)" = 0 ]
-check "pings again once the loop runs ($(pings stall 1.7 2.0))" \
-	[ "$(pings stall 1.7 2.0)" -ge 1 ]
+check "pinged before the stall ($(pings stall -0.6 -0.1) pings)" \
+	[ "$(pings stall -0.6 -0.1)" -ge 2 ]
+check "no ping while the loop is stalled" [ "$(pings stall 0.25 1.0)" = 0 ]
+check "pings again once the loop runs ($(pings stall 1.6 2.5))" \
+	[ "$(pings stall 1.6 2.5)" -ge 1 ]
 check "afterwards: FAULT, the overrun budget" fault_says "overrun-budget"
 check "afterwards: torque zero on every axis" \
 	status_true '[.axes[].limited] | all(. == 0)'
@@ -55,10 +57,10 @@ stop_daemon
 
 # a stall as long as systemd's patience: what systemd does, done by hand
 check "Modbus rig up, enabled" start_mb_rig
-mark stall2
 check "the loop stalled for 5 s" ctl debug stall 5
-sleep 1
-check "no ping for a second" [ "$(pings stall2 0.2 1.0)" = 0 ]
+mark stall2
+sleep 1.2
+check "no ping for a second" [ "$(pings stall2 0.25 1.2)" = 0 ]
 check "the wheel drives stopped meanwhile" wheels_off
 kill -ABRT "$DAEMON_PID"
 wait "$DAEMON_PID"
