@@ -57,9 +57,12 @@ limit_rad() {
 		'BEGIN { print (g > 0 ? l / g : 1e9) }'
 }
 
-# course_over_or_fault: the course has run 30 s, or a fault ended it
+# 30 s of the course; under the sanitizers (SANITIZED=1, a pass for memory
+# errors: the plain pass has checked the 30 s) the first 15
+if [ -n "${SANITIZED:-}" ]; then course_s=15; else course_s=30; fi
+# course_over_or_fault: the course has run its time, or a fault ended it
 course_over_or_fault() {
-	state_is FAULT || status_true '.scenario_time_s >= 30'
+	state_is FAULT || status_true ".scenario_time_s >= $course_s"
 }
 
 check "Modbus TCP emulator up (light free wheels)" start_modbus \
@@ -74,7 +77,7 @@ WAIT_S=120 wait_for course_over_or_fault
 kill -TERM "$watch_pid"
 wait "$watch_pid"
 
-check "no fault in 30 s of the course (no runaway, no saturation)" \
+check "no fault in $course_s s of the course (no runaway, no saturation)" \
 	test "$(status_field .state)/$(status_field .fault_bits)" = ENABLED/0
 # the hand heads for 0.40 m; the straight tip meets the sigmoid's wall on
 # the way (at ~0.26 m, the hand at its 40 N; the simulated wheels stop it
@@ -92,7 +95,7 @@ for w in ud lr; do
 	# the stop yields at most the wheel's whole torque limit over its
 	# stiffness (none without the stop's key)
 	give=$(awk -v m="$max" -v k="${k:-0}" 'BEGIN { print (k > 0 ? m / k : 0) }')
-	last=$(q "[.[] | select(.scenario_time_s >= 28)]
+	last=$(q "[.[] | select(.scenario_time_s >= $course_s - 2)]
 		| map(.axes.wheel_$w.position) | {x: (map(fabs) | max),
 		  s: (max - min)} | \"\(.x) \(.s)\"" | tr -d '"')
 	x=${last% *}
