@@ -16,10 +16,10 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include "../proto/client.h"
-#include "../proto/frame.h"
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "client.h"
+#include "frame.h"
+#include "names.h"
+#include "version.h"
 #include "cases.h"
 #include "faults.h"
 #include "inject.h"

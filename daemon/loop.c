@@ -12,7 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../proto/seqlock.h"
+#include "seqlock.h"
 #include "haptics.h"
 #include "inject.h"
 #include "log.h"

@@ -22,8 +22,8 @@
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "names.h"
+#include "version.h"
 #include "cases.h"
 #include "config.h"
 #include "control.h"

@@ -13,8 +13,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "names.h"
+#include "version.h"
 #include "faults.h"
 #include "log.h"
 #include "loop.h"

@@ -21,10 +21,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "../../daemon/config.h"
-#include "../../daemon/hand.h"
-#include "../../daemon/log.h"
-#include "../../daemon/rig.h"
+#include "config.h"
+#include "hand.h"
+#include "log.h"
+#include "rig.h"
 
 #define TICK_NS 1000000ull /* the force loop's default period */
 

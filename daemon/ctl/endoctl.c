@@ -21,10 +21,10 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../proto/client.h"
-#include "../proto/endosim_shm.h"
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "client.h"
+#include "endosim_shm.h"
+#include "names.h"
+#include "version.h"
 #include "inject.h"
 #include "json.h"
 #include "objio.h"

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../proto/seqlock.h"
+#include "seqlock.h"
 
 struct live {
 	double force[ENDOSIM_AXES];

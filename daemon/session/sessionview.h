@@ -12,7 +12,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "../proto/session_file.h"
+#include "session_file.h"
 #include "json.h"
 #include "metrics.h"
 

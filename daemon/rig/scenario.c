@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../proto/names.h"
+#include "names.h"
 
 struct step {
 	double t;     /* s */

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../proto/names.h"
+#include "names.h"
 #include "log.h"
 
 static const char *const backend_names[] = { "sim", "drives", NULL };

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../proto/names.h"
+#include "names.h"
 #include "drive.h"
 #include "log.h"
 

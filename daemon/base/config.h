@@ -19,7 +19,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "../proto/endosim_shm.h"
+#include "endosim_shm.h"
 #include "regmap.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../proto/names.h"
+#include "names.h"
 #include "canopen.h"
 #include "drive.h"
 #include "epos4_frame.h"

@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "../proto/session_file.h"
+#include "session_file.h"
 
 #define TAIL_BYTES 65536 /* an END frame is a few hundred bytes */
 #define HEADER_MAX 65536

@@ -9,8 +9,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "../proto/names.h"
-#include "../proto/seqlock.h"
+#include "names.h"
+#include "seqlock.h"
 #include "log.h"
 #include "rt.h"
 
