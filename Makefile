@@ -102,7 +102,7 @@ endef
 #            centreline, mesh, OBJ, the colon, contact, the scope's
 #            kinematics, the god-object, the haptics, the axes' plant, the
 #            scene served, the cases
-#   base     configuration, logging, clock, real time, histograms, rings,
+#   base     configuration, logging, the clock, real time, histograms, rings,
 #            vectors, register maps, JSON (daemon/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
 #            shared-memory reader, session files, names

@@ -24,6 +24,7 @@
 #include "faults.h"
 #include "inject.h"
 #include "log.h"
+#include "mono.h"
 #include "scene.h"
 #include "sessiondir.h"
 #include "sessionpb.h"
@@ -346,7 +347,7 @@ static void accept_client(struct control *c, int lfd, bool rw)
 	cl->may_command = rw && peer_may_command(c, fd, &cred);
 	cl->uid = cred.uid;
 	cl->pid = cred.pid;
-	cl->last_rx_ns = loop_now_ns();
+	cl->last_rx_ns = mono_ns();
 	cl->partial_ns = 0;
 	if (epoll_add(c->ep, fd, TAG_CLIENT + (uint64_t)(cl - c->clients),
 		      EPOLLIN)) {
@@ -492,7 +493,7 @@ static void build_status(struct control *c, Endosim__Reply *rep)
 	s->overruns = st.overruns;
 	s->rig = (char *)rig_name(c->deps.rig);
 	s->version = ENDOSIM_VERSION;
-	s->uptime_s = (double)(loop_now_ns() - c->deps.start_ns) / 1e9;
+	s->uptime_s = (double)(mono_ns() - c->deps.start_ns) / 1e9;
 	s->scenario_time_s = st.scenario_time_s;
 	s->scenario_done = st.scenario_done;
 	s->case_name = (char *)colon_name(c->colon);
@@ -759,7 +760,7 @@ static void on_hand_input(struct control *c, struct client *cl,
 			return;
 		}
 	}
-	hand_set_live(c->deps.hand, hi->force, hold, loop_now_ns());
+	hand_set_live(c->deps.hand, hi->force, hold, mono_ns());
 }
 
 static void on_subscribe(struct control *c, struct client *cl,
@@ -773,7 +774,7 @@ static void on_subscribe(struct control *c, struct client *cl,
 		return;
 	}
 	cl->push_period_ns = hz > 0 ? (uint64_t)(1e9 / hz) : 0;
-	cl->next_push_ns = loop_now_ns();
+	cl->next_push_ns = mono_ns();
 	cl->push_seq = req->seq;
 	build_status(c, rep);
 }
@@ -1004,7 +1005,7 @@ static Endosim__SessionInfo *fill_session(struct control *c,
 	s->start_ns = rb->rinfo.start_ns;
 	s->end_ns = rb->rinfo.end_ns;
 	s->duration_s = (double)((rb->rinfo.end_ns ? rb->rinfo.end_ns
-						   : loop_now_ns()) -
+						   : mono_ns()) -
 				 rb->rinfo.start_ns) / 1e9;
 	s->records = rb->rinfo.records;
 	s->drops = rb->rinfo.drops;
@@ -1348,7 +1349,7 @@ static void client_read(struct control *c, struct client *cl)
 		return;
 	}
 	frame_rx_commit(&cl->rx, (size_t)n);
-	cl->last_rx_ns = loop_now_ns();
+	cl->last_rx_ns = mono_ns();
 	while ((r = frame_rx_next(&cl->rx, &msg, &len)) == 1) {
 		if (dispatch(c, cl, msg, len)) {
 			return; /* dropped */
@@ -1474,7 +1475,7 @@ static void *control_main(void *arg)
 		for (int i = 0; i < n; i++) {
 			handle_event(c, &evs[i]);
 		}
-		uint64_t now = loop_now_ns();
+		uint64_t now = mono_ns();
 
 		update_loop_rate(c, now);
 		sweep_clients(c, now);

@@ -31,6 +31,7 @@
 #include "hand.h"
 #include "log.h"
 #include "loop.h"
+#include "mono.h"
 #include "publish.h"
 #include "recorder.h"
 #include "rig.h"
@@ -461,7 +462,7 @@ static int open_fds(int *sig_fd, int *tick_fd)
 static void watchdog(struct daemon *d, uint64_t usec, uint64_t *last_beat,
 		     uint64_t *last_ping)
 {
-	uint64_t now = loop_now_ns();
+	uint64_t now = mono_ns();
 	uint64_t beat = loop_heartbeat(d->loop);
 
 	if (!usec || now - *last_ping < usec * 1000 / 2) {
@@ -602,7 +603,7 @@ int main(int argc, char **argv)
 		 d.cfg.loop.overrun_budget, d.cfg.loop.overrun_window_s,
 		 config_overrun_faults(&d.cfg) ? "fault" : "warning");
 	block_signals();
-	d.start_ns = loop_now_ns();
+	d.start_ns = mono_ns();
 	r = start(&d, &opt);
 	if (!r) {
 		r = run(&d);

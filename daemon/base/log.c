@@ -5,7 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+#include "mono.h"
 
 _Atomic int log_max_level = LOG_INFO;
 static const char *log_ident = "endosim";
@@ -62,11 +63,8 @@ void log_print(int level, const char *fmt, ...)
 
 int log_ratelimit_pass(struct log_ratelimit *rl)
 {
-	struct timespec ts;
-	int64_t now;
+	int64_t now = (int64_t)mono_ns();
 
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	now = (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 	if (now - rl->window_start_ns >= rl->interval_ns) {
 		if (rl->suppressed) {
 			log_print(LOG_NOTICE, "%u similar messages suppressed",

@@ -12,6 +12,7 @@
 #include "names.h"
 #include "seqlock.h"
 #include "log.h"
+#include "mono.h"
 #include "rt.h"
 
 #define DISCONNECTED_TICK_NS 20000000ull /* publish while a device is away */
@@ -260,7 +261,7 @@ static void failed(struct bus *b, int err)
 		b->d->ops->close(b->d);
 		b->connected = false;
 		b->sample_ok = false;
-		b->next_open_ns = drive_now_ns() + (uint64_t)(BUS_REOPEN_S * 1e9);
+		b->next_open_ns = mono_ns() + (uint64_t)(BUS_REOPEN_S * 1e9);
 	} else {
 		latch(b, i, LATCH_BUS, (uint32_t)-err, b->d->why);
 	}
@@ -280,7 +281,7 @@ static void step_up(struct bus *b, int i)
 
 static void clear_faults(struct bus *b, int i)
 {
-	uint64_t now = drive_now_ns();
+	uint64_t now = mono_ns();
 
 	if (now < b->next_clear_ns) {
 		return;
@@ -337,7 +338,7 @@ static void check_drives(struct bus *b)
  */
 static void check_command_age(struct bus *b)
 {
-	uint64_t now = drive_now_ns();
+	uint64_t now = mono_ns();
 	uint64_t max_age = (uint64_t)(b->p.feedback_max_age_s * 1e9);
 	char why[160];
 
@@ -357,7 +358,7 @@ static void exchange(struct bus *b)
 	struct drive_sample sample[DRIVE_MAX];
 	double setpoint[DRIVE_MAX];
 	bool run = may_run(b);
-	uint64_t t0 = drive_now_ns();
+	uint64_t t0 = mono_ns();
 	int r;
 
 	for (int i = 0; i < b->d->n; i++) {
@@ -365,7 +366,7 @@ static void exchange(struct bus *b)
 						 : 0.0;
 	}
 	r = b->d->ops->exchange(b->d, setpoint, sample);
-	b->stamp_ns = drive_now_ns();
+	b->stamp_ns = mono_ns();
 	histo_add(&b->exchange_h, b->stamp_ns - t0);
 	atomic_fetch_add_explicit(&b->exchanges, 1, memory_order_relaxed);
 	b->sample_ok = r == 0;
@@ -395,7 +396,7 @@ static void settle(struct bus *b)
 
 static void reopen(struct bus *b)
 {
-	uint64_t now = drive_now_ns();
+	uint64_t now = mono_ns();
 
 	b->stamp_ns = now;
 	if (now < b->next_open_ns) {
@@ -478,7 +479,7 @@ static uint64_t pace(struct bus *b, uint64_t next)
 	uint64_t period = b->connected
 				  ? (uint64_t)(1e9 / b->p.max_rate_hz)
 				  : DISCONNECTED_TICK_NS;
-	uint64_t now = drive_now_ns();
+	uint64_t now = mono_ns();
 	struct timespec ts;
 
 	next += period;
@@ -496,7 +497,7 @@ static uint64_t pace(struct bus *b, uint64_t next)
 static void *bus_main(void *arg)
 {
 	struct bus *b = arg;
-	uint64_t next = drive_now_ns();
+	uint64_t next = mono_ns();
 
 	while (!atomic_load_explicit(&b->stop, memory_order_acquire)) {
 		take_command(b);
@@ -540,7 +541,7 @@ int bus_start(struct bus *b)
 	uint64_t deadline;
 	int r;
 
-	b->start_ns = drive_now_ns();
+	b->start_ns = mono_ns();
 	r = rt_thread_start(&b->thread, &p, bus_main, b, &b->fifo);
 	if (r) {
 		log_err("%s: cannot start the bus thread: %s", b->d->name,
@@ -548,9 +549,9 @@ int bus_start(struct bus *b)
 		return r;
 	}
 	b->running = true;
-	deadline = drive_now_ns() + START_WAIT_NS;
+	deadline = mono_ns() + START_WAIT_NS;
 	while (!published(b)) {
-		if (drive_now_ns() > deadline) {
+		if (mono_ns() > deadline) {
 			log_err("%s: no feedback within %.0f s of start",
 				b->d->name, START_WAIT_NS / 1e9);
 			return -ETIMEDOUT;
@@ -670,7 +671,7 @@ void bus_describe(struct bus *b, int axis, uint32_t fault_bit,
 
 void bus_get_stats(struct bus *b, struct rig_bus_stats *st)
 {
-	uint64_t now = drive_now_ns();
+	uint64_t now = mono_ns();
 
 	memset(st, 0, sizeof(*st));
 	st->name = b->d->name;

@@ -4,7 +4,8 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <time.h>
+
+#include "mono.h"
 
 void drive_units_init(struct drive_units *u, const struct config *cfg,
 		      int axis)
@@ -32,17 +33,9 @@ int drive_fail(struct drive *d, int i, int err, const char *fmt, ...)
 	return err;
 }
 
-uint64_t drive_now_ns(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
-
 void drive_count_txn(struct drive *d, uint64_t start_ns)
 {
 	if (d->txn) {
-		histo_add(d->txn, drive_now_ns() - start_ns);
+		histo_add(d->txn, mono_ns() - start_ns);
 	}
 }

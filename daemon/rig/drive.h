@@ -127,7 +127,4 @@ int drive_fail(struct drive *d, int i, int err, const char *fmt, ...)
 /* Adds one transaction that began at START_NS to D's histogram, if any. */
 void drive_count_txn(struct drive *d, uint64_t start_ns);
 
-/* CLOCK_MONOTONIC in nanoseconds. */
-uint64_t drive_now_ns(void);
-
 #endif

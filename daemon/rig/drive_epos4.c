@@ -22,6 +22,7 @@
 #include "drive.h"
 #include "epos4_frame.h"
 #include "log.h"
+#include "mono.h"
 
 #define UP_TIMEOUT_NS 1000000000ull /* to reach operation enabled */
 #define IN_BUF 512
@@ -90,7 +91,7 @@ static int transact(struct epos4 *e, const struct epos4_frame *req,
 {
 	uint8_t out[EPOS4_FRAME_MAX_BYTES], in[IN_BUF];
 	size_t n = epos4_frame_encode(req, out, sizeof(out));
-	uint64_t t0 = drive_now_ns();
+	uint64_t t0 = mono_ns();
 	int done, r;
 
 	epos4_decoder_reset(&e->dec);
@@ -424,7 +425,7 @@ static int epos4_bring_up(struct drive *d, int i)
 	if (e->up_step == 0) {
 		r = set_mode(e);
 		e->up_step = r ? 0 : 1;
-		e->up_deadline_ns = drive_now_ns() + UP_TIMEOUT_NS;
+		e->up_deadline_ns = mono_ns() + UP_TIMEOUT_NS;
 		return r ? r : 1;
 	}
 	r = canopen_step_to_enabled(e->state, &cw);
@@ -433,7 +434,7 @@ static int epos4_bring_up(struct drive *d, int i)
 		e->up_step = 0;
 		return 0;
 	}
-	if (drive_now_ns() > e->up_deadline_ns) {
+	if (mono_ns() > e->up_deadline_ns) {
 		e->up_step = 0;
 		return drive_fail(d, 0, -ETIMEDOUT, "not in operation enabled "
 				  "within %.0f s: %s (statusword 0x%04x)",

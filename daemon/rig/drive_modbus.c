@@ -23,6 +23,7 @@
 #include "names.h"
 #include "drive.h"
 #include "log.h"
+#include "mono.h"
 
 #define READ_MAX 125 /* registers or bits one read may take */
 #define PLAN_MAX 3 /* position, velocity, fault: at most one read each */
@@ -136,7 +137,7 @@ static int write_signal(struct mb *m, int i, int s, double value)
 {
 	const struct regmap_reg *r = &m->dr[i].cfg->reg[s];
 	uint16_t w[REGMAP_MAX_WORDS];
-	uint64_t t0 = drive_now_ns();
+	uint64_t t0 = mono_ns();
 	int rc;
 
 	if (r->table == REGMAP_NONE) {
@@ -162,7 +163,7 @@ static int write_signal(struct mb *m, int i, int s, double value)
 static int read_span(struct mb *m, int i, struct mb_read *rd)
 {
 	uint8_t bits[READ_MAX];
-	uint64_t t0 = drive_now_ns();
+	uint64_t t0 = mono_ns();
 	int rc;
 
 	switch (rd->table) {
@@ -200,7 +201,7 @@ static int write_read(struct mb *m, int i, double torque)
 	const struct regmap_reg *t = &dr->cfg->reg[REGMAP_TORQUE];
 	struct mb_read *rd = &dr->read[0];
 	uint16_t w[REGMAP_MAX_WORDS];
-	uint64_t t0 = drive_now_ns();
+	uint64_t t0 = mono_ns();
 
 	regmap_encode(t, torque, w);
 	if (modbus_write_and_read_registers(m->ctx, t->address,
