@@ -35,6 +35,8 @@
 #include "publish.h"
 #include "recorder.h"
 #include "rig.h"
+#include "rig_drives.h"
+#include "rig_sim.h"
 #include "scenario.h"
 
 #define TICK_MS 50
@@ -327,6 +329,18 @@ static bool any_simulated(const struct config *cfg)
 	return false;
 }
 
+/* The rig backend [rig] backend names: the factory of rig.h's backends. */
+static struct rig *create_rig(const struct config *cfg, struct hand *hand)
+{
+	switch (cfg->rig.backend) {
+	case CONFIG_BACKEND_SIM:
+		return rig_sim_create(cfg, hand);
+	case CONFIG_BACKEND_DRIVES:
+		return rig_drives_create(cfg, hand);
+	}
+	return NULL;
+}
+
 /* The configured case, built before anything else starts. */
 static struct colon *load_colon(const struct config *cfg)
 {
@@ -376,7 +390,7 @@ static int start(struct daemon *d, const struct options *opt)
 		colon_destroy(colon);
 		return EX_OSERR;
 	}
-	d->rig = rig_create(&d->cfg, d->hand);
+	d->rig = create_rig(&d->cfg, d->hand);
 	if (!d->rig) {
 		colon_destroy(colon);
 		return EX_SOFTWARE;

@@ -78,22 +78,7 @@ struct rig {
 	const struct rig_ops *ops;
 };
 
-/*
- * Creates the backend the configuration names. The simulated rig takes its
- * hand from HAND (not owned). NULL on failure, logged.
- */
-struct rig *rig_create(const struct config *cfg, struct hand *hand);
-
-/* The simulated rig (rig_sim.c). */
-struct rig *rig_sim_create(const struct config *cfg, struct hand *hand);
-
-/*
- * The rig of drives (rig_drives.c): each axis on the backend its
- * [axis.NAME] section names, simulated axes next to real ones; one bus
- * thread per physical bus (bus.h), started by start() at a SCHED_FIFO
- * priority below the force loop's.
- */
-struct rig *rig_drives_create(const struct config *cfg, struct hand *hand);
+/* The backends, each created by its own header: rig_sim.h, rig_drives.h. */
 
 static inline int rig_start(struct rig *rig)
 {

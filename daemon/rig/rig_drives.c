@@ -12,7 +12,8 @@
 
 #include "bus.h"
 #include "log.h"
-#include "rig.h"
+#include "rig_drives.h"
+#include "rig_sim.h"
 
 #define BUS_PRIORITY_BELOW_LOOP 10
 

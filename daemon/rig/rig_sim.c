@@ -10,7 +10,7 @@
 
 #include "log.h"
 #include "plant.h"
-#include "rig.h"
+#include "rig_sim.h"
 
 struct rig_sim {
 	struct rig rig;
