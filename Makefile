@@ -97,11 +97,12 @@ endef
 #            and hand, scenarios, the rig of drives, one bus thread per bus,
 #            the drive backends (EPOS4 on USB, Modbus) and their protocols
 #   session  training sessions (daemon/session/): metrics, the session
-#            directory, what a session file says (views, CSV, the report)
+#            directory, what a session file says (views, CSV, the report);
+#            the cases: the model as the configuration sets it
 #   model    the colon and the endoscope (daemon/model/): case files,
 #            centreline, mesh, OBJ, the colon, contact, the scope's
 #            kinematics, the god-object, the haptics, the axes' plant, the
-#            scene served, the cases
+#            scene served; it knows nothing of the configuration
 #   base     configuration, logging, the clock, real time, histograms, rings,
 #            vectors, register maps, JSON (daemon/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
@@ -134,7 +135,7 @@ endoctl_SRCS = $(wildcard daemon/ctl/*.c)
 endoctl_WINGS = service session model base proto
 endoctl_LDLIBS = $(CLIENT_LDLIBS)
 endoview_SRCS = viewer/endoview.c
-endoview_WINGS = viewer model base proto
+endoview_WINGS = viewer session model base proto
 endoview_LDLIBS = $(VIEWER_LDLIBS)
 VIEWER_PKGS = glfw3 epoxy cglm stb inih
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)

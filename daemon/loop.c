@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "seqlock.h"
+#include "cases.h"
 #include "haptics.h"
 #include "inject.h"
 #include "log.h"
@@ -272,22 +273,30 @@ static void kinematics(struct loop *l)
 	};
 	struct scope_params p;
 
-	scope_params_config(&l->cfg, &p);
+	cases_scope_params(&l->cfg, &p);
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
 }
 
 static void render(struct loop *l)
 {
+	struct haptics_params par;
+	double position[ENDOSIM_AXES], velocity[ENDOSIM_AXES];
 	const struct haptics_input in = {
-		.cfg = &l->cfg,
+		.params = &par,
 		.colon = l->colon,
 		.pose = &l->pose,
-		.fb = &l->fb,
+		.position = position,
+		.velocity = velocity,
 		.dt_s = l->info.period_ns * 1e-9,
 		.torque_on = safety_torque_on(&l->safety),
 		.applied = l->limited, /* last cycle's, not yet filtered */
 	};
 
+	cases_haptics_params(&l->cfg, &par);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		position[a] = l->fb.axis[a].position;
+		velocity[a] = l->fb.axis[a].velocity;
+	}
 	haptics_render(l->haptics, &in, l->command, &l->state.haptics);
 }
 

@@ -259,7 +259,7 @@ static void rebuild_tube(struct replay *r, size_t i)
 	const struct centreline *cl = colon_centreline(r->colon);
 	struct scope_params sp;
 
-	scope_params_config(&r->cfg, &sp);
+	cases_scope_params(&r->cfg, &sp);
 	for (int k = 0; k < centreline_spans(cl) && k < ENDOSIM_SPANS; k++) {
 		colon_bow(r->colon, k, bows->bow_m[k], false);
 	}

@@ -185,7 +185,7 @@ static double update_loops(struct haptics *h, const struct haptics_input *in,
 			   double f_tip, double k_ax)
 {
 	struct centreline *cl = colon_centreline(in->colon);
-	double gain = fmin(1.0, in->dt_s / in->cfg->haptics.loop_relax_s);
+	double gain = fmin(1.0, in->dt_s / in->params->gains.loop_relax_s);
 	double carried = 0;
 
 	for (int i = 0; i < h->spans; i++) {
@@ -220,11 +220,11 @@ static void tip_velocity(const struct haptics_input *in, double v[3])
 {
 	const struct scope_pose *p = in->pose;
 	double qd[4] = {
-		in->fb->axis[ENDOSIM_AXIS_INSERTION].velocity,
-		in->fb->axis[ENDOSIM_AXIS_ROLL].velocity,
-		in->fb->axis[ENDOSIM_AXIS_WHEEL_UD].velocity *
+		in->velocity[ENDOSIM_AXIS_INSERTION],
+		in->velocity[ENDOSIM_AXIS_ROLL],
+		in->velocity[ENDOSIM_AXIS_WHEEL_UD] *
 			p->dbend_dwheel[0],
-		in->fb->axis[ENDOSIM_AXIS_WHEEL_LR].velocity *
+		in->velocity[ENDOSIM_AXIS_WHEEL_LR] *
 			p->dbend_dwheel[1],
 	};
 
@@ -243,11 +243,11 @@ static void tip_velocity(const struct haptics_input *in, double v[3])
  * its side meets the wall; head-on, the tube does not). K = k_wall D D^T +
  * k_side (I - D D^T), k_side = k_wall k_lat / (k_wall + k_lat).
  */
-static void spring(const struct config *cfg, const double dir[3],
+static void spring(const struct haptics_params *par, const double dir[3],
 		   const double delta[3], double out[3])
 {
-	double kw = cfg->haptics.wall_stiffness_n_per_m;
-	double kl = cfg->haptics.tip_lateral_stiffness_n_per_m;
+	double kw = par->gains.wall_stiffness_n_per_m;
+	double kl = par->gains.tip_lateral_stiffness_n_per_m;
 	double ks = kw * kl / (kw + kl);
 	double along = vec3_dot(delta, dir);
 
@@ -260,7 +260,8 @@ static void spring(const struct config *cfg, const double dir[3],
  * part along the shaded normal when one plane holds it and shading is on)
  * and damping of the penetration rate, never pulling.
  */
-static void static_force(const struct haptics *h, const struct config *cfg,
+static void static_force(const struct haptics *h,
+			 const struct haptics_params *par,
 			 const double tip_b[3], const double dir_b[3],
 			 const double vel_b[3], struct touch *t)
 {
@@ -275,20 +276,20 @@ static void static_force(const struct haptics *h, const struct config *cfg,
 		vec3_copy(t->normal, delta);
 		t->depth = vec3_normalize(t->normal);
 	}
-	if (g->planes == 1 && cfg->haptics.force_shading) {
+	if (g->planes == 1 && par->gains.force_shading) {
 		/* the depth along the plane's normal, pushed along the
 		 * interpolated one */
 		vec3_scale(delta, g->shaded, t->depth);
 	}
-	spring(cfg, dir_b, delta, t->force);
+	spring(par, dir_b, delta, t->force);
 	/* damping of the penetration rate, as anisotropic as the spring:
 	 * B = (b_wall / k_wall) K (the bending section damps across no more
 	 * than it gives way across) */
 	vec3_scale(rate, t->normal, vec3_dot(vel_b, t->normal));
-	spring(cfg, dir_b, rate, damp);
+	spring(par, dir_b, rate, damp);
 	vec3_axpy(t->force, t->force,
-		  -cfg->haptics.wall_damping_n_s_per_m /
-			  fmax(cfg->haptics.wall_stiffness_n_per_m, 1e-9),
+		  -par->gains.wall_damping_n_s_per_m /
+			  fmax(par->gains.wall_stiffness_n_per_m, 1e-9),
 		  damp);
 	double push = vec3_dot(t->force, t->normal);
 
@@ -307,10 +308,10 @@ static void search_window(const struct haptics *h,
 			  double *s1)
 {
 	const struct scope_pose *p = in->pose;
-	double reach = in->cfg->haptics.contact_reach_m;
+	double reach = in->params->gains.contact_reach_m;
 	double lo = fmin(fmin(h->proxy_s, p->tip_s_m), p->base_s_m);
 	double hi = fmax(fmax(h->proxy_s, p->tip_s_m),
-			 p->base_s_m + in->cfg->scope.bending_length_m);
+			 p->base_s_m + in->params->bending_length_m);
 
 	*s0 = lo - reach;
 	*s1 = hi + reach;
@@ -340,7 +341,7 @@ static bool lost(const struct haptics *h, const struct haptics_input *in,
 static void touch_wall(struct haptics *h, const struct haptics_input *in,
 		       struct touch *t)
 {
-	const struct config *cfg = in->cfg;
+	const struct haptics_params *par = in->params;
 	const struct scope_pose *p = in->pose;
 	const struct contact *c = colon_contact(in->colon);
 	double tip_b[3], dir_b[3], vel[3], vel_b[3], s0, s1;
@@ -349,7 +350,7 @@ static void touch_wall(struct haptics *h, const struct haptics_input *in,
 	memset(t, 0, sizeof(*t));
 	frame_at(colon_centreline(in->colon), p->tip_s_m, &m);
 	point_to_base(&m, p->tip, tip_b);
-	if (h->fresh || p->depth_m < cfg->haptics.entry_depth_m) {
+	if (h->fresh || p->depth_m < par->gains.entry_depth_m) {
 		godobject_reset(&h->go, tip_b);
 		h->fresh = false;
 	} else {
@@ -370,7 +371,7 @@ static void touch_wall(struct haptics *h, const struct haptics_input *in,
 	tip_velocity(in, vel);
 	turn(m.now, m.base, vel, vel_b);
 	turn(m.now, m.base, p->dir, dir_b);
-	static_force(h, cfg, tip_b, dir_b, vel_b, t);
+	static_force(h, par, tip_b, dir_b, vel_b, t);
 	turn(m.base, m.now, t->force, t->force);
 	turn(m.base, m.now, t->normal, t->normal);
 }
@@ -385,7 +386,7 @@ static void wire_lengths(const struct haptics_input *in, double dl[2])
 {
 	const struct centreline *cl = colon_centreline(in->colon);
 	const struct scope_pose *p = in->pose;
-	double su = 0, sv = 0, dr = in->cfg->haptics.wire_spacing_m;
+	double su = 0, sv = 0, dr = in->params->gains.wire_spacing_m;
 	double last = floor(p->base_s_m / centreline_step(cl));
 	size_t n = last < 1 ? 0 : (size_t)last;
 
@@ -416,7 +417,7 @@ static double tube_turning(const struct haptics_input *in)
 	size_t n = centreline_count(cl);
 	size_t k = i < 0 ? 0 : i >= (double)n ? n - 1 : (size_t)i;
 	double inserted = fmin(fmax(p->depth_m, 0) /
-			       in->cfg->scope.bending_length_m, 1);
+			       in->params->bending_length_m, 1);
 
 	return (p->depth_m > 0 ? centreline_turning(cl, k) : 0) +
 	       hypot(p->bend_rad[0], p->bend_rad[1]) * inserted;
@@ -425,10 +426,10 @@ static double tube_turning(const struct haptics_input *in)
 /* ---------------------------------------------------------------- forces */
 
 /* Wheel axis A is turned by a drive behind a bus: its torque lags. */
-static bool wheel_lags(const struct config *cfg, int a)
+static bool wheel_lags(const struct haptics_params *par, int a)
 {
 	return (a == ENDOSIM_AXIS_WHEEL_UD || a == ENDOSIM_AXIS_WHEEL_LR) &&
-	       config_axis_backend(cfg, a) != CONFIG_DRIVE_SIM;
+	       par->driven[a];
 }
 
 /*
@@ -446,12 +447,12 @@ static double passivity(struct haptics *h, const struct haptics_input *in,
 	double added = 0;
 
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		double x = in->fb->axis[a].position;
-		double v = in->fb->axis[a].velocity;
+		double x = in->position[a];
+		double v = in->velocity[a];
 		double held = in->applied ? in->applied[a] : 0;
 
-		if (in->torque_on && in->cfg->haptics.passivity &&
-		    !wheel_lags(in->cfg, a)) {
+		if (in->torque_on && in->params->gains.passivity &&
+		    !wheel_lags(in->params, a)) {
 			h->energy[a] -= held * (x - h->last_x[a]);
 		} else {
 			h->energy[a] = 0;
@@ -496,9 +497,10 @@ static void generalised(const struct scope_pose *p, const double f[3],
  * angle at which its bend reaches the limit, rad, signed as the wheel; 0
  * within it (scope_bend()'s test).
  */
-static double wheel_beyond(const struct config *cfg, int w, double wheel_rad)
+static double wheel_beyond(const struct haptics_params *par, int w,
+			   double wheel_rad)
 {
-	double gain = cfg->scope.gain[w], limit = cfg->scope.limit_rad[w];
+	double gain = par->wheel_gain[w], limit = par->wheel_limit_rad[w];
 	double bend = gain * wheel_rad;
 
 	if (!(gain > 0) || fabs(bend) < limit) {
@@ -512,13 +514,13 @@ static double wheel_beyond(const struct config *cfg, int w, double wheel_rad)
  * pushing the wheel back; at most the wheel's torque limit beyond the part
  * of TENSION (N m) that pushes it on, so the tension never pushes through.
  */
-static double wheel_stop(const struct config *cfg, int w, double d,
+static double wheel_stop(const struct haptics_params *par, int w, double d,
 			 double v, double tension)
 {
 	double out = copysign(1, d);
-	double push = cfg->haptics.stop_stiffness_n_m_per_rad * fabs(d) +
-		      cfg->haptics.stop_damping_n_m_s_per_rad * v * out;
-	double most = cfg->limits.max[ENDOSIM_AXIS_WHEEL_UD + w] +
+	double push = par->gains.stop_stiffness_n_m_per_rad * fabs(d) +
+		      par->gains.stop_damping_n_m_s_per_rad * v * out;
+	double most = par->wheel_max_n_m[w] +
 		      fmax(0, tension * out);
 
 	return -out * fmin(fmax(push, 0), most);
@@ -532,18 +534,18 @@ static double wheel_stop(const struct config *cfg, int w, double d,
 static double wheel_elastic(const struct haptics_input *in, int w,
 			    double tension)
 {
-	const struct config *cfg = in->cfg;
+	const struct haptics_params *par = in->params;
 	const struct scope_pose *p = in->pose;
-	const struct rig_axis_feedback *ax =
-		&in->fb->axis[ENDOSIM_AXIS_WHEEL_UD + w];
-	double k = cfg->haptics.bending_stiffness_n_m_per_rad;
-	double d = wheel_beyond(cfg, w, ax->position);
+	double x = in->position[ENDOSIM_AXIS_WHEEL_UD + w];
+	double v = in->velocity[ENDOSIM_AXIS_WHEEL_UD + w];
+	double k = par->gains.bending_stiffness_n_m_per_rad;
+	double d = wheel_beyond(par, w, x);
 
 	if (d == 0) {
 		return -k * p->bend_rad[w] * p->dbend_dwheel[w];
 	}
-	return -k * p->bend_rad[w] * cfg->scope.gain[w] +
-	       wheel_stop(cfg, w, d, ax->velocity, tension);
+	return -k * p->bend_rad[w] * par->wheel_gain[w] +
+	       wheel_stop(par, w, d, v, tension);
 }
 
 /*
@@ -561,8 +563,8 @@ static double wheel_wall_stiffness(const struct haptics_input *in,
 	for (int d = 0; d < 3; d++) {
 		jw[d] = p->jacobian[d][2 + w] * p->dbend_dwheel[w];
 	}
-	spring(in->cfg, p->dir, t->normal, kn);
-	spring(in->cfg, p->dir, jw, kj);
+	spring(in->params, p->dir, t->normal, kn);
+	spring(in->params, p->dir, jw, kj);
 	return fmax(fabs(vec3_dot(jw, kn) * vec3_dot(t->normal, jw)),
 		    vec3_dot(jw, kj));
 }
@@ -574,12 +576,12 @@ static double wheel_wall_stiffness(const struct haptics_input *in,
  */
 static double wheel_stiffness_budget(const struct haptics_input *in, int w)
 {
-	const struct config *cfg = in->cfg;
+	const struct haptics_params *par = in->params;
 	double g = in->pose->dbend_dwheel[w];
-	double lag = in->dt_s / 2 + cfg->haptics.wheel_delay_s;
+	double lag = in->dt_s / 2 + par->gains.wheel_delay_s;
 
-	return fmax(0, cfg->haptics.damping[ENDOSIM_AXIS_WHEEL_UD + w] / lag -
-			       cfg->haptics.bending_stiffness_n_m_per_rad *
+	return fmax(0, par->gains.damping[ENDOSIM_AXIS_WHEEL_UD + w] / lag -
+			       par->gains.bending_stiffness_n_m_per_rad *
 				       g * g);
 }
 
@@ -597,7 +599,7 @@ static void wheel_lag_limit(const struct haptics_input *in,
 		double k = wheel_wall_stiffness(in, t, w);
 		double most = wheel_stiffness_budget(in, w);
 
-		if (wheel_lags(in->cfg, a) && k > most) {
+		if (wheel_lags(in->params, a) && k > most) {
 			contact[a] *= most / k;
 		}
 	}
@@ -615,7 +617,7 @@ static double axial_stiffness(const struct haptics_input *in,
 	if (!t->on) {
 		return 0;
 	}
-	spring(in->cfg, p->dir, jd, kj);
+	spring(in->params, p->dir, jd, kj);
 	return vec3_dot(jd, kj);
 }
 
@@ -633,7 +635,7 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 		    double command[ENDOSIM_AXES],
 		    struct endosim_haptics_state *out)
 {
-	const struct config *cfg = in->cfg;
+	const struct haptics_params *par = in->params;
 	const struct scope_pose *p = in->pose;
 	double contact[ENDOSIM_AXES], k = tube_turning(in), f_tip;
 	struct touch t;
@@ -652,22 +654,22 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 	out->trans_loop_n = update_loops(h, in, f_tip, axial_stiffness(in, &t));
 	out->trans_contact_n = contact[ENDOSIM_AXIS_INSERTION] -
 			       out->trans_loop_n;
-	out->trans_friction_n = -cfg->haptics.friction_n_s_per_m_rad * k *
-				in->fb->axis[ENDOSIM_AXIS_INSERTION].velocity;
+	out->trans_friction_n = -par->gains.friction_n_s_per_m_rad * k *
+				in->velocity[ENDOSIM_AXIS_INSERTION];
 	out->tube_contact_nm = contact[ENDOSIM_AXIS_ROLL];
-	out->tube_friction_nm = -cfg->haptics.torsion_n_m_s_per_rad2 * k *
-				in->fb->axis[ENDOSIM_AXIS_ROLL].velocity;
+	out->tube_friction_nm = -par->gains.torsion_n_m_s_per_rad2 * k *
+				in->velocity[ENDOSIM_AXIS_ROLL];
 	wire_lengths(in, out->wire_dl_m);
 	for (int w = 0; w < 2; w++) {
 		out->wheel_contact_nm[w] = contact[ENDOSIM_AXIS_WHEEL_UD + w];
-		out->wheel_tension_nm[w] = cfg->haptics.wire_tension_n_m_per_m *
+		out->wheel_tension_nm[w] = par->gains.wire_tension_n_m_per_m *
 					   out->wire_dl_m[w];
 		out->wheel_elastic_nm[w] =
 			wheel_elastic(in, w, out->wheel_tension_nm[w]);
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		out->damping[a] = -cfg->haptics.damping[a] *
-				  in->fb->axis[a].velocity;
+		out->damping[a] = -par->gains.damping[a] *
+				  in->velocity[a];
 	}
 	command[ENDOSIM_AXIS_INSERTION] = out->trans_contact_n +
 					  out->trans_loop_n +

@@ -105,17 +105,32 @@
 #include <stdbool.h>
 
 #include "colon.h"
-#include "config.h"
-#include "rig.h"
+#include "endosim_shm.h"
+#include "haptics_gains.h"
 #include "scope.h"
 
 struct haptics;
 
+/*
+ * The model's gains ([haptics] in the configuration, every one with its
+ * unit in `endosimd --print-config`), and what it needs of the scope and
+ * the rig: the service fills it from the configuration (cases.h).
+ */
+struct haptics_params {
+	struct haptics_gains gains;    /* [haptics] */
+	double bending_length_m;       /* the scope's (scope_params) */
+	double wheel_gain[2];          /* tip rad per wheel rad: ud, lr */
+	double wheel_limit_rad[2];     /* largest tip bend: ud, lr */
+	double wheel_max_n_m[2];       /* each wheel's torque limit */
+	bool driven[ENDOSIM_AXES];     /* a drive behind a bus, not simulated */
+};
+
 struct haptics_input {
-	const struct config *cfg;
+	const struct haptics_params *params;
 	struct colon *colon;           /* its mobile spans are bowed here */
 	const struct scope_pose *pose; /* this cycle's kinematics */
-	const struct rig_feedback *fb; /* axes' positions and velocities */
+	const double *position;        /* per axis: m or rad */
+	const double *velocity;        /* per axis: m/s or rad/s */
 	double dt_s;                   /* the loop's period */
 	bool torque_on;                /* the forces reach the hand */
 	const double *applied;         /* N, N m per axis: the setpoints the

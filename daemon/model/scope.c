@@ -4,7 +4,6 @@
 #include <math.h>
 #include <string.h>
 
-#include "config.h"
 #include "vec3.h"
 
 #define SERIES_BELOW 0.05 /* rad: the arc's functions by their series */
@@ -182,17 +181,6 @@ void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 		dbend_dwheel[j] = fabs(b) < limit[j] ? gain[j] : 0;
 		bend_rad[j] = fmax(-limit[j], fmin(limit[j], b));
 	}
-}
-
-void scope_params_config(const struct config *cfg, struct scope_params *out)
-{
-	*out = (struct scope_params){
-		.bending_length_m = cfg->scope.bending_length_m,
-		.ud_gain = cfg->scope.gain[0],
-		.lr_gain = cfg->scope.gain[1],
-		.ud_limit_rad = cfg->scope.limit_rad[0],
-		.lr_limit_rad = cfg->scope.limit_rad[1],
-	};
 }
 
 double scope_max_depth(const struct scope_params *p,

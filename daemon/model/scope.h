@@ -78,11 +78,6 @@ struct scope_pose {
 	double tube[SCOPE_TUBE_POINTS][3]; /* anal verge to tip, equal arcs */
 };
 
-struct config;
-
-/* The parameters as the configuration's [scope] section sets them. */
-void scope_params_config(const struct config *cfg, struct scope_params *out);
-
 /* The tip's bending angles (rad) for wheel angles (rad): gain, limits. */
 void scope_bend(const struct scope_params *p, double wheel_ud_rad,
 		double wheel_lr_rad, double bend_rad[2],

@@ -15,6 +15,31 @@ void cases_colon_params(const struct config *cfg, struct colon_params *p)
 	p->contact_radius_m = cfg->haptics.scope_radius_m;
 }
 
+void cases_scope_params(const struct config *cfg, struct scope_params *p)
+{
+	*p = (struct scope_params){
+		.bending_length_m = cfg->scope.bending_length_m,
+		.ud_gain = cfg->scope.gain[0],
+		.lr_gain = cfg->scope.gain[1],
+		.ud_limit_rad = cfg->scope.limit_rad[0],
+		.lr_limit_rad = cfg->scope.limit_rad[1],
+	};
+}
+
+void cases_haptics_params(const struct config *cfg, struct haptics_params *p)
+{
+	p->gains = cfg->haptics;
+	p->bending_length_m = cfg->scope.bending_length_m;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		p->driven[a] = config_axis_backend(cfg, a) != CONFIG_DRIVE_SIM;
+	}
+	for (int w = 0; w < 2; w++) {
+		p->wheel_gain[w] = cfg->scope.gain[w];
+		p->wheel_limit_rad[w] = cfg->scope.limit_rad[w];
+		p->wheel_max_n_m[w] = cfg->limits.max[ENDOSIM_AXIS_WHEEL_UD + w];
+	}
+}
+
 static bool ends_with(const char *s, const char *tail)
 {
 	size_t n = strlen(s), t = strlen(tail);

@@ -1,13 +1,14 @@
 /*
  * cases.h - which colon the daemon runs: the case the configuration names
  * ([case] file, or [case] directory/name.case) or one loaded by name, and
- * the list of case files in [case] directory.
+ * the list of case files in [case] directory; the model's parameters as the
+ * configuration sets them (the model itself knows nothing of it).
  *
  * A case name is letters, digits, '-' and '_' (config_case_name_ok()), so
  * a name never leaves the directory; NAME.case must call itself NAME. A [case] file ending in ".obj" is an
  * imported mesh (colon_import()) with [case] centreline_file.
  *
- * These read files and build the model (~50 ms at the default
+ * The loaders read files and build the model (~50 ms at the default
  * resolution, ~0.5 s at 2 million triangles): main or control thread
  * only, never the force loop. Thread-safe (no shared state).
  */
@@ -19,14 +20,23 @@
 #include "anatomy.h"
 #include "colon.h"
 #include "config.h"
+#include "haptics.h"
+#include "scope.h"
 
 struct cases_entry {
 	char name[ANATOMY_NAME];
 	char description[ANATOMY_TEXT];
 };
 
-/* The colon's resolution and contact radius as CFG sets them. */
+/*
+ * The model as the configuration sets it: the colon's resolution and
+ * contact radius; the scope's [scope]; the haptics' [haptics], with the
+ * scope's and the wheels' limits and which axes are drives'. Any thread.
+ */
 void cases_colon_params(const struct config *cfg, struct colon_params *p);
+void cases_scope_params(const struct config *cfg, struct scope_params *p);
+void cases_haptics_params(const struct config *cfg,
+			  struct haptics_params *p);
 
 /*
  * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is
