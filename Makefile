@@ -35,8 +35,8 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus
-CLIENT_PKGS = libprotobuf-c
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib
+CLIENT_PKGS = libprotobuf-c zlib
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
@@ -47,7 +47,7 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
-	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev \
+	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev \
 	     fonts-dejavu-core
 # libFuzzer's runtime is only a recommendation of clang: named here

@@ -2,7 +2,6 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <inttypes.h>
-#include <pthread.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +9,7 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "session_file.h"
 
@@ -144,54 +144,9 @@ static uint32_t get_u32(const unsigned char *p)
 	       (uint32_t)p[3] << 24;
 }
 
-/*
- * CRC-32 eight bytes a step ("slicing-by-8"): table[k][b] is the CRC of
- * byte b followed by k zero bytes, so eight table lookups fold in eight
- * bytes at once. A reader checks every frame of a file that grows by
- * 300 kB a second of session; one byte a step (and a bit at a time
- * before that) made `session show` of an hour's session take a minute.
- */
-static uint32_t crc_table[8][256];
-static pthread_once_t crc_once = PTHREAD_ONCE_INIT;
-
-static void crc_init(void)
-{
-	for (uint32_t b = 0; b < 256; b++) {
-		uint32_t c = b;
-
-		for (int k = 0; k < 8; k++) {
-			c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-		}
-		crc_table[0][b] = c;
-	}
-	for (uint32_t b = 0; b < 256; b++) {
-		for (int k = 1; k < 8; k++) {
-			uint32_t c = crc_table[k - 1][b];
-
-			crc_table[k][b] = (c >> 8) ^ crc_table[0][c & 0xff];
-		}
-	}
-}
-
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n)
 {
-	const unsigned char *p = data;
-	const uint32_t(*t)[256] = crc_table;
-
-	pthread_once(&crc_once, crc_init);
-	crc = ~crc;
-	for (; n >= 8; n -= 8, p += 8) {
-		uint32_t lo = crc ^ get_u32(p), hi = get_u32(p + 4);
-
-		crc = t[7][lo & 0xff] ^ t[6][(lo >> 8) & 0xff] ^
-		      t[5][(lo >> 16) & 0xff] ^ t[4][lo >> 24] ^
-		      t[3][hi & 0xff] ^ t[2][(hi >> 8) & 0xff] ^
-		      t[1][(hi >> 16) & 0xff] ^ t[0][hi >> 24];
-	}
-	while (n--) {
-		crc = (crc >> 8) ^ t[0][(crc ^ *p++) & 0xff];
-	}
-	return ~crc;
+	return (uint32_t)crc32_z(crc, data, n);
 }
 
 size_t session_frame_put(unsigned char *buf, size_t size, size_t used,

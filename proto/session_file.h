@@ -227,7 +227,7 @@ int session_text_get(const char *text, const char *key, char *out,
 /* The index of the last record at or before STAMP_NS (0 if none is). */
 size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns);
 
-/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32()) of N bytes. */
+/* CRC-32 (IEEE 802.3, reflected) of N bytes: zlib's crc32_z(). */
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n);
 
 #endif
