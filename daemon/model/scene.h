@@ -8,7 +8,9 @@
  * The replies point into the colon's undeformed centreline and mesh,
  * which nobody writes once built (the force loop bows the centreline's
  * current samples only), so the control thread may serve them while the
- * loop runs. Control thread only; scene_create() allocates.
+ * loop runs. Any one thread that is not the force loop (endosimd's control
+ * thread, the viewer's replay); a scene is not shared between threads;
+ * scene_create() allocates.
  */
 #ifndef ENDOSIM_SCENE_H
 #define ENDOSIM_SCENE_H

@@ -9,8 +9,9 @@
  * imported mesh (colon_import()) with [case] centreline_file.
  *
  * The loaders read files and build the model (~50 ms at the default
- * resolution, ~0.5 s at 2 million triangles): main or control thread
- * only, never the force loop. Thread-safe (no shared state).
+ * resolution, ~0.5 s at 2 million triangles): any thread but the force
+ * loop (endosimd's main and control threads, the viewer's replay, the
+ * tools). Thread-safe (no shared state).
  */
 #ifndef ENDOSIM_CASES_H
 #define ENDOSIM_CASES_H
