@@ -36,7 +36,7 @@ CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
 PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib
-CLIENT_PKGS = libprotobuf-c zlib
+CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
@@ -97,8 +97,9 @@ endef
 #            and hand, scenarios, the rig of drives, one bus thread per bus,
 #            the drive backends (EPOS4 on USB, Modbus) and their protocols
 #   session  training sessions (daemon/session/): metrics, the session
-#            directory, what a session file says (views, CSV, the report);
-#            the cases: the model as the configuration sets it
+#            directory, a session's inputs (one reader), what a session
+#            file says (views, CSV, the report); the cases: the model as
+#            the configuration sets it
 #   model    the colon and the endoscope (daemon/model/): case files,
 #            centreline, mesh, OBJ, the colon, contact, the scope's
 #            kinematics, the god-object, the haptics, the axes' plant, the

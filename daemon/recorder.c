@@ -19,6 +19,7 @@
 #include "log.h"
 #include "mono.h"
 #include "sessiondir.h"
+#include "sessioninputs.h"
 
 #define BUF_BYTES (256 * 1024)   /* gathered frames, written in one go */
 #define FLUSH_BYTES (BUF_BYTES / 2)
@@ -580,16 +581,6 @@ void recorder_param(struct recorder *r, const char *key, const char *value)
 
 /* ------------------------------------------------------------ life */
 
-static void params_from(const struct config *cfg, struct metrics_params *p)
-{
-	metrics_params_default(p);
-	p->force_threshold_n = cfg->session.force_threshold_n;
-	p->loop_threshold_m = cfg->session.loop_threshold_m;
-	p->view_distance_m = cfg->session.view_distance_m;
-	p->fov_rad = cfg->session.fov_deg * M_PI / 180;
-	p->view_rate_hz = cfg->session.view_rate_hz;
-}
-
 struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 				 struct publish *pub, uint64_t start_ns)
 {
@@ -615,7 +606,7 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	}
 	snprintf(r->dir, sizeof(r->dir), "%s", cfg->session.directory);
 	r->write_limit = cfg->session.write_limit_bytes_per_s;
-	params_from(cfg, &r->mp);
+	sessioninputs_metrics_params(cfg, &r->mp);
 	r->rig = rig;
 	r->pub = pub;
 	r->daemon_start_ns = start_ns;

@@ -13,6 +13,7 @@
 #include "colon.h"
 #include "names.h"
 #include "report.h"
+#include "sessioninputs.h"
 
 #define SVG_W 1040
 #define SVG_H 250
@@ -724,60 +725,14 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	      "</body></html>\n", o);
 }
 
-int report_case_anatomy(const struct session_file *f, struct anatomy *a,
-			char *err, size_t errsize)
-{
-	const char *tmp = getenv("TMPDIR");
-	char path[512];
-	size_t len;
-	int fd, r = 0;
-
-	if (!f->case_text) {
-		snprintf(err, errsize, "the session has no case");
-		return -ENOENT;
-	}
-	snprintf(path, sizeof(path), "%s/endosim-case-XXXXXX",
-		 tmp && *tmp ? tmp : "/tmp");
-	fd = mkstemp(path);
-	if (fd < 0) {
-		r = -errno;
-		snprintf(err, errsize, "%s: %s", path, strerror(errno));
-		return r;
-	}
-	len = strlen(f->case_text);
-	if (write(fd, f->case_text, len) != (ssize_t)len) {
-		snprintf(err, errsize, "%s: short write", path);
-		r = -EIO;
-	}
-	close(fd);
-	if (!r) {
-		r = anatomy_load(a, path, err, errsize);
-	}
-	unlink(path);
-	return r;
-}
-
-/* The colon of F's CASE frame at the header's resolution. */
+/* The colon of F's CASE frame, its configuration, its header. */
 static struct colon *session_colon(const struct session_file *f, char *err,
 				   size_t errsize)
 {
-	struct colon_params p = COLON_PARAMS_DEFAULT;
-	struct anatomy a;
-	char v[64];
+	struct config cfg;
 
-	if (report_case_anatomy(f, &a, err, errsize)) {
-		return NULL;
-	}
-	if (!session_text_get(f->header, "step_m", v, sizeof(v))) {
-		p.step_m = strtod(v, NULL);
-	}
-	if (!session_text_get(f->header, "ring_vertices", v, sizeof(v))) {
-		p.ring_vertices = (uint32_t)strtoul(v, NULL, 10);
-	}
-	if (!session_text_get(f->header, "segment_m", v, sizeof(v))) {
-		p.segment_m = strtod(v, NULL);
-	}
-	return colon_create(&a, &p, err, errsize);
+	sessioninputs_config(f, &cfg, err, errsize);
+	return sessioninputs_colon(f, &cfg, err, errsize);
 }
 
 int report_metrics(const struct session_file *f,
@@ -833,7 +788,7 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	if (!o) {
 		return -errno;
 	}
-	have_a = report_case_anatomy(f, &a, err, sizeof(err)) == 0;
+	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
 	page_header(o, f, m);
 	page_metrics(o, f, m, have_a ? &a : NULL);
 	if (ferror(o)) {

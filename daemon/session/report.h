@@ -37,17 +37,9 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 		 const char *dir);
 
 /*
- * The anatomy of F's CASE frame (through anatomy_load() on a temporary
- * file in $TMPDIR): 0, -ENOENT when F has no case, or another -errno with
- * one line in ERR.
- */
-int report_case_anatomy(const struct session_file *f, struct anatomy *a,
-			char *err, size_t errsize);
-
-/*
  * Recomputes the metrics of F with P (the colon rebuilt from F's CASE
- * frame at the header's step_m, ring_vertices and segment_m; without a
- * case, the metrics that need no colon), the events fed in time order
+ * frame, its configuration and its header's resolution: sessioninputs.h;
+ * without a case, the metrics that need no colon), the events fed in time order
  * with the records. 0, or -ENOMEM with one line in ERR. A case that does
  * not load leaves the colon out, as its line in ERR says.
  */

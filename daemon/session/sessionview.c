@@ -9,43 +9,19 @@
 #include <string.h>
 
 #include "report.h"
+#include "sessioninputs.h"
 
 /* ------------------------------------------------------------ metrics */
-
-/*
- * KEY's number in section [session] of the file's CONFIG frame (as
- * --print-config writes it: "key = value ; help"), or DEF.
- */
-static double session_key(const struct session_file *f, const char *key,
-			  double def)
-{
-	const char *sec = f->config ? strstr(f->config, "[session]\n") : NULL;
-	const char *end = sec ? strstr(sec + 1, "\n[") : NULL;
-	size_t n = strlen(key);
-
-	for (const char *l = sec; l && (!end || l < end); l = strchr(l, '\n')) {
-		l += *l == '\n';
-		if (!strncmp(l, key, n) && !strncmp(l + n, " = ", 3)) {
-			return strtod(l + n + 3, NULL);
-		}
-	}
-	return def;
-}
 
 /* The metrics' parameters the session was recorded with. */
 static void file_params(const struct session_file *f,
 			struct metrics_params *p)
 {
-	metrics_params_default(p);
-	p->force_threshold_n = session_key(f, "force_threshold_n",
-					   p->force_threshold_n);
-	p->loop_threshold_m = session_key(f, "loop_threshold_m",
-					  p->loop_threshold_m);
-	p->view_distance_m = session_key(f, "view_distance_m",
-					 p->view_distance_m);
-	p->fov_rad = session_key(f, "fov_deg", p->fov_rad * 180 / M_PI) *
-		     M_PI / 180;
-	p->view_rate_hz = session_key(f, "view_rate_hz", p->view_rate_hz);
+	struct config cfg;
+	char err[256];
+
+	sessioninputs_config(f, &cfg, err, sizeof(err));
+	sessioninputs_metrics_params(&cfg, p);
 }
 
 int sessionview_metrics(const struct session_file *f,
