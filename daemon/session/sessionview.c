@@ -124,91 +124,25 @@ void sessionview_json(struct json *j, const char *key,
 
 /* ------------------------------------------------------------ CSV */
 
-enum col_type { COL_U64, COL_U32, COL_F32 };
-
-struct column {
-	const char *name;          /* with its unit as a suffix */
-	enum col_type type;
-	size_t offset;             /* into struct session_record */
-};
-
-#define R(field) offsetof(struct session_record, field)
-#define F(name, field) { name, COL_F32, R(field) }
-#define U(name, field) { name, COL_U32, R(field) }
-#define AXES(what, field, lin, rot)                                          \
-	F("insertion_" what "_" lin, field[0]),                              \
-	F("roll_" what "_" rot, field[1]),                                   \
-	F("wheel_ud_" what "_" rot, field[2]),                               \
-	F("wheel_lr_" what "_" rot, field[3])
-#define XYZ(what, field, unit)                                               \
-	F(what "_x_" unit, field[0]), F(what "_y_" unit, field[1]),          \
-	F(what "_z_" unit, field[2])
-
-static const struct column columns[] = {
-	{ "cycle", COL_U64, R(cycle) },
-	U("state", state),
-	U("fault_bits", fault_bits),
-	AXES("position", position, "m", "rad"),
-	AXES("velocity", velocity, "m_per_s", "rad_per_s"),
-	AXES("hand", hand, "n", "nm"),
-	AXES("command", command, "n", "nm"),
-	AXES("limited", limited, "n", "nm"),
-	F("ramp", ramp),
-	F("depth_m", depth_m),
-	F("roll_rad", roll_rad),
-	F("bend_ud_rad", bend_rad[0]),
-	F("bend_lr_rad", bend_rad[1]),
-	F("base_s_m", base_s_m),
-	F("tip_s_m", tip_s_m),
-	F("turning_rad", turning_rad),
-	XYZ("tip", tip, "m"),
-	XYZ("dir", dir, "1"),
-	XYZ("up", up, "1"),
-	F("bow0_m", bow_m[0]), F("bow1_m", bow_m[1]),
-	F("bow2_m", bow_m[2]), F("bow3_m", bow_m[3]),
-	XYZ("proxy", proxy, "m"),
-	XYZ("normal", normal, "1"),
-	XYZ("f_static", f_static, "n"),
-	F("penetration_m", penetration_m),
-	U("contact", contact),
-	U("spans", spans),
-	F("curvature_rad", curvature_rad),
-	F("trans_contact_n", trans_contact_n),
-	F("trans_friction_n", trans_friction_n),
-	F("trans_loop_n", trans_loop_n),
-	F("wheel_contact_ud_nm", wheel_contact_nm[0]),
-	F("wheel_contact_lr_nm", wheel_contact_nm[1]),
-	F("wheel_tension_ud_nm", wheel_tension_nm[0]),
-	F("wheel_tension_lr_nm", wheel_tension_nm[1]),
-	F("wheel_elastic_ud_nm", wheel_elastic_nm[0]),
-	F("wheel_elastic_lr_nm", wheel_elastic_nm[1]),
-	F("tube_contact_nm", tube_contact_nm),
-	F("tube_friction_nm", tube_friction_nm),
-	F("scenario_time_s", scenario_time_s),
-	U("latency_ns", latency_ns),
-	U("compute_ns", compute_ns),
-};
-
-#define COLUMNS (sizeof(columns) / sizeof(columns[0]))
-
+/* Column C (session_fields) of record R. */
 static void put_value(FILE *out, const struct session_record *r,
-		      const struct column *c)
+		      const struct session_field *c)
 {
-	const unsigned char *p = (const unsigned char *)r + c->offset;
+	const unsigned char *p = (const unsigned char *)r + c->record;
 	uint64_t u64;
 	uint32_t u32;
 	float f;
 
 	switch (c->type) {
-	case COL_U64:
+	case SESSION_FIELD_U64:
 		memcpy(&u64, p, sizeof(u64));
 		fprintf(out, ",%" PRIu64, u64);
 		break;
-	case COL_U32:
+	case SESSION_FIELD_U32:
 		memcpy(&u32, p, sizeof(u32));
 		fprintf(out, ",%" PRIu32, u32);
 		break;
-	case COL_F32:
+	case SESSION_FIELD_F32:
 		memcpy(&f, p, sizeof(f));
 		fprintf(out, ",%.7g", (double)f);
 		break;
@@ -236,16 +170,20 @@ int sessionview_csv(FILE *out, const struct session_file *f)
 	uint64_t t0 = start_ns(f);
 
 	fprintf(out, "t_s");
-	for (size_t c = 0; c < COLUMNS; c++) {
-		fprintf(out, ",%s", columns[c].name);
+	for (size_t c = 0; c < session_n_fields; c++) {
+		if (session_fields[c].name) {
+			fprintf(out, ",%s", session_fields[c].name);
+		}
 	}
 	fputc('\n', out);
 	for (size_t i = 0; i < f->n_records; i++) {
 		const struct session_record *r = &f->records[i];
 
 		fprintf(out, "%.6f", since(t0, r->stamp_ns));
-		for (size_t c = 0; c < COLUMNS; c++) {
-			put_value(out, r, &columns[c]);
+		for (size_t c = 0; c < session_n_fields; c++) {
+			if (session_fields[c].name) {
+				put_value(out, r, &session_fields[c]);
+			}
 		}
 		fputc('\n', out);
 	}
