@@ -30,6 +30,7 @@
 #include "version.h"
 #include "cases.h"
 #include "faults.h"
+#include "fields.h"
 #include "inject.h"
 #include "log.h"
 #include "mono.h"

@@ -70,35 +70,6 @@ static void fill_scope(Endosim__ScopeStatus *p, struct endosim_scope_state *sc)
 }
 
 /* The protobuf view of the published haptics: arrays point into H. */
-static void fill_haptics(Endosim__HapticsStatus *p,
-			 struct endosim_haptics_state *h)
-{
-	endosim__haptics_status__init(p);
-	p->n_proxy = p->n_normal = p->n_f_static = 3;
-	p->proxy = h->proxy;
-	p->normal = h->normal;
-	p->f_static = h->f_static;
-	p->penetration_m = h->penetration_m;
-	p->contact = h->contact;
-	p->constraints = h->constraints;
-	p->curvature_rad = h->curvature_rad;
-	p->trans_contact_n = h->trans_contact_n;
-	p->trans_friction_n = h->trans_friction_n;
-	p->trans_loop_n = h->trans_loop_n;
-	p->n_wheel_contact_nm = p->n_wheel_tension_nm = 2;
-	p->n_wheel_elastic_nm = p->n_wire_dl_m = 2;
-	p->wheel_contact_nm = h->wheel_contact_nm;
-	p->wheel_tension_nm = h->wheel_tension_nm;
-	p->wheel_elastic_nm = h->wheel_elastic_nm;
-	p->wire_dl_m = h->wire_dl_m;
-	p->tube_contact_nm = h->tube_contact_nm;
-	p->tube_friction_nm = h->tube_friction_nm;
-	p->n_damping = ENDOSIM_AXES;
-	p->damping = h->damping;
-	p->passivity_energy_j = h->passivity_energy_j;
-	p->passivity_damping = h->passivity_damping;
-}
-
 void control_build_status(struct control *c, Endosim__Reply *rep)
 {
 	struct reply_buf *rb = &c->rb;
@@ -134,7 +105,7 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	fill_scope(&rb->scope, &rb->scope_state);
 	s->scope = &rb->scope;
 	rb->haptics_state = st.haptics;
-	fill_haptics(&rb->haptics, &rb->haptics_state);
+	fields_haptics_to_pb(&rb->haptics, &rb->haptics_state);
 	s->haptics = &rb->haptics;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		Endosim__AxisStatus *ax = &rb->axes[a];

@@ -19,6 +19,7 @@
 
 #include "client.h"
 #include "endosim_shm.h"
+#include "fields.h"
 #include "names.h"
 #include "version.h"
 #include "inject.h"

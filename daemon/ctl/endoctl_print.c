@@ -32,31 +32,44 @@ static void json_scope(struct json *j, const Endosim__ScopeStatus *sc)
 	json_object_end(j);
 }
 
+/* Haptic part D of H (fields.h) under its name. */
+static void json_field(struct json *j, const struct fields_field *d,
+		       const Endosim__HapticsStatus *h)
+{
+	const unsigned char *v = (const unsigned char *)h + d->pb;
+	const double *vec;
+	protobuf_c_boolean b;
+	uint32_t u;
+	double x;
+	size_t n;
+
+	switch (d->kind) {
+	case FIELDS_DOUBLE:
+		memcpy(&x, v, sizeof(x));
+		json_double(j, d->name, x);
+		break;
+	case FIELDS_BOOL:
+		memcpy(&b, v, sizeof(b));
+		json_bool(j, d->name, b);
+		break;
+	case FIELDS_UINT:
+		memcpy(&u, v, sizeof(u));
+		json_uint(j, d->name, u);
+		break;
+	case FIELDS_VECTOR:
+		memcpy(&vec, v, sizeof(vec));
+		memcpy(&n, (const unsigned char *)h + d->pb_n, sizeof(n));
+		json_vector(j, d->name, vec, n);
+		break;
+	}
+}
+
 static void json_haptics(struct json *j, const Endosim__HapticsStatus *h)
 {
 	json_object_begin(j, "haptics");
-	json_bool(j, "contact", h->contact);
-	json_uint(j, "constraints", h->constraints);
-	json_vector(j, "proxy", h->proxy, h->n_proxy);
-	json_vector(j, "normal", h->normal, h->n_normal);
-	json_vector(j, "f_static", h->f_static, h->n_f_static);
-	json_double(j, "penetration_m", h->penetration_m);
-	json_double(j, "curvature_rad", h->curvature_rad);
-	json_double(j, "trans_contact_n", h->trans_contact_n);
-	json_double(j, "trans_friction_n", h->trans_friction_n);
-	json_double(j, "trans_loop_n", h->trans_loop_n);
-	json_vector(j, "wheel_contact_nm", h->wheel_contact_nm,
-		    h->n_wheel_contact_nm);
-	json_vector(j, "wheel_tension_nm", h->wheel_tension_nm,
-		    h->n_wheel_tension_nm);
-	json_vector(j, "wheel_elastic_nm", h->wheel_elastic_nm,
-		    h->n_wheel_elastic_nm);
-	json_vector(j, "wire_dl_m", h->wire_dl_m, h->n_wire_dl_m);
-	json_double(j, "tube_contact_nm", h->tube_contact_nm);
-	json_double(j, "tube_friction_nm", h->tube_friction_nm);
-	json_vector(j, "damping", h->damping, h->n_damping);
-	json_double(j, "passivity_energy_j", h->passivity_energy_j);
-	json_double(j, "passivity_damping", h->passivity_damping);
+	for (size_t i = 0; i < fields_n_haptics; i++) {
+		json_field(j, &fields_haptics[i], h);
+	}
 	json_object_end(j);
 }
 
