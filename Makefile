@@ -1,7 +1,8 @@
 # endosim: the haptic heart of a flexible-endoscopy simulator.
 #
-# The object lists below are the architecture: which module goes into which
-# program. See docs/ARCHITECTURE.md for the threads and the data flow.
+# The wings below are the architecture: which layer a module belongs to and
+# which layers each program links. See docs/ARCHITECTURE.md for the picture,
+# the threads and the data flow.
 #
 #   make            build build/endosimd, build/endoctl and build/endoview
 #   make test       install missing Debian packages (as root), build with
@@ -34,19 +35,19 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus
-CLIENT_PKGS = libprotobuf-c
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib
+CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
 ALL_CFLAGS = -std=c11 -D_GNU_SOURCE $(WARNINGS) $(CFLAGS) -I$(BUILD)/gen \
 	     -DCONFIG_CASE_DIR='"$(CASEDIR)"' \
-	     -Iproto $(PKG_CFLAGS) -MMD -MP
+	     $(WING_INCLUDES) $(PKG_CFLAGS) -MMD -MP
 LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lpthread -lm
 CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
-	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev \
+	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev \
 	     fonts-dejavu-core
 # libFuzzer's runtime is only a recommendation of clang: named here
@@ -77,189 +78,146 @@ define ensure_packages
 	fi
 endef
 
-# --- what goes where -------------------------------------------------------
+# --- what goes where: the wings ---------------------------------------------
+# A wing is a folder and a static library. A program links its own objects
+# and the wings it uses, in the order below: a wing uses only wings after it
+# (docs/ARCHITECTURE.md has the picture and the nevers; tests/layers.sh
+# checks the includes against them).
+#   offline  the force loop off line, in lockstep (tests/tools/offline.h):
+#            the loop's own cycle on the simulated rig and hand
+#   viewer   endoview (viewer/): the link to the daemon (shared memory, the
+#            scene, commands and the hand) and the trainee's controls; the
+#            colon rebuilt with the model's centreline and mesh, its levels
+#            of detail and the portal walk; the endoscopic view, the
+#            overview, the HUD; the replay of a session file
+#   service  endosimd's threads (daemon/): the force loop, safety with its
+#            fault words and the test commands' injections, publish, the
+#            control thread, the recorder of training sessions and its tap
+#   rig      the hardware (daemon/rig/): the rig interface, the simulated rig
+#            and hand, scenarios, the rig of drives, one bus thread per bus,
+#            the drive backends (EPOS4 on USB, Modbus) and their protocols
+#   session  training sessions (daemon/session/): metrics, the session
+#            directory, a session's inputs (one reader), what a session
+#            file says (views, CSV, the report); the cases: the model as
+#            the configuration sets it
+#   model    the colon and the endoscope (daemon/model/): case files,
+#            centreline, mesh, OBJ, the colon, contact, the scope's
+#            kinematics, the god-object, the haptics, the axes' plant, the
+#            scene served; it knows nothing of the configuration
+#   base     configuration, logging, the clock, real time, histograms, rings,
+#            vectors, register maps, JSON (daemon/base/)
+#   proto    the wire (proto/): protocol, framing, client library,
+#            shared-memory reader, session files, names
+WINGS = offline viewer service rig session model base proto
+offline_SRCS = tests/tools/offline.c
+viewer_SRCS = $(filter-out viewer/endoview.c,$(wildcard viewer/*.c))
+service_SRCS = $(filter-out daemon/main.c,$(wildcard daemon/*.c))
+rig_SRCS = $(wildcard daemon/rig/*.c)
+session_SRCS = $(wildcard daemon/session/*.c)
+model_SRCS = $(wildcard daemon/model/*.c)
+base_SRCS = $(wildcard daemon/base/*.c)
+proto_SRCS = $(wildcard proto/*.c) $(BUILD)/gen/endosim.pb-c.c
+WING_INCLUDES = -Iproto -Idaemon -Idaemon/base -Idaemon/model -Idaemon/rig \
+		-Idaemon/session
+
+obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
+wings = $(foreach w,$(1),$(BUILD)/lib/lib$(w).a)
 PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
 
-# the wire: protocol, framing, client library, shared-memory reader
-PROTO_OBJS = endosim.pb-c.o frame.o client.o names.o shm_reader.o \
-	     session_file.o
-
-# the colon and the endoscope: case files, centreline, mesh, OBJ, the
-# model that ties them, the scope's kinematics
-COLON_OBJS = anatomy.o centreline.o mesh.o objio.o colon.o scope.o contact.o
-
-# endosimd: main, configuration, logging, the force loop and what it calls
-# (rig backends, hand, haptics, safety with its fault words and the test
-# commands' injections, publish, the colon and the scope), the control
-# thread with the cases and the scene it serves, the recorder thread of
-# training sessions with their directory and metrics
-DAEMON_OBJS = main.o config.o regmap.o log.o loop.o rt.o histo.o spsc.o \
-	      publish.o rig.o rig_sim.o plant.o hand.o scenario.o haptics.o \
-	      safety.o faults.o inject.o godobject.o control.o cases.o \
-	      scene.o recorder.o sessiontap.o sessiondir.o sessionpb.o \
-	      metrics.o $(COLON_OBJS) $(DRIVE_OBJS)
-
-# the drive layer: the rig of drives, one bus thread per bus, the drive
-# interface and its backends (EPOS4 on USB, Modbus) with their protocols
-DRIVE_OBJS = rig_drives.o bus.o drive.o drive_epos4.o epos4_frame.o \
-	     canopen.o drive_modbus.o
-
-# endoctl: the CLI over the sockets; what it makes of a session file (its
-# metrics, again over the records of a file cut short, on the colon rebuilt
-# from the file; CSV; the instructor's report)
-ENDOCTL_OBJS = endoctl.o json.o inject.o sessiondir.o sessionpb.o \
-	       sessionview.o metrics.o report.o $(COLON_OBJS)
-
-# endoview: the viewer (viewer/). The link to the daemon (shared memory,
-# the scene, commands and the hand) and the trainee's controls; the colon
-# rebuilt with the daemon's own centreline and mesh, its levels of detail
-# and the portal walk; the endoscopic view, the overview, the HUD; the
-# replay of a session file, its colon built and served and its scope's
-# tube made by the daemon's own modules (case, colon, scene, kinematics)
-VIEWER_OBJS = endoview.o link.o rigctl.o ui.o input.o \
-	      model.o lod.o portal.o \
-	      gpumesh.o endo.o vessels.o overview.o shapes.o \
-	      hud.o draw2d.o font.o gfx.o shot.o timing.o log.o \
-	      replay.o state_text.o scene.o cases.o config.o regmap.o \
-	      $(COLON_OBJS)
+# the programs: their own sources, the wings they link, their libraries
+PROGRAMS = endosimd endoctl endoview
+endosimd_SRCS = daemon/main.c
+endosimd_WINGS = service rig session model base proto
+endosimd_LDLIBS = $(LDLIBS)
+# endoctl (daemon/ctl/): the CLI over the sockets; what it makes of a
+# session file (its metrics, on the colon rebuilt from the file; CSV; the
+# instructor's report)
+endoctl_SRCS = $(wildcard daemon/ctl/*.c)
+endoctl_WINGS = service session model base proto
+endoctl_LDLIBS = $(CLIENT_LDLIBS)
+endoview_SRCS = viewer/endoview.c
+endoview_WINGS = viewer session model base proto
+endoview_LDLIBS = $(VIEWER_LDLIBS)
 VIEWER_PKGS = glfw3 epoxy cglm stb inih
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
 VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
 		  2>/dev/null) -lm
 
-obj = $(addprefix $(BUILD)/obj/,$(1))
+# --- device emulators (tests/emulators/): what the system tests and the
+# drive benchmark run the real drive backends against; the drive benchmark:
+# endosimd's rig of drives without the force loop
+EMULATORS = emulators/epos4-emu emulators/modbus-emu
+EMU_PKGS = umockdev-1.0 glib-2.0
+EMU_CFLAGS = $(shell pkg-config --cflags $(EMU_PKGS) 2>/dev/null)
+EMU_LIBS = $(shell pkg-config --libs $(EMU_PKGS) 2>/dev/null)
+emulators/epos4-emu_SRCS = tests/emulators/epos4_emu.c tests/emulators/emu.c
+emulators/modbus-emu_SRCS = tests/emulators/modbus_emu.c \
+			    tests/emulators/emu.c
+bench/drives-bench_SRCS = tests/bench/drives_bench.c
+$(foreach p,$(EMULATORS) bench/drives-bench,\
+	$(eval $(p)_WINGS = rig model base proto)\
+	$(eval $(p)_LDLIBS = $$(LDLIBS) $$(EMU_LIBS)))
 
-PROGRAMS = $(BUILD)/endosimd $(BUILD)/endoctl $(BUILD)/endoview
-
-# --- unit tests (cmocka) and helpers --------------------------------------
+# --- unit tests (cmocka), test tools, benchmarks, fuzz targets: each one
+# file that links every wing it may need (the linker takes only the modules
+# it uses)
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
 	     test_vessels test_metrics test_report test_course
-test_config_OBJS = config.o regmap.o log.o names.o
-test_session_file_OBJS = session_file.o
-test_metrics_OBJS = metrics.o $(COLON_OBJS)
-test_report_OBJS = report.o metrics.o names.o session_file.o $(COLON_OBJS)
-test_frame_OBJS = frame.o endosim.pb-c.o
-test_seqlock_OBJS = publish.o shm_reader.o log.o
-test_plant_OBJS = plant.o
-test_scenario_OBJS = scenario.o names.o
-test_safety_OBJS = safety.o inject.o config.o regmap.o log.o names.o
-test_epos4_frame_OBJS = epos4_frame.o
-test_canopen_OBJS = canopen.o
-test_regmap_OBJS = regmap.o
-test_config_drives_OBJS = config.o regmap.o log.o names.o drive.o histo.o
-test_colon_OBJS = $(COLON_OBJS)
-test_godobject_OBJS = $(COLON_OBJS) godobject.o
-test_haptics_OBJS = $(COLON_OBJS) godobject.o haptics.o plant.o config.o \
-		    regmap.o log.o names.o
-test_scope_OBJS = $(COLON_OBJS)
-test_scene_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
-		  endosim.pb-c.o $(COLON_OBJS)
-# the viewer's modules that need no window
-VIEWER_SCENE_OBJS = scene.o cases.o config.o regmap.o log.o names.o \
-		    endosim.pb-c.o $(COLON_OBJS)
-test_model_OBJS = model.o $(VIEWER_SCENE_OBJS)
-test_lod_OBJS = lod.o model.o $(VIEWER_SCENE_OBJS)
-test_portal_OBJS = portal.o lod.o model.o $(VIEWER_SCENE_OBJS)
-test_input_OBJS = input.o
-test_timing_OBJS = timing.o
-test_vessels_OBJS = vessels.o
-test_course_OBJS = $(OFFLINE_OBJS) cases.o metrics.o names.o
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report
-fault_watch_OBJS =
-notify_listen_OBJS =
-shm_probe_OBJS =
-shm_latency_OBJS = histo.o
-obj_import_OBJS = $(COLON_OBJS)
-scenario_gen_OBJS = $(COLON_OBJS) config.o regmap.o log.o
-session_script_OBJS = $(COLON_OBJS) metrics.o
-session_report_OBJS = $(COLON_OBJS) metrics.o report.o
-# the force loop off line, in lockstep (tests/tools/offline.h): the loop's
-# own cycle (safety, kinematics, haptics) on the simulated rig and hand
-OFFLINE_OBJS = offline.o loop.o sessiontap.o safety.o inject.o publish.o \
-	       rt.o histo.o spsc.o session_file.o $(COLON_OBJS) godobject.o \
-	       haptics.o hand.o scenario.o rig_sim.o plant.o config.o \
-	       regmap.o log.o
-session_synth_OBJS = $(OFFLINE_OBJS) cases.o state_text.o
 BENCH_TOOLS = bench_colon bench_haptics
-bench_haptics_OBJS = $(OFFLINE_OBJS) names.o
-
-# --- device emulators (tests/emulators/): what the system tests and the
-# drive benchmark run the real drive backends against
-EMULATORS = epos4-emu modbus-emu
-EMU_PKGS = umockdev-1.0 glib-2.0
-EMU_CFLAGS = $(shell pkg-config --cflags $(EMU_PKGS) 2>/dev/null)
-EMU_LIBS = $(shell pkg-config --libs $(EMU_PKGS) 2>/dev/null)
-epos4-emu_OBJS = epos4_emu.o emu.o epos4_frame.o canopen.o plant.o
-modbus-emu_OBJS = modbus_emu.o emu.o config.o regmap.o log.o names.o plant.o
-# the drive benchmark: endosimd's rig of drives without the force loop
-DRIVES_BENCH_OBJS = drives_bench.o rig.o rig_sim.o plant.o hand.o scenario.o \
-		    config.o regmap.o log.o names.o histo.o rt.o $(DRIVE_OBJS)
+FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
+	       fuzz_epos4 fuzz_session
+TEST_WINGS = $(WINGS)
+FUZZ_WINGS = session rig model base proto
 
 .PHONY: all test check bench bench-tools demo install clean deps deps-test \
 	deps-bench deps-build deps-demo \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
 	emulators
 
-all: $(PROGRAMS)
+all: $(addprefix $(BUILD)/,$(PROGRAMS))
 
 $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h &: proto/endosim.proto
 	@mkdir -p $(BUILD)/gen
 	protoc-c --proto_path=proto --c_out=$(BUILD)/gen $<
 
-$(BUILD)/obj/endosim.pb-c.o: $(BUILD)/gen/endosim.pb-c.c
+# one compile rule: each source's object in its wing's folder under obj/
+$(BUILD)/obj/%.o: %.c $(PROTO_GEN)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+$(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
+$(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 
-$(BUILD)/obj/%.o: proto/%.c $(PROTO_GEN)
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c -o $@ $<
-
-$(BUILD)/obj/%.o: daemon/%.c $(PROTO_GEN)
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c -o $@ $<
-
-$(BUILD)/endosimd: $(call obj,$(DAEMON_OBJS) $(PROTO_OBJS))
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
-
-$(BUILD)/endoctl: $(call obj,$(ENDOCTL_OBJS) $(PROTO_OBJS))
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(CLIENT_LDLIBS)
-
-$(BUILD)/obj/%.o: viewer/%.c $(PROTO_GEN)
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon $(VIEWER_CFLAGS) -c -o $@ $<
-
-$(BUILD)/endoview: $(call obj,$(VIEWER_OBJS) $(PROTO_OBJS))
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(VIEWER_LDLIBS)
-
-# unit tests: each test file with the modules it exercises
-define unit_test_rule
-$(BUILD)/tests/$(1): tests/unit/$(1).c $(call obj,$($(1)_OBJS)) $(PROTO_GEN)
+define wing_rule
+$(BUILD)/lib/lib$(1).a: $(call obj,$($(1)_SRCS))
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -Iviewer -Itests/tools -o $$@ $$< \
-		$(call obj,$($(1)_OBJS)) $$(LDFLAGS) $$(LDLIBS) -lcmocka
+	rm -f $$@ && $$(AR) rcs $$@ $$^
 endef
-$(foreach t,$(UNIT_TESTS),$(eval $(call unit_test_rule,$(t))))
+$(foreach w,$(WINGS),$(eval $(call wing_rule,$(w))))
 
-# test tools: separate processes the tests and benchmarks run; the
-# modules they share
-$(BUILD)/obj/%.o: tests/tools/%.c $(PROTO_GEN)
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon -c -o $@ $<
-
-define test_tool_rule
-$(BUILD)/tests/$(1): tests/tools/$(1).c \
-		$(call obj,$(sort $($(1)_OBJS) $(PROTO_OBJS)))
+define program_rule
+$(BUILD)/$(1): $(call obj,$($(1)_SRCS)) $(call wings,$($(1)_WINGS))
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -Itests/tools -o $$@ $$< \
-		$(call obj,$(sort $($(1)_OBJS) $(PROTO_OBJS))) $$(LDFLAGS) \
-		$$(LDLIBS)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$($(1)_LDLIBS)
 endef
-$(foreach t,$(TEST_TOOLS),$(eval $(call test_tool_rule,$(t))))
+$(foreach p,$(PROGRAMS) $(EMULATORS) bench/drives-bench,\
+	$(eval $(call program_rule,$(p))))
+
+# a unit test, a test tool or a benchmark: one file and the wings
+define test_rule
+$(BUILD)/tests/$(1): $(2)/$(1).c $(call wings,$(TEST_WINGS)) $(PROTO_GEN)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(ALL_CFLAGS) -Iviewer -Itests/tools -o $$@ $$< \
+		$(call wings,$(TEST_WINGS)) $$(LDFLAGS) $$(LDLIBS) $(3)
+endef
+$(foreach t,$(UNIT_TESTS),$(eval $(call test_rule,$(t),tests/unit,-lcmocka)))
+$(foreach t,$(TEST_TOOLS),$(eval $(call test_rule,$(t),tests/tools)))
+$(foreach t,$(BENCH_TOOLS),$(eval $(call test_rule,$(t),tests/bench)))
 
 unit-tests: $(addprefix $(BUILD)/tests/,$(UNIT_TESTS) $(TEST_TOOLS) \
 	$(BENCH_TOOLS) png_stats)
@@ -273,51 +231,10 @@ $(BUILD)/tests/png_stats: tests/tools/png_stats.c
 bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
 	png_stats)
 
-$(BUILD)/tests/bench_haptics: tests/bench/bench_haptics.c \
-		$(call obj,$(bench_haptics_OBJS))
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon -Itests/tools -o $@ $< \
-		$(call obj,$(bench_haptics_OBJS)) $(LDFLAGS) $(LDLIBS)
-
-$(BUILD)/tests/bench_colon: tests/bench/bench_colon.c \
-		$(call obj,$(COLON_OBJS))
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Idaemon -o $@ $< $(call obj,$(COLON_OBJS)) \
-		$(LDFLAGS) $(LDLIBS)
-
-$(BUILD)/obj/%.o: tests/emulators/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(EMU_CFLAGS) -c -o $@ $<
-
-define emulator_rule
-$(BUILD)/emulators/$(1): $(call obj,$($(1)_OBJS))
-	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(LDLIBS) $$(EMU_LIBS)
-endef
-$(foreach e,$(EMULATORS),$(eval $(call emulator_rule,$(e))))
-
-$(BUILD)/obj/drives_bench.o: tests/bench/drives_bench.c $(PROTO_GEN)
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c -o $@ $<
-
-$(BUILD)/bench/drives-bench: $(call obj,$(DRIVES_BENCH_OBJS))
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDFLAGS) $(LDLIBS)
-
 # the emulators, and the benchmark that runs the drive code against them
-emulators: $(addprefix $(BUILD)/emulators/,$(EMULATORS)) \
-	$(BUILD)/bench/drives-bench
+emulators: $(addprefix $(BUILD)/,$(EMULATORS) bench/drives-bench)
 
 # --- fuzz targets (libFuzzer, clang) --------------------------------------
-FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
-	       fuzz_epos4 fuzz_session
-fuzz_frame_OBJS = frame.o endosim.pb-c.o config.o regmap.o log.o names.o
-fuzz_config_OBJS = config.o regmap.o log.o names.o
-fuzz_scenario_OBJS = scenario.o names.o
-fuzz_anatomy_OBJS = $(COLON_OBJS)
-fuzz_objio_OBJS = $(COLON_OBJS)
-fuzz_epos4_OBJS = epos4_frame.o
-fuzz_session_OBJS = session_file.o metrics.o $(COLON_OBJS)
 # every UBSan report aborts the target (as in the ASan build): a fuzzer that
 # only printed it would go on and pass
 FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined \
@@ -325,10 +242,9 @@ FUZZ_CFLAGS = -g -O1 -fsanitize=fuzzer-no-link,address,undefined \
 FUZZ_SECONDS ?= 60
 
 define fuzz_rule
-$(BUILD)/$(1): tests/fuzz/$(1).c $(call obj,$($(1)_OBJS))
-	$$(CC) $$(ALL_CFLAGS) -Idaemon -fsanitize=fuzzer,address,undefined \
-		-fno-sanitize-recover=all -o $$@ $$< \
-		$(call obj,$($(1)_OBJS)) $$(LDLIBS)
+$(BUILD)/$(1): tests/fuzz/$(1).c $(call wings,$(FUZZ_WINGS))
+	$$(CC) $$(ALL_CFLAGS) -fsanitize=fuzzer,address,undefined \
+		-fno-sanitize-recover=all -o $$@ $$^ $$(LDLIBS)
 endef
 $(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_rule,$(t))))
 

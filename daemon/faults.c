@@ -3,7 +3,7 @@
 
 #include <stdio.h>
 
-#include "../proto/names.h"
+#include "names.h"
 
 static const char *const stage_names[] = {
 	[ENDOSIM_STAGE_FEEDBACK] = "rig's feedback",

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../proto/endosim_shm.h"
+#include "endosim_shm.h"
 #include "rig.h"
 
 /*

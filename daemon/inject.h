@@ -20,7 +20,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../proto/endosim_shm.h"
+#include "endosim_shm.h"
 #include "rig.h"
 #include "scope.h"
 

@@ -12,10 +12,12 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../proto/seqlock.h"
+#include "seqlock.h"
+#include "cases.h"
 #include "haptics.h"
 #include "inject.h"
 #include "log.h"
+#include "mono.h"
 #include "rt.h"
 #include "scope.h"
 #include "spsc.h"
@@ -84,14 +86,6 @@ struct loop {
 	_Atomic uint64_t debug_done; /* loop -> control: seq << 32 | result */
 	uint32_t debug_seq;        /* control thread's counter */
 };
-
-uint64_t loop_now_ns(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
 
 static struct timespec to_timespec(uint64_t ns)
 {
@@ -279,22 +273,30 @@ static void kinematics(struct loop *l)
 	};
 	struct scope_params p;
 
-	scope_params_config(&l->cfg, &p);
+	cases_scope_params(&l->cfg, &p);
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
 }
 
 static void render(struct loop *l)
 {
+	struct haptics_params par;
+	double position[ENDOSIM_AXES], velocity[ENDOSIM_AXES];
 	const struct haptics_input in = {
-		.cfg = &l->cfg,
+		.params = &par,
 		.colon = l->colon,
 		.pose = &l->pose,
-		.fb = &l->fb,
+		.position = position,
+		.velocity = velocity,
 		.dt_s = l->info.period_ns * 1e-9,
 		.torque_on = safety_torque_on(&l->safety),
 		.applied = l->limited, /* last cycle's, not yet filtered */
 	};
 
+	cases_haptics_params(&l->cfg, &par);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		position[a] = l->fb.axis[a].position;
+		velocity[a] = l->fb.axis[a].velocity;
+	}
 	haptics_render(l->haptics, &in, l->command, &l->state.haptics);
 }
 
@@ -422,7 +424,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	l->scenario_was_done = l->fb.hand_done;
 	fill_state(l, now, latency);
 	fill_scope(l);
-	l->state.publish_ns = l->lockstep ? now : loop_now_ns();
+	l->state.publish_ns = l->lockstep ? now : mono_ns();
 	if (l->pub) {
 		publish_state(l->pub, &l->state);
 	}
@@ -469,14 +471,14 @@ static void *loop_main(void *arg)
 	struct timespec ts;
 
 	prefault_stack();
-	next = loop_now_ns();
+	next = mono_ns();
 	while (!atomic_load_explicit(&l->stop, memory_order_acquire)) {
 		next += period;
 		ts = to_timespec(next);
 		while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts,
 				       NULL) == EINTR) {
 		}
-		now = loop_now_ns();
+		now = mono_ns();
 		uint64_t latency = now > next ? now - next : 0;
 
 		skipped = skip_overrun(&next, now, period);
@@ -492,14 +494,14 @@ static void *loop_main(void *arg)
 		}
 		histo_add(&l->latency, latency);
 		cycle(l, now, latency);
-		count_cycle(l, loop_now_ns() - now);
+		count_cycle(l, mono_ns() - now);
 		if (l->stall_ns) {
 			stall(l);
 		}
 	}
 	/* last act: nothing energised */
 	memset(l->limited, 0, sizeof(l->limited));
-	rig_write(l->rig, loop_now_ns(), l->limited, false);
+	rig_write(l->rig, mono_ns(), l->limited, false);
 	return NULL;
 }
 
@@ -633,7 +635,7 @@ int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
 {
 	uint64_t slot = post_command(l, cmd);
 	uint32_t seq = (uint32_t)(slot >> CMD_SHIFT);
-	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
 	struct timespec nap = { .tv_nsec = 100000 };
 
 	for (;;) {
@@ -643,7 +645,7 @@ int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
 		if ((uint32_t)(done >> 32) == seq) {
 			return (int32_t)(uint32_t)done;
 		}
-		if (loop_now_ns() > deadline) {
+		if (mono_ns() > deadline) {
 			uint64_t expected = slot;
 
 			if (atomic_compare_exchange_strong(&l->cmd_slot,
@@ -667,14 +669,14 @@ static struct colon *swap_answer(struct loop *l)
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 		    struct colon **old, int timeout_ms)
 {
-	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
 	struct timespec nap = { .tv_nsec = 200000 };
 	struct colon *back;
 
 	l->scene_id_in = scene_id;
 	atomic_store_explicit(&l->colon_in, colon, memory_order_release);
 	while (!(back = swap_answer(l))) {
-		if (loop_now_ns() > deadline) {
+		if (mono_ns() > deadline) {
 			struct colon *expected = colon;
 
 			if (atomic_compare_exchange_strong(&l->colon_in,
@@ -703,13 +705,13 @@ int loop_debug(struct loop *l, int action, int axis, double value,
 	       int timeout_ms)
 {
 	uint32_t seq = ++l->debug_seq;
-	uint64_t deadline = loop_now_ns() + (uint64_t)timeout_ms * 1000000u;
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
 	struct timespec nap = { .tv_nsec = 100000 };
 
 	seqlock_write_begin(&l->debug_lock);
 	l->debug_box = (struct loop_debug){ seq, action, axis, value };
 	seqlock_write_end(&l->debug_lock);
-	while (loop_now_ns() < deadline) {
+	while (mono_ns() < deadline) {
 		uint64_t done = atomic_load_explicit(&l->debug_done,
 						     memory_order_acquire);
 
@@ -754,12 +756,12 @@ const struct loop_info *loop_get_info(const struct loop *l)
 
 void loop_step(struct loop *l, uint64_t now_ns)
 {
-	uint64_t t0 = loop_now_ns();
+	uint64_t t0 = mono_ns();
 
 	l->lockstep = true;
 	l->skipped = 0;
 	cycle(l, now_ns, 0);
-	count_cycle(l, loop_now_ns() - t0);
+	count_cycle(l, mono_ns() - t0);
 }
 
 void loop_post(struct loop *l, enum loop_cmd cmd)

@@ -173,9 +173,6 @@ uint64_t loop_heartbeat(const struct loop *l);
 void loop_get_stats(const struct loop *l, struct loop_stats *st);
 const struct loop_info *loop_get_info(const struct loop *l);
 
-/* CLOCK_MONOTONIC in nanoseconds. */
-uint64_t loop_now_ns(void);
-
 /*
  * Lockstep: the force loop without its thread, on simulated time, for the
  * tools and tests that need its behaviour cycle for cycle whatever the

@@ -22,8 +22,8 @@
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "names.h"
+#include "version.h"
 #include "cases.h"
 #include "config.h"
 #include "control.h"
@@ -31,9 +31,12 @@
 #include "hand.h"
 #include "log.h"
 #include "loop.h"
+#include "mono.h"
 #include "publish.h"
 #include "recorder.h"
 #include "rig.h"
+#include "rig_drives.h"
+#include "rig_sim.h"
 #include "scenario.h"
 
 #define TICK_MS 50
@@ -326,6 +329,18 @@ static bool any_simulated(const struct config *cfg)
 	return false;
 }
 
+/* The rig backend [rig] backend names: the factory of rig.h's backends. */
+static struct rig *create_rig(const struct config *cfg, struct hand *hand)
+{
+	switch (cfg->rig.backend) {
+	case CONFIG_BACKEND_SIM:
+		return rig_sim_create(cfg, hand);
+	case CONFIG_BACKEND_DRIVES:
+		return rig_drives_create(cfg, hand);
+	}
+	return NULL;
+}
+
 /* The configured case, built before anything else starts. */
 static struct colon *load_colon(const struct config *cfg)
 {
@@ -375,7 +390,7 @@ static int start(struct daemon *d, const struct options *opt)
 		colon_destroy(colon);
 		return EX_OSERR;
 	}
-	d->rig = rig_create(&d->cfg, d->hand);
+	d->rig = create_rig(&d->cfg, d->hand);
 	if (!d->rig) {
 		colon_destroy(colon);
 		return EX_SOFTWARE;
@@ -461,7 +476,7 @@ static int open_fds(int *sig_fd, int *tick_fd)
 static void watchdog(struct daemon *d, uint64_t usec, uint64_t *last_beat,
 		     uint64_t *last_ping)
 {
-	uint64_t now = loop_now_ns();
+	uint64_t now = mono_ns();
 	uint64_t beat = loop_heartbeat(d->loop);
 
 	if (!usec || now - *last_ping < usec * 1000 / 2) {
@@ -602,7 +617,7 @@ int main(int argc, char **argv)
 		 d.cfg.loop.overrun_budget, d.cfg.loop.overrun_window_s,
 		 config_overrun_faults(&d.cfg) ? "fault" : "warning");
 	block_signals();
-	d.start_ns = loop_now_ns();
+	d.start_ns = mono_ns();
 	r = start(&d, &opt);
 	if (!r) {
 		r = run(&d);

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#include "../proto/endosim_shm.h"
+#include "endosim_shm.h"
 
 struct publish;
 

@@ -13,12 +13,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../proto/names.h"
-#include "../proto/version.h"
+#include "names.h"
+#include "version.h"
 #include "faults.h"
 #include "log.h"
-#include "loop.h"
+#include "mono.h"
 #include "sessiondir.h"
+#include "sessioninputs.h"
 
 #define BUF_BYTES (256 * 1024)   /* gathered frames, written in one go */
 #define FLUSH_BYTES (BUF_BYTES / 2)
@@ -106,7 +107,7 @@ static void throttle(struct recorder *r, size_t n)
 	r->throttle_bytes += n;
 	due = r->throttle_t0_ns +
 	      (uint64_t)((double)r->throttle_bytes / r->write_limit * 1e9);
-	while ((now = loop_now_ns()) < due && !stopping(r)) {
+	while ((now = mono_ns()) < due && !stopping(r)) {
 		nap_ns(due - now < 20000000u ? due - now : 20000000u);
 	}
 }
@@ -133,7 +134,7 @@ static void flush(struct recorder *r)
 {
 	int e;
 
-	r->last_write_ns = loop_now_ns();
+	r->last_write_ns = mono_ns();
 	if (!r->used) {
 		return;
 	}
@@ -237,7 +238,7 @@ static void drops_event(struct recorder *r)
 {
 	uint64_t d = atomic_load_explicit(&r->tap.drops, memory_order_relaxed);
 	struct session_event ev = {
-		.stamp_ns = loop_now_ns(), .kind = SESSION_EVENT_DROPS,
+		.stamp_ns = mono_ns(), .kind = SESSION_EVENT_DROPS,
 		.axis = -1, .value = (double)d,
 	};
 	static struct log_ratelimit rl = LOG_RATELIMIT_INIT(10, 1);
@@ -279,7 +280,7 @@ static void snapshot(struct recorder *r)
 	r->info.drops = atomic_load(&r->tap.drops);
 	r->info.bytes = r->bytes + 8;
 	pthread_mutex_unlock(&r->lock);
-	r->last_snapshot_ns = loop_now_ns();
+	r->last_snapshot_ns = mono_ns();
 }
 
 /* Everything in the ring now, into the buffer; written when due. */
@@ -296,7 +297,7 @@ static void drain(struct recorder *r)
 		r->records++;
 	}
 	drops_event(r);
-	now = loop_now_ns();
+	now = mono_ns();
 	if (r->used >= FLUSH_BYTES || now - r->last_write_ns >= FLUSH_NS) {
 		flush(r);
 	}
@@ -312,10 +313,10 @@ static void quiesce(struct recorder *r)
 {
 	uint64_t pass = atomic_load_explicit(&r->tap.passes,
 					     memory_order_acquire);
-	uint64_t deadline = loop_now_ns() + 100000000ull;
+	uint64_t deadline = mono_ns() + 100000000ull;
 
 	while (atomic_load_explicit(&r->tap.passes, memory_order_acquire) <
-		       pass + 2 && loop_now_ns() < deadline) {
+		       pass + 2 && mono_ns() < deadline) {
 		nap_ns(r->period_ns);
 	}
 }
@@ -355,7 +356,7 @@ static int finish(struct recorder *r)
 static void ended(struct recorder *r, int result)
 {
 	r->info.recording = false;
-	r->info.end_ns = loop_now_ns();
+	r->info.end_ns = mono_ns();
 	r->info.records = r->records;
 	r->info.drops = atomic_load(&r->tap.drops);
 	r->info.bytes = r->bytes + 8;
@@ -481,7 +482,7 @@ static int arm(struct recorder *r, int fd, const struct recorder_session *s,
 	r->seen_record = false;
 	r->last_faults = 0;
 	r->throttle_t0_ns = r->last_write_ns = r->last_snapshot_ns =
-		loop_now_ns();
+		mono_ns();
 	r->throttle_bytes = 0;
 	r->n_params = 0;
 	atomic_store(&r->tap.drops, 0);
@@ -513,7 +514,7 @@ int recorder_start(struct recorder *r, const struct recorder_session *s,
 	snprintf(in.trainee, sizeof(in.trainee), "%s", s->trainee);
 	snprintf(in.case_name, sizeof(in.case_name), "%s", s->case_name);
 	utc_now(in.started, sizeof(in.started));
-	in.start_ns = loop_now_ns();
+	in.start_ns = mono_ns();
 	e = write_head(fd, s, &in);
 	if (!e && fstat(fd, &st) < 0) {
 		e = -errno;
@@ -572,23 +573,13 @@ void recorder_param(struct recorder *r, const char *key, const char *value)
 	if (r->phase == PHASE_RECORDING && r->n_params < PARAMS) {
 		struct param *p = &r->params[r->n_params++];
 
-		p->stamp_ns = loop_now_ns();
+		p->stamp_ns = mono_ns();
 		snprintf(p->text, sizeof(p->text), "%s=%s", key, value);
 	}
 	pthread_mutex_unlock(&r->lock);
 }
 
 /* ------------------------------------------------------------ life */
-
-static void params_from(const struct config *cfg, struct metrics_params *p)
-{
-	metrics_params_default(p);
-	p->force_threshold_n = cfg->session.force_threshold_n;
-	p->loop_threshold_m = cfg->session.loop_threshold_m;
-	p->view_distance_m = cfg->session.view_distance_m;
-	p->fov_rad = cfg->session.fov_deg * M_PI / 180;
-	p->view_rate_hz = cfg->session.view_rate_hz;
-}
 
 struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 				 struct publish *pub, uint64_t start_ns)
@@ -615,7 +606,7 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	}
 	snprintf(r->dir, sizeof(r->dir), "%s", cfg->session.directory);
 	r->write_limit = cfg->session.write_limit_bytes_per_s;
-	params_from(cfg, &r->mp);
+	sessioninputs_metrics_params(cfg, &r->mp);
 	r->rig = rig;
 	r->pub = pub;
 	r->daemon_start_ns = start_ns;

@@ -34,8 +34,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../proto/endosim_shm.h"
-#include "../proto/session_file.h"
+#include "endosim_shm.h"
+#include "session_file.h"
 #include "colon.h"
 #include "config.h"
 #include "metrics.h"

@@ -1,7 +1,7 @@
 /* sessiontap.c - see sessiontap.h. */
 #include "sessiontap.h"
 
-#include "../proto/session_file.h"
+#include "session_file.h"
 
 void session_tap_push(struct session_tap *t, const struct endosim_state *st)
 {

@@ -18,7 +18,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../proto/endosim_shm.h"
+#include "endosim_shm.h"
 #include "spsc.h"
 
 struct session_tap {

@@ -95,7 +95,7 @@ struct endosim_axis_state {
  * the colon's deformation. s is the material arc length from the anal
  * verge on the undeformed colon (GetScene's centreline); a viewer bows its
  * copy of the centreline by bow_m with the daemon's algorithm
- * (daemon/centreline.h) to draw exactly what the haptics use.
+ * (daemon/model/centreline.h) to draw exactly what the haptics use.
  */
 struct endosim_scope_state {
 	uint64_t scene_id;    /* GetScene's scene_id of the colon in use */

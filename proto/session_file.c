@@ -2,132 +2,139 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <inttypes.h>
-#include <pthread.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "session_file.h"
 
 #define FRAME_OVERHEAD 12u /* type, length, crc */
 
-static void fcopy(float *dst, const double *src, size_t n)
-{
-	for (size_t i = 0; i < n; i++) {
-		dst[i] = (float)src[i];
-	}
-}
+#define R(field) offsetof(struct session_record, field)
+#define S(field) offsetof(struct endosim_state, field)
+#define F(name, rec, st) { name, SESSION_FIELD_F32, R(rec), S(st) }
+#define U(name, field) { name, SESSION_FIELD_U32, R(field), S(field) }
+#define AXES(what, field, lin, rot)                                          \
+	F("insertion_" what "_" lin, field[0], axis[0].field),               \
+	F("roll_" what "_" rot, field[1], axis[1].field),                    \
+	F("wheel_ud_" what "_" rot, field[2], axis[2].field),                \
+	F("wheel_lr_" what "_" rot, field[3], axis[3].field)
+#define XYZ(what, field, st, unit)                                           \
+	F(what "_x_" unit, field[0], st[0]),                                 \
+	F(what "_y_" unit, field[1], st[1]),                                 \
+	F(what "_z_" unit, field[2], st[2])
+#define SC(name, field) F(name, field, scope.field)
+#define H(name, field) F(name, field, haptics.field)
+#define UD_LR(what, field, unit)                                             \
+	H(what "_ud_" unit, field[0]), H(what "_lr_" unit, field[1])
 
-static void dcopy(double *dst, const float *src, size_t n)
+const struct session_field session_fields[] = {
+	{ "cycle", SESSION_FIELD_U64, R(cycle), S(cycle) },
+	{ NULL, SESSION_FIELD_U64, R(stamp_ns), S(stamp_ns) },
+	U("state", state),
+	U("fault_bits", fault_bits),
+	AXES("position", position, "m", "rad"),
+	AXES("velocity", velocity, "m_per_s", "rad_per_s"),
+	AXES("hand", hand, "n", "nm"),
+	AXES("command", command, "n", "nm"),
+	AXES("limited", limited, "n", "nm"),
+	F("ramp", ramp, safety.ramp),
+	SC("depth_m", depth_m),
+	SC("roll_rad", roll_rad),
+	SC("bend_ud_rad", bend_rad[0]),
+	SC("bend_lr_rad", bend_rad[1]),
+	SC("base_s_m", base_s_m),
+	SC("tip_s_m", tip_s_m),
+	SC("turning_rad", turning_rad),
+	XYZ("tip", tip, scope.tip, "m"),
+	XYZ("dir", dir, scope.dir, "1"),
+	XYZ("up", up, scope.up, "1"),
+	SC("bow0_m", bow_m[0]), SC("bow1_m", bow_m[1]),
+	SC("bow2_m", bow_m[2]), SC("bow3_m", bow_m[3]),
+	XYZ("proxy", proxy, haptics.proxy, "m"),
+	XYZ("normal", normal, haptics.normal, "1"),
+	XYZ("f_static", f_static, haptics.f_static, "n"),
+	H("penetration_m", penetration_m),
+	{ "contact", SESSION_FIELD_U32, R(contact), S(haptics.contact) },
+	{ "spans", SESSION_FIELD_U32, R(spans), S(scope.spans) },
+	H("curvature_rad", curvature_rad),
+	H("trans_contact_n", trans_contact_n),
+	H("trans_friction_n", trans_friction_n),
+	H("trans_loop_n", trans_loop_n),
+	UD_LR("wheel_contact", wheel_contact_nm, "nm"),
+	UD_LR("wheel_tension", wheel_tension_nm, "nm"),
+	UD_LR("wheel_elastic", wheel_elastic_nm, "nm"),
+	H("tube_contact_nm", tube_contact_nm),
+	H("tube_friction_nm", tube_friction_nm),
+	F("scenario_time_s", scenario_time_s, scenario_time_s),
+	U("latency_ns", latency_ns),
+	U("compute_ns", compute_ns),
+};
+
+const size_t session_n_fields = sizeof(session_fields) /
+				sizeof(session_fields[0]);
+
+_Static_assert(ENDOSIM_SPANS == 4, "session_fields: a bow column per span");
+
+/* Copies field D from FROM (a state when TO_RECORD, else a record) to TO. */
+static void copy_field(const struct session_field *d, const void *from,
+		       void *to, bool to_record)
 {
-	for (size_t i = 0; i < n; i++) {
-		dst[i] = src[i];
+	const unsigned char *src = (const unsigned char *)from +
+				   (to_record ? d->state : d->record);
+	unsigned char *dst = (unsigned char *)to +
+			     (to_record ? d->record : d->state);
+	double v;
+	float f;
+
+	switch (d->type) {
+	case SESSION_FIELD_U64:
+		memcpy(dst, src, sizeof(uint64_t));
+		break;
+	case SESSION_FIELD_U32:
+		memcpy(dst, src, sizeof(uint32_t));
+		break;
+	case SESSION_FIELD_F32:
+		if (to_record) {
+			memcpy(&v, src, sizeof(v));
+			f = (float)v;
+			memcpy(dst, &f, sizeof(f));
+		} else {
+			memcpy(&f, src, sizeof(f));
+			v = f;
+			memcpy(dst, &v, sizeof(v));
+		}
+		break;
 	}
 }
 
 void session_record_from_state(const struct endosim_state *in,
 			       struct session_record *out)
 {
-	const struct endosim_scope_state *sc = &in->scope;
-	const struct endosim_haptics_state *h = &in->haptics;
-
 	memset(out, 0, sizeof(*out));
-	out->cycle = in->cycle;
-	out->stamp_ns = in->stamp_ns;
-	out->state = in->state;
-	out->fault_bits = in->fault_bits;
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		out->position[a] = (float)in->axis[a].position;
-		out->velocity[a] = (float)in->axis[a].velocity;
-		out->hand[a] = (float)in->axis[a].hand;
-		out->command[a] = (float)in->axis[a].command;
-		out->limited[a] = (float)in->axis[a].limited;
+	for (size_t i = 0; i < session_n_fields; i++) {
+		copy_field(&session_fields[i], in, out, true);
 	}
-	out->ramp = (float)in->safety.ramp;
-	out->depth_m = (float)sc->depth_m;
-	out->roll_rad = (float)sc->roll_rad;
-	fcopy(out->bend_rad, sc->bend_rad, 2);
-	out->base_s_m = (float)sc->base_s_m;
-	out->tip_s_m = (float)sc->tip_s_m;
-	out->turning_rad = (float)sc->turning_rad;
-	fcopy(out->tip, sc->tip, 3);
-	fcopy(out->dir, sc->dir, 3);
-	fcopy(out->up, sc->up, 3);
-	fcopy(out->bow_m, sc->bow_m, ENDOSIM_SPANS);
-	out->spans = sc->spans;
-	fcopy(out->proxy, h->proxy, 3);
-	fcopy(out->normal, h->normal, 3);
-	fcopy(out->f_static, h->f_static, 3);
-	out->penetration_m = (float)h->penetration_m;
-	out->contact = h->contact;
-	out->curvature_rad = (float)h->curvature_rad;
-	out->trans_contact_n = (float)h->trans_contact_n;
-	out->trans_friction_n = (float)h->trans_friction_n;
-	out->trans_loop_n = (float)h->trans_loop_n;
-	fcopy(out->wheel_contact_nm, h->wheel_contact_nm, 2);
-	fcopy(out->wheel_tension_nm, h->wheel_tension_nm, 2);
-	fcopy(out->wheel_elastic_nm, h->wheel_elastic_nm, 2);
-	out->tube_contact_nm = (float)h->tube_contact_nm;
-	out->tube_friction_nm = (float)h->tube_friction_nm;
-	out->scenario_time_s = (float)in->scenario_time_s;
-	out->latency_ns = in->latency_ns;
-	out->compute_ns = in->compute_ns;
 }
 
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out)
 {
-	struct endosim_scope_state *sc = &out->scope;
-	struct endosim_haptics_state *h = &out->haptics;
-
 	memset(out, 0, sizeof(*out));
-	out->cycle = in->cycle;
-	out->stamp_ns = in->stamp_ns;
+	for (size_t i = 0; i < session_n_fields; i++) {
+		copy_field(&session_fields[i], in, out, false);
+	}
 	out->publish_ns = in->stamp_ns;
-	out->state = in->state;
-	out->fault_bits = in->fault_bits;
 	out->fault_axis = -1;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		out->axis[a].position = in->position[a];
-		out->axis[a].velocity = in->velocity[a];
-		out->axis[a].hand = in->hand[a];
-		out->axis[a].command = in->command[a];
-		out->axis[a].limited = in->limited[a];
 		out->axis[a].feedback_ns = in->stamp_ns;
 	}
-	out->safety.ramp = in->ramp;
-	sc->depth_m = in->depth_m;
-	sc->roll_rad = in->roll_rad;
-	dcopy(sc->bend_rad, in->bend_rad, 2);
-	sc->base_s_m = in->base_s_m;
-	sc->tip_s_m = in->tip_s_m;
-	sc->turning_rad = in->turning_rad;
-	dcopy(sc->tip, in->tip, 3);
-	dcopy(sc->dir, in->dir, 3);
-	dcopy(sc->up, in->up, 3);
-	dcopy(sc->bow_m, in->bow_m, ENDOSIM_SPANS);
-	sc->spans = in->spans;
-	dcopy(h->proxy, in->proxy, 3);
-	dcopy(h->normal, in->normal, 3);
-	dcopy(h->f_static, in->f_static, 3);
-	h->penetration_m = in->penetration_m;
-	h->contact = in->contact;
-	h->curvature_rad = in->curvature_rad;
-	h->trans_contact_n = in->trans_contact_n;
-	h->trans_friction_n = in->trans_friction_n;
-	h->trans_loop_n = in->trans_loop_n;
-	dcopy(h->wheel_contact_nm, in->wheel_contact_nm, 2);
-	dcopy(h->wheel_tension_nm, in->wheel_tension_nm, 2);
-	dcopy(h->wheel_elastic_nm, in->wheel_elastic_nm, 2);
-	h->tube_contact_nm = in->tube_contact_nm;
-	h->tube_friction_nm = in->tube_friction_nm;
-	out->scenario_time_s = in->scenario_time_s;
-	out->latency_ns = in->latency_ns;
-	out->compute_ns = in->compute_ns;
 }
 
 static void put_u32(unsigned char *p, uint32_t v)
@@ -144,54 +151,9 @@ static uint32_t get_u32(const unsigned char *p)
 	       (uint32_t)p[3] << 24;
 }
 
-/*
- * CRC-32 eight bytes a step ("slicing-by-8"): table[k][b] is the CRC of
- * byte b followed by k zero bytes, so eight table lookups fold in eight
- * bytes at once. A reader checks every frame of a file that grows by
- * 300 kB a second of session; one byte a step (and a bit at a time
- * before that) made `session show` of an hour's session take a minute.
- */
-static uint32_t crc_table[8][256];
-static pthread_once_t crc_once = PTHREAD_ONCE_INIT;
-
-static void crc_init(void)
-{
-	for (uint32_t b = 0; b < 256; b++) {
-		uint32_t c = b;
-
-		for (int k = 0; k < 8; k++) {
-			c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-		}
-		crc_table[0][b] = c;
-	}
-	for (uint32_t b = 0; b < 256; b++) {
-		for (int k = 1; k < 8; k++) {
-			uint32_t c = crc_table[k - 1][b];
-
-			crc_table[k][b] = (c >> 8) ^ crc_table[0][c & 0xff];
-		}
-	}
-}
-
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n)
 {
-	const unsigned char *p = data;
-	const uint32_t(*t)[256] = crc_table;
-
-	pthread_once(&crc_once, crc_init);
-	crc = ~crc;
-	for (; n >= 8; n -= 8, p += 8) {
-		uint32_t lo = crc ^ get_u32(p), hi = get_u32(p + 4);
-
-		crc = t[7][lo & 0xff] ^ t[6][(lo >> 8) & 0xff] ^
-		      t[5][(lo >> 16) & 0xff] ^ t[4][lo >> 24] ^
-		      t[3][hi & 0xff] ^ t[2][(hi >> 8) & 0xff] ^
-		      t[1][(hi >> 16) & 0xff] ^ t[0][hi >> 24];
-	}
-	while (n--) {
-		crc = (crc >> 8) ^ t[0][(crc ^ *p++) & 0xff];
-	}
-	return ~crc;
+	return (uint32_t)crc32_z(crc, data, n);
 }
 
 size_t session_frame_put(unsigned char *buf, size_t size, size_t used,

@@ -130,6 +130,29 @@ struct session_event {
 _Static_assert(sizeof(struct session_event) == 32,
 	       "session_event: its size is part of the file format");
 
+/*
+ * The one description of the recorded fields of the state: what the copy
+ * between the published state and a record, and the CSV columns of
+ * `endoctl session export`, are made of. A field added to the state that a
+ * session should keep is added to struct session_record and to this table
+ * (session_file.c), in the order of the CSV columns.
+ */
+enum session_field_type {
+	SESSION_FIELD_U64,   /* uint64_t in both */
+	SESSION_FIELD_U32,   /* uint32_t in both */
+	SESSION_FIELD_F32,   /* double in the state, float in the record */
+};
+
+struct session_field {
+	const char *name;    /* CSV column, its unit as a suffix; NULL: none */
+	enum session_field_type type;
+	size_t record;       /* offset into struct session_record */
+	size_t state;        /* offset into struct endosim_state */
+};
+
+extern const struct session_field session_fields[];
+extern const size_t session_n_fields;
+
 /* Fills OUT from one published state. Never allocates; any thread. */
 void session_record_from_state(const struct endosim_state *in,
 			       struct session_record *out);
@@ -227,7 +250,7 @@ int session_text_get(const char *text, const char *key, char *out,
 /* The index of the last record at or before STAMP_NS (0 if none is). */
 size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns);
 
-/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32()) of N bytes. */
+/* CRC-32 (IEEE 802.3, reflected) of N bytes: zlib's crc32_z(). */
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n);
 
 #endif

@@ -5,8 +5,9 @@
 # cannot be made here: common.sh's skip) neither passes nor fails; the
 # suites that skipped any are named at the end, with why.
 #
-# Suites: the cmocka unit tests and the numbered system tests of the build
-# in $BUILD; the same again for the AddressSanitizer/UBSan build in
+# Suites: the include check of the wings (tests/layers.sh), the cmocka
+# unit tests and the numbered system tests of the build in $BUILD; the same
+# again for the AddressSanitizer/UBSan build in
 # $BUILD/asan when it exists (with SANITIZED=1: a long test may shorten
 # what checks only timing, not memory, there); a short run of each fuzz
 # target in $BUILD/fuzz when they exist ($FUZZ_SECONDS each, default 5).
@@ -104,6 +105,9 @@ system_tests() {
 	done
 }
 
+started=$SECONDS
+tests/layers.sh >"$work/layers.out" 2>&1
+record "layers" "$work/layers.out" $? $((SECONDS - started))
 unit_tests "$BUILD" ""
 system_tests "$BUILD" "" ""
 if [ -d "$BUILD/asan/tests" ]; then

@@ -38,6 +38,7 @@
 #include "lod.h"
 #include "log.h"
 #include "model.h"
+#include "mono.h"
 #include "overview.h"
 #include "replay.h"
 #include "rigctl.h"
@@ -101,14 +102,6 @@ struct app {
 	long frame;
 	long timed_from; /* the first frame the figures count */
 };
-
-static uint64_t now_ns(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * NS + (uint64_t)ts.tv_nsec;
-}
 
 /* ------------------------------------------------------------ options */
 
@@ -554,7 +547,7 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 		.fps = timing_fps(a->timing),
 		.triangles = a->triangles,
 		.age_ms = st && a->status == LINK_LIVE ?
-				  (double)((int64_t)now_ns() -
+				  (double)((int64_t)mono_ns() -
 					   (int64_t)st->publish_ns) / 1e6 : 0,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
@@ -655,7 +648,7 @@ static int frame(struct app *a)
 	const struct endosim_state *st;
 	struct input_controls c;
 	struct ui_actions acts;
-	uint64_t now = now_ns();
+	uint64_t now = mono_ns();
 	struct hud_layout lay;
 	bool current;
 	int w, h, err = 0;
@@ -690,7 +683,7 @@ static int frame(struct app *a)
 	}
 	glfwSwapBuffers(a->window);
 	a->shown = st;
-	account(a, st, now_ns());
+	account(a, st, mono_ns());
 	return acts.quit ? 1 : err;
 }
 
@@ -762,7 +755,7 @@ static void report_state(const struct app *a)
  */
 static void pace(struct app *a)
 {
-	uint64_t period, now = now_ns();
+	uint64_t period, now = mono_ns();
 	struct timespec ts;
 
 	if (a->opt.max_fps <= 0) {
@@ -785,7 +778,7 @@ static int run(struct app *a)
 {
 	int r = 0;
 
-	a->start_ns = now_ns();
+	a->start_ns = mono_ns();
 	a->orbit.zoom = 1;
 	a->timed_from = WARM_UP_FRAMES;
 	if (a->replay && build_colon(a, replay_scene(a->replay))) {

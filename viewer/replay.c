@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "anatomy.h"
 #include "cases.h"
 #include "colon.h"
 #include "config.h"
@@ -15,6 +14,7 @@
 #include "scene.h"
 #include "scope.h"
 #include "session_file.h"
+#include "sessioninputs.h"
 
 #define NS 1e9
 
@@ -49,60 +49,24 @@ static const char *read_error(int r)
 static void read_config(struct replay *r, const char *path)
 {
 	char err[256];
-	FILE *f;
 
-	config_defaults(&r->cfg);
-	if (!r->f.config || !*r->f.config) {
-		return;
-	}
-	f = fmemopen(r->f.config, strlen(r->f.config), "r");
-	if (!f || config_load_stream(&r->cfg, f, "CONFIG", err, sizeof(err))) {
+	if (sessioninputs_config(&r->f, &r->cfg, err, sizeof(err))) {
 		log_warn("%s: its configuration: %s: the scope's defaults "
-			 "instead", path, f ? err : strerror(errno));
-		config_defaults(&r->cfg);
+			 "instead", path, err);
 	}
-	if (f) {
-		fclose(f);
-	}
-}
-
-/* The header's resolution over the configuration's. */
-static int header_params(const struct replay *r, struct colon_params *p,
-			 char *err, size_t errsize)
-{
-	char v[64];
-
-	cases_colon_params(&r->cfg, p);
-	if (!session_text_get(r->f.header, "step_m", v, sizeof(v))) {
-		p->step_m = strtod(v, NULL);
-	}
-	if (!session_text_get(r->f.header, "ring_vertices", v, sizeof(v))) {
-		p->ring_vertices = (uint32_t)strtoul(v, NULL, 10);
-	}
-	if (!session_text_get(r->f.header, "segment_m", v, sizeof(v))) {
-		p->segment_m = strtod(v, NULL);
-	}
-	if (!(p->step_m > 0) || !(p->segment_m > 0) || !p->ring_vertices) {
-		snprintf(err, errsize, "its header's resolution does not add up");
-		return -EINVAL;
-	}
-	return 0;
 }
 
 static int build_colon(struct replay *r, const char *path, char *err,
 		       size_t errsize)
 {
-	struct colon_params p;
-	struct anatomy a;
 	char why[256];
 
 	if (!r->f.case_text || !*r->f.case_text) {
 		snprintf(err, errsize, "%s: no case recorded", path);
 		return -EINVAL;
 	}
-	if (header_params(r, &p, why, sizeof(why)) ||
-	    anatomy_parse(&a, r->f.case_text, "CASE", why, sizeof(why)) ||
-	    !(r->colon = colon_create(&a, &p, why, sizeof(why)))) {
+	r->colon = sessioninputs_colon(&r->f, &r->cfg, why, sizeof(why));
+	if (!r->colon) {
 		snprintf(err, errsize, "%s: its colon: %s", path, why);
 		return -EINVAL;
 	}
@@ -259,7 +223,7 @@ static void rebuild_tube(struct replay *r, size_t i)
 	const struct centreline *cl = colon_centreline(r->colon);
 	struct scope_params sp;
 
-	scope_params_config(&r->cfg, &sp);
+	cases_scope_params(&r->cfg, &sp);
 	for (int k = 0; k < centreline_spans(cl) && k < ENDOSIM_SPANS; k++) {
 		colon_bow(r->colon, k, bows->bow_m[k], false);
 	}

@@ -3,7 +3,7 @@
  * exchanges with its drives: exchanges per second, and the time of one
  * exchange and of one transaction (request and reply), p50 and p99.
  *
- * It runs endosimd's own rig of drives (rig.h: the bus threads, the
+ * It runs endosimd's own rig of drives (rig_drives.h: the bus threads, the
  * backends, libusb, libmodbus) for a few seconds, enabled with zero torque,
  * posting commands and reading feedback at 1 kHz as the force loop does,
  * with each bus' rate cap lifted (--set keys as endosimd takes them). Run
@@ -21,10 +21,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "../../daemon/config.h"
-#include "../../daemon/hand.h"
-#include "../../daemon/log.h"
-#include "../../daemon/rig.h"
+#include "config.h"
+#include "hand.h"
+#include "log.h"
+#include "rig_drives.h"
 
 #define TICK_NS 1000000ull /* the force loop's default period */
 
@@ -156,7 +156,7 @@ int main(int argc, char **argv)
 	}
 	log_init("drives-bench", LOG_WARNING);
 	hand = hand_create(&cfg, NULL);
-	rig = hand ? rig_create(&cfg, hand) : NULL;
+	rig = hand ? rig_drives_create(&cfg, hand) : NULL;
 	if (!rig || rig_start(rig)) {
 		return 1;
 	}

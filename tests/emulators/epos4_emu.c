@@ -64,8 +64,8 @@
 #include <linux/usbdevice_fs.h>
 #include <umockdev.h>
 
-#include "../../daemon/canopen.h"
-#include "../../daemon/epos4_frame.h"
+#include "canopen.h"
+#include "epos4_frame.h"
 #include "emu.h"
 
 #define MAX_DEV 4

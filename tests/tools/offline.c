@@ -6,7 +6,7 @@
 
 #include "hand.h"
 #include "loop.h"
-#include "rig.h"
+#include "rig_sim.h"
 #include "scenario.h"
 
 struct offline {

@@ -136,7 +136,7 @@ int main(int argc, char **argv)
 	       "tip\n# (the tip is held, a loop forms behind it), withdrawing "
 	       "to reduce it,\n# then steering through with a quarter twist in "
 	       "the transverse colon\n# to the cecum (%.2f m), and withdrawing."
-	       "\n# TIME AXIS target VALUE RAMP (daemon/scenario.h)\n",
+	       "\n# TIME AXIS target VALUE RAMP (daemon/rig/scenario.h)\n",
 	       a.name, speed * 1000, flexure, cecum);
 	g.d = 0.03;
 	hold(&g, 1.0);

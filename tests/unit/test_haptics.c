@@ -29,6 +29,7 @@
 #include <cmocka.h>
 
 #include "anatomy.h"
+#include "cases.h"
 #include "colon.h"
 #include "config.h"
 #include "geom_assert.h"
@@ -47,7 +48,6 @@ struct world {
 	struct colon *colon;
 	struct haptics *h;
 	struct scope_pose pose;
-	struct rig_feedback fb;
 	struct endosim_haptics_state out;
 	double cmd[ENDOSIM_AXES];
 };
@@ -107,24 +107,17 @@ static void world_free(struct world *w)
 static void step(struct world *w, const double q[ENDOSIM_AXES],
 		 const double qd[ENDOSIM_AXES])
 {
-	const struct scope_params sp = {
-		.bending_length_m = w->cfg.scope.bending_length_m,
-		.ud_gain = w->cfg.scope.gain[0],
-		.lr_gain = w->cfg.scope.gain[1],
-		.ud_limit_rad = w->cfg.scope.limit_rad[0],
-		.lr_limit_rad = w->cfg.scope.limit_rad[1],
-	};
+	struct scope_params sp;
+	struct haptics_params hp;
 	const struct scope_input in = { q[0], q[1], q[2], q[3] };
 	const struct haptics_input hi = {
-		.cfg = &w->cfg, .colon = w->colon, .pose = &w->pose,
-		.fb = &w->fb, .dt_s = DT, .torque_on = true,
+		.params = &hp, .colon = w->colon, .pose = &w->pose,
+		.position = q, .velocity = qd, .dt_s = DT, .torque_on = true,
 		.applied = w->applied,
 	};
 
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		w->fb.axis[a].position = q[a];
-		w->fb.axis[a].velocity = qd[a];
-	}
+	cases_scope_params(&w->cfg, &sp);
+	cases_haptics_params(&w->cfg, &hp);
 	scope_update(&sp, colon_centreline(w->colon), &in, &w->pose);
 	haptics_render(w->h, &hi, w->cmd, &w->out);
 }

@@ -1,0 +1,41 @@
+/* drive.c - see drive.h. */
+#include "drive.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "mono.h"
+
+void drive_units_init(struct drive_units *u, const struct config *cfg,
+		      int axis)
+{
+	const struct config_axis *ax = &cfg->axis[axis];
+	double sign = ax->reversed ? -1.0 : 1.0;
+	double radius = axis == ENDOSIM_AXIS_INSERTION ? ax->gear_radius_m
+						       : 1.0;
+
+	/* a count turns the motor 2 pi / cpr, the output 1 / gear as much */
+	u->si_per_count = sign * 2.0 * M_PI * radius /
+			  ((double)ax->counts_per_rev * ax->gear_ratio);
+	/* power: F v = T_motor w_motor, w_motor = gear v / radius */
+	u->motor_nm_per_si = sign * radius / ax->gear_ratio;
+}
+
+int drive_fail(struct drive *d, int i, int err, const char *fmt, ...)
+{
+	va_list ap;
+
+	d->why_drive = i;
+	va_start(ap, fmt);
+	vsnprintf(d->why, sizeof(d->why), fmt, ap);
+	va_end(ap);
+	return err;
+}
+
+void drive_count_txn(struct drive *d, uint64_t start_ns)
+{
+	if (d->txn) {
+		histo_add(d->txn, mono_ns() - start_ns);
+	}
+}

@@ -1,0 +1,129 @@
+/* hand.c - see hand.h. */
+#include "hand.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "seqlock.h"
+
+struct live {
+	double force[ENDOSIM_AXES];
+	uint64_t until_ns;
+};
+
+struct hand {
+	double stiffness[ENDOSIM_AXES];
+	double damping[ENDOSIM_AXES];
+	double max[ENDOSIM_AXES];
+	double max_speed[ENDOSIM_AXES];
+	struct scenario *scenario;
+	seqlock_t lock;       /* guards mailbox */
+	struct live mailbox;  /* written by the control thread */
+	struct live cached;   /* the force loop's last good copy */
+};
+
+struct hand *hand_create(const struct config *cfg, struct scenario *scn)
+{
+	struct hand *h = calloc(1, sizeof(*h));
+
+	if (!h) {
+		return NULL;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		h->stiffness[a] = cfg->sim.hand_stiffness[a];
+		h->damping[a] = cfg->sim.hand_damping[a];
+		h->max[a] = cfg->sim.hand_max[a];
+		h->max_speed[a] = cfg->sim.hand_max_speed[a];
+	}
+	h->scenario = scn;
+	seqlock_init(&h->lock);
+	return h;
+}
+
+void hand_destroy(struct hand *h)
+{
+	if (!h) {
+		return;
+	}
+	scenario_destroy(h->scenario);
+	free(h);
+}
+
+const struct scenario *hand_scenario(const struct hand *h)
+{
+	return h->scenario;
+}
+
+void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
+		   double hold_s, uint64_t now_ns)
+{
+	seqlock_write_begin(&h->lock);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		h->mailbox.force[a] = force[a];
+	}
+	h->mailbox.until_ns = now_ns + (uint64_t)(hold_s * 1e9);
+	seqlock_write_end(&h->lock);
+}
+
+/* One try: a writer caught mid-update leaves the previous copy in use. */
+static void fetch_live(struct hand *h)
+{
+	uint64_t seq = seqlock_read_begin(&h->lock);
+	struct live copy = h->mailbox;
+
+	if (!seqlock_read_retry(&h->lock, seq)) {
+		h->cached = copy;
+	}
+}
+
+static double clamp(double v, double lim)
+{
+	return fmin(fmax(v, -lim), lim);
+}
+
+/*
+ * What a hand can push with at speed V: its strength LIM, fading to
+ * nothing at its top speed VMAX along the push (a muscle's force-velocity
+ * curve, linearised); braking, it holds its full strength.
+ */
+static double muscle(double f, double v, double lim, double vmax)
+{
+	f = clamp(f, lim);
+	if (f * v > 0) {
+		f *= fmax(0.0, 1.0 - fabs(v) / vmax);
+	}
+	return f;
+}
+
+void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
+		 const double pos[ENDOSIM_AXES], const double vel[ENDOSIM_AXES],
+		 double force[ENDOSIM_AXES])
+{
+	struct scenario_cmd cmd[ENDOSIM_AXES];
+
+	fetch_live(h);
+	if (now_ns < h->cached.until_ns) {
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			force[a] = muscle(h->cached.force[a], vel[a], h->max[a],
+					  h->max_speed[a]);
+		}
+		return;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		cmd[a].mode = SCENARIO_FREE;
+	}
+	if (h->scenario) {
+		scenario_eval(h->scenario, t_s, cmd);
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		double f = 0;
+
+		if (cmd[a].mode == SCENARIO_TARGET) {
+			f = h->stiffness[a] * (cmd[a].value - pos[a]) -
+			    h->damping[a] * vel[a];
+		} else if (cmd[a].mode == SCENARIO_FORCE) {
+			f = cmd[a].value;
+		}
+		force[a] = muscle(f, vel[a], h->max[a], h->max_speed[a]);
+	}
+}

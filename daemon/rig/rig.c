@@ -1,0 +1,11 @@
+/* rig.c - see rig.h. */
+#include "rig.h"
+
+#include <stddef.h>
+
+void rig_destroy(struct rig *rig)
+{
+	if (rig) {
+		rig->ops->destroy(rig);
+	}
+}

@@ -1,0 +1,807 @@
+/*
+ * report.c - the instructor's HTML report (report.h).
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "colon.h"
+#include "names.h"
+#include "report.h"
+#include "sessioninputs.h"
+
+#define SVG_W 1040
+#define SVG_H 250
+#define PLOT_X 70.0   /* the plot area inside the svg, px */
+#define PLOT_Y 34.0
+#define PLOT_W 950.0
+#define PLOT_H 176.0
+#define WITHDRAWAL_MARK_S 360.0
+#define MAX_EVENT_ROWS 200
+
+static const char *const palette[] = { "#1f5fa8", "#c0392b", "#2e8b57",
+				       "#8e44ad", "#d4760a", "#6d4c41" };
+
+struct axis {
+	double lo, hi, step;
+};
+
+struct plot {
+	FILE *out;
+	struct axis x, y;
+	double xscale;             /* s per unit of the x axis */
+	uint64_t t0_ns;            /* the first record's stamp */
+};
+
+struct series {
+	const char *name;
+	double (*get)(const struct session_record *r, int arg);
+	int arg;
+};
+
+/* ---------------------------------------------------------------- text */
+
+void report_escape(FILE *out, const char *text)
+{
+	for (const char *c = text ? text : ""; *c; c++) {
+		switch (*c) {
+		case '&': fputs("&amp;", out); break;
+		case '<': fputs("&lt;", out); break;
+		case '>': fputs("&gt;", out); break;
+		case '"': fputs("&quot;", out); break;
+		case '\'': fputs("&#39;", out); break;
+		default: fputc(*c, out);
+		}
+	}
+}
+
+/* "12 min 05 s", "42.5 s" */
+static void put_duration(FILE *out, double s)
+{
+	if (s < 0 || !isfinite(s)) {
+		fputs("&ndash;", out);
+	} else if (s < 60) {
+		fprintf(out, "%.1f s", s);
+	} else {
+		fprintf(out, "%d min %02d s", (int)(s / 60), (int)fmod(s, 60));
+	}
+}
+
+/* The header's KEY, escaped, or a dash. */
+static void put_header(FILE *out, const struct session_file *f,
+		       const char *key)
+{
+	char v[256];
+
+	if (f->header && !session_text_get(f->header, key, v, sizeof(v)) &&
+	    v[0]) {
+		report_escape(out, v);
+	} else {
+		fputs("&ndash;", out);
+	}
+}
+
+/* ---------------------------------------------------------------- axes */
+
+static double nice_step(double range, int ticks)
+{
+	double raw = range / ticks, mag = pow(10, floor(log10(raw)));
+	double f = raw / mag;
+
+	return (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * mag;
+}
+
+static struct axis nice_axis(double lo, double hi, int ticks)
+{
+	struct axis a;
+
+	if (!(hi > lo)) {
+		hi = lo + 1;
+	}
+	a.step = nice_step(hi - lo, ticks);
+	a.lo = floor(lo / a.step + 1e-9) * a.step;
+	a.hi = ceil(hi / a.step - 1e-9) * a.step;
+	return a;
+}
+
+static double px_x(const struct plot *p, double t_s)
+{
+	double u = (t_s / p->xscale - p->x.lo) / (p->x.hi - p->x.lo);
+
+	return PLOT_X + fmin(1, fmax(0, u)) * PLOT_W;
+}
+
+static double px_y(const struct plot *p, double v)
+{
+	double u = (v - p->y.lo) / (p->y.hi - p->y.lo);
+
+	return PLOT_Y + PLOT_H - fmin(1, fmax(0, u)) * PLOT_H;
+}
+
+static double rec_t(const struct plot *p, const struct session_record *r)
+{
+	return (double)(int64_t)(r->stamp_ns - p->t0_ns) * 1e-9;
+}
+
+static void plot_ticks(const struct plot *p, const char *xlabel,
+		       const char *ylabel)
+{
+	FILE *o = p->out;
+
+	for (double v = p->y.lo; v <= p->y.hi + p->y.step / 2; v += p->y.step) {
+		double y = px_y(p, v);
+
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
+			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
+			PLOT_X, y, PLOT_X + PLOT_W, y, PLOT_X - 6, y + 4,
+			fabs(v) < p->y.step / 1e6 ? 0 : v);
+	}
+	for (double v = p->x.lo; v <= p->x.hi + p->x.step / 2; v += p->x.step) {
+		double x = PLOT_X + (v - p->x.lo) / (p->x.hi - p->x.lo) * PLOT_W;
+
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
+			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n",
+			x, PLOT_Y, x, PLOT_Y + PLOT_H, x, PLOT_Y + PLOT_H + 16, v);
+	}
+	fprintf(o, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
+		"height=\"%.1f\"/>\n", PLOT_X, PLOT_Y, PLOT_W, PLOT_H);
+	fprintf(o, "<text class=\"label\" x=\"%.1f\" y=\"%d\" "
+		"text-anchor=\"middle\">%s</text>\n", PLOT_X + PLOT_W / 2,
+		SVG_H - 4, xlabel);
+	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
+		"rotate(-90)\" text-anchor=\"middle\">%s</text>\n",
+		PLOT_Y + PLOT_H / 2, ylabel);
+}
+
+static void plot_begin(struct plot *p, const char *id, const char *title,
+		       double ylo, double yhi, const char *ylabel)
+{
+	p->y = nice_axis(ylo, yhi, 5);
+	fprintf(p->out, "<figure id=\"%s\"><figcaption>%s</figcaption>\n"
+		"<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" "
+		"viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\" "
+		"aria-label=\"%s\">\n", id, title, SVG_W, SVG_H, SVG_W, SVG_H,
+		title);
+	plot_ticks(p, p->xscale > 1 ? "time (min)" : "time (s)", ylabel);
+}
+
+static void plot_end(struct plot *p)
+{
+	fputs("</svg></figure>\n", p->out);
+}
+
+/* Episodes as shaded bands of CLASS, from 0 to the plot's top. */
+static void plot_bands(const struct plot *p, const struct metrics_episode *ep,
+		       uint32_t n, double end_s, const char *cls)
+{
+	for (uint32_t i = 0; i < n; i++) {
+		double x0 = px_x(p, ep[i].start_s);
+		double x1 = px_x(p, ep[i].end_s >= 0 ? ep[i].end_s : end_s);
+
+		fprintf(p->out, "<rect class=\"band %s\" x=\"%.1f\" y=\"%.1f\" "
+			"width=\"%.1f\" height=\"%.1f\"><title>%s %u</title>"
+			"</rect>\n", cls, x0, PLOT_Y, fmax(x1 - x0, 1.5),
+			PLOT_H, strcmp(cls, "force") ? "loop episode" :
+			"force episode", i + 1);
+	}
+}
+
+/* Faults (red) and state changes (grey) as vertical marks. */
+static void plot_events(const struct plot *p, const struct session_file *f)
+{
+	double last_x = -1e9;
+	int row = 0;
+
+	for (size_t i = 0; i < f->n_events; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+		double t = (double)(int64_t)(ev->stamp_ns - p->t0_ns) * 1e-9;
+		double x = px_x(p, t);
+
+		if (ev->kind == SESSION_EVENT_FAULT) {
+			fprintf(p->out, "<line class=\"event fault\" x1=\"%.1f\" "
+				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"><title>"
+				"fault: %s</title></line>\n", x, PLOT_Y, x,
+				PLOT_Y + PLOT_H, names_fault(ev->detail));
+		} else if (ev->kind == SESSION_EVENT_STATE) {
+			const char *s = names_state((uint32_t)ev->value);
+
+			/* labels close together go one under the other */
+			row = x - last_x < 50 ? (row + 1) % 3 : 0;
+			last_x = x;
+
+			fprintf(p->out, "<line class=\"event state\" x1=\"%.1f\" "
+				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/><text "
+				"class=\"evlabel\" x=\"%.1f\" y=\"%.1f\">%s"
+				"</text>\n", x, PLOT_Y, x, PLOT_Y + PLOT_H, x + 3,
+				PLOT_Y + 10 + 11 * row, s);
+		}
+	}
+}
+
+static void plot_hline(const struct plot *p, double v, const char *label)
+{
+	double y = px_y(p, v);
+
+	fprintf(p->out, "<line class=\"threshold\" x1=\"%.1f\" y1=\"%.1f\" "
+		"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"thlabel\" x=\"%.1f\" "
+		"y=\"%.1f\" text-anchor=\"end\">%s</text>\n", PLOT_X, y,
+		PLOT_X + PLOT_W, y, PLOT_X + PLOT_W - 4, y - 4, label);
+}
+
+/* The column's extremes in the order they came (peaks survive). */
+static void path_column(FILE *o, bool *first, double x, double a, double b)
+{
+	fprintf(o, "%s%.1f,%.1f", *first ? "M" : " L", x, a);
+	*first = false;
+	if (fabs(a - b) >= 0.05) {
+		fprintf(o, " L%.1f,%.1f", x, b);
+	}
+}
+
+/* One series, decimated to the min and max of each pixel column. */
+static void plot_series(const struct plot *p, const struct session_file *f,
+			const struct series *s, const char *color)
+{
+	bool first = true, have = false;
+	long col = -1;
+	double lo = 0, hi = 0;
+	size_t ilo = 0, ihi = 0;
+
+	fprintf(p->out, "<path class=\"series\" stroke=\"%s\" d=\"", color);
+	for (size_t i = 0; i <= f->n_records; i++) {
+		const struct session_record *r = &f->records[i < f->n_records ?
+							   i : i - 1];
+		long c = i < f->n_records ? lround(px_x(p, rec_t(p, r))) : -2;
+		double v = i < f->n_records ? s->get(r, s->arg) : NAN;
+
+		if (c != col && have) {
+			path_column(p->out, &first, (double)col,
+				    px_y(p, ilo < ihi ? lo : hi),
+				    px_y(p, ilo < ihi ? hi : lo));
+			have = false;
+		}
+		col = c;
+		if (!isfinite(v)) {
+			continue;
+		}
+		if (!have || v < lo) {
+			lo = v;
+			ilo = i;
+		}
+		if (!have || v > hi) {
+			hi = v;
+			ihi = i;
+		}
+		have = true;
+	}
+	fputs("\"/>\n", p->out);
+}
+
+static void plot_legend(const struct plot *p, const struct series *s,
+			int n, bool bands)
+{
+	double x = PLOT_X + 4;
+
+	for (int i = 0; i < n; i++) {
+		fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" "
+			"y1=\"14\" x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" "
+			"x=\"%.1f\" y=\"18\">%s</text>\n", palette[i % 6], x,
+			x + 18, x + 22, s[i].name);
+		x += 34 + 7.0 * (double)strlen(s[i].name);
+	}
+	if (bands) {
+		fprintf(p->out, "<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
+			"width=\"14\" height=\"12\"/><text class=\"legend\" "
+			"x=\"%.1f\" y=\"18\">excessive force</text>\n"
+			"<rect class=\"swatch loop\" x=\"%.1f\" y=\"8\" width=\"14\" "
+			"height=\"12\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
+			"loop</text>\n", x, x + 18, x + 130, x + 148);
+	}
+}
+
+/* ---------------------------------------------------------- the values */
+
+static double get_limited(const struct session_record *r, int axis)
+{
+	return axis == 0 ? fabs(r->limited[0]) : r->limited[axis];
+}
+
+static double get_tip_s(const struct session_record *r, int arg)
+{
+	(void)arg;
+	return r->depth_m > 0 ? r->tip_s_m : NAN;
+}
+
+static double get_bow(const struct session_record *r, int k)
+{
+	return (uint32_t)k < r->spans ? fabs(r->bow_m[k]) : NAN;
+}
+
+static void series_range(const struct session_file *f, const struct series *s,
+			 int n, double *lo, double *hi)
+{
+	for (size_t i = 0; i < f->n_records; i++) {
+		for (int k = 0; k < n; k++) {
+			double v = s[k].get(&f->records[i], s[k].arg);
+
+			if (isfinite(v)) {
+				*lo = fmin(*lo, v);
+				*hi = fmax(*hi, v);
+			}
+		}
+	}
+}
+
+/* A plot of N series with the episodes and events marked. */
+static void plot_series_figure(struct plot *p, const struct session_file *f,
+			       const struct metrics_result *m, const char *id,
+			       const char *title, const char *ylabel,
+			       const struct series *s, int n, double lo,
+			       double hi)
+{
+	series_range(f, s, n, &lo, &hi);
+	plot_begin(p, id, title, lo, hi, ylabel);
+	plot_bands(p, m->force, m->n_force, m->duration_s, "force");
+	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
+	plot_events(p, f);
+	for (int k = 0; k < n; k++) {
+		plot_series(p, f, &s[k], palette[k % 6]);
+	}
+	plot_legend(p, s, n, true);
+}
+
+/* ----------------------------------------------------------- the plots */
+
+static void plot_force(struct plot *p, const struct session_file *f,
+		       const struct metrics_result *m)
+{
+	const struct series s[] = { { "insertion |F|", get_limited, 0 } };
+	struct metrics_params mp;
+	char label[64];
+
+	metrics_params_default(&mp);
+	plot_series_figure(p, f, m, "plot-force", "Insertion force",
+			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
+	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);
+	plot_hline(p, mp.force_threshold_n, label);
+	plot_end(p);
+}
+
+static void plot_torques(struct plot *p, const struct session_file *f,
+			 const struct metrics_result *m)
+{
+	const struct series s[] = {
+		{ "roll", get_limited, 1 },
+		{ "wheel up/down", get_limited, 2 },
+		{ "wheel left/right", get_limited, 3 },
+	};
+
+	plot_series_figure(p, f, m, "plot-torque", "Roll and wheel torques",
+			   "torque (N m)", s, 3, 0, 0);
+	plot_end(p);
+}
+
+/* The segments as horizontal bands, named. */
+static void plot_segments(const struct plot *p, const struct anatomy *a)
+{
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		double s0 = anatomy_segment_start(a, i);
+		double s1 = s0 + a->seg[i].length_m;
+		double y0 = px_y(p, s1), y1 = px_y(p, s0);
+
+		fprintf(p->out, "<rect class=\"segment s%d\" x=\"%.1f\" "
+			"y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"><title>%s"
+			"</title></rect>\n", i % 2, PLOT_X, y0, PLOT_W, y1 - y0,
+			anatomy_segment_name(i));
+		if (y1 - y0 >= 9) { /* room for its name */
+			fprintf(p->out, "<text class=\"seglabel\" x=\"%.1f\" "
+				"y=\"%.1f\">%s</text>\n", PLOT_X + PLOT_W - 6,
+				(y0 + y1) / 2 + 4, anatomy_segment_name(i));
+		}
+	}
+}
+
+static void plot_tip(struct plot *p, const struct session_file *f,
+		     const struct metrics_result *m, const struct anatomy *a)
+{
+	const struct series s[] = { { "tip along the colon", get_tip_s, 0 } };
+	double len = a ? anatomy_length(a) : 0;
+
+	series_range(f, s, 1, &(double){ 0 }, &len);
+	plot_begin(p, "plot-tip", "The tip's progress along the colon",
+		   0, len, "distance from the anal verge (m)");
+	if (a) {
+		plot_segments(p, a);
+	}
+	plot_bands(p, m->force, m->n_force, m->duration_s, "force");
+	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
+	plot_events(p, f);
+	if (m->cecum_s >= 0) {
+		double x = px_x(p, m->cecum_s);
+
+		fprintf(p->out, "<line class=\"cecum\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"cecumlabel\" "
+			"x=\"%.1f\" y=\"%.1f\">cecum reached</text>\n", x,
+			PLOT_Y, x, PLOT_Y + PLOT_H, x + 4, PLOT_Y + PLOT_H - 6);
+	}
+	plot_series(p, f, &s[0], palette[0]);
+	plot_legend(p, s, 1, true);
+	plot_end(p);
+}
+
+static void plot_bows(struct plot *p, const struct session_file *f,
+		      const struct metrics_result *m, const struct anatomy *a)
+{
+	struct series s[ENDOSIM_SPANS];
+	struct metrics_params mp;
+	int n = 0;
+
+	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
+		if (a->seg[i].mobile) {
+			s[n] = (struct series){ anatomy_segment_name(i), get_bow,
+						n };
+			n++;
+		}
+	}
+	for (; n == 0 && f->n_records && n < (int)f->records[0].spans &&
+	       n < ENDOSIM_SPANS; n++) {
+		s[n] = (struct series){ "mobile segment", get_bow, n };
+	}
+	metrics_params_default(&mp);
+	plot_series_figure(p, f, m, "plot-bow", "Loops: the bow of each mobile "
+			   "segment", "bow amplitude (m)", s, n, 0,
+			   mp.loop_threshold_m * 1.5);
+	plot_hline(p, mp.loop_threshold_m, "loop threshold");
+	plot_end(p);
+}
+
+/* ---------------------------------------------------------- the tables */
+
+static void row_begin(FILE *o, const char *what, const char *mark)
+{
+	fprintf(o, "<tr class=\"%s\"><th>%s</th><td>", mark, what);
+}
+
+static void row_end(FILE *o, const char *note)
+{
+	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
+}
+
+static void metrics_rows_times(FILE *o, const struct metrics_result *m)
+{
+	bool reached = m->cecum_s >= 0;
+
+	row_begin(o, "Cecum reached", reached ? "good" : "bad");
+	if (reached) {
+		fputs("yes, after ", o);
+		put_duration(o, m->cecum_s);
+	} else {
+		fputs("no", o);
+	}
+	row_end(o, "the tip inside the cecum");
+	row_begin(o, "Insertion time", "");
+	put_duration(o, m->insertion_s);
+	row_end(o, reached ? "start to cecum" : "so far: cecum not reached");
+	row_begin(o, "Withdrawal time", !reached ? "bad" :
+		  m->withdrawal_s >= WITHDRAWAL_MARK_S ? "good" : "bad");
+	if (reached) {
+		put_duration(o, m->withdrawal_s);
+	} else {
+		fputs("&ndash;", o);
+	}
+	row_end(o, "cecum to out; at least 6 min is the quality mark");
+	row_begin(o, "Deepest point", "");
+	fprintf(o, "%.2f m", m->max_tip_s_m);
+	row_end(o, "from the anal verge along the colon");
+}
+
+static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
+{
+	struct metrics_params mp;
+	char note[96];
+
+	metrics_params_default(&mp);
+	row_begin(o, "Insertion force", "");
+	fprintf(o, "peak %.1f N, mean %.1f N", m->peak_insertion_n,
+		m->mean_insertion_n);
+	row_end(o, "what the tube pushed back against the hand");
+	row_begin(o, "Excessive force", m->force_episodes ? "warn" : "good");
+	fprintf(o, "%u episode%s, ", m->force_episodes,
+		m->force_episodes == 1 ? "" : "s");
+	put_duration(o, m->force_episode_s);
+	snprintf(note, sizeof(note), "above %g N for at least %g s",
+		 mp.force_threshold_n, mp.min_episode_s);
+	row_end(o, note);
+	row_begin(o, "Loops", m->loop_episodes ? "warn" : "good");
+	fprintf(o, "%u, longest ", m->loop_episodes);
+	put_duration(o, m->longest_loop_s);
+	fprintf(o, ", largest %.1f cm", m->largest_loop_m * 100);
+	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
+		 mp.loop_threshold_m * 100);
+	row_end(o, note);
+	row_begin(o, "Patient discomfort", "");
+	fprintf(o, "%.1f", m->discomfort);
+	snprintf(note, sizeof(note), "discomfort-seconds: 1 = a %g cm loop or "
+		 "%g N on the wall for 1 s", mp.discomfort_bow_m * 100,
+		 mp.discomfort_force_n);
+	row_end(o, note);
+}
+
+static void metrics_rows_view(FILE *o, const struct metrics_result *m)
+{
+	row_begin(o, "Lumen lost from view", "");
+	put_duration(o, m->lumen_lost_s);
+	if (m->duration_s > 0) {
+		fprintf(o, " (%.0f %%)", 100 * m->lumen_lost_s / m->duration_s);
+	}
+	row_end(o, "the tip facing the wall");
+	row_begin(o, "Mucosa seen", "");
+	fprintf(o, "%.0f %%", 100 * m->mucosa_seen);
+	row_end(o, "share of the wall in view within 6 cm");
+	if (m->polyps_total) {
+		row_begin(o, "Polyps seen", m->polyps_seen == m->polyps_total ?
+			  "good" : "bad");
+		fprintf(o, "%u of %u", m->polyps_seen, m->polyps_total);
+		row_end(o, "came into the camera's view");
+	}
+	if (m->drops) {
+		row_begin(o, "Records dropped", "warn");
+		fprintf(o, "%llu", (unsigned long long)m->drops);
+		row_end(o, "the recording has gaps");
+	}
+}
+
+static void episode_table(FILE *o, const char *title,
+			  const struct metrics_episode *ep, uint32_t n,
+			  uint32_t count, const char *unit, double scale)
+{
+	fprintf(o, "<h3>%s</h3>\n", title);
+	if (!n) {
+		fputs("<p class=\"none\">none</p>\n", o);
+		return;
+	}
+	fprintf(o, "<table class=\"episodes\"><tr><th>#</th><th>start</th>"
+		"<th>end</th><th>duration</th><th>peak (%s)</th></tr>\n", unit);
+	for (uint32_t i = 0; i < n; i++) {
+		fprintf(o, "<tr><td>%u</td><td>", i + 1);
+		put_duration(o, ep[i].start_s);
+		fputs("</td><td>", o);
+		if (ep[i].end_s >= 0) {
+			put_duration(o, ep[i].end_s);
+			fputs("</td><td>", o);
+			put_duration(o, ep[i].end_s - ep[i].start_s);
+		} else {
+			fputs("still going</td><td>&ndash;", o);
+		}
+		fprintf(o, "</td><td>%.1f</td></tr>\n", ep[i].peak * scale);
+	}
+	fputs("</table>\n", o);
+	if (count > n) {
+		fprintf(o, "<p class=\"none\">and %u more</p>\n", count - n);
+	}
+}
+
+static const char *event_kind(uint32_t kind)
+{
+	static const char *const k[] = { "?", "state", "fault", "parameter",
+					 "drops", "note" };
+
+	return kind < 6 ? k[kind] : "?";
+}
+
+static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
+{
+	fputs("<h3>Events</h3>\n", o);
+	if (!f->n_events) {
+		fputs("<p class=\"none\">none</p>\n", o);
+		return;
+	}
+	fputs("<table class=\"events\"><tr><th>time</th><th>event</th>"
+	      "<th>what</th></tr>\n", o);
+	for (size_t i = 0; i < f->n_events && i < MAX_EVENT_ROWS; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+
+		fprintf(o, "<tr class=\"%s\"><td>", event_kind(ev->kind));
+		put_duration(o, (double)(int64_t)(ev->stamp_ns - t0) * 1e-9);
+		fprintf(o, "</td><td>%s</td><td>", event_kind(ev->kind));
+		if (ev->kind == SESSION_EVENT_STATE) {
+			fputs(names_state((uint32_t)ev->value), o);
+		} else if (ev->kind == SESSION_EVENT_FAULT) {
+			fprintf(o, "%s (axis %s) ", names_fault(ev->detail),
+				ev->axis >= 0 ? names_axis(ev->axis) : "none");
+		} else if (ev->kind == SESSION_EVENT_DROPS) {
+			fprintf(o, "%.0f records dropped so far ", ev->value);
+		}
+		report_escape(o, f->events[i].text);
+		fputs("</td></tr>\n", o);
+	}
+	fputs("</table>\n", o);
+	if (f->n_events > MAX_EVENT_ROWS) {
+		fprintf(o, "<p class=\"none\">and %zu more</p>\n",
+			f->n_events - MAX_EVENT_ROWS);
+	}
+}
+
+/* ------------------------------------------------------------ the page */
+
+static const char style[] =
+	"body{font-family:'DejaVu Sans',system-ui,sans-serif;margin:24px auto;"
+	"max-width:1080px;color:#222;background:#f4f5f7}\n"
+	"header,section{background:#fff;border-radius:8px;padding:16px 20px;"
+	"margin-bottom:16px;box-shadow:0 1px 3px rgba(0,0,0,.12)}\n"
+	"h1{margin:0 0 8px;font-size:24px}h2{font-size:18px;margin:0 0 10px}"
+	"h3{font-size:15px;margin:14px 0 6px}\n"
+	"dl{display:grid;grid-template-columns:repeat(3,auto 1fr);gap:4px 12px;"
+	"margin:0}dt{color:#666}dd{margin:0;font-weight:600}\n"
+	"table{border-collapse:collapse;width:100%}th,td{text-align:left;"
+	"padding:5px 8px;border-bottom:1px solid #e4e4e4;font-size:14px}\n"
+	"table.metrics th{width:200px}td.note{color:#777;font-size:12px}\n"
+	"tr.good td:first-of-type{color:#1e7d32;font-weight:700}"
+	"tr.bad td:first-of-type{color:#c62828;font-weight:700}"
+	"tr.warn td:first-of-type{color:#b26a00;font-weight:700}\n"
+	"tr.good th{border-left:5px solid #2e7d32}tr.bad th{border-left:5px "
+	"solid #c62828}tr.warn th{border-left:5px solid #ef8f00}"
+	"tr th{border-left:5px solid transparent}\n"
+	"figure{margin:0 0 14px}figcaption{font-weight:600;margin:4px 0}\n"
+	"svg.plot{display:block;max-width:100%;height:auto}\n"
+	"svg .grid{stroke:#e6e6e6;stroke-width:1}svg .frame{fill:none;"
+	"stroke:#999}\nsvg .tick,svg .legend,svg .seglabel,svg .evlabel,"
+	"svg .thlabel{font-size:11px;fill:#555}svg .label{font-size:12px;"
+	"fill:#333}\nsvg .series{fill:none;stroke-width:1.4;"
+	"stroke-linejoin:round}svg .key{stroke-width:3}\n"
+	"svg rect.force{fill:#e53935;fill-opacity:.16}svg rect.loop{"
+	"fill:#fb8c00;fill-opacity:.18}\n"
+	"svg .segment.s0{fill:#eef3fa}svg .segment.s1{fill:#fbfcfe}"
+	"svg .seglabel{text-anchor:end;fill:#6a7b90}\n"
+	"svg .event.fault{stroke:#c62828;stroke-width:1.5;stroke-dasharray:4 2}"
+	"svg .event.state{stroke:#888;stroke-dasharray:2 3}\n"
+	"svg .cecum{stroke:#2e7d32;stroke-width:1.5}svg .cecumlabel{"
+	"font-size:11px;fill:#2e7d32}\n"
+	"svg .threshold{stroke:#c62828;stroke-dasharray:6 4}"
+	"svg .thlabel{fill:#c62828}\n"
+	"p.none{color:#888;margin:2px 0}footer{color:#888;font-size:12px}\n";
+
+static void page_header(FILE *o, const struct session_file *f,
+			const struct metrics_result *m)
+{
+	fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+	      "<title>Colonoscopy training report ", o);
+	put_header(o, f, "id");
+	fprintf(o, "</title>\n<style>\n%s</style></head><body>\n<header>"
+		"<h1>Colonoscopy training report</h1>\n<dl>", style);
+	fputs("<dt>Trainee</dt><dd id=\"trainee\">", o);
+	put_header(o, f, "trainee");
+	fputs("</dd><dt>Case</dt><dd>", o);
+	put_header(o, f, "case");
+	fputs("</dd><dt>Date</dt><dd>", o);
+	put_header(o, f, "started");
+	fputs("</dd>\n<dt>Duration</dt><dd>", o);
+	put_duration(o, m->duration_s);
+	fputs("</dd><dt>Session</dt><dd>", o);
+	put_header(o, f, "id");
+	fprintf(o, "</dd><dt>Records</dt><dd>%llu%s</dd></dl></header>\n",
+		(unsigned long long)m->records, f->end ? "" :
+		" (recording cut short)");
+}
+
+static void page_metrics(FILE *o, const struct session_file *f,
+			 const struct metrics_result *m,
+			 const struct anatomy *a)
+{
+	struct plot p = { .out = o };
+
+	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
+	metrics_rows_times(o, m);
+	metrics_rows_forces(o, m);
+	metrics_rows_view(o, m);
+	fputs("</table></section>\n<section><h2>Over time</h2>\n", o);
+	if (f->n_records) {
+		p.t0_ns = f->records[0].stamp_ns;
+		p.xscale = m->duration_s > 300 ? 60 : 1;
+		p.x = nice_axis(0, fmax(m->duration_s, 1e-3) / p.xscale, 10);
+		plot_force(&p, f, m);
+		plot_torques(&p, f, m);
+		plot_tip(&p, f, m, a);
+		plot_bows(&p, f, m, a);
+	} else {
+		fputs("<p class=\"none\">no records</p>\n", o);
+	}
+	fputs("</section>\n<section><h2>Episodes and events</h2>\n", o);
+	episode_table(o, "Excessive force", m->force, m->n_force,
+		      m->force_episodes, "N", 1);
+	episode_table(o, "Loops", m->loop, m->n_loop, m->loop_episodes, "cm",
+		      100);
+	event_table(o, f, p.t0_ns);
+	fputs("</section>\n<footer>endosim ", o);
+	put_header(o, f, "version");
+	fputs(" &middot; the metrics are defined in docs/METRICS.md</footer>\n"
+	      "</body></html>\n", o);
+}
+
+/* The colon of F's CASE frame, its configuration, its header. */
+static struct colon *session_colon(const struct session_file *f, char *err,
+				   size_t errsize)
+{
+	struct config cfg;
+
+	sessioninputs_config(f, &cfg, err, errsize);
+	return sessioninputs_colon(f, &cfg, err, errsize);
+}
+
+int report_metrics(const struct session_file *f,
+		   const struct metrics_params *p, struct metrics_result *out,
+		   char *err, size_t errsize)
+{
+	struct colon *c = f->header ? session_colon(f, err, errsize) : NULL;
+	struct metrics *m;
+	size_t e = 0;
+
+	if (errsize && f->header && !c) {
+		/* the line says why; the metrics go on without the colon */
+	} else if (errsize) {
+		err[0] = '\0';
+	}
+	m = metrics_create(c, p);
+	if (!m) {
+		colon_destroy(c);
+		snprintf(err, errsize, "metrics: out of memory");
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < f->n_records; i++) {
+		for (; e < f->n_events &&
+		       f->events[e].ev.stamp_ns <= f->records[i].stamp_ns; e++) {
+			metrics_event(m, &f->events[e].ev, f->events[e].text);
+		}
+		metrics_record(m, &f->records[i]);
+	}
+	for (; e < f->n_events; e++) {
+		metrics_event(m, &f->events[e].ev, f->events[e].text);
+	}
+	metrics_result(m, out);
+	metrics_destroy(m);
+	colon_destroy(c);
+	return 0;
+}
+
+int report_write(const struct session_file *f, const struct metrics_result *m,
+		 const char *dir)
+{
+	char path[4096], tmp[4200], err[256];
+	struct anatomy a;
+	bool have_a;
+	FILE *o;
+	int r = 0;
+
+	if (mkdir(dir, 0755) && errno != EEXIST) {
+		return -errno;
+	}
+	snprintf(path, sizeof(path), "%s/index.html", dir);
+	snprintf(tmp, sizeof(tmp), "%s.tmp", path);
+	o = fopen(tmp, "w");
+	if (!o) {
+		return -errno;
+	}
+	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
+	page_header(o, f, m);
+	page_metrics(o, f, m, have_a ? &a : NULL);
+	if (ferror(o)) {
+		r = -EIO;
+	}
+	if (fclose(o) && !r) {
+		r = -errno;
+	}
+	if (!r && rename(tmp, path)) {
+		r = -errno;
+	}
+	if (r) {
+		unlink(tmp);
+	}
+	return r;
+}

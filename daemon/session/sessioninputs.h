@@ -1,0 +1,59 @@
+/*
+ * sessioninputs.h - the one reader of what a session was recorded with:
+ * its CONFIG frame (the configuration as --print-config printed it), its
+ * CASE frame (the case file's text) and its header's colon resolution,
+ * and what they make: the configuration, the colon's and the metrics'
+ * parameters, the colon. The recorder (the live configuration), the
+ * report, endoctl's views and the viewer's replay all take them here.
+ *
+ * Any thread but the force loop; the colon is allocated (~50 ms).
+ */
+#ifndef ENDOSIM_SESSIONINPUTS_H
+#define ENDOSIM_SESSIONINPUTS_H
+
+#include <stddef.h>
+
+#include "anatomy.h"
+#include "colon.h"
+#include "config.h"
+#include "metrics.h"
+#include "session_file.h"
+
+/*
+ * F's configuration into CFG: the defaults overridden by its CONFIG frame.
+ * 0 (also for a file without one: the defaults), or -EINVAL with the line
+ * that does not parse in ERR and CFG the defaults.
+ */
+int sessioninputs_config(const struct session_file *f, struct config *cfg,
+			 char *err, size_t errsize);
+
+/* The metrics' parameters ([session] thresholds) CFG sets. */
+void sessioninputs_metrics_params(const struct config *cfg,
+				  struct metrics_params *p);
+
+/*
+ * The colon's parameters: CFG's ([case] resolution, the tip's radius),
+ * the resolution in F's header over them. 0, or -EINVAL when the header's
+ * resolution does not add up.
+ */
+int sessioninputs_colon_params(const struct session_file *f,
+			       const struct config *cfg,
+			       struct colon_params *p, char *err,
+			       size_t errsize);
+
+/*
+ * The anatomy of F's CASE frame (anatomy_parse()): 0, -ENOENT when F has
+ * no case, or -EINVAL with one line in ERR.
+ */
+int sessioninputs_anatomy(const struct session_file *f, struct anatomy *a,
+			  char *err, size_t errsize);
+
+/*
+ * The colon of F's CASE frame with the parameters above; NULL with why in
+ * ERR (no case recorded, a case or a resolution that does not parse).
+ */
+struct colon *sessioninputs_colon(const struct session_file *f,
+				  const struct config *cfg, char *err,
+				  size_t errsize);
+
+#endif
