@@ -116,7 +116,8 @@ rig_SRCS = $(wildcard daemon/rig/*.c)
 session_SRCS = $(wildcard daemon/session/*.c)
 model_SRCS = $(wildcard daemon/model/*.c)
 base_SRCS = $(wildcard daemon/base/*.c)
-proto_SRCS = $(wildcard proto/*.c) $(BUILD)/gen/endosim.pb-c.c
+proto_SRCS = $(wildcard proto/*.c)
+proto_EXTRA = $(BUILD)/obj/gen/endosim.pb-c.o # the generated protocol
 WING_INCLUDES = -Iproto -Idaemon -Idaemon/base -Idaemon/model -Idaemon/rig \
 		-Idaemon/session
 
@@ -186,15 +187,19 @@ $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h &: proto/endosim.proto
 	@mkdir -p $(BUILD)/gen
 	protoc-c --proto_path=proto --c_out=$(BUILD)/gen $<
 
-# one compile rule: each source's object in its wing's folder under obj/
+# one compile rule: each source's object in its wing's folder under obj/,
+# the generated protocol's in obj/gen/ (whether BUILD is relative or not)
 $(BUILD)/obj/%.o: %.c $(PROTO_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+$(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
 $(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 
 define wing_rule
-$(BUILD)/lib/lib$(1).a: $(call obj,$($(1)_SRCS))
+$(BUILD)/lib/lib$(1).a: $(call obj,$($(1)_SRCS)) $($(1)_EXTRA)
 	@mkdir -p $$(dir $$@)
 	rm -f $$@ && $$(AR) rcs $$@ $$^
 endef
