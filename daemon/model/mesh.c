@@ -250,9 +250,11 @@ struct grid {
 static int grid_cell(const struct grid *g, const double p[3], int c[3])
 {
 	for (int d = 0; d < 3; d++) {
-		int x = (int)floor((p[d] - g->lo[d]) / g->h);
+		/* clamped as a double: a point far out (an imported mesh's
+		 * 1e300) or not finite has no int cell */
+		double x = floor((p[d] - g->lo[d]) / g->h);
 
-		c[d] = x < 0 ? 0 : x >= g->dim[d] ? g->dim[d] - 1 : x;
+		c[d] = !(x >= 0) ? 0 : x >= g->dim[d] ? g->dim[d] - 1 : (int)x;
 	}
 	return (c[2] * g->dim[1] + c[1]) * g->dim[0] + c[0];
 }
