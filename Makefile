@@ -167,7 +167,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_config_drives test_colon test_scope test_scene \
 	     test_godobject test_haptics test_session_file \
 	     test_model test_lod test_portal test_input test_timing \
-	     test_vessels test_metrics test_report test_course
+	     test_vessels test_metrics test_report test_course test_rod
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report
 BENCH_TOOLS = bench_colon bench_haptics
@@ -197,6 +197,9 @@ $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
 $(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
+# the rod's solver runs in the force loop: -O3 vectorises its 3x3 and 6x6
+# blocks (a third fewer instructions than -O2)
+$(BUILD)/obj/daemon/model/rod.o: ALL_CFLAGS += -O3
 
 define wing_rule
 $(BUILD)/lib/lib$(1).a: $(call obj,$($(1)_SRCS)) $($(1)_EXTRA)
