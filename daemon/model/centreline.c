@@ -364,6 +364,20 @@ static void untwist(struct centreline_point *c, const struct span *sp)
 	}
 }
 
+/* The frames, curvatures and sums of span SP after its samples moved. */
+static void reframe(struct centreline *cl, const struct span *sp)
+{
+	for (size_t i = sp->a; i <= sp->b; i++) {
+		tangent(cl->cur, i, cl->n);
+		curvature(cl->cur, i, cl->n, cl->ds);
+	}
+	for (size_t i = sp->a - 1; i < sp->b; i++) {
+		reflect(cl->cur, i);
+	}
+	untwist(cl->cur, sp);
+	sum_piece(cl, cl->piece_of[sp->a]);
+}
+
 int centreline_bow(struct centreline *cl, int k, double amplitude_m)
 {
 	struct span *sp;
@@ -381,15 +395,83 @@ int centreline_bow(struct centreline *cl, int k, double amplitude_m)
 		vec3_axpy(cl->cur[i].p, cl->base[i].p, amplitude_m * w * w,
 			  sp->e);
 	}
-	for (size_t i = sp->a; i <= sp->b; i++) {
-		tangent(cl->cur, i, cl->n);
-		curvature(cl->cur, i, cl->n, cl->ds);
+	reframe(cl, sp);
+	return 0;
+}
+
+/* Knot J's displacement: NODE[J - 1] inside, 0 at both ends. */
+static const double *knot(const double (*node)[3], int count, int j)
+{
+	static const double zero[3] = { 0, 0, 0 };
+
+	return j < 1 || j > count ? zero : node[j - 1];
+}
+
+void centreline_knot_weights(double x, int count, int *j, double w[2])
+{
+	double f = x * (count + 1);
+
+	*j = (int)floor(f);
+	if (*j < 0) {
+		*j = 0;
+	} else if (*j > count) {
+		*j = count;
 	}
-	for (size_t i = sp->a - 1; i < sp->b; i++) {
-		reflect(cl->cur, i);
+	w[1] = fmin(fmax(f - *j, 0), 1);
+	w[0] = 1 - w[1];
+}
+
+int centreline_displace(struct centreline *cl, int k,
+			const double (*node)[3], int count)
+{
+	struct span *sp;
+	size_t len;
+
+	if (k < 0 || k >= cl->spans || count < 1) {
+		return -EINVAL;
 	}
-	untwist(cl->cur, sp);
-	sum_piece(cl, cl->piece_of[sp->a]);
+	for (int j = 0; j < count; j++) {
+		if (!isfinite(node[j][0]) || !isfinite(node[j][1]) ||
+		    !isfinite(node[j][2])) {
+			return -EINVAL;
+		}
+	}
+	sp = &cl->span[k];
+	sp->amplitude = 0;
+	len = sp->b - sp->a;
+	for (size_t i = sp->a + 1; i < sp->b; i++) {
+		double w[2], t, t2, t3, h[4], m0[3], m1[3], d[3];
+		int j;
+
+		centreline_knot_weights((double)(i - sp->a) / (double)len,
+					count, &j, w);
+		t = w[1];
+		t2 = t * t;
+		t3 = t2 * t;
+		h[0] = 2 * t3 - 3 * t2 + 1;
+		h[1] = t3 - 2 * t2 + t;
+		h[2] = -2 * t3 + 3 * t2;
+		h[3] = t3 - t2;
+		/* Catmull-Rom tangents inside, none at the fixed ends */
+		vec3_set(m0, 0, 0, 0);
+		vec3_set(m1, 0, 0, 0);
+		if (j >= 1) {
+			vec3_sub(m0, knot(node, count, j + 1),
+				 knot(node, count, j - 1));
+			vec3_scale(m0, m0, 0.5);
+		}
+		if (j + 1 <= count) {
+			vec3_sub(m1, knot(node, count, j + 2),
+				 knot(node, count, j));
+			vec3_scale(m1, m1, 0.5);
+		}
+		vec3_scale(d, knot(node, count, j), h[0]);
+		vec3_axpy(d, d, h[1], m0);
+		vec3_axpy(d, d, h[2], knot(node, count, j + 1));
+		vec3_axpy(d, d, h[3], m1);
+		vec3_add(cl->cur[i].p, cl->base[i].p, d);
+	}
+	reframe(cl, sp);
 	return 0;
 }
 

@@ -129,6 +129,28 @@ double centreline_at_s(const struct centreline *cl, double s_m,
  */
 int centreline_bow(struct centreline *cl, int span, double amplitude_m);
 
+/*
+ * Moves mobile span SPAN by a displacement given at COUNT nodes (m, any
+ * direction): node k sits at the fraction (k + 1) / (COUNT + 1) of the
+ * span, the span's ends stay put, and each sample between follows the
+ * cubic Hermite curve through the knots with Catmull-Rom tangents inside
+ * and none at the ends (position and tangent continuous, C1, where the
+ * span meets the fixed colon). Frames, turning angle and arc length follow
+ * as for a bow; the span's bow amplitude becomes 0. Returns 0, or -EINVAL
+ * for a bad span, no node or a displacement that is not finite. Cost:
+ * like centreline_bow(), no allocation.
+ */
+int centreline_displace(struct centreline *cl, int span,
+			const double (*node)[3], int count);
+
+/*
+ * Where the fraction X (0..1) of a span with COUNT nodes falls: between
+ * knots *J and *J + 1 (knot 0 and COUNT + 1 are the span's fixed ends,
+ * knot k >= 1 node k - 1), with the linear weights W of both (a force
+ * there is shared between them so).
+ */
+void centreline_knot_weights(double x, int count, int *j, double w[2]);
+
 /* Spans declared; span SPAN's range (m) and amplitude (m). */
 int centreline_spans(const struct centreline *cl);
 void centreline_span_range(const struct centreline *cl, int span,

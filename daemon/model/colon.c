@@ -20,6 +20,7 @@ struct colon {
 	struct centreline *cl;
 	struct mesh *mesh;
 	struct contact *contact;
+	float *tube;     /* per sample: the lumen's radius for the tube, m */
 	struct colon_region region[COLON_MAX_REGIONS];
 	int regions;
 	double cecum_s;
@@ -197,6 +198,13 @@ static double lumen(const struct anatomy *a, const struct section *x,
 	       (1 - x->fd * exp(-g * g) * (1 - c3) / 2);
 }
 
+double colon_tube_radius(const struct colon *c, size_t sample)
+{
+	size_t n = centreline_count(c->cl);
+
+	return c->tube[sample < n ? sample : n - 1];
+}
+
 double colon_lumen_radius(const struct colon *c, double s_m, double theta_rad)
 {
 	struct section x;
@@ -272,6 +280,60 @@ static void inset_vertex(const struct colon *c, uint32_t v, double radius_m,
 	for (int k = 0; k < 3; k++) {
 		out[k] = (float)(q->p[k] + d[k]);
 	}
+}
+
+/*
+ * The lumen's radius that the insertion tube meets along the colon: per
+ * sample, the mean distance of its vertices from the centreline in the
+ * sample's normal plane (a ring's mean, folds and taeniae included),
+ * samples without vertices taking their neighbour's, then averaged over
+ * TUBE_WINDOW_M either way (a tube slides over the folds, it does not
+ * ride each one).
+ */
+#define TUBE_WINDOW_M 0.015
+
+static int make_tube(struct colon *c, char *err, size_t errsize)
+{
+	const struct mesh *m = c->mesh;
+	size_t n = centreline_count(c->cl), w;
+	double *r = calloc(n, sizeof(*r)), last = NAN;
+
+	c->tube = malloc(n * sizeof(*c->tube));
+	if (!r || !c->tube) {
+		free(r);
+		snprintf(err, errsize, "%s: out of memory", c->name);
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < n; i++) {
+		uint32_t a = m->sample_first[i], b = m->sample_first[i + 1];
+
+		r[i] = NAN;
+		for (uint32_t v = a; v < b; v++) {
+			r[i] = (v == a ? 0 : r[i]) +
+			       hypot(m->off[v][1], m->off[v][2]) / (b - a);
+		}
+	}
+	for (size_t i = 0; i < n; i++) { /* gaps: the last radius seen */
+		r[i] = isnan(r[i]) ? last : r[i];
+		last = r[i];
+	}
+	for (size_t i = n; i-- > 0;) { /* a gap at the start: the next */
+		r[i] = isnan(r[i]) ? last : r[i];
+		last = r[i];
+	}
+	w = (size_t)(TUBE_WINDOW_M / centreline_step(c->cl));
+	for (size_t i = 0; i < n; i++) {
+		size_t lo = i > w ? i - w : 0, hi = i + w < n ? i + w : n - 1;
+		double sum = 0;
+
+		for (size_t k = lo; k <= hi; k++) {
+			sum += r[k];
+		}
+		c->tube[i] = (float)(isfinite(sum) ? sum / (double)(hi - lo + 1)
+						   : 0.01);
+	}
+	free(r);
+	return 0;
 }
 
 static int make_contact(struct colon *c, double radius_m, char *err,
@@ -445,7 +507,8 @@ struct colon *colon_create(const struct anatomy *a,
 	make_rings(c, p->ring_vertices);
 	if (mesh_finish(c->mesh, c->cl, p->segment_m, MESH_FROM_OFFSETS, err,
 			errsize) ||
-	    make_contact(c, p->contact_radius_m, err, errsize)) {
+	    make_contact(c, p->contact_radius_m, err, errsize) ||
+	    make_tube(c, err, errsize)) {
 		goto fail;
 	}
 	return c;
@@ -461,6 +524,7 @@ void colon_destroy(struct colon *c)
 		return;
 	}
 	contact_destroy(c->contact);
+	free(c->tube);
 	mesh_destroy(c->mesh);
 	centreline_destroy(c->cl);
 	free(c);
@@ -608,7 +672,8 @@ struct colon *colon_import(const char *obj_path, const char *centreline_path,
 						       : obj_path,
 			    p->step_m, err, errsize) ||
 	    make_import_mesh(c, &d, obj_path, p->segment_m, err, errsize) ||
-	    make_contact(c, p->contact_radius_m, err, errsize)) {
+	    make_contact(c, p->contact_radius_m, err, errsize) ||
+	    make_tube(c, err, errsize)) {
 		goto free_colon;
 	}
 	free(pts);

@@ -120,6 +120,13 @@ int colon_bow(struct colon *c, int span, double amplitude_m, bool place_mesh);
 /* Bytes held by the model. */
 size_t colon_bytes(const struct colon *c);
 
+/*
+ * The lumen's radius the insertion tube meets at centreline sample SAMPLE
+ * (clamped), m: the mean of the mesh's ring there (folds and taeniae
+ * included), averaged over 1.5 cm either way; any colon, imported too.
+ */
+double colon_tube_radius(const struct colon *c, size_t sample);
+
 /* Lumen radius (m) of a generated case at S_M, THETA_RAD (for tests). */
 double colon_lumen_radius(const struct colon *c, double s_m, double theta_rad);
 

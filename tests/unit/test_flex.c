@@ -1,0 +1,248 @@
+/*
+ * test_flex.c - the colon that moves (flex.h, centreline_displace()):
+ *  - the centreline through the nodes: a sample at a node's place moves by
+ *    the node's displacement, the span's ends and the fixed colon stay, the
+ *    tangent stays continuous at the ends (C1), and all nodes moved alike
+ *    move the span's inside alike;
+ *  - the mesentery's law: a uniform push F per node holds each node at y
+ *    with F = k_m y (1 + (y / h)^2) (k_m the segment's mesentery shared
+ *    among its nodes), and the segment's mesentery takes the whole push
+ *    (action = reaction: the forces pushed are the forces held);
+ *  - a push between two knots is shared by their weights; the fixed colon
+ *    takes a push without moving; the chain carries a point push to the
+ *    neighbours, less than to the node pushed;
+ *  - released, the colon returns to rest.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "anatomy.h"
+#include "colon.h"
+#include "flex.h"
+#include "geom_assert.h"
+#include "vec3.h"
+
+#define DT 0.001
+
+/* A round colon, 5 cm wide, straight along z, the sigmoid (0.16..0.53 m)
+ * mobile on a mesentery K (N/m) of height H (m). */
+static struct colon *straight_colon(double k, double h)
+{
+	static const double len[ANATOMY_SEGMENTS] = {
+		0.04, 0.12, 0.37, 0.15, 0.07, 0.45, 0.06, 0.20, 0.06,
+	};
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+	struct anatomy a;
+	struct colon *c;
+	char err[256];
+
+	memset(&a, 0, sizeof(a));
+	snprintf(a.name, sizeof(a.name), "test");
+	a.fold_spacing_m = 0.03;
+	a.fold_width_m = 0.005;
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		a.seg[i].length_m = len[i];
+		a.seg[i].diameter_m = 0.05;
+	}
+	a.seg[2].mobile = true;
+	a.seg[2].mesentery_n_per_m = k;
+	a.seg[2].mesentery_height_m = h;
+	p.ring_vertices = 32;
+	c = colon_create(&a, &p, err, sizeof(err));
+	assert_non_null(c);
+	return c;
+}
+
+/* The material s of node I of span 0 with COUNT nodes. */
+static double node_s(const struct colon *c, int i, int count)
+{
+	double s0, s1;
+
+	centreline_span_range(colon_centreline(c), 0, &s0, &s1);
+	return s0 + (s1 - s0) * (i + 1) / (count + 1);
+}
+
+static const double *sample_at(const struct colon *c, double s)
+{
+	const struct centreline *cl = colon_centreline(c);
+
+	return centreline_sample(cl, (size_t)lround(s / centreline_step(cl)))
+		->p;
+}
+
+static const double *base_at(const struct colon *c, double s)
+{
+	const struct centreline *cl = colon_centreline(c);
+
+	return centreline_base(cl, (size_t)lround(s / centreline_step(cl)))->p;
+}
+
+/* The centreline through the nodes: knots, ends, C1, a uniform move. */
+static void test_displace(void **state)
+{
+	struct colon *c = straight_colon(600, 0.06);
+	struct centreline *cl = colon_centreline(c);
+	double node[4][3] = { { 0.01, 0, 0 }, { 0.02, 0.01, 0 },
+			      { -0.01, 0.005, 0 }, { 0.004, 0, 0 } };
+	double s0, s1, ds = centreline_step(cl), d[3];
+	size_t a, b;
+
+	(void)state;
+	centreline_span_range(cl, 0, &s0, &s1);
+	assert_int_equal(centreline_displace(cl, 0,
+					     (const double(*)[3])node, 4), 0);
+	for (int i = 0; i < 4; i++) {
+		double s = node_s(c, i, 4);
+
+		/* a node's place is a sample's only to within half a step */
+		vec3_sub(d, sample_at(c, s), base_at(c, s));
+		assert_vec_near(d, node[i], 2e-4);
+	}
+	a = (size_t)lround(s0 / ds);
+	b = (size_t)lround(s1 / ds);
+	assert_vec_near(centreline_sample(cl, a)->p, centreline_base(cl, a)->p,
+			1e-12);
+	assert_vec_near(centreline_sample(cl, b)->p, centreline_base(cl, b)->p,
+			1e-12);
+	assert_vec_near(centreline_sample(cl, a - 5)->p,
+			centreline_base(cl, a - 5)->p, 1e-12);
+	/* C1: at the ends the tangent stays the fixed colon's (within the
+	 * central difference over a step into the moved span) */
+	assert_true(vec3_dot(centreline_sample(cl, a)->t,
+			     centreline_base(cl, a)->t) > cos(0.01));
+	assert_true(vec3_dot(centreline_sample(cl, b)->t,
+			     centreline_base(cl, b)->t) > cos(0.01));
+	/* every node alike: alike between the inner nodes (the outer
+	 * intervals bend towards the fixed ends) */
+	for (int i = 0; i < 4; i++) {
+		vec3_set(node[i], 0.02, 0, 0);
+	}
+	centreline_displace(cl, 0, (const double(*)[3])node, 4);
+	for (double s = node_s(c, 1, 4); s <= node_s(c, 2, 4); s += 0.01) {
+		vec3_sub(d, sample_at(c, s), base_at(c, s));
+		assert_near(d[0], 0.02, 1e-9);
+	}
+	node[0][0] = NAN;
+	assert_int_equal(centreline_displace(cl, 0,
+					     (const double(*)[3])node, 4),
+			 -EINVAL);
+	colon_destroy(c);
+}
+
+/* Pushes each node of span 0 with F for T seconds. */
+static void push_nodes(struct flex *f, const struct colon *c,
+		       const double force[3], double t)
+{
+	int count = flex_span_nodes(f, 0);
+
+	for (int k = 0; k < (int)(t / DT); k++) {
+		flex_clear(f);
+		for (int i = 0; force && i < count; i++) {
+			flex_push(f, node_s(c, i, count), force, 0);
+		}
+		flex_step(f, DT);
+	}
+}
+
+/* The mesentery's law under a uniform push: F = k_m y (1 + (y/h)^2). */
+static void test_mesentery_law(void **state)
+{
+	const double k = 600, h = 0.06;
+	const struct flex_params p = { .node_spacing_m = 0.02,
+				       .damping_n_s_per_m = 2,
+				       .chain_n_per_m = 0 };
+	struct colon *c = straight_colon(k, h);
+	struct flex *f = flex_create(c, &p);
+	int count;
+
+	(void)state;
+	assert_non_null(f);
+	count = flex_span_nodes(f, 0);
+	assert_int_equal(count, (int)lround(0.37 / 0.02) - 1);
+	for (int trial = 0; trial < 3; trial++) {
+		const double fn[] = { 0.5, 2, 6 };
+		double km = k / count, force[3] = { 0, fn[trial], 0 }, y, want;
+
+		flex_reset(f);
+		push_nodes(f, c, force, 3.0);
+		y = flex_node(f, count / 2)[1];
+		want = km * y * (1 + (y / h) * (y / h));
+		print_message("mesentery: push %.1f N per node holds %.2f cm "
+			      "(k y (1 + (y/h)^2) = %.4f N)\n", fn[trial],
+			      y * 100, want);
+		assert_near(want, fn[trial], 0.01 * fn[trial]);
+		assert_near(flex_span_displacement(f, 0), y, 1e-9);
+		/* at rest the mesentery holds what was pushed, at every node */
+		for (int i = 0; i < count; i++) {
+			assert_near(flex_node(f, i)[1], y, 1e-6);
+		}
+	}
+	/* released: back to rest */
+	push_nodes(f, c, NULL, 3.0);
+	assert_near(flex_span_displacement(f, 0), 0, 1e-5);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
+/* Shared pushes, the fixed colon, the chain's reach. */
+static void test_pushes(void **state)
+{
+	const struct flex_params p = FLEX_PARAMS_DEFAULT;
+	struct colon *c = straight_colon(600, 0.06);
+	struct flex *f = flex_create(c, &p);
+	const double push[3] = { 1, 0, 0 };
+	int count = flex_span_nodes(f, 0), mid = count / 2;
+	double s, v[3];
+
+	(void)state;
+	/* the fixed colon (the descending) takes a push, nothing moves */
+	for (int k = 0; k < 1000; k++) {
+		flex_clear(f);
+		flex_push(f, 0.6, push, 0);
+		flex_step(f, DT);
+	}
+	assert_near(flex_span_displacement(f, 0), 0, 1e-12);
+	flex_velocity(f, 0.6, v);
+	assert_vec_near(v, ((double[3]){ 0, 0, 0 }), 1e-12);
+	/* a point push at one node: it moves most, its neighbours along */
+	s = node_s(c, mid, count);
+	for (int k = 0; k < 3000; k++) {
+		flex_clear(f);
+		flex_push(f, s, push, 0);
+		flex_step(f, DT);
+	}
+	assert_true(flex_node(f, mid)[0] > flex_node(f, mid + 1)[0]);
+	assert_true(flex_node(f, mid + 1)[0] > flex_node(f, mid + 3)[0]);
+	assert_true(flex_node(f, mid + 3)[0] > 0);
+	/* halfway between two nodes: both take half */
+	flex_reset(f);
+	s = (node_s(c, mid, count) + node_s(c, mid + 1, count)) / 2;
+	for (int k = 0; k < 50; k++) {
+		flex_clear(f);
+		flex_push(f, s, push, 0);
+		flex_step(f, DT);
+	}
+	assert_near(flex_node(f, mid)[0], flex_node(f, mid + 1)[0], 1e-12);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_displace),
+		cmocka_unit_test(test_mesentery_law),
+		cmocka_unit_test(test_pushes),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
