@@ -107,7 +107,8 @@ endef
 #   base     configuration, logging, the clock, real time, histograms, rings,
 #            vectors, register maps, JSON (daemon/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
-#            shared-memory reader, session files, names
+#            shared-memory reader, session files, names, the published
+#            fields' tables (fields.c)
 WINGS = offline viewer service rig session model base proto
 offline_SRCS = tests/tools/offline.c
 viewer_SRCS = $(filter-out viewer/endoview.c,$(wildcard viewer/*.c))
