@@ -44,13 +44,43 @@ static const char *map_key(const struct fields_table *t, const void *msg)
 	return key;
 }
 
+/* Sub-message field D of MSG (one, a list or a map) under its name. */
+static void json_sub(struct json *j, const struct fields_field *d,
+		     const void *msg)
+{
+	const void *one, *const *many;
+	size_t n;
+
+	if (d->kind == FIELDS_MESSAGE) {
+		memcpy(&one, (const unsigned char *)msg + d->pb, sizeof(one));
+		if (one) {
+			json_message(j, d->name, d->sub, one);
+		}
+		return;
+	}
+	n = sub_messages(d, msg, &many);
+	if (d->kind == FIELDS_LIST) {
+		json_array_begin(j, d->name);
+	} else {
+		json_object_begin(j, d->name);
+	}
+	for (size_t k = 0; k < n; k++) {
+		json_message(j, d->kind == FIELDS_MAP ? map_key(d->sub, many[k])
+						      : NULL,
+			     d->sub, many[k]);
+	}
+	if (d->kind == FIELDS_LIST) {
+		json_array_end(j);
+	} else {
+		json_object_end(j);
+	}
+}
+
 /* Field D of MSG under its name (fields.h). */
 static void json_field(struct json *j, const struct fields_field *d,
 		       const void *msg)
 {
 	const unsigned char *v = (const unsigned char *)msg + d->pb;
-	const void *const *subs;
-	const void *sub;
 	const double *vec;
 	const char *str;
 	protobuf_c_boolean b;
@@ -97,25 +127,9 @@ static void json_field(struct json *j, const struct fields_field *d,
 	case FIELDS_KEY:
 		break; /* the key of this message's object in its map */
 	case FIELDS_MESSAGE:
-		memcpy(&sub, v, sizeof(sub));
-		if (sub) {
-			json_message(j, d->name, d->sub, sub);
-		}
-		break;
 	case FIELDS_LIST:
-		json_array_begin(j, d->name);
-		for (size_t k = 0, m = sub_messages(d, msg, &subs); k < m; k++) {
-			json_message(j, NULL, d->sub, subs[k]);
-		}
-		json_array_end(j);
-		break;
 	case FIELDS_MAP:
-		json_object_begin(j, d->name);
-		for (size_t k = 0, m = sub_messages(d, msg, &subs); k < m; k++) {
-			json_message(j, map_key(d->sub, subs[k]), d->sub,
-				     subs[k]);
-		}
-		json_object_end(j);
+		json_sub(j, d, msg);
 		break;
 	}
 }

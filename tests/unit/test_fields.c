@@ -43,35 +43,30 @@ static const struct {
 } not_carried[] = {
 #define NOT(table, type, f, why)                                             \
 	{ &table, offsetof(type, f), sizeof(((type *)0)->f), why }
-	NOT(fields_status, struct endosim_state, publish_ns,
-	    "the publisher's own clock, for shm readers' latency"),
-	NOT(fields_status, struct endosim_state, fault_axis,
-	    "the first fault's: faults[0] says it"),
-	NOT(fields_status, struct endosim_state, fault_detail,
-	    "the first fault's: faults[0] says it"),
-	NOT(fields_status, struct endosim_state, fault_ns,
-	    "the first fault's: faults[0] says it"),
-	NOT(fields_status, struct endosim_state, fault_first,
-	    "which fault is faults[0]"),
-	NOT(fields_status, struct endosim_state, safety.overrun_periods,
-	    "the safety monitor's own"),
-	NOT(fields_status, struct endosim_state, safety.enabled_ns,
-	    "the safety monitor's own"),
-	NOT(fields_status, struct endosim_state, safety.saturated_s,
-	    "the safety monitor's own"),
-	NOT(fields_status, struct endosim_state, safety.faults_latched,
-	    "the safety monitor's own"),
-	NOT(fields_fault, struct endosim_fault_cause, first_ns,
-	    "the daemon says it as time_s"),
-	NOT(fields_fault, struct endosim_fault_cause, axis,
-	    "the daemon says it as the axis' name"),
-	NOT(fields_axis, struct endosim_axis_state, feedback_ns,
-	    "the feedback's age: the safety monitor's"),
-	NOT(fields_axis, struct endosim_axis_state, reserved, "padding"),
-	NOT(fields_scope, struct endosim_scope_state, reserved, "padding"),
-	NOT(fields_scope, struct endosim_scope_state, tube,
-	    "the shape (1.5 kB): the viewer's, from the shm"),
+#define STATE(f, why) NOT(fields_status, struct endosim_state, f, why)
+#define CAUSE(f, why) NOT(fields_fault, struct endosim_fault_cause, f, why)
+#define AXIS(f, why) NOT(fields_axis, struct endosim_axis_state, f, why)
+#define SCOPE(f, why) NOT(fields_scope, struct endosim_scope_state, f, why)
+	STATE(publish_ns, "the publisher's own clock, for shm readers"),
+	STATE(fault_axis, "the first fault's: faults[0] says it"),
+	STATE(fault_detail, "the first fault's: faults[0] says it"),
+	STATE(fault_ns, "the first fault's: faults[0] says it"),
+	STATE(fault_first, "which fault is faults[0]"),
+	STATE(safety.overrun_periods, "the safety monitor's own"),
+	STATE(safety.enabled_ns, "the safety monitor's own"),
+	STATE(safety.saturated_s, "the safety monitor's own"),
+	STATE(safety.faults_latched, "the safety monitor's own"),
+	CAUSE(first_ns, "the daemon says it as time_s"),
+	CAUSE(axis, "the daemon says it as the axis' name"),
+	AXIS(feedback_ns, "the feedback's age: the safety monitor's"),
+	AXIS(reserved, "padding"),
+	SCOPE(reserved, "padding"),
+	SCOPE(tube, "the shape (1.5 kB): the viewer's, from the shm"),
 #undef NOT
+#undef STATE
+#undef CAUSE
+#undef AXIS
+#undef SCOPE
 };
 
 /* Every table, from the root, each once. */
