@@ -107,7 +107,8 @@ endef
 #   base     configuration, logging, the clock, real time, histograms, rings,
 #            vectors, register maps, JSON (daemon/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
-#            shared-memory reader, session files, names
+#            shared-memory reader, session files, names, the published
+#            fields' tables (fields.c)
 WINGS = offline viewer service rig session model base proto
 offline_SRCS = tests/tools/offline.c
 viewer_SRCS = $(filter-out viewer/endoview.c,$(wildcard viewer/*.c))
@@ -165,7 +166,7 @@ $(foreach p,$(EMULATORS) bench/drives-bench,\
 UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_safety test_epos4_frame test_canopen test_regmap \
 	     test_config_drives test_colon test_scope test_scene \
-	     test_godobject test_haptics test_session_file \
+	     test_godobject test_haptics test_session_file test_fields \
 	     test_model test_lod test_portal test_input test_timing \
 	     test_vessels test_metrics test_report test_course test_rod test_flex test_lumen
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \

@@ -82,9 +82,8 @@ struct reply_buf {
 	char (*values)[CONFIG_STR + 32];
 	char error[256];
 	Endosim__ScopeStatus scope;
-	struct endosim_scope_state scope_state; /* what scope points into */
 	Endosim__HapticsStatus haptics;
-	struct endosim_haptics_state haptics_state; /* haptics points in */
+	struct endosim_state state; /* what the status reply points into */
 	Endosim__CaseListReply case_list;
 	Endosim__CaseEntry *case_entries;
 	Endosim__CaseEntry **case_entries_p;

@@ -14,7 +14,7 @@ static void fill_fault(struct control *c, const struct endosim_state *st,
 	const struct endosim_fault_cause *fc = &st->safety.cause[k];
 	Endosim__Fault *f = &c->rb.faults[n];
 
-	endosim__fault__init(f);
+	fields_to_pb(&fields_fault, f, fc);
 	faults_format(c->deps.rig, c->deps.start_ns, 1u << k, fc,
 		      c->rb.fault_lines[n], sizeof(c->rb.fault_lines[n]));
 	f->code = (uint32_t)k;
@@ -23,9 +23,6 @@ static void fill_fault(struct control *c, const struct endosim_state *st,
 	f->time_s = (double)(fc->first_ns - c->deps.start_ns) / 1e9;
 	f->text = c->rb.fault_lines[n];
 	f->active = st->safety.active & 1u << k;
-	f->value = fc->value;
-	f->limit = fc->limit;
-	f->detail = fc->detail;
 	c->rb.faults_p[n] = f;
 }
 
@@ -46,84 +43,54 @@ static void fill_faults(struct control *c, const struct endosim_state *st,
 	s->n_faults = n;
 	s->faults = c->rb.faults_p;
 	s->fault_text = n ? c->rb.fault_lines[0] : "";
-	s->active_faults = st->safety.active;
-	s->ramp = st->safety.ramp;
 }
 
-/* The protobuf view of the published scope: arrays point into SC. */
-static void fill_scope(Endosim__ScopeStatus *p, struct endosim_scope_state *sc)
+/* The axes: their values (fields.h) with their names and units. */
+static void fill_axes(struct reply_buf *rb, Endosim__StatusReply *s)
 {
-	endosim__scope_status__init(p);
-	p->depth_m = sc->depth_m;
-	p->tip_s_m = sc->tip_s_m;
-	p->base_s_m = sc->base_s_m;
-	p->n_bend_rad = 2;
-	p->bend_rad = sc->bend_rad;
-	p->n_tip = p->n_dir = p->n_up = 3;
-	p->tip = sc->tip;
-	p->dir = sc->dir;
-	p->up = sc->up;
-	p->turning_rad = sc->turning_rad;
-	p->n_bow_m = sc->spans;
-	p->bow_m = sc->bow_m;
-	p->scene_id = sc->scene_id;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		Endosim__AxisStatus *ax = &rb->axes[a];
+
+		fields_to_pb(&fields_axis, ax, &rb->state.axis[a]);
+		ax->name = (char *)names_axis(a);
+		ax->position_unit = (char *)names_axis_position_unit(a);
+		ax->force_unit = (char *)names_axis_force_unit(a);
+		rb->axes_p[a] = ax;
+	}
+	s->n_axes = ENDOSIM_AXES;
+	s->axes = rb->axes_p;
 }
 
-/* The protobuf view of the published haptics: arrays point into H. */
+/* The state's values by fields.h's tables; the rest is the daemon's. */
 void control_build_status(struct control *c, Endosim__Reply *rep)
 {
 	struct reply_buf *rb = &c->rb;
 	const struct loop_info *info = loop_get_info(c->deps.loop);
 	Endosim__StatusReply *s = &rb->status;
-	struct endosim_state st;
+	const struct endosim_state *st = &rb->state;
 
-	if (publish_read(c->deps.pub, &st)) {
+	if (publish_read(c->deps.pub, &rb->state)) {
 		rep->status = ENDOSIM__STATUS__STATUS_INTERNAL;
 		rep->error = "state busy, try again";
 		return;
 	}
-	endosim__status_reply__init(s);
-	s->state = (Endosim__DaemonState)st.state;
-	s->fault_bits = st.fault_bits;
-	fill_faults(c, &st, s);
-	s->cycle = st.cycle;
-	s->stamp_ns = st.stamp_ns;
+	fields_to_pb(&fields_status, s, st);
+	fill_faults(c, st, s);
 	s->rt_policy = (char *)info->policy;
 	s->rt_priority = info->priority;
 	s->loop_hz = c->loop_hz ? c->loop_hz
-				: (double)st.cycle * 1e9 /
-					  (double)(st.stamp_ns - c->deps.start_ns + 1);
+				: (double)st->cycle * 1e9 /
+					  (double)(st->stamp_ns - c->deps.start_ns + 1);
 	s->loop_rate_hz = c->cfg.loop.rate_hz;
-	s->overruns = st.overruns;
 	s->rig = (char *)rig_name(c->deps.rig);
 	s->version = ENDOSIM_VERSION;
 	s->uptime_s = (double)(mono_ns() - c->deps.start_ns) / 1e9;
-	s->scenario_time_s = st.scenario_time_s;
-	s->scenario_done = st.scenario_done;
 	s->case_name = (char *)colon_name(c->colon);
-	rb->scope_state = st.scope;
-	fill_scope(&rb->scope, &rb->scope_state);
+	fields_to_pb(&fields_scope, &rb->scope, &st->scope);
 	s->scope = &rb->scope;
-	rb->haptics_state = st.haptics;
-	fields_haptics_to_pb(&rb->haptics, &rb->haptics_state);
+	fields_to_pb(&fields_haptics, &rb->haptics, &st->haptics);
 	s->haptics = &rb->haptics;
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		Endosim__AxisStatus *ax = &rb->axes[a];
-
-		endosim__axis_status__init(ax);
-		ax->name = (char *)names_axis(a);
-		ax->position = st.axis[a].position;
-		ax->velocity = st.axis[a].velocity;
-		ax->hand = st.axis[a].hand;
-		ax->command = st.axis[a].command;
-		ax->limited = st.axis[a].limited;
-		ax->position_unit = (char *)names_axis_position_unit(a);
-		ax->force_unit = (char *)names_axis_force_unit(a);
-		ax->drive_status = st.axis[a].drive_status;
-		rb->axes_p[a] = ax;
-	}
-	s->n_axes = ENDOSIM_AXES;
-	s->axes = rb->axes_p;
+	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;
 }

@@ -14,122 +14,22 @@
 
 #include "session_file.h"
 
+#include "fields.h"
+
 #define FRAME_OVERHEAD 12u /* type, length, crc */
-
-#define R(field) offsetof(struct session_record, field)
-#define S(field) offsetof(struct endosim_state, field)
-#define F(name, rec, st) { name, SESSION_FIELD_F32, R(rec), S(st) }
-#define U(name, field) { name, SESSION_FIELD_U32, R(field), S(field) }
-#define AXES(what, field, lin, rot)                                          \
-	F("insertion_" what "_" lin, field[0], axis[0].field),               \
-	F("roll_" what "_" rot, field[1], axis[1].field),                    \
-	F("wheel_ud_" what "_" rot, field[2], axis[2].field),                \
-	F("wheel_lr_" what "_" rot, field[3], axis[3].field)
-#define XYZ(what, field, st, unit)                                           \
-	F(what "_x_" unit, field[0], st[0]),                                 \
-	F(what "_y_" unit, field[1], st[1]),                                 \
-	F(what "_z_" unit, field[2], st[2])
-#define SC(name, field) F(name, field, scope.field)
-#define H(name, field) F(name, field, haptics.field)
-#define UD_LR(what, field, unit)                                             \
-	H(what "_ud_" unit, field[0]), H(what "_lr_" unit, field[1])
-
-const struct session_field session_fields[] = {
-	{ "cycle", SESSION_FIELD_U64, R(cycle), S(cycle) },
-	{ NULL, SESSION_FIELD_U64, R(stamp_ns), S(stamp_ns) },
-	U("state", state),
-	U("fault_bits", fault_bits),
-	AXES("position", position, "m", "rad"),
-	AXES("velocity", velocity, "m_per_s", "rad_per_s"),
-	AXES("hand", hand, "n", "nm"),
-	AXES("command", command, "n", "nm"),
-	AXES("limited", limited, "n", "nm"),
-	F("ramp", ramp, safety.ramp),
-	SC("depth_m", depth_m),
-	SC("roll_rad", roll_rad),
-	SC("bend_ud_rad", bend_rad[0]),
-	SC("bend_lr_rad", bend_rad[1]),
-	SC("base_s_m", base_s_m),
-	SC("tip_s_m", tip_s_m),
-	SC("turning_rad", turning_rad),
-	XYZ("tip", tip, scope.tip, "m"),
-	XYZ("dir", dir, scope.dir, "1"),
-	XYZ("up", up, scope.up, "1"),
-	SC("bow0_m", bow_m[0]), SC("bow1_m", bow_m[1]),
-	SC("bow2_m", bow_m[2]), SC("bow3_m", bow_m[3]),
-	XYZ("proxy", proxy, haptics.proxy, "m"),
-	XYZ("normal", normal, haptics.normal, "1"),
-	XYZ("f_static", f_static, haptics.f_static, "n"),
-	H("penetration_m", penetration_m),
-	{ "contact", SESSION_FIELD_U32, R(contact), S(haptics.contact) },
-	{ "spans", SESSION_FIELD_U32, R(spans), S(scope.spans) },
-	H("curvature_rad", curvature_rad),
-	H("trans_contact_n", trans_contact_n),
-	H("trans_friction_n", trans_friction_n),
-	H("trans_loop_n", trans_loop_n),
-	UD_LR("wheel_contact", wheel_contact_nm, "nm"),
-	UD_LR("wheel_tension", wheel_tension_nm, "nm"),
-	UD_LR("wheel_elastic", wheel_elastic_nm, "nm"),
-	H("tube_contact_nm", tube_contact_nm),
-	H("tube_friction_nm", tube_friction_nm),
-	F("scenario_time_s", scenario_time_s, scenario_time_s),
-	U("latency_ns", latency_ns),
-	U("compute_ns", compute_ns),
-};
-
-const size_t session_n_fields = sizeof(session_fields) /
-				sizeof(session_fields[0]);
-
-_Static_assert(ENDOSIM_SPANS == 4, "session_fields: a bow column per span");
-
-/* Copies field D from FROM (a state when TO_RECORD, else a record) to TO. */
-static void copy_field(const struct session_field *d, const void *from,
-		       void *to, bool to_record)
-{
-	const unsigned char *src = (const unsigned char *)from +
-				   (to_record ? d->state : d->record);
-	unsigned char *dst = (unsigned char *)to +
-			     (to_record ? d->record : d->state);
-	double v;
-	float f;
-
-	switch (d->type) {
-	case SESSION_FIELD_U64:
-		memcpy(dst, src, sizeof(uint64_t));
-		break;
-	case SESSION_FIELD_U32:
-		memcpy(dst, src, sizeof(uint32_t));
-		break;
-	case SESSION_FIELD_F32:
-		if (to_record) {
-			memcpy(&v, src, sizeof(v));
-			f = (float)v;
-			memcpy(dst, &f, sizeof(f));
-		} else {
-			memcpy(&f, src, sizeof(f));
-			v = f;
-			memcpy(dst, &v, sizeof(v));
-		}
-		break;
-	}
-}
 
 void session_record_from_state(const struct endosim_state *in,
 			       struct session_record *out)
 {
 	memset(out, 0, sizeof(*out));
-	for (size_t i = 0; i < session_n_fields; i++) {
-		copy_field(&session_fields[i], in, out, true);
-	}
+	fields_to_record(&fields_status, in, out);
 }
 
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out)
 {
 	memset(out, 0, sizeof(*out));
-	for (size_t i = 0; i < session_n_fields; i++) {
-		copy_field(&session_fields[i], in, out, false);
-	}
+	fields_from_record(&fields_status, in, out);
 	out->publish_ns = in->stamp_ns;
 	out->fault_axis = -1;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {

@@ -59,7 +59,10 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 304 bytes.
+ * rig's resolution), SI units as in endosim_shm.h. 304 bytes. Which field
+ * of the state each holds, and its CSV column, is said once, in
+ * fields.h's tables; a field added goes at the end, before reserved (the
+ * CSV's columns are in this order).
  */
 struct session_record {
 	uint64_t cycle;
@@ -131,29 +134,9 @@ _Static_assert(sizeof(struct session_event) == 32,
 	       "session_event: its size is part of the file format");
 
 /*
- * The one description of the recorded fields of the state: what the copy
- * between the published state and a record, and the CSV columns of
- * `endoctl session export`, are made of. A field added to the state that a
- * session should keep is added to struct session_record and to this table
- * (session_file.c), in the order of the CSV columns.
+ * Fills OUT from one published state: the fields that fields.h's tables
+ * say a record keeps, the rest zero. Never allocates; any thread.
  */
-enum session_field_type {
-	SESSION_FIELD_U64,   /* uint64_t in both */
-	SESSION_FIELD_U32,   /* uint32_t in both */
-	SESSION_FIELD_F32,   /* double in the state, float in the record */
-};
-
-struct session_field {
-	const char *name;    /* CSV column, its unit as a suffix; NULL: none */
-	enum session_field_type type;
-	size_t record;       /* offset into struct session_record */
-	size_t state;        /* offset into struct endosim_state */
-};
-
-extern const struct session_field session_fields[];
-extern const size_t session_n_fields;
-
-/* Fills OUT from one published state. Never allocates; any thread. */
 void session_record_from_state(const struct endosim_state *in,
 			       struct session_record *out);
 

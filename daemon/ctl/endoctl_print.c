@@ -16,30 +16,77 @@ static void json_vector(struct json *j, const char *key, const double *v,
 	json_array_end(j);
 }
 
-static void json_scope(struct json *j, const Endosim__ScopeStatus *sc)
+static void json_message(struct json *j, const char *key,
+			 const struct fields_table *t, const void *msg);
+
+/* The repeated sub-message D of MSG: its messages and their count. */
+static size_t sub_messages(const struct fields_field *d, const void *msg,
+			   const void *const **out)
 {
-	json_object_begin(j, "scope");
-	json_double(j, "depth_m", sc->depth_m);
-	json_double(j, "tip_s_m", sc->tip_s_m);
-	json_double(j, "base_s_m", sc->base_s_m);
-	json_double(j, "turning_rad", sc->turning_rad);
-	json_vector(j, "bend_rad", sc->bend_rad, sc->n_bend_rad);
-	json_vector(j, "tip", sc->tip, sc->n_tip);
-	json_vector(j, "dir", sc->dir, sc->n_dir);
-	json_vector(j, "up", sc->up, sc->n_up);
-	json_vector(j, "bow_m", sc->bow_m, sc->n_bow_m);
-	json_uint(j, "scene_id", sc->scene_id);
-	json_object_end(j);
+	size_t n;
+
+	memcpy(out, (const unsigned char *)msg + d->pb, sizeof(*out));
+	memcpy(&n, (const unsigned char *)msg + d->pb_n, sizeof(n));
+	return n;
 }
 
-/* Haptic part D of H (fields.h) under its name. */
-static void json_field(struct json *j, const struct fields_field *d,
-		       const Endosim__HapticsStatus *h)
+/* The key of MSG, a message of T, in its FIELDS_MAP. */
+static const char *map_key(const struct fields_table *t, const void *msg)
 {
-	const unsigned char *v = (const unsigned char *)h + d->pb;
+	const char *key = "";
+
+	for (size_t i = 0; i < t->n_fields; i++) {
+		if (t->fields[i].kind == FIELDS_KEY) {
+			memcpy(&key, (const unsigned char *)msg +
+					     t->fields[i].pb, sizeof(key));
+		}
+	}
+	return key;
+}
+
+/* Sub-message field D of MSG (one, a list or a map) under its name. */
+static void json_sub(struct json *j, const struct fields_field *d,
+		     const void *msg)
+{
+	const void *one, *const *many;
+	size_t n;
+
+	if (d->kind == FIELDS_MESSAGE) {
+		memcpy(&one, (const unsigned char *)msg + d->pb, sizeof(one));
+		if (one) {
+			json_message(j, d->name, d->sub, one);
+		}
+		return;
+	}
+	n = sub_messages(d, msg, &many);
+	if (d->kind == FIELDS_LIST) {
+		json_array_begin(j, d->name);
+	} else {
+		json_object_begin(j, d->name);
+	}
+	for (size_t k = 0; k < n; k++) {
+		json_message(j, d->kind == FIELDS_MAP ? map_key(d->sub, many[k])
+						      : NULL,
+			     d->sub, many[k]);
+	}
+	if (d->kind == FIELDS_LIST) {
+		json_array_end(j);
+	} else {
+		json_object_end(j);
+	}
+}
+
+/* Field D of MSG under its name (fields.h). */
+static void json_field(struct json *j, const struct fields_field *d,
+		       const void *msg)
+{
+	const unsigned char *v = (const unsigned char *)msg + d->pb;
 	const double *vec;
+	const char *str;
 	protobuf_c_boolean b;
+	uint64_t u64;
 	uint32_t u;
+	int32_t i;
 	double x;
 	size_t n;
 
@@ -48,50 +95,56 @@ static void json_field(struct json *j, const struct fields_field *d,
 		memcpy(&x, v, sizeof(x));
 		json_double(j, d->name, x);
 		break;
-	case FIELDS_BOOL:
-		memcpy(&b, v, sizeof(b));
-		json_bool(j, d->name, b);
-		break;
 	case FIELDS_UINT:
 		memcpy(&u, v, sizeof(u));
 		json_uint(j, d->name, u);
 		break;
+	case FIELDS_UINT64:
+		memcpy(&u64, v, sizeof(u64));
+		json_uint(j, d->name, u64);
+		break;
+	case FIELDS_BOOL:
+		memcpy(&b, v, sizeof(b));
+		json_bool(j, d->name, b);
+		break;
+	case FIELDS_NAMED:
+		memcpy(&u, v, sizeof(u));
+		json_string(j, d->name, d->names(u));
+		break;
 	case FIELDS_VECTOR:
 		memcpy(&vec, v, sizeof(vec));
-		memcpy(&n, (const unsigned char *)h + d->pb_n, sizeof(n));
+		memcpy(&n, (const unsigned char *)msg + d->pb_n, sizeof(n));
 		json_vector(j, d->name, vec, n);
+		break;
+	case FIELDS_INT:
+		memcpy(&i, v, sizeof(i));
+		json_int(j, d->name, i);
+		break;
+	case FIELDS_STRING:
+		memcpy(&str, v, sizeof(str));
+		json_string(j, d->name, str);
+		break;
+	case FIELDS_KEY:
+		break; /* the key of this message's object in its map */
+	case FIELDS_MESSAGE:
+	case FIELDS_LIST:
+	case FIELDS_MAP:
+		json_sub(j, d, msg);
 		break;
 	}
 }
 
-static void json_haptics(struct json *j, const Endosim__HapticsStatus *h)
+/* MSG, a message of T, as an object under KEY, its fields in T's order. */
+static void json_message(struct json *j, const char *key,
+			 const struct fields_table *t, const void *msg)
 {
-	json_object_begin(j, "haptics");
-	for (size_t i = 0; i < fields_n_haptics; i++) {
-		json_field(j, &fields_haptics[i], h);
+	json_object_begin(j, key);
+	for (size_t i = 0; i < t->n_fields; i++) {
+		if (t->fields[i].pb != FIELDS_NONE) {
+			json_field(j, &t->fields[i], msg);
+		}
 	}
 	json_object_end(j);
-}
-
-static void json_faults(struct json *j, const Endosim__StatusReply *s)
-{
-	json_array_begin(j, "faults");
-	for (size_t i = 0; i < s->n_faults; i++) {
-		const Endosim__Fault *f = s->faults[i];
-
-		json_object_begin(j, NULL);
-		json_uint(j, "code", f->code);
-		json_string(j, "name", f->name);
-		json_string(j, "axis", f->axis);
-		json_double(j, "time_s", f->time_s);
-		json_string(j, "text", f->text);
-		json_bool(j, "active", f->active);
-		json_double(j, "value", f->value);
-		json_double(j, "limit", f->limit);
-		json_uint(j, "detail", f->detail);
-		json_object_end(j);
-	}
-	json_array_end(j);
 }
 
 void ctl_json_status(const Endosim__StatusReply *s)
@@ -99,50 +152,7 @@ void ctl_json_status(const Endosim__StatusReply *s)
 	struct json j;
 
 	json_init(&j, stdout);
-	json_object_begin(&j, NULL);
-	json_string(&j, "state", names_state((uint32_t)s->state));
-	json_uint(&j, "fault_bits", s->fault_bits);
-	json_string(&j, "fault", s->fault_text);
-	json_faults(&j, s);
-	json_uint(&j, "active_faults", s->active_faults);
-	json_double(&j, "ramp", s->ramp);
-	json_uint(&j, "cycle", s->cycle);
-	json_uint(&j, "stamp_ns", s->stamp_ns);
-	json_string(&j, "rt_policy", s->rt_policy);
-	json_int(&j, "rt_priority", s->rt_priority);
-	json_double(&j, "loop_hz", s->loop_hz);
-	json_double(&j, "loop_rate_hz", s->loop_rate_hz);
-	json_uint(&j, "overruns", s->overruns);
-	json_string(&j, "rig", s->rig);
-	json_string(&j, "version", s->version);
-	json_double(&j, "uptime_s", s->uptime_s);
-	json_double(&j, "scenario_time_s", s->scenario_time_s);
-	json_bool(&j, "scenario_done", s->scenario_done);
-	json_string(&j, "case", s->case_name);
-	if (s->scope) {
-		json_scope(&j, s->scope);
-	}
-	if (s->haptics) {
-		json_haptics(&j, s->haptics);
-	}
-	json_object_begin(&j, "axes");
-	for (size_t i = 0; i < s->n_axes; i++) {
-		const Endosim__AxisStatus *a = s->axes[i];
-
-		json_object_begin(&j, a->name);
-		json_double(&j, "position", a->position);
-		json_double(&j, "velocity", a->velocity);
-		json_double(&j, "hand", a->hand);
-		json_double(&j, "command", a->command);
-		json_double(&j, "limited", a->limited);
-		json_string(&j, "position_unit", a->position_unit);
-		json_string(&j, "force_unit", a->force_unit);
-		json_uint(&j, "drive_status", a->drive_status);
-		json_string(&j, "drive", names_drive_status(a->drive_status));
-		json_object_end(&j);
-	}
-	json_object_end(&j);
-	json_object_end(&j);
+	json_message(&j, NULL, &fields_status, s);
 }
 
 static void print_haptics(const Endosim__HapticsStatus *h,

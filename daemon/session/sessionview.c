@@ -1,6 +1,7 @@
 /* sessionview.c - see sessionview.h. */
 #include "sessionview.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -8,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fields.h"
 #include "report.h"
 #include "sessioninputs.h"
 
@@ -124,25 +126,25 @@ void sessionview_json(struct json *j, const char *key,
 
 /* ------------------------------------------------------------ CSV */
 
-/* Column C (session_fields) of record R. */
+/* Column C (fields_columns) of record R. */
 static void put_value(FILE *out, const struct session_record *r,
-		      const struct session_field *c)
+		      const struct fields_column *c)
 {
 	const unsigned char *p = (const unsigned char *)r + c->record;
 	uint64_t u64;
 	uint32_t u32;
 	float f;
 
-	switch (c->type) {
-	case SESSION_FIELD_U64:
+	switch (c->stored) {
+	case FIELDS_STORED_U64:
 		memcpy(&u64, p, sizeof(u64));
 		fprintf(out, ",%" PRIu64, u64);
 		break;
-	case SESSION_FIELD_U32:
+	case FIELDS_STORED_U32:
 		memcpy(&u32, p, sizeof(u32));
 		fprintf(out, ",%" PRIu32, u32);
 		break;
-	case SESSION_FIELD_F32:
+	case FIELDS_STORED_F32:
 		memcpy(&f, p, sizeof(f));
 		fprintf(out, ",%.7g", (double)f);
 		break;
@@ -167,23 +169,24 @@ static double since(uint64_t t0, uint64_t stamp_ns)
 
 int sessionview_csv(FILE *out, const struct session_file *f)
 {
+	/* every column is at least a float of the record */
+	struct fields_column cols[sizeof(struct session_record) /
+				  sizeof(float)];
+	size_t n = fields_columns(cols, sizeof(cols) / sizeof(cols[0]));
 	uint64_t t0 = start_ns(f);
 
+	assert(n <= sizeof(cols) / sizeof(cols[0]));
 	fprintf(out, "t_s");
-	for (size_t c = 0; c < session_n_fields; c++) {
-		if (session_fields[c].name) {
-			fprintf(out, ",%s", session_fields[c].name);
-		}
+	for (size_t c = 0; c < n; c++) {
+		fprintf(out, ",%s", cols[c].name);
 	}
 	fputc('\n', out);
 	for (size_t i = 0; i < f->n_records; i++) {
 		const struct session_record *r = &f->records[i];
 
 		fprintf(out, "%.6f", since(t0, r->stamp_ns));
-		for (size_t c = 0; c < session_n_fields; c++) {
-			if (session_fields[c].name) {
-				put_value(out, r, &session_fields[c]);
-			}
+		for (size_t c = 0; c < n; c++) {
+			put_value(out, r, &cols[c]);
 		}
 		fputc('\n', out);
 	}
