@@ -35,20 +35,27 @@ static bool params_ok(const struct flex_params *p)
 	       p->chain_n_per_m >= 0 && p->chain_n_per_m < 1e6;
 }
 
-struct flex *flex_create(struct colon *colon, const struct flex_params *p)
+struct flex *flex_create(const struct flex_params *p)
 {
-	struct centreline *cl = colon_centreline(colon);
 	struct flex *f;
 
 	if (!params_ok(p)) {
 		return NULL;
 	}
 	f = calloc(1, sizeof(*f));
-	if (!f) {
-		return NULL;
+	if (f) {
+		f->par = *p;
 	}
+	return f;
+}
+
+void flex_attach(struct flex *f, struct colon *colon)
+{
+	struct centreline *cl = colon_centreline(colon);
+
 	f->colon = colon;
-	f->par = *p;
+	f->chains = 0;
+	f->nodes = 0;
 	for (int i = 0; i < colon_regions(colon); i++) {
 		const struct colon_region *r = colon_region(colon, i);
 		struct chain *c = &f->chain[f->chains];
@@ -59,7 +66,8 @@ struct flex *flex_create(struct colon *colon, const struct flex_params *p)
 			continue;
 		}
 		centreline_span_range(cl, r->span, &c->s0, &c->s1);
-		count = (int)lround((c->s1 - c->s0) / p->node_spacing_m) - 1;
+		count = (int)lround((c->s1 - c->s0) / f->par.node_spacing_m) -
+			1;
 		count = count < 1 ? 1 : count;
 		if (f->nodes + count > FLEX_MAX_NODES) {
 			count = FLEX_MAX_NODES - f->nodes;
@@ -76,7 +84,6 @@ struct flex *flex_create(struct colon *colon, const struct flex_params *p)
 		f->chains++;
 	}
 	flex_reset(f);
-	return f;
 }
 
 void flex_destroy(struct flex *f)

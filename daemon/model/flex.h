@@ -29,7 +29,7 @@
  * contact surface stays in the material placement (haptics.h).
  *
  * flex_create() allocates; the rest never allocates, blocks or prints: the
- * force loop steps it. One writer.
+ * force loop attaches and steps it. One writer.
  */
 #ifndef ENDOSIM_FLEX_H
 #define ENDOSIM_FLEX_H
@@ -54,11 +54,17 @@ struct flex_params {
 
 struct flex;
 
+/* Room for the chains of any colon; none yet. NULL on bad parameters or
+ * ENOMEM. */
+struct flex *flex_create(const struct flex_params *p);
+
 /*
- * The chains of COLON's mobile spans (those whose region has a mesentery),
- * at rest. NULL on bad parameters or ENOMEM. COLON must outlive it.
+ * The chains of COLON's mobile spans (those whose region has a mesentery,
+ * FLEX_MAX_NODES nodes in all), at rest; the colon's centreline re-laid
+ * to rest. COLON must outlive its attachment. No allocation: the force
+ * loop may attach a new colon.
  */
-struct flex *flex_create(struct colon *colon, const struct flex_params *p);
+void flex_attach(struct flex *f, struct colon *colon);
 
 /* NULL is fine. */
 void flex_destroy(struct flex *f);

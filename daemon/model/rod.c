@@ -66,6 +66,8 @@ struct rod {
 	struct rod_load *load;
 	struct link *joint;        /* n - 1 */
 	struct rod_anchor anchor[2];
+	double anchor_moved[2][6];  /* the anchor's move this step: its
+				       point (world), its turn (world) */
 	bool held[2];
 	struct link end[2];        /* the anchors' rows */
 	struct link **chain;       /* the links in order, base to tip */
@@ -114,6 +116,21 @@ static void quat_turn(double q[4], const double w[3])
 		q[i] += t[i];
 	}
 	quat_normalize(q);
+}
+
+/* The world rotation that took Q0 to Q: 2 Im(q conj(q0)), short way. */
+static void rotation_since(const double q[4], const double q0[4],
+			   double out[3])
+{
+	double c[4], d[4];
+
+	quat_conj(q0, c);
+	quat_mul(q, c, d);
+	if (d[0] < 0) {
+		vec3_set(out, -2 * d[1], -2 * d[2], -2 * d[3]);
+	} else {
+		vec3_set(out, 2 * d[1], 2 * d[2], 2 * d[3]);
+	}
 }
 
 /* The rotation matrix of unit Q: columns d1, d2, d3. */
@@ -574,14 +591,26 @@ void rod_set_anchor(struct rod *r, enum rod_end end,
 		    const struct rod_anchor *a)
 {
 	struct link *k = &r->end[end];
+	struct rod_anchor *an = &r->anchor[end];
+	double *moved = r->anchor_moved[end];
+	bool was = r->held[end];
 
 	r->held[end] = a != NULL;
+	memset(moved, 0, sizeof(r->anchor_moved[end]));
 	if (!a) {
 		return;
 	}
-	r->anchor[end] = *a;
-	quat_normalize(r->anchor[end].q);
-	k->anchor = &r->anchor[end];
+	if (was) {
+		double q[4];
+
+		memcpy(q, a->q, sizeof(q));
+		quat_normalize(q);
+		vec3_sub(moved, a->p, an->p);
+		rotation_since(q, an->q, moved + 3);
+	}
+	*an = *a;
+	quat_normalize(an->q);
+	k->anchor = an;
 	for (int i = 0; i < 6; i++) {
 		k->alpha[i] = fmax(a->compliance[i], HARD_COMPLIANCE);
 		k->tau[i] = fmax(a->damping_s[i], 0);
@@ -706,21 +735,6 @@ static int predict(struct rod *r, int i, double h, double vs[3],
 	return 0;
 }
 
-/* The world rotation that took Q0 to Q: 2 Im(q conj(q0)), short way. */
-static void rotation_since(const double q[4], const double q0[4],
-			   double out[3])
-{
-	double c[4], d[4];
-
-	quat_conj(q0, c);
-	quat_mul(q, c, d);
-	if (d[0] < 0) {
-		vec3_set(out, -2 * d[1], -2 * d[2], -2 * d[3]);
-	} else {
-		vec3_set(out, 2 * d[1], 2 * d[2], 2 * d[3]);
-	}
-}
-
 /* The end point offset of segment S: (l/2) d3 at the tip side, minus at
  * the base side (its matrix as refresh() left it). */
 static void end_offset(const struct rod *r, const struct seg *s,
@@ -839,6 +853,14 @@ static void rhs(const struct rod *r, struct link *k, double h)
 		}
 		m3_mv_acc(sd->x, sg->dth, 1, jdx);
 		m3_mv_acc(sd->z, sg->dth, 1, jdx + 3);
+	}
+	if (k == &r->end[ROD_BASE] || k == &r->end[ROD_TIP]) {
+		/* a coupling damps the motion relative to its anchor's */
+		const double *am = r->anchor_moved[k == &r->end[ROD_TIP]];
+		const struct side *sd = &k->s[k == &r->end[ROD_BASE] ? 1 : 0];
+
+		m3_mv_acc(sd->t, am, -1, jdx);
+		m3_mv_acc(sd->z, am + 3, -1, jdx + 3);
 	}
 	for (int i = 0; i < 6; i++) {
 		double at = k->alpha[i] / (h * h), gam = k->tau[i] / h;

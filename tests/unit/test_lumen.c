@@ -214,7 +214,7 @@ static double capstan(double mu, bool mobile, double *held,
 	struct colon *c = smooth_colon(0.02, 90, mobile);
 	struct rod *r = rod_along(c, 70, 0.7, 0.05, 1e-3);
 	struct lumen *lu = lumen_for(r, 0.05);
-	struct flex *fx = mobile ? flex_create(c, &fp) : NULL;
+	struct flex *fx = mobile ? flex_create(&fp) : NULL;
 	const struct centreline *cl = colon_centreline(c);
 	struct rod_anchor pull = { .compliance = { 1e-4, 1e-4, 1e-4, 1, 1, 1 },
 				   .damping_s = { 0.002, 0.002, 0.002 } };
@@ -223,6 +223,9 @@ static double capstan(double mu, bool mobile, double *held,
 	int samples = 0;
 
 	p.friction = mu;
+	if (fx) {
+		flex_attach(fx, c);
+	}
 	centreline_at_length(cl, 0.75, &out, NULL);
 	rod_end_point(r, 69, ROD_TIP, start);
 	memcpy(pull.q, rod_quat(r, 69), sizeof(pull.q));
@@ -304,7 +307,7 @@ static void test_colon_takes_it(void **state)
 		      held, mb.moved * 100, vec3_norm(mb.pushed),
 		      vec3_norm(mb.held));
 	assert_true(mb.moved > 0.01);
-	assert_vec_near(mb.held, mb.pushed, 0.02 * vec3_norm(mb.pushed));
+	assert_vec_near(mb.held, mb.pushed, 0.03 * vec3_norm(mb.pushed));
 	/* towards the bend's inside, as the rope's pull t_out - t_in */
 	assert_true(mb.inward > 0.5 * vec3_norm(mb.pushed));
 }
