@@ -110,7 +110,7 @@ endef
 #            shared-memory reader, session files, names, the published
 #            fields' tables (fields.c)
 WINGS = offline viewer service rig session model base proto
-offline_SRCS = tests/tools/offline.c
+offline_SRCS = tests/tools/offline.c tests/tools/trainee.c
 viewer_SRCS = $(filter-out viewer/endoview.c,$(wildcard viewer/*.c))
 service_SRCS = $(filter-out daemon/main.c,$(wildcard daemon/*.c))
 rig_SRCS = $(wildcard daemon/rig/*.c)

@@ -108,9 +108,14 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 		free(l);
 		return NULL;
 	}
-	l->haptics = haptics_create();
+	{
+		struct haptics_params hp;
+
+		cases_haptics_params(cfg, &hp);
+		l->haptics = haptics_create(&hp);
+	}
 	if (!l->haptics) {
-		log_err("force loop: out of memory");
+		log_err("force loop: out of memory for the haptics' model");
 		spsc_free(&l->events);
 		free(l);
 		return NULL;
@@ -263,6 +268,8 @@ static void take_colon(struct loop *l)
 	haptics_reset(l->haptics, in);
 }
 
+/* The scope's pose: the paper's kinematics on the centreline, or the rod
+ * model's tube as its last step left it. */
 static void kinematics(struct loop *l)
 {
 	const struct scope_input in = {
@@ -273,6 +280,19 @@ static void kinematics(struct loop *l)
 	};
 	struct scope_params p;
 
+	if (haptics_rod(l->haptics)) {
+		struct haptics_params par;
+		double position[ENDOSIM_AXES], velocity[ENDOSIM_AXES];
+
+		cases_haptics_params(&l->cfg, &par);
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			position[a] = l->fb.axis[a].position;
+			velocity[a] = l->fb.axis[a].velocity;
+		}
+		haptics_rod_pose(l->haptics, &par, position, velocity,
+				 &l->pose);
+		return;
+	}
 	cases_scope_params(&l->cfg, &p);
 	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
 }
@@ -304,6 +324,8 @@ static void fill_scope(struct loop *l)
 {
 	l->state.scope.scene_id = l->scene_id;
 	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
+	haptics_publish_rod(l->haptics, l->pose.roll_rad, &l->state.rod,
+			    l->state.scope.bow_m);
 }
 
 /* Takes a test command, if any (the control thread checked it is allowed). */
@@ -664,6 +686,16 @@ static struct colon *swap_answer(struct loop *l)
 {
 	return atomic_exchange_explicit(&l->colon_out, NULL,
 					memory_order_acq_rel);
+}
+
+const struct haptics *loop_haptics(const struct loop *l)
+{
+	return l->haptics;
+}
+
+const struct colon *loop_colon(const struct loop *l)
+{
+	return l->colon;
 }
 
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,

@@ -186,6 +186,12 @@ const struct loop_info *loop_get_info(const struct loop *l);
  * cycle filled.
  */
 void loop_step(struct loop *l, uint64_t now_ns);
+
+/* In lockstep (never while the loop's thread runs): the haptics' model
+ * and the colon the loop renders on, for the tools and tests that look
+ * inside them. */
+const struct haptics *loop_haptics(const struct loop *l);
+const struct colon *loop_colon(const struct loop *l);
 void loop_post(struct loop *l, enum loop_cmd cmd);
 const struct endosim_state *loop_state(const struct loop *l);
 

@@ -24,10 +24,12 @@
 #include "seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 4u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 5u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
-				     fault with its time, axis and values */
+				     fault with its time, axis and values;
+				  5: the rod model: the tube's shape, the
+				     colon's nodes, the wall's contacts */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
@@ -93,9 +95,12 @@ struct endosim_axis_state {
  * The endoscope as the force loop sees it this cycle, in the colon's
  * coordinates (m; x to the patient's left, y anterior, z cranial), and
  * the colon's deformation. s is the material arc length from the anal
- * verge on the undeformed colon (GetScene's centreline); a viewer bows its
- * copy of the centreline by bow_m with the daemon's algorithm
- * (daemon/model/centreline.h) to draw exactly what the haptics use.
+ * verge on the undeformed colon (GetScene's centreline). The paper's
+ * model bows the mobile segments: a viewer bows its copy of the
+ * centreline by bow_m with the daemon's algorithm (centreline_bow()) to
+ * draw exactly what the haptics use. The rod model moves them node by
+ * node (struct endosim_rod_state: centreline_displace()); bow_m is then
+ * each mobile segment's largest displacement from rest, the loop's size.
  */
 struct endosim_scope_state {
 	uint64_t scene_id;    /* GetScene's scene_id of the colon in use */
@@ -110,7 +115,8 @@ struct endosim_scope_state {
 	double up[3];         /* unit camera up, normal to dir */
 	uint32_t spans;       /* mobile segments in bow_m */
 	uint32_t reserved;
-	double bow_m[ENDOSIM_SPANS]; /* each mobile segment's bow amplitude */
+	double bow_m[ENDOSIM_SPANS]; /* each mobile segment's bow amplitude
+					(rod model: largest displacement) */
 	float tube[ENDOSIM_TUBE_POINTS][3]; /* m, evenly along the tube */
 };
 
@@ -133,6 +139,8 @@ struct endosim_haptics_state {
 	double trans_contact_n;   /* the contact force's virtual work on d */
 	double trans_friction_n;  /* -c_f v sum |r(i) - 2 r(i+1) + r(i+2)|/ds */
 	double trans_loop_n;      /* the mesenteries of bowed segments */
+	double trans_rod_n;       /* the rod model: the tube's reaction at
+				     the carriage (its parts inseparable) */
 	/* wheels (up/down, left/right), N m */
 	double wheel_contact_nm[2]; /* the contact force's virtual work */
 	double wheel_tension_nm[2]; /* wire tension from the tube's bends */
@@ -141,11 +149,46 @@ struct endosim_haptics_state {
 	/* roll axis, N m */
 	double tube_contact_nm;   /* the contact force's virtual work */
 	double tube_friction_nm;  /* torsional friction */
+	double tube_rod_nm;       /* the rod model: the tube's twisting
+				     moment at the carriage */
 	/* every axis */
 	double damping[ENDOSIM_AXES]; /* light virtual damping, N or N m */
 	/* stability */
 	double passivity_energy_j; /* the passivity observer's energy */
 	double passivity_damping;  /* damping it added this cycle, N s/m */
+};
+
+#define ENDOSIM_ROD_POINTS 321   /* the tube's points published, at most */
+#define ENDOSIM_COLON_NODES 64   /* the mobile colon's nodes, at most */
+
+/* [haptics] model: which model rendered this cycle. */
+enum endosim_model {
+	ENDOSIM_MODEL_PAPER = 0,   /* the tube on the centreline */
+	ENDOSIM_MODEL_ROD = 1,     /* an elastic rod in a colon that moves */
+};
+
+/*
+ * The rod model this cycle (daemon/model/rodscope.h): the whole insertion
+ * tube, base (the carriage) to tip, as POINTS points evenly along it (its
+ * segments' ends, every k-th when it has more than ENDOSIM_ROD_POINTS - 1
+ * segments), with its material frame's roll at each (rad: the carriage's
+ * roll plus the twist the tube holds up to there); the wall's contacts;
+ * and the mobile colon's nodes: each mobile span's SPAN_NODES[k] nodes in
+ * order (span 0's first), each node's displacement from rest (m), which
+ * centreline_displace() turns into the centreline the haptics use. All
+ * zero in the paper's model.
+ */
+struct endosim_rod_state {
+	uint32_t model;           /* enum endosim_model */
+	uint32_t points;          /* of point[] in use */
+	uint32_t contacts;        /* tube segments the wall presses */
+	uint32_t nodes;           /* of node[] in use */
+	uint32_t span_nodes[ENDOSIM_SPANS]; /* nodes per mobile span */
+	double wall_n;            /* the wall's normal forces on the tube, N */
+	double friction_n;        /* the friction's forces, N (sizes summed) */
+	float point[ENDOSIM_ROD_POINTS][3]; /* m */
+	float roll[ENDOSIM_ROD_POINTS];     /* rad */
+	float node[ENDOSIM_COLON_NODES][3]; /* m, from rest */
 };
 
 /*
@@ -211,6 +254,7 @@ struct endosim_state {
 	struct endosim_scope_state scope;
 	struct endosim_haptics_state haptics;
 	struct endosim_safety_state safety;
+	struct endosim_rod_state rod;
 };
 
 struct endosim_shm {

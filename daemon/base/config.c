@@ -18,6 +18,7 @@ static const char *const direction_names[] = { "normal", "reversed", NULL };
 static const char *const transport_names[] = { "rtu", "tcp", NULL };
 static const char *const parity_names[] = { "none", "even", "odd", NULL };
 static const char *const yes_no[] = { "no", "yes", NULL };
+static const char *const model_names[] = { "paper", "rod", NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
@@ -259,9 +260,12 @@ static const struct config_key keys[] = {
 	KD("limits", "wheel_lr_slew_n_m_per_s", limits.slew[I_LR], 20, 0.01,
 	   1e5, "N m/s", LIVE, "fastest change of the left/right wheel torque"),
 
+	KE("haptics", "model", haptics.model, 0, model_names, 0,
+	   "rod: the insertion tube an elastic rod in a colon that moves "
+	   "([rod]); paper: the tube on the centreline (Koerner and Maenner)"),
 	KD("haptics", "scope_radius_m", haptics.scope_radius_m, 0.0065, 0, 0.02,
-	   "m", 0, "radius of the scope's tip: how far from the wall its "
-	   "centre stays"),
+	   "m", 0, "radius of the scope's tip and tube: how far from the wall "
+	   "its centre stays"),
 	KD("haptics", "wall_stiffness_n_per_m", haptics.wall_stiffness_n_per_m,
 	   2000, 0, 20000, "N/m", LIVE, "k_wall: the colon wall's spring "
 	   "against the tip"),
@@ -318,6 +322,54 @@ static const struct config_key keys[] = {
 	   "light virtual damping of the left/right wheel"),
 	KE("haptics", "passivity", haptics.passivity, 1, yes_no, LIVE,
 	   "passivity observer and controller on the contact forces"),
+
+	KI("rod", "segments", rod.segments, 160, 8, 1024, "", 0,
+	   "rigid segments of the insertion tube (cost grows linearly)"),
+	KD("rod", "length_m", rod.length_m, 1.6, 0.5, 3, "m", 0,
+	   "the insertion tube's length: the deepest insertion"),
+	KD("rod", "mass_per_m_kg", rod.mass_per_m_kg, 0.2, 0.01, 10, "kg/m", 0,
+	   "the insertion tube's mass per length"),
+	KD("rod", "bending_n_m2", rod.bending_n_m2, 0.03, 1e-4, 10, "N m^2",
+	   LIVE, "EI of the insertion tube (colonoscopes 0.026-0.040)"),
+	KD("rod", "torsion_n_m2", rod.torsion_n_m2, 0.45, 1e-4, 100, "N m^2",
+	   LIVE, "GJ of the insertion tube (68-88 N cm^2/deg: 0.39-0.50)"),
+	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2, 0.02, 1e-4, 10,
+	   "N m^2", LIVE, "EI of the bending section, its wires held"),
+	KD("rod", "damping_s", rod.damping_s, 0.002, 0, 1, "s", 0,
+	   "the tube's internal damping: Kelvin-Voigt time of its bending "
+	   "and twist"),
+	KD("rod", "drag_n_s_per_m2", rod.drag_n_s_per_m2, 0.5, 0, 1000,
+	   "N s/m^2", 0, "viscous drag on the tube per length and speed"),
+	KI("rod", "iterations", rod.iterations, 2, 2, 8, "", 0,
+	   "Newton iterations of the rod's solve per step"),
+	KD("rod", "wall_n_per_m2", rod.wall_n_per_m2, 1.5e5, 1e3, 1e7,
+	   "N/m^2", LIVE, "the colon wall's stiffness against the tube, per "
+	   "metre of tube"),
+	KD("rod", "wall_damping_s", rod.wall_damping_s, 0.01, 0, 1, "s", LIVE,
+	   "the wall's damping: its Kelvin-Voigt time"),
+	KD("rod", "friction", rod.friction, 0.1, 0, 2, "", LIVE,
+	   "mu: Coulomb friction of the tube on the mucosa"),
+	KD("rod", "slip_m_per_s", rod.slip_m_per_s, 0.002, 1e-5, 1, "m/s",
+	   LIVE, "below this sliding speed the tube sticks (friction "
+	   "regularised)"),
+	KD("rod", "pipe_n_per_m2", rod.pipe_n_per_m2, 1e6, 1e3, 1e8, "N/m^2",
+	   LIVE, "the rig's slitted pipe holding the tube outside, per metre"),
+	KD("rod", "coupling_n_per_m", rod.coupling_n_per_m, 3000, 10, 1e6,
+	   "N/m", LIVE, "the carriage's hold on the tube's end along the pipe"),
+	KD("rod", "coupling_n_s_per_m", rod.coupling_n_s_per_m, 20, 0, 1e4,
+	   "N s/m", LIVE, "its damping"),
+	KD("rod", "roll_n_m_per_rad", rod.roll_n_m_per_rad, 2, 0.01, 1e3,
+	   "N m/rad", LIVE, "the carriage's hold on the tube's end in roll"),
+	KD("rod", "roll_n_m_s_per_rad", rod.roll_n_m_s_per_rad, 0.005, 0, 10,
+	   "N m s/rad", LIVE, "its damping"),
+	KD("rod", "stop_n_per_m", rod.stop_n_per_m, 5000, 0, 1e6, "N/m", LIVE,
+	   "the handle at the anus: inserted past the tube's length"),
+	KD("rod", "colon_node_spacing_m", rod.colon_node_spacing_m, 0.02,
+	   0.005, 0.2, "m", 0, "the mobile colon's nodes, this far apart"),
+	KD("rod", "colon_damping_n_s_per_m", rod.colon_damping_n_s_per_m, 20,
+	   0.1, 1e5, "N s/m", LIVE, "the tissue's damping per node"),
+	KD("rod", "colon_chain_n_per_m", rod.colon_chain_n_per_m, 100, 0, 1e5,
+	   "N/m", LIVE, "the colon's continuity between its nodes"),
 
 	KL("log", "level", log.level, LOG_INFO, LIVE,
 	   "err, warning, notice, info or debug"),

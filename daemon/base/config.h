@@ -183,6 +183,30 @@ struct config {
 		double gain[2];      /* tip rad per wheel rad: ud, lr */
 		double limit_rad[2]; /* largest tip bend: ud, lr */
 	} scope;
+	struct config_rod {      /* [rod]: the rod model (rodscope.h) */
+		int segments;
+		double length_m;
+		double mass_per_m_kg;
+		double bending_n_m2;
+		double torsion_n_m2;
+		double tip_bending_n_m2;
+		double damping_s;
+		double drag_n_s_per_m2;
+		int iterations;
+		double wall_n_per_m2;
+		double wall_damping_s;
+		double friction;
+		double slip_m_per_s;
+		double pipe_n_per_m2;
+		double coupling_n_per_m;
+		double coupling_n_s_per_m;
+		double roll_n_m_per_rad;
+		double roll_n_m_s_per_rad;
+		double stop_n_per_m;
+		double colon_node_spacing_m;
+		double colon_damping_n_s_per_m;
+		double colon_chain_n_per_m;
+	} rod;
 };
 
 enum config_type {

@@ -9,7 +9,14 @@
 
 #include "endosim_shm.h"
 
+/* [haptics] model: which model renders the forces (haptics.h). */
+enum haptics_model {
+	HAPTICS_MODEL_PAPER = 0, /* the paper's: the tube on the centreline */
+	HAPTICS_MODEL_ROD = 1,   /* an elastic rod in a colon that moves */
+};
+
 struct haptics_gains {
+	int model;                     /* enum haptics_model (not live) */
 	double scope_radius_m;         /* the tip: the contact inset */
 	double wall_stiffness_n_per_m;
 	double wall_damping_n_s_per_m;

@@ -38,8 +38,9 @@
 #include <stddef.h>
 
 #include "colon.h"
+#include "endosim_shm.h"
 
-#define FLEX_MAX_NODES 64   /* all spans together */
+#define FLEX_MAX_NODES ENDOSIM_COLON_NODES /* all spans together */
 #define FLEX_APPLY_M 1e-4   /* a node's move that re-lays the centreline */
 
 struct flex_params {

@@ -28,6 +28,11 @@ struct span {
 
 struct haptics {
 	struct godobject go;
+	struct rodscope *rs;  /* the rod model's tube; NULL: the paper's */
+	struct colon *colon;  /* the rod model's: its tube is laid in it */
+	bool rod_fresh;       /* lay the tube at the next pose */
+	struct lumen_totals wall; /* the rod model's last step's contacts */
+	double tip_v[3];      /* the rod model's tip velocity, m/s */
 	bool fresh;          /* place the proxy at the next tip */
 	double proxy_s;      /* m: where along the colon the proxy is */
 	struct span span[CENTRELINE_MAX_SPANS];
@@ -43,22 +48,54 @@ struct touch {
 	double proxy[3];
 	double normal[3];
 	double force[3];    /* F_static, N */
+	double spring[3];   /* its spring alone (the rod takes it on) */
 	double depth;       /* m */
 };
 
-struct haptics *haptics_create(void)
+struct haptics *haptics_create(const struct haptics_params *p)
 {
 	struct haptics *h = calloc(1, sizeof(*h));
 
-	if (h) {
-		h->fresh = true;
+	if (!h) {
+		return NULL;
+	}
+	h->fresh = true;
+	if (p && p->gains.model == HAPTICS_MODEL_ROD) {
+		h->rs = rodscope_create(&p->rod);
+		if (!h->rs) {
+			free(h);
+			return NULL;
+		}
 	}
 	return h;
 }
 
 void haptics_destroy(struct haptics *h)
 {
-	free(h);
+	if (h) {
+		rodscope_destroy(h->rs);
+		free(h);
+	}
+}
+
+void haptics_publish_rod(const struct haptics *h, double roll_rad,
+			 struct endosim_rod_state *out,
+			 double bow_m[ENDOSIM_SPANS])
+{
+	memset(out, 0, sizeof(*out));
+	if (h->rs) {
+		rodscope_publish(h->rs, roll_rad, &h->wall, out, bow_m);
+	}
+}
+
+bool haptics_rod(const struct haptics *h)
+{
+	return h->rs != NULL;
+}
+
+const struct rodscope *haptics_rodscope(const struct haptics *h)
+{
+	return h->rs;
 }
 
 /* ---------------------------------------------------------------- frames */
@@ -140,6 +177,8 @@ void haptics_reset(struct haptics *h, struct colon *colon)
 	struct centreline *cl = colon_centreline(colon);
 
 	h->fresh = true;
+	h->colon = colon;
+	h->rod_fresh = true;
 	h->spans = 0;
 	memset(h->energy, 0, sizeof(h->energy));
 	memset(h->last_x, 0, sizeof(h->last_x));
@@ -282,6 +321,7 @@ static void static_force(const struct haptics *h,
 		vec3_scale(delta, g->shaded, t->depth);
 	}
 	spring(par, dir_b, delta, t->force);
+	vec3_copy(t->spring, t->force);
 	/* damping of the penetration rate, as anisotropic as the spring:
 	 * B = (b_wall / k_wall) K (the bending section damps across no more
 	 * than it gives way across) */
@@ -368,11 +408,16 @@ static void touch_wall(struct haptics *h, const struct haptics_input *in,
 	if (!t->on) {
 		return;
 	}
-	tip_velocity(in, vel);
+	if (h->rs) {
+		vec3_copy(vel, h->tip_v);
+	} else {
+		tip_velocity(in, vel);
+	}
 	turn(m.now, m.base, vel, vel_b);
 	turn(m.now, m.base, p->dir, dir_b);
 	static_force(h, par, tip_b, dir_b, vel_b, t);
 	turn(m.base, m.now, t->force, t->force);
+	turn(m.base, m.now, t->spring, t->spring);
 	turn(m.base, m.now, t->normal, t->normal);
 }
 
@@ -438,15 +483,15 @@ static bool wheel_lags(const struct haptics_params *par, int a)
  * would go negative, damping on the contact part removes the deficit.
  * Not on a wheel whose drive lags: the setpoint held is not known there,
  * and damping on a phantom deficit kicks the light wheel; its stiffness is
- * limited instead (wheel_lag_limit). Returns the damping added on the
- * insertion axis (N s/m).
+ * limited instead (wheel_lag_limit). Axes before FIRST are left alone.
+ * Returns the damping added on the insertion axis (N s/m).
  */
 static double passivity(struct haptics *h, const struct haptics_input *in,
-			double contact[ENDOSIM_AXES])
+			double contact[ENDOSIM_AXES], int first)
 {
 	double added = 0;
 
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
+	for (int a = first; a < ENDOSIM_AXES; a++) {
 		double x = in->position[a];
 		double v = in->velocity[a];
 		double held = in->applied ? in->applied[a] : 0;
@@ -631,11 +676,167 @@ static void publish(const struct touch *t, struct endosim_haptics_state *o)
 	o->constraints = (uint32_t)t->planes;
 }
 
+/* ---------------------------------------------------------------- rod */
+
+/* The rig's axes as the rod model takes them. */
+static void rod_axes(const struct haptics_params *par, const double *position,
+		     const double *velocity, struct rodscope_axes *a)
+{
+	const struct scope_params sp = {
+		.bending_length_m = par->bending_length_m,
+		.ud_gain = par->wheel_gain[0], .lr_gain = par->wheel_gain[1],
+		.ud_limit_rad = par->wheel_limit_rad[0],
+		.lr_limit_rad = par->wheel_limit_rad[1],
+	};
+
+	a->depth_m = position[ENDOSIM_AXIS_INSERTION];
+	a->depth_m_s = velocity[ENDOSIM_AXIS_INSERTION];
+	a->roll_rad = position[ENDOSIM_AXIS_ROLL];
+	a->roll_rad_s = velocity[ENDOSIM_AXIS_ROLL];
+	scope_bend(&sp, position[ENDOSIM_AXIS_WHEEL_UD],
+		   position[ENDOSIM_AXIS_WHEEL_LR], a->bend_rad,
+		   a->dbend_dwheel);
+}
+
+void haptics_rod_pose(struct haptics *h, const struct haptics_params *par,
+		      const double *position, const double *velocity,
+		      struct scope_pose *pose)
+{
+	struct rodscope_axes a;
+
+	rod_axes(par, position, velocity, &a);
+	rodscope_set_params(h->rs, &par->rod);
+	if (h->rod_fresh || !rodscope_finite(h->rs)) {
+		rodscope_reset(h->rs, h->colon, &a);
+		h->rod_fresh = false;
+		h->fresh = true;
+	}
+	rodscope_pose(h->rs, &a, pose, h->tip_v);
+}
+
+/*
+ * The tip's contact as the rod takes it: the god-object's spring K (along
+ * the view direction the wall's, across it in series with the bending
+ * section's side: spring()) with the force it has now, never pulling, and
+ * the damping of the penetration rate, B = (b_wall / k_wall) (n . K n) n
+ * n^T, both implicit in the rod's step.
+ */
+static void rod_tip(const struct haptics_input *in, const struct touch *t,
+		    struct rodscope_tip *tip)
+{
+	const struct haptics_params *par = in->params;
+	double kn[3], knn, bk;
+
+	memset(tip, 0, sizeof(*tip));
+	if (!t->on) {
+		return;
+	}
+	tip->on = true;
+	if (vec3_dot(t->spring, t->normal) > 0) {
+		vec3_copy(tip->force, t->spring);
+	}
+	for (int c = 0; c < 3; c++) {
+		double e[3] = { c == 0, c == 1, c == 2 }, col[3];
+
+		spring(par, in->pose->dir, e, col);
+		for (int r = 0; r < 3; r++) {
+			tip->k[r][c] = col[r];
+		}
+	}
+	spring(par, in->pose->dir, t->normal, kn);
+	knn = vec3_dot(t->normal, kn);
+	bk = par->gains.wall_damping_n_s_per_m /
+	     fmax(par->gains.wall_stiffness_n_per_m, 1e-9);
+	for (int r = 0; r < 3; r++) {
+		for (int c = 0; c < 3; c++) {
+			tip->b[r][c] = bk * knn * t->normal[r] * t->normal[c];
+		}
+	}
+}
+
+/*
+ * The bending section's stiffness at wheel W with the tip held, EI_b g^2 /
+ * Lb: a drive's wheel takes the moment scaled down to what its lag allows
+ * (as the paper's wall, wheel_lag_limit()).
+ */
+static double rod_wheel_scale(const struct haptics_input *in, int w)
+{
+	const struct haptics_params *par = in->params;
+	double g = in->pose->dbend_dwheel[w];
+	double k = par->rod.tip_bending_n_m2 * g * g / par->bending_length_m;
+	double most = wheel_stiffness_budget(in, w);
+
+	if (!wheel_lags(par, ENDOSIM_AXIS_WHEEL_UD + w) || k <= most) {
+		return 1;
+	}
+	return most / k;
+}
+
+static void render_rod(struct haptics *h, const struct haptics_input *in,
+		       double command[ENDOSIM_AXES],
+		       struct endosim_haptics_state *out)
+{
+	const struct haptics_params *par = in->params;
+	double contact[ENDOSIM_AXES] = { 0 };
+	struct rodscope_axes a;
+	struct rodscope_tip tip;
+	struct rodscope_out ro;
+	struct touch t;
+
+	memset(out, 0, sizeof(*out));
+	rod_axes(par, in->position, in->velocity, &a);
+	touch_wall(h, in, &t);
+	publish(&t, out);
+	rod_tip(in, &t, &tip);
+	rodscope_step(h->rs, &a, &tip, in->dt_s, &ro);
+	for (int w = 0; w < 2; w++) {
+		contact[ENDOSIM_AXIS_WHEEL_UD + w] = ro.wheel_nm[w] *
+						     rod_wheel_scale(in, w);
+	}
+	/* the rod is passive by its own making (implicit, damped, coupled
+	 * by a spring-damper): the observer watches the wheels only */
+	out->passivity_damping = passivity(h, in, contact,
+					   ENDOSIM_AXIS_WHEEL_UD);
+	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
+		out->passivity_energy_j += h->energy[ax];
+	}
+	out->curvature_rad = ro.turning_rad;
+	out->trans_rod_n = ro.insertion_n;
+	out->tube_rod_nm = ro.roll_nm;
+	memcpy(out->wire_dl_m, ro.wire_dl_m, sizeof(out->wire_dl_m));
+	for (int w = 0; w < 2; w++) {
+		out->wheel_contact_nm[w] = contact[ENDOSIM_AXIS_WHEEL_UD + w];
+		out->wheel_tension_nm[w] = par->gains.wire_tension_n_m_per_m *
+					   out->wire_dl_m[w];
+		out->wheel_elastic_nm[w] =
+			wheel_elastic(in, w, out->wheel_tension_nm[w]);
+	}
+	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
+		out->damping[ax] = -par->gains.damping[ax] * in->velocity[ax];
+	}
+	command[ENDOSIM_AXIS_INSERTION] = out->trans_rod_n;
+	command[ENDOSIM_AXIS_ROLL] = out->tube_rod_nm;
+	for (int w = 0; w < 2; w++) {
+		command[ENDOSIM_AXIS_WHEEL_UD + w] = out->wheel_contact_nm[w] +
+						     out->wheel_tension_nm[w] +
+						     out->wheel_elastic_nm[w];
+	}
+	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
+		command[ax] += out->damping[ax];
+	}
+	h->wall = ro.wall;
+}
+
 void haptics_render(struct haptics *h, const struct haptics_input *in,
 		    double command[ENDOSIM_AXES],
 		    struct endosim_haptics_state *out)
 {
 	const struct haptics_params *par = in->params;
+
+	if (h->rs) {
+		render_rod(h, in, command, out);
+		return;
+	}
 	const struct scope_pose *p = in->pose;
 	double contact[ENDOSIM_AXES], k = tube_turning(in), f_tip;
 	struct touch t;
@@ -646,7 +847,7 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 	generalised(p, t.force, contact);
 	f_tip = fmax(0, -contact[ENDOSIM_AXIS_INSERTION]);
 	wheel_lag_limit(in, &t, contact);
-	out->passivity_damping = passivity(h, in, contact);
+	out->passivity_damping = passivity(h, in, contact, 0);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		out->passivity_energy_j += h->energy[a];
 	}

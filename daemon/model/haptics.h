@@ -107,6 +107,7 @@
 #include "colon.h"
 #include "endosim_shm.h"
 #include "haptics_gains.h"
+#include "rodscope.h"
 #include "scope.h"
 
 struct haptics;
@@ -123,6 +124,7 @@ struct haptics_params {
 	double wheel_limit_rad[2];     /* largest tip bend: ud, lr */
 	double wheel_max_n_m[2];       /* each wheel's torque limit */
 	bool driven[ENDOSIM_AXES];     /* a drive behind a bus, not simulated */
+	struct rodscope_params rod;    /* the rod model's ([rod]) */
 };
 
 struct haptics_input {
@@ -137,8 +139,12 @@ struct haptics_input {
 					  drives held over the last period */
 };
 
-/* NULL on ENOMEM. */
-struct haptics *haptics_create(void);
+/*
+ * The rendering of P's model (gains.model; P NULL: the paper's): the rod
+ * model's tube sized as P->rod says (haptics_rod()). NULL on ENOMEM or a
+ * rod that cannot be made.
+ */
+struct haptics *haptics_create(const struct haptics_params *p);
 
 /* NULL is fine. */
 void haptics_destroy(struct haptics *h);
@@ -146,9 +152,34 @@ void haptics_destroy(struct haptics *h);
 /*
  * A new colon (or the first): the proxy starts free at the next tip, the
  * loops straight; measures each mobile segment's stored length per
- * amplitude (bows and unbows it). Force loop (no allocation).
+ * amplitude (bows and unbows it); the rod model's tube is laid anew at the
+ * next haptics_rod_pose(). Force loop (no allocation).
  */
 void haptics_reset(struct haptics *h, struct colon *colon);
+
+/*
+ * The rod model's published state (endosim_shm.h) and each mobile span's
+ * loop size in BOW_M (the scope state's); the paper's model zeroes OUT and
+ * leaves BOW_M alone. Force loop, after haptics_render().
+ */
+void haptics_publish_rod(const struct haptics *h, double roll_rad,
+			 struct endosim_rod_state *out,
+			 double bow_m[ENDOSIM_SPANS]);
+
+/* The rod model renders (else the paper's), and its tube (NULL: none). */
+bool haptics_rod(const struct haptics *h);
+const struct rodscope *haptics_rodscope(const struct haptics *h);
+
+/*
+ * The rod model's kinematics: the scope's pose as the tube lies now (the
+ * last step's; rodscope_pose()) for the axes at POSITION (m, rad), their
+ * VELOCITY; lays the tube anew first after haptics_reset() or when it is
+ * no longer finite (the non-finite fault has then been latched on the
+ * cycle that broke it). In place of scope_update(). Force loop.
+ */
+void haptics_rod_pose(struct haptics *h, const struct haptics_params *par,
+		      const double *position, const double *velocity,
+		      struct scope_pose *pose);
 
 /*
  * One cycle: COMMAND (N, N m per axis) and the published parts in OUT

@@ -8,6 +8,9 @@
 
 #include "vec3.h"
 
+#define ONSET_M 0.0005     /* the wall's push sets in over this (lumen.h) */
+#define ONSET_WIDTHS 8     /* nothing worth the name farther out */
+
 /* What one segment met this step. */
 struct touch {
 	long sample;        /* nearest sample, -1: in the pipe */
@@ -15,8 +18,8 @@ struct touch {
 	bool on;            /* the wall (not the pipe) presses it */
 	double s_m;         /* the sample's material s */
 	double n[3];        /* into the lumen */
-	double k;           /* N/m along n */
-	double depth;       /* m beyond the free radius at the step's start */
+	double fn;          /* the wall's push at the step's start, N */
+	double k;           /* its stiffness along n now, N/m */
 	double c;           /* friction's damping, N s/m */
 	double b;           /* the wall's own damping, N s/m */
 	double x0[3];       /* the segment's centre at the step's start */
@@ -91,6 +94,27 @@ static long walk(const struct centreline *cl, long hint, const double p[3])
 		}
 	}
 	return k;
+}
+
+/*
+ * The wall's push on a segment DELTA (m) beyond the free radius, and its
+ * stiffness: K ONSET softplus(delta / ONSET), K sigma(delta / ONSET) -- K
+ * delta once well in, nothing well out, and in between a smooth onset over
+ * ONSET_M, so that a segment grazing the wall meets a stiffness that grows
+ * as it comes in rather than one that switches on a step late (which makes
+ * a tube pushed into a bend chatter between two shapes).
+ */
+static void wall_law(double k, double delta, double *force, double *stiff)
+{
+	double z = delta / ONSET_M;
+
+	if (z > 30) {
+		*force = k * delta;
+		*stiff = k;
+		return;
+	}
+	*force = k * ONSET_M * log1p(exp(z));
+	*stiff = k / (1 + exp(-z));
 }
 
 /* A spring K and a damper B along N, a damper C across it, as 3x3
@@ -174,26 +198,31 @@ static bool load_wall(struct lumen *l, struct rod *rod, int i,
 	r = vec3_norm(rho);
 	free_r = fmax(colon_tube_radius(colon, (size_t)t->sample) -
 			      p->tube_radius_m, 0);
-	t->on = r > free_r && r > 0 && i + 1 < l->n;
+	t->on = r > free_r - ONSET_WIDTHS * ONSET_M && r > 0 && i + 1 < l->n;
 	if (!t->on) {
 		return true;
 	}
 	vec3_scale(t->n, rho, -1 / r);
-	t->depth = r - free_r;
-	t->k = p->wall_n_per_m2 * rod_segment_length(rod);
+	wall_law(p->wall_n_per_m2 * rod_segment_length(rod), r - free_r,
+		 &t->fn, &t->k);
 	vec3_copy(t->x0, x);
 	if (flex) {
+		/* the wall carries the tube along it (friction), not across:
+		 * the damping across takes the tube's speed alone (the
+		 * wall's, a step old, would feed back) */
 		flex_velocity(flex, t->s_m, t->wall_v);
+		vec3_axpy(t->wall_v, t->wall_v, -vec3_dot(t->wall_v, t->n),
+			  t->n);
 	} else {
 		vec3_set(t->wall_v, 0, 0, 0);
 	}
 	vec3_sub(vt, v, t->wall_v);
 	vec3_axpy(vt, vt, -vec3_dot(vt, t->n), t->n);
 	slip = vec3_norm(vt);
-	t->c = p->friction * t->k * t->depth / fmax(slip, p->slip_m_per_s);
+	t->c = p->friction * t->fn / fmax(slip, p->slip_m_per_s);
 	t->b = t->k * p->wall_damping_s;
-	spring_damper(t->n, t->k, t->k * p->wall_damping_s, t->c, km, bm);
-	vec3_scale(f, t->n, t->k * t->depth);
+	spring_damper(t->n, t->k, t->b, t->c, km, bm);
+	vec3_scale(f, t->n, t->fn);
 	vec3_scale(off, t->n, -p->tube_radius_m);
 	rod_load_point(rod_load(rod, i), off, f, (const double(*)[3])km,
 		       (const double(*)[3])bm, t->wall_v);
@@ -259,7 +288,7 @@ void lumen_react(struct lumen *l, const struct rod *rod, struct flex *flex,
 		 * and the damper on the step's sliding */
 		vec3_sub(moved, rod_centre(rod, i), t->x0);
 		vec3_sub(vt, v, t->wall_v);
-		fn = fmax(0, t->k * (t->depth - vec3_dot(t->n, moved)) -
+		fn = fmax(0, t->fn - t->k * vec3_dot(t->n, moved) -
 				     t->b * vec3_dot(t->n, vt));
 		vec3_axpy(vt, vt, -vec3_dot(vt, t->n), t->n);
 		vec3_scale(f, t->n, fn);
@@ -269,7 +298,7 @@ void lumen_react(struct lumen *l, const struct rod *rod, struct flex *flex,
 		out->friction_n += t->c * vec3_norm(vt);
 		if (flex) {
 			vec3_scale(f, f, -1);
-			flex_push(flex, t->s_m, f, t->k);
+			flex_push(flex, t->s_m, f, 0);
 		}
 	}
 }

@@ -509,6 +509,15 @@ static void normal_to(const double t[3], const double d[3], double out[3])
 	vec3_normalize(out);
 }
 
+/* D1 of unit Q's frame. */
+static void quat_axis_d1(const double q[4], double d1[3])
+{
+	double m[3][3];
+
+	quat_matrix(q, m);
+	vec3_set(d1, m[0][0], m[1][0], m[2][0]);
+}
+
 /* U carried from tangent A to tangent B by the rotation about A x B
  * (Rodrigues). */
 static void transport(const double a[3], const double b[3], double u[3])
@@ -527,29 +536,37 @@ static void transport(const double a[3], const double b[3], double u[3])
 	vec3_axpy(u, u, ka * (1 - c), k);
 }
 
+void rod_frame_quat(const double t[3], const double u[3], double q[4])
+{
+	double d1[3], d2[3], m[3][3];
+
+	normal_to(t, u, d1);
+	vec3_cross(d2, t, d1);
+	for (int k = 0; k < 3; k++) {
+		m[k][0] = d1[k];
+		m[k][1] = d2[k];
+		m[k][2] = t[k];
+	}
+	quat_from_matrix(m, q);
+}
+
 void rod_lay(struct rod *r, const double (*ends)[3], const double d1[3])
 {
 	double u[3], t_prev[3] = { 0, 0, 0 };
 
 	for (int i = 0; i < r->n; i++) {
 		struct seg *s = &r->seg[i];
-		double t[3], m[3][3], v[3];
+		double t[3];
 
 		vec3_sub(t, ends[i + 1], ends[i]);
 		vec3_normalize(t);
 		if (i == 0) {
-			normal_to(t, d1, u);
+			vec3_copy(u, d1);
 		} else {
 			transport(t_prev, t, u);
-			normal_to(t, u, u);
 		}
-		vec3_cross(v, t, u);
-		for (int k = 0; k < 3; k++) {
-			m[k][0] = u[k];
-			m[k][1] = v[k];
-			m[k][2] = t[k];
-		}
-		quat_from_matrix(m, s->q);
+		rod_frame_quat(t, u, s->q);
+		quat_axis_d1(s->q, u);
 		quat_matrix(s->q, s->rm);
 		vec3_add(s->p, ends[i], ends[i + 1]);
 		vec3_scale(s->p, s->p, 0.5);
@@ -1190,6 +1207,20 @@ void rod_joint_moment(const struct rod *r, int joint, double m[3])
 	 * holds theta away from rest is its negative */
 	vec3_set(m, -k->lambda[3] / h2, -k->lambda[4] / h2,
 		 -k->lambda[5] / h2);
+}
+
+double rod_joint_gap(const struct rod *r)
+{
+	double most = 0;
+
+	for (int j = 0; j + 1 < r->n; j++) {
+		double a[3], b[3];
+
+		rod_end_point(r, j, ROD_TIP, a);
+		rod_end_point(r, j + 1, ROD_BASE, b);
+		most = fmax(most, vec3_dist(a, b));
+	}
+	return most;
 }
 
 bool rod_finite(const struct rod *r)

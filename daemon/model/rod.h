@@ -157,6 +157,10 @@ void rod_clamp_compliance(const struct rod *r, double compliance[6]);
 void rod_set_anchor(struct rod *r, enum rod_end end,
 		    const struct rod_anchor *a);
 
+/* The unit quaternion (w, x, y, z) of the frame with d3 along the unit T
+ * and d1 along U (made normal to T): an anchor's, a laid rod's. */
+void rod_frame_quat(const double t[3], const double u[3], double q[4]);
+
 /* Zeroes every load set since the last clear. */
 void rod_clear_loads(struct rod *r);
 
@@ -211,6 +215,11 @@ void rod_joint_rotation(const struct rod *r, int joint, double theta[3]);
  * energy with respect to theta0 is its negative.
  */
 void rod_joint_moment(const struct rod *r, int joint, double m[3]);
+
+/* The largest gap between neighbours' ends now (m): how far the solve left
+ * the joints from closed (a check: the tube neither stretches nor
+ * shears). */
+double rod_joint_gap(const struct rod *r);
 
 /* Every position and orientation finite. */
 bool rod_finite(const struct rod *r);

@@ -21,6 +21,7 @@ struct step {
 struct scenario {
 	struct step *steps;
 	size_t count;
+	size_t cap;    /* steps' room */
 	double end_t;  /* INFINITY when neither end nor repeat */
 	bool repeat;
 };
@@ -121,17 +122,17 @@ static void link_targets(struct scenario *s)
 	}
 }
 
-static int add_step(struct scenario *s, const struct step *st, size_t *cap)
+static int add_step(struct scenario *s, const struct step *st)
 {
-	if (s->count == *cap) {
-		size_t n = *cap ? *cap * 2 : 16;
+	if (s->count == s->cap) {
+		size_t n = s->cap ? s->cap * 2 : 16;
 		struct step *grown = realloc(s->steps, n * sizeof(*grown));
 
 		if (!grown) {
 			return -ENOMEM;
 		}
 		s->steps = grown;
-		*cap = n;
+		s->cap = n;
 	}
 	s->steps[s->count++] = *st;
 	return 0;
@@ -141,7 +142,6 @@ static int parse_file(struct scenario *s, FILE *f, const char *path,
 		      char *err, size_t errsize)
 {
 	char line[256], why[128];
-	size_t cap = 0;
 	struct step st;
 	int lineno = 0, end_line = 0, r;
 
@@ -164,7 +164,7 @@ static int parse_file(struct scenario *s, FILE *f, const char *path,
 		}
 		if (r == 1) {
 			end_line = lineno;
-		} else if (add_step(s, &st, &cap)) {
+		} else if (add_step(s, &st)) {
 			snprintf(err, errsize, "%s: out of memory", path);
 			return -ENOMEM;
 		}
@@ -240,6 +240,53 @@ struct scenario *scenario_load(const char *path, char *err, size_t errsize)
 	}
 	s = scenario_load_stream(f, path, err, errsize);
 	fclose(f);
+	return s;
+}
+
+int scenario_append(struct scenario *s, const char *text, char *err,
+		    size_t errsize)
+{
+	char line[256], why[128];
+	struct step st;
+	int r;
+
+	snprintf(line, sizeof(line), "%s", text);
+	line[strcspn(line, "#")] = '\0';
+	if (isfinite(s->end_t)) {
+		snprintf(err, errsize, "'%s': after the end/repeat", text);
+		return -EINVAL;
+	}
+	r = parse_line(s, &st, line, why, sizeof(why));
+	if (r < 0) {
+		snprintf(err, errsize, "'%s': %s", text, why);
+		return r;
+	}
+	if (s->count && ((r == 1 ? s->end_t : st.t) <
+			 s->steps[s->count - 1].t)) {
+		snprintf(err, errsize, "'%s': before the last step", text);
+		if (r == 1) {
+			s->end_t = INFINITY;
+		}
+		return -EINVAL;
+	}
+	if (r == 1) {
+		return 0;
+	}
+	if (add_step(s, &st)) {
+		snprintf(err, errsize, "out of memory");
+		return -ENOMEM;
+	}
+	link_targets(s);
+	return 0;
+}
+
+struct scenario *scenario_create(void)
+{
+	struct scenario *s = calloc(1, sizeof(*s));
+
+	if (s) {
+		s->end_t = INFINITY;
+	}
 	return s;
 }
 

@@ -53,6 +53,23 @@ struct scenario *scenario_load(const char *path, char *err, size_t errsize);
 struct scenario *scenario_load_stream(FILE *f, const char *name, char *err,
 				      size_t errsize);
 
+/*
+ * A scenario built step by step (a scripted trainee that decides as it
+ * goes, in lockstep): none yet; scenario_append() adds them. NULL on
+ * ENOMEM.
+ */
+struct scenario *scenario_create(void);
+
+/*
+ * Appends one line of the file format (a step, or end/repeat), parsed as
+ * the file's are, at or after the last step's time: what evaluates before
+ * it does not change. 0, or -EINVAL (a bad line, too early, after the
+ * end) / -ENOMEM with one line in ERR. Allocates: not in the force loop
+ * (nor while a force loop's thread evaluates it).
+ */
+int scenario_append(struct scenario *s, const char *line, char *err,
+		    size_t errsize);
+
 /* NULL is fine. */
 void scenario_destroy(struct scenario *s);
 

@@ -38,6 +38,42 @@ void cases_haptics_params(const struct config *cfg, struct haptics_params *p)
 		p->wheel_limit_rad[w] = cfg->scope.limit_rad[w];
 		p->wheel_max_n_m[w] = cfg->limits.max[ENDOSIM_AXIS_WHEEL_UD + w];
 	}
+	cases_rod_params(cfg, &p->rod);
+}
+
+void cases_rod_params(const struct config *cfg, struct rodscope_params *p)
+{
+	const struct config_rod *r = &cfg->rod;
+
+	p->rod = (struct rod_params){
+		.segments = r->segments, .length_m = r->length_m,
+		.radius_m = cfg->haptics.scope_radius_m,
+		.mass_per_m_kg = r->mass_per_m_kg,
+		.bending_n_m2 = r->bending_n_m2,
+		.torsion_n_m2 = r->torsion_n_m2, .damping_s = r->damping_s,
+		.drag_n_s_per_m2 = r->drag_n_s_per_m2,
+		.iterations = r->iterations,
+	};
+	p->bending_length_m = cfg->scope.bending_length_m;
+	p->tip_bending_n_m2 = r->tip_bending_n_m2;
+	p->lumen = (struct lumen_params){
+		.wall_n_per_m2 = r->wall_n_per_m2,
+		.wall_damping_s = r->wall_damping_s, .friction = r->friction,
+		.slip_m_per_s = r->slip_m_per_s,
+		.pipe_n_per_m2 = r->pipe_n_per_m2,
+		.tube_radius_m = cfg->haptics.scope_radius_m,
+	};
+	p->flex = (struct flex_params){
+		.node_spacing_m = r->colon_node_spacing_m,
+		.damping_n_s_per_m = r->colon_damping_n_s_per_m,
+		.chain_n_per_m = r->colon_chain_n_per_m,
+	};
+	p->coupling_n_per_m = r->coupling_n_per_m;
+	p->coupling_n_s_per_m = r->coupling_n_s_per_m;
+	p->roll_n_m_per_rad = r->roll_n_m_per_rad;
+	p->roll_n_m_s_per_rad = r->roll_n_m_s_per_rad;
+	p->stop_n_per_m = r->stop_n_per_m;
+	p->wire_spacing_m = cfg->haptics.wire_spacing_m;
 }
 
 static bool ends_with(const char *s, const char *tail)

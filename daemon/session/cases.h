@@ -38,6 +38,7 @@ void cases_colon_params(const struct config *cfg, struct colon_params *p);
 void cases_scope_params(const struct config *cfg, struct scope_params *p);
 void cases_haptics_params(const struct config *cfg,
 			  struct haptics_params *p);
+void cases_rod_params(const struct config *cfg, struct rodscope_params *p);
 
 /*
  * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is

@@ -20,14 +20,23 @@ struct offline *offline_create(const struct config *cfg, struct colon *colon,
 			       const char *scenario, char *err,
 			       size_t errsize)
 {
-	struct offline *o = calloc(1, sizeof(*o));
 	struct scenario *scn = scenario_load(scenario, err, errsize);
 
-	if (!o || !scn) {
-		if (!o) {
-			snprintf(err, errsize, "out of memory");
-		}
-		free(o);
+	if (!scn) {
+		colon_destroy(colon);
+		return NULL;
+	}
+	return offline_create_with(cfg, colon, scn, err, errsize);
+}
+
+struct offline *offline_create_with(const struct config *cfg,
+				    struct colon *colon, struct scenario *scn,
+				    char *err, size_t errsize)
+{
+	struct offline *o = calloc(1, sizeof(*o));
+
+	if (!o) {
+		snprintf(err, errsize, "out of memory");
 		scenario_destroy(scn);
 		colon_destroy(colon);
 		return NULL;
@@ -79,4 +88,14 @@ void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 		  double hold_s)
 {
 	hand_set_live(o->hand, force, hold_s, o->stamp_ns);
+}
+
+const struct haptics *offline_haptics(const struct offline *o)
+{
+	return loop_haptics(o->loop);
+}
+
+const struct colon *offline_colon(const struct offline *o)
+{
+	return loop_colon(o->loop);
 }

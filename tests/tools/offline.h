@@ -21,6 +21,8 @@
 #include "colon.h"
 #include "config.h"
 #include "endosim_shm.h"
+#include "haptics.h"
+#include "scenario.h"
 
 #define OFFLINE_PERIOD_NS 1000000ull   /* 1 ms, as the daemon's default */
 #define OFFLINE_START_NS 1000000000ull /* the first cycle's stamp */
@@ -38,6 +40,15 @@ struct offline *offline_create(const struct config *cfg, struct colon *colon,
 			       const char *scenario, char *err,
 			       size_t errsize);
 
+/*
+ * The same with the scenario SCN (taken, also on failure), which the
+ * caller may go on appending to (scenario_append()) for times not yet
+ * played: a scripted trainee that decides as it goes.
+ */
+struct offline *offline_create_with(const struct config *cfg,
+				    struct colon *colon, struct scenario *scn,
+				    char *err, size_t errsize);
+
 /* NULL is fine. */
 void offline_destroy(struct offline *o);
 
@@ -51,6 +62,10 @@ double offline_length_s(const struct offline *o);
  * wall time), valid until the next call.
  */
 const struct endosim_state *offline_step(struct offline *o);
+
+/* The loop's haptics' model and colon (loop_haptics(), loop_colon()). */
+const struct haptics *offline_haptics(const struct offline *o);
+const struct colon *offline_colon(const struct offline *o);
 
 /*
  * Live hand input, as `endoctl hand` gives it: FORCE (N, N m, N m, N m)

@@ -92,7 +92,7 @@ static void world_init(struct world *w, const struct anatomy *a)
 	p.ring_vertices = 96;
 	w->colon = colon_create(a, &p, err, sizeof(err));
 	assert_non_null(w->colon);
-	w->h = haptics_create();
+	w->h = haptics_create(NULL); /* the paper's model */
 	assert_non_null(w->h);
 	haptics_reset(w->h, w->colon);
 }

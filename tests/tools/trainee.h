@@ -1,0 +1,86 @@
+/*
+ * trainee.h - a scripted trainee who decides as she goes: the simulated
+ * hand on endosimd's force loop in lockstep (offline.h), driven by a
+ * scenario that the trainee writes while it plays (scenario_append()),
+ * one waypoint per axis every TRAINEE_STEP_S. The script she leaves behind
+ * is an ordinary scenario file: played by the daemon on the same case and
+ * configuration, it moves the rig exactly as it moved here (the loop runs
+ * bit for bit the same).
+ *
+ * What she does, each waypoint, from the published state (as a trainee
+ * reads the screen and feels the handle):
+ *  - steering: the lumen ahead is the centreline STEER_AHEAD_M beyond the
+ *    sample nearest the tip; she turns the wheels to bend the tip towards
+ *    it (the direction's parts along the camera's up and right), and eases
+ *    them back towards straight when a wheel pushes her thumb hard;
+ *  - inserting: the carriage's target moves on at her pace, but waits
+ *    while the hand already pushes harder than she would (the scope is
+ *    stuck: she does not shove), until she gives up on it;
+ *  - pushing on (the classic mistake), withdrawing with a twist (the
+ *    classic reduction), holding still.
+ *
+ * Not for the force loop (allocates, writes the script). One thread.
+ */
+#ifndef ENDOSIM_TRAINEE_H
+#define ENDOSIM_TRAINEE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "colon.h"
+#include "config.h"
+#include "endosim_shm.h"
+#include "offline.h"
+
+#define TRAINEE_STEP_S 0.25 /* a waypoint this often */
+
+struct trainee;
+
+/*
+ * The trainee on CASE (a case file) with CFG, writing her script to
+ * SCRIPT (may be NULL). NULL with one line in ERR.
+ */
+struct trainee *trainee_create(const struct config *cfg, const char *case_path,
+			       FILE *script, char *err, size_t errsize);
+
+/* Ends the script ("TIME end"). NULL is fine. */
+void trainee_destroy(struct trainee *t);
+
+/* The loop's latest state, its colon, its haptics. */
+const struct endosim_state *trainee_state(const struct trainee *t);
+const struct colon *trainee_colon(const struct trainee *t);
+const struct haptics *trainee_haptics(const struct trainee *t);
+double trainee_time(const struct trainee *t); /* s, the scenario's clock */
+
+/* Called after every cycle while she acts (may be NULL): a test's eyes. */
+void trainee_watch(struct trainee *t,
+		   void (*fn)(const struct endosim_state *s, void *arg),
+		   void *arg);
+
+/*
+ * Inserts at SPEED (m/s) while steering until the tip is past material
+ * TIP_S_M (m), or until she has waited STUCK_S seconds without the tip
+ * advancing. Returns true when the tip got there.
+ */
+bool trainee_insert(struct trainee *t, double tip_s_m, double speed,
+		    double stuck_s);
+
+/* Pushes the carriage on by DISTANCE (m) at SPEED with a straight tip,
+ * whatever it meets (up to the hand's strength). */
+void trainee_push(struct trainee *t, double distance, double speed);
+
+/* Withdraws by DISTANCE (m) at SPEED, turning the tube by TWIST_RAD
+ * (clockwise seen from the trainee: positive roll) on the way, tip
+ * straight. */
+void trainee_withdraw(struct trainee *t, double distance, double speed,
+		      double twist_rad);
+
+/* Lets the tube find its rest: the hand's targets moved to where the
+ * carriage and the roll are, so she neither pushes nor pulls; holds for
+ * SECONDS. */
+void trainee_relax(struct trainee *t, double seconds);
+
+/* Holds everything still for SECONDS. */
+void trainee_hold(struct trainee *t, double seconds);
+
+#endif
