@@ -698,6 +698,11 @@ const struct colon *loop_colon(const struct loop *l)
 	return l->colon;
 }
 
+void loop_hold_tip(struct loop *l, double hold_n_per_m)
+{
+	haptics_hold_tip(l->haptics, hold_n_per_m);
+}
+
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 		    struct colon **old, int timeout_ms)
 {

@@ -192,6 +192,11 @@ void loop_step(struct loop *l, uint64_t now_ns);
  * inside them. */
 const struct haptics *loop_haptics(const struct loop *l);
 const struct colon *loop_colon(const struct loop *l);
+
+/* In lockstep: the rod model's tip held where it is by a spring of
+ * HOLD_N_PER_M, or let go (0) (haptics_hold_tip()), for the clinic's
+ * tests. */
+void loop_hold_tip(struct loop *l, double hold_n_per_m);
 void loop_post(struct loop *l, enum loop_cmd cmd);
 const struct endosim_state *loop_state(const struct loop *l);
 

@@ -260,9 +260,14 @@ static void check_saturation(struct safety *s, const struct config *cfg,
 		*since = now_ns;
 	}
 	held_s = (double)(now_ns - *since) / 1e9;
-	if (held_s > cfg->limits.saturation_s) {
+	if (held_s <= cfg->limits.saturation_s) {
+		return;
+	}
+	if (config_saturation_faults(cfg, axis)) {
 		fault(s, ENDOSIM_FAULT_SATURATION, axis,
 		      (uint32_t)(held_s * 1e3), force, lim, now_ns);
+	} else {
+		s->saturation_warning = true;
 	}
 }
 
@@ -275,6 +280,7 @@ void safety_filter(struct safety *s, const struct config *cfg,
 				    ENDOSIM_STAGE_COMMAND, now_ns);
 	}
 	s->ramp = ramp(s, cfg, now_ns);
+	s->saturation_warning = false;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		double force = command[a] * s->ramp;
 
@@ -308,7 +314,9 @@ void safety_filter(struct safety *s, const struct config *cfg,
 void safety_publish(const struct safety *s, uint64_t now_ns,
 		    struct endosim_safety_state *out)
 {
-	out->active = s->seen | (s->overrun_warning ? ENDOSIM_FAULT_OVERRUN : 0);
+	out->active = s->seen |
+		      (s->overrun_warning ? ENDOSIM_FAULT_OVERRUN : 0) |
+		      (s->saturation_warning ? ENDOSIM_FAULT_SATURATION : 0);
 	out->overrun_periods = (uint32_t)s->overrun_window;
 	out->enabled_ns = s->enabled_ns;
 	out->ramp = safety_torque_on(s) ? s->ramp : 0.0;

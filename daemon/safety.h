@@ -62,6 +62,8 @@ struct safety {
 	uint64_t enabled_ns;   /* start of the enable ramp */
 	double ramp;           /* 0..1 this cycle */
 	uint64_t saturated_since[ENDOSIM_AXES]; /* 0: not saturated */
+	bool saturation_warning;  /* an axis past saturation_s that only
+				     warns ([limits] saturation_fault) */
 	double speed[ENDOSIM_AXES]; /* m/s, rad/s: the last checked motion */
 	struct {
 		uint64_t ns;   /* when */

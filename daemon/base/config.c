@@ -249,7 +249,12 @@ static const struct config_key keys[] = {
 	   "than this share of it is a fault"),
 	KD("limits", "saturation_s", limits.saturation_s, 5, 0.01, 3600, "s",
 	   0, "a force held beyond its limit longer than this, torque on, is "
-	   "a fault"),
+	   "a fault (see saturation_fault)"),
+	KE("limits", "saturation_fault", limits.saturation_fault,
+	   CONFIG_OVERRUN_AUTO, overrun_fault_names, 0, "a force held beyond "
+	   "its limit too long is a fault (yes), a warning (no), or auto: a "
+	   "fault on an axis a real drive turns, a warning on a simulated "
+	   "one"),
 
 	KD("limits", "insertion_slew_n_per_s", limits.slew[I_INS], 4000, 1,
 	   1e6, "N/s", LIVE, "fastest change of the carriage force"),
@@ -333,7 +338,7 @@ static const struct config_key keys[] = {
 	   LIVE, "EI of the insertion tube (colonoscopes 0.026-0.040)"),
 	KD("rod", "torsion_n_m2", rod.torsion_n_m2, 0.45, 1e-4, 100, "N m^2",
 	   LIVE, "GJ of the insertion tube (68-88 N cm^2/deg: 0.39-0.50)"),
-	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2, 0.02, 1e-4, 10,
+	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2, 0.01, 1e-4, 10,
 	   "N m^2", LIVE, "EI of the bending section, its wires held"),
 	KD("rod", "damping_s", rod.damping_s, 0.002, 0, 1, "s", 0,
 	   "the tube's internal damping: Kelvin-Voigt time of its bending "
@@ -347,7 +352,7 @@ static const struct config_key keys[] = {
 	   "metre of tube"),
 	KD("rod", "wall_damping_s", rod.wall_damping_s, 0.01, 0, 1, "s", LIVE,
 	   "the wall's damping: its Kelvin-Voigt time"),
-	KD("rod", "friction", rod.friction, 0.1, 0, 2, "", LIVE,
+	KD("rod", "friction", rod.friction, 0.05, 0, 2, "", LIVE,
 	   "mu: Coulomb friction of the tube on the mucosa"),
 	KD("rod", "slip_m_per_s", rod.slip_m_per_s, 0.002, 1e-5, 1, "m/s",
 	   LIVE, "below this sliding speed the tube sticks (friction "
@@ -370,6 +375,9 @@ static const struct config_key keys[] = {
 	   0.1, 1e5, "N s/m", LIVE, "the tissue's damping per node"),
 	KD("rod", "colon_chain_n_per_m", rod.colon_chain_n_per_m, 100, 0, 1e5,
 	   "N/m", LIVE, "the colon's continuity between its nodes"),
+	KD("rod", "colon_bending_n_per_m", rod.colon_bending_n_per_m, 300, 0,
+	   1e6, "N/m", LIVE, "the colon wall's resistance to crumpling "
+	   "between its nodes"),
 
 	KL("log", "level", log.level, LOG_INFO, LIVE,
 	   "err, warning, notice, info or debug"),
@@ -778,6 +786,14 @@ int config_axis_backend(const struct config *cfg, int axis)
 	return cfg->rig.backend == CONFIG_BACKEND_DRIVES
 		       ? cfg->axis[axis].backend
 		       : CONFIG_DRIVE_SIM;
+}
+
+bool config_saturation_faults(const struct config *cfg, int axis)
+{
+	if (cfg->limits.saturation_fault != CONFIG_OVERRUN_AUTO) {
+		return cfg->limits.saturation_fault == CONFIG_OVERRUN_FAULT;
+	}
+	return config_axis_backend(cfg, axis) != CONFIG_DRIVE_SIM;
 }
 
 bool config_overrun_faults(const struct config *cfg)

@@ -147,6 +147,9 @@ struct config {
 		double max_speed[ENDOSIM_AXES]; /* m/s or rad/s: a runaway */
 		double travel_margin;          /* fraction of the travel */
 		double saturation_s;           /* longest hold at a limit */
+		int saturation_fault;          /* enum config_overrun_fault:
+						  no, yes, auto (a fault on
+						  a drive's axis) */
 	} limits;
 	struct haptics_gains haptics;          /* haptics.h */
 	struct {
@@ -206,6 +209,7 @@ struct config {
 		double colon_node_spacing_m;
 		double colon_damping_n_s_per_m;
 		double colon_chain_n_per_m;
+		double colon_bending_n_per_m;
 	} rod;
 };
 
@@ -281,6 +285,14 @@ int config_axis_backend(const struct config *cfg, int axis);
  * loop included (no I/O, no allocation).
  */
 bool config_overrun_faults(const struct config *cfg);
+
+/*
+ * True when AXIS held beyond its force limit for saturation_s latches a
+ * fault: [limits] saturation_fault is yes, or auto and a real drive turns
+ * the axis (a simulated axis has no motor to protect: a warning). Any
+ * thread, the force loop included.
+ */
+bool config_saturation_faults(const struct config *cfg, int axis);
 
 /* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
 double config_feedback_max_age_s(const struct config *cfg, int axis);

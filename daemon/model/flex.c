@@ -26,13 +26,15 @@ struct flex {
 	double force[FLEX_MAX_NODES][3];   /* pushed this step */
 	double stiff[FLEX_MAX_NODES];      /* and how it eases, N/m */
 	double applied[FLEX_MAX_NODES][3]; /* what the centreline has */
+	double along[FLEX_MAX_NODES][3];   /* the course's tangent at rest */
 };
 
 static bool params_ok(const struct flex_params *p)
 {
 	return p->node_spacing_m >= 0.005 && p->node_spacing_m <= 0.2 &&
 	       p->damping_n_s_per_m > 0 && p->damping_n_s_per_m < 1e6 &&
-	       p->chain_n_per_m >= 0 && p->chain_n_per_m < 1e6;
+	       p->chain_n_per_m >= 0 && p->chain_n_per_m < 1e6 &&
+	       p->bending_n_per_m >= 0 && p->bending_n_per_m < 1e7;
 }
 
 struct flex *flex_create(const struct flex_params *p)
@@ -80,6 +82,14 @@ void flex_attach(struct flex *f, struct colon *colon)
 		c->count = count;
 		c->k = r->mesentery_n_per_m / count;
 		c->h = r->max_bow_m;
+		for (int k = 0; k < count; k++) {
+			double s_m = c->s0 + (c->s1 - c->s0) * (k + 1) /
+					       (count + 1);
+			size_t at = (size_t)lround(s_m / centreline_step(cl));
+
+			vec3_copy(f->along[f->nodes + k],
+				  centreline_base(cl, at)->t);
+		}
 		f->nodes += count;
 		f->chains++;
 	}
@@ -115,6 +125,7 @@ void flex_set_params(struct flex *f, const struct flex_params *p)
 	if (params_ok(p)) {
 		f->par.damping_n_s_per_m = p->damping_n_s_per_m;
 		f->par.chain_n_per_m = p->chain_n_per_m;
+		f->par.bending_n_per_m = p->bending_n_per_m;
 	}
 }
 
@@ -165,42 +176,57 @@ void flex_push(struct flex *f, double s_m, const double force[3],
 }
 
 /*
- * One implicit step of chain C: (b/h + k_m + k_t + 2 k_c) y' - k_c
- * (y'_prev + y'_next) = (b/h + k_t) y + F per coordinate, the mesentery's
- * stiffening taken at the step's start, k_t the pushes' stiffness (the
- * push F - k_t (y' - y) as the wall yields); a tridiagonal solve
- * (Thomas).
+ * One implicit step of chain C, per coordinate:
+ *   (b/h + k_t + k_m) y' - k_c D2 y' + k_b D4 y' = (b/h + k_t) y + F
+ * D2 and D4 the second and fourth differences along the chain with the
+ * fixed colon beyond both ends (zero displacement and slope there), the
+ * mesentery's stiffening taken at the step's start, k_t the pushes'
+ * stiffness (the push F - k_t (y' - y) as the wall yields): a symmetric
+ * pentadiagonal system, solved by its banded LDL^T.
  */
 static void step_chain(struct flex *f, const struct chain *c, double h)
 {
 	double bh = f->par.damping_n_s_per_m / h, kc = f->par.chain_n_per_m;
-	double cp[FLEX_MAX_NODES], dp[FLEX_MAX_NODES][3];
+	double kb = f->par.bending_n_per_m;
+	double l1[FLEX_MAX_NODES], l2[FLEX_MAX_NODES], dd[FLEX_MAX_NODES];
+	double z[FLEX_MAX_NODES][3];
+	int m = c->count;
 
-	for (int i = 0; i < c->count; i++) {
+	for (int i = 0; i < m; i++) {
 		int n = c->first + i;
-		double q = vec3_norm(f->y[n]) / c->h;
-		double kt = f->stiff[n];
-		double diag = bh + kt + c->k * (1 + q * q) + 2 * kc;
-		double denom = diag - (i > 0 ? kc * cp[i - 1] : 0);
+		double q = vec3_norm(f->y[n]) / c->h, kt = f->stiff[n];
+		double a0 = bh + kt + c->k * (1 + q * q) + 2 * kc + 6 * kb;
+		double a1 = -kc - 4 * kb, a2 = kb;
 
-		cp[i] = kc / denom; /* minus Thomas' c', the couplings -kc */
+		l2[i] = i >= 2 ? a2 / dd[i - 2] : 0;
+		l1[i] = i >= 1 ? (a1 - (i >= 2 ? l2[i] * l1[i - 1] *
+							 dd[i - 2] : 0)) /
+					 dd[i - 1] : 0;
+		dd[i] = a0 - (i >= 1 ? l1[i] * l1[i] * dd[i - 1] : 0) -
+			(i >= 2 ? l2[i] * l2[i] * dd[i - 2] : 0);
 		for (int d = 0; d < 3; d++) {
-			double rhs = (bh + kt) * f->y[n][d] + f->force[n][d];
-
-			dp[i][d] = (rhs + (i > 0 ? kc * dp[i - 1][d] : 0)) /
-				   denom;
+			z[i][d] = (bh + kt) * f->y[n][d] + f->force[n][d] -
+				  (i >= 1 ? l1[i] * z[i - 1][d] : 0) -
+				  (i >= 2 ? l2[i] * z[i - 2][d] : 0);
 		}
 	}
-	for (int i = c->count - 1; i >= 0; i--) {
+	for (int i = m - 1; i >= 0; i--) {
+		for (int d = 0; d < 3; d++) {
+			z[i][d] = z[i][d] / dd[i] -
+				  (i + 1 < m ? l1[i + 1] * z[i + 1][d] : 0) -
+				  (i + 2 < m ? l2[i + 2] * z[i + 2][d] : 0);
+		}
+	}
+	for (int i = 0; i < m; i++) {
 		int n = c->first + i;
 
+		/* the mesentery keeps the colon on its course: it moves
+		 * across it, never along */
+		vec3_axpy(z[i], z[i], -vec3_dot(z[i], f->along[n]),
+			  f->along[n]);
 		for (int d = 0; d < 3; d++) {
-			double y = dp[i][d] +
-				   (i + 1 < c->count ?
-					    cp[i] * f->y[n + 1][d] : 0);
-
-			f->v[n][d] = (y - f->y[n][d]) / h;
-			f->y[n][d] = y;
+			f->v[n][d] = (z[i][d] - f->y[n][d]) / h;
+			f->y[n][d] = z[i][d];
 		}
 	}
 }
@@ -261,27 +287,55 @@ const double *flex_node(const struct flex *f, int i)
 	return f->y[i];
 }
 
+/* Chain C's node K's displacement, 0 beyond its ends (the fixed colon). */
+static const double *at(const struct flex *f, const struct chain *c, int k)
+{
+	static const double zero[3] = { 0, 0, 0 };
+
+	return k < 0 || k >= c->count ? zero : f->y[c->first + k];
+}
+
 void flex_span_forces(const struct flex *f, int span, double pushed[3],
 		      double held[3])
 {
+	double kc = f->par.chain_n_per_m, kb = f->par.bending_n_per_m;
+
 	vec3_set(pushed, 0, 0, 0);
 	vec3_set(held, 0, 0, 0);
 	for (int i = 0; i < f->chains; i++) {
 		const struct chain *c = &f->chain[i];
-		int last = c->first + c->count - 1;
 
 		if (c->span != span) {
 			continue;
 		}
-		for (int k = c->first; k <= last; k++) {
-			double q = vec3_norm(f->y[k]) / c->h;
+		/* every node's elastic force: the mesentery's, the chain's
+		 * and the wall's (D2, D4 with the fixed colon beyond), and
+		 * along the course all of the push */
+		for (int k = 0; k < c->count; k++) {
+			int n = c->first + k;
+			double q = vec3_norm(f->y[n]) / c->h, e[3];
 
-			vec3_add(pushed, pushed, f->force[k]);
-			vec3_axpy(held, held, c->k * (1 + q * q), f->y[k]);
+			vec3_add(pushed, pushed, f->force[n]);
+			vec3_scale(e, f->y[n], c->k * (1 + q * q));
+			for (int d = 0; d < 3; d++) {
+				double d2 = at(f, c, k - 1)[d] -
+					    2 * at(f, c, k)[d] +
+					    at(f, c, k + 1)[d];
+				double d4 = at(f, c, k - 2)[d] -
+					    4 * at(f, c, k - 1)[d] +
+					    6 * at(f, c, k)[d] -
+					    4 * at(f, c, k + 1)[d] +
+					    at(f, c, k + 2)[d];
+
+				e[d] += -kc * d2 + kb * d4;
+			}
+			/* across the course the elastic force, along it the
+			 * mesentery takes the push */
+			vec3_axpy(e, e, -vec3_dot(e, f->along[n]), f->along[n]);
+			vec3_add(held, held, e);
+			vec3_axpy(held, held, vec3_dot(f->force[n], f->along[n]),
+				  f->along[n]);
 		}
-		/* the chain's pull on the fixed ends: k_c y at each */
-		vec3_axpy(held, held, f->par.chain_n_per_m, f->y[c->first]);
-		vec3_axpy(held, held, f->par.chain_n_per_m, f->y[last]);
 	}
 }
 

@@ -7,16 +7,26 @@
  * nodes, evenly spaced about node_spacing_m apart between its fixed ends
  * (node k at the fraction (k + 1) / (count + 1) of the span, as
  * centreline_displace() places them); a node's displacement y from rest
- * (m, any direction) obeys, every step,
- *   b dy/dt = F - k_m (1 + (|y| / h)^2) y + k_c (y_prev - 2 y + y_next)
- * F the forces the tube puts on the wall around it (flex_push(): shared
+ * (m) obeys, every step,
+ *   b dy/dt = F - k_m (1 + (|y| / h)^2) y + k_c D2 y - k_b D4 y
+ * across the course at rest (the mesentery holds the colon on its course:
+ * a node moves in the plane normal to the course's tangent there, never
+ * along it; a loop is the colon bulging, not stretching: each step's
+ * displacement is projected on that plane, which balances the forces
+ * exactly on a straight course and within a few per cent where the
+ * course turns between nodes), F the forces the
+ * tube puts on the wall around it (flex_push(): shared
  * between the two knots around the contact by the knot weights, so that
  * action = reaction), k_m the mesentery's stiffness (the segment's
  * mesentery_n_per_m shared among its nodes: a uniform displacement of the
  * whole segment by y takes k_segment y), h the mesentery's height (the
  * case's mesentery_height_m: the mesentery stiffens as it stretches, 5x at
- * y = 2h), k_c the colon's own continuity (chain_n_per_m: neighbours pull
- * a pushed node's neighbours along), b the tissue's damping (overdamped:
+ * y = 2h), k_c the colon's own continuity (chain_n_per_m, D2 the second
+ * difference along the chain: neighbours pull a pushed node's neighbours
+ * along), k_b its wall's resistance to crumpling (bending_n_per_m, D4 the
+ * fourth difference: a short ripple costs 16 k_b a node, a bulge as long as
+ * the segment next to nothing; without it the tube hides its length in a
+ * colon wrinkled between its nodes), b the tissue's damping (overdamped:
  * the colon has no inertia worth the name at these speeds). The span's ends
  * stay at rest (the fixed colon around it). Integrated implicitly (one
  * tridiagonal solve per span and coordinate; the stiffening taken at the
@@ -47,11 +57,13 @@ struct flex_params {
 	double node_spacing_m;   /* 0.005..0.2 */
 	double damping_n_s_per_m; /* b, per node */
 	double chain_n_per_m;    /* k_c, between neighbours */
+	double bending_n_per_m;  /* k_b, against crumpling */
 };
 
 #define FLEX_PARAMS_DEFAULT { .node_spacing_m = 0.02, \
 			      .damping_n_s_per_m = 20, \
-			      .chain_n_per_m = 100 }
+			      .chain_n_per_m = 100, \
+			      .bending_n_per_m = 300 }
 
 struct flex;
 
@@ -104,8 +116,9 @@ const double *flex_node(const struct flex *f, int i);
 
 /*
  * Span SPAN's forces (N, world): PUSHED, what the tube pushed on it in the
- * last step; HELD, what holds it now: its mesentery and, through the
- * chain, the fixed colon at its ends. At rest they are equal.
+ * last step; HELD, what holds it now: its mesentery (across the course,
+ * and all of the push along it) and, through the chain, the fixed colon at
+ * its ends. At rest they are equal.
  */
 void flex_span_forces(const struct flex *f, int span, double pushed[3],
 		      double held[3]);

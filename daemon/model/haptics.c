@@ -88,6 +88,13 @@ void haptics_publish_rod(const struct haptics *h, double roll_rad,
 	}
 }
 
+void haptics_hold_tip(struct haptics *h, double hold_n_per_m)
+{
+	if (h->rs) {
+		rodscope_hold_tip(h->rs, hold_n_per_m);
+	}
+}
+
 bool haptics_rod(const struct haptics *h)
 {
 	return h->rs != NULL;

@@ -166,6 +166,10 @@ void haptics_publish_rod(const struct haptics *h, double roll_rad,
 			 struct endosim_rod_state *out,
 			 double bow_m[ENDOSIM_SPANS]);
 
+/* The rod model's tip held by a spring of HOLD_N_PER_M where it is, or
+ * let go (0): rodscope_hold_tip(); nothing in the paper's model. */
+void haptics_hold_tip(struct haptics *h, double hold_n_per_m);
+
 /* The rod model renders (else the paper's), and its tube (NULL: none). */
 bool haptics_rod(const struct haptics *h);
 const struct rodscope *haptics_rodscope(const struct haptics *h);

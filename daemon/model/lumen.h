@@ -58,7 +58,7 @@ struct lumen_params {
 };
 
 #define LUMEN_PARAMS_DEFAULT { .wall_n_per_m2 = 1.5e5, \
-			       .wall_damping_s = 0.01, .friction = 0.1, \
+			       .wall_damping_s = 0.01, .friction = 0.05, \
 			       .slip_m_per_s = 0.002, \
 			       .pipe_n_per_m2 = 1e6, .tube_radius_m = 0.0065 }
 

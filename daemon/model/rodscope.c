@@ -17,6 +17,7 @@ struct rodscope {
 	int nb;             /* of them the bending section's */
 	double *sigma;      /* per segment: where it would be on the course */
 	double (*ends)[3];  /* room for a laid tube's joint points */
+	double hold;        /* N/m: the tip held (0: free) */
 };
 
 static int bending_segments(const struct rodscope_params *p, double l)
@@ -246,6 +247,24 @@ void rodscope_pose(const struct rodscope *rs, const struct rodscope_axes *a,
 	vec3_scale(arm, d3, l / 2);
 	vec3_cross(w, rod_spin(rs->rod, last), arm);
 	vec3_add(tip_velocity, rod_velocity(rs->rod, last), w);
+}
+
+void rodscope_hold_tip(struct rodscope *rs, double hold_n_per_m)
+{
+	struct rod_anchor an = { .compliance = { 0, 0, 0, 1e6, 1e6, 1e6 } };
+	int last = rs->n - 1;
+
+	rs->hold = hold_n_per_m > 0 ? hold_n_per_m : 0;
+	if (!rs->hold) {
+		rod_set_anchor(rs->rod, ROD_TIP, NULL);
+		return;
+	}
+	rod_end_point(rs->rod, last, ROD_TIP, an.p);
+	memcpy(an.q, rod_quat(rs->rod, last), sizeof(an.q));
+	for (int i = 0; i < 3; i++) {
+		an.compliance[i] = 1 / rs->hold;
+	}
+	rod_set_anchor(rs->rod, ROD_TIP, &an);
 }
 
 /* d theta0 / d bend (the wheel's, per rad) at joint rest v (rodscope.h). */

@@ -70,7 +70,7 @@ struct rodscope_params {
 
 #define RODSCOPE_PARAMS_DEFAULT { .rod = ROD_PARAMS_DEFAULT, \
 				  .bending_length_m = 0.09, \
-				  .tip_bending_n_m2 = 0.02, \
+				  .tip_bending_n_m2 = 0.01, \
 				  .lumen = LUMEN_PARAMS_DEFAULT, \
 				  .flex = FLEX_PARAMS_DEFAULT, \
 				  .coupling_n_per_m = 3000, \
@@ -135,6 +135,14 @@ void rodscope_set_params(struct rodscope *rs, const struct rodscope_params *p);
  */
 void rodscope_pose(const struct rodscope *rs, const struct rodscope_axes *a,
 		   struct scope_pose *pose, double tip_velocity[3]);
+
+/*
+ * A tip held where it is, by a spring of HOLD_N_PER_M (N/m, its direction
+ * free), from the next step on, or let go (0): a tip impacted in a fold or
+ * caught in a spasm, as the clinic's tests and an instructor's
+ * demonstration of a loop want it.
+ */
+void rodscope_hold_tip(struct rodscope *rs, double hold_n_per_m);
 
 /* One step of DT_S: the tube, its contacts, the colon. */
 void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,

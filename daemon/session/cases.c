@@ -67,6 +67,7 @@ void cases_rod_params(const struct config *cfg, struct rodscope_params *p)
 		.node_spacing_m = r->colon_node_spacing_m,
 		.damping_n_s_per_m = r->colon_damping_n_s_per_m,
 		.chain_n_per_m = r->colon_chain_n_per_m,
+		.bending_n_per_m = r->colon_bending_n_per_m,
 	};
 	p->coupling_n_per_m = r->coupling_n_per_m;
 	p->coupling_n_s_per_m = r->coupling_n_s_per_m;

@@ -6,18 +6,23 @@
 # size. Every wait is on a state. What the session's metrics make of the
 # whole course (the cecum, the loops and the force episode in their
 # windows) depends on how many cycles ran: checked in lockstep, cycle for
-# cycle, by tests/unit/test_course.c (test_session_metrics), on
-# config/scenarios/demo.scn, which is checked here to still be the course.
+# cycle, by tests/unit/test_course.c (test_session_metrics, the paper
+# model on config/scenarios/demo-paper.scn, which is checked here to still
+# be scenario_gen --model paper's course) and test_rodcourse.c (the rod
+# model on config/scenarios/demo.scn, which that test checks is the
+# trainee's course).
 . "$(dirname "$0")/../common.sh"
 
 # float_test EXPR: awk's arithmetic truth of EXPR
 float_test() { awk "BEGIN { exit !($1) }"; }
 
 SESS="$TMP/sessions"
-"$TOOLS/scenario_gen" "$CASES/normal.case" 0.03 >"$TMP/course.scn"
-check "the shipped demo is scenario_gen's course at 3 cm/s on normal" \
-	cmp "$TMP/course.scn" "$TOP/config/scenarios/demo.scn"
-start_daemon --session-dir "$SESS" --scenario "$TMP/course.scn" \
+"$TOOLS/scenario_gen" --model paper "$CASES/normal.case" 0.03 \
+	>"$TMP/course.scn"
+check "the shipped paper demo is scenario_gen's course at 3 cm/s on normal" \
+	cmp "$TMP/course.scn" "$TOP/config/scenarios/demo-paper.scn"
+start_daemon --session-dir "$SESS" \
+	--scenario "$TOP/config/scenarios/demo.scn" \
 	--set session.force_threshold_n=10 || finish
 check_status "session start" 0 ctl session start --trainee "Test Trainee"
 check "... as session 1 in the session directory" \

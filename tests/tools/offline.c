@@ -99,3 +99,8 @@ const struct colon *offline_colon(const struct offline *o)
 {
 	return loop_colon(o->loop);
 }
+
+void offline_hold_tip(struct offline *o, double hold_n_per_m)
+{
+	loop_hold_tip(o->loop, hold_n_per_m);
+}

@@ -67,6 +67,9 @@ const struct endosim_state *offline_step(struct offline *o);
 const struct haptics *offline_haptics(const struct offline *o);
 const struct colon *offline_colon(const struct offline *o);
 
+/* The rod model's tip held where it is, or let go (loop_hold_tip()). */
+void offline_hold_tip(struct offline *o, double hold_n_per_m);
+
 /*
  * Live hand input, as `endoctl hand` gives it: FORCE (N, N m, N m, N m)
  * from the next cycle on, for HOLD_S seconds of simulated time.

@@ -2,13 +2,21 @@
  * scenario_gen - writes a scenario for the simulated hand (scenario.h) that
  * drives the scope through a case the way a trainee would: inserting at a
  * steady pace while steering the tip into the lumen ahead, with one
- * mistake on the way (pushing on with a straight tip into a flexure, which
- * forms a loop behind it), the loop reduced by withdrawing, a quarter twist
- * in the transverse colon, the cecum reached, and the withdrawal.
+ * mistake on the way (pushing on with a straight tip, which forms a loop
+ * behind it), the loop reduced by withdrawing, the cecum reached, and the
+ * withdrawal.
  *
- *   scenario_gen CASE_FILE [SPEED_M_PER_S] > FILE.scn
+ *   scenario_gen [--model rod|paper] CASE_FILE [SPEED_M_PER_S] > FILE.scn
  *
- * Steering: for a depth d the bending section (length Lb, scope.h) starts
+ * The rod model (the default, as endosimd's): the course is played as it
+ * is written, on endosimd's own force loop in lockstep with the default
+ * configuration (tests/tools/trainee.h: she steers by what the tip sees,
+ * waits when the scope is stuck, reduces a loop when it stops her); the
+ * daemon on the same case plays it back exactly so.
+ *
+ * The paper model: written ahead, on the centreline (the tube follows it),
+ * with a quarter twist in the transverse colon:
+ * for a depth d the bending section (length Lb, scope.h) starts
  * at s = d - Lb on the centreline; the tip should sit on the centreline at
  * s = d. An arc from the base with the base's tangent t reaches the point
  * D ahead when it bends by theta = 2 atan2(b, a), a = D . t, b = |D - a t|,
@@ -20,10 +28,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include <string.h>
+
 #include "anatomy.h"
 #include "colon.h"
 #include "config.h"
 #include "scope.h"
+#include "trainee.h"
 #include "vec3.h"
 
 #define STEP_S 0.5 /* a waypoint every half second */
@@ -103,41 +114,36 @@ static void hold(struct gen *g, double seconds)
 	}
 }
 
-int main(int argc, char **argv)
+/* The paper model's course, written ahead on the centreline. */
+static int paper_course(const struct anatomy *a, double speed)
 {
 	struct colon_params cp = COLON_PARAMS_DEFAULT;
 	struct gen g = { .sp = SCOPE_PARAMS_DEFAULT };
-	double speed = argc > 2 ? atof(argv[2]) : 0.04;
 	struct config cfg;
-	struct anatomy a;
 	char err[256];
 	double flexure, cecum;
 
-	if (argc < 2 || anatomy_load(&a, argv[1], err, sizeof(err))) {
-		fprintf(stderr, "usage: scenario_gen CASE_FILE [SPEED_M_PER_S]"
-			"%s%s\n", argc < 2 ? "" : ": ", argc < 2 ? "" : err);
-		return 2;
-	}
 	config_defaults(&cfg);
 	g.sp.ud_gain = cfg.scope.gain[0];
 	g.sp.lr_gain = cfg.scope.gain[1];
 	g.sp.bending_length_m = cfg.scope.bending_length_m;
 	g.wheel_max = cfg.rig.travel_max[ENDOSIM_AXIS_WHEEL_UD] * 0.95;
-	g.colon = colon_create(&a, &cp, err, sizeof(err));
+	g.colon = colon_create(a, &cp, err, sizeof(err));
 	if (!g.colon) {
 		fprintf(stderr, "scenario_gen: %s\n", err);
 		return 1;
 	}
-	flexure = anatomy_segment_start(&a, ANATOMY_SPLENIC_FLEXURE);
-	cecum = anatomy_segment_start(&a, ANATOMY_CECUM) + 0.02;
-	printf("# endosim scenario for case '%s', written by scenario_gen:\n"
+	flexure = anatomy_segment_start(a, ANATOMY_SPLENIC_FLEXURE);
+	cecum = anatomy_segment_start(a, ANATOMY_CECUM) + 0.02;
+	printf("# endosim scenario for case '%s', written by scenario_gen "
+	       "--model paper:\n"
 	       "# a trainee inserting at %.0f mm/s, steering into the lumen;\n"
 	       "# at the splenic flexure (%.2f m) pushing on with a straight "
 	       "tip\n# (the tip is held, a loop forms behind it), withdrawing "
 	       "to reduce it,\n# then steering through with a quarter twist in "
 	       "the transverse colon\n# to the cecum (%.2f m), and withdrawing."
 	       "\n# TIME AXIS target VALUE RAMP (daemon/rig/scenario.h)\n",
-	       a.name, speed * 1000, flexure, cecum);
+	       a->name, speed * 1000, flexure, cecum);
 	g.d = 0.03;
 	hold(&g, 1.0);
 	move(&g, flexure - 0.04, 0, speed, 1);
@@ -151,4 +157,70 @@ int main(int argc, char **argv)
 	printf("%7.2f end\n", g.t + 1);
 	colon_destroy(g.colon);
 	return 0;
+}
+
+/* The rod model's course, played as it is written. */
+static int rod_course(const char *case_path, const struct anatomy *a,
+		      double speed)
+{
+	struct config cfg;
+	struct trainee *t;
+	char err[256];
+	bool there;
+
+	config_defaults(&cfg);
+	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	printf("# endosim scenario for case '%s', written by scenario_gen "
+	       "(the rod model):\n"
+	       "# a trainee inserting at %.0f mm/s, steering into the lumen "
+	       "ahead of the tip;\n"
+	       "# at the sigmoid's end pushing on 10 cm with a straight tip "
+	       "(a loop forms),\n"
+	       "# withdrawing 15 cm with a clockwise twist to reduce it, on "
+	       "to the cecum\n"
+	       "# (reducing again whenever the scope is stuck), and "
+	       "withdrawing. Played on\n"
+	       "# endosimd's force loop as it was written (tests/tools/"
+	       "trainee.h).\n"
+	       "# TIME AXIS target VALUE RAMP (daemon/rig/scenario.h)\n",
+	       a->name, speed * 1000);
+	t = trainee_create(&cfg, case_path, stdout, err, sizeof(err));
+	if (!t) {
+		fprintf(stderr, "scenario_gen: %s\n", err);
+		return 1;
+	}
+	there = trainee_course(t, a, speed);
+	trainee_destroy(t);
+	if (!there) {
+		fprintf(stderr, "scenario_gen: the course did not reach the "
+			"cecum\n");
+		return 1;
+	}
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	bool paper = false;
+	struct anatomy a;
+	char err[256];
+	double speed;
+	int arg = 1;
+
+	if (argc > 2 && !strcmp(argv[1], "--model")) {
+		paper = !strcmp(argv[2], "paper");
+		if (!paper && strcmp(argv[2], "rod")) {
+			arg = argc; /* usage */
+		}
+		arg += 2;
+	}
+	if (arg >= argc || anatomy_load(&a, argv[arg], err, sizeof(err))) {
+		fprintf(stderr, "usage: scenario_gen [--model rod|paper] "
+			"CASE_FILE [SPEED_M_PER_S]%s%s\n",
+			arg >= argc ? "" : ": ", arg >= argc ? "" : err);
+		return 2;
+	}
+	speed = arg + 1 < argc ? atof(argv[arg + 1]) : paper ? 0.04 : 0.03;
+	return paper ? paper_course(&a, speed)
+		     : rod_course(argv[arg], &a, speed);
 }

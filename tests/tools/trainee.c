@@ -13,7 +13,7 @@
 #define STEER_GAIN 0.5       /* rad of bend per waypoint per unit error */
 #define WHEEL_EASE_NM 0.06   /* a wheel this hard on her thumb: ease it */
 #define WHEEL_EASE 0.8       /* ... by this much a waypoint */
-#define PUSH_MAX_N 12        /* she does not push harder to go on */
+#define PUSH_MAX_N 16        /* she does not push harder to go on */
 
 struct trainee {
 	struct offline *off;
@@ -136,7 +136,10 @@ static void waypoint(struct trainee *t)
 		say(t, wheel[w], fmax(-t->wheel_max, fmin(t->wheel_max, v)));
 	}
 	t->t += TRAINEE_STEP_S;
-	while (t->s->scenario_time_s < t->t - 1e-9) {
+	/* up to the cycle before the next waypoint's: hers are in the
+	 * script before that cycle plays, as a file's would be */
+	while (t->s->scenario_time_s + OFFLINE_PERIOD_NS * 1e-9 <
+	       t->t - 1e-9) {
 		t->s = offline_step(t->off);
 		if (t->watch) {
 			t->watch(t->s, t->watch_arg);
@@ -232,4 +235,33 @@ void trainee_relax(struct trainee *t, double seconds)
 	t->depth = t->s->axis[ENDOSIM_AXIS_INSERTION].position;
 	t->roll = t->s->axis[ENDOSIM_AXIS_ROLL].position;
 	trainee_hold(t, seconds);
+}
+
+void trainee_hold_tip(struct trainee *t, double hold_n_per_m)
+{
+	offline_hold_tip(t->off, hold_n_per_m);
+}
+
+bool trainee_course(struct trainee *t, const struct anatomy *a, double speed)
+{
+	double junction = anatomy_segment_start(a, ANATOMY_DESCENDING);
+	double cecum = anatomy_segment_start(a, ANATOMY_CECUM) + 0.02;
+	bool there = false;
+
+	trainee_hold(t, 1.0);
+	trainee_insert(t, junction - 0.01, speed, 6);
+	trainee_push(t, 0.15, speed);
+	trainee_withdraw(t, 0.15, speed, 0.5);
+	trainee_relax(t, 1.0);
+	for (int tries = 0; tries < 6 && !there; tries++) {
+		there = trainee_insert(t, cecum, speed, 4);
+		if (!there) {
+			trainee_withdraw(t, 0.10, speed, 0.5);
+			trainee_relax(t, 0.5);
+			there = t->s->scope.tip_s_m >= cecum;
+		}
+	}
+	trainee_hold(t, 2.0);
+	trainee_withdraw(t, t->s->scope.depth_m - 0.10, 2 * speed, 0);
+	return there;
 }

@@ -27,6 +27,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "anatomy.h"
 #include "colon.h"
 #include "config.h"
 #include "endosim_shm.h"
@@ -80,7 +81,25 @@ void trainee_withdraw(struct trainee *t, double distance, double speed,
  * SECONDS. */
 void trainee_relax(struct trainee *t, double seconds);
 
+/* The tip held where it is (a spring of HOLD_N_PER_M), or let go (0). */
+void trainee_hold_tip(struct trainee *t, double hold_n_per_m);
+
 /* Holds everything still for SECONDS. */
 void trainee_hold(struct trainee *t, double seconds);
+
+/*
+ * The demo's course on case A (the trainee's, on the case she was made
+ * with): inserting at SPEED (m/s; 3 cm/s is a trainee's pace) steering
+ * into the lumen up to the sigmoid's
+ * end; there the mistake, pushing on 10 cm with a straight tip (the tip
+ * held by the junction, a loop forms behind it); the reduction,
+ * withdrawing 15 cm turning the tube clockwise, then letting the tube
+ * settle; on, steering, to the cecum, and each time the scope is stuck
+ * (the tube runs out or the tip stops while she pushes) the same
+ * reduction with 10 cm; two seconds at the cecum; the withdrawal at
+ * 6 cm/s with a straight tip. Returns true when the tip reached the
+ * cecum.
+ */
+bool trainee_course(struct trainee *t, const struct anatomy *a, double speed);
 
 #endif

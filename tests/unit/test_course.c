@@ -2,11 +2,13 @@
  * test_course.c - the force loop's behaviour on a course, in lockstep on
  * simulated time (tests/tools/offline.h: loop_step(), the loop's own
  * cycle on the simulated rig), so that every answer is the same on any
- * machine, however busy: the shipped demo course on the normal case
- * (config/scenarios/demo.scn, which is scenario_gen's course at 3 cm/s,
- * tests/system/70-session.sh checks that it still is) for the haptics,
+ * machine, however busy: the paper model's demo course on the normal case
+ * (config/scenarios/demo-paper.scn, which is scenario_gen --model paper's
+ * course at 3 cm/s, tests/system/70-session.sh checks that it still is)
+ * with [haptics] model = paper, for the haptics,
  * the safety filter's clamp, the hand's top speed, a session's metrics,
- * and that a run repeats bit for bit.
+ * and that a run repeats bit for bit. (The rod model's course:
+ * test_rodcourse.c.)
  *
  * The course, from scenario_gen (all times on the scenario's clock, which
  * is the loop's: one period a cycle):
@@ -60,13 +62,15 @@ static struct colon *normal_colon(struct config *cfg)
 	return c;
 }
 
-/* The loop on the normal case playing the file SCENARIO. */
+/* The loop on the normal case playing the file SCENARIO, the paper's
+ * model rendering. */
 static struct offline *course(struct config *cfg, const char *scenario,
 			      struct colon **colon)
 {
 	char err[512];
 	struct offline *o;
 
+	cfg->haptics.model = HAPTICS_MODEL_PAPER;
 	*colon = normal_colon(cfg);
 	o = offline_create(cfg, *colon, scenario, err, sizeof(err));
 	if (!o) {
@@ -128,7 +132,7 @@ static void test_demo_haptics(void **unused)
 
 	(void)unused;
 	config_defaults(&cfg);
-	o = course(&cfg, "config/scenarios/demo.scn", &colon);
+	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
 	for (long k = 0; k < 32000; k++) {
 		see_haptics(&s, offline_step(o));
 	}
@@ -169,7 +173,7 @@ static void test_clamp(void **unused)
 	config_defaults(&cfg);
 	cfg.limits.max[ENDOSIM_AXIS_INSERTION] = limit_n;
 	cfg.limits.saturation_s = 60; /* the hold is what is looked at here */
-	o = course(&cfg, "config/scenarios/demo.scn", &colon);
+	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
 	for (long k = 0; k < 32000; k++) {
 		const struct endosim_state *st = offline_step(o);
 		const struct endosim_axis_state *ax =
@@ -289,7 +293,7 @@ static void test_session_metrics(void **unused)
 
 	(void)unused;
 	config_defaults(&cfg);
-	o = course(&cfg, "config/scenarios/demo.scn", &colon);
+	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
 	cycles = lround(offline_length_s(o) / PERIOD_S);
 	metrics_params_default(&p);
 	p.force_threshold_n = 10;
@@ -352,7 +356,7 @@ static uint64_t run_hash(long cycles)
 	uint64_t h = 0xcbf29ce484222325ull;
 
 	config_defaults(&cfg);
-	o = course(&cfg, "config/scenarios/demo.scn", &colon);
+	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
 	for (long k = 0; k < cycles; k++) {
 		h = hash_state(h, offline_step(o));
 	}

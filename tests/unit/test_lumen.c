@@ -193,7 +193,8 @@ static void test_wall_and_pipe(void **state)
 
 /*
  * Pulls a soft rod through the 90 deg bend at V against F_IN, friction
- * MU; returns F_out / F_in once steady. The lumen is narrow (2 cm, 3.5 mm
+ * MU; returns F_out / F_in once steady (with MOBILE, the tube holds still
+ * against F_IN, for the colon to come to rest). The lumen is narrow (2 cm, 3.5 mm
  * of play around the tube): a rope on a drum, as the capstan's law has it
  * (in a wide lumen a rod this soft buckles behind a stick). MOBILE: the
  * sigmoid moves; *PUSHED gets its largest displacement, *HELD the wall's
@@ -219,7 +220,7 @@ static double capstan(double mu, bool mobile, double *held,
 	struct rod_anchor pull = { .compliance = { 1e-4, 1e-4, 1e-4, 1, 1, 1 },
 				   .damping_s = { 0.002, 0.002, 0.002 } };
 	struct centreline_point out;
-	double start[3], sum = 0, f_in = 10, v = 0.05;
+	double start[3], sum = 0, f_in = 10, v = mobile ? 0 : 0.05;
 	int samples = 0;
 
 	p.friction = mu;
@@ -256,11 +257,19 @@ static double capstan(double mu, bool mobile, double *held,
 			sum += vec3_dot(f, out.t);
 			samples++;
 			*held += t.wall_n;
+			if (fx) { /* the colon's forces, averaged likewise */
+				double pu[3], he[3];
+
+				flex_span_forces(fx, 0, pu, he);
+				vec3_add(mb->pushed, mb->pushed, pu);
+				vec3_add(mb->held, mb->held, he);
+			}
 		}
 	}
 	if (fx) {
 		mb->moved = flex_span_displacement(fx, 0);
-		flex_span_forces(fx, 0, mb->pushed, mb->held);
+		vec3_scale(mb->pushed, mb->pushed, 1.0 / samples);
+		vec3_scale(mb->held, mb->held, 1.0 / samples);
 		mb->inward = vec3_dot(mb->pushed, out.t) -
 			     vec3_dot(mb->pushed, centreline_sample(cl, 50)->t);
 	}
@@ -297,7 +306,7 @@ static void test_capstan(void **state)
  * and at rest its mesentery holds what the tube pushes. */
 static void test_colon_takes_it(void **state)
 {
-	struct mobile_bend mb;
+	struct mobile_bend mb = { 0 };
 	double held;
 
 	(void)state;
@@ -307,7 +316,7 @@ static void test_colon_takes_it(void **state)
 		      held, mb.moved * 100, vec3_norm(mb.pushed),
 		      vec3_norm(mb.held));
 	assert_true(mb.moved > 0.01);
-	assert_vec_near(mb.held, mb.pushed, 0.03 * vec3_norm(mb.pushed));
+	assert_vec_near(mb.held, mb.pushed, 0.06 * vec3_norm(mb.pushed));
 	/* towards the bend's inside, as the rope's pull t_out - t_in */
 	assert_true(mb.inward > 0.5 * vec3_norm(mb.pushed));
 }

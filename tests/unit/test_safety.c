@@ -223,6 +223,7 @@ static void test_saturation(void **state)
 
 	(void)state;
 	cfg.limits.enable_ramp_s = 0;
+	cfg.limits.saturation_fault = CONFIG_OVERRUN_FAULT;
 	safety_init(&s);
 	safety_command(&s, SAFETY_ENABLE, 0);
 	for (t = S; t <= S + hold; t += 100 * MS) {
@@ -254,6 +255,44 @@ static void test_saturation(void **state)
 	safety_filter(&s, &cfg, cmd, out, 0.1, t + MS);
 	safety_begin_cycle(&s);
 	assert_int_equal(safety_command(&s, SAFETY_RESET, 0), 0);
+	config_defaults(&cfg);
+}
+
+/*
+ * saturation_fault = auto: on a simulated axis (no motor to protect) a
+ * hold past saturation_s only warns (published among the active causes,
+ * nothing latched); on an axis a drive turns it is the fault.
+ */
+static void test_saturation_auto(void **state)
+{
+	double cmd[ENDOSIM_AXES] = { 0, 0, 0.5, 0 };
+	double out[ENDOSIM_AXES];
+	struct endosim_safety_state pub;
+	uint64_t t;
+	struct safety s;
+
+	(void)state;
+	cfg.limits.enable_ramp_s = 0;
+	cfg.limits.saturation_fault = CONFIG_OVERRUN_AUTO;
+	safety_init(&s);
+	safety_command(&s, SAFETY_ENABLE, 0);
+	for (t = S; t <= 3 * S + 2 * (uint64_t)(cfg.limits.saturation_s * 1e9);
+	     t += 100 * MS) {
+		safety_begin_cycle(&s);
+		safety_filter(&s, &cfg, cmd, out, 0.1, t);
+	}
+	assert_int_equal(s.state, ENDOSIM_STATE_ENABLED);
+	assert_int_equal(s.faults, 0);
+	safety_publish(&s, t, &pub);
+	assert_int_equal(pub.active & ENDOSIM_FAULT_SATURATION,
+			 ENDOSIM_FAULT_SATURATION);
+	/* the same axis on a drive: a fault */
+	cfg.rig.backend = CONFIG_BACKEND_DRIVES;
+	cfg.axis[ENDOSIM_AXIS_WHEEL_UD].backend = CONFIG_DRIVE_MODBUS;
+	safety_begin_cycle(&s);
+	safety_filter(&s, &cfg, cmd, out, 0.1, t + MS);
+	assert_int_equal(s.state, ENDOSIM_STATE_FAULT);
+	assert_int_equal(s.faults, ENDOSIM_FAULT_SATURATION);
 	config_defaults(&cfg);
 }
 
@@ -546,6 +585,7 @@ int main(void)
 		cmocka_unit_test(test_speed_fade),
 		cmocka_unit_test(test_enable_ramp),
 		cmocka_unit_test(test_saturation),
+		cmocka_unit_test(test_saturation_auto),
 		cmocka_unit_test(test_motion),
 		cmocka_unit_test(test_overrun_budget),
 		cmocka_unit_test(test_overrun_fault_setting),

@@ -1,0 +1,220 @@
+/*
+ * test_rodcourse.c - the rod model's demo course (config/scenarios/
+ * demo.scn) in lockstep on simulated time: it is the trainee's course
+ * (tests/tools/trainee.h, scenario_gen's: the file holds what she wrote
+ * while she played it, byte for byte), and played on the normal case:
+ *  - the tip reaches the cecum;
+ *  - a loop forms on the way (the sigmoid pushed more than 2.5 cm off its
+ *    course while the hand pushes on at the sigmoid's end) and is reduced
+ *    (back under 2.5 cm after the withdrawal that follows);
+ *  - the forces stay in a real colonoscopy's ranges (Appleyard et al.,
+ *    GIE 2000, 21 colonoscopies: the insertion force above 10 N at most
+ *    ~5-10 % of the time, its peak between 15 and 45 N; the roll's torque
+ *    within 1 N m), nothing faults;
+ *  - played again from the file, as endosimd plays it (offline.h), it
+ *    repeats her run bit for bit (the first 30 s compared).
+ *
+ * Run from the top of the source tree (tests/run.sh does), or with
+ * ENDOSIM_TOP naming it.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "anatomy.h"
+#include "cases.h"
+#include "offline.h"
+#include "trainee.h"
+
+#define CASE "config/cases/normal.case"
+#define DEMO "config/scenarios/demo.scn"
+
+struct seen {
+	double cecum;         /* where it starts + 2 cm, m */
+	double cecum_at_s;    /* -1: not reached */
+	double junction;      /* the sigmoid's end, m */
+	double loop_max;      /* the sigmoid's largest loop, m */
+	double loop_after;    /* the smallest loop after it, m */
+	long cycles, over_10n;
+	double peak_n, roll_peak_nm;
+	uint32_t faults;
+	uint64_t hash;        /* of the first REPEAT_CYCLES states */
+};
+
+#define REPEAT_CYCLES 30000
+
+/* FNV-1a over the bytes of a state, its wall-clock fields zeroed. */
+static uint64_t hash_state(uint64_t h, const struct endosim_state *st)
+{
+	struct endosim_state s = *st;
+	const unsigned char *b = (const unsigned char *)&s;
+
+	s.compute_ns = 0;
+	for (size_t i = 0; i < sizeof(s); i++) {
+		h = (h ^ b[i]) * 0x100000001b3ull;
+	}
+	return h;
+}
+
+static void watch(const struct endosim_state *s, void *arg)
+{
+	struct seen *w = arg;
+	double f = fabs(s->axis[ENDOSIM_AXIS_INSERTION].limited);
+	double loop = s->scope.bow_m[0];
+
+	w->cycles++;
+	w->over_10n += f > 10;
+	w->peak_n = fmax(w->peak_n, f);
+	w->roll_peak_nm = fmax(w->roll_peak_nm,
+			       fabs(s->axis[ENDOSIM_AXIS_ROLL].limited));
+	if (w->cecum_at_s < 0 && s->scope.tip_s_m >= w->cecum) {
+		w->cecum_at_s = s->scenario_time_s;
+	}
+	if (s->scope.depth_m > w->junction - 0.1 && w->cecum_at_s < 0) {
+		if (loop > w->loop_max) {
+			w->loop_max = loop;
+			w->loop_after = loop;
+		}
+		w->loop_after = fmin(w->loop_after, loop);
+	}
+	w->faults |= s->fault_bits;
+	if (w->cycles <= REPEAT_CYCLES) {
+		w->hash = hash_state(w->hash, s);
+	}
+}
+
+/* Plays the trainee's course, her script into SCRIPT (may be NULL). */
+static void play(struct seen *w, FILE *script)
+{
+	struct config cfg;
+	struct anatomy a;
+	struct trainee *t;
+	char err[512];
+
+	memset(w, 0, sizeof(*w));
+	w->cecum_at_s = -1;
+	w->hash = 0xcbf29ce484222325ull;
+	config_defaults(&cfg);
+	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	assert_int_equal(anatomy_load(&a, CASE, err, sizeof(err)), 0);
+	w->cecum = anatomy_segment_start(&a, ANATOMY_CECUM) + 0.02;
+	w->junction = anatomy_segment_start(&a, ANATOMY_DESCENDING);
+	t = trainee_create(&cfg, CASE, script, err, sizeof(err));
+	if (!t) {
+		fail_msg("%s", err);
+	}
+	trainee_watch(t, watch, w);
+	assert_true(trainee_course(t, &a, 0.03));
+	trainee_destroy(t);
+}
+
+/* The lines of FILE that are not comments, joined. */
+static char *steps_of(FILE *f)
+{
+	char *out = NULL, line[256];
+	size_t size = 0;
+	FILE *o = open_memstream(&out, &size);
+
+	assert_non_null(o);
+	rewind(f);
+	while (fgets(line, sizeof(line), f)) {
+		if (line[0] != '#') {
+			fputs(line, o);
+		}
+	}
+	fclose(o);
+	return out;
+}
+
+static void test_course(void **unused)
+{
+	FILE *mine = tmpfile(), *shipped = fopen(DEMO, "r");
+	char *a, *b;
+	struct seen w;
+
+	(void)unused;
+	assert_non_null(mine);
+	assert_non_null(shipped);
+	play(&w, mine);
+	fflush(mine);
+	a = steps_of(mine);
+	b = steps_of(shipped);
+	print_message("the course: cecum at %.2f s; the sigmoid's loop %.1f "
+		      "cm, reduced to %.1f cm; insertion force above 10 N "
+		      "%.1f %% of the time, peak %.1f N; roll torque peak "
+		      "%.3f N m\n", w.cecum_at_s, w.loop_max * 100,
+		      w.loop_after * 100, 100.0 * w.over_10n / w.cycles,
+		      w.peak_n, w.roll_peak_nm);
+	/* the shipped demo is her course, step for step */
+	assert_string_equal(a, b);
+	assert_true(w.cecum_at_s > 0);
+	assert_true(w.loop_max > 0.025);
+	assert_true(w.loop_after < 0.025);
+	assert_true(w.over_10n <= 0.10 * w.cycles);
+	assert_true(w.peak_n >= 15 && w.peak_n <= 45);
+	assert_true(w.roll_peak_nm <= 1.0);
+	assert_int_equal(w.faults, 0);
+	free(a);
+	free(b);
+	fclose(mine);
+	fclose(shipped);
+}
+
+/*
+ * Same inputs, same outputs, bit for bit: the shipped file played as the
+ * daemon plays a scenario repeats the trainee's run (its states from the
+ * first cycle she acted in).
+ */
+static void test_repeats_exactly(void **unused)
+{
+	struct config cfg;
+	struct colon *colon;
+	struct offline *o;
+	struct seen mine;
+	char err[512];
+	uint64_t h = 0xcbf29ce484222325ull;
+
+	(void)unused;
+	play(&mine, NULL);
+	config_defaults(&cfg);
+	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	snprintf(cfg.colon.file, sizeof(cfg.colon.file), CASE);
+	colon = cases_load(&cfg, NULL, err, sizeof(err));
+	assert_non_null(colon);
+	o = offline_create(&cfg, colon, DEMO, err, sizeof(err));
+	if (!o) {
+		fail_msg("%s", err);
+	}
+	offline_step(o); /* cycle 0: before she acted */
+	for (long k = 0; k < REPEAT_CYCLES; k++) {
+		h = hash_state(h, offline_step(o));
+	}
+	offline_destroy(o);
+	print_message("%d s: her run %016llx, the file played %016llx\n",
+		      REPEAT_CYCLES / 1000, (unsigned long long)mine.hash,
+		      (unsigned long long)h);
+	assert_true(mine.hash == h);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_course),
+		cmocka_unit_test(test_repeats_exactly),
+	};
+	const char *top = getenv("ENDOSIM_TOP");
+
+	if (top && chdir(top)) {
+		perror(top);
+		return 1;
+	}
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
