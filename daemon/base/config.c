@@ -265,7 +265,7 @@ static const struct config_key keys[] = {
 	KD("limits", "wheel_lr_slew_n_m_per_s", limits.slew[I_LR], 20, 0.01,
 	   1e5, "N m/s", LIVE, "fastest change of the left/right wheel torque"),
 
-	KE("haptics", "model", haptics.model, 0, model_names, 0,
+	KE("haptics", "model", haptics.model, 1, model_names, 0,
 	   "rod: the insertion tube an elastic rod in a colon that moves "
 	   "([rod]); paper: the tube on the centreline (Koerner and Maenner)"),
 	KD("haptics", "scope_radius_m", haptics.scope_radius_m, 0.0065, 0, 0.02,
