@@ -58,6 +58,8 @@ _Static_assert(ENDOSIM_SPANS == 4, "fields: a bow column per span");
 _Static_assert(ENDOSIM_AXES == 4, "fields: an axis' columns per axis");
 _Static_assert(sizeof(Endosim__DaemonState) == sizeof(uint32_t),
 	       "fields: the state is a uint32_t on the wire too");
+_Static_assert(sizeof(Endosim__HapticsModel) == sizeof(uint32_t),
+	       "fields: the model is a uint32_t on the wire too");
 
 /* --- one latched fault: its cause's values; the daemon says the rest -- */
 #define STRUCT struct endosim_fault_cause
@@ -163,6 +165,23 @@ const struct fields_table fields_haptics =
 #undef STRUCT
 #undef MESSAGE
 
+/* --- the rod model: its contacts and counts; the shape stays in the shm */
+#define STRUCT struct endosim_rod_state
+#define MESSAGE Endosim__RodStatus
+static const struct fields_field rod[] = {
+	{ "model", FIELDS_NAMED, 1, S(model), NONE, P(model), NONE, NONE,
+	  NULL, names_model, NULL },
+	VAL(contacts, FIELDS_UINT),
+	VAL(wall_n, FIELDS_DOUBLE),
+	VAL(friction_n, FIELDS_DOUBLE),
+	VAL(points, FIELDS_UINT),
+	VAL(nodes, FIELDS_UINT),
+};
+const struct fields_table fields_rod =
+	TABLE(rod, endosim__rod_status__descriptor, rod, 1);
+#undef STRUCT
+#undef MESSAGE
+
 /* --- the state's own fields, the safety monitors', the parts ---------- */
 #define STRUCT struct endosim_state
 #define MESSAGE Endosim__StatusReply
@@ -192,6 +211,7 @@ static const struct fields_field status[] = {
 	ROW("case", FIELDS_STRING, NONE, P(case_name), NONE),
 	ONE(scope, &fields_scope),
 	ONE(haptics, &fields_haptics),
+	ONE(rod, &fields_rod),
 	MANY(axes, FIELDS_MAP, &fields_axis),
 	/* recorded, not on the wire */
 	KEPT(latency_ns, FIELDS_UINT),

@@ -16,8 +16,8 @@
  * The tables: fields_status (struct endosim_state's own fields and the
  * safety monitors' that the wire carries: StatusReply), and, reached from
  * it by its sub-message rows, fields_fault (a latched fault's cause:
- * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus) and
- * fields_axis (each axis: AxisStatus). A table's rows are in the order of
+ * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus),
+ * fields_rod (RodStatus) and fields_axis (each axis: AxisStatus). A table's rows are in the order of
  * the message's JSON.
  *
  * Adding a field to the published state:
@@ -102,6 +102,7 @@ extern const struct fields_table fields_status; /* the root */
 extern const struct fields_table fields_fault;
 extern const struct fields_table fields_scope;
 extern const struct fields_table fields_haptics;
+extern const struct fields_table fields_rod;
 extern const struct fields_table fields_axis;
 
 /*

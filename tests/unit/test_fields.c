@@ -47,6 +47,7 @@ static const struct {
 #define CAUSE(f, why) NOT(fields_fault, struct endosim_fault_cause, f, why)
 #define AXIS(f, why) NOT(fields_axis, struct endosim_axis_state, f, why)
 #define SCOPE(f, why) NOT(fields_scope, struct endosim_scope_state, f, why)
+#define ROD(f, why) NOT(fields_rod, struct endosim_rod_state, f, why)
 	STATE(publish_ns, "the publisher's own clock, for shm readers"),
 	STATE(fault_axis, "the first fault's: faults[0] says it"),
 	STATE(fault_detail, "the first fault's: faults[0] says it"),
@@ -62,11 +63,16 @@ static const struct {
 	AXIS(reserved, "padding"),
 	SCOPE(reserved, "padding"),
 	SCOPE(tube, "the shape (1.5 kB): the viewer's, from the shm"),
+	ROD(point, "the shape (3.9 kB): the viewer's, from the shm"),
+	ROD(roll, "the shape's roll: the viewer's, from the shm"),
+	ROD(node, "the colon's nodes: the viewer's, from the shm"),
+	ROD(span_nodes, "the nodes' spans: the viewer's, from the shm"),
 #undef NOT
 #undef STATE
 #undef CAUSE
 #undef AXIS
 #undef SCOPE
+#undef ROD
 };
 
 /* Every table, from the root, each once. */
@@ -144,7 +150,7 @@ static void test_state_covered(void **state)
 	size_t n = all_tables(t, COUNT(t)), bad = 0;
 
 	(void)state;
-	assert_int_equal(n, 5);
+	assert_int_equal(n, 6);
 	for (size_t k = 0; k < n; k++) {
 		for (size_t i = 0; i < t[k]->n_fields; i++) {
 			const struct fields_field *d = &t[k]->fields[i];
@@ -449,6 +455,12 @@ static void distinct(struct endosim_state *st)
 	st->haptics.damping[3] = 4.5;
 	st->safety.cause[2].value = 3.25;
 	st->safety.cause[2].detail = 17;
+	st->rod.model = ENDOSIM_MODEL_ROD;
+	st->rod.contacts = 12;
+	st->rod.wall_n = 3.5;
+	st->rod.friction_n = 0.375;
+	st->rod.points = 161;
+	st->rod.nodes = 40;
 }
 
 static void test_to_pb(void **state)
@@ -458,6 +470,7 @@ static void test_to_pb(void **state)
 	Endosim__ScopeStatus sc;
 	Endosim__HapticsStatus h;
 	Endosim__AxisStatus ax;
+	Endosim__RodStatus rod;
 	Endosim__Fault f;
 
 	(void)state;
@@ -492,6 +505,15 @@ static void test_to_pb(void **state)
 	fields_to_pb(&fields_scope, &sc, &st.scope);
 	assert_int_equal(sc.n_bow_m, ENDOSIM_SPANS);
 	assert_true(protobuf_c_message_check(&sc.base));
+	assert_null(s.rod);
+	fields_to_pb(&fields_rod, &rod, &st.rod);
+	assert_int_equal(rod.model, ENDOSIM__HAPTICS_MODEL__HAPTICS_MODEL_ROD);
+	assert_string_equal(names_model(rod.model), "rod");
+	assert_int_equal(rod.contacts, 12);
+	assert_true(rod.wall_n == 3.5 && rod.friction_n == 0.375);
+	assert_int_equal(rod.points, 161);
+	assert_int_equal(rod.nodes, 40);
+	assert_true(protobuf_c_message_check(&rod.base));
 }
 
 /* The record keeps what the tables say, as floats, and gives it back. */
