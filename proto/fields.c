@@ -148,14 +148,14 @@ static const struct fields_field haptics[] = {
 	REC(trans_contact_n, FIELDS_DOUBLE),
 	REC(trans_friction_n, FIELDS_DOUBLE),
 	REC(trans_loop_n, FIELDS_DOUBLE),
-	VAL(trans_rod_n, FIELDS_DOUBLE),
+	REC(trans_rod_n, FIELDS_DOUBLE),
 	VEC_REC(wheel_contact_nm, UD_LR("wheel_contact", "nm")),
 	VEC_REC(wheel_tension_nm, UD_LR("wheel_tension", "nm")),
 	VEC_REC(wheel_elastic_nm, UD_LR("wheel_elastic", "nm")),
 	VEC(wire_dl_m),
 	REC(tube_contact_nm, FIELDS_DOUBLE),
 	REC(tube_friction_nm, FIELDS_DOUBLE),
-	VAL(tube_rod_nm, FIELDS_DOUBLE),
+	REC(tube_rod_nm, FIELDS_DOUBLE),
 	VEC(damping),
 	VAL(passivity_energy_j, FIELDS_DOUBLE),
 	VAL(passivity_damping, FIELDS_DOUBLE),
@@ -168,17 +168,21 @@ const struct fields_table fields_haptics =
 /* --- the rod model: its contacts and counts; the shape stays in the shm */
 #define STRUCT struct endosim_rod_state
 #define MESSAGE Endosim__RodStatus
+/* recorded F, its CSV column said to be the rod's */
+#define ROD(f, kind, names)                                                  \
+	{ #f, kind, 1, S(f), NONE, P(f), NONE, R(f), COLUMNS("rod_" #f),     \
+	  names, NULL }
 static const struct fields_field rod[] = {
-	{ "model", FIELDS_NAMED, 1, S(model), NONE, P(model), NONE, NONE,
-	  NULL, names_model, NULL },
-	VAL(contacts, FIELDS_UINT),
-	VAL(wall_n, FIELDS_DOUBLE),
-	VAL(friction_n, FIELDS_DOUBLE),
+	ROD(model, FIELDS_NAMED, names_model),
+	ROD(contacts, FIELDS_UINT, NULL),
+	ROD(wall_n, FIELDS_DOUBLE, NULL),
+	ROD(friction_n, FIELDS_DOUBLE, NULL),
 	VAL(points, FIELDS_UINT),
 	VAL(nodes, FIELDS_UINT),
 };
 const struct fields_table fields_rod =
 	TABLE(rod, endosim__rod_status__descriptor, rod, 1);
+#undef ROD
 #undef STRUCT
 #undef MESSAGE
 

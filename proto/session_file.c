@@ -262,14 +262,40 @@ static char *text_copy(char **dst, char *room, const unsigned char *src,
 	return room + n + 1;
 }
 
+/* A record of LENGTH bytes, of this format or another, as this one's. */
+static void record_copy(struct session_record *rec, const void *payload,
+			size_t length)
+{
+	size_t n = length < sizeof(*rec) ? length : sizeof(*rec);
+
+	memset(rec, 0, sizeof(*rec));
+	memcpy(rec, payload, n);
+}
+
+/*
+ * Whether a file whose records are LENGTH bytes long (0: none) and whose
+ * HEADER says their size can be read: format 1's records or longer.
+ */
+static bool record_size_ok(const char *header, size_t length)
+{
+	char size[32];
+	unsigned long said;
+
+	if (session_text_get(header, "record_size", size, sizeof(size))) {
+		return length == 0 || length >= SESSION_RECORD_SIZE_1;
+	}
+	said = strtoul(size, NULL, 10);
+	return said >= SESSION_RECORD_SIZE_1 && (!length || length == said);
+}
+
 int session_file_read(const char *path, struct session_file *out)
 {
 	struct input in;
 	const unsigned char *data;
-	size_t len, off, n_rec = 0, n_ev = 0, text = 0, good;
+	size_t len, off, n_rec = 0, n_ev = 0, text = 0, good, rec_len = 0;
 	const unsigned char *payload;
 	uint32_t type, length;
-	char size[32], *room;
+	char *room;
 	unsigned char *store;
 	int fd, r;
 
@@ -295,10 +321,11 @@ int session_file_read(const char *path, struct session_file *out)
 	for (off = 8; next_frame(data, len, off, &type, &payload, &length);
 	     off += FRAME_OVERHEAD + length) {
 		if (type == SESSION_FRAME_RECORD) {
-			if (length != sizeof(struct session_record)) {
+			if (n_rec && length != rec_len) {
 				unload(&in);
 				return -EPROTO;
 			}
+			rec_len = length;
 			n_rec++;
 		} else if (type == SESSION_FRAME_EVENT) {
 			if (length < sizeof(struct session_event)) {
@@ -329,8 +356,8 @@ int session_file_read(const char *path, struct session_file *out)
 		next_frame(data, len, off, &type, &payload, &length);
 		switch (type) {
 		case SESSION_FRAME_RECORD:
-			memcpy(&out->records[out->n_records++], payload,
-			       length);
+			record_copy(&out->records[out->n_records++], payload,
+				    length);
 			break;
 		case SESSION_FRAME_EVENT: {
 			struct session_file_event *e =
@@ -365,9 +392,7 @@ int session_file_read(const char *path, struct session_file *out)
 	out->bytes_read = good;
 	out->bytes_ignored = len - good;
 	unload(&in);
-	if (session_text_get(out->header, "record_size", size,
-			     sizeof(size)) == 0 &&
-	    strtoul(size, NULL, 10) != sizeof(struct session_record)) {
+	if (!record_size_ok(out->header, n_rec ? rec_len : 0)) {
 		session_file_close(out);
 		return -EPROTO;
 	}

@@ -24,7 +24,7 @@
  *   END     (6)  once, last, when the session stopped cleanly: the final
  *                metrics as "key=value\n" lines
  *
- * Header keys: format (1), id, trainee, case, started (UTC, ISO 8601),
+ * Header keys: format (2; 1 before the rod model's fields), id, trainee, case, started (UTC, ISO 8601),
  * start_ns (CLOCK_MONOTONIC of the first record's clock), period_ns,
  * version (endosimd's), record_size (sizeof(struct session_record)), and
  * the case's resolution: step_m, ring_vertices, segment_m.
@@ -42,7 +42,7 @@
 #include "endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 1u
+#define SESSION_FILE_FORMAT 2u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -59,10 +59,12 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 304 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 320 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
- * fields.h's tables; a field added goes at the end, before reserved (the
- * CSV's columns are in this order).
+ * fields.h's tables; a field added goes at the end (the CSV's columns are
+ * in this order), the header's record_size says how long a file's records
+ * are, and a reader takes the fields it knows: a shorter record's missing
+ * fields read as zero, a longer one's are ignored.
  */
 struct session_record {
 	uint64_t cycle;
@@ -105,11 +107,21 @@ struct session_record {
 	float scenario_time_s;
 	uint32_t latency_ns;
 	uint32_t compute_ns;
-	uint32_t reserved[2];     /* 0 */
+	/* format 2: the rod model (the haptics', struct endosim_rod_state);
+	   where format 1 had two reserved zero words, then its end */
+	float trans_rod_n;        /* N: the tube's reaction at the carriage */
+	float tube_rod_nm;        /* N m: its twisting moment there */
+	uint32_t model;           /* enum endosim_model */
+	uint32_t contacts;        /* tube segments the wall presses */
+	float wall_n;             /* N: the wall's normal forces, summed */
+	float friction_n;         /* N: the friction's, sizes summed */
 };
 
-_Static_assert(sizeof(struct session_record) == 304,
+_Static_assert(sizeof(struct session_record) == 320,
 	       "session_record: its size is part of the file format");
+
+/* Format 1's record: the fields up to compute_ns and two zero words. */
+#define SESSION_RECORD_SIZE_1 304u
 
 /* What a session's event is (struct session_event.kind). */
 enum session_event_kind {
@@ -215,8 +227,11 @@ struct session_file {
 
 /*
  * Reads PATH. 0, or -errno: -ENOENT, -EACCES, ... ; -EBADMSG when it is
- * not a session file (no magic or no header frame), -EPROTO for a record
- * size or format it does not know. Logs nothing: the caller says it.
+ * not a session file (no magic or no header frame), -EPROTO when its
+ * records are shorter than format 1's, of two sizes, or not the size its
+ * header says. A format-1 file's records read with the later fields
+ * zero; a later format's longer ones by their first fields. Logs nothing:
+ * the caller says it.
  */
 int session_file_read(const char *path, struct session_file *out);
 

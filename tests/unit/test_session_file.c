@@ -18,14 +18,15 @@
 #define RECORDS 20
 
 static char path[64];
-static const char header[] = "format=1\nid=7\ntrainee=A. Trainee\n"
-			     "record_size=304\n";
-#define HEADER_FRAME (12 + sizeof(header) - 1)
+static char header[128];
+#define HEADER_FRAME (12 + strlen(header))
 
 static int setup(void **state)
 {
 	(void)state;
 	snprintf(path, sizeof(path), "/tmp/test_session_file.%d", getpid());
+	snprintf(header, sizeof(header), "format=2\nid=7\ntrainee=A. Trainee\n"
+		 "record_size=%zu\n", sizeof(struct session_record));
 	return 0;
 }
 
@@ -193,6 +194,76 @@ static void test_damage_stops(void **state)
 	assert_int_equal(session_file_read("/nonexistent/x", &f), -ENOENT);
 }
 
+/* A file whose HEADER says HEAD and whose records are LENGTH bytes: the
+ * first FIELDS of a record like r(i), then zeros. Its records read back,
+ * or its error. */
+static int read_sized(const char *head, size_t length, size_t fields,
+		      struct session_file *f)
+{
+	int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+	unsigned char raw[512] = { 0 };
+
+	assert_true(fd >= 0 && length <= sizeof(raw));
+	assert_true(fields <= length && fields <= sizeof(struct session_record));
+	assert_int_equal(session_file_write_magic(fd), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_HEADER,
+						  head, strlen(head)), 0);
+	for (int i = 0; i < 3; i++) {
+		struct session_record r = {
+			.cycle = (uint64_t)i, .compute_ns = 7u + (uint32_t)i,
+			.trans_rod_n = 2.5f, .friction_n = 0.5f,
+		};
+
+		memcpy(raw, &r, fields);
+		assert_int_equal(session_file_write_frame(
+					 fd, SESSION_FRAME_RECORD, raw,
+					 (uint32_t)length), 0);
+	}
+	close(fd);
+	return session_file_read(path, f);
+}
+
+/*
+ * A file in format 1's layout (304-byte records, its last two words the
+ * zero reserved ones) reads with the fields added since zero; a later
+ * format's longer records by the fields this one knows; records shorter
+ * than format 1's, or not the size the header says, are refused.
+ */
+static void test_old_layout(void **state)
+{
+	const size_t v1 = offsetof(struct session_record, trans_rod_n);
+	const size_t all = sizeof(struct session_record);
+	struct session_file f;
+
+	(void)state;
+	/* format 1's reserved words are where the rod's forces went */
+	assert_int_equal(SESSION_RECORD_SIZE_1,
+			 offsetof(struct session_record, model));
+	assert_int_equal(read_sized("format=1\nrecord_size=304\n", 304, v1,
+				    &f), 0);
+	assert_int_equal(f.n_records, 3);
+	for (size_t i = 0; i < f.n_records; i++) {
+		assert_int_equal(f.records[i].cycle, i);
+		assert_int_equal(f.records[i].compute_ns, 7 + i);
+		assert_true(f.records[i].trans_rod_n == 0);
+		assert_true(f.records[i].friction_n == 0);
+	}
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=3\nrecord_size=336\n", 336, all,
+				    &f), 0);
+	assert_int_equal(f.records[2].compute_ns, 9);
+	assert_true(f.records[2].trans_rod_n == 2.5f);
+	assert_true(f.records[2].friction_n == 0.5f);
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
+	session_file_close(&f);
+	assert_int_equal(read_sized("record_size=304\n", 320, all, &f),
+			 -EPROTO);
+	assert_int_equal(read_sized("record_size=296\n", 296, v1, &f),
+			 -EPROTO);
+	assert_int_equal(read_sized("format=1\n", 296, v1, &f), -EPROTO);
+}
+
 /* A published state survives the round trip to float precision. */
 static void test_record_state(void **state)
 {
@@ -281,6 +352,7 @@ int main(void)
 		cmocka_unit_test(test_cut_everywhere),
 		cmocka_unit_test(test_damage_stops),
 		cmocka_unit_test(test_record_state),
+		cmocka_unit_test(test_old_layout),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
