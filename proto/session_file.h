@@ -23,8 +23,11 @@
  *                session_event and its text
  *   END     (6)  once, last, when the session stopped cleanly: the final
  *                metrics as "key=value\n" lines
+ *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
+ *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (2; 1 before the rod model's fields), id, trainee, case, started (UTC, ISO 8601),
+ * Header keys: format (2; 1 before the rod model), id, trainee, case,
+ * started (UTC, ISO 8601),
  * start_ns (CLOCK_MONOTONIC of the first record's clock), period_ns,
  * version (endosimd's), record_size (sizeof(struct session_record)), and
  * the case's resolution: step_m, ring_vertices, segment_m.
@@ -36,6 +39,7 @@
 #ifndef ENDOSIM_SESSION_FILE_H
 #define ENDOSIM_SESSION_FILE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -51,6 +55,7 @@ enum session_frame_type {
 	SESSION_FRAME_RECORD = 4,
 	SESSION_FRAME_EVENT = 5,
 	SESSION_FRAME_END = 6,
+	SESSION_FRAME_SHAPE = 7,
 };
 
 /* Largest payload a reader accepts (a case file, the configuration). */
@@ -160,6 +165,63 @@ void session_record_from_state(const struct endosim_state *in,
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out);
 
+/*
+ * The rod's shape at one cycle (a SHAPE frame), as the rod model published
+ * it (struct endosim_rod_state): the whole tube base to tip, its roll at
+ * each point, and the mobile colon's nodes, each span's in order (span
+ * 0's first). In the file its payload is the fields up to point (40
+ * bytes), then point[POINTS], roll[POINTS] and node[NODES]: 40 + 16
+ * POINTS + 12 NODES bytes, at most 5944; a later format may append to it.
+ * The records keep the rest (the contacts, the forces, bow_m).
+ */
+struct session_shape {
+	uint64_t cycle;           /* the record's it belongs to */
+	uint64_t stamp_ns;        /* that record's stamp_ns */
+	uint32_t points;          /* of point[] and roll[] */
+	uint32_t nodes;           /* of node[] */
+	uint32_t span_nodes[ENDOSIM_SPANS]; /* nodes per mobile span */
+	float point[ENDOSIM_ROD_POINTS][3]; /* m, base to tip */
+	float roll[ENDOSIM_ROD_POINTS];     /* rad */
+	float node[ENDOSIM_COLON_NODES][3]; /* m, each node's from rest */
+};
+
+#define SESSION_SHAPE_HZ 30 /* the least rate of SHAPE frames */
+
+/*
+ * The cycles from one SHAPE frame to the next for a force loop of
+ * PERIOD_NS: the most that keeps them at SESSION_SHAPE_HZ or more (33 at
+ * 1 kHz: 30.3 Hz), 1 for a loop slower than that.
+ */
+uint32_t session_shape_every(uint64_t period_ns);
+
+/*
+ * Whether the cycle ST published has a SHAPE frame: the rod model's every
+ * EVERY-th cycle (cycle 0 first). Never allocates; any thread.
+ */
+bool session_shape_due(const struct endosim_state *st, uint32_t every);
+
+/*
+ * OUT from one published state's rod (the counts capped at the arrays);
+ * only the elements in use are written. Never allocates; any thread.
+ */
+void session_shape_from_state(const struct endosim_state *in,
+			      struct session_shape *out);
+
+/*
+ * The inverse, for a replay: OUT's rod shape (points, roll, nodes, span
+ * nodes; the arrays' unused elements zero) and its scope.bow_m, each
+ * mobile span's largest node displacement, as the rod model publishes
+ * it. The rest of OUT is left as it was (a record's).
+ */
+void session_shape_to_state(const struct session_shape *in,
+			    struct endosim_state *out);
+
+/*
+ * S as a SHAPE frame's payload into OUT (sizeof(struct session_shape)
+ * bytes at least). Returns its length.
+ */
+uint32_t session_shape_pack(const struct session_shape *s, void *out);
+
 /* --- writing ---------------------------------------------------------- */
 
 /* What the HEADER frame says (see the keys above). */
@@ -220,6 +282,12 @@ struct session_file {
 		char *text;           /* NUL-terminated, maybe empty */
 	} *events;
 	size_t n_events;
+	struct session_file_shape {
+		uint64_t stamp_ns;
+		const unsigned char *payload; /* the SHAPE frame's */
+		uint32_t length;
+	} *shapes;                /* in the file's order: by time */
+	size_t n_shapes;
 	size_t bytes_read;        /* up to the end of the last good frame */
 	size_t bytes_ignored;     /* after it: a cut or damaged tail */
 	void *storage;
@@ -247,6 +315,14 @@ int session_text_get(const char *text, const char *key, char *out,
 
 /* The index of the last record at or before STAMP_NS (0 if none is). */
 size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns);
+
+/* The same among the SHAPE frames (0 if none is; none if no shapes). */
+size_t session_file_seek_shape(const struct session_file *f,
+			       uint64_t stamp_ns);
+
+/* SHAPE frame I of F (below n_shapes) into OUT. */
+void session_file_shape(const struct session_file *f, size_t i,
+			struct session_shape *out);
 
 /* CRC-32 (IEEE 802.3, reflected) of N bytes: zlib's crc32_z(). */
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n);
