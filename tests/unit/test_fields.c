@@ -62,10 +62,10 @@ static const struct {
 	AXIS(reserved, "padding"),
 	SCOPE(reserved, "padding"),
 	SCOPE(tube, "the shape (1.5 kB): the viewer's, from the shm"),
-	ROD(point, "the shape (3.9 kB): the viewer's, from the shm"),
-	ROD(roll, "the shape's roll: the viewer's, from the shm"),
-	ROD(node, "the colon's nodes: the viewer's, from the shm"),
-	ROD(span_nodes, "the nodes' spans: the viewer's, from the shm"),
+	ROD(point, "the shape (3.9 kB): the shm's, sessions' SHAPE frames"),
+	ROD(roll, "the shape's roll: the shm's, sessions' SHAPE frames"),
+	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
+	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
 #undef NOT
 #undef STATE
 #undef CAUSE
