@@ -614,6 +614,7 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	       sizeof(struct session_record));
 	memset(r->tap.shapes.records, 0, (r->tap.shapes.mask + 1) *
 	       sizeof(struct session_shape));
+	memset(&r->tap.shape, 0, sizeof(r->tap.shape));
 	/* the rig works without it: only `session start` will be refused */
 	e = sessiondir_prepare(cfg->session.directory);
 	if (e) {

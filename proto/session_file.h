@@ -196,7 +196,8 @@ uint32_t session_shape_every(uint64_t period_ns);
 
 /*
  * Whether the cycle ST published has a SHAPE frame: the rod model's every
- * EVERY-th cycle (cycle 0 first). Never allocates; any thread.
+ * EVERY-th cycle (cycle 0 first; EVERY: session_shape_every()'s, 1 or
+ * more). Never allocates; any thread.
  */
 bool session_shape_due(const struct endosim_state *st, uint32_t every);
 
