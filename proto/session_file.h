@@ -27,14 +27,16 @@
  *                (>= 30 Hz), among the records: struct session_shape
  *
  * Header keys: format (2; 1 before the rod model), id, trainee, case,
- * started (UTC, ISO 8601),
- * start_ns (CLOCK_MONOTONIC of the first record's clock), period_ns,
- * version (endosimd's), record_size (sizeof(struct session_record)), and
- * the case's resolution: step_m, ring_vertices, segment_m.
+ * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
+ * record's clock), period_ns, version (endosimd's), record_size
+ * (sizeof(struct session_record)), and the case's resolution: step_m,
+ * ring_vertices, segment_m.
  *
- * Threads: nothing here is for the force loop. session_file_write_*()
- * calls write(2) and may block; the reader allocates. Neither keeps state
- * between calls beyond its own struct.
+ * Threads: the file's functions are not for the force loop:
+ * session_file_write_*() calls write(2) and may block; the reader
+ * allocates. Neither keeps state between calls beyond its own struct.
+ * The conversions between a state and a record or a shape (and
+ * session_shape_due()) are the force loop's too: they never allocate.
  */
 #ifndef ENDOSIM_SESSION_FILE_H
 #define ENDOSIM_SESSION_FILE_H
