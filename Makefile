@@ -170,7 +170,8 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_model test_lod test_portal test_input test_timing \
 	     test_vessels test_metrics test_report test_course test_rod test_flex test_lumen test_clinic test_rodcourse
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
-	     notify_listen session_synth session_script session_report
+	     notify_listen session_synth session_script session_report \
+	     session_shapes
 BENCH_TOOLS = bench_colon bench_haptics
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
 	       fuzz_epos4 fuzz_session

@@ -83,6 +83,7 @@ struct reply_buf {
 	char error[256];
 	Endosim__ScopeStatus scope;
 	Endosim__HapticsStatus haptics;
+	Endosim__RodStatus rod;
 	struct endosim_state state; /* what the status reply points into */
 	Endosim__CaseListReply case_list;
 	Endosim__CaseEntry *case_entries;

@@ -90,6 +90,8 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	s->scope = &rb->scope;
 	fields_to_pb(&fields_haptics, &rb->haptics, &st->haptics);
 	s->haptics = &rb->haptics;
+	fields_to_pb(&fields_rod, &rb->rod, &st->rod);
+	s->rod = &rb->rod;
 	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;

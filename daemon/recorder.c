@@ -70,6 +70,8 @@ struct recorder {
 	uint32_t last_state, last_faults;
 	bool seen_record;
 	struct param batch[PARAMS];
+	struct session_shape shape;  /* popped, then packed into payload */
+	unsigned char payload[sizeof(struct session_shape)];
 };
 
 /* ------------------------------------------------------------ writing */
@@ -237,6 +239,8 @@ static void derive_events(struct recorder *r, const struct session_record *rec)
 static void drops_event(struct recorder *r)
 {
 	uint64_t d = atomic_load_explicit(&r->tap.drops, memory_order_relaxed);
+	uint64_t shapes = atomic_load_explicit(&r->tap.shape_drops,
+					       memory_order_relaxed);
 	struct session_event ev = {
 		.stamp_ns = mono_ns(), .kind = SESSION_EVENT_DROPS,
 		.axis = -1, .value = (double)d,
@@ -247,8 +251,8 @@ static void drops_event(struct recorder *r)
 		return;
 	}
 	log_ratelimited(&rl, LOG_WARNING, "session %" PRIu64 ": the disk is "
-			"too slow: %" PRIu64 " records dropped so far",
-			r->info.id, d);
+			"too slow: %" PRIu64 " records (and %" PRIu64
+			" shapes) dropped so far", r->info.id, d, shapes);
 	r->drops_written = d;
 	put_event(r, &ev, "");
 }
@@ -295,6 +299,11 @@ static void drain(struct recorder *r)
 		metrics_record(r->metrics, &rec);
 		put_frame(r, SESSION_FRAME_RECORD, &rec, sizeof(rec));
 		r->records++;
+	}
+	/* after their records, or those of the next drain */
+	while (spsc_pop(&r->tap.shapes, &r->shape)) {
+		put_frame(r, SESSION_FRAME_SHAPE, r->payload,
+			  session_shape_pack(&r->shape, r->payload));
 	}
 	drops_event(r);
 	now = mono_ns();
@@ -486,6 +495,7 @@ static int arm(struct recorder *r, int fd, const struct recorder_session *s,
 	r->throttle_bytes = 0;
 	r->n_params = 0;
 	atomic_store(&r->tap.drops, 0);
+	atomic_store(&r->tap.shape_drops, 0);
 	return 0;
 }
 
@@ -586,17 +596,25 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 {
 	struct recorder *r = calloc(1, sizeof(*r));
 	size_t cycles = (size_t)ceil(cfg->session.ring_s * cfg->loop.rate_hz);
+	uint32_t period = 1000000000u / (unsigned)cfg->loop.rate_hz;
+	uint32_t every = session_shape_every(period);
 	int e;
 
 	if (!r || !(r->buf = malloc(BUF_BYTES)) ||
-	    spsc_init(&r->tap.ring, cycles, sizeof(struct session_record))) {
+	    spsc_init(&r->tap.ring, cycles, sizeof(struct session_record)) ||
+	    spsc_init(&r->tap.shapes, cycles / every + 1,
+		      sizeof(struct session_shape))) {
 		log_err("recorder: out of memory");
 		recorder_destroy(r);
 		return NULL;
 	}
+	r->tap.shape_every = every;
 	/* touched now, so that the loop's first pushes do not fault pages */
 	memset(r->tap.ring.records, 0, (r->tap.ring.mask + 1) *
 	       sizeof(struct session_record));
+	memset(r->tap.shapes.records, 0, (r->tap.shapes.mask + 1) *
+	       sizeof(struct session_shape));
+	memset(&r->tap.shape, 0, sizeof(r->tap.shape));
 	/* the rig works without it: only `session start` will be refused */
 	e = sessiondir_prepare(cfg->session.directory);
 	if (e) {
@@ -610,7 +628,7 @@ struct recorder *recorder_create(const struct config *cfg, struct rig *rig,
 	r->rig = rig;
 	r->pub = pub;
 	r->daemon_start_ns = start_ns;
-	r->period_ns = (uint32_t)(1000000000u / (unsigned)cfg->loop.rate_hz);
+	r->period_ns = period;
 	r->fd = -1;
 	pthread_mutex_init(&r->lock, NULL);
 	pthread_cond_init(&r->changed, NULL);
@@ -662,6 +680,7 @@ void recorder_destroy(struct recorder *r)
 		pthread_cond_destroy(&r->changed);
 	}
 	spsc_free(&r->tap.ring);
+	spsc_free(&r->tap.shapes);
 	free(r->buf);
 	free(r);
 }

@@ -9,12 +9,17 @@
  *   force loop --session_tap_push()--> record ring (SPSC, [session]
  *   ring_s of cycles) --> recorder thread: metrics, events, frames
  *   gathered in a buffer, write(2) every ~100 ms or when full
+ *              (rod model) --> shape ring (as many seconds, a shape every
+ *   session_shape_every() cycles) --> recorder thread: SHAPE frames after
+ *   the records of the same drain
  *
  * The force loop's only part is the tap (sessiontap.h): while a session is
- * recording it converts the published state into a record and pushes it;
- * a full ring (a slow disk) drops the record and counts it. It never
- * waits, allocates or writes. The recorder writes a DROPS event whenever
- * that count grows, so a file says where it has gaps.
+ * recording it converts the published state into a record and pushes it
+ * (and the rod's shape when one is due); a full ring (a slow disk) drops
+ * the record or the shape and counts it. It never waits, allocates or
+ * writes. The recorder writes a DROPS event whenever the records' count
+ * grows, so a file says where it has gaps (a shape's gap shows in the
+ * SHAPE frames' cycles).
  *
  * The recorder derives STATE and FAULT events from the records' state and
  * fault bits, takes PARAM events from the control thread

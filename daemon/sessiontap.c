@@ -1,7 +1,13 @@
 /* sessiontap.c - see sessiontap.h. */
 #include "sessiontap.h"
 
-#include "session_file.h"
+/* ITEM into RING, or counted in DROPS. */
+static void push(struct spsc *ring, const void *item, _Atomic uint64_t *drops)
+{
+	if (!spsc_push(ring, item)) {
+		atomic_fetch_add_explicit(drops, 1, memory_order_relaxed);
+	}
+}
 
 void session_tap_push(struct session_tap *t, const struct endosim_state *st)
 {
@@ -9,9 +15,10 @@ void session_tap_push(struct session_tap *t, const struct endosim_state *st)
 
 	if (atomic_load_explicit(&t->recording, memory_order_acquire)) {
 		session_record_from_state(st, &rec);
-		if (!spsc_push(&t->ring, &rec)) {
-			atomic_fetch_add_explicit(&t->drops, 1,
-						  memory_order_relaxed);
+		push(&t->ring, &rec, &t->drops);
+		if (session_shape_due(st, t->shape_every)) {
+			session_shape_from_state(st, &t->shape);
+			push(&t->shapes, &t->shape, &t->shape_drops);
 		}
 	}
 	/* after the push: a recorder that saw this count is past it */

@@ -58,6 +58,8 @@ _Static_assert(ENDOSIM_SPANS == 4, "fields: a bow column per span");
 _Static_assert(ENDOSIM_AXES == 4, "fields: an axis' columns per axis");
 _Static_assert(sizeof(Endosim__DaemonState) == sizeof(uint32_t),
 	       "fields: the state is a uint32_t on the wire too");
+_Static_assert(sizeof(Endosim__HapticsModel) == sizeof(uint32_t),
+	       "fields: the model is a uint32_t on the wire too");
 
 /* --- one latched fault: its cause's values; the daemon says the rest -- */
 #define STRUCT struct endosim_fault_cause
@@ -146,20 +148,41 @@ static const struct fields_field haptics[] = {
 	REC(trans_contact_n, FIELDS_DOUBLE),
 	REC(trans_friction_n, FIELDS_DOUBLE),
 	REC(trans_loop_n, FIELDS_DOUBLE),
-	VAL(trans_rod_n, FIELDS_DOUBLE),
+	REC(trans_rod_n, FIELDS_DOUBLE),
 	VEC_REC(wheel_contact_nm, UD_LR("wheel_contact", "nm")),
 	VEC_REC(wheel_tension_nm, UD_LR("wheel_tension", "nm")),
 	VEC_REC(wheel_elastic_nm, UD_LR("wheel_elastic", "nm")),
 	VEC(wire_dl_m),
 	REC(tube_contact_nm, FIELDS_DOUBLE),
 	REC(tube_friction_nm, FIELDS_DOUBLE),
-	VAL(tube_rod_nm, FIELDS_DOUBLE),
+	REC(tube_rod_nm, FIELDS_DOUBLE),
 	VEC(damping),
 	VAL(passivity_energy_j, FIELDS_DOUBLE),
 	VAL(passivity_damping, FIELDS_DOUBLE),
 };
 const struct fields_table fields_haptics =
 	TABLE(haptics, endosim__haptics_status__descriptor, haptics, 1);
+#undef STRUCT
+#undef MESSAGE
+
+/* --- the rod model: its contacts and counts; the shape stays in the shm */
+#define STRUCT struct endosim_rod_state
+#define MESSAGE Endosim__RodStatus
+/* recorded F, its CSV column said to be the rod's */
+#define ROD(f, kind, names)                                                  \
+	{ #f, kind, 1, S(f), NONE, P(f), NONE, R(f), COLUMNS("rod_" #f),     \
+	  names, NULL }
+static const struct fields_field rod[] = {
+	ROD(model, FIELDS_NAMED, names_model),
+	ROD(contacts, FIELDS_UINT, NULL),
+	ROD(wall_n, FIELDS_DOUBLE, NULL),
+	ROD(friction_n, FIELDS_DOUBLE, NULL),
+	VAL(points, FIELDS_UINT),
+	VAL(nodes, FIELDS_UINT),
+};
+const struct fields_table fields_rod =
+	TABLE(rod, endosim__rod_status__descriptor, rod, 1);
+#undef ROD
 #undef STRUCT
 #undef MESSAGE
 
@@ -192,6 +215,7 @@ static const struct fields_field status[] = {
 	ROW("case", FIELDS_STRING, NONE, P(case_name), NONE),
 	ONE(scope, &fields_scope),
 	ONE(haptics, &fields_haptics),
+	ONE(rod, &fields_rod),
 	MANY(axes, FIELDS_MAP, &fields_axis),
 	/* recorded, not on the wire */
 	KEPT(latency_ns, FIELDS_UINT),

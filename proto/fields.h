@@ -16,8 +16,8 @@
  * The tables: fields_status (struct endosim_state's own fields and the
  * safety monitors' that the wire carries: StatusReply), and, reached from
  * it by its sub-message rows, fields_fault (a latched fault's cause:
- * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus) and
- * fields_axis (each axis: AxisStatus). A table's rows are in the order of
+ * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus),
+ * fields_rod (RodStatus) and fields_axis (each axis: AxisStatus). A table's rows are in the order of
  * the message's JSON.
  *
  * Adding a field to the published state:
@@ -26,9 +26,10 @@
  *   3. ONE row in its struct's table in fields.c, where its JSON key goes
  *      (the macros there: a value, a vector, ...);
  *   and, only for a field sessions keep, the field in struct
- *   session_record (at its end, before reserved: the record's layout is
- *   the file format; the CSV's columns are in the record's order) and the
- *   row's record offset (with its columns for a vector or an axis' field).
+ *   session_record (at its end: the record's layout is the file format,
+ *   whose files already written read with it zero; the CSV's columns are
+ *   in the record's order) and the row's record offset (with its columns
+ *   for a vector or an axis' field).
  * That is all: the reply, endoctl's JSON, the record and the CSV follow.
  * A field of the state that the wire does not carry and no session keeps
  * is named in tests/unit/test_fields.c's list of such fields, with why:
@@ -102,6 +103,7 @@ extern const struct fields_table fields_status; /* the root */
 extern const struct fields_table fields_fault;
 extern const struct fields_table fields_scope;
 extern const struct fields_table fields_haptics;
+extern const struct fields_table fields_rod;
 extern const struct fields_table fields_axis;
 
 /*

@@ -17,6 +17,11 @@ static const char *const axis_names[ENDOSIM_AXES] = {
 	"insertion", "roll", "wheel_ud", "wheel_lr",
 };
 
+static const char *const model_names[] = {
+	[ENDOSIM_MODEL_PAPER] = "paper",
+	[ENDOSIM_MODEL_ROD] = "rod",
+};
+
 static const char *const fault_names[] = {
 	"drive", "drive-gone", "stale-feedback", "bus-error",
 	"overrun-budget", "travel", "runaway", "saturation",
@@ -53,6 +58,11 @@ int names_axis_find(const char *name)
 		}
 	}
 	return -1;
+}
+
+const char *names_model(uint32_t model)
+{
+	return model < COUNT(model_names) ? model_names[model] : "?";
 }
 
 const char *names_drive_status(uint32_t status)

@@ -22,6 +22,9 @@ const char *names_axis_force_unit(int axis);
 /* Index of the axis called NAME, or -1. */
 int names_axis_find(const char *name);
 
+/* "paper", "rod": [haptics] model's words (enum endosim_model). */
+const char *names_model(uint32_t model);
+
 /*
  * One word for an axis' drive status bits (enum endosim_drive_status), the
  * worst first: "gone", "fault", "bus-error", "on" (enabled), "off".

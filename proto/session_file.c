@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -36,6 +37,142 @@ void session_record_to_state(const struct session_record *in,
 		out->axis[a].feedback_ns = in->stamp_ns;
 	}
 }
+
+/* --- the rod's shape ---------------------------------------------------- */
+
+#define SHAPE_HEAD offsetof(struct session_shape, point)
+
+_Static_assert(SHAPE_HEAD == 40, "session_shape: its head is the format");
+
+uint32_t session_shape_every(uint64_t period_ns)
+{
+	uint64_t every = period_ns ? 1000000000ull /
+					     (SESSION_SHAPE_HZ * period_ns)
+				   : 1;
+
+	return every > 1 ? (uint32_t)every : 1;
+}
+
+bool session_shape_due(const struct endosim_state *st, uint32_t every)
+{
+	return st->rod.model == ENDOSIM_MODEL_ROD && st->cycle % every == 0;
+}
+
+static uint32_t at_most(uint32_t n, uint32_t max)
+{
+	return n < max ? n : max;
+}
+
+void session_shape_from_state(const struct endosim_state *in,
+			      struct session_shape *out)
+{
+	const struct endosim_rod_state *r = &in->rod;
+
+	out->cycle = in->cycle;
+	out->stamp_ns = in->stamp_ns;
+	out->points = at_most(r->points, ENDOSIM_ROD_POINTS);
+	out->nodes = at_most(r->nodes, ENDOSIM_COLON_NODES);
+	memcpy(out->span_nodes, r->span_nodes, sizeof(out->span_nodes));
+	memcpy(out->point, r->point, out->points * sizeof(out->point[0]));
+	memcpy(out->roll, r->roll, out->points * sizeof(out->roll[0]));
+	memcpy(out->node, r->node, out->nodes * sizeof(out->node[0]));
+}
+
+/* The largest of nodes [FIRST, FIRST + N) of S's displacements, m. */
+static double largest(const struct session_shape *s, uint32_t first,
+		      uint32_t n)
+{
+	double most = 0;
+
+	for (uint32_t i = first; i < first + n && i < s->nodes; i++) {
+		const float *y = s->node[i];
+		double d = sqrt((double)y[0] * y[0] + (double)y[1] * y[1] +
+				(double)y[2] * y[2]);
+
+		most = d > most ? d : most;
+	}
+	return most;
+}
+
+void session_shape_to_state(const struct session_shape *in,
+			    struct endosim_state *out)
+{
+	struct endosim_rod_state *r = &out->rod;
+	uint32_t first = 0;
+
+	r->points = at_most(in->points, ENDOSIM_ROD_POINTS);
+	r->nodes = at_most(in->nodes, ENDOSIM_COLON_NODES);
+	memset(r->point, 0, sizeof(r->point));
+	memset(r->roll, 0, sizeof(r->roll));
+	memset(r->node, 0, sizeof(r->node));
+	memcpy(r->point, in->point, r->points * sizeof(r->point[0]));
+	memcpy(r->roll, in->roll, r->points * sizeof(r->roll[0]));
+	memcpy(r->node, in->node, r->nodes * sizeof(r->node[0]));
+	memcpy(r->span_nodes, in->span_nodes, sizeof(r->span_nodes));
+	for (int k = 0; k < ENDOSIM_SPANS; k++) {
+		out->scope.bow_m[k] = largest(in, first, in->span_nodes[k]);
+		first += in->span_nodes[k];
+	}
+}
+
+/* The payload's length for S's counts. */
+static size_t shape_length(const struct session_shape *s)
+{
+	return SHAPE_HEAD + s->points * (sizeof(s->point[0]) +
+					 sizeof(s->roll[0])) +
+	       s->nodes * sizeof(s->node[0]);
+}
+
+uint32_t session_shape_pack(const struct session_shape *s, void *out)
+{
+	unsigned char *p = out;
+
+	memcpy(p, s, SHAPE_HEAD);
+	p += SHAPE_HEAD;
+	memcpy(p, s->point, s->points * sizeof(s->point[0]));
+	p += s->points * sizeof(s->point[0]);
+	memcpy(p, s->roll, s->points * sizeof(s->roll[0]));
+	p += s->points * sizeof(s->roll[0]);
+	memcpy(p, s->node, s->nodes * sizeof(s->node[0]));
+	return (uint32_t)shape_length(s);
+}
+
+/*
+ * The head of a SHAPE frame's PAYLOAD (LENGTH bytes) into OUT, when its
+ * counts fit the arrays, the spans' nodes the nodes, and the arrays the
+ * payload.
+ */
+static bool shape_head(const unsigned char *payload, size_t length,
+		       struct session_shape *out)
+{
+	uint32_t spans = 0;
+
+	if (length < SHAPE_HEAD) {
+		return false;
+	}
+	memcpy(out, payload, SHAPE_HEAD);
+	for (int k = 0; k < ENDOSIM_SPANS; k++) {
+		spans += at_most(out->span_nodes[k], ENDOSIM_COLON_NODES);
+	}
+	return out->points <= ENDOSIM_ROD_POINTS &&
+	       out->nodes <= ENDOSIM_COLON_NODES && spans <= out->nodes &&
+	       shape_length(out) <= length;
+}
+
+/* A good SHAPE payload (shape_head()) into OUT. */
+static void shape_unpack(const unsigned char *p, size_t length,
+			 struct session_shape *out)
+{
+	shape_head(p, length, out);
+	p += SHAPE_HEAD;
+	memcpy(out->point, p, out->points * sizeof(out->point[0]));
+	p += out->points * sizeof(out->point[0]);
+	memcpy(out->roll, p, out->points * sizeof(out->roll[0]));
+	p += out->points * sizeof(out->roll[0]);
+	memcpy(out->node, p, out->nodes * sizeof(out->node[0]));
+}
+
+/* --- framing ------------------------------------------------------------ */
 
 static void put_u32(unsigned char *p, uint32_t v)
 {
@@ -262,15 +399,177 @@ static char *text_copy(char **dst, char *room, const unsigned char *src,
 	return room + n + 1;
 }
 
+/* A record of LENGTH bytes, of this format or another, as this one's. */
+static void record_copy(struct session_record *rec, const void *payload,
+			size_t length)
+{
+	size_t n = length < sizeof(*rec) ? length : sizeof(*rec);
+
+	memset(rec, 0, sizeof(*rec));
+	memcpy(rec, payload, n);
+}
+
+/*
+ * Whether a file whose records are LENGTH bytes long (0: none) and whose
+ * HEADER says their size can be read: format 1's records or longer.
+ */
+static bool record_size_ok(const char *header, size_t length)
+{
+	char size[32];
+	unsigned long said;
+
+	if (session_text_get(header, "record_size", size, sizeof(size))) {
+		return length == 0 || length >= SESSION_RECORD_SIZE_1;
+	}
+	said = strtoul(size, NULL, 10);
+	return said >= SESSION_RECORD_SIZE_1 && (!length || length == said);
+}
+
+/* What a file holds: a first pass over its good frames. */
+struct tally {
+	size_t records, events, shapes;
+	size_t record_length;     /* the records' (0: none) */
+	size_t text;              /* the texts' bytes and their NULs */
+	size_t shape_bytes;       /* the SHAPE frames' payloads */
+	size_t good;              /* where the good frames end */
+};
+
+static bool is_text(uint32_t type)
+{
+	return type == SESSION_FRAME_HEADER || type == SESSION_FRAME_CONFIG ||
+	       type == SESSION_FRAME_CASE || type == SESSION_FRAME_END;
+}
+
+/* Counts the frames of DATA (LEN bytes) after the magic. 0, or -EPROTO
+ * for records of two sizes. */
+static int tally(const unsigned char *data, size_t len, struct tally *t)
+{
+	const unsigned char *payload;
+	struct session_shape head;
+	uint32_t type, length;
+	size_t off;
+
+	memset(t, 0, sizeof(*t));
+	for (off = 8; next_frame(data, len, off, &type, &payload, &length);
+	     off += FRAME_OVERHEAD + length) {
+		if (type == SESSION_FRAME_RECORD) {
+			if (t->records && length != t->record_length) {
+				return -EPROTO;
+			}
+			t->record_length = length;
+			t->records++;
+		} else if (type == SESSION_FRAME_EVENT) {
+			if (length < sizeof(struct session_event)) {
+				break; /* damaged: stop as at a cut */
+			}
+			t->events++;
+			t->text += length - sizeof(struct session_event) + 1;
+		} else if (type == SESSION_FRAME_SHAPE) {
+			if (!shape_head(payload, length, &head)) {
+				break; /* damaged: stop as at a cut */
+			}
+			t->shapes++;
+			t->shape_bytes += length;
+		} else if (is_text(type)) {
+			t->text += (size_t)length + 1;
+		}
+	}
+	t->good = off;
+	return 0;
+}
+
+/* Where a text frame of TYPE goes in OUT; NULL: nowhere (not a text, or
+ * a header after the first). */
+static char **text_of(struct session_file *out, uint32_t type)
+{
+	switch (type) {
+	case SESSION_FRAME_HEADER:
+		return out->header ? NULL : &out->header;
+	case SESSION_FRAME_CONFIG:
+		return &out->config;
+	case SESSION_FRAME_CASE:
+		return &out->case_text;
+	case SESSION_FRAME_END:
+		return &out->end;
+	default:
+		return NULL;
+	}
+}
+
+/* Where the next text and SHAPE payload go in the storage. */
+struct rooms {
+	char *text;
+	unsigned char *shape;
+};
+
+/* One good frame into OUT. */
+static void take(struct session_file *out, uint32_t type,
+		 const unsigned char *payload, uint32_t length,
+		 struct rooms *room)
+{
+	struct session_file_event *e;
+	struct session_file_shape *sh;
+	char **text = text_of(out, type);
+
+	switch (type) {
+	case SESSION_FRAME_RECORD:
+		record_copy(&out->records[out->n_records++], payload, length);
+		break;
+	case SESSION_FRAME_EVENT:
+		e = &out->events[out->n_events++];
+		memcpy(&e->ev, payload, sizeof(e->ev));
+		room->text = text_copy(&e->text, room->text,
+				       payload + sizeof(e->ev),
+				       length - (uint32_t)sizeof(e->ev));
+		break;
+	case SESSION_FRAME_SHAPE:
+		sh = &out->shapes[out->n_shapes++];
+		memcpy(&sh->stamp_ns, payload +
+		       offsetof(struct session_shape, stamp_ns),
+		       sizeof(sh->stamp_ns));
+		memcpy(room->shape, payload, length);
+		sh->payload = room->shape;
+		sh->length = length;
+		room->shape += length;
+		break;
+	default:
+		if (text) {
+			room->text = text_copy(text, room->text, payload,
+					       length);
+		}
+		break; /* or a type of a later format: skipped */
+	}
+}
+
+/* OUT's arrays in one allocation for what T counted; -ENOMEM. */
+static int place(struct session_file *out, const struct tally *t,
+		 struct rooms *room)
+{
+	unsigned char *store = malloc(
+		t->records * sizeof(struct session_record) +
+		t->events * sizeof(struct session_file_event) +
+		t->shapes * sizeof(struct session_file_shape) +
+		t->shape_bytes + t->text + 1);
+
+	if (!store) {
+		return -ENOMEM;
+	}
+	out->storage = store;
+	out->records = (struct session_record *)store;
+	out->events = (struct session_file_event *)(out->records + t->records);
+	out->shapes = (struct session_file_shape *)(out->events + t->events);
+	room->shape = (unsigned char *)(out->shapes + t->shapes);
+	room->text = (char *)room->shape + t->shape_bytes;
+	return 0;
+}
+
 int session_file_read(const char *path, struct session_file *out)
 {
 	struct input in;
-	const unsigned char *data;
-	size_t len, off, n_rec = 0, n_ev = 0, text = 0, good;
 	const unsigned char *payload;
 	uint32_t type, length;
-	char size[32], *room;
-	unsigned char *store;
+	struct tally t;
+	struct rooms room;
 	int fd, r;
 
 	memset(out, 0, sizeof(*out));
@@ -283,95 +582,29 @@ int session_file_read(const char *path, struct session_file *out)
 	if (r) {
 		return r;
 	}
-	data = in.data;
-	len = in.len;
-	if (len < 8 || memcmp(data, SESSION_FILE_MAGIC, 8) != 0 ||
-	    !next_frame(data, len, 8, &type, &payload, &length) ||
+	if (in.len < 8 || memcmp(in.data, SESSION_FILE_MAGIC, 8) != 0 ||
+	    !next_frame(in.data, in.len, 8, &type, &payload, &length) ||
 	    type != SESSION_FRAME_HEADER) {
 		unload(&in);
 		return -EBADMSG;
 	}
-	/* first pass: count, and find where the good frames end */
-	for (off = 8; next_frame(data, len, off, &type, &payload, &length);
+	r = tally(in.data, in.len, &t);
+	r = r ? r : place(out, &t, &room);
+	for (size_t off = 8; !r && off < t.good;
 	     off += FRAME_OVERHEAD + length) {
-		if (type == SESSION_FRAME_RECORD) {
-			if (length != sizeof(struct session_record)) {
-				unload(&in);
-				return -EPROTO;
-			}
-			n_rec++;
-		} else if (type == SESSION_FRAME_EVENT) {
-			if (length < sizeof(struct session_event)) {
-				break; /* damaged: stop as at a cut */
-			}
-			n_ev++;
-			text += length - sizeof(struct session_event) + 1;
-		} else if (type == SESSION_FRAME_HEADER ||
-			   type == SESSION_FRAME_CONFIG ||
-			   type == SESSION_FRAME_CASE ||
-			   type == SESSION_FRAME_END) {
-			text += (size_t)length + 1;
-		}
+		next_frame(in.data, in.len, off, &type, &payload, &length);
+		take(out, type, payload, length, &room);
 	}
-	good = off;
-	store = malloc(n_rec * sizeof(struct session_record) +
-		       n_ev * sizeof(struct session_file_event) + text + 1);
-	if (!store) {
-		unload(&in);
-		return -ENOMEM;
-	}
-	out->storage = store;
-	out->records = (struct session_record *)store;
-	out->events = (struct session_file_event *)
-		(store + n_rec * sizeof(struct session_record));
-	room = (char *)(out->events + n_ev);
-	for (off = 8; off < good; off += FRAME_OVERHEAD + length) {
-		next_frame(data, len, off, &type, &payload, &length);
-		switch (type) {
-		case SESSION_FRAME_RECORD:
-			memcpy(&out->records[out->n_records++], payload,
-			       length);
-			break;
-		case SESSION_FRAME_EVENT: {
-			struct session_file_event *e =
-				&out->events[out->n_events++];
-
-			memcpy(&e->ev, payload, sizeof(e->ev));
-			room = text_copy(&e->text, room,
-					 payload + sizeof(e->ev),
-					 length - (uint32_t)sizeof(e->ev));
-			break;
-		}
-		case SESSION_FRAME_HEADER:
-			if (!out->header) {
-				room = text_copy(&out->header, room, payload,
-						 length);
-			}
-			break;
-		case SESSION_FRAME_CONFIG:
-			room = text_copy(&out->config, room, payload, length);
-			break;
-		case SESSION_FRAME_CASE:
-			room = text_copy(&out->case_text, room, payload,
-					 length);
-			break;
-		case SESSION_FRAME_END:
-			room = text_copy(&out->end, room, payload, length);
-			break;
-		default:
-			break; /* a type of a later format: skipped */
-		}
-	}
-	out->bytes_read = good;
-	out->bytes_ignored = len - good;
+	out->bytes_read = t.good;
+	out->bytes_ignored = in.len - t.good;
 	unload(&in);
-	if (session_text_get(out->header, "record_size", size,
-			     sizeof(size)) == 0 &&
-	    strtoul(size, NULL, 10) != sizeof(struct session_record)) {
-		session_file_close(out);
-		return -EPROTO;
+	if (!r && !record_size_ok(out->header, t.record_length)) {
+		r = -EPROTO;
 	}
-	return 0;
+	if (r) {
+		session_file_close(out);
+	}
+	return r;
 }
 
 void session_file_close(struct session_file *f)
@@ -407,19 +640,47 @@ int session_text_get(const char *text, const char *key, char *out,
 	return -ENOENT;
 }
 
-size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns)
+/*
+ * The last of N items from BASE, SIZE bytes apart, whose time stamp (a
+ * uint64_t STAMP bytes into each) is at or before STAMP_NS: 0 if none is.
+ */
+static size_t last_at(const void *base, size_t n, size_t size, size_t stamp,
+		      uint64_t stamp_ns)
 {
-	size_t lo = 0, hi = f->n_records;
+	const unsigned char *p = base;
+	size_t lo = 0, hi = n;
 
-	/* the first record after STAMP_NS, then one back */
+	/* the first item after STAMP_NS, then one back */
 	while (lo < hi) {
 		size_t mid = lo + (hi - lo) / 2;
+		uint64_t t;
 
-		if (f->records[mid].stamp_ns <= stamp_ns) {
+		memcpy(&t, p + mid * size + stamp, sizeof(t));
+		if (t <= stamp_ns) {
 			lo = mid + 1;
 		} else {
 			hi = mid;
 		}
 	}
 	return lo ? lo - 1 : 0;
+}
+
+size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns)
+{
+	return last_at(f->records, f->n_records, sizeof(f->records[0]),
+		       offsetof(struct session_record, stamp_ns), stamp_ns);
+}
+
+size_t session_file_seek_shape(const struct session_file *f,
+			       uint64_t stamp_ns)
+{
+	return last_at(f->shapes, f->n_shapes, sizeof(f->shapes[0]),
+		       offsetof(struct session_file_shape, stamp_ns),
+		       stamp_ns);
+}
+
+void session_file_shape(const struct session_file *f, size_t i,
+			struct session_shape *out)
+{
+	shape_unpack(f->shapes[i].payload, f->shapes[i].length, out);
 }

@@ -23,26 +23,32 @@
  *                session_event and its text
  *   END     (6)  once, last, when the session stopped cleanly: the final
  *                metrics as "key=value\n" lines
+ *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
+ *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (1), id, trainee, case, started (UTC, ISO 8601),
- * start_ns (CLOCK_MONOTONIC of the first record's clock), period_ns,
- * version (endosimd's), record_size (sizeof(struct session_record)), and
- * the case's resolution: step_m, ring_vertices, segment_m.
+ * Header keys: format (2; 1 before the rod model), id, trainee, case,
+ * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
+ * record's clock), period_ns, version (endosimd's), record_size
+ * (sizeof(struct session_record)), and the case's resolution: step_m,
+ * ring_vertices, segment_m.
  *
- * Threads: nothing here is for the force loop. session_file_write_*()
- * calls write(2) and may block; the reader allocates. Neither keeps state
- * between calls beyond its own struct.
+ * Threads: the file's functions are not for the force loop:
+ * session_file_write_*() calls write(2) and may block; the reader
+ * allocates. Neither keeps state between calls beyond its own struct.
+ * The conversions between a state and a record or a shape (and
+ * session_shape_due()) are the force loop's too: they never allocate.
  */
 #ifndef ENDOSIM_SESSION_FILE_H
 #define ENDOSIM_SESSION_FILE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 1u
+#define SESSION_FILE_FORMAT 2u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -51,6 +57,7 @@ enum session_frame_type {
 	SESSION_FRAME_RECORD = 4,
 	SESSION_FRAME_EVENT = 5,
 	SESSION_FRAME_END = 6,
+	SESSION_FRAME_SHAPE = 7,
 };
 
 /* Largest payload a reader accepts (a case file, the configuration). */
@@ -59,10 +66,12 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 304 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 320 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
- * fields.h's tables; a field added goes at the end, before reserved (the
- * CSV's columns are in this order).
+ * fields.h's tables; a field added goes at the end (the CSV's columns are
+ * in this order), the header's record_size says how long a file's records
+ * are, and a reader takes the fields it knows: a shorter record's missing
+ * fields read as zero, a longer one's are ignored.
  */
 struct session_record {
 	uint64_t cycle;
@@ -105,11 +114,21 @@ struct session_record {
 	float scenario_time_s;
 	uint32_t latency_ns;
 	uint32_t compute_ns;
-	uint32_t reserved[2];     /* 0 */
+	/* format 2: the rod model (the haptics', struct endosim_rod_state);
+	   where format 1 had two reserved zero words, then its end */
+	float trans_rod_n;        /* N: the tube's reaction at the carriage */
+	float tube_rod_nm;        /* N m: its twisting moment there */
+	uint32_t model;           /* enum endosim_model */
+	uint32_t contacts;        /* tube segments the wall presses */
+	float wall_n;             /* N: the wall's normal forces, summed */
+	float friction_n;         /* N: the friction's, sizes summed */
 };
 
-_Static_assert(sizeof(struct session_record) == 304,
+_Static_assert(sizeof(struct session_record) == 320,
 	       "session_record: its size is part of the file format");
+
+/* Format 1's record: the fields up to compute_ns and two zero words. */
+#define SESSION_RECORD_SIZE_1 304u
 
 /* What a session's event is (struct session_event.kind). */
 enum session_event_kind {
@@ -147,6 +166,64 @@ void session_record_from_state(const struct endosim_state *in,
  */
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out);
+
+/*
+ * The rod's shape at one cycle (a SHAPE frame), as the rod model published
+ * it (struct endosim_rod_state): the whole tube base to tip, its roll at
+ * each point, and the mobile colon's nodes, each span's in order (span
+ * 0's first). In the file its payload is the fields up to point (40
+ * bytes), then point[POINTS], roll[POINTS] and node[NODES]: 40 + 16
+ * POINTS + 12 NODES bytes, at most 5944; a later format may append to it.
+ * The records keep the rest (the contacts, the forces, bow_m).
+ */
+struct session_shape {
+	uint64_t cycle;           /* the record's it belongs to */
+	uint64_t stamp_ns;        /* that record's stamp_ns */
+	uint32_t points;          /* of point[] and roll[] */
+	uint32_t nodes;           /* of node[] */
+	uint32_t span_nodes[ENDOSIM_SPANS]; /* nodes per mobile span */
+	float point[ENDOSIM_ROD_POINTS][3]; /* m, base to tip */
+	float roll[ENDOSIM_ROD_POINTS];     /* rad */
+	float node[ENDOSIM_COLON_NODES][3]; /* m, each node's from rest */
+};
+
+#define SESSION_SHAPE_HZ 30 /* the least rate of SHAPE frames */
+
+/*
+ * The cycles from one SHAPE frame to the next for a force loop of
+ * PERIOD_NS: the most that keeps them at SESSION_SHAPE_HZ or more (33 at
+ * 1 kHz: 30.3 Hz), 1 for a loop slower than that.
+ */
+uint32_t session_shape_every(uint64_t period_ns);
+
+/*
+ * Whether the cycle ST published has a SHAPE frame: the rod model's every
+ * EVERY-th cycle (cycle 0 first; EVERY: session_shape_every()'s, 1 or
+ * more). Never allocates; any thread.
+ */
+bool session_shape_due(const struct endosim_state *st, uint32_t every);
+
+/*
+ * OUT from one published state's rod (the counts capped at the arrays);
+ * only the elements in use are written. Never allocates; any thread.
+ */
+void session_shape_from_state(const struct endosim_state *in,
+			      struct session_shape *out);
+
+/*
+ * The inverse, for a replay: OUT's rod shape (points, roll, nodes, span
+ * nodes; the arrays' unused elements zero) and its scope.bow_m, each
+ * mobile span's largest node displacement, as the rod model publishes
+ * it. The rest of OUT is left as it was (a record's).
+ */
+void session_shape_to_state(const struct session_shape *in,
+			    struct endosim_state *out);
+
+/*
+ * S as a SHAPE frame's payload into OUT (sizeof(struct session_shape)
+ * bytes at least). Returns its length.
+ */
+uint32_t session_shape_pack(const struct session_shape *s, void *out);
 
 /* --- writing ---------------------------------------------------------- */
 
@@ -208,6 +285,12 @@ struct session_file {
 		char *text;           /* NUL-terminated, maybe empty */
 	} *events;
 	size_t n_events;
+	struct session_file_shape {
+		uint64_t stamp_ns;
+		const unsigned char *payload; /* the SHAPE frame's */
+		uint32_t length;
+	} *shapes;                /* in the file's order: by time */
+	size_t n_shapes;
 	size_t bytes_read;        /* up to the end of the last good frame */
 	size_t bytes_ignored;     /* after it: a cut or damaged tail */
 	void *storage;
@@ -215,8 +298,11 @@ struct session_file {
 
 /*
  * Reads PATH. 0, or -errno: -ENOENT, -EACCES, ... ; -EBADMSG when it is
- * not a session file (no magic or no header frame), -EPROTO for a record
- * size or format it does not know. Logs nothing: the caller says it.
+ * not a session file (no magic or no header frame), -EPROTO when its
+ * records are shorter than format 1's, of two sizes, or not the size its
+ * header says. A format-1 file's records read with the later fields
+ * zero; a later format's longer ones by their first fields. Logs nothing:
+ * the caller says it.
  */
 int session_file_read(const char *path, struct session_file *out);
 
@@ -232,6 +318,14 @@ int session_text_get(const char *text, const char *key, char *out,
 
 /* The index of the last record at or before STAMP_NS (0 if none is). */
 size_t session_file_seek(const struct session_file *f, uint64_t stamp_ns);
+
+/* The same among the SHAPE frames (0 if none is; none if no shapes). */
+size_t session_file_seek_shape(const struct session_file *f,
+			       uint64_t stamp_ns);
+
+/* SHAPE frame I of F (below n_shapes) into OUT. */
+void session_file_shape(const struct session_file *f, size_t i,
+			struct session_shape *out);
 
 /* CRC-32 (IEEE 802.3, reflected) of N bytes: zlib's crc32_z(). */
 uint32_t session_crc32(uint32_t crc, const void *data, size_t n);

@@ -56,15 +56,39 @@ static void haptics(FILE *f, const char *prefix,
 		h->penetration_m, prefix, h->contact);
 }
 
-static void tube(FILE *f, const char *prefix,
-		 const struct endosim_scope_state *sc)
+/* KEY=x,y,z;x,y,z... for N points. */
+static void points(FILE *f, const char *prefix, const char *key,
+		   const float (*p)[3], uint32_t n)
 {
-	fprintf(f, "%stube=", prefix);
-	for (int i = 0; i < ENDOSIM_TUBE_POINTS; i++) {
-		fprintf(f, "%s%.9g,%.9g,%.9g", i ? ";" : "", sc->tube[i][0],
-			sc->tube[i][1], sc->tube[i][2]);
+	fprintf(f, "%s%s=", prefix, key);
+	for (uint32_t i = 0; i < n; i++) {
+		fprintf(f, "%s%.9g,%.9g,%.9g", i ? ";" : "", p[i][0], p[i][1],
+			p[i][2]);
 	}
 	fputc('\n', f);
+}
+
+static void rod(FILE *f, const char *prefix, const struct endosim_state *st)
+{
+	const struct endosim_rod_state *r = &st->rod;
+	uint32_t n = r->points < ENDOSIM_ROD_POINTS ? r->points :
+						      ENDOSIM_ROD_POINTS;
+
+	fprintf(f, "%smodel=%u\n%scontacts=%u\n%swall_n=%.9g\n"
+		"%sfriction_n=%.9g\n%strans_rod_n=%.9g\n%stube_rod_nm=%.9g\n"
+		"%sspan_nodes=%u,%u,%u,%u\n", prefix, r->model, prefix,
+		r->contacts, prefix, r->wall_n, prefix, r->friction_n, prefix,
+		st->haptics.trans_rod_n, prefix, st->haptics.tube_rod_nm,
+		prefix, r->span_nodes[0], r->span_nodes[1], r->span_nodes[2],
+		r->span_nodes[3]);
+	points(f, prefix, "rod_point", r->point, n);
+	fprintf(f, "%srod_roll=", prefix);
+	for (uint32_t i = 0; i < n; i++) {
+		fprintf(f, "%s%.9g", i ? "," : "", r->roll[i]);
+	}
+	fputc('\n', f);
+	points(f, prefix, "rod_node", r->node,
+	       r->nodes < ENDOSIM_COLON_NODES ? r->nodes : ENDOSIM_COLON_NODES);
 }
 
 void state_text_print(FILE *f, const char *prefix,
@@ -79,5 +103,6 @@ void state_text_print(FILE *f, const char *prefix,
 	fprintf(f, "%sramp=%.9g\n", prefix, st->safety.ramp);
 	scope(f, prefix, &st->scope);
 	haptics(f, prefix, &st->haptics);
-	tube(f, prefix, &st->scope);
+	rod(f, prefix, st);
+	points(f, prefix, "tube", st->scope.tube, ENDOSIM_TUBE_POINTS);
 }

@@ -9,8 +9,11 @@
  * velocity, hand, command, limited (4 axes, comma-separated), ramp,
  * depth_m, roll_rad, bend_rad (2), base_s_m, tip_s_m, turning_rad, tip,
  * dir, up (3), bow_m (4), spans, proxy, normal, f_static (3),
- * penetration_m, contact; and, last, tube: the 128 points as "x,y,z"
- * separated by ';'.
+ * penetration_m, contact; the rod model's model, contacts, wall_n,
+ * friction_n, trans_rod_n, tube_rod_nm, span_nodes (4), rod_point (its
+ * points in use as "x,y,z" separated by ';'), rod_roll (as many, by ','),
+ * rod_node (its nodes in use, as rod_point); and, last, tube: the 128
+ * points as "x,y,z" separated by ';'.
  */
 #ifndef ENDOSIM_STATE_TEXT_H
 #define ENDOSIM_STATE_TEXT_H

@@ -30,6 +30,7 @@ struct replay {
 	size_t shown;     /* the record in st, SIZE_MAX: none yet */
 	struct endosim_state st;
 	struct scope_pose pose;
+	struct session_shape shape; /* the rod model's, at or before st */
 };
 
 static const char *read_error(int r)
@@ -235,13 +236,81 @@ static void rebuild_tube(struct replay *r, size_t i)
 	}
 }
 
+static double distance(const float a[3], const float b[3])
+{
+	double d[3] = { (double)b[0] - a[0], (double)b[1] - a[1],
+			(double)b[2] - a[2] };
+
+	return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+/*
+ * The scope's tube as the rod model makes it: DEPTH_M of the rod's end
+ * (its points, base to tip) in equal arcs, from the anal verge to the tip.
+ */
+static void tube_from_rod(struct endosim_state *st, double depth_m)
+{
+	const struct endosim_rod_state *rod = &st->rod;
+	double len = 0, along = 0;
+	uint32_t j = 0;
+
+	if (rod->points < 2) {
+		return;
+	}
+	for (uint32_t i = 1; i < rod->points; i++) {
+		len += distance(rod->point[i - 1], rod->point[i]);
+	}
+	for (int k = 0; k < ENDOSIM_TUBE_POINTS; k++) {
+		double at = len - depth_m +
+			    depth_m * k / (ENDOSIM_TUBE_POINTS - 1);
+		double seg = distance(rod->point[j], rod->point[j + 1]);
+		double f;
+
+		while (j + 2 < rod->points && along + seg < at) {
+			along += seg;
+			j++;
+			seg = distance(rod->point[j], rod->point[j + 1]);
+		}
+		f = seg > 0 ? fmin(fmax((at - along) / seg, 0), 1) : 0;
+		for (int d = 0; d < 3; d++) {
+			st->scope.tube[k][d] =
+				(float)((1 - f) * rod->point[j][d] +
+					f * rod->point[j + 1][d]);
+		}
+	}
+}
+
+/*
+ * The rod model's shape: the SHAPE at or before the record shown (none
+ * when the file has none), and the tube, the inserted depth of its cycle,
+ * from it.
+ */
+static void show_rod(struct replay *r)
+{
+	const struct session_record *rec;
+
+	if (!r->f.n_shapes) {
+		return;
+	}
+	session_file_shape(&r->f, session_file_seek_shape(&r->f,
+							  r->st.stamp_ns),
+			   &r->shape);
+	session_shape_to_state(&r->shape, &r->st);
+	rec = &r->f.records[session_file_seek(&r->f, r->shape.stamp_ns)];
+	tube_from_rod(&r->st, rec->depth_m);
+}
+
 const struct endosim_state *replay_state(struct replay *r)
 {
 	size_t i = index_at(r, r->t_s);
 
 	if (i != r->shown) {
 		replay_record_at(r, r->t_s, &r->st);
-		rebuild_tube(r, i);
+		if (r->st.rod.model == ENDOSIM_MODEL_ROD) {
+			show_rod(r);
+		} else {
+			rebuild_tube(r, i);
+		}
 		r->shown = i;
 	}
 	return &r->st;

@@ -21,6 +21,12 @@
  * is scope_update() on the colon's centreline bowed as the record before
  * says (the force loop makes its pose before the haptics bow the colon,
  * and publishes the bows after: a cycle's tube is on last cycle's bows).
+ * In the rod model (the record's rod.model) the state's rod is the SHAPE
+ * frame at or before the record (session_shape_to_state(): the rod's
+ * points, roll and the colon's nodes, and each span's bow_m, its loop's
+ * size, from them), and the tube is the inserted depth of the SHAPE's
+ * record along the rod's points (live, it is the rod's before the step
+ * that made the points: a cycle's motion apart); no colon is bowed.
  *
  * Main thread only. replay_open() allocates (the file, the colon: ~0.1 s
  * at the default resolution); the rest does not.

@@ -176,6 +176,20 @@ static void print_haptics(const Endosim__HapticsStatus *h,
 	printf("\n");
 }
 
+/* The rod model's line (its loops are the tube line's); none in the
+ * paper's. */
+static void print_rod(const Endosim__RodStatus *r,
+		      const Endosim__HapticsStatus *h)
+{
+	if (r->model != ENDOSIM__HAPTICS_MODEL__HAPTICS_MODEL_ROD) {
+		return;
+	}
+	printf("rod       model %s: %u contacts, wall %.2f N, friction %.2f "
+	       "N; at the carriage %+.2f N, %+.3f N m\n", names_model(r->model),
+	       r->contacts, r->wall_n, r->friction_n, h->trans_rod_n,
+	       h->tube_rod_nm);
+}
+
 void ctl_print_status(const Endosim__StatusReply *s)
 {
 	printf("state     %s\n", names_state((uint32_t)s->state));
@@ -216,6 +230,9 @@ void ctl_print_status(const Endosim__StatusReply *s)
 	    s->haptics->n_wheel_tension_nm == 2 && s->scope &&
 	    s->scope->n_bow_m <= 4) {
 		print_haptics(s->haptics, s->scope);
+	}
+	if (s->rod && s->haptics) {
+		print_rod(s->rod, s->haptics);
 	}
 	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
 	       "velocity", "hand", "command", "limited", "drive");

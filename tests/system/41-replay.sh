@@ -40,11 +40,11 @@ fields() {
 	sed -n "s/^$2//p" "$1" | grep -v '^tube='
 }
 
-# tube_gap T: the largest coordinate difference (m) between the tube shown
-# and the truth's at T.
+# tube_gap T [TRUTH]: the largest coordinate difference (m) between the
+# tube shown and the truth's at T.
 tube_gap() {
 	paste -d, <(shown tube | tr ';' '\n') \
-		<(sed -n "s/^$1: tube=//p" "$TRUTH" | tr ';' '\n') |
+		<(sed -n "s/^$1: tube=//p" "${2:-$TRUTH}" | tr ';' '\n') |
 		awk -F, '{ for (i = 1; i <= 3; i++) { d = $i - $(i + 3);
 			   d = d < 0 ? -d : d; m = d > m ? d : m } }
 			 END { printf "%.3g\n", NR == 128 ? m : 1 }'
@@ -125,7 +125,7 @@ check "both views: the scope's green in the overview" float_test \
 # --- (c) a file cut short ------------------------------------------------
 size=$(stat -c %s "$FILE")
 cp "$FILE" "$TMP/cut.endoses"
-# the END frame and half of the last record (316 bytes a frame) go
+# the END frame and part of the last record (332 bytes a frame) go
 truncate -s $((size - 200)) "$TMP/cut.endoses"
 check_status "a file cut mid-record replays" 0 \
 	replay "$TMP/cut.endoses" --seek 1000 --paused --frames 3 --print-state
@@ -148,6 +148,42 @@ check_status "the magic alone: refused, exit 1" 1 \
 	replay "$TMP/magic.endoses" --frames 2
 check_status "a bad --speed: usage, exit 2" 2 \
 	replay "$FILE" --speed fast
+
+# --- (e) the rod model ----------------------------------------------------
+# A session of the rod model (session_synth --set haptics.model=rod): the
+# state shown is the record at its time with the SHAPE at or before it
+# (the tube's points and roll, the colon's nodes, each span's loop size
+# from them), exactly as the file holds them; at a SHAPE's cycle (every
+# 33rd: 3.003 s and 9.999 s) the tube drawn from the rod's points lies on
+# the one the daemon published, within the cycle's motion: the loop
+# publishes the tube of its pose, made before the rod's step, and the
+# rod's points after it (30 um at the course's 3 cm/s).
+ROD="$TMP/rod.endoses"
+ROD_TUBE_TOL_M=0.0001 # a cycle at 10 cm/s
+ROD_TRUTH="$TMP/rod-truth.txt"
+check_status "session_synth: 10 s of the demo in the rod model" 0 \
+	"$TOOLS/session_synth" --set haptics.model=rod --at 3.003 --at 3.02 \
+	--at 9.999 "$CASES/normal.case" "$TOP/config/scenarios/demo.scn" \
+	"$ROD" 10
+cp "$OUT" "$ROD_TRUTH"
+for t in 3.003 3.02 9.999; do
+	check_status "rod: replay paused at $t s" 0 \
+		replay "$ROD" --seek "$t" --paused --frames 3 --print-state
+	shown rod_point >"$TMP/rod-$t.txt"
+	check "rod at $t s: every field shown is the file's, the rod's shape too ($(tr ';' '\n' <"$TMP/rod-$t.txt" | wc -l) points)" \
+		eval 'ran_clean && [ "$(shown model)" = 1 ] &&
+		      diff <(fields "$VIEW_OUT" "state: ") <(fields "$ROD_TRUTH" "$t: ")'
+	if [ "$t" != 3.02 ]; then
+		gap=$(tube_gap "$t" "$ROD_TRUTH")
+		echo "# rod at $t s: the tube from the rod's points within $gap m of the published"
+		check "rod at $t s: the tube drawn from the rod's points lies on the daemon's" \
+			float_test "$gap < $ROD_TUBE_TOL_M"
+	fi
+done
+check "rod at 3.02 s: the shape of 3.003 s (cycle 3003, the SHAPE before)" \
+	cmp "$TMP/rod-3.003.txt" "$TMP/rod-3.02.txt"
+check "rod: the tube moves (3.003 s and 9.999 s differ)" \
+	eval '! cmp -s "$TMP/rod-3.003.txt" "$TMP/rod-9.999.txt"'
 
 # --- a recording by the daemon ------------------------------------------
 # csv_state CYCLE: from `endoctl session export --csv`, the fields of the

@@ -79,6 +79,6 @@ per_rec=$(awk -v b="$bytes" -v n="$(m records)" \
 	'BEGIN { printf "%.1f", b / n }')
 per_min=$(awk -v r="$per_rec" 'BEGIN { printf "%.1f", r * 60e3 / 1e6 }')
 echo "# file: $bytes bytes, $(m records) records in $(m duration_s) s"
-check "316 bytes a record with its framing, and the header, config, case and events: $per_rec ($per_min MB a minute at 1 kHz)" \
-	float_test "$per_rec > 316 && $per_rec < 320"
+check "332 bytes a record with its framing, and the header, config, case and events: $per_rec ($per_min MB a minute at 1 kHz)" \
+	float_test "$per_rec > 332 && $per_rec < 336"
 finish

@@ -1,6 +1,6 @@
 #!/bin/bash
 # A session on a disk too slow for it (the test-only [session]
-# write_limit_bytes_per_s at 100 kB/s, a third of the 316 kB/s a session
+# write_limit_bytes_per_s at 100 kB/s, under a third of the 332 kB/s a session
 # writes, with a ring of 0.5 s): records are dropped and counted, not
 # waited for. The force loop is not disturbed (no fault, overruns no more
 # than without a session), the drops are reported (session status, the
@@ -29,7 +29,7 @@ before=$(status_field .overruns)
 t0=$(now_s)
 # live_status JQ: the session's live status satisfies JQ
 live_status() { ctl --json session status | jq -e "$1"; }
-# the ring holds 500 records and the disk takes ~316 a second of the 1000
+# the ring holds 500 records and the disk takes ~300 a second of the 1000
 WAIT_S=30 check "drops counted and reported while the disk lags (over 1000)" \
 	wait_for live_status '.recording and .drops > 1000'
 check "the force loop was not disturbed: ENABLED, no fault" \

@@ -2,24 +2,28 @@
  * session_synth - a session file (docs/SESSION_FORMAT.md) without a
  * daemon: a scenario played on a case by endosimd's own force-loop parts
  * off line (offline.h: the simulated rig and hand, the kinematics, the
- * haptics), one RECORD per 1 ms cycle as the daemon publishes it, for the
- * replay's and the metrics' tests.
+ * haptics), one RECORD per 1 ms cycle as the daemon publishes it, and in
+ * the rod model a SHAPE every 33rd cycle as the daemon's recorder writes
+ * them, for the replay's and the metrics' tests.
  *
- *   session_synth [--at T]... [--trainee NAME] CASE SCENARIO OUT [SECONDS]
+ *   session_synth [--at T]... [--trainee NAME] [--set SECTION.KEY=VALUE]...
+ *                 CASE SCENARIO OUT [SECONDS]
  *
  * CASE: a case file (the colon at the default resolution); SCENARIO: the
  * simulated hand's script; OUT: the file written; SECONDS: how much of the
- * scenario (default: all of it). The file holds HEADER (every key of the
- * format), CONFIG (the defaults with [case] file = CASE, as endosimd
- * --print-config prints them), CASE (the file's text), a STATE event
- * (ENABLED) at the first record, the RECORDs, and END (cycles,
- * duration_s).
+ * scenario (default: all of it); --set: a configuration key, as endosimd's
+ * (haptics.model=rod). The file holds HEADER (every key of the format),
+ * CONFIG (the defaults with [case] file = CASE and the keys set, as
+ * endosimd --print-config prints them), CASE (the file's text), a STATE
+ * event (ENABLED) at the first record, the RECORDs (and SHAPEs), and END
+ * (cycles, duration_s).
  *
  * --at T (repeatable): the truth at T seconds after the first record,
  * printed to stdout as state_text.h's lines each prefixed "T: ": the
  * record's fields as the file holds them (through
- * session_record_from_state() and back), and the tube the daemon would
- * have published for that cycle (not in the file).
+ * session_record_from_state() and back) with, in the rod model, the
+ * SHAPE at or before it as the file holds it, and the tube the daemon
+ * would have published for that cycle (not in the file).
  *
  * Exit status: 0, 1 on a failure (said on stderr), 2 usage.
  */
@@ -53,20 +57,40 @@ struct synth {
 	int fd;
 	unsigned char *buf;
 	size_t used;
+	struct session_shape shape; /* the last written */
+	unsigned char payload[sizeof(struct session_shape)];
 };
 
 static void usage(void)
 {
 	fprintf(stderr, "usage: session_synth [--at T]... [--trainee NAME] "
-		"CASE SCENARIO OUT [SECONDS]\n");
+		"[--set SECTION.KEY=VALUE]... CASE SCENARIO OUT [SECONDS]\n");
 	exit(2);
 }
 
+/* --set SECTION.KEY=VALUE into S's configuration, or usage. */
+static void set_key(struct synth *s, char *arg)
+{
+	char *eq = strchr(arg, '=');
+	char err[256];
+
+	if (!eq) {
+		usage();
+	}
+	*eq = '\0';
+	if (config_set(&s->cfg, arg, eq + 1, false, err, sizeof(err))) {
+		fprintf(stderr, "session_synth: --set %s: %s\n", arg, err);
+		exit(2);
+	}
+}
+
+/* The options into S, whose configuration has its defaults. */
 static void parse(int argc, char **argv, struct synth *s)
 {
 	static const struct option longs[] = {
 		{ "at", required_argument, NULL, 'a' },
 		{ "trainee", required_argument, NULL, 't' },
+		{ "set", required_argument, NULL, 's' },
 		{ 0 },
 	};
 	int c;
@@ -78,6 +102,8 @@ static void parse(int argc, char **argv, struct synth *s)
 			s->at[s->n_at++] = atof(optarg);
 		} else if (c == 't') {
 			s->trainee = optarg;
+		} else if (c == 's') {
+			set_key(s, optarg);
 		} else {
 			usage();
 		}
@@ -194,6 +220,9 @@ static void truth(const struct synth *s, long k, const struct endosim_state *st)
 		}
 		session_record_from_state(st, &rec);
 		session_record_to_state(&rec, &back);
+		if (back.rod.model == ENDOSIM_MODEL_ROD) {
+			session_shape_to_state(&s->shape, &back);
+		}
 		memcpy(back.scope.tube, st->scope.tube, sizeof(back.scope.tube));
 		snprintf(prefix, sizeof(prefix), "%g: ", s->at[i]);
 		state_text_print(stdout, prefix, &back);
@@ -202,6 +231,7 @@ static void truth(const struct synth *s, long k, const struct endosim_state *st)
 
 static int run(struct synth *s, struct offline *o, long cycles)
 {
+	uint32_t every = session_shape_every(OFFLINE_PERIOD_NS);
 	struct endosim_state st;
 	struct session_record rec;
 	char end[128];
@@ -215,6 +245,11 @@ static int run(struct synth *s, struct offline *o, long cycles)
 		}
 		session_record_from_state(&st, &rec);
 		r = r ? r : put(s, SESSION_FRAME_RECORD, &rec, sizeof(rec));
+		if (!r && session_shape_due(&st, every)) {
+			session_shape_from_state(&st, &s->shape);
+			r = put(s, SESSION_FRAME_SHAPE, s->payload,
+				session_shape_pack(&s->shape, s->payload));
+		}
 		truth(s, k, &st);
 	}
 	snprintf(end, sizeof(end), "cycles=%ld\nduration_s=%.3f\n", cycles,
@@ -234,8 +269,8 @@ int main(int argc, char **argv)
 	char err[512];
 	int r = 1;
 
-	parse(argc, argv, &s);
 	config_defaults(&s.cfg);
+	parse(argc, argv, &s);
 	snprintf(s.cfg.colon.file, sizeof(s.cfg.colon.file), "%s",
 		 s.case_path);
 	s.colon = cases_load(&s.cfg, NULL, err, sizeof(err));

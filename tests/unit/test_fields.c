@@ -7,8 +7,7 @@
  *     a session carries, and none is twice;
  *   - every field of StatusReply and of its sub-messages is one row's, of
  *     the protobuf type, label and count the row's kind says;
- *   - every byte of struct session_record is one recorded row's, but its
- *     reserved words;
+ *   - every byte of struct session_record is one recorded row's;
  *   - names unique in a table, rows within their struct, a vector's count
  *     within it, a recorded field's columns one per element;
  *   - the CSV columns are the session format's, in the record's order;
@@ -47,6 +46,7 @@ static const struct {
 #define CAUSE(f, why) NOT(fields_fault, struct endosim_fault_cause, f, why)
 #define AXIS(f, why) NOT(fields_axis, struct endosim_axis_state, f, why)
 #define SCOPE(f, why) NOT(fields_scope, struct endosim_scope_state, f, why)
+#define ROD(f, why) NOT(fields_rod, struct endosim_rod_state, f, why)
 	STATE(publish_ns, "the publisher's own clock, for shm readers"),
 	STATE(fault_axis, "the first fault's: faults[0] says it"),
 	STATE(fault_detail, "the first fault's: faults[0] says it"),
@@ -62,11 +62,16 @@ static const struct {
 	AXIS(reserved, "padding"),
 	SCOPE(reserved, "padding"),
 	SCOPE(tube, "the shape (1.5 kB): the viewer's, from the shm"),
+	ROD(point, "the shape (3.9 kB): the shm's, sessions' SHAPE frames"),
+	ROD(roll, "the shape's roll: the shm's, sessions' SHAPE frames"),
+	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
+	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
 #undef NOT
 #undef STATE
 #undef CAUSE
 #undef AXIS
 #undef SCOPE
+#undef ROD
 };
 
 /* Every table, from the root, each once. */
@@ -144,7 +149,7 @@ static void test_state_covered(void **state)
 	size_t n = all_tables(t, COUNT(t)), bad = 0;
 
 	(void)state;
-	assert_int_equal(n, 5);
+	assert_int_equal(n, 6);
 	for (size_t k = 0; k < n; k++) {
 		for (size_t i = 0; i < t[k]->n_fields; i++) {
 			const struct fields_field *d = &t[k]->fields[i];
@@ -365,7 +370,6 @@ static void test_record_covered(void **state)
 	static unsigned char map[sizeof(struct session_record)];
 	const struct fields_table *t[16];
 	size_t n = all_tables(t, COUNT(t));
-	size_t reserved = offsetof(struct session_record, reserved);
 
 	(void)state;
 	for (size_t k = 0; k < n; k++) {
@@ -379,14 +383,14 @@ static void test_record_covered(void **state)
 		}
 	}
 	for (size_t at = 0; at < sizeof(map); at++) {
-		if (map[at] != (at < reserved)) {
+		if (map[at] != 1) {
 			fail_msg("byte %zu of the record: in %d rows", at,
 				 map[at]);
 		}
 	}
 }
 
-/* The CSV's columns, as docs/SESSION_FORMAT.md's format 1 has them. */
+/* The CSV's columns, as docs/SESSION_FORMAT.md's format 2 has them. */
 static const char csv_columns[] =
 	"cycle,state,fault_bits,insertion_position_m,roll_position_rad,"
 	"wheel_ud_position_rad,wheel_lr_position_rad,"
@@ -404,7 +408,8 @@ static const char csv_columns[] =
 	"trans_contact_n,trans_friction_n,trans_loop_n,wheel_contact_ud_nm,"
 	"wheel_contact_lr_nm,wheel_tension_ud_nm,wheel_tension_lr_nm,"
 	"wheel_elastic_ud_nm,wheel_elastic_lr_nm,tube_contact_nm,"
-	"tube_friction_nm,scenario_time_s,latency_ns,compute_ns";
+	"tube_friction_nm,scenario_time_s,latency_ns,compute_ns,trans_rod_n,"
+	"tube_rod_nm,rod_model,rod_contacts,rod_wall_n,rod_friction_n";
 
 static void test_columns(void **state)
 {
@@ -425,7 +430,10 @@ static void test_columns(void **state)
 	assert_int_equal(c[0].record, offsetof(struct session_record, cycle));
 	assert_int_equal(c[0].stored, FIELDS_STORED_U64);
 	assert_int_equal(c[1].stored, FIELDS_STORED_U32);
-	assert_int_equal(c[n - 1].stored, FIELDS_STORED_U32);
+	assert_int_equal(c[n - 3].stored, FIELDS_STORED_U32); /* rod_model */
+	assert_int_equal(c[n - 1].stored, FIELDS_STORED_F32);
+	assert_int_equal(c[n - 1].record,
+			 offsetof(struct session_record, friction_n));
 }
 
 /* A state whose every double and word differs. */
@@ -447,8 +455,16 @@ static void distinct(struct endosim_state *st)
 	st->scope.scene_id = 99;
 	st->haptics.contact = 1;
 	st->haptics.damping[3] = 4.5;
+	st->haptics.trans_rod_n = -1.5;
+	st->haptics.tube_rod_nm = 0.125;
 	st->safety.cause[2].value = 3.25;
 	st->safety.cause[2].detail = 17;
+	st->rod.model = ENDOSIM_MODEL_ROD;
+	st->rod.contacts = 12;
+	st->rod.wall_n = 3.5;
+	st->rod.friction_n = 0.375;
+	st->rod.points = 161;
+	st->rod.nodes = 40;
 }
 
 static void test_to_pb(void **state)
@@ -458,6 +474,7 @@ static void test_to_pb(void **state)
 	Endosim__ScopeStatus sc;
 	Endosim__HapticsStatus h;
 	Endosim__AxisStatus ax;
+	Endosim__RodStatus rod;
 	Endosim__Fault f;
 
 	(void)state;
@@ -492,6 +509,15 @@ static void test_to_pb(void **state)
 	fields_to_pb(&fields_scope, &sc, &st.scope);
 	assert_int_equal(sc.n_bow_m, ENDOSIM_SPANS);
 	assert_true(protobuf_c_message_check(&sc.base));
+	assert_null(s.rod);
+	fields_to_pb(&fields_rod, &rod, &st.rod);
+	assert_int_equal(rod.model, ENDOSIM__HAPTICS_MODEL__HAPTICS_MODEL_ROD);
+	assert_string_equal(names_model(rod.model), "rod");
+	assert_int_equal(rod.contacts, 12);
+	assert_true(rod.wall_n == 3.5 && rod.friction_n == 0.375);
+	assert_int_equal(rod.points, 161);
+	assert_int_equal(rod.nodes, 40);
+	assert_true(protobuf_c_message_check(&rod.base));
 }
 
 /* The record keeps what the tables say, as floats, and gives it back. */
@@ -511,9 +537,10 @@ static void test_record(void **state)
 	assert_true(r.bow_m[1] == 0.02f);
 	assert_int_equal(r.spans, 3);
 	assert_int_equal(r.latency_ns, 12345);
-	for (size_t i = 0; i < COUNT(r.reserved); i++) {
-		assert_int_equal(r.reserved[i], 0);
-	}
+	assert_int_equal(r.model, ENDOSIM_MODEL_ROD);
+	assert_int_equal(r.contacts, 12);
+	assert_true(r.wall_n == 3.5f && r.friction_n == 0.375f);
+	assert_true(r.trans_rod_n == -1.5f && r.tube_rod_nm == 0.125f);
 	session_record_to_state(&r, &back);
 	assert_true(back.axis[1].position == 1.5);
 	assert_true(back.safety.ramp == 0.625);
@@ -521,6 +548,12 @@ static void test_record(void **state)
 	assert_int_equal(back.haptics.contact, 1);
 	assert_true(back.haptics.damping[3] == 0); /* not recorded */
 	assert_int_equal(back.scope.scene_id, 0);
+	assert_int_equal(back.rod.model, ENDOSIM_MODEL_ROD);
+	assert_int_equal(back.rod.contacts, 12);
+	assert_true(back.rod.wall_n == 3.5 && back.rod.friction_n == 0.375);
+	assert_true(back.haptics.trans_rod_n == -1.5);
+	assert_true(back.haptics.tube_rod_nm == 0.125);
+	assert_int_equal(back.rod.points, 0); /* a SHAPE frame's */
 }
 
 int main(void)
