@@ -383,7 +383,8 @@ static void load_colon(struct app *a, uint64_t now)
 
 /* ------------------------------------------------------------ frame */
 
-/* The colon is the one the state is about: bow it as the state says. */
+/* The colon is the one the state is about: bow it, or move it by the rod
+ * model's nodes, as the state says. */
 static bool colon_current(struct app *a, const struct endosim_state *st)
 {
 	const struct endosim_scope_state *sc = st ? &st->scope : NULL;
@@ -393,9 +394,14 @@ static bool colon_current(struct app *a, const struct endosim_state *st)
 	    sc->scene_id != a->colon.model->scene_id) {
 		return false;
 	}
-	model_bow(a->colon.model, sc->bow_m,
-		  (int)(sc->spans < ENDOSIM_SPANS ? sc->spans : ENDOSIM_SPANS),
-		  &first, &count);
+	if (st->rod.model == ENDOSIM_MODEL_ROD) {
+		model_displace(a->colon.model, &st->rod, &first, &count);
+	} else {
+		model_bow(a->colon.model, sc->bow_m,
+			  (int)(sc->spans < ENDOSIM_SPANS ? sc->spans :
+							    ENDOSIM_SPANS),
+			  &first, &count);
+	}
 	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
 	return true;
 }
