@@ -1,10 +1,14 @@
 /*
  * overview.h - the colon from outside, like a magnetic scope-position
  * display: the colon translucent (a ghost: its silhouette bright, the
- * walls facing the viewer nearly clear), the mobile segments turning amber
- * as they bow, the scope's shape inside it (the published tube polyline)
+ * walls facing the viewer nearly clear) where it is placed now, the mobile
+ * segments turning amber as they bow or move, the scope's shape inside it
  * in green with its tip, and the contact point with the wall's normal
- * while the wall holds the tip.
+ * while the wall holds the tip. The scope's shape is the published tube
+ * polyline in the paper's model; in the rod model the whole tube (struct
+ * endosim_rod_state), from the carriage, its part outside the patient
+ * dimmer, with a white line along it that its roll turns
+ * (shapes_stripe()): a twist held in the tube winds the line round it.
  *
  * Seen from the patient's front by default (the patient's left on the
  * viewer's right, cranial up, as a frontal radiograph); the orbit turns
