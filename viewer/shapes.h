@@ -1,9 +1,10 @@
 /*
  * shapes.h - small meshes the views build: a unit sphere (polyps, the
  * tip, the contact point), a tube along a polyline (the scope in the
- * overview) and the line that marks a tube's roll. Vertices are 9 floats: position, normal, and the vessel
- * texture's coordinates as the colon's (gpumesh.h) and a 0. Triangles wind
- * counter-clockwise seen from outside. Pure computation.
+ * overview) and the line that marks a tube's roll. Vertices are 9 floats:
+ * position, normal, and the vessel texture's coordinates as the colon's
+ * (gpumesh.h) and a 0. Triangles wind counter-clockwise seen from outside.
+ * Pure computation.
  */
 #ifndef ENDOVIEW_SHAPES_H
 #define ENDOVIEW_SHAPES_H
