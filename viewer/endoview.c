@@ -99,6 +99,7 @@ struct app {
 	uint64_t hand_ns; /* when the hand was last moved */
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
+	bool overview_shown;    /* the last frame drew the overview */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 };
@@ -129,7 +130,9 @@ static void usage(FILE *f)
 		"                    drawing is done in software)\n"
 		"  --font F          a TrueType font for the HUD\n"
 		"  --stats           print the frame figures at exit\n"
-		"  --print-state     print the last frame's state at exit\n"
+		"  --print-state     print the last frame's state at exit,\n"
+		"                    what its panel said and where its\n"
+		"                    overview drew the scope and the colon\n"
 		"  --replay FILE     play a recorded session (no daemon)\n"
 		"  --seek S          start S seconds into it\n"
 		"  --speed X         at X times real time (0.25 to 8)\n"
@@ -568,6 +571,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 	struct endo_stats es;
 
 	a->triangles = 0;
+	a->overview_shown = c->model && lay->overview.w;
 	if (!c->model) {
 		return;
 	}
@@ -738,6 +742,23 @@ static void report(const struct app *a)
 	printf("\n");
 }
 
+/* What the panel said, and where the overview drew the scope and the
+ * colon, in the last frame (hud_said(), overview_print()). */
+static void report_drawn(const struct app *a)
+{
+	const char *said;
+	int w, h;
+
+	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
+		printf("hud: %s\n", said);
+	}
+	if (a->overview_shown) {
+		glfwGetFramebufferSize(a->window, &w, &h);
+		overview_print(a->overview, a->colon.model, a->shown, h,
+			       stdout);
+	}
+}
+
 /* The replay's clock, and the state the last frame showed. */
 static void report_state(const struct app *a)
 {
@@ -751,6 +772,7 @@ static void report_state(const struct app *a)
 	}
 	if (a->opt.print_state && a->shown) {
 		state_text_print(stdout, "state: ", a->shown);
+		report_drawn(a);
 	}
 }
 

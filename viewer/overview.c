@@ -22,6 +22,7 @@
 #define CONTACT_RADIUS_M 0.012  /* larger than the tip: it shows round it */
 #define ARROW_M 0.03
 #define GHOST_GAIN 0.55f
+#define LUMEN_GIVE_M 0.005 /* a tube pressed into the wall (overview_print) */
 
 static const float scope_rgb[3] = { OVERVIEW_SCOPE_RGB };
 static const float outside_rgb[3] = { 0.20f * OUTSIDE, 0.95f * OUTSIDE,
@@ -279,6 +280,13 @@ static uint32_t arrow_at(const struct overview *o, const double p[3],
 	return draw_shape(o, ARROW, model, rgb, 6 * SHAPES_TUBE_SIDES);
 }
 
+/* The rod's points published. */
+static size_t rod_points(const struct endosim_rod_state *rod)
+{
+	return rod->points < ENDOSIM_ROD_POINTS ? rod->points :
+						  ENDOSIM_ROD_POINTS;
+}
+
 /* Shape K, a tube of RADIUS through the N points P: its segments up to
  * point FROM in DIM, those after in RGB. Returns the triangles. */
 static uint32_t draw_tube(const struct overview *o, int k,
@@ -294,7 +302,8 @@ static uint32_t draw_tube(const struct overview *o, int k,
 	shapes_tube(p, n, (float)radius, v);
 	glBindBuffer(GL_ARRAY_BUFFER, o->vbo[k]);
 	glBufferSubData(GL_ARRAY_BUFFER, 0,
-			(GLsizeiptr)(shapes_tube_vertices(n) * sizeof(v[0])), v);
+			(GLsizeiptr)(shapes_tube_vertices(n) * sizeof(v[0])),
+			v);
 	if (from > 0) {
 		tris += draw_range(o, k, identity, dim, 0,
 				   (GLsizei)(side * from));
@@ -313,9 +322,7 @@ static uint32_t draw_rod(const struct overview *o, const struct model *m,
 {
 	static float stripe[ENDOSIM_ROD_POINTS][3];
 	const float(*p)[3] = (const float(*)[3])rod->point;
-	size_t n = rod->points < ENDOSIM_ROD_POINTS ? rod->points :
-						      ENDOSIM_ROD_POINTS;
-	size_t from = 0;
+	size_t n = rod_points(rod), from = 0;
 
 	if (n < 2) {
 		return 0;
@@ -458,30 +465,140 @@ uint32_t overview_draw(struct overview *o, const struct model *m,
 	return tris;
 }
 
+bool overview_project(const struct overview *o, const double p[3], int fb_h,
+		      float xy[2])
+{
+	vec4 w = { (float)p[0], (float)p[1], (float)p[2], 1 }, c;
+
+	glm_mat4_mulv((vec4 *)o->vp, w, c);
+	if (c[3] <= 0) {
+		return false;
+	}
+	xy[0] = (float)o->rect.x + (c[0] / c[3] + 1) / 2 * (float)o->rect.w;
+	xy[1] = (float)fb_h - ((float)o->rect.y +
+			       (c[1] / c[3] + 1) / 2 * (float)o->rect.h);
+	return true;
+}
+
 void overview_labels(const struct overview *o, const struct model *m,
 		     struct draw2d *d, int fb_h)
 {
 	static const float grey[4] = { 0.75f, 0.78f, 0.85f, 0.85f };
 	char name[MODEL_NAME];
+	float xy[2];
 
 	for (int i = 0; i < m->regions; i++) {
 		const struct model_region *rg = &m->region[i];
 		size_t k = model_sample_at(m, 0.5 * (rg->s0_m + rg->s1_m));
-		const double *p = centreline_sample(m->cl, k)->p;
-		vec4 w = { (float)p[0], (float)p[1], (float)p[2], 1 }, c;
-		float x, y;
 
-		glm_mat4_mulv((vec4 *)o->vp, w, c);
-		if (c[3] <= 0 || strcmp(rg->name, "anal_canal") == 0) {
+		if (!overview_project(o, centreline_sample(m->cl, k)->p, fb_h,
+				      xy) ||
+		    strcmp(rg->name, "anal_canal") == 0) {
 			continue;
 		}
-		x = (float)o->rect.x + (c[0] / c[3] + 1) / 2 * (float)o->rect.w;
-		y = (float)fb_h - ((float)o->rect.y +
-				   (c[1] / c[3] + 1) / 2 * (float)o->rect.h);
 		snprintf(name, sizeof(name), "%s", rg->name);
 		for (char *q = name; *q; q++) {
 			*q = *q == '_' ? ' ' : *q;
 		}
-		draw2d_text(d, FONT_SMALL, x + 14, y, grey, name);
+		draw2d_text(d, FONT_SMALL, xy[0] + 14, xy[1], grey, name);
+	}
+}
+
+/* "KEY=x,y;x,y..." where the last overview drew the rod's points that lie
+ * OUTSIDE the patient, or inside. */
+static void print_rod(const struct overview *o, const struct model *m,
+		      const struct endosim_rod_state *rod, bool outside,
+		      int fb_h, FILE *f)
+{
+	const char *sep = "";
+	float xy[2];
+
+	fprintf(f, "overview: rod_%s=", outside ? "out" : "in");
+	for (size_t i = 0; i < rod_points(rod); i++) {
+		const float *q = rod->point[i];
+		double p[3] = { q[0], q[1], q[2] };
+
+		if (model_outside(m, q) == outside &&
+		    overview_project(o, p, fb_h, xy)) {
+			fprintf(f, "%s%.1f,%.1f", sep, xy[0], xy[1]);
+			sep = ";";
+		}
+	}
+	fputc('\n', f);
+}
+
+/* The sample of M nearest P. */
+static size_t nearest_sample(const struct model *m, const double p[3])
+{
+	size_t best = 0;
+	double best_d = INFINITY;
+
+	for (size_t i = 0; i < centreline_count(m->cl); i++) {
+		double d = vec3_dist(p, centreline_sample(m->cl, i)->p);
+
+		if (d < best_d) {
+			best_d = d;
+			best = i;
+		}
+	}
+	return best;
+}
+
+/* The share of the rod's points inside the patient that lie within the
+ * colon as placed, the wall's give (LUMEN_GIVE_M) allowed. */
+static void print_in_lumen(const struct model *m,
+			   const struct endosim_rod_state *rod, FILE *f)
+{
+	int in = 0, within = 0;
+
+	for (size_t k = 0; k < rod_points(rod); k++) {
+		const float *q = rod->point[k];
+		double p[3] = { q[0], q[1], q[2] }, d[3];
+		size_t i;
+
+		if (!model_outside(m, q)) {
+			i = nearest_sample(m, p);
+			within += model_wall_gap(m, &i, p, d) > -LUMEN_GIVE_M;
+			in++;
+		}
+	}
+	fprintf(f, "overview: rod_in_lumen=%.3f\n",
+		in ? (double)within / in : 0);
+}
+
+/* Span K's sample that moved most: where it is drawn, where it would be
+ * at rest, and the lumen's radius there, in pixels. */
+static void print_span(const struct overview *o, const struct model *m,
+		       int k, int fb_h, FILE *f)
+{
+	size_t i;
+	double moved = model_moved(m, k, &i), rim[3], r = 0;
+	const struct centreline_point *c = centreline_sample(m->cl, i);
+	float at[2] = { 0, 0 }, rest[2] = { 0, 0 }, xy[2];
+
+	overview_project(o, c->p, fb_h, at);
+	overview_project(o, centreline_base(m->cl, i)->p, fb_h, rest);
+	for (int side = 0; side < 2; side++) {
+		vec3_axpy(rim, c->p, m->mesh->sample_rho[i],
+			  side ? c->v : c->u);
+		if (overview_project(o, rim, fb_h, xy)) {
+			r = fmax(r, hypot(xy[0] - at[0], xy[1] - at[1]));
+		}
+	}
+	fprintf(f, "overview: span=%d moved_m=%.4f at=%.1f,%.1f "
+		"rest=%.1f,%.1f lumen_px=%.1f\n", k, moved, at[0], at[1],
+		rest[0], rest[1], r);
+}
+
+void overview_print(const struct overview *o, const struct model *m,
+		    const struct endosim_state *st, int fb_h, FILE *f)
+{
+	if (st && st->rod.model == ENDOSIM_MODEL_ROD) {
+		print_rod(o, m, &st->rod, false, fb_h, f);
+		print_rod(o, m, &st->rod, true, fb_h, f);
+		print_in_lumen(m, &st->rod, f);
+	}
+	for (int k = 0; k < centreline_spans(m->cl); k++) {
+		print_span(o, m, k, fb_h, f);
 	}
 }
