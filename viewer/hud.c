@@ -311,20 +311,28 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 	line(p, FONT_SMALL, dim, text);
 }
 
-/* The largest bow of a mobile segment, if it is a loop worth saying. */
-static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
+/* The largest bow of a mobile segment, and its span (-1: none). */
+static double worst_loop(const struct endosim_scope_state *sc, int *span)
 {
-	const struct endosim_scope_state *sc = &in->st->scope;
 	double worst = 0;
-	int span = -1;
-	char text[160];
 
+	*span = -1;
 	for (uint32_t k = 0; k < sc->spans && k < ENDOSIM_SPANS; k++) {
 		if (fabs(sc->bow_m[k]) > worst) {
 			worst = fabs(sc->bow_m[k]);
-			span = (int)k;
+			*span = (int)k;
 		}
 	}
+	return worst;
+}
+
+/* The warning of the largest bow, if it is a loop worth saying. */
+static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
+{
+	int span;
+	double worst = worst_loop(&in->st->scope, &span);
+	char text[160];
+
 	if (worst < HUD_LOOP_WARN_M || !in->m) {
 		return;
 	}
@@ -340,14 +348,19 @@ static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
 	}
 }
 
-/* The rod model: how far each mobile segment has moved (its loop). */
+/* The rod model: how far each mobile segment has moved (its loop); in a
+ * compact panel only while no loop is worth a warning, which says it. */
 static void draw_moved(struct pen *p, const struct hud_info *in)
 {
 	const struct endosim_scope_state *sc = &in->st->scope;
 	char text[160] = "loop:", name[MODEL_NAME];
 	const char *sep = "";
 	size_t n = strlen(text);
+	int span;
 
+	if (in->compact && worst_loop(sc, &span) >= HUD_LOOP_WARN_M) {
+		return;
+	}
 	for (int i = 0; in->m && i < in->m->regions && n < sizeof(text);
 	     i++) {
 		const struct model_region *rg = &in->m->region[i];
