@@ -40,6 +40,28 @@ static void same_as_daemon(void **state)
 	fixture_teardown(&f);
 }
 
+/* The vertices outside [FIRST, FIRST + COUNT) are those of BEFORE. */
+static void only_range_moved(const struct mesh *me, const float (*before)[3],
+			     uint32_t first, uint32_t count)
+{
+	for (uint32_t j = 0; j < me->vertices; j++) {
+		if (j < first || j >= first + count) {
+			assert_memory_equal(before[j], me->pos[j],
+					    sizeof(before[j]));
+		}
+	}
+}
+
+/* A copy of ME's vertices as placed now (the caller frees it). */
+static float (*positions(const struct mesh *me))[3]
+{
+	float (*pos)[3] = malloc(me->vertices * sizeof(*pos));
+
+	assert_non_null(pos);
+	memcpy(pos, me->pos, me->vertices * sizeof(*pos));
+	return pos;
+}
+
 /* Bowed as the daemon bows: the same vertices, and every vertex that
  * moved lies in the range model_bow() reports. */
 static void bows_as_daemon(void **state)
@@ -53,37 +75,18 @@ static void bows_as_daemon(void **state)
 	(void)state;
 	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
 	me = f.model->mesh;
-	before = malloc(me->vertices * sizeof(*before));
-	assert_non_null(before);
-	memcpy(before, me->pos, me->vertices * sizeof(*before));
+	before = positions(me);
 	assert_int_equal(colon_bow(f.colon, 0, bow[0], true), 0);
 	assert_int_equal(colon_bow(f.colon, 1, bow[1], true), 0);
 	model_bow(f.model, bow, 2, &first, &count);
 	assert_true(count > 0);
 	assert_true(fixture_placed_error(&f) < SAME_M);
-	for (uint32_t j = 0; j < me->vertices; j++) {
-		if (j < first || j >= first + count) {
-			assert_memory_equal(before[j], me->pos[j],
-					    sizeof(before[j]));
-		}
-	}
+	only_range_moved(me, (const float(*)[3])before, first, count);
 	bow[0] += MODEL_BOW_STEP_M / 2; /* too small a change to place */
 	model_bow(f.model, bow, 2, &first, &count);
 	assert_int_equal(count, 0);
 	free(before);
 	fixture_teardown(&f);
-}
-
-/* The vertices outside [FIRST, FIRST + COUNT) are those of BEFORE. */
-static void only_range_moved(const struct mesh *me, const float (*before)[3],
-			     uint32_t first, uint32_t count)
-{
-	for (uint32_t j = 0; j < me->vertices; j++) {
-		if (j < first || j >= first + count) {
-			assert_memory_equal(before[j], me->pos[j],
-					    sizeof(before[j]));
-		}
-	}
 }
 
 /* The daemon's colon moved by span K's N nodes from NODE, its mesh placed
@@ -143,9 +146,7 @@ static void moves_as_daemon(void **state)
 	(void)state;
 	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
 	me = f.model->mesh;
-	before = malloc(me->vertices * sizeof(*before));
-	assert_non_null(before);
-	memcpy(before, me->pos, me->vertices * sizeof(*before));
+	before = positions(me);
 	rod_nodes(&rod);
 	daemon_displace(f.colon, 0, (const float(*)[3])rod.node, 3);
 	daemon_displace(f.colon, 1, (const float(*)[3])rod.node[3], 2);
