@@ -99,6 +99,7 @@ struct app {
 	uint64_t hand_ns; /* when the hand was last moved */
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
+	bool overview_shown;    /* the last frame drew the overview */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 };
@@ -129,7 +130,9 @@ static void usage(FILE *f)
 		"                    drawing is done in software)\n"
 		"  --font F          a TrueType font for the HUD\n"
 		"  --stats           print the frame figures at exit\n"
-		"  --print-state     print the last frame's state at exit\n"
+		"  --print-state     print the last frame's state at exit,\n"
+		"                    what its panel said and where its\n"
+		"                    overview drew the scope and the colon\n"
 		"  --replay FILE     play a recorded session (no daemon)\n"
 		"  --seek S          start S seconds into it\n"
 		"  --speed X         at X times real time (0.25 to 8)\n"
@@ -383,7 +386,8 @@ static void load_colon(struct app *a, uint64_t now)
 
 /* ------------------------------------------------------------ frame */
 
-/* The colon is the one the state is about: bow it as the state says. */
+/* The colon is the one the state is about: bow it, or move it by the rod
+ * model's nodes, as the state says. */
 static bool colon_current(struct app *a, const struct endosim_state *st)
 {
 	const struct endosim_scope_state *sc = st ? &st->scope : NULL;
@@ -393,9 +397,14 @@ static bool colon_current(struct app *a, const struct endosim_state *st)
 	    sc->scene_id != a->colon.model->scene_id) {
 		return false;
 	}
-	model_bow(a->colon.model, sc->bow_m,
-		  (int)(sc->spans < ENDOSIM_SPANS ? sc->spans : ENDOSIM_SPANS),
-		  &first, &count);
+	if (st->rod.model == ENDOSIM_MODEL_ROD) {
+		model_displace(a->colon.model, &st->rod, &first, &count);
+	} else {
+		model_bow(a->colon.model, sc->bow_m,
+			  (int)(sc->spans < ENDOSIM_SPANS ? sc->spans :
+							    ENDOSIM_SPANS),
+			  &first, &count);
+	}
 	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
 	return true;
 }
@@ -562,6 +571,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 	struct endo_stats es;
 
 	a->triangles = 0;
+	a->overview_shown = c->model && lay->overview.w;
 	if (!c->model) {
 		return;
 	}
@@ -732,6 +742,23 @@ static void report(const struct app *a)
 	printf("\n");
 }
 
+/* What the panel said, and where the overview drew the scope and the
+ * colon, in the last frame (hud_said(), overview_print()). */
+static void report_drawn(const struct app *a)
+{
+	const char *said;
+	int w, h;
+
+	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
+		printf("hud: %s\n", said);
+	}
+	if (a->overview_shown) {
+		glfwGetFramebufferSize(a->window, &w, &h);
+		overview_print(a->overview, a->colon.model, a->shown, h,
+			       stdout);
+	}
+}
+
 /* The replay's clock, and the state the last frame showed. */
 static void report_state(const struct app *a)
 {
@@ -745,6 +772,7 @@ static void report_state(const struct app *a)
 	}
 	if (a->opt.print_state && a->shown) {
 		state_text_print(stdout, "state: ", a->shown);
+		report_drawn(a);
 	}
 }
 

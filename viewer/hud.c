@@ -2,6 +2,7 @@
 #include "hud.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,11 +71,14 @@ struct sample {
 struct hud {
 	struct sample chart[CHART_SAMPLES];
 	unsigned int next, count;
+	char said[HUD_LINES][HUD_LINE]; /* the last panel's lines */
+	int lines;
 };
 
 /* Where the next line goes. */
 struct pen {
 	struct draw2d *d;
+	struct hud *h;    /* keeps what it says */
 	float x, y, w;    /* left, top of the next line, width */
 	float small, large;
 };
@@ -168,12 +172,21 @@ static void line(struct pen *p, enum font_size size, const float rgb[4],
 		cut[--n] = '\0';
 	}
 	draw2d_text(p->d, size, p->x, p->y + px, rgb, cut);
+	if (p->h->lines < HUD_LINES) {
+		snprintf(p->h->said[p->h->lines++], HUD_LINE, "%s", cut);
+	}
 	p->y += px * 1.35f;
 }
 
 static void gap(struct pen *p)
 {
 	p->y += p->small * 0.6f;
+}
+
+/* The rod model rendered ST (NULL: no state). */
+static bool rod(const struct endosim_state *st)
+{
+	return st && st->rod.model == ENDOSIM_MODEL_ROD;
 }
 
 /* "FAULT: stale-feedback (wheel_ud)" and the like. */
@@ -223,7 +236,8 @@ static void draw_state(struct pen *p, const struct hud_info *in)
 	const float *rgb = dim;
 	char text[160];
 
-	snprintf(text, sizeof(text), "endosim  %s", in->m ? in->m->name : "");
+	snprintf(text, sizeof(text), "endosim  %s%s", in->m ? in->m->name : "",
+		 rod(in->st) ? "  rod model" : "");
 	line(p, FONT_SMALL, dim, text);
 	if (!in->st || in->link == LINK_NO_DAEMON) {
 		line(p, FONT_LARGE, red, "NO DAEMON");
@@ -264,13 +278,11 @@ static void draw_replay(struct pen *p, const struct hud_replay *r,
 	p->y = fmaxf(p->y, top + (float)tl.h) + p->small * 0.3f;
 }
 
-static void region_words(const struct model *m, double s_m, char *buf,
-			 size_t size)
+/* Region RG's name in words ("splenic flexure"). */
+static void region_name(const struct model_region *rg, char *buf, size_t size)
 {
-	const struct model_region *rg = model_region_at(m, s_m);
-	size_t n;
+	size_t n = (size_t)snprintf(buf, size, "%s", rg->name);
 
-	n = (size_t)snprintf(buf, size, "%s", rg->name);
 	for (size_t k = 0; k < n && k < size; k++) {
 		buf[k] = buf[k] == '_' ? ' ' : buf[k];
 	}
@@ -288,7 +300,7 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 						       "no colon yet");
 		return;
 	}
-	region_words(in->m, sc->tip_s_m, where, sizeof(where));
+	region_name(model_region_at(in->m, sc->tip_s_m), where, sizeof(where));
 	snprintf(text, sizeof(text), "tip: %s, %.1f cm in", where,
 		 sc->tip_s_m * 100);
 	line(p, FONT_SMALL, white, text);
@@ -299,32 +311,71 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 	line(p, FONT_SMALL, dim, text);
 }
 
-/* The largest bow of a mobile segment, if it is a loop worth saying. */
-static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
+/* The largest bow of a mobile segment, and its span (-1: none). */
+static double worst_loop(const struct endosim_scope_state *sc, int *span)
 {
-	const struct endosim_scope_state *sc = &in->st->scope;
 	double worst = 0;
-	int span = -1;
-	char text[160];
 
+	*span = -1;
 	for (uint32_t k = 0; k < sc->spans && k < ENDOSIM_SPANS; k++) {
 		if (fabs(sc->bow_m[k]) > worst) {
 			worst = fabs(sc->bow_m[k]);
-			span = (int)k;
+			*span = (int)k;
 		}
 	}
+	return worst;
+}
+
+/* The warning of the largest bow, if it is a loop worth saying. */
+static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
+{
+	int span;
+	double worst = worst_loop(&in->st->scope, &span);
+	char text[160];
+
 	if (worst < HUD_LOOP_WARN_M || !in->m) {
 		return;
 	}
 	for (int i = 0; i < in->m->regions; i++) {
 		if (in->m->region[i].span == span) {
 			snprintf(text, sizeof(text),
-				 "LOOP: the %s bows %.1f cm",
-				 in->m->region[i].name, worst * 100);
+				 "LOOP: the %s %s %.1f cm",
+				 in->m->region[i].name,
+				 rod(in->st) ? "moved" : "bows", worst * 100);
 			line(p, FONT_LARGE, fmod(t_s, 1.0) < 0.6 ? amber : red,
 			     text);
 		}
 	}
+}
+
+/* The rod model: how far each mobile segment has moved (its loop); in a
+ * compact panel only while no loop is worth a warning, which says it. */
+static void draw_moved(struct pen *p, const struct hud_info *in)
+{
+	const struct endosim_scope_state *sc = &in->st->scope;
+	char text[160] = "loop:", name[MODEL_NAME];
+	const char *sep = "";
+	size_t n = strlen(text);
+	int span;
+
+	if (in->compact && worst_loop(sc, &span) >= HUD_LOOP_WARN_M) {
+		return;
+	}
+	for (int i = 0; in->m && i < in->m->regions && n < sizeof(text);
+	     i++) {
+		const struct model_region *rg = &in->m->region[i];
+
+		if (rg->span < 0 || rg->span >= (int)sc->spans ||
+		    rg->span >= ENDOSIM_SPANS) {
+			continue;
+		}
+		region_name(rg, name, sizeof(name));
+		n += (size_t)snprintf(text + n, sizeof(text) - n,
+				      "%s %s %.1f cm", sep, name,
+				      fabs(sc->bow_m[rg->span]) * 100);
+		sep = ",";
+	}
+	line(p, FONT_SMALL, dim, text);
 }
 
 /* V, shown with DIGITS decimals: no "-0.0" for a hair below zero. */
@@ -364,14 +415,34 @@ static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
 	p->y += p->small * 1.5f;
 }
 
-static void draw_parts(struct pen *p, const struct endosim_haptics_state *h)
+/* The rod model's tube: its pull at the carriage, the wall along it. */
+static void draw_tube(struct pen *p, const struct endosim_state *st)
 {
+	const struct endosim_rod_state *r = &st->rod;
 	char text[192];
 
-	snprintf(text, sizeof(text), "push: contact %+.1f, friction %+.1f, "
-		 "loop %+.1f N", h->trans_contact_n, h->trans_friction_n,
-		 h->trans_loop_n);
+	snprintf(text, sizeof(text), "tube at the carriage: %+.1f N, "
+		 "%+.3f N m", st->haptics.trans_rod_n, st->haptics.tube_rod_nm);
 	line(p, FONT_SMALL, dim, text);
+	snprintf(text, sizeof(text), "tube on the wall: %u contact%s, %.1f N, "
+		 "friction %.1f N", r->contacts, r->contacts == 1 ? "" : "s",
+		 r->wall_n, r->friction_n);
+	line(p, FONT_SMALL, r->contacts ? white : dim, text);
+}
+
+static void draw_parts(struct pen *p, const struct endosim_state *st)
+{
+	const struct endosim_haptics_state *h = &st->haptics;
+	char text[192];
+
+	if (rod(st)) {
+		draw_tube(p, st);
+	} else {
+		snprintf(text, sizeof(text), "push: contact %+.1f, friction "
+			 "%+.1f, loop %+.1f N", h->trans_contact_n,
+			 h->trans_friction_n, h->trans_loop_n);
+		line(p, FONT_SMALL, dim, text);
+	}
 	for (int k = 0; k < 2; k++) {
 		snprintf(text, sizeof(text), "%s: contact %+.3f, wire %+.3f, "
 			 "spring %+.3f N m",
@@ -380,7 +451,8 @@ static void draw_parts(struct pen *p, const struct endosim_haptics_state *h)
 			 h->wheel_elastic_nm[k]);
 		line(p, FONT_SMALL, dim, text);
 	}
-	snprintf(text, sizeof(text), "wall: %s, %.1f mm in, %u constraint%s",
+	snprintf(text, sizeof(text), "%s: %s, %.1f mm in, %u constraint%s",
+		 rod(st) ? "tip on the wall" : "wall",
 		 h->contact ? "touching" : "clear", h->penetration_m * 1000,
 		 h->constraints, h->constraints == 1 ? "" : "s");
 	line(p, FONT_SMALL, h->contact ? amber : dim, text);
@@ -465,6 +537,9 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 	gap(p);
 	if (in->st && in->link != LINK_NO_DAEMON) {
 		draw_where(p, in);
+		if (rod(in->st)) {
+			draw_moved(p, in);
+		}
 		draw_loop(p, in, t_s);
 		gap(p);
 		if (in->help) {
@@ -475,7 +550,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 			draw_bar(p, &in->st->axis[a], a);
 		}
 		if (!in->compact) {
-			draw_parts(p, &in->st->haptics);
+			draw_parts(p, in->st);
 			gap(p);
 			draw_chart(p, h, t_s);
 		}
@@ -528,14 +603,21 @@ void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 	struct endo_rect r = lay->panel;
 	float top = (float)(hgt - r.y - r.h);
 	struct pen p = {
-		.d = d, .x = (float)r.x + MARGIN_PX, .y = top + MARGIN_PX,
+		.d = d, .h = h, .x = (float)r.x + MARGIN_PX,
+		.y = top + MARGIN_PX,
 		.w = (float)r.w - 2 * MARGIN_PX,
 		.small = draw2d_px(d, FONT_SMALL),
 		.large = draw2d_px(d, FONT_LARGE),
 	};
 
 	(void)w;
+	h->lines = 0;
 	draw_panel(h, &p, in, lay, hgt, t_s);
 	draw_footer(&p, in, top + (float)r.h - MARGIN_PX);
 	banners(d, lay, in, hgt);
+}
+
+const char *hud_said(const struct hud *h, int i)
+{
+	return i >= 0 && i < h->lines ? h->said[i] : NULL;
 }

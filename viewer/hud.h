@@ -7,7 +7,11 @@
  * force (contact, friction, loop; the wheels' contact, wire tension,
  * elastic return), a strip chart of the last seconds, a loop warning,
  * the frame rate, and the keys; banners over the image when the daemon is
- * missing or stale, or the colon is loading.
+ * missing or stale, or the colon is loading. In the rod model (struct
+ * endosim_rod_state) the first line names it, a line gives how far each
+ * mobile segment has moved (its loop, published in bow_m), and the parts
+ * of the force are the tube's pull at the carriage and the wall's
+ * contacts along the tube, their force and friction.
  *
  * A replay (endoview --replay) shows the recorded state, fault and forces
  * the same way, with the replay's lines in place of the state's hint
@@ -36,6 +40,8 @@
 
 #define HUD_LOOP_WARN_M 0.02 /* a bow this large is a loop worth saying */
 #define HUD_CHART_S 6.0      /* seconds in the strip chart */
+#define HUD_LINES 32         /* lines of text a panel keeps (hud_said()) */
+#define HUD_LINE 256         /* characters a line, its NUL included */
 
 enum hud_view {
 	HUD_VIEW_ENDO = 0, /* the endoscopic image and the panel */
@@ -104,6 +110,10 @@ void hud_chart_clear(struct hud *h);
  * draw2d_begin() and draw2d_end()). */
 void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 	      const struct hud_info *in, int w, int hgt, double t_s);
+
+/* Line I of the panel's text as the last hud_draw() drew it (cut where
+ * the panel ends), NULL past the last: what the panel says, for tests. */
+const char *hud_said(const struct hud *h, int i);
 
 /* The key help, one line per key, NULL-terminated: live, replay. */
 extern const char *const hud_keys[];

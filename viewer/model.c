@@ -302,34 +302,124 @@ static void widen(uint32_t *lo, uint32_t *hi, uint32_t a, uint32_t b)
 	*hi = b > *hi ? b : *hi;
 }
 
+/* Places the mesh of span K as its centreline lies now, widening
+ * [*LO, *HI) by the vertices that moved. */
+static void place_span(struct model *m, int k, uint32_t *lo, uint32_t *hi)
+{
+	struct mesh *me = m->mesh;
+	double ds = centreline_step(m->cl), s0, s1;
+	size_t a, b;
+
+	centreline_span_range(m->cl, k, &s0, &s1);
+	a = (size_t)lround(s0 / ds);
+	b = (size_t)lround(s1 / ds);
+	mesh_place(me, m->cl, a, b);
+	a = a > me->reach ? a - me->reach : 0;
+	b = b + me->reach + 1 < me->samples ? b + me->reach + 1 : me->samples;
+	widen(lo, hi, me->sample_first[a], me->sample_first[b]);
+}
+
 void model_bow(struct model *m, const double *bow_m, int spans,
 	       uint32_t *first, uint32_t *count)
 {
-	struct mesh *me = m->mesh;
-	double ds = centreline_step(m->cl);
 	uint32_t lo = 0, hi = 0;
 
 	for (int k = 0; k < spans && k < centreline_spans(m->cl); k++) {
-		double s0, s1;
-		size_t a, b;
-
 		if (!isfinite(bow_m[k]) ||
-		    fabs(bow_m[k] - centreline_bow_amplitude(m->cl, k)) <
-			    MODEL_BOW_STEP_M) {
+		    (!m->node_count[k] &&
+		     fabs(bow_m[k] - centreline_bow_amplitude(m->cl, k)) <
+			     MODEL_BOW_STEP_M)) {
 			continue;
 		}
 		centreline_bow(m->cl, k, bow_m[k]);
-		centreline_span_range(m->cl, k, &s0, &s1);
-		a = (size_t)lround(s0 / ds);
-		b = (size_t)lround(s1 / ds);
-		mesh_place(me, m->cl, a, b);
-		a = a > me->reach ? a - me->reach : 0;
-		b = b + me->reach + 1 < me->samples ? b + me->reach + 1 :
-						      me->samples;
-		widen(&lo, &hi, me->sample_first[a], me->sample_first[b]);
+		m->node_count[k] = 0;
+		place_span(m, k, &lo, &hi);
 	}
 	*first = lo;
 	*count = hi - lo;
+}
+
+/* Span K's N nodes, published from AT, differ from those placed. */
+static bool nodes_moved(const struct model *m, int k, int at,
+			const double (*node)[3], int n)
+{
+	if (m->node_count[k] != n || m->node_first[k] != at) {
+		return true;
+	}
+	for (int j = 0; j < n; j++) {
+		if (vec3_dist(node[j], m->node[at + j]) >= MODEL_BOW_STEP_M) {
+			return true;
+		}
+	}
+	return false;
+}
+
+void model_displace(struct model *m, const struct endosim_rod_state *rod,
+		    uint32_t *first, uint32_t *count)
+{
+	double node[ENDOSIM_COLON_NODES][3];
+	uint32_t lo = 0, hi = 0, at = 0;
+	uint32_t all = rod->nodes < ENDOSIM_COLON_NODES ? rod->nodes :
+							  ENDOSIM_COLON_NODES;
+
+	for (int k = 0; k < ENDOSIM_SPANS && k < centreline_spans(m->cl);
+	     k++) {
+		uint32_t n = rod->span_nodes[k];
+
+		if (n > all - at) {
+			break;
+		}
+		for (uint32_t j = 0; j < n; j++) {
+			for (int d = 0; d < 3; d++) {
+				node[j][d] = rod->node[at + j][d];
+			}
+		}
+		if (n && nodes_moved(m, k, (int)at, (const double(*)[3])node,
+				     (int)n) &&
+		    !centreline_displace(m->cl, k, (const double(*)[3])node,
+					 (int)n)) {
+			memcpy(m->node[at], node, n * sizeof(node[0]));
+			m->node_first[k] = (int)at;
+			m->node_count[k] = (int)n;
+			place_span(m, k, &lo, &hi);
+		}
+		at += n;
+	}
+	*first = lo;
+	*count = hi - lo;
+}
+
+double model_moved(const struct model *m, int span, size_t *at)
+{
+	double ds = centreline_step(m->cl), s0, s1, most = 0;
+	size_t a, b;
+
+	centreline_span_range(m->cl, span, &s0, &s1);
+	a = (size_t)lround(s0 / ds);
+	b = (size_t)lround(s1 / ds);
+	if (at) {
+		*at = a;
+	}
+	for (size_t i = a; i <= b; i++) {
+		double d = vec3_dist(centreline_sample(m->cl, i)->p,
+				     centreline_base(m->cl, i)->p);
+
+		if (d > most) {
+			most = d;
+			if (at) {
+				*at = i;
+			}
+		}
+	}
+	return most;
+}
+
+bool model_outside(const struct model *m, const float p[3])
+{
+	const struct centreline_point *c = centreline_base(m->cl, 0);
+	double x[3] = { p[0] - c->p[0], p[1] - c->p[1], p[2] - c->p[2] };
+
+	return vec3_dot(x, c->t) < 0;
 }
 
 const struct model_region *model_region_at(const struct model *m,

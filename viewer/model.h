@@ -10,24 +10,30 @@
  * triangle order and the same segment table as the daemon's, with the
  * scene's normals. model_bow() then bows the spans to the amplitudes the
  * force loop publishes (struct endosim_scope_state bow_m) with
- * centreline_bow() and mesh_place(), as colon_bow() does in the daemon.
+ * centreline_bow() and mesh_place(), as colon_bow() does in the daemon;
+ * in the rod model model_displace() moves them through the nodes it
+ * publishes (struct endosim_rod_state) with centreline_displace(), as the
+ * daemon's colon follows them (flex.h).
  *
  * Main thread only. model_create() allocates; the rest does not.
  */
 #ifndef ENDOVIEW_MODEL_H
 #define ENDOVIEW_MODEL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "centreline.h"
 #include "client.h"
+#include "endosim_shm.h"
 #include "mesh.h"
 
 #define MODEL_NAME 64
 #define MODEL_MAX_REGIONS 16
 #define MODEL_MAX_POLYPS 32
-#define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow are not placed */
+#define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow or a node are
+				   not placed */
 #define MODEL_END_M 0.15        /* the cecum's dome: a camera stays where */
 #define MODEL_OPEN 0.6          /* the lumen is this share of its widest in
 				   the last MODEL_END_M */
@@ -64,6 +70,10 @@ struct model {
 	int polyps;
 	double placed_error_m; /* largest distance from the scene's vertices */
 	size_t last_open;  /* the last sample whose ring is wide open */
+	/* the rod model's nodes as last placed, each span's from
+	   node_first[k] (node_count[k] of them; 0: the span is bowed) */
+	double node[ENDOSIM_COLON_NODES][3];
+	int node_first[CENTRELINE_MAX_SPANS], node_count[CENTRELINE_MAX_SPANS];
 };
 
 /*
@@ -85,6 +95,27 @@ void model_destroy(struct model *m);
  */
 void model_bow(struct model *m, const double *bow_m, int spans,
 	       uint32_t *first, uint32_t *count);
+
+/*
+ * The rod model's colon: moves span k by its ROD->span_nodes[k] nodes
+ * (spans in order, span 0's first in ROD->node) wherever one of them
+ * differs from the placed one by MODEL_BOW_STEP_M or more, and places the
+ * vertices that move. A span without nodes, or whose nodes are not all
+ * there or not finite, stays as it is. Returns the vertices moved as
+ * model_bow() does.
+ */
+void model_displace(struct model *m, const struct endosim_rod_state *rod,
+		    uint32_t *first, uint32_t *count);
+
+/*
+ * How far (m) the centreline of mobile span SPAN lies from its rest at
+ * most, bowed or moved by nodes; *AT (when not NULL) that sample.
+ */
+double model_moved(const struct model *m, int span, size_t *at);
+
+/* Whether P (m) lies outside the patient: behind the anal verge's normal
+ * plane, in the rig's pipe (rodscope.h). */
+bool model_outside(const struct model *m, const float p[3]);
 
 /* The region holding S_M (clamped to the colon). */
 const struct model_region *model_region_at(const struct model *m,

@@ -16,12 +16,20 @@
 
 #define FOV_DEG 30.0
 #define SCOPE_RADIUS_M 0.0065   /* a 13 mm insertion tube */
+#define STRIPE_RADIUS_M 0.0016  /* the roll's line, on its surface */
+#define OUTSIDE 0.45f           /* the tube outside the patient: dimmer */
 #define TIP_RADIUS_M 0.006
 #define CONTACT_RADIUS_M 0.012  /* larger than the tip: it shows round it */
 #define ARROW_M 0.03
 #define GHOST_GAIN 0.55f
+#define LUMEN_GIVE_M 0.005 /* a tube pressed into the wall (overview_print) */
 
 static const float scope_rgb[3] = { OVERVIEW_SCOPE_RGB };
+static const float outside_rgb[3] = { 0.20f * OUTSIDE, 0.95f * OUTSIDE,
+				       0.30f * OUTSIDE };
+static const float stripe_rgb[3] = { 0.95f, 0.97f, 1.0f };
+static const float stripe_out_rgb[3] = { 0.95f * OUTSIDE, 0.97f * OUTSIDE,
+					  OUTSIDE };
 static const float tip_rgb[3] = { 1.0f, 1.0f, 0.85f };
 static const float contact_rgb[3] = { 1.0f, 0.15f, 0.1f };
 static const float colon_rgb[3] = { 0.95f, 0.55f, 0.50f };
@@ -34,7 +42,7 @@ static const char *const uniform_name[UNIFORMS] = {
 	"u_mvp", "u_model", "u_color", "u_eye", "u_ghost",
 };
 
-enum { SPHERE, TUBE, ARROW, SHAPES };
+enum { SPHERE, TUBE, STRIPE, ARROW, SHAPES };
 
 struct overview {
 	GLuint program;
@@ -104,12 +112,12 @@ static void make_shapes(struct overview *o)
 {
 	static float sphere[SHAPES_SPHERE_VERTICES][9];
 	static uint32_t sphere_idx[SHAPES_SPHERE_INDICES];
-	static uint32_t tube_idx[6 * (ENDOSIM_TUBE_POINTS - 1) *
+	static uint32_t tube_idx[6 * (ENDOSIM_ROD_POINTS - 1) *
 				 SHAPES_TUBE_SIDES];
 	static const float line[2][3] = { { 0, 0, 0 }, { 0, 0, 1 } };
 	float arrow[2 * (SHAPES_TUBE_SIDES + 1)][9];
 	uint32_t arrow_idx[6 * SHAPES_TUBE_SIDES];
-	size_t tube_bytes = shapes_tube_vertices(ENDOSIM_TUBE_POINTS) * 9 *
+	size_t tube_bytes = shapes_tube_vertices(ENDOSIM_ROD_POINTS) * 9 *
 			    sizeof(float);
 
 	glGenVertexArrays(SHAPES, o->vao);
@@ -118,9 +126,11 @@ static void make_shapes(struct overview *o)
 	shapes_sphere(sphere, sphere_idx);
 	shape_buffers(o, SPHERE, sizeof(sphere), sphere, sizeof(sphere_idx),
 		      sphere_idx, GL_STATIC_DRAW);
-	shapes_tube_index(ENDOSIM_TUBE_POINTS, tube_idx);
-	shape_buffers(o, TUBE, (GLsizeiptr)tube_bytes, NULL, sizeof(tube_idx),
-		      tube_idx, GL_STREAM_DRAW);
+	shapes_tube_index(ENDOSIM_ROD_POINTS, tube_idx);
+	for (int k = TUBE; k <= STRIPE; k++) {
+		shape_buffers(o, k, (GLsizeiptr)tube_bytes, NULL,
+			      sizeof(tube_idx), tube_idx, GL_STREAM_DRAW);
+	}
 	shapes_tube(line, 2, 1, arrow);
 	shapes_tube_index(2, arrow_idx);
 	shape_buffers(o, ARROW, sizeof(arrow), arrow, sizeof(arrow_idx),
@@ -215,9 +225,10 @@ static void view_projection(struct overview *o,
 	glm_mat4_mul(o->vp, mirror, o->vp);
 }
 
-/* Draws shape K (bound) with MODEL, colour RGB; returns its triangles. */
-static uint32_t draw_shape(const struct overview *o, int k, mat4 model,
-			   const float rgb[3], GLsizei indices)
+/* Draws the triangles of shape K from index FIRST, INDICES of them, with
+ * MODEL, colour RGB; returns their number. */
+static uint32_t draw_range(const struct overview *o, int k, mat4 model,
+			   const float rgb[3], size_t first, GLsizei indices)
 {
 	mat4 mvp;
 
@@ -226,8 +237,15 @@ static uint32_t draw_shape(const struct overview *o, int k, mat4 model,
 	glUniformMatrix4fv(o->u[U_MODEL], 1, GL_FALSE, model[0]);
 	glUniform3fv(o->u[U_COLOR], 1, rgb);
 	glBindVertexArray(o->vao[k]);
-	glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, NULL);
+	glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT,
+		       (void *)(first * sizeof(uint32_t)));
 	return (uint32_t)indices / 3;
+}
+
+static uint32_t draw_shape(const struct overview *o, int k, mat4 model,
+			   const float rgb[3], GLsizei indices)
+{
+	return draw_range(o, k, model, rgb, 0, indices);
 }
 
 static uint32_t sphere_at(const struct overview *o, const double p[3],
@@ -262,21 +280,78 @@ static uint32_t arrow_at(const struct overview *o, const double p[3],
 	return draw_shape(o, ARROW, model, rgb, 6 * SHAPES_TUBE_SIDES);
 }
 
-static uint32_t draw_scope(const struct overview *o,
+/* The rod's points published. */
+static size_t rod_points(const struct endosim_rod_state *rod)
+{
+	return rod->points < ENDOSIM_ROD_POINTS ? rod->points :
+						  ENDOSIM_ROD_POINTS;
+}
+
+/* Shape K, a tube of RADIUS through the N points P: its segments up to
+ * point FROM in DIM, those after in RGB. Returns the triangles. */
+static uint32_t draw_tube(const struct overview *o, int k,
+			  const float (*p)[3], size_t n, double radius,
+			  size_t from, const float dim[3], const float rgb[3])
+{
+	static float v[ENDOSIM_ROD_POINTS * (SHAPES_TUBE_SIDES + 1)][9];
+	const size_t side = 6 * SHAPES_TUBE_SIDES;
+	mat4 identity = GLM_MAT4_IDENTITY_INIT;
+	uint32_t tris = 0;
+
+	from = from < n - 1 ? from : n - 1;
+	shapes_tube(p, n, (float)radius, v);
+	glBindBuffer(GL_ARRAY_BUFFER, o->vbo[k]);
+	glBufferSubData(GL_ARRAY_BUFFER, 0,
+			(GLsizeiptr)(shapes_tube_vertices(n) * sizeof(v[0])),
+			v);
+	if (from > 0) {
+		tris += draw_range(o, k, identity, dim, 0,
+				   (GLsizei)(side * from));
+	}
+	if (from + 1 < n) {
+		tris += draw_range(o, k, identity, rgb, side * from,
+				   (GLsizei)(side * (n - 1 - from)));
+	}
+	return tris;
+}
+
+/* The rod model's whole tube, dimmer outside the patient, with the line
+ * of its roll. */
+static uint32_t draw_rod(const struct overview *o, const struct model *m,
+			 const struct endosim_rod_state *rod)
+{
+	static float stripe[ENDOSIM_ROD_POINTS][3];
+	const float(*p)[3] = (const float(*)[3])rod->point;
+	size_t n = rod_points(rod), from = 0;
+
+	if (n < 2) {
+		return 0;
+	}
+	while (from < n && model_outside(m, p[from])) {
+		from++;
+	}
+	shapes_stripe(p, rod->roll, n, centreline_base(m->cl, 0)->u,
+		      (float)SCOPE_RADIUS_M, stripe);
+	return draw_tube(o, TUBE, p, n, SCOPE_RADIUS_M, from, outside_rgb,
+			 scope_rgb) +
+	       draw_tube(o, STRIPE, (const float(*)[3])stripe, n,
+			 STRIPE_RADIUS_M, from, stripe_out_rgb, stripe_rgb);
+}
+
+static uint32_t draw_scope(const struct overview *o, const struct model *m,
 			   const struct endosim_state *st)
 {
-	static float v[ENDOSIM_TUBE_POINTS * (SHAPES_TUBE_SIDES + 1)][9];
 	const struct endosim_scope_state *sc = &st->scope;
 	const struct endosim_haptics_state *h = &st->haptics;
-	mat4 identity = GLM_MAT4_IDENTITY_INIT;
 	uint32_t tris;
 
-	shapes_tube((const float(*)[3])sc->tube, ENDOSIM_TUBE_POINTS,
-		    (float)SCOPE_RADIUS_M, v);
-	glBindBuffer(GL_ARRAY_BUFFER, o->vbo[TUBE]);
-	glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(v), v);
-	tris = draw_shape(o, TUBE, identity, scope_rgb,
-			  6 * (ENDOSIM_TUBE_POINTS - 1) * SHAPES_TUBE_SIDES);
+	if (st->rod.model == ENDOSIM_MODEL_ROD) {
+		tris = draw_rod(o, m, &st->rod);
+	} else {
+		tris = draw_tube(o, TUBE, (const float(*)[3])sc->tube,
+				 ENDOSIM_TUBE_POINTS, SCOPE_RADIUS_M, 0,
+				 scope_rgb, scope_rgb);
+	}
 	tris += sphere_at(o, sc->tip, TIP_RADIUS_M, tip_rgb);
 	tris += arrow_at(o, sc->tip, sc->dir, ARROW_M, tip_rgb);
 	if (h->contact) {
@@ -286,15 +361,14 @@ static uint32_t draw_scope(const struct overview *o,
 	return tris;
 }
 
-/* A region's colour: a mobile one turns amber as it bows. */
+/* A region's colour: a mobile one turns amber as it bows or moves. */
 static void region_rgb(const struct model *m, const struct model_region *rg,
 		       float rgb[3])
 {
 	double f = 0;
 
 	if (rg->span >= 0 && rg->max_bow_m > 0) {
-		f = fabs(centreline_bow_amplitude(m->cl, rg->span)) /
-		    rg->max_bow_m;
+		f = model_moved(m, rg->span, NULL) / rg->max_bow_m;
 	}
 	for (int k = 0; k < 3; k++) {
 		rgb[k] = (float)(colon_rgb[k] +
@@ -379,7 +453,7 @@ uint32_t overview_draw(struct overview *o, const struct model *m,
 	glUniform3fv(o->u[U_EYE], 1, eyef);
 	glUniform1f(o->u[U_GHOST], 0);
 	if (st) {
-		tris += draw_scope(o, st);
+		tris += draw_scope(o, m, st);
 	}
 	/* the ghost: added light, no depth written, both walls */
 	glDepthMask(GL_FALSE);
@@ -391,30 +465,140 @@ uint32_t overview_draw(struct overview *o, const struct model *m,
 	return tris;
 }
 
+bool overview_project(const struct overview *o, const double p[3], int fb_h,
+		      float xy[2])
+{
+	vec4 w = { (float)p[0], (float)p[1], (float)p[2], 1 }, c;
+
+	glm_mat4_mulv((vec4 *)o->vp, w, c);
+	if (c[3] <= 0) {
+		return false;
+	}
+	xy[0] = (float)o->rect.x + (c[0] / c[3] + 1) / 2 * (float)o->rect.w;
+	xy[1] = (float)fb_h - ((float)o->rect.y +
+			       (c[1] / c[3] + 1) / 2 * (float)o->rect.h);
+	return true;
+}
+
 void overview_labels(const struct overview *o, const struct model *m,
 		     struct draw2d *d, int fb_h)
 {
 	static const float grey[4] = { 0.75f, 0.78f, 0.85f, 0.85f };
 	char name[MODEL_NAME];
+	float xy[2];
 
 	for (int i = 0; i < m->regions; i++) {
 		const struct model_region *rg = &m->region[i];
 		size_t k = model_sample_at(m, 0.5 * (rg->s0_m + rg->s1_m));
-		const double *p = centreline_sample(m->cl, k)->p;
-		vec4 w = { (float)p[0], (float)p[1], (float)p[2], 1 }, c;
-		float x, y;
 
-		glm_mat4_mulv((vec4 *)o->vp, w, c);
-		if (c[3] <= 0 || strcmp(rg->name, "anal_canal") == 0) {
+		if (!overview_project(o, centreline_sample(m->cl, k)->p, fb_h,
+				      xy) ||
+		    strcmp(rg->name, "anal_canal") == 0) {
 			continue;
 		}
-		x = (float)o->rect.x + (c[0] / c[3] + 1) / 2 * (float)o->rect.w;
-		y = (float)fb_h - ((float)o->rect.y +
-				   (c[1] / c[3] + 1) / 2 * (float)o->rect.h);
 		snprintf(name, sizeof(name), "%s", rg->name);
 		for (char *q = name; *q; q++) {
 			*q = *q == '_' ? ' ' : *q;
 		}
-		draw2d_text(d, FONT_SMALL, x + 14, y, grey, name);
+		draw2d_text(d, FONT_SMALL, xy[0] + 14, xy[1], grey, name);
+	}
+}
+
+/* "KEY=x,y;x,y..." where the last overview drew the rod's points that lie
+ * OUTSIDE the patient, or inside. */
+static void print_rod(const struct overview *o, const struct model *m,
+		      const struct endosim_rod_state *rod, bool outside,
+		      int fb_h, FILE *f)
+{
+	const char *sep = "";
+	float xy[2];
+
+	fprintf(f, "overview: rod_%s=", outside ? "out" : "in");
+	for (size_t i = 0; i < rod_points(rod); i++) {
+		const float *q = rod->point[i];
+		double p[3] = { q[0], q[1], q[2] };
+
+		if (model_outside(m, q) == outside &&
+		    overview_project(o, p, fb_h, xy)) {
+			fprintf(f, "%s%.1f,%.1f", sep, xy[0], xy[1]);
+			sep = ";";
+		}
+	}
+	fputc('\n', f);
+}
+
+/* The sample of M nearest P. */
+static size_t nearest_sample(const struct model *m, const double p[3])
+{
+	size_t best = 0;
+	double best_d = INFINITY;
+
+	for (size_t i = 0; i < centreline_count(m->cl); i++) {
+		double d = vec3_dist(p, centreline_sample(m->cl, i)->p);
+
+		if (d < best_d) {
+			best_d = d;
+			best = i;
+		}
+	}
+	return best;
+}
+
+/* The share of the rod's points inside the patient that lie within the
+ * colon as placed, the wall's give (LUMEN_GIVE_M) allowed. */
+static void print_in_lumen(const struct model *m,
+			   const struct endosim_rod_state *rod, FILE *f)
+{
+	int in = 0, within = 0;
+
+	for (size_t k = 0; k < rod_points(rod); k++) {
+		const float *q = rod->point[k];
+		double p[3] = { q[0], q[1], q[2] }, d[3];
+		size_t i;
+
+		if (!model_outside(m, q)) {
+			i = nearest_sample(m, p);
+			within += model_wall_gap(m, &i, p, d) > -LUMEN_GIVE_M;
+			in++;
+		}
+	}
+	fprintf(f, "overview: rod_in_lumen=%.3f\n",
+		in ? (double)within / in : 0);
+}
+
+/* Span K's sample that moved most: where it is drawn, where it would be
+ * at rest, and the lumen's radius there, in pixels. */
+static void print_span(const struct overview *o, const struct model *m,
+		       int k, int fb_h, FILE *f)
+{
+	size_t i;
+	double moved = model_moved(m, k, &i), rim[3], r = 0;
+	const struct centreline_point *c = centreline_sample(m->cl, i);
+	float at[2] = { 0, 0 }, rest[2] = { 0, 0 }, xy[2];
+
+	overview_project(o, c->p, fb_h, at);
+	overview_project(o, centreline_base(m->cl, i)->p, fb_h, rest);
+	for (int side = 0; side < 2; side++) {
+		vec3_axpy(rim, c->p, m->mesh->sample_rho[i],
+			  side ? c->v : c->u);
+		if (overview_project(o, rim, fb_h, xy)) {
+			r = fmax(r, hypot(xy[0] - at[0], xy[1] - at[1]));
+		}
+	}
+	fprintf(f, "overview: span=%d moved_m=%.4f at=%.1f,%.1f "
+		"rest=%.1f,%.1f lumen_px=%.1f\n", k, moved, at[0], at[1],
+		rest[0], rest[1], r);
+}
+
+void overview_print(const struct overview *o, const struct model *m,
+		    const struct endosim_state *st, int fb_h, FILE *f)
+{
+	if (st && st->rod.model == ENDOSIM_MODEL_ROD) {
+		print_rod(o, m, &st->rod, false, fb_h, f);
+		print_rod(o, m, &st->rod, true, fb_h, f);
+		print_in_lumen(m, &st->rod, f);
+	}
+	for (int k = 0; k < centreline_spans(m->cl); k++) {
+		print_span(o, m, k, fb_h, f);
 	}
 }

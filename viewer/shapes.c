@@ -132,3 +132,21 @@ void shapes_tube_index(size_t n, uint32_t *idx)
 		grid(idx, n - 1, SHAPES_TUBE_SIDES, true);
 	}
 }
+
+void shapes_stripe(const float (*p)[3], const float *roll, size_t n,
+		   const double u0[3], float offset, float (*out)[3])
+{
+	double t[3] = { 0, 0, 1 }, u[3], w[3], d[3];
+
+	vec3_copy(u, u0);
+	for (size_t i = 0; i < n; i++) {
+		tangent(p, n, i, t);
+		carry(u, t);
+		vec3_cross(w, t, u);
+		vec3_scale(d, u, cos(roll[i]));
+		vec3_axpy(d, d, sin(roll[i]), w);
+		for (int k = 0; k < 3; k++) {
+			out[i][k] = (float)(p[i][k] + offset * d[k]);
+		}
+	}
+}

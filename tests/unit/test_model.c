@@ -1,8 +1,8 @@
 /*
  * test_model.c - the viewer's colon (viewer/model.h): rebuilt from what
- * GetScene serves, it is the daemon's colon vertex for vertex, also bowed;
- * it names the region of any s; it keeps a camera inside the lumen, out of
- * the cecum's closed end too.
+ * GetScene serves, it is the daemon's colon vertex for vertex, also bowed
+ * or moved by the rod model's nodes; it names the region of any s; it
+ * keeps a camera inside the lumen, out of the cecum's closed end too.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -40,6 +40,28 @@ static void same_as_daemon(void **state)
 	fixture_teardown(&f);
 }
 
+/* The vertices outside [FIRST, FIRST + COUNT) are those of BEFORE. */
+static void only_range_moved(const struct mesh *me, const float (*before)[3],
+			     uint32_t first, uint32_t count)
+{
+	for (uint32_t j = 0; j < me->vertices; j++) {
+		if (j < first || j >= first + count) {
+			assert_memory_equal(before[j], me->pos[j],
+					    sizeof(before[j]));
+		}
+	}
+}
+
+/* A copy of ME's vertices as placed now (the caller frees it). */
+static float (*positions(const struct mesh *me))[3]
+{
+	float (*pos)[3] = malloc(me->vertices * sizeof(*pos));
+
+	assert_non_null(pos);
+	memcpy(pos, me->pos, me->vertices * sizeof(*pos));
+	return pos;
+}
+
 /* Bowed as the daemon bows: the same vertices, and every vertex that
  * moved lies in the range model_bow() reports. */
 static void bows_as_daemon(void **state)
@@ -53,24 +75,133 @@ static void bows_as_daemon(void **state)
 	(void)state;
 	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
 	me = f.model->mesh;
-	before = malloc(me->vertices * sizeof(*before));
-	assert_non_null(before);
-	memcpy(before, me->pos, me->vertices * sizeof(*before));
+	before = positions(me);
 	assert_int_equal(colon_bow(f.colon, 0, bow[0], true), 0);
 	assert_int_equal(colon_bow(f.colon, 1, bow[1], true), 0);
 	model_bow(f.model, bow, 2, &first, &count);
 	assert_true(count > 0);
 	assert_true(fixture_placed_error(&f) < SAME_M);
-	for (uint32_t j = 0; j < me->vertices; j++) {
-		if (j < first || j >= first + count) {
-			assert_memory_equal(before[j], me->pos[j],
-					    sizeof(before[j]));
-		}
-	}
+	only_range_moved(me, (const float(*)[3])before, first, count);
 	bow[0] += MODEL_BOW_STEP_M / 2; /* too small a change to place */
 	model_bow(f.model, bow, 2, &first, &count);
 	assert_int_equal(count, 0);
 	free(before);
+	fixture_teardown(&f);
+}
+
+/* The daemon's colon moved by span K's N nodes from NODE, its mesh placed
+ * there. */
+static void daemon_displace(struct colon *c, int k, const float (*node)[3],
+			    int n)
+{
+	struct centreline *cl = colon_centreline(c);
+	double y[ENDOSIM_COLON_NODES][3], s0, s1, ds = centreline_step(cl);
+
+	for (int j = 0; j < n; j++) {
+		for (int d = 0; d < 3; d++) {
+			y[j][d] = node[j][d];
+		}
+	}
+	assert_int_equal(centreline_displace(cl, k, (const double(*)[3])y, n),
+			 0);
+	centreline_span_range(cl, k, &s0, &s1);
+	mesh_place(colon_mesh(c), cl, (size_t)lround(s0 / ds),
+		   (size_t)lround(s1 / ds));
+}
+
+/* The rod model's nodes (floats a double holds exactly): three in the
+ * sigmoid, the largest 6.25 cm from rest, two in the transverse. */
+static void rod_nodes(struct endosim_rod_state *rod)
+{
+	static const float node[5][3] = {
+		{ 0.015625f, 0, 0.0078125f }, { 0.0625f, 0, 0 },
+		{ 0.0234375f, -0.0078125f, 0 },
+		{ 0, 0.015625f, -0.03125f }, { 0, 0.0078125f, -0.015625f },
+	};
+
+	memset(rod, 0, sizeof(*rod));
+	rod->model = ENDOSIM_MODEL_ROD;
+	rod->nodes = 5;
+	rod->span_nodes[0] = 3;
+	rod->span_nodes[1] = 2;
+	memcpy(rod->node, node, sizeof(node));
+}
+
+/* Moved by the nodes as the daemon's colon follows them: the same
+ * vertices, only those in the range reported moved, the span's largest
+ * displacement at least its largest node's; a node moved by less than
+ * MODEL_BOW_STEP_M is not placed, one moved by more places its span
+ * alone; nodes that do not add up move nothing; a bow of 0 afterwards
+ * lays the span at rest again. */
+static void moves_as_daemon(void **state)
+{
+	struct fixture f;
+	struct endosim_rod_state rod;
+	const struct mesh *me;
+	float (*before)[3];
+	uint32_t first, count, second;
+	double bow[2] = { 0, 0 };
+	size_t at;
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
+	me = f.model->mesh;
+	before = positions(me);
+	rod_nodes(&rod);
+	daemon_displace(f.colon, 0, (const float(*)[3])rod.node, 3);
+	daemon_displace(f.colon, 1, (const float(*)[3])rod.node[3], 2);
+	model_displace(f.model, &rod, &first, &count);
+	assert_true(count > 0);
+	assert_true(fixture_placed_error(&f) < SAME_M);
+	only_range_moved(me, (const float(*)[3])before, first, count);
+	assert_true(model_moved(f.model, 0, &at) >= 0.0625 - 1e-9);
+	assert_true(model_moved(f.model, 0, NULL) < 0.07);
+	assert_string_equal(model_region_at(f.model, at * 0.002)->name,
+			    "sigmoid");
+	assert_true(model_moved(f.model, 1, NULL) >= 0.034);
+
+	rod.node[1][0] += (float)(MODEL_BOW_STEP_M / 2); /* too small */
+	model_displace(f.model, &rod, &first, &count);
+	assert_int_equal(count, 0);
+	memcpy(before, me->pos, me->vertices * sizeof(*before));
+	rod.node[4][2] += (float)(MODEL_BOW_STEP_M * 2); /* the transverse */
+	daemon_displace(f.colon, 1, (const float(*)[3])rod.node[3], 2);
+	model_displace(f.model, &rod, &second, &count);
+	assert_true(count > 0 && second > first);
+	only_range_moved(me, (const float(*)[3])before, second, count);
+	assert_true(fixture_placed_error(&f) < SAME_M);
+
+	rod.node[0][0] = NAN; /* with another node well moved */
+	rod.node[2][0] += 0.01f;
+	rod.node[3][0] += 0.01f;
+	rod.span_nodes[1] = 3; /* more nodes than published */
+	model_displace(f.model, &rod, &first, &count);
+	assert_int_equal(count, 0);
+
+	model_bow(f.model, bow, 2, &first, &count);
+	assert_true(count > 0);
+	assert_true(model_moved(f.model, 0, NULL) == 0);
+	assert_true(model_moved(f.model, 1, NULL) == 0);
+	free(before);
+	fixture_teardown(&f);
+}
+
+/* The rig's pipe behind the anal verge is outside; the rectum inside. */
+static void knows_outside(void **state)
+{
+	struct fixture f;
+	const struct centreline_point *c;
+	float p[3];
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.004, 32);
+	c = centreline_base(f.model->cl, 0);
+	for (int sign = -1; sign <= 1; sign += 2) {
+		for (int d = 0; d < 3; d++) {
+			p[d] = (float)(c->p[d] + sign * 0.01 * c->t[d]);
+		}
+		assert_true(model_outside(f.model, p) == (sign < 0));
+	}
 	fixture_teardown(&f);
 }
 
@@ -179,6 +310,8 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(same_as_daemon),
 		cmocka_unit_test(bows_as_daemon),
+		cmocka_unit_test(moves_as_daemon),
+		cmocka_unit_test(knows_outside),
 		cmocka_unit_test(names_regions),
 		cmocka_unit_test(keeps_inside),
 		cmocka_unit_test(knows_a_tube),
