@@ -24,10 +24,10 @@ check "one object per axis" \
 	test "$(ctl --json status | jq -c '.axes | keys')" = '["insertion","roll","wheel_lr","wheel_ud"]'
 check "each axis has position, velocity, command and limited" \
 	test "$(ctl --json status | jq '[.axes[] | has("position","velocity","command","limited")] | all')" = true
-check "the paper model: its rod says so, empty, and the text has no rod line" \
-	eval '[ "$(ctl --json status | jq -c .rod)" = \
-		"{\"model\":\"paper\",\"contacts\":0,\"wall_n\":0,\"friction_n\":0,\"points\":0,\"nodes\":0}" ] &&
-		ctl status | grep -q "^tube " && ! ctl status | grep -q "^rod "'
+check "the rod model (the default): its rod says so, the whole tube's 161 points, the colon's nodes, and the text has its rod line" \
+	eval 'ctl --json status | jq -e ".rod.model == \"rod\" and
+		.rod.points == 161 and .rod.nodes > 0" >/dev/null &&
+		ctl status | grep -q "^rod "'
 
 # loop_window: the loop over about a second, from two published cycles:
 # "RAN SKIPPED DUE", the cycles run, the periods counted skipped (overruns)

@@ -72,8 +72,11 @@ check "the tip is inside the body, above the anal verge" status_true \
 "$TOOLS/shm_probe" "$SHM" --once >"$TMP/shm.txt"
 check "shared memory: the tube ends at the tip" sh -c \
 	"test \"\$(sed -n 's/^scope.tip=//p' '$TMP/shm.txt')\" = \"\$(sed -n 's/^scope.tube_last=//p' '$TMP/shm.txt')\""
-check "shared memory: and starts at the anal verge" \
-	grep -qx "scope.tube_first=0.000000,0.000000,0.000000" "$TMP/shm.txt"
+# (the rod model's tube: where the rod passes the anal verge, within 1 cm:
+# pushed, the tube lags the carriage by its coupling's stretch, a few mm)
+check "shared memory: and starts at the anal verge" awk -F'[=,]' \
+	'/^scope.tube_first=/ { found = 1; bad = $2 * $2 + $3 * $3 + $4 * $4 > 1e-4 }
+	 END { exit !found || bad }' "$TMP/shm.txt"
 check "shared memory: two mobile segments" grep -qx "scope.spans=2" "$TMP/shm.txt"
 ctl hand 0 0 3 0 --hold-ms 1000 >/dev/null
 check "the up/down wheel bends the tip" wait_for status_true '.scope.bend_rad[0] > 0.2'

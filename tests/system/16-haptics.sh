@@ -1,5 +1,7 @@
 #!/bin/bash
-# The haptics in the running daemon: on the shipped demo scenario the force
+# The haptics in the running daemon, the paper's model (the rod model's
+# parts are checked in lockstep by tests/unit/test_rodcourse.c): on the
+# shipped paper demo scenario the force
 # loop publishes its haptic rendering (the god-object contact, each axis'
 # force by its parts) in every state, and each axis' parts add up to the
 # command it published. The behaviour of the rendering over the course
@@ -12,7 +14,8 @@
 
 # the insertion limited to 1 N (held beyond it as long as it likes), so
 # that the wall's push in the rectum is clamped on its way to the rig
-start_daemon --scenario "$TOP/config/scenarios/demo.scn" \
+start_daemon --scenario "$TOP/config/scenarios/demo-paper.scn" \
+	--set haptics.model=paper \
 	--set limits.insertion_max_force_n=1 --set limits.saturation_s=60 ||
 	finish
 ctl enable >/dev/null

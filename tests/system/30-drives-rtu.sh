@@ -28,6 +28,10 @@ roll_max_rad = 100
 ; at a set speed however hard the end brakes push back at their limit
 travel_margin_fraction = 100
 saturation_s = 3600
+[haptics]
+; the paper's model: with the tube on the centreline and the tip off the
+; wall, only the damping renders, a steady force to find in each drive
+model = paper
 [axis.insertion]
 backend = epos4-usb
 gear_radius_m = $R

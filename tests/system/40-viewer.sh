@@ -18,7 +18,9 @@
 . "$TOP/tests/viewer_lib.sh"
 
 start_xvfb || finish
-STRAIGHT=(--set "case.directory=$TOP/tests/cases" --set case.name=straight)
+# the straight case, the paper model (the tip where its kinematics put it)
+STRAIGHT=(--set "case.directory=$TOP/tests/cases" --set case.name=straight
+	  --set haptics.model=paper)
 SMALL=(--size 640x480)
 
 # scenario NAME LINE...: a scenario file for the simulated hand; its path.
@@ -149,14 +151,16 @@ check "overview: the scope's shape grows with the insertion" \
 OVER="rect:$X,$Y,$W,$H"
 
 # --- a loop and a contact, from the force model ------------------------
-# The shipped demo's course at 10 cm/s (scenario_gen): steered through the
-# sigmoid, then pushed straight into the splenic flexure, which holds the
-# tip while the sigmoid bows. Before: the same course held at 40 cm.
+# The paper model's demo course at 10 cm/s (scenario_gen --model paper):
+# steered through the sigmoid, then pushed straight into the splenic
+# flexure, which holds the tip while the sigmoid bows. Before: the same
+# course held at 40 cm.
 stop_daemon
-"$TOOLS/scenario_gen" "$TOP/config/cases/normal.case" 0.1 >"$TMP/fast.scn"
+"$TOOLS/scenario_gen" --model paper "$TOP/config/cases/normal.case" 0.1 \
+	>"$TMP/fast.scn"
 awk '/^#/ || $1 <= 4.5' "$TMP/fast.scn" >"$TMP/held.scn"
 echo '60 end' >>"$TMP/held.scn"
-start_daemon --scenario "$TMP/held.scn" || finish
+start_daemon --scenario "$TMP/held.scn" --set haptics.model=paper || finish
 ctl enable >/dev/null
 check "the scope goes in 40 cm in the default case, along the lumen" \
 	wait_for status_true '.axes.insertion.position > 0.39 and
@@ -168,7 +172,7 @@ check_status "overview, no loop: screenshot" 0 view --view overview \
 rect_of overview
 OVER="rect:$X,$Y,$W,$H"
 stop_daemon
-start_daemon --scenario "$TMP/fast.scn" || finish
+start_daemon --scenario "$TMP/fast.scn" --set haptics.model=paper || finish
 ctl enable >/dev/null
 WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the sigmoid bows 5 cm" \
 	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
@@ -202,10 +206,10 @@ check "stalled daemon: seen stale, no OpenGL error" ran_clean stale
 stop_daemon
 
 # --- the rod model: the whole tube, the colon where its nodes put it -----
-# The same course, held 8 s in: the tube pushed on into the sigmoid, which
-# it carries away from where it lay.
-awk '/^#/ || $1 <= 8' "$TMP/fast.scn" >"$TMP/rod.scn"
-echo '60 end' >>"$TMP/rod.scn"
+# The tube pushed in straight at 10 cm/s: its tip stops in the sigmoid,
+# which it carries away from where it lay (5 cm by 8 s, lockstep).
+scenario rod '0 insertion target 0.90 9' '0 wheel_ud target 0 0.1' \
+	'0 wheel_lr target 0 0.1' '60 end' >/dev/null
 start_daemon --scenario "$TMP/rod.scn" --set haptics.model=rod || finish
 ctl enable >/dev/null
 WAIT_S=40 check "rod: the tube pushed on, the sigmoid moves 5 cm" wait_for \
@@ -231,7 +235,7 @@ apart=$(awk -v a="$at" -v b="$rest" 'BEGIN { split(a, p, ","); split(b, q, ",")
 echo "# rod: the sigmoid moved $moved m (the state: $bow), drawn $apart px from its rest"
 check "rod: the sigmoid's centreline moved as far as the state says" \
 	float_test "$moved > 0.04 && $moved > 0.9 * $bow && $moved < 1.1 * $bow && \
-		    $apart > 3 * $lumen"
+		    $apart > 2 * $lumen"
 # (where it lay other parts of the moved sigmoid may pass: no test there;
 # with the moved vertices not uploaded, none is drawn where it moved to)
 r=$(awk -v l="$lumen" 'BEGIN { printf "%.0f", 1.4 * l }')

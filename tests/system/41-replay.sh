@@ -1,7 +1,8 @@
 #!/bin/bash
 # endoview --replay: a session file played without the daemon, on a
 # virtual screen of its own (Xvfb, Mesa's llvmpipe). The file is written
-# by session_synth (the demo's course on the normal case, by the force
+# by session_synth (the paper model's demo course on the normal case, by
+# the force
 # loop's own parts off line), which also prints the truth at a few times:
 # the record's fields as the file holds them and the tube the daemon would
 # have published. At those times the replay shows exactly the record's
@@ -61,9 +62,9 @@ at=()
 for t in "${TIMES[@]}"; do
 	at+=(--at "$t")
 done
-check_status "session_synth: 25 s of the demo on the normal case" 0 \
-	"$TOOLS/session_synth" "${at[@]}" "$CASES/normal.case" \
-	"$TOP/config/scenarios/demo.scn" "$FILE" 25
+check_status "session_synth: 25 s of the paper demo on the normal case" 0 \
+	"$TOOLS/session_synth" --set haptics.model=paper "${at[@]}" \
+	"$CASES/normal.case" "$TOP/config/scenarios/demo-paper.scn" "$FILE" 25
 cp "$OUT" "$TRUTH"
 
 # --- (a) the states shown are the records --------------------------------
@@ -216,7 +217,8 @@ same_numbers() {
 
 mkdir -p "$TMP/sessions"
 start_daemon --set "session.directory=$TMP/sessions" \
-	--scenario "$TOP/config/scenarios/demo.scn" || finish
+	--set haptics.model=paper \
+	--scenario "$TOP/config/scenarios/demo-paper.scn" || finish
 ctl enable >/dev/null
 check "the daemon records a session" ctl session start --trainee Ada
 WAIT_S=15

@@ -13,12 +13,13 @@
 # protect; on the Modbus rig below auto makes it a fault, as on a rig).
 # 10 mN m: the scripted hand (its grip 0.05 N m/rad) holds the wheel
 # against it 0.2 rad off its target, not far off, never fast. The force
-# model's own wheel torques (the wall's contact, wire tension, the bending
-# spring) are off: they would saturate so small a limit by themselves.
+# model's own wheel torques (the paper model's: the wall's contact, wire
+# tension, the bending spring) are off: they would saturate so small a
+# limit by themselves.
 check "simulated rig up, enabled, every axis moving" \
 	start_sim --set limits.saturation_s=0.5 \
 	--set limits.saturation_fault=yes \
-	--set limits.wheel_ud_max_torque_n_m=0.01 \
+	--set limits.wheel_ud_max_torque_n_m=0.01 --set haptics.model=paper \
 	--set haptics.wall_stiffness_n_per_m=0 \
 	--set haptics.wall_damping_n_s_per_m=0 \
 	--set haptics.wire_tension_n_m_per_m=0 \

@@ -7,6 +7,7 @@
  *  - a loop forms on the way (the sigmoid pushed more than 2.5 cm off its
  *    course while the hand pushes on at the sigmoid's end) and is reduced
  *    (back under 2.5 cm after the withdrawal that follows);
+ *  - each axis' published parts add up to its command;
  *  - the forces stay in a real colonoscopy's ranges (Appleyard et al.,
  *    GIE 2000, 21 colonoscopies: the insertion force above 10 N at most
  *    ~5-10 % of the time, its peak between 15 and 45 N; the roll's torque
@@ -46,6 +47,7 @@ struct seen {
 	long cycles, over_10n;
 	double peak_n, roll_peak_nm;
 	uint32_t faults;
+	double sum_err;       /* each axis' command less its parts' sum */
 	uint64_t hash;        /* of the first REPEAT_CYCLES states */
 };
 
@@ -62,6 +64,25 @@ static uint64_t hash_state(uint64_t h, const struct endosim_state *st)
 		h = (h ^ b[i]) * 0x100000001b3ull;
 	}
 	return h;
+}
+
+/* The published parts of each axis' force against its command: the rod's
+ * reaction at the carriage and the damping on insertion and roll; the
+ * bending section's moment, the wires, the spring-back and the damping on
+ * each wheel. */
+static double parts_error(const struct endosim_state *s)
+{
+	const struct endosim_haptics_state *h = &s->haptics;
+	double e = fabs(s->axis[0].command - h->trans_rod_n - h->damping[0]);
+
+	e = fmax(e, fabs(s->axis[1].command - h->tube_rod_nm - h->damping[1]));
+	for (int w = 0; w < 2; w++) {
+		e = fmax(e, fabs(s->axis[2 + w].command -
+				 h->wheel_contact_nm[w] -
+				 h->wheel_tension_nm[w] -
+				 h->wheel_elastic_nm[w] - h->damping[2 + w]));
+	}
+	return e;
 }
 
 static void watch(const struct endosim_state *s, void *arg)
@@ -86,6 +107,7 @@ static void watch(const struct endosim_state *s, void *arg)
 		w->loop_after = fmin(w->loop_after, loop);
 	}
 	w->faults |= s->fault_bits;
+	w->sum_err = fmax(w->sum_err, parts_error(s));
 	if (w->cycles <= REPEAT_CYCLES) {
 		w->hash = hash_state(w->hash, s);
 	}
@@ -161,6 +183,7 @@ static void test_course(void **unused)
 	assert_true(w.over_10n <= 0.10 * w.cycles);
 	assert_true(w.peak_n >= 15 && w.peak_n <= 45);
 	assert_true(w.roll_peak_nm <= 1.0);
+	assert_true(w.sum_err < 1e-9); /* the parts add up */
 	assert_int_equal(w.faults, 0);
 	free(a);
 	free(b);
