@@ -162,7 +162,14 @@ void godobject_update(struct godobject *g, const struct contact *c,
 		vec3_copy(g->normal[i], ps.normal[i]);
 		g->offset[i] = ps.offset[i];
 	}
-	if (ps.n) {
-		vec3_copy(g->shaded, ps.shaded[0]);
+	/* the planes' interpolated normals, averaged: at an edge they meet
+	 * (the vertex normals are shared), so the shaded push does not jump
+	 * as a second plane takes hold or lets go */
+	vec3_set(g->shaded, 0, 0, 0);
+	for (int i = 0; i < ps.n; i++) {
+		vec3_add(g->shaded, g->shaded, ps.shaded[i]);
+	}
+	if (ps.n && vec3_normalize(g->shaded) < 1e-9) {
+		vec3_copy(g->shaded, ps.normal[0]);
 	}
 }

@@ -38,7 +38,7 @@ struct godobject {
 	uint32_t tri[GODOBJECT_MAX_PLANES];
 	double normal[GODOBJECT_MAX_PLANES][3]; /* unit, into the lumen */
 	double offset[GODOBJECT_MAX_PLANES];    /* normal . x = offset */
-	double shaded[3];  /* with one plane: the interpolated normal there */
+	double shaded[3];  /* the planes' interpolated normals, averaged */
 };
 
 /* Puts the proxy at P (which must be in the lumen), free. */

@@ -302,9 +302,10 @@ static void spring(const struct haptics_params *par, const double dir[3],
 }
 
 /*
- * F_static in the material placement: the spring to the proxy (its wall
- * part along the shaded normal when one plane holds it and shading is on)
- * and damping of the penetration rate, never pulling.
+ * F_static in the material placement: the spring to the proxy (with
+ * shading on, the depth pushed along the planes' shaded normal, which
+ * stays continuous as the proxy slides onto an edge or off it) and
+ * damping of the penetration rate, never pulling.
  */
 static void static_force(const struct haptics *h,
 			 const struct haptics_params *par,
@@ -322,9 +323,9 @@ static void static_force(const struct haptics *h,
 		vec3_copy(t->normal, delta);
 		t->depth = vec3_normalize(t->normal);
 	}
-	if (g->planes == 1 && par->gains.force_shading) {
-		/* the depth along the plane's normal, pushed along the
-		 * interpolated one */
+	if (par->gains.force_shading) {
+		/* the depth (along the plane's normal, or the whole way to
+		 * an edge or corner) pushed along the interpolated normal */
 		vec3_scale(delta, g->shaded, t->depth);
 	}
 	spring(par, dir_b, delta, t->force);

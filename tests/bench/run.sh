@@ -8,15 +8,19 @@
 #
 # 1. Force-loop wake-up latency next to cyclictest's, both at SCHED_FIFO 80
 #    and 1 kHz, run at the same time on the same machine, their
-#    percentiles computed the same way (1 us histogram bins); the loop's
-#    compute time; the shared-memory publish-to-read latency seen by a
-#    reader process.
+#    percentiles computed the same way (1 us histogram bins), with the rod
+#    model and with the paper's; the loop's compute time; the
+#    shared-memory publish-to-read latency seen by a reader process.
 # 2. The colon model: build time, memory, query and kinematics cost
 #    (bench_colon).
-# 3. The haptic step over the demo scenario on the normal case, at the
-#    default resolution and at about 2 million triangles, and the force's
-#    change per cycle while the tip slides (bench_haptics, SCHED_FIFO when
-#    it may).
+# 3. The force loop's cycle over the demo scenario on the normal case: the
+#    rod model at 80, 160 and 320 segments, the paper's model on its own
+#    demo, and the rod at about 2 million triangles; the forces the hand
+#    feels next to Appleyard's; the tip's contact force's change per cycle
+#    while it slides (bench_haptics). Not at SCHED_FIFO: a process that
+#    never sleeps is throttled there by the kernel's real-time bandwidth
+#    limit (50 ms of every second, sched_rt_runtime_us), which is not the
+#    daemon's case (it sleeps between cycles).
 # 4. The drives: exchange rates and transaction latency against the
 #    emulators (drives.sh).
 # 5. The viewer's frame times and the age of the state it shows
@@ -42,48 +46,62 @@ cyclictest_percentiles() {
 	     }' "$1"
 }
 
-echo "=== force loop vs cyclictest: ${SECONDS_RUN} s each, at the same time, SCHED_FIFO $PRIO, 1 kHz ==="
-echo "machine: $(nproc) CPUs, $(uname -r)"
-start_daemon --set loop.priority=$PRIO || exit 1
-cyclictest -m -p $PRIO -i 1000 -D "$SECONDS_RUN" -h 10000 -q >"$TMP/cyclictest.out" 2>&1 &
-ct=$!
-sleep "$SECONDS_RUN"
-wait $ct
-ctl --json stats >"$TMP/stats.json"
-read -r c50 c99 c999 cmax ctotal < <(cyclictest_percentiles "$TMP/cyclictest.out")
-read -r cycles overruns policy prio l50 l99 l999 lmax lcount k50 k99 k999 kmax < <(
-	jq -r '[.cycles, .overruns, .rt_policy, .rt_priority,
-		.latency.p50_us, .latency.p99_us, .latency.p999_us, .latency.max_us,
-		.latency.count, .compute.p50_us, .compute.p99_us,
-		.compute.p999_us, .compute.max_us] | @tsv' "$TMP/stats.json")
-ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; }
-echo "policy $policy $prio; loop cycles $cycles, overruns $overruns"
-printf '%-22s %7s %7s %7s %9s %9s\n' "wake-up latency (us)" p50 p99 p99.9 max samples
-printf '%-22s %7.0f %7.0f %7.0f %9.1f %9d\n' "  endosimd" "$l50" "$l99" "$l999" "$lmax" "$lcount"
-printf '%-22s %7d %7d %7d %9d %9d\n' "  cyclictest" "$c50" "$c99" "$c999" "$cmax" "$ctotal"
-printf '%-22s %7s %7s %7s %9s   (goal: p99 <= 1.20)\n' "  ratio ours/theirs" \
-	"$(ratio "$l50" "$c50")" "$(ratio "$l99" "$c99")" \
-	"$(ratio "$l999" "$c999")" "$(ratio "$lmax" "$cmax")"
-printf 'loop compute time (us): p50 %.0f, p99 %.0f, p99.9 %.0f, max %.1f\n' \
-	"$k50" "$k99" "$k999" "$kmax"
-echo "(endosimd's figures cover the whole daemon run, start-up included; 1 us bins, a percentile is the bin it falls in)"
-"$TOOLS/shm_latency" "$SHM" 5
-stop_daemon
+# loop_vs_cyclictest MODEL: one run of each at the same time
+loop_vs_cyclictest() {
+	local model=$1
+	echo "=== force loop ($model model) vs cyclictest: ${SECONDS_RUN} s each, at the same time, SCHED_FIFO $PRIO, 1 kHz ==="
+	start_daemon --set loop.priority=$PRIO --set haptics.model="$model" ||
+		exit 1
+	cyclictest -m -p $PRIO -i 1000 -D "$SECONDS_RUN" -h 10000 -q >"$TMP/cyclictest.out" 2>&1 &
+	ct=$!
+	sleep "$SECONDS_RUN"
+	wait $ct
+	ctl --json stats >"$TMP/stats.json"
+	read -r c50 c99 c999 cmax ctotal < <(cyclictest_percentiles "$TMP/cyclictest.out")
+	read -r cycles overruns policy prio l50 l99 l999 lmax lcount k50 k99 k999 kmax < <(
+		jq -r '[.cycles, .overruns, .rt_policy, .rt_priority,
+			.latency.p50_us, .latency.p99_us, .latency.p999_us, .latency.max_us,
+			.latency.count, .compute.p50_us, .compute.p99_us,
+			.compute.p999_us, .compute.max_us] | @tsv' "$TMP/stats.json")
+	ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; }
+	echo "policy $policy $prio; loop cycles $cycles, overruns $overruns"
+	printf '%-22s %7s %7s %7s %9s %9s\n' "wake-up latency (us)" p50 p99 p99.9 max samples
+	printf '%-22s %7.0f %7.0f %7.0f %9.1f %9d\n' "  endosimd" "$l50" "$l99" "$l999" "$lmax" "$lcount"
+	printf '%-22s %7d %7d %7d %9d %9d\n' "  cyclictest" "$c50" "$c99" "$c999" "$cmax" "$ctotal"
+	printf '%-22s %7s %7s %7s %9s   (goal: p99 <= 1.20)\n' "  ratio ours/theirs" \
+		"$(ratio "$l50" "$c50")" "$(ratio "$l99" "$c99")" \
+		"$(ratio "$l999" "$c999")" "$(ratio "$lmax" "$cmax")"
+	printf 'loop compute time (us): p50 %.0f, p99 %.0f, p99.9 %.0f, max %.1f\n' \
+		"$k50" "$k99" "$k999" "$kmax"
+	echo "(endosimd's figures cover the whole daemon run, start-up included; 1 us bins, a percentile is the bin it falls in)"
+	[ "$model" = rod ] && "$TOOLS/shm_latency" "$SHM" 5
+	stop_daemon
+}
+loop_vs_cyclictest rod
+echo
+loop_vs_cyclictest paper
 
 echo
 echo "=== colon model and kinematics ==="
 "$BUILD/tests/bench_colon" "$TOP/config/cases"
 
-# the haptic step at real-time priority where we may, as in the daemon
-rt() { if chrt -f $PRIO true 2>/dev/null; then chrt -f $PRIO "$@"; else "$@"; fi; }
+CASE=$TOP/config/cases/normal.case
+for segments in 80 160 320; do
+	echo
+	echo "=== the loop's cycle on the demo: the rod model, $segments segments ==="
+	"$BUILD/tests/bench_haptics" --segments $segments "$CASE" \
+		"$TOP/config/scenarios/demo.scn"
+done
 echo
-echo "=== haptic step on the demo scenario (normal case, default resolution) ==="
-rt "$BUILD/tests/bench_haptics" "$TOP/config/cases/normal.case" \
+echo "=== the loop's cycle on the paper model's demo, force shading on and off ==="
+"$BUILD/tests/bench_haptics" --model paper "$CASE" \
+	"$TOP/config/scenarios/demo-paper.scn"
+"$BUILD/tests/bench_haptics" --model paper --no-shading "$CASE" \
+	"$TOP/config/scenarios/demo-paper.scn"
+echo
+echo "=== the rod at about 2 million triangles (ring 1360, step 0.002 m) ==="
+"$BUILD/tests/bench_haptics" --ring 1360 --step 0.002 "$CASE" \
 	"$TOP/config/scenarios/demo.scn"
-echo
-echo "=== haptic step at about 2 million triangles (ring 1360, step 0.002 m) ==="
-rt "$BUILD/tests/bench_haptics" "$TOP/config/cases/normal.case" \
-	"$TOP/config/scenarios/demo.scn" 1360 0.002
 
 echo
 echo "=== drives against the emulators ==="
