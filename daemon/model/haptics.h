@@ -1,14 +1,28 @@
 /*
- * haptics.h - the forces the trainee feels: Koerner and Maenner, section 5,
- * generalised where the brief says how. Every cycle of the force loop, from
- * the scope's pose (scope.h) in the colon (colon.h):
+ * haptics.h - the forces the trainee feels, by one of two models
+ * ([haptics] model):
+ *
+ * `rod` (the default): the insertion tube is an elastic rod in a colon
+ * that moves (rodscope.h: the rod, its feeding from the carriage, its
+ * contact with the lumen, the mobile spans as chains of nodes). The tip's
+ * god-object contact below enters the rod at its tip; the insertion force
+ * is the rod's reaction at the carriage, the roll torque its twisting
+ * moment there, each wheel the bending section's moment about its wire
+ * plus the wire tension over the rod's shape; each wheel keeps its stop
+ * and its spring-back (below). The passivity observer watches the wheels
+ * only: the rod is passive by its making (implicit, damped, held by a
+ * spring-damper). The kinematics are the rod's (haptics_rod_pose()).
+ *
+ * `paper`: Koerner and Maenner, section 5, generalised where the brief
+ * says how. Every cycle of the force loop, from the scope's pose (scope.h)
+ * on the colon's centreline (colon.h):
  *
  * Tip contact (5.1). A god-object proxy (godobject.h) against the colon's
  * wall inset by the tip's radius (contact.h), only the triangles of the
  * colon's stretch around the tip considered. The static force
  *   F_static = K (proxy - tip) - (b_wall / k_wall) K v_n
- * with n the interpolated normal when force_shading is on (one plane), and
- * never pulling the tip into the wall. Contact works in the colon's
+ * with the depth pushed along the constraint planes' interpolated normal
+ * when force_shading is on, and never pulling the tip into the wall. Contact works in the colon's
  * material (undeformed) placement: the tip is mapped there through the
  * frame of the centreline sample nearest it, and the force mapped back, so
  * that a bowed segment needs no moving of triangles.
