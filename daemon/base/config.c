@@ -252,9 +252,8 @@ static const struct config_key keys[] = {
 	   "a fault (see saturation_fault)"),
 	KE("limits", "saturation_fault", limits.saturation_fault,
 	   CONFIG_OVERRUN_AUTO, overrun_fault_names, 0, "a force held beyond "
-	   "its limit too long is a fault (yes), a warning (no), or auto: a "
-	   "fault on an axis a real drive turns, a warning on a simulated "
-	   "one"),
+	   "its limit too long: a fault (yes), a warning (no); auto: a fault "
+	   "where a real drive turns the axis"),
 
 	KD("limits", "insertion_slew_n_per_s", limits.slew[I_INS], 4000, 1,
 	   1e6, "N/s", LIVE, "fastest change of the carriage force"),
@@ -458,8 +457,9 @@ static const struct config_key keys[] = {
 	KD("session", "force_threshold_n", session.force_threshold_n, 15, 0.1,
 	   1000, "N", 0, "metrics: insertion force above this is an episode of "
 	   "excessive pressure"),
-	KD("session", "loop_threshold_m", session.loop_threshold_m, 0.01, 0.0001,
-	   1, "m", 0, "metrics: a mobile segment bowed more than this is a loop"),
+	KD("session", "loop_threshold_m", session.loop_threshold_m, 0, 0, 1,
+	   "m", 0, "metrics: a mobile segment bowed (moved) more than this is "
+	   "a loop; 0: by the model (0.01 paper, 0.03 rod)"),
 	KD("session", "view_distance_m", session.view_distance_m, 0.06, 0.001,
 	   1, "m", 0, "metrics: mucosa nearer the camera than this is seen"),
 	KD("session", "fov_deg", session.fov_deg, 140, 1, 359, "deg", 0,

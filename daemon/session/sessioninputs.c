@@ -39,6 +39,12 @@ void sessioninputs_metrics_params(const struct config *cfg,
 	metrics_params_default(p);
 	p->force_threshold_n = cfg->session.force_threshold_n;
 	p->loop_threshold_m = cfg->session.loop_threshold_m;
+	if (!(p->loop_threshold_m > 0)) {
+		p->loop_threshold_m =
+			cfg->haptics.model == HAPTICS_MODEL_ROD
+				? SESSION_LOOP_THRESHOLD_ROD_M
+				: SESSION_LOOP_THRESHOLD_PAPER_M;
+	}
 	p->view_distance_m = cfg->session.view_distance_m;
 	p->fov_rad = cfg->session.fov_deg * M_PI / 180;
 	p->view_rate_hz = cfg->session.view_rate_hz;

@@ -27,6 +27,12 @@
 int sessioninputs_config(const struct session_file *f, struct config *cfg,
 			 char *err, size_t errsize);
 
+/* A loop, when [session] loop_threshold_m is 0: by the haptics' model. The
+ * rod model moves the sigmoid a centimetre or two on an ordinary insertion
+ * (the tube takes the outside of its bends); its loops are larger. */
+#define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
+#define SESSION_LOOP_THRESHOLD_ROD_M 0.03
+
 /* The metrics' parameters ([session] thresholds) CFG sets. */
 void sessioninputs_metrics_params(const struct config *cfg,
 				  struct metrics_params *p);

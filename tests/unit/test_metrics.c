@@ -34,8 +34,10 @@
 
 #include "anatomy.h"
 #include "colon.h"
+#include "config.h"
 #include "geom_assert.h"
 #include "metrics.h"
+#include "sessioninputs.h"
 #include "vec3.h"
 
 #define RATE_HZ 1000
@@ -291,6 +293,27 @@ static void test_force_episode_running(void **state)
 
 /* Span 0 ramps 0 -> 4 cm over 4 s and back over 4 s; span 1 holds 5 mm,
  * then 2 cm from 9 to 9.5 s. Threshold 1 cm, off below 9 mm. */
+/* [session] loop_threshold_m 0: the model's threshold (the rod's tube
+ * moves the sigmoid on any insertion, the paper's bow does not); a value
+ * set overrides it. */
+static void test_loop_threshold_by_model(void **state)
+{
+	struct config cfg;
+	struct metrics_params p;
+
+	(void)state;
+	config_defaults(&cfg);
+	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	sessioninputs_metrics_params(&cfg, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_ROD_M);
+	cfg.haptics.model = HAPTICS_MODEL_PAPER;
+	sessioninputs_metrics_params(&cfg, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_PAPER_M);
+	cfg.session.loop_threshold_m = 0.02;
+	sessioninputs_metrics_params(&cfg, &p);
+	assert_true(p.loop_threshold_m == 0.02);
+}
+
 static void test_loop_episodes(void **state)
 {
 	struct metrics *m = metrics_at(NULL, 20);
@@ -687,6 +710,7 @@ int main(void)
 		cmocka_unit_test(test_force_episodes),
 		cmocka_unit_test(test_force_episode_running),
 		cmocka_unit_test(test_loop_episodes),
+		cmocka_unit_test(test_loop_threshold_by_model),
 		cmocka_unit_test(test_episodes_beyond_the_list),
 		cmocka_unit_test(test_discomfort_constant),
 		cmocka_unit_test(test_lumen_lost_straight),
