@@ -219,6 +219,7 @@ cleanup() {
 trap cleanup EXIT
 
 finish() {
+	local slot log
 	if [ -n "$DAEMON_PID" ]; then
 		check "endosimd exits cleanly on SIGTERM" stop_daemon
 	fi
