@@ -17,6 +17,9 @@ backend = drives
 ; at a set speed however hard the end brakes push back at their limit
 travel_margin_fraction = 100
 saturation_s = 3600
+; forces in full a tenth of a second after enable, not a second: the
+; ramp itself is 63-enable-ramp's
+enable_ramp_s = 0.1
 [axis.wheel_ud]
 backend = modbus
 [axis.wheel_lr]
