@@ -174,14 +174,22 @@ stop_daemon() {
 # whenever the test looks; a daemon at rest takes a few per cent of a CPU).
 # use_slot NAME: from now on start_daemon, stop_daemon, ctl and the checks
 # are NAME's; the daemon of the slot left keeps running (cleanup and
-# finish see to every slot).
+# finish see to every slot). A library keeps variables of its own per slot
+# by naming them in SLOT_VARS (fault_lib.sh: the session file).
 SLOT=main
-declare -A SLOT_PID=([main]="")
+declare -A SLOT_PID=([main]="") SLOT_SAVED=()
+SLOT_VARS=()
 use_slot() {
-	local dir=$TMP i
+	local dir=$TMP i v
 	SLOT_PID[$SLOT]=$DAEMON_PID
+	for v in "${SLOT_VARS[@]}"; do
+		SLOT_SAVED[$SLOT.$v]=${!v:-}
+	done
 	SLOT=$1
 	DAEMON_PID=${SLOT_PID[$SLOT]:-}
+	for v in "${SLOT_VARS[@]}"; do
+		printf -v "$v" '%s' "${SLOT_SAVED[$SLOT.$v]:-}"
+	done
 	SHM="/endosim-test-$$"
 	if [ "$SLOT" != main ]; then
 		dir=$TMP/slot-$SLOT

@@ -28,6 +28,8 @@ SOAK="$TOP/config/scenarios/soak.scn"
 MB_MOTOR=(-o hold=0.05 -o viscous=0.005)
 WATCH_PID=""
 PERIOD_NS=1000000
+SESSION_FILE=""
+SLOT_VARS+=(SESSION_FILE) # each slot's daemon records its own (common.sh)
 
 # What every daemon of a fault test gets: an enable ramp of 0.1 s, not the
 # shipped 1 s. Each test waits for forces in full before it injects a
