@@ -200,14 +200,14 @@ check "Modbus drive torque (0x17) = -wheel_lr torque / 3.5" \
 
 # fault NAME INJECT TEXT...: injects, expects the FAULT, resets, re-enables
 fault_case() {
-	local name=$1 inject=$2 n
+	local name=$1 inject=$2 since
 	shift 2
-	n=$(fault_lines)
+	since=$(daemon_time)
 	eval "$inject"
 	check "$name: FAULT" wait_for state_is FAULT
 	check "$name: torque off on every axis" wait_for torque_off
 	sleep 0.3 # a further FAULT line would come now
-	check "$name: one log line" [ "$(fault_lines)" -eq $((n + 1)) ]
+	check "$name: one log line" [ "$(faults_since "$since")" -eq 1 ]
 	for t in "$@"; do
 		check "$name: status says '$t'" fault_says "$t"
 		check "$name: log says '$t'" log_says "$t"
