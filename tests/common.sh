@@ -165,27 +165,92 @@ stop_daemon() {
 	return $rc
 }
 
-cleanup() {
-	if [ -n "$DAEMON_PID" ]; then
-		kill -KILL "$DAEMON_PID" 2>/dev/null
-		wait "$DAEMON_PID" 2>/dev/null
+# --- more than one daemon ----------------------------------------------------
+# A test may keep daemons in slots, each with its own socket directory, shm
+# name, session directory and log (the first slot, "main", is the one
+# above): one runs a course while the test checks another, instead of
+# the test waiting for each course in turn (the simulated rig's clock
+# counts the force loop's cycles, so a course reaches the same states
+# whenever the test looks; a daemon at rest takes a few per cent of a CPU).
+# use_slot NAME: from now on start_daemon, stop_daemon, ctl and the checks
+# are NAME's; the daemon of the slot left keeps running (cleanup and
+# finish see to every slot). A library keeps variables of its own per slot
+# by naming them in SLOT_VARS (fault_lib.sh: the session file).
+SLOT=main
+declare -A SLOT_PID=([main]="") SLOT_SAVED=()
+SLOT_VARS=()
+use_slot() {
+	local dir=$TMP i v
+	SLOT_PID[$SLOT]=$DAEMON_PID
+	for v in "${SLOT_VARS[@]}"; do
+		SLOT_SAVED[$SLOT.$v]=${!v:-}
+	done
+	SLOT=$1
+	DAEMON_PID=${SLOT_PID[$SLOT]:-}
+	for v in "${SLOT_VARS[@]}"; do
+		printf -v "$v" '%s' "${SLOT_SAVED[$SLOT.$v]:-}"
+	done
+	SHM="/endosim-test-$$"
+	if [ "$SLOT" != main ]; then
+		dir=$TMP/slot-$SLOT
+		mkdir -p "$dir"
+		SHM="$SHM-slot-$SLOT"
 	fi
-	rm -f "/dev/shm${SHM}"
+	SOCK="$dir/run"
+	LOG="$dir/endosimd.log"
+	for i in "${!DAEMON_ARGS[@]}"; do
+		case "${DAEMON_ARGS[$i]}" in
+		--socket-dir) DAEMON_ARGS[i + 1]=$SOCK ;;
+		--shm-name) DAEMON_ARGS[i + 1]=$SHM ;;
+		--session-dir) DAEMON_ARGS[i + 1]=$dir/sessions ;;
+		esac
+	done
+}
+
+# daemon_logs: the log of every slot's daemon
+daemon_logs() {
+	ls "$TMP"/endosimd.log "$TMP"/slot-*/endosimd.log 2>/dev/null
+}
+
+cleanup() {
+	local pid
+	SLOT_PID[$SLOT]=$DAEMON_PID
+	for pid in "${SLOT_PID[@]}"; do
+		if [ -n "$pid" ]; then
+			kill -KILL "$pid" 2>/dev/null
+			wait "$pid" 2>/dev/null
+		fi
+	done
+	rm -f "/dev/shm/endosim-test-$$" "/dev/shm/endosim-test-$$-slot-"*
 	rm -rf "$TMP"
 }
 trap cleanup EXIT
 
 finish() {
+	local slot log
 	if [ -n "$DAEMON_PID" ]; then
 		check "endosimd exits cleanly on SIGTERM" stop_daemon
 	fi
+	if [ "${#SLOT_PID[@]}" -gt 1 ]; then
+		SLOT_PID[$SLOT]=$DAEMON_PID
+		for slot in "${!SLOT_PID[@]}"; do
+			[ -n "${SLOT_PID[$slot]}" ] || continue
+			use_slot "$slot"
+			check "endosimd ($slot) exits cleanly on SIGTERM" stop_daemon
+		done
+	fi
 	if grep -qE "ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:" \
-		"$LOG" 2>/dev/null; then
+		$(daemon_logs) /dev/null 2>/dev/null; then
 		fail "sanitizer report in endosimd's log"
 	fi
-	if [ "$FAILED" -gt 0 ] && [ -s "$LOG" ]; then
-		echo "# endosimd log:"
-		sed 's/^/#   /' "$LOG"
+	if [ "$FAILED" -gt 0 ]; then
+		for log in $(daemon_logs); do
+			[ -s "$log" ] || continue
+			slot=${log%/endosimd.log}
+			slot=${slot#"$TMP"}
+			echo "# endosimd log${slot:+ (${slot#/})}:"
+			sed 's/^/#   /' "$log"
+		done
 	fi
 	if [ "$SKIPPED" -gt 0 ]; then
 		echo "$PASSED passed, $FAILED failed, $SKIPPED skipped"

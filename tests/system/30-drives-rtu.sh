@@ -28,6 +28,9 @@ roll_max_rad = 100
 ; at a set speed however hard the end brakes push back at their limit
 travel_margin_fraction = 100
 saturation_s = 3600
+; forces in full a tenth of a second after enable, not a second: the
+; ramp itself is 63-enable-ramp's
+enable_ramp_s = 0.1
 [haptics]
 ; the paper's model: with the tube on the centreline and the tip off the
 ; wall, only the damping renders, a steady force to find in each drive
@@ -201,14 +204,14 @@ check "Modbus drive torque (0x17) = -wheel_lr torque / 3.5" \
 
 # fault NAME INJECT TEXT...: injects, expects the FAULT, resets, re-enables
 fault_case() {
-	local name=$1 inject=$2 n
+	local name=$1 inject=$2 since
 	shift 2
-	n=$(fault_lines)
+	since=$(daemon_time)
 	eval "$inject"
 	check "$name: FAULT" wait_for state_is FAULT
 	check "$name: torque off on every axis" wait_for torque_off
 	sleep 0.3 # a further FAULT line would come now
-	check "$name: one log line" [ "$(fault_lines)" -eq $((n + 1)) ]
+	check "$name: one log line" [ "$(faults_since "$since")" -eq 1 ]
 	for t in "$@"; do
 		check "$name: status says '$t'" fault_says "$t"
 		check "$name: log says '$t'" log_says "$t"

@@ -80,6 +80,51 @@ scope_box() {
 	TALL=$((Y1 - Y0))
 }
 
+# --- the courses, started ahead --------------------------------------------
+# Each section below looks at a course on a daemon of its own: all five
+# start here, each in a slot of its own (common.sh), and run while the
+# sections before theirs are checked, instead of each section waiting for
+# its course in turn (15 s for the loop's). The simulated rig's clock
+# counts the loop's cycles: a course reaches the same states whenever its
+# section looks. Every course ends holding what its section checks: down
+# a straight lumen, 30 cm in; in it, 60 cm in, the tip steered up into the
+# wall; the demo's course at 10 cm/s (scenario_gen) held at 40 cm, before
+# the sigmoid; the same course on into the splenic flexure, which holds
+# the tip while the sigmoid bows, and up to the cecum, held there (its
+# withdrawal, after 22 s, would reduce the loop before a slow machine had
+# come to look at it); these three in the paper model (its demo course,
+# scenario_gen --model paper). The rod model's: the tube pushed in
+# straight at 10 cm/s, its tip stopped in the sigmoid, which it carries
+# away from where it lay (5 cm by 8 s).
+"$TOOLS/scenario_gen" --model paper "$TOP/config/cases/normal.case" 0.1 \
+	>"$TMP/fast.scn"
+awk '/^#/ || $1 <= 4.5' "$TMP/fast.scn" >"$TMP/held.scn"
+echo '60 end' >>"$TMP/held.scn"
+awk '/^#/ || ($1 <= 22 && $2 != "end")' "$TMP/fast.scn" >"$TMP/loop.scn"
+echo '60 end' >>"$TMP/loop.scn"
+use_slot lumen
+start_daemon "${STRAIGHT[@]}" \
+	--scenario "$(scenario lumen '0 insertion target 0.30 1.5')" || finish
+ctl enable >/dev/null
+# (the wheel stops where the hand's spring meets the wheel motor's
+# 0.1 N m: the wall pushes back harder than the motor can)
+use_slot wall
+start_daemon "${STRAIGHT[@]}" --scenario "$(scenario wall \
+	'0 insertion target 0.60 1.5' '2 wheel_ud target 0.6 1.0')" || finish
+ctl enable >/dev/null
+use_slot held
+start_daemon --scenario "$TMP/held.scn" --set haptics.model=paper || finish
+ctl enable >/dev/null
+use_slot loop
+start_daemon --scenario "$TMP/loop.scn" --set haptics.model=paper || finish
+ctl enable >/dev/null
+use_slot rod
+start_daemon --set haptics.model=rod --scenario "$(scenario rod \
+	'0 insertion target 0.90 9' '0 wheel_ud target 0 0.1' \
+	'0 wheel_lr target 0 0.1' '60 end')" || finish
+ctl enable >/dev/null
+use_slot main
+
 # --- no daemon -----------------------------------------------------------
 check_status "no daemon: draws its frames and exits cleanly" 0 \
 	view "${SMALL[@]}" --frames 8 --screenshot "$TMP/none.png"
@@ -89,9 +134,7 @@ check "no daemon: the red NO DAEMON banner across the image" float_test \
 	"$(png_value "$TMP/none.png" "rect:$X,$Y,$W,$H" red) > 0.002"
 
 # --- down a straight lumen ---------------------------------------------
-start_daemon "${STRAIGHT[@]}" \
-	--scenario "$(scenario lumen '0 insertion target 0.30 1.5')" || finish
-ctl enable >/dev/null
+use_slot lumen
 check "the scope goes in 30 cm" \
 	wait_for status_true '.axes.insertion.position > 0.29'
 check_status "lumen: screenshot" 0 \
@@ -125,11 +168,7 @@ check "overview: the scope's green along its shape" \
 
 # --- steered at the wall, deeper -----------------------------------------
 stop_daemon
-# (the wheel stops where the hand's spring meets the wheel motor's
-# 0.1 N m: the wall pushes back harder than the motor can)
-start_daemon "${STRAIGHT[@]}" --scenario "$(scenario wall \
-	'0 insertion target 0.60 1.5' '2 wheel_ud target 0.6 1.0')" || finish
-ctl enable >/dev/null
+use_slot wall
 check "the scope goes in 60 cm, the tip turns up into the wall" wait_for \
 	status_true '.axes.insertion.position > 0.58 and
 		     .axes.wheel_ud.position > 0.45 and .haptics.contact'
@@ -151,17 +190,13 @@ check "overview: the scope's shape grows with the insertion" \
 OVER="rect:$X,$Y,$W,$H"
 
 # --- a loop and a contact, from the force model ------------------------
-# The paper model's demo course at 10 cm/s (scenario_gen --model paper):
-# steered through the sigmoid, then pushed straight into the splenic
-# flexure, which holds the tip while the sigmoid bows. Before: the same
-# course held at 40 cm.
+# The paper model's demo course at 10 cm/s (scenario_gen): steered through the
+# sigmoid, then pushed straight into the splenic flexure, which holds the
+# tip while the sigmoid bows. Before: the same course held at 40 cm
+# (and its daemon, stalled, read as stale); the loop's section comes last,
+# its course being the longest.
 stop_daemon
-"$TOOLS/scenario_gen" --model paper "$TOP/config/cases/normal.case" 0.1 \
-	>"$TMP/fast.scn"
-awk '/^#/ || $1 <= 4.5' "$TMP/fast.scn" >"$TMP/held.scn"
-echo '60 end' >>"$TMP/held.scn"
-start_daemon --scenario "$TMP/held.scn" --set haptics.model=paper || finish
-ctl enable >/dev/null
+use_slot held
 check "the scope goes in 40 cm in the default case, along the lumen" \
 	wait_for status_true '.axes.insertion.position > 0.39 and
 			      .scenario_time_s > 6'
@@ -171,33 +206,8 @@ check_status "overview, no loop: screenshot" 0 view --view overview \
 	--frames 8 --screenshot "$TMP/plain.png"
 rect_of overview
 OVER="rect:$X,$Y,$W,$H"
-stop_daemon
-start_daemon --scenario "$TMP/fast.scn" --set haptics.model=paper || finish
-ctl enable >/dev/null
-WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the sigmoid bows 5 cm" \
-	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
-check_status "overview, loop: screenshot" 0 view --view overview \
-	--frames 8 --screenshot "$TMP/loop.png" --print-state
-check "the paper's model: no rod drawn, none named" eval \
-	'! grep -qE "^overview: rod_|^hud: .*rod model" "$VIEW_OUT"'
-check "the loop and the contact held through the screenshot" \
-	status_true '.scope.bow_m[0] > 0.04 and .haptics.contact'
-for what in amber red; do
-	before=$(png_value "$TMP/plain.png" "$OVER" $what)
-	after=$(png_value "$TMP/loop.png" "$OVER" $what)
-	echo "# overview, $what: $before without, $after with a loop, contact"
-	eval "$what=\$after; ${what}_before=\$before"
-done
-check "loop: the bowed sigmoid turns amber in the overview" \
-	float_test "$amber > 0.003 && $amber > 3 * $amber_before"
-check "contact: the contact point shows red in the overview" \
-	float_test "$red > 0.0002 && $red_before == 0"
-rect_of panel
-check "loop: the HUD warns of it" float_test \
-	"$(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" amber) + \
-	 $(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" red) > 0.002"
 
-# --- a stalled daemon --------------------------------------------------
+# --- a stalled daemon (the one held at 40 cm) ----------------------------
 kill -STOP "$DAEMON_PID"
 check_status "stalled daemon: screenshot" 0 \
 	view "${SMALL[@]}" --frames 15 --screenshot "$TMP/stale.png"
@@ -206,12 +216,7 @@ check "stalled daemon: seen stale, no OpenGL error" ran_clean stale
 stop_daemon
 
 # --- the rod model: the whole tube, the colon where its nodes put it -----
-# The tube pushed in straight at 10 cm/s: its tip stops in the sigmoid,
-# which it carries away from where it lay (5 cm by 8 s, lockstep).
-scenario rod '0 insertion target 0.90 9' '0 wheel_ud target 0 0.1' \
-	'0 wheel_lr target 0 0.1' '60 end' >/dev/null
-start_daemon --scenario "$TMP/rod.scn" --set haptics.model=rod || finish
-ctl enable >/dev/null
+use_slot rod
 WAIT_S=40 check "rod: the tube pushed on, the sigmoid moves 5 cm" wait_for \
 	status_true '.scope.bow_m[0] > 0.05 and .scenario_time_s > 9'
 check_status "rod, overview: screenshot" 0 view --view overview \
@@ -257,6 +262,7 @@ check "rod: the HUD gives the wall along the tube" \
 stop_daemon
 
 # --- the keyboard's hand; the daemon gone and back -----------------------
+use_slot main
 start_daemon "${STRAIGHT[@]}" || finish
 (cd "$TMP" && endoview --socket "$SOCK" --shm-name "$SHM" \
 	"${SMALL[@]}" >"$TMP/live.out" 2>&1) &
@@ -268,9 +274,10 @@ window=$(xdotool search --sync --name '^endoview$' | head -n 1)
 xdotool windowfocus --sync "$window"
 before=$(status_field .axes.insertion.position)
 xdotool keydown Up
-sleep 1.5
-xdotool keyup Up
+# held until the hand has carried the scope in 3 cm (at most WAIT_S)
+wait_for status_true ".axes.insertion.position > $before + 0.03"
 after=$(status_field .axes.insertion.position)
+xdotool keyup Up
 echo "# the Up key: insertion $before -> $after m"
 check "the Up key inserts the scope (the simulated hand)" \
 	float_test "$after > $before + 0.03"
@@ -281,7 +288,8 @@ for dy in 20 40 60 80 100; do
 	xdotool mousemove --window "$window" "$ENDO_CX" $((ENDO_CY - dy))
 	sleep 0.1
 done
-sleep 1
+# held until the wheel has turned 0.3 rad (at most WAIT_S)
+wait_for status_true ".axes.wheel_ud.position > $before + 0.3"
 after=$(status_field .axes.wheel_ud.position)
 xdotool mouseup 1
 echo "# dragging up: wheel U/D $before -> $after rad"
@@ -301,6 +309,30 @@ WAIT_S=20 check "the daemon back: its colon is fetched again" \
 xdotool key q
 wait "$viewer"
 check "Q quits the viewer cleanly" test $? = 0
+
+# --- the loop, at last ------------------------------------------------------
+use_slot loop
+WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the sigmoid bows 5 cm" \
+	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
+check_status "overview, loop: screenshot" 0 view --view overview \
+	--frames 8 --screenshot "$TMP/loop.png"
+check "the loop and the contact held through the screenshot" \
+	status_true '.scope.bow_m[0] > 0.04 and .haptics.contact'
+for what in amber red; do
+	before=$(png_value "$TMP/plain.png" "$OVER" $what)
+	after=$(png_value "$TMP/loop.png" "$OVER" $what)
+	echo "# overview, $what: $before without, $after with a loop, contact"
+	eval "$what=\$after; ${what}_before=\$before"
+done
+check "loop: the bowed sigmoid turns amber in the overview" \
+	float_test "$amber > 0.003 && $amber > 3 * $amber_before"
+check "contact: the contact point shows red in the overview" \
+	float_test "$red > 0.0002 && $red_before == 0"
+rect_of panel
+check "loop: the HUD warns of it" float_test \
+	"$(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" amber) + \
+	 $(png_value "$TMP/loop.png" "rect:$X,$Y,$W,$H" red) > 0.002"
+
 if grep -qE "ERROR: (Address|Leak)Sanitizer|runtime error:" \
 	"$TMP"/*.out "$VIEW_OUT" 2>/dev/null; then
 	fail "sanitizer report in endoview's output"

@@ -27,7 +27,7 @@ conf=$(mb_rig_conf)
 sed -i -e 's/^response_timeout_s = .*/response_timeout_s = 2/' \
 	-e 's/^feedback_max_age_s = .*/feedback_max_age_s = 0.3/' "$conf"
 check "Modbus emulator up" start_modbus "$conf" --pty "$TMP/tty" "${MB_MOTOR[@]}"
-check "endosimd up on it" start_on "$conf" --scenario "$SOAK"
+check "endosimd up on it" start_on "$conf" "${FAULT_ARGS[@]}" --scenario "$SOAK"
 mb "hand 1 0.004 1"
 check "enabled" ctl enable
 check "forces in full" wait_for status_true '.ramp == 1'

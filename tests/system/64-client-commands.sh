@@ -10,7 +10,7 @@
 . "$(dirname "$0")/fault_lib.sh"
 
 check "simulated rig up (test commands off), every axis moving" \
-	start_daemon --scenario "$SOAK"
+	start_daemon "${FAULT_ARGS[@]}" --scenario "$SOAK"
 check_status "test commands refused" 1 ctl debug stall 1
 check "... saying why" grep -q "test_commands = no" "$OUT"
 check_status "... on the read-only socket too" 1 \

@@ -59,6 +59,23 @@ fault_lines() {
 	grep -c "error: FAULT" "$LOG"
 }
 
+# daemon_time: seconds since endosimd started, on the clock its FAULT lines
+# give ("... at T s: ...")
+daemon_time() {
+	status_field .uptime_s
+}
+
+# faults_since T: how many FAULT lines are of faults found at T s or later.
+# Another thread writes a fault's line a moment after the loop found it,
+# so lines counted before an event can miss one found just before it, which
+# then counts as the event's (seen in 31: a drive's own fault, found as
+# its bus came back, logged after the count): the line's own time tells.
+faults_since() {
+	grep "error: FAULT" "$LOG" |
+		sed -n 's/.*(detail [0-9]*) at \([0-9.]*\) s: .*/\1/p' |
+		awk -v t="$1" '$1 >= t { n++ } END { print n + 0 }'
+}
+
 reset_ok() {
 	ctl reset >/dev/null 2>&1
 }

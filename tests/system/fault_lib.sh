@@ -28,11 +28,22 @@ SOAK="$TOP/config/scenarios/soak.scn"
 MB_MOTOR=(-o hold=0.05 -o viscous=0.005)
 WATCH_PID=""
 PERIOD_NS=1000000
+SESSION_FILE=""
+SLOT_VARS+=(SESSION_FILE) # each slot's daemon records its own (common.sh)
+
+# What every daemon of a fault test gets: an enable ramp of 0.1 s, not the
+# shipped 1 s. Each test waits for forces in full before it injects a
+# fault, and enables again after each recovery: a second's wait each time,
+# some thirty a pass, that checked nothing (the ramp itself is
+# 63-enable-ramp's). 0.1 s still ramps: the slew limits bring a wheel's
+# 0.1 N m or the carriage's 45 N to full in 5 to 11 ms.
+FAULT_ARGS=(--set limits.enable_ramp_s=0.1)
 
 # start_sim [ARGS...]: the simulated rig, the hand moving every axis,
 # enabled, forces in full
 start_sim() {
-	start_daemon --set debug.test_commands=yes --scenario "$SOAK" "$@" &&
+	start_daemon --set debug.test_commands=yes "${FAULT_ARGS[@]}" \
+		--scenario "$SOAK" "$@" &&
 		record_session && ctl enable >/dev/null &&
 		wait_for status_true '.ramp == 1'
 }
@@ -101,7 +112,7 @@ start_mb_rig() {
 	local conf
 	conf=$(mb_rig_conf)
 	start_modbus "$conf" --pty "$TMP/tty" "${MB_MOTOR[@]}" || return 1
-	start_on "$conf" --scenario "$SOAK" "$@" || return 1
+	start_on "$conf" "${FAULT_ARGS[@]}" --scenario "$SOAK" "$@" || return 1
 	record_session || return 1
 	mb "hand 1 0.004 1"
 	mb "hand 2 0.004 1.3"
