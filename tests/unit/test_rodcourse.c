@@ -156,18 +156,40 @@ static char *steps_of(FILE *f)
 	return out;
 }
 
+/* Her course, played once for both tests: what she saw and wrote. */
+static struct seen course;
+static FILE *course_script;
+
+static int play_course(void **unused)
+{
+	(void)unused;
+	course_script = tmpfile();
+	if (!course_script) {
+		return -1;
+	}
+	play(&course, course_script);
+	fflush(course_script);
+	return 0;
+}
+
+static int forget_course(void **unused)
+{
+	(void)unused;
+	if (course_script) {
+		fclose(course_script);
+	}
+	return 0;
+}
+
 static void test_course(void **unused)
 {
-	FILE *mine = tmpfile(), *shipped = fopen(DEMO, "r");
+	FILE *shipped = fopen(DEMO, "r");
+	const struct seen w = course;
 	char *a, *b;
-	struct seen w;
 
 	(void)unused;
-	assert_non_null(mine);
 	assert_non_null(shipped);
-	play(&w, mine);
-	fflush(mine);
-	a = steps_of(mine);
+	a = steps_of(course_script);
 	b = steps_of(shipped);
 	print_message("the course: cecum at %.2f s; the sigmoid's loop %.1f "
 		      "cm, reduced to %.1f cm; insertion force above 10 N "
@@ -187,7 +209,6 @@ static void test_course(void **unused)
 	assert_int_equal(w.faults, 0);
 	free(a);
 	free(b);
-	fclose(mine);
 	fclose(shipped);
 }
 
@@ -201,12 +222,10 @@ static void test_repeats_exactly(void **unused)
 	struct config cfg;
 	struct colon *colon;
 	struct offline *o;
-	struct seen mine;
 	char err[512];
 	uint64_t h = 0xcbf29ce484222325ull;
 
 	(void)unused;
-	play(&mine, NULL);
 	config_defaults(&cfg);
 	cfg.haptics.model = HAPTICS_MODEL_ROD;
 	snprintf(cfg.colon.file, sizeof(cfg.colon.file), CASE);
@@ -222,9 +241,9 @@ static void test_repeats_exactly(void **unused)
 	}
 	offline_destroy(o);
 	print_message("%d s: her run %016llx, the file played %016llx\n",
-		      REPEAT_CYCLES / 1000, (unsigned long long)mine.hash,
+		      REPEAT_CYCLES / 1000, (unsigned long long)course.hash,
 		      (unsigned long long)h);
-	assert_true(mine.hash == h);
+	assert_true(course.hash == h);
 }
 
 int main(void)
@@ -239,5 +258,5 @@ int main(void)
 		perror(top);
 		return 1;
 	}
-	return cmocka_run_group_tests(tests, NULL, NULL);
+	return cmocka_run_group_tests(tests, play_course, forget_course);
 }
