@@ -688,11 +688,6 @@ static struct colon *swap_answer(struct loop *l)
 					memory_order_acq_rel);
 }
 
-const struct haptics *loop_haptics(const struct loop *l)
-{
-	return l->haptics;
-}
-
 const struct colon *loop_colon(const struct loop *l)
 {
 	return l->colon;

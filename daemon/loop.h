@@ -187,10 +187,8 @@ const struct loop_info *loop_get_info(const struct loop *l);
  */
 void loop_step(struct loop *l, uint64_t now_ns);
 
-/* In lockstep (never while the loop's thread runs): the haptics' model
- * and the colon the loop renders on, for the tools and tests that look
- * inside them. */
-const struct haptics *loop_haptics(const struct loop *l);
+/* In lockstep (never while the loop's thread runs): the colon the loop
+ * renders on, for the tools and tests that look inside it. */
 const struct colon *loop_colon(const struct loop *l);
 
 /* In lockstep: the rod model's tip held where it is by a spring of

@@ -100,11 +100,6 @@ bool haptics_rod(const struct haptics *h)
 	return h->rs != NULL;
 }
 
-const struct rodscope *haptics_rodscope(const struct haptics *h)
-{
-	return h->rs;
-}
-
 /* ---------------------------------------------------------------- frames */
 
 /* The centreline's frame at one sample, now and before any bow. */

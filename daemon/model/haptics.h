@@ -184,9 +184,8 @@ void haptics_publish_rod(const struct haptics *h, double roll_rad,
  * let go (0): rodscope_hold_tip(); nothing in the paper's model. */
 void haptics_hold_tip(struct haptics *h, double hold_n_per_m);
 
-/* The rod model renders (else the paper's), and its tube (NULL: none). */
+/* The rod model renders (else the paper's). */
 bool haptics_rod(const struct haptics *h);
-const struct rodscope *haptics_rodscope(const struct haptics *h);
 
 /*
  * The rod model's kinematics: the scope's pose as the tube lies now (the

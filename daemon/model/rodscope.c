@@ -425,21 +425,6 @@ void rodscope_publish(const struct rodscope *rs, double roll_rad,
 	}
 }
 
-const struct rod *rodscope_rod(const struct rodscope *rs)
-{
-	return rs->rod;
-}
-
-const struct flex *rodscope_flex(const struct rodscope *rs)
-{
-	return rs->flex;
-}
-
-int rodscope_bending_segments(const struct rodscope *rs)
-{
-	return rs->nb;
-}
-
 bool rodscope_finite(const struct rodscope *rs)
 {
 	return rod_finite(rs->rod);

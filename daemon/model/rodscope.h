@@ -160,12 +160,6 @@ void rodscope_publish(const struct rodscope *rs, double roll_rad,
 		      struct endosim_rod_state *out,
 		      double bow_m[ENDOSIM_SPANS]);
 
-/* The tube (read only), the colon's chains, the bending section's
- * segments. */
-const struct rod *rodscope_rod(const struct rodscope *rs);
-const struct flex *rodscope_flex(const struct rodscope *rs);
-int rodscope_bending_segments(const struct rodscope *rs);
-
 /* Every segment finite. */
 bool rodscope_finite(const struct rodscope *rs);
 

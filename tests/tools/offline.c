@@ -90,11 +90,6 @@ void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 	hand_set_live(o->hand, force, hold_s, o->stamp_ns);
 }
 
-const struct haptics *offline_haptics(const struct offline *o)
-{
-	return loop_haptics(o->loop);
-}
-
 const struct colon *offline_colon(const struct offline *o)
 {
 	return loop_colon(o->loop);

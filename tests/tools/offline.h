@@ -63,8 +63,7 @@ double offline_length_s(const struct offline *o);
  */
 const struct endosim_state *offline_step(struct offline *o);
 
-/* The loop's haptics' model and colon (loop_haptics(), loop_colon()). */
-const struct haptics *offline_haptics(const struct offline *o);
+/* The loop's colon (loop_colon()): where its mobile spans are now. */
 const struct colon *offline_colon(const struct offline *o);
 
 /* The rod model's tip held where it is, or let go (loop_hold_tip()). */

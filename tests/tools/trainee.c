@@ -89,11 +89,6 @@ const struct colon *trainee_colon(const struct trainee *t)
 	return offline_colon(t->off);
 }
 
-const struct haptics *trainee_haptics(const struct trainee *t)
-{
-	return offline_haptics(t->off);
-}
-
 double trainee_time(const struct trainee *t)
 {
 	return t->s->scenario_time_s;

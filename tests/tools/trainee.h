@@ -47,10 +47,9 @@ struct trainee *trainee_create(const struct config *cfg, const char *case_path,
 /* Ends the script ("TIME end"). NULL is fine. */
 void trainee_destroy(struct trainee *t);
 
-/* The loop's latest state, its colon, its haptics. */
+/* The loop's latest state, its colon. */
 const struct endosim_state *trainee_state(const struct trainee *t);
 const struct colon *trainee_colon(const struct trainee *t);
-const struct haptics *trainee_haptics(const struct trainee *t);
 double trainee_time(const struct trainee *t); /* s, the scenario's clock */
 
 /* Called after every cycle while she acts (may be NULL): a test's eyes. */
