@@ -254,7 +254,7 @@ FUZZ_SECONDS ?= 60
 
 define fuzz_rule
 $(BUILD)/$(1): tests/fuzz/$(1).c $(call wings,$(FUZZ_WINGS))
-	$$(CC) $$(ALL_CFLAGS) -fsanitize=fuzzer,address,undefined \
+	$$(CC) $$(ALL_CFLAGS) -Itests/unit -fsanitize=fuzzer,address,undefined \
 		-fno-sanitize-recover=all -o $$@ $$^ $$(LDLIBS)
 endef
 $(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_rule,$(t))))

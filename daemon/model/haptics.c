@@ -679,6 +679,35 @@ static void publish(const struct touch *t, struct endosim_haptics_state *o)
 	o->constraints = (uint32_t)t->planes;
 }
 
+/*
+ * Both models' last parts: each wheel's (the contact's CONTACT, the wire
+ * tension from OUT's wire_dl_m, the spring-back and the stop) and every
+ * axis' damping, into OUT; the wheels' COMMAND, and the damping added to
+ * every axis' (insertion's and roll's set before).
+ */
+static void wheels_and_damping(const struct haptics_input *in,
+			       const double contact[ENDOSIM_AXES],
+			       struct endosim_haptics_state *out,
+			       double command[ENDOSIM_AXES])
+{
+	const struct haptics_params *par = in->params;
+
+	for (int w = 0; w < 2; w++) {
+		out->wheel_contact_nm[w] = contact[ENDOSIM_AXIS_WHEEL_UD + w];
+		out->wheel_tension_nm[w] = par->gains.wire_tension_n_m_per_m *
+					   out->wire_dl_m[w];
+		out->wheel_elastic_nm[w] =
+			wheel_elastic(in, w, out->wheel_tension_nm[w]);
+		command[ENDOSIM_AXIS_WHEEL_UD + w] = out->wheel_contact_nm[w] +
+						     out->wheel_tension_nm[w] +
+						     out->wheel_elastic_nm[w];
+	}
+	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
+		out->damping[ax] = -par->gains.damping[ax] * in->velocity[ax];
+		command[ax] += out->damping[ax];
+	}
+}
+
 /* ---------------------------------------------------------------- rod */
 
 /* The rig's axes as the rod model takes them. */
@@ -807,26 +836,9 @@ static void render_rod(struct haptics *h, const struct haptics_input *in,
 	out->trans_rod_n = ro.insertion_n;
 	out->tube_rod_nm = ro.roll_nm;
 	memcpy(out->wire_dl_m, ro.wire_dl_m, sizeof(out->wire_dl_m));
-	for (int w = 0; w < 2; w++) {
-		out->wheel_contact_nm[w] = contact[ENDOSIM_AXIS_WHEEL_UD + w];
-		out->wheel_tension_nm[w] = par->gains.wire_tension_n_m_per_m *
-					   out->wire_dl_m[w];
-		out->wheel_elastic_nm[w] =
-			wheel_elastic(in, w, out->wheel_tension_nm[w]);
-	}
-	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
-		out->damping[ax] = -par->gains.damping[ax] * in->velocity[ax];
-	}
 	command[ENDOSIM_AXIS_INSERTION] = out->trans_rod_n;
 	command[ENDOSIM_AXIS_ROLL] = out->tube_rod_nm;
-	for (int w = 0; w < 2; w++) {
-		command[ENDOSIM_AXIS_WHEEL_UD + w] = out->wheel_contact_nm[w] +
-						     out->wheel_tension_nm[w] +
-						     out->wheel_elastic_nm[w];
-	}
-	for (int ax = 0; ax < ENDOSIM_AXES; ax++) {
-		command[ax] += out->damping[ax];
-	}
+	wheels_and_damping(in, contact, out, command);
 	h->wall = ro.wall;
 }
 
@@ -864,28 +876,10 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 	out->tube_friction_nm = -par->gains.torsion_n_m_s_per_rad2 * k *
 				in->velocity[ENDOSIM_AXIS_ROLL];
 	wire_lengths(in, out->wire_dl_m);
-	for (int w = 0; w < 2; w++) {
-		out->wheel_contact_nm[w] = contact[ENDOSIM_AXIS_WHEEL_UD + w];
-		out->wheel_tension_nm[w] = par->gains.wire_tension_n_m_per_m *
-					   out->wire_dl_m[w];
-		out->wheel_elastic_nm[w] =
-			wheel_elastic(in, w, out->wheel_tension_nm[w]);
-	}
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		out->damping[a] = -par->gains.damping[a] *
-				  in->velocity[a];
-	}
 	command[ENDOSIM_AXIS_INSERTION] = out->trans_contact_n +
 					  out->trans_loop_n +
 					  out->trans_friction_n;
 	command[ENDOSIM_AXIS_ROLL] = out->tube_contact_nm +
 				     out->tube_friction_nm;
-	for (int w = 0; w < 2; w++) {
-		command[ENDOSIM_AXIS_WHEEL_UD + w] = out->wheel_contact_nm[w] +
-						     out->wheel_tension_nm[w] +
-						     out->wheel_elastic_nm[w];
-	}
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
-		command[a] += out->damping[a];
-	}
+	wheels_and_damping(in, contact, out, command);
 }

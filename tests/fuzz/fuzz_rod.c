@@ -22,6 +22,7 @@
 
 #include "anatomy.h"
 #include "colon.h"
+#include "plain_anatomy.h"
 #include "rodscope.h"
 
 struct bytes {
@@ -42,21 +43,11 @@ static double take(struct bytes *b, double lo, double hi)
 
 static struct colon *test_colon(void)
 {
-	static const double len[ANATOMY_SEGMENTS] = {
-		0.04, 0.12, 0.37, 0.15, 0.07, 0.45, 0.06, 0.20, 0.06,
-	};
 	struct colon_params p = COLON_PARAMS_DEFAULT;
 	struct anatomy a;
 	char err[256];
 
-	memset(&a, 0, sizeof(a));
-	snprintf(a.name, sizeof(a.name), "fuzz");
-	a.fold_spacing_m = 0.03;
-	a.fold_width_m = 0.005;
-	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		a.seg[i].length_m = len[i];
-		a.seg[i].diameter_m = 0.05;
-	}
+	plain_anatomy(&a, 0.05);
 	a.seg[2].bend[0] = (struct anatomy_bend){ .angle_rad = 2.5,
 						   .radius_m = 0.05 };
 	a.seg[2].bends = 1;

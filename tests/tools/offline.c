@@ -90,6 +90,18 @@ void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 	hand_set_live(o->hand, force, hold_s, o->stamp_ns);
 }
 
+uint64_t offline_hash(uint64_t h, const struct endosim_state *st)
+{
+	struct endosim_state s = *st;
+	const unsigned char *b = (const unsigned char *)&s;
+
+	s.compute_ns = 0;
+	for (size_t i = 0; i < sizeof(s); i++) {
+		h = (h ^ b[i]) * 0x100000001b3ull;
+	}
+	return h;
+}
+
 const struct colon *offline_colon(const struct offline *o)
 {
 	return loop_colon(o->loop);

@@ -63,6 +63,14 @@ double offline_length_s(const struct offline *o);
  */
 const struct endosim_state *offline_step(struct offline *o);
 
+/*
+ * H and the bytes of ST (FNV-1a), its wall-clock field (compute_ns)
+ * zeroed: runs that repeat bit for bit hash the same. Start from
+ * OFFLINE_HASH_START.
+ */
+#define OFFLINE_HASH_START 0xcbf29ce484222325ull
+uint64_t offline_hash(uint64_t h, const struct endosim_state *st);
+
 /* The loop's colon (loop_colon()): where its mobile spans are now. */
 const struct colon *offline_colon(const struct offline *o);
 

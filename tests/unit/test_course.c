@@ -335,30 +335,17 @@ static void test_session_metrics(void **unused)
 	free(scen);
 }
 
-/* FNV-1a over the bytes of a state, its wall-clock fields zeroed. */
-static uint64_t hash_state(uint64_t h, const struct endosim_state *st)
-{
-	struct endosim_state s = *st;
-	const unsigned char *b = (const unsigned char *)&s;
-
-	s.compute_ns = 0;
-	for (size_t i = 0; i < sizeof(s); i++) {
-		h = (h ^ b[i]) * 0x100000001b3ull;
-	}
-	return h;
-}
-
 static uint64_t run_hash(long cycles)
 {
 	struct config cfg;
 	struct colon *colon;
 	struct offline *o;
-	uint64_t h = 0xcbf29ce484222325ull;
+	uint64_t h = OFFLINE_HASH_START;
 
 	config_defaults(&cfg);
 	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
 	for (long k = 0; k < cycles; k++) {
-		h = hash_state(h, offline_step(o));
+		h = offline_hash(h, offline_step(o));
 	}
 	offline_destroy(o);
 	return h;

@@ -29,6 +29,7 @@
 #include "colon.h"
 #include "flex.h"
 #include "geom_assert.h"
+#include "plain_anatomy.h"
 #include "vec3.h"
 
 #define DT 0.001
@@ -37,22 +38,12 @@
  * mobile on a mesentery K (N/m) of height H (m). */
 static struct colon *straight_colon(double k, double h)
 {
-	static const double len[ANATOMY_SEGMENTS] = {
-		0.04, 0.12, 0.37, 0.15, 0.07, 0.45, 0.06, 0.20, 0.06,
-	};
 	struct colon_params p = COLON_PARAMS_DEFAULT;
 	struct anatomy a;
 	struct colon *c;
 	char err[256];
 
-	memset(&a, 0, sizeof(a));
-	snprintf(a.name, sizeof(a.name), "test");
-	a.fold_spacing_m = 0.03;
-	a.fold_width_m = 0.005;
-	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		a.seg[i].length_m = len[i];
-		a.seg[i].diameter_m = 0.05;
-	}
+	plain_anatomy(&a, 0.05);
 	a.seg[2].mobile = true;
 	a.seg[2].mesentery_n_per_m = k;
 	a.seg[2].mesentery_height_m = h;

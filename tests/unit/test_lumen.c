@@ -26,6 +26,7 @@
 #include "colon.h"
 #include "flex.h"
 #include "geom_assert.h"
+#include "plain_anatomy.h"
 #include "lumen.h"
 #include "rod.h"
 #include "vec3.h"
@@ -36,22 +37,12 @@
  * a radius of 10 cm (0 for a straight colon), mobile when MOBILE. */
 static struct colon *smooth_colon(double width, double bend_deg, bool mobile)
 {
-	static const double len[ANATOMY_SEGMENTS] = {
-		0.04, 0.12, 0.37, 0.15, 0.07, 0.45, 0.06, 0.20, 0.06,
-	};
 	struct colon_params p = COLON_PARAMS_DEFAULT;
 	struct anatomy a;
 	struct colon *c;
 	char err[256];
 
-	memset(&a, 0, sizeof(a));
-	snprintf(a.name, sizeof(a.name), "test");
-	a.fold_spacing_m = 0.03;
-	a.fold_width_m = 0.005;
-	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		a.seg[i].length_m = len[i];
-		a.seg[i].diameter_m = width;
-	}
+	plain_anatomy(&a, width);
 	if (bend_deg > 0) {
 		a.seg[2].bend[0] = (struct anatomy_bend){
 			.angle_rad = bend_deg * M_PI / 180, .radius_m = 0.1,

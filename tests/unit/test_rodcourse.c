@@ -53,19 +53,6 @@ struct seen {
 
 #define REPEAT_CYCLES 30000
 
-/* FNV-1a over the bytes of a state, its wall-clock fields zeroed. */
-static uint64_t hash_state(uint64_t h, const struct endosim_state *st)
-{
-	struct endosim_state s = *st;
-	const unsigned char *b = (const unsigned char *)&s;
-
-	s.compute_ns = 0;
-	for (size_t i = 0; i < sizeof(s); i++) {
-		h = (h ^ b[i]) * 0x100000001b3ull;
-	}
-	return h;
-}
-
 /* The published parts of each axis' force against its command: the rod's
  * reaction at the carriage and the damping on insertion and roll; the
  * bending section's moment, the wires, the spring-back and the damping on
@@ -109,7 +96,7 @@ static void watch(const struct endosim_state *s, void *arg)
 	w->faults |= s->fault_bits;
 	w->sum_err = fmax(w->sum_err, parts_error(s));
 	if (w->cycles <= REPEAT_CYCLES) {
-		w->hash = hash_state(w->hash, s);
+		w->hash = offline_hash(w->hash, s);
 	}
 }
 
@@ -123,7 +110,7 @@ static void play(struct seen *w, FILE *script)
 
 	memset(w, 0, sizeof(*w));
 	w->cecum_at_s = -1;
-	w->hash = 0xcbf29ce484222325ull;
+	w->hash = OFFLINE_HASH_START;
 	config_defaults(&cfg);
 	cfg.haptics.model = HAPTICS_MODEL_ROD;
 	assert_int_equal(anatomy_load(&a, CASE, err, sizeof(err)), 0);
@@ -223,7 +210,7 @@ static void test_repeats_exactly(void **unused)
 	struct colon *colon;
 	struct offline *o;
 	char err[512];
-	uint64_t h = 0xcbf29ce484222325ull;
+	uint64_t h = OFFLINE_HASH_START;
 
 	(void)unused;
 	config_defaults(&cfg);
@@ -237,7 +224,7 @@ static void test_repeats_exactly(void **unused)
 	}
 	offline_step(o); /* cycle 0: before she acted */
 	for (long k = 0; k < REPEAT_CYCLES; k++) {
-		h = hash_state(h, offline_step(o));
+		h = offline_hash(h, offline_step(o));
 	}
 	offline_destroy(o);
 	print_message("%d s: her run %016llx, the file played %016llx\n",

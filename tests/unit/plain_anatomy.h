@@ -1,0 +1,31 @@
+/*
+ * plain_anatomy.h - a case built in code for the model's tests and fuzz
+ * targets: the nine segments at the normal case's lengths (m), one lumen
+ * diameter, no bends, nothing mobile, folds 3 cm apart. A test adds the
+ * bends and the mobility it is about.
+ */
+#ifndef ENDOSIM_PLAIN_ANATOMY_H
+#define ENDOSIM_PLAIN_ANATOMY_H
+
+#include <stdio.h>
+#include <string.h>
+
+#include "anatomy.h"
+
+static inline void plain_anatomy(struct anatomy *a, double diameter_m)
+{
+	static const double len[ANATOMY_SEGMENTS] = {
+		0.04, 0.12, 0.37, 0.15, 0.07, 0.45, 0.06, 0.20, 0.06,
+	};
+
+	memset(a, 0, sizeof(*a));
+	snprintf(a->name, sizeof(a->name), "test");
+	a->fold_spacing_m = 0.03;
+	a->fold_width_m = 0.005;
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		a->seg[i].length_m = len[i];
+		a->seg[i].diameter_m = diameter_m;
+	}
+}
+
+#endif
