@@ -91,17 +91,20 @@ status_true() {
 	[ "$(status_field "$1")" = true ]
 }
 
-# wait_for COMMAND...: retries for up to $WAIT_S seconds (default 10: a
+# wait_for COMMAND...: retries for up to $WAIT_S seconds (default 20: a
 # busy shared machine stalls for seconds at times; a pass costs no more).
+# The limit is on the clock, not a count of tries: a COMMAND that itself
+# takes a while (an export of a long recording under ASan) cannot stretch
+# it into minutes.
 wait_for() {
-	local i
-	for i in $(seq 1 $((${WAIT_S:-10} * 20))); do
+	local deadline=$((${EPOCHREALTIME//[!0-9]/} + ${WAIT_S:-20} * 1000000))
+	while :; do
 		if "$@" >/dev/null 2>&1; then
 			return 0
 		fi
+		[ "${EPOCHREALTIME//[!0-9]/}" -lt "$deadline" ] || return 1
 		sleep 0.05
 	done
-	return 1
 }
 
 # What every daemon of a test gets: its own socket directory and shm name,
@@ -227,7 +230,7 @@ cleanup() {
 trap cleanup EXIT
 
 finish() {
-	local slot log
+	local slot
 	if [ -n "$DAEMON_PID" ]; then
 		check "endosimd exits cleanly on SIGTERM" stop_daemon
 	fi
@@ -243,15 +246,25 @@ finish() {
 		$(daemon_logs) /dev/null 2>/dev/null; then
 		fail "sanitizer report in endosimd's log"
 	fi
-	if [ "$FAILED" -gt 0 ]; then
-		for log in $(daemon_logs); do
-			[ -s "$log" ] || continue
-			slot=${log%/endosimd.log}
-			slot=${slot#"$TMP"}
-			echo "# endosimd log${slot:+ (${slot#/})}:"
-			sed 's/^/#   /' "$log"
-		done
-	fi
+	[ "$FAILED" -eq 0 ] || print_logs
+	tally
+}
+
+# print_logs: every slot's daemon log, for a failure's reader
+print_logs() {
+	local log slot
+	for log in $(daemon_logs); do
+		[ -s "$log" ] || continue
+		slot=${log%/endosimd.log}
+		slot=${slot#"$TMP"}
+		echo "# endosimd log${slot:+ (${slot#/})}:"
+		sed 's/^/#   /' "$log"
+	done
+}
+
+# tally: the closing line; exits 0 when nothing failed
+tally() {
+	[ -s "$TMP/notes" ] && cat "$TMP/notes"
 	if [ "$SKIPPED" -gt 0 ]; then
 		echo "$PASSED passed, $FAILED failed, $SKIPPED skipped"
 	else
@@ -260,3 +273,13 @@ finish() {
 	[ "$FAILED" -eq 0 ]
 	exit $?
 }
+
+# A suite stopped from outside (tests/run.sh's time limit) says so, with
+# the daemons' logs and its tally, rather than vanishing mid-check.
+stopped() {
+	trap - TERM
+	fail "the suite was stopped (SIGTERM) in the middle of a check"
+	print_logs
+	tally
+}
+trap stopped TERM

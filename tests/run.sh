@@ -97,9 +97,13 @@ system_tests() {
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
 		started=$SECONDS
-		BUILD="$build" SANITIZED=$sanitized timeout 300 bash "$t" \
+		BUILD="$build" SANITIZED=$sanitized timeout -k 20 300 bash "$t" \
 			>"$work/system.out" 2>&1
 		rc=$?
+		if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+			echo "not ok - $(basename "$t") ran out of its 300 s" \
+				>>"$work/system.out"
+		fi
 		record "${prefix}system/$(basename "$t" .sh)" "$work/system.out" \
 			$rc $((SECONDS - started))
 	done
