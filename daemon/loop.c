@@ -54,6 +54,8 @@ struct loop {
 	uint64_t stall_ns;         /* a test command: sleep after the cycle */
 	struct inject inject;      /* test commands' sabotage */
 	uint64_t debug_seen;
+	struct guide guide;        /* guided replay (guide.h) */
+	uint64_t guide_seen;
 	bool lockstep;             /* loop_step(): stamps on the caller's clock */
 
 	/* shared */
@@ -85,6 +87,11 @@ struct loop {
 	struct loop_debug debug_box;
 	_Atomic uint64_t debug_done; /* loop -> control: seq << 32 | result */
 	uint32_t debug_seq;        /* control thread's counter */
+	seqlock_t guide_lock;      /* control -> loop: a guidance command */
+	struct guide_command guide_box;
+	uint32_t guide_box_seq;
+	_Atomic uint64_t guide_done; /* loop -> control: seq << 32 | result */
+	uint32_t guide_seq;        /* control thread's counter */
 };
 
 static struct timespec to_timespec(uint64_t ns)
@@ -103,6 +110,7 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 		log_err("force loop: out of memory");
 		return NULL;
 	}
+	guide_init(&l->guide);
 	if (spsc_init(&l->events, LOOP_EVENTS, sizeof(struct loop_event))) {
 		log_err("force loop: out of memory");
 		free(l);
@@ -353,6 +361,64 @@ static void take_debug(struct loop *l, uint64_t now)
 			      memory_order_release);
 }
 
+/* Takes a guidance command, if any, and answers it. */
+static void take_guide(struct loop *l)
+{
+	uint64_t seq = seqlock_read_begin(&l->guide_lock);
+	struct guide_command c;
+	uint32_t box_seq;
+	double q[ENDOSIM_AXES];
+	int r;
+
+	if (seq == l->guide_seen) {
+		return;
+	}
+	c = l->guide_box;
+	box_seq = l->guide_box_seq;
+	if (seqlock_read_retry(&l->guide_lock, seq)) {
+		return; /* torn: next cycle */
+	}
+	l->guide_seen = seq;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = l->fb.axis[a].position;
+	}
+	r = guide_command(&l->guide, &l->cfg.guide, &c, q);
+	atomic_store_explicit(&l->guide_done,
+			      (uint64_t)box_seq << 32 | (uint32_t)r,
+			      memory_order_release);
+}
+
+/*
+ * The guidance's force, added to the rendered command: only while
+ * ENABLED with the enable ramp done (last cycle's), the sum then filtered
+ * as any command is. A change of its phase is an event.
+ */
+static void guide(struct loop *l, uint64_t now)
+{
+	uint32_t old_phase = l->guide.phase;
+	double q[ENDOSIM_AXES], v[ENDOSIM_AXES], f[ENDOSIM_AXES];
+	bool enabled = l->safety.state == ENDOSIM_STATE_ENABLED;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = l->fb.axis[a].position;
+		v[a] = l->fb.axis[a].velocity;
+	}
+	guide_step(&l->guide, &l->cfg.guide, enabled,
+		   enabled && l->safety.ramp >= 1.0, q, v, l->limited,
+		   l->info.period_ns * 1e-9, f);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		l->command[a] += f[a];
+	}
+	if (l->guide.phase != old_phase) {
+		post(l, &(struct loop_event){
+			.stamp_ns = now, .code = LOOP_EV_GUIDE,
+			.arg = l->guide.phase, .prev = old_phase,
+			.detail = l->guide.ended, .axis = l->guide.lost_axis,
+			.value = l->guide.t_s });
+	}
+	guide_publish(&l->guide, q, &l->state.guide);
+}
+
 /* A test command's stall, once this cycle is published. */
 static void stall(struct loop *l)
 {
@@ -421,6 +487,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	fetch_config(l);
 	cmd = take_command(l, now);
 	take_debug(l, now);
+	take_guide(l);
 	take_colon(l);
 	safety_begin_cycle(&l->safety);
 	check_loop(l, now);
@@ -430,6 +497,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
 	render(l);
+	guide(l, now);
 	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);
 	check_pipeline(l, now);
 	safety_filter(&l->safety, &l->cfg, l->command, l->limited,
@@ -755,6 +823,39 @@ int loop_debug(struct loop *l, int action, int axis, double value,
 	return -ETIMEDOUT;
 }
 
+/* Leaves C in the guidance's box; returns its sequence number. */
+static uint32_t post_guide(struct loop *l, const struct guide_command *c)
+{
+	uint32_t seq = ++l->guide_seq;
+
+	seqlock_write_begin(&l->guide_lock);
+	l->guide_box = *c;
+	l->guide_box_seq = seq;
+	seqlock_write_end(&l->guide_lock);
+	return seq;
+}
+
+int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms)
+{
+	uint32_t seq = post_guide(l, c);
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	for (;;) {
+		uint64_t done = atomic_load_explicit(&l->guide_done,
+						     memory_order_acquire);
+
+		if ((uint32_t)(done >> 32) == seq) {
+			return (int32_t)(uint32_t)done;
+		}
+		if (mono_ns() > deadline) {
+			break;
+		}
+		nanosleep(&nap, NULL);
+	}
+	return -ETIMEDOUT;
+}
+
 void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)
 {
 	atomic_store(&l->fail_detail, detail);
@@ -799,6 +900,20 @@ void loop_step(struct loop *l, uint64_t now_ns)
 void loop_post(struct loop *l, enum loop_cmd cmd)
 {
 	(void)post_command(l, cmd);
+}
+
+void loop_guide_post(struct loop *l, const struct guide_command *c)
+{
+	(void)post_guide(l, c);
+}
+
+int loop_guide_answer(const struct loop *l)
+{
+	uint64_t done = atomic_load_explicit(&l->guide_done,
+					     memory_order_acquire);
+
+	return (uint32_t)(done >> 32) == l->guide_seq ?
+	       (int32_t)(uint32_t)done : -EINPROGRESS;
 }
 
 const struct endosim_state *loop_state(const struct loop *l)

@@ -36,6 +36,7 @@
 
 #include "colon.h"
 #include "config.h"
+#include "guide.h"
 #include "histo.h"
 #include "publish.h"
 #include "sessiontap.h"
@@ -49,6 +50,10 @@ enum loop_event_code {
 	LOOP_EV_SCENARIO_END, /* the scripted hand's scenario ended */
 	LOOP_EV_OVER_BUDGET,  /* arg: periods skipped within the window, over
 				 the budget: a warning (safety.h) */
+	LOOP_EV_GUIDE,        /* arg: the guidance's new phase, prev: its old
+				 one, detail: why it ended, axis: the one
+				 that could not follow, value: the playhead
+				 (enum endosim_guide_phase, _end) */
 };
 
 /* Commands for loop_command(): the safety commands, and one of the loop's. */
@@ -158,6 +163,15 @@ int loop_debug(struct loop *l, int action, int axis, double value,
 	       int timeout_ms);
 
 /*
+ * Control thread: hands the loop a guidance command (guide.h) and waits up
+ * to TIMEOUT_MS for its answer: 0, -EINVAL (guide_command() refused it) or
+ * -ETIMEDOUT (no answer yet: the loop may still take it). A GUIDE_START's
+ * path is the loop's from the post on (unless answered -EINVAL) until a
+ * later start is answered 0: only then may the caller free it.
+ */
+int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms);
+
+/*
  * Main thread: latches fault BIT (ENDOSIM_FAULT_INTERNAL: a daemon thread
  * died) with DETAIL from the next cycle on, for good: torque off.
  */
@@ -196,6 +210,10 @@ const struct colon *loop_colon(const struct loop *l);
  * tests. */
 void loop_hold_tip(struct loop *l, double hold_n_per_m);
 void loop_post(struct loop *l, enum loop_cmd cmd);
+/* In lockstep: a guidance command for the next cycle; its answer is
+ * loop_guide_answer()'s after that cycle (-EINPROGRESS before). */
+void loop_guide_post(struct loop *l, const struct guide_command *c);
+int loop_guide_answer(const struct loop *l);
 const struct endosim_state *loop_state(const struct loop *l);
 
 #endif

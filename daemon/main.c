@@ -283,6 +283,29 @@ static void log_over_budget(const struct daemon *d,
 				? "no" : "auto, every axis simulated");
 }
 
+static void log_guide(const struct loop_event *ev, double t)
+{
+	if (ev->arg == ENDOSIM_GUIDE_FADING && ev->detail) {
+		return; /* ending: said once it is off */
+	}
+	if (ev->arg == ENDOSIM_GUIDE_OFF && ev->detail ==
+	    ENDOSIM_GUIDE_END_LOST) {
+		log_warn("guide: ended at %.3f s, %.2f s into the "
+			    "recording: %s could not follow its reference",
+			    t, ev->value, names_axis(ev->axis));
+	} else if (ev->arg == ENDOSIM_GUIDE_OFF) {
+		log_notice("guide: ended (%s) at %.3f s, %.2f s into the "
+			   "recording", names_guide_end(ev->detail), t,
+			   ev->value);
+	} else if (ev->arg == ENDOSIM_GUIDE_FADING) {
+		log_notice("guide: taken over at %.3f s, %.2f s into the "
+			   "recording: fading out", t, ev->value);
+	} else {
+		log_info("guide: %s at %.3f s, %.2f s into the recording",
+			 names_guide_phase(ev->arg), t, ev->value);
+	}
+}
+
 static void log_event(const struct daemon *d, const struct loop_event *ev)
 {
 	static struct log_ratelimit overrun_rl = LOG_RATELIMIT_INIT(10, 3);
@@ -312,6 +335,9 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 		break;
 	case LOOP_EV_OVER_BUDGET:
 		log_over_budget(d, ev, t);
+		break;
+	case LOOP_EV_GUIDE:
+		log_guide(ev, t);
 		break;
 	}
 }

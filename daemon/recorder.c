@@ -68,6 +68,7 @@ struct recorder {
 	uint64_t records, bytes, drops_written;
 	uint64_t throttle_t0_ns, throttle_bytes;
 	uint32_t last_state, last_faults;
+	uint32_t last_guide;       /* enum endosim_guide_phase */
 	bool seen_record;
 	struct param batch[PARAMS];
 	struct session_shape shape;  /* popped, then packed into payload */
@@ -217,7 +218,23 @@ static void fault_event(struct recorder *r, const struct session_record *rec,
 	put_event(r, &ev, text);
 }
 
-/* STATE and FAULT events from the change between records. */
+/* The guidance's new phase, as a NOTE: "guide: fading at 12.34 s of the
+ * recording", then "guide: taken-over at ..." (or "off": it ended). */
+static void guide_event(struct recorder *r, const struct session_record *rec)
+{
+	struct session_event ev = {
+		.stamp_ns = rec->stamp_ns, .kind = SESSION_EVENT_NOTE,
+		.axis = -1, .value = rec->guide_phase,
+	};
+	char text[EVENT_TEXT];
+
+	snprintf(text, sizeof(text), "guide: %s at %.2f s of the recording",
+		 names_guide_phase(rec->guide_phase),
+		 (double)rec->guide_time_s);
+	put_event(r, &ev, text);
+}
+
+/* STATE, FAULT and guidance events from the change between records. */
 static void derive_events(struct recorder *r, const struct session_record *rec)
 {
 	uint32_t added = rec->fault_bits & ~r->last_faults;
@@ -231,7 +248,11 @@ static void derive_events(struct recorder *r, const struct session_record *rec)
 			added &= ~(1u << k);
 		}
 	}
+	if (r->seen_record && rec->guide_phase != r->last_guide) {
+		guide_event(r, rec);
+	}
 	r->seen_record = true;
+	r->last_guide = rec->guide_phase;
 	r->last_state = rec->state;
 	r->last_faults = rec->fault_bits;
 }

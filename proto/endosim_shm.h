@@ -24,12 +24,13 @@
 #include "seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 5u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 6u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
 				  5: the rod model: the tube's shape, the
-				     colon's nodes, the wall's contacts */
+				     colon's nodes, the wall's contacts;
+				  6: guided replay */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
@@ -235,6 +236,41 @@ struct endosim_safety_state {
 	struct endosim_fault_cause cause[ENDOSIM_FAULT_BITS];
 };
 
+/* Guided replay (daemon/rig/guide.h): what the guidance does. */
+enum endosim_guide_phase {
+	ENDOSIM_GUIDE_OFF = 0,
+	ENDOSIM_GUIDE_MOVING = 1,  /* to a point of the path, at a safe speed */
+	ENDOSIM_GUIDE_GUIDING = 2, /* playing the path */
+	ENDOSIM_GUIDE_HOLDING = 3, /* at a point of the path */
+	ENDOSIM_GUIDE_FADING = 4,  /* taken over: the force fading out */
+	ENDOSIM_GUIDE_FREE = 5,    /* taken over: no force until resumed */
+};
+
+/* Why the guidance last ended. */
+enum endosim_guide_end {
+	ENDOSIM_GUIDE_END_NONE = 0,
+	ENDOSIM_GUIDE_END_STOPPED = 1,     /* a stop command */
+	ENDOSIM_GUIDE_END_DONE = 2,        /* the path's end */
+	ENDOSIM_GUIDE_END_NOT_ENABLED = 3, /* disabled, a fault, an estop */
+	ENDOSIM_GUIDE_END_LOST = 4,        /* an axis could not follow */
+};
+
+struct endosim_guide_state {
+	uint32_t phase;           /* enum endosim_guide_phase */
+	uint32_t ended;           /* enum endosim_guide_end: the last end */
+	uint64_t source_id;       /* the guiding session's id */
+	double time_s;            /* the playhead, s of the recording */
+	double length_s;          /* the recording's guided length, s */
+	double speed;             /* x the recording's */
+	double fade;              /* the force's share, 1 .. 0 */
+	uint32_t takeovers;       /* since the start */
+	uint32_t lost_axis;       /* ended lost: the axis; else ENDOSIM_AXES */
+	double reference[ENDOSIM_AXES]; /* m, rad */
+	double force[ENDOSIM_AXES];     /* N, N m: in the command */
+	double error[ENDOSIM_AXES];     /* reference - position */
+	double hand[ENDOSIM_AXES];      /* N, N m: the hand's, estimated */
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -255,6 +291,7 @@ struct endosim_state {
 	struct endosim_haptics_state haptics;
 	struct endosim_safety_state safety;
 	struct endosim_rod_state rod;
+	struct endosim_guide_state guide;
 };
 
 struct endosim_shm {

@@ -186,6 +186,41 @@ const struct fields_table fields_rod =
 #undef STRUCT
 #undef MESSAGE
 
+/* --- guided replay: recorded with its reference and force per axis ---- */
+#define STRUCT struct endosim_guide_state
+#define MESSAGE Endosim__GuideStatus
+#define GUIDE_AXES(stem, lin, rot)                                           \
+	COLUMNS("guide_" stem "_insertion_" lin, "guide_" stem "_roll_" rot, \
+		"guide_" stem "_wheel_ud_" rot, "guide_" stem "_wheel_lr_" rot)
+static const struct fields_field guide[] = {
+	{ "phase", FIELDS_NAMED, 1, S(phase), NONE, P(phase), NONE,
+	  R(guide_phase), COLUMNS("guide_phase"), names_guide_phase, NULL },
+	{ "ended", FIELDS_NAMED, 1, S(ended), NONE, P(ended), NONE, NONE,
+	  NULL, names_guide_end, NULL },
+	VAL(source_id, FIELDS_UINT64),
+	{ "time_s", FIELDS_DOUBLE, 1, S(time_s), NONE, P(time_s), NONE,
+	  R(guide_time_s), COLUMNS("guide_time_s"), NULL, NULL },
+	VAL(length_s, FIELDS_DOUBLE),
+	VAL(speed, FIELDS_DOUBLE),
+	VAL(fade, FIELDS_DOUBLE),
+	VAL(takeovers, FIELDS_UINT),
+	{ "lost_axis", FIELDS_NAMED, 1, S(lost_axis), NONE, P(lost_axis),
+	  NONE, NONE, NULL, names_guide_axis, NULL },
+	{ "reference", FIELDS_VECTOR, LEN(reference), S(reference), NONE,
+	  P(reference), P(n_reference), R(guide_reference),
+	  GUIDE_AXES("reference", "m", "rad"), NULL, NULL },
+	{ "force", FIELDS_VECTOR, LEN(force), S(force), NONE, P(force),
+	  P(n_force), R(guide_force), GUIDE_AXES("force", "n", "nm"), NULL,
+	  NULL },
+	VEC(error),
+	VEC(hand),
+};
+const struct fields_table fields_guide =
+	TABLE(guide, endosim__guide_status__descriptor, guide, 1);
+#undef GUIDE_AXES
+#undef STRUCT
+#undef MESSAGE
+
 /* --- the state's own fields, the safety monitors', the parts ---------- */
 #define STRUCT struct endosim_state
 #define MESSAGE Endosim__StatusReply
@@ -216,6 +251,7 @@ static const struct fields_field status[] = {
 	ONE(scope, &fields_scope),
 	ONE(haptics, &fields_haptics),
 	ONE(rod, &fields_rod),
+	ONE(guide, &fields_guide),
 	MANY(axes, FIELDS_MAP, &fields_axis),
 	/* recorded, not on the wire */
 	KEPT(latency_ns, FIELDS_UINT),

@@ -17,7 +17,8 @@
  * safety monitors' that the wire carries: StatusReply), and, reached from
  * it by its sub-message rows, fields_fault (a latched fault's cause:
  * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus),
- * fields_rod (RodStatus) and fields_axis (each axis: AxisStatus). A table's rows are in the order of
+ * fields_rod (RodStatus), fields_guide (GuideStatus) and fields_axis
+ * (each axis: AxisStatus). A table's rows are in the order of
  * the message's JSON.
  *
  * Adding a field to the published state:
@@ -104,6 +105,7 @@ extern const struct fields_table fields_fault;
 extern const struct fields_table fields_scope;
 extern const struct fields_table fields_haptics;
 extern const struct fields_table fields_rod;
+extern const struct fields_table fields_guide;
 extern const struct fields_table fields_axis;
 
 /*

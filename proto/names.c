@@ -22,6 +22,23 @@ static const char *const model_names[] = {
 	[ENDOSIM_MODEL_ROD] = "rod",
 };
 
+static const char *const guide_phase_names[] = {
+	[ENDOSIM_GUIDE_OFF] = "off",
+	[ENDOSIM_GUIDE_MOVING] = "moving",
+	[ENDOSIM_GUIDE_GUIDING] = "guiding",
+	[ENDOSIM_GUIDE_HOLDING] = "holding",
+	[ENDOSIM_GUIDE_FADING] = "fading",
+	[ENDOSIM_GUIDE_FREE] = "taken-over",
+};
+
+static const char *const guide_end_names[] = {
+	[ENDOSIM_GUIDE_END_NONE] = "",
+	[ENDOSIM_GUIDE_END_STOPPED] = "stopped",
+	[ENDOSIM_GUIDE_END_DONE] = "done",
+	[ENDOSIM_GUIDE_END_NOT_ENABLED] = "not-enabled",
+	[ENDOSIM_GUIDE_END_LOST] = "lost",
+};
+
 static const char *const fault_names[] = {
 	"drive", "drive-gone", "stale-feedback", "bus-error",
 	"overrun-budget", "travel", "runaway", "saturation",
@@ -33,6 +50,22 @@ static const char *const fault_names[] = {
 const char *names_state(uint32_t state)
 {
 	return state < COUNT(state_names) ? state_names[state] : "?";
+}
+
+const char *names_guide_phase(uint32_t phase)
+{
+	return phase < COUNT(guide_phase_names) ? guide_phase_names[phase]
+						 : "?";
+}
+
+const char *names_guide_end(uint32_t end)
+{
+	return end < COUNT(guide_end_names) ? guide_end_names[end] : "?";
+}
+
+const char *names_guide_axis(uint32_t axis)
+{
+	return axis < ENDOSIM_AXES ? axis_names[axis] : "";
 }
 
 const char *names_axis(int axis)

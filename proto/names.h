@@ -25,6 +25,17 @@ int names_axis_find(const char *name);
 /* "paper", "rod": [haptics] model's words (enum endosim_model). */
 const char *names_model(uint32_t model);
 
+/* Guided replay: "off", "moving", "guiding", "holding", "fading",
+ * "taken-over" (enum endosim_guide_phase). */
+const char *names_guide_phase(uint32_t phase);
+
+/* Why it ended: "", "stopped", "done", "not-enabled", "lost" (enum
+ * endosim_guide_end). */
+const char *names_guide_end(uint32_t end);
+
+/* An axis' name, or "" for ENDOSIM_AXES and beyond (none). */
+const char *names_guide_axis(uint32_t axis);
+
 /*
  * One word for an axis' drive status bits (enum endosim_drive_status), the
  * worst first: "gone", "fault", "bus-error", "on" (enabled), "off".

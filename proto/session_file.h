@@ -26,7 +26,8 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (2; 1 before the rod model), id, trainee, case,
+ * Header keys: format (3; 2 before guided replay, 1 before the rod
+ * model), id, trainee, case,
  * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
  * record's clock), period_ns, version (endosimd's), record_size
  * (sizeof(struct session_record)), and the case's resolution: step_m,
@@ -48,7 +49,7 @@
 #include "endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 2u
+#define SESSION_FILE_FORMAT 3u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -66,7 +67,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 320 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 360 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -122,9 +123,14 @@ struct session_record {
 	uint32_t contacts;        /* tube segments the wall presses */
 	float wall_n;             /* N: the wall's normal forces, summed */
 	float friction_n;         /* N: the friction's, sizes summed */
+	/* format 3: guided replay (struct endosim_guide_state) */
+	uint32_t guide_phase;     /* enum endosim_guide_phase */
+	float guide_time_s;       /* the playhead, s of the recording */
+	float guide_reference[ENDOSIM_AXES]; /* m, rad */
+	float guide_force[ENDOSIM_AXES];     /* N, N m */
 };
 
-_Static_assert(sizeof(struct session_record) == 320,
+_Static_assert(sizeof(struct session_record) == 360,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */

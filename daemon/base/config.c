@@ -53,6 +53,25 @@ static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 	KE(sec, "direction", axis[i].reversed, 0, direction_names, 0,        \
 	   "normal, or reversed: motor positive is axis negative")
 
+/* [guide]: one axis' guidance; AX its key's name, F and Q its force and
+ * position units in key names (n, n_m; m, rad) and in words */
+#define GUIDE_KEYS(ax, i, f, q, fw, qw, k, b, fmax, vmax, push, err)          \
+	KD("guide", ax "_stiffness_" f "_per_" q, guide.stiffness[i], k, 0, \
+	   1e6, fw "/" qw, LIVE, "k: the pull towards the reference"),     \
+	KD("guide", ax "_damping_" f "_s_per_" q, guide.damping[i], b, 0,  \
+	   1e4, fw " s/" qw, LIVE, "b: on the speed's difference from "    \
+	   "the reference's"),                                              \
+	KD("guide", ax "_force_max_" f, guide.force_max[i], fmax, 0, 100,  \
+	   fw, LIVE, "the guidance's force at most (within [limits])"),    \
+	KD("guide", ax "_speed_max_" q "_s", guide.speed_max[i], vmax,      \
+	   1e-4, 100, qw "/s", LIVE, "the reference never moves faster: "  \
+	   "a faster recording is slowed"),                                 \
+	KD("guide", ax "_takeover_" f, guide.takeover[i], push, 0, 100, fw, \
+	   LIVE, "a hand pushing so hard against the guidance takes over"), \
+	KD("guide", ax "_error_max_" q, guide.error_max[i], err, 1e-4, 10, \
+	   qw, LIVE, "tracking error beyond this for error_s: the guidance " \
+	   "cannot follow and ends")
+
 /* [epos4.NAME]: the maxon EPOS4 on USB that drives axis I. */
 #define EPOS4_KEYS(sec, i)                                                   \
 	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", CONFIG_HEX,     \
@@ -381,6 +400,22 @@ static const struct config_key keys[] = {
 	KL("log", "level", log.level, LOG_INFO, LIVE,
 	   "err, warning, notice, info or debug"),
 
+	GUIDE_KEYS("insertion", I_INS, "n", "m", "N", "m", 4000, 40, 25, 0.1,
+		   6, 0.03),
+	GUIDE_KEYS("roll", I_ROLL, "n_m", "rad", "N m", "rad", 2, 0.02, 0.5,
+		   2, 0.1, 0.5),
+	GUIDE_KEYS("wheel_ud", I_UD, "n_m", "rad", "N m", "rad", 0.5, 0.002,
+		   0.08, 2, 0.04, 0.5),
+	GUIDE_KEYS("wheel_lr", I_LR, "n_m", "rad", "N m", "rad", 0.5, 0.002,
+		   0.08, 2, 0.04, 0.5),
+	KD("guide", "takeover_s", guide.takeover_s, 0.3, 0.01, 10, "s", LIVE,
+	   "a push held this long takes over from the guidance"),
+	KD("guide", "fade_s", guide.fade_s, 0.5, 0.001, 10, "s", LIVE,
+	   "taken over or stopped, the guidance fades out over this"),
+	KD("guide", "error_s", guide.error_s, 1.0, 0.01, 60, "s", LIVE,
+	   "an error beyond error_max this long: cannot follow, ends"),
+	KD("guide", "hand_filter_hz", guide.hand_filter_hz, 5, 0.1, 100, "Hz",
+	   LIVE, "low pass of the hand's estimated force"),
 	AXIS_KEYS("axis.insertion", I_INS),
 	KD("axis.insertion", "gear_radius_m", axis[I_INS].gear_radius_m, 0.015,
 	   0.001, 1, "m", 0, "radius of the pinion that drives the carriage"),

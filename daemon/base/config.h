@@ -211,6 +211,20 @@ struct config {
 		double colon_chain_n_per_m;
 		double colon_bending_n_per_m;
 	} rod;
+	struct config_guide {    /* [guide]: guided replay (guide.h); per
+				    axis in enum endosim_axis order, N or
+				    N m, m or rad */
+		double stiffness[ENDOSIM_AXES];  /* N/m, N m/rad */
+		double damping[ENDOSIM_AXES];    /* N s/m, N m s/rad */
+		double force_max[ENDOSIM_AXES];  /* N, N m */
+		double speed_max[ENDOSIM_AXES];  /* m/s, rad/s */
+		double takeover[ENDOSIM_AXES];   /* N, N m: a hand's push */
+		double error_max[ENDOSIM_AXES];  /* m, rad */
+		double takeover_s;   /* the push held so long: taken over */
+		double fade_s;       /* the force fades out over this */
+		double error_s;      /* the error held so long: cannot follow */
+		double hand_filter_hz; /* the hand's force estimate's low pass */
+	} guide;
 };
 
 enum config_type {

@@ -111,3 +111,18 @@ void offline_hold_tip(struct offline *o, double hold_n_per_m)
 {
 	loop_hold_tip(o->loop, hold_n_per_m);
 }
+
+void offline_guide(struct offline *o, const struct guide_command *c)
+{
+	loop_guide_post(o->loop, c);
+}
+
+int offline_guide_answer(const struct offline *o)
+{
+	return loop_guide_answer(o->loop);
+}
+
+void offline_command(struct offline *o, int cmd)
+{
+	loop_post(o->loop, (enum loop_cmd)cmd);
+}

@@ -21,6 +21,7 @@
 #include "colon.h"
 #include "config.h"
 #include "endosim_shm.h"
+#include "guide.h"
 #include "haptics.h"
 #include "scenario.h"
 
@@ -83,5 +84,15 @@ void offline_hold_tip(struct offline *o, double hold_n_per_m);
  */
 void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 		  double hold_s);
+
+/* A safety command (enable, disable, ...) for the next cycle. */
+void offline_command(struct offline *o, int cmd);
+
+/*
+ * A guidance command for the next cycle (loop_guide_post()); its answer,
+ * once that cycle ran, is offline_guide_answer()'s.
+ */
+void offline_guide(struct offline *o, const struct guide_command *c);
+int offline_guide_answer(const struct offline *o);
 
 #endif

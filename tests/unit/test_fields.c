@@ -149,7 +149,7 @@ static void test_state_covered(void **state)
 	size_t n = all_tables(t, COUNT(t)), bad = 0;
 
 	(void)state;
-	assert_int_equal(n, 6);
+	assert_int_equal(n, 7);
 	for (size_t k = 0; k < n; k++) {
 		for (size_t i = 0; i < t[k]->n_fields; i++) {
 			const struct fields_field *d = &t[k]->fields[i];
@@ -409,7 +409,11 @@ static const char csv_columns[] =
 	"wheel_contact_lr_nm,wheel_tension_ud_nm,wheel_tension_lr_nm,"
 	"wheel_elastic_ud_nm,wheel_elastic_lr_nm,tube_contact_nm,"
 	"tube_friction_nm,scenario_time_s,latency_ns,compute_ns,trans_rod_n,"
-	"tube_rod_nm,rod_model,rod_contacts,rod_wall_n,rod_friction_n";
+	"tube_rod_nm,rod_model,rod_contacts,rod_wall_n,rod_friction_n,"
+	"guide_phase,guide_time_s,guide_reference_insertion_m,"
+	"guide_reference_roll_rad,guide_reference_wheel_ud_rad,"
+	"guide_reference_wheel_lr_rad,guide_force_insertion_n,"
+	"guide_force_roll_nm,guide_force_wheel_ud_nm,guide_force_wheel_lr_nm";
 
 static void test_columns(void **state)
 {
@@ -430,10 +434,12 @@ static void test_columns(void **state)
 	assert_int_equal(c[0].record, offsetof(struct session_record, cycle));
 	assert_int_equal(c[0].stored, FIELDS_STORED_U64);
 	assert_int_equal(c[1].stored, FIELDS_STORED_U32);
-	assert_int_equal(c[n - 3].stored, FIELDS_STORED_U32); /* rod_model */
+	assert_int_equal(c[n - 13].stored, FIELDS_STORED_U32); /* rod_model */
+	assert_int_equal(c[n - 10].stored, FIELDS_STORED_U32); /* guide_phase */
 	assert_int_equal(c[n - 1].stored, FIELDS_STORED_F32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, friction_n));
+			 offsetof(struct session_record, guide_force) +
+			 3 * sizeof(float));
 }
 
 /* A state whose every double and word differs. */

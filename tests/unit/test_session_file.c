@@ -212,6 +212,7 @@ static int read_sized(const char *head, size_t length, size_t fields,
 		struct session_record r = {
 			.cycle = (uint64_t)i, .compute_ns = 7u + (uint32_t)i,
 			.trans_rod_n = 2.5f, .friction_n = 0.5f,
+			.guide_phase = 3, .guide_force = { 0, 0, 0, 1.5f },
 		};
 
 		memcpy(raw, &r, fields);
@@ -225,13 +226,15 @@ static int read_sized(const char *head, size_t length, size_t fields,
 
 /*
  * A file in format 1's layout (304-byte records, its last two words the
- * zero reserved ones) reads with the fields added since zero; a later
+ * zero reserved ones) or 2's (320 bytes) reads with the fields added
+ * since zero; a later
  * format's longer records by the fields this one knows; records shorter
  * than format 1's, or not the size the header says, are refused.
  */
 static void test_old_layout(void **state)
 {
 	const size_t v1 = offsetof(struct session_record, trans_rod_n);
+	const size_t v2 = offsetof(struct session_record, guide_phase);
 	const size_t all = sizeof(struct session_record);
 	struct session_file f;
 
@@ -249,15 +252,24 @@ static void test_old_layout(void **state)
 		assert_true(f.records[i].friction_n == 0);
 	}
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=3\nrecord_size=336\n", 336, all,
+	/* format 2's (the rod's, no guidance): the guidance's fields zero */
+	assert_int_equal(read_sized("format=2\nrecord_size=320\n", 320, v2,
+				    &f), 0);
+	assert_true(f.records[1].friction_n == 0.5f);
+	assert_int_equal(f.records[1].guide_phase, 0);
+	assert_true(f.records[1].guide_force[3] == 0);
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=4\nrecord_size=400\n", 400, all,
 				    &f), 0);
 	assert_int_equal(f.records[2].compute_ns, 9);
 	assert_true(f.records[2].trans_rod_n == 2.5f);
 	assert_true(f.records[2].friction_n == 0.5f);
+	assert_int_equal(f.records[2].guide_phase, 3);
+	assert_true(f.records[2].guide_force[3] == 1.5f);
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);
-	assert_int_equal(read_sized("record_size=304\n", 320, all, &f),
+	assert_int_equal(read_sized("record_size=304\n", 320, v2, &f),
 			 -EPROTO);
 	assert_int_equal(read_sized("record_size=296\n", 296, v1, &f),
 			 -EPROTO);

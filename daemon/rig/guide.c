@@ -1,0 +1,436 @@
+/* guide.c - see guide.h. */
+#include "guide.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "session_file.h"
+
+#define GUIDE_ROTARY_M 0.01   /* nearest point: a radian counts as 1 cm */
+#define GUIDE_MOVE_MIN_S 0.05 /* the shortest move */
+#define GUIDE_SPEED_MIN 0.25  /* x the recording */
+#define GUIDE_SPEED_MAX 2.0
+
+/* --- the path ---------------------------------------------------------- */
+
+static struct guide_path *path_alloc(size_t n)
+{
+	struct guide_path *p = calloc(1, sizeof(*p));
+
+	if (!p) {
+		return NULL;
+	}
+	p->n = n;
+	p->q = calloc(n, sizeof(*p->q));
+	p->tip_s_m = calloc(n, sizeof(*p->tip_s_m));
+	if (!p->q || !p->tip_s_m) {
+		guide_path_free(p);
+		return NULL;
+	}
+	return p;
+}
+
+/* The session's enabled part, [*first, *last] of its records: false if
+ * it has none. */
+static bool enabled_part(const struct session_file *f, size_t *first,
+			 size_t *last)
+{
+	bool any = false;
+
+	for (size_t i = 0; i < f->n_records; i++) {
+		if (f->records[i].state != ENDOSIM_STATE_ENABLED) {
+			continue;
+		}
+		if (!any) {
+			*first = i;
+			any = true;
+		}
+		*last = i;
+	}
+	return any;
+}
+
+struct guide_path *guide_path_load(const char *file, char *err,
+				   size_t errsize)
+{
+	struct session_file f = { 0 };
+	struct guide_path *p = NULL;
+	char id[32] = "";
+	size_t first = 0, last = 0, n, r;
+	uint64_t t0, span, step = (uint64_t)(1e9 / GUIDE_PATH_HZ);
+	int e = session_file_read(file, &f);
+
+	if (e) {
+		snprintf(err, errsize, "%s: %s", file,
+			 e == -EBADMSG ? "not a session file" :
+			 e == -EPROTO ? "its records are damaged" :
+			 strerror(-e));
+		return NULL;
+	}
+	if (!enabled_part(&f, &first, &last)) {
+		snprintf(err, errsize, "%s: no record with the rig enabled: "
+			 "nothing to guide along", file);
+		goto out;
+	}
+	t0 = f.records[first].stamp_ns;
+	span = f.records[last].stamp_ns - t0;
+	n = (size_t)(span / step) + 1;
+	if (n < 2) {
+		snprintf(err, errsize, "%s: its enabled part is too short to "
+			 "guide along (%.3f s)", file, span * 1e-9);
+		goto out;
+	}
+	p = path_alloc(n);
+	if (!p) {
+		snprintf(err, errsize, "%s: out of memory", file);
+		goto out;
+	}
+	r = first;
+	for (size_t k = 0; k < n; k++) {
+		uint64_t t = t0 + k * step;
+
+		while (r < last && f.records[r + 1].stamp_ns <= t) {
+			r++;
+		}
+		memcpy(p->q[k], f.records[r].position, sizeof(p->q[k]));
+		p->tip_s_m[k] = f.records[r].tip_s_m;
+	}
+	session_text_get(f.header, "id", id, sizeof(id));
+	p->source_id = strtoull(id, NULL, 10);
+	session_text_get(f.header, "case", p->case_name,
+			 sizeof(p->case_name));
+out:
+	session_file_close(&f);
+	return p;
+}
+
+void guide_path_free(struct guide_path *p)
+{
+	if (!p) {
+		return;
+	}
+	free(p->q);
+	free(p->tip_s_m);
+	free(p);
+}
+
+double guide_path_length_s(const struct guide_path *p)
+{
+	return (double)(p->n - 1) / GUIDE_PATH_HZ;
+}
+
+/* Sample I's tangent (per sample): central, one-sided at the ends. */
+static double tangent(const struct guide_path *p, size_t i, int a)
+{
+	size_t lo = i > 0 ? i - 1 : i, hi = i + 1 < p->n ? i + 1 : i;
+
+	return ((double)p->q[hi][a] - p->q[lo][a]) / (double)(hi - lo);
+}
+
+void guide_path_at(const struct guide_path *p, double t_s,
+		   double q[ENDOSIM_AXES], double dq[ENDOSIM_AXES])
+{
+	double x = t_s * GUIDE_PATH_HZ, u;
+	size_t i;
+
+	if (!(x > 0)) {
+		x = 0;
+	}
+	if (x >= (double)(p->n - 1)) {
+		x = (double)(p->n - 1);
+	}
+	i = (size_t)x;
+	if (i >= p->n - 1) {
+		i = p->n - 2;
+	}
+	u = x - (double)i;
+	/* a cubic Hermite segment: positions and speeds continuous */
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		double p0 = p->q[i][a], p1 = p->q[i + 1][a];
+		double m0 = tangent(p, i, a), m1 = tangent(p, i + 1, a);
+		double u2 = u * u, u3 = u2 * u;
+
+		q[a] = (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 +
+		       (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+		dq[a] = ((6 * u2 - 6 * u) * p0 + (3 * u2 - 4 * u + 1) * m0 +
+			 (-6 * u2 + 6 * u) * p1 + (3 * u2 - 2 * u) * m1) *
+			GUIDE_PATH_HZ;
+	}
+}
+
+/* An axis' difference in metres: rotary ones by GUIDE_ROTARY_M a rad. */
+static double metres(int a, double d)
+{
+	return a == ENDOSIM_AXIS_INSERTION ? d : d * GUIDE_ROTARY_M;
+}
+
+double guide_path_nearest(const struct guide_path *p,
+			  const double q[ENDOSIM_AXES])
+{
+	double best = INFINITY;
+	size_t at = 0;
+
+	for (size_t i = 0; i < p->n; i++) {
+		double d2 = 0;
+
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			double d = metres(a, q[a] - p->q[i][a]);
+
+			d2 += d * d;
+		}
+		if (d2 < best) {
+			best = d2;
+			at = i;
+		}
+	}
+	return (double)at / GUIDE_PATH_HZ;
+}
+
+/* --- the controller ---------------------------------------------------- */
+
+void guide_init(struct guide *g)
+{
+	memset(g, 0, sizeof(*g));
+	g->phase = ENDOSIM_GUIDE_OFF;
+	g->lost_axis = -1;
+}
+
+/* From Q to the path at T_S, then NEXT. */
+static void begin_move(struct guide *g, const struct config_guide *p,
+		       const double q[ENDOSIM_AXES], double t_s, uint32_t next)
+{
+	double dq[ENDOSIM_AXES], len = GUIDE_MOVE_MIN_S;
+
+	guide_path_at(g->path, t_s, g->to, dq);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		/* a smoothstep's top speed is 1.5 times its mean */
+		double t = 1.5 * fabs(g->to[a] - q[a]) / p->speed_max[a];
+
+		g->from[a] = q[a];
+		len = t > len ? t : len;
+	}
+	g->t_s = t_s;
+	g->move_t_s = 0;
+	g->move_len_s = len;
+	g->phase = ENDOSIM_GUIDE_MOVING;
+	g->after_move = next;
+	g->fade = 1;
+	g->over_s = 0;
+	g->lost_s = 0;
+	g->lost_axis = -1;
+	g->ended = ENDOSIM_GUIDE_END_NONE;
+}
+
+/* Ends with WHY: fading out unless WHY is the rig's leaving ENABLED. */
+static void end(struct guide *g, uint32_t why)
+{
+	g->ended = why;
+	if (why == ENDOSIM_GUIDE_END_NOT_ENABLED ||
+	    g->phase == ENDOSIM_GUIDE_FREE) {
+		g->phase = ENDOSIM_GUIDE_OFF;
+		g->fade = 0;
+		return;
+	}
+	g->phase = ENDOSIM_GUIDE_FADING;
+	g->after_move = ENDOSIM_GUIDE_OFF;
+}
+
+int guide_command(struct guide *g, const struct config_guide *p,
+		  const struct guide_command *c, const double q[ENDOSIM_AXES])
+{
+	const struct guide_path *path =
+		c->action == GUIDE_START ? c->path : g->path;
+
+	if (c->action == GUIDE_STOP) {
+		if (g->phase != ENDOSIM_GUIDE_OFF) {
+			end(g, ENDOSIM_GUIDE_END_STOPPED);
+		}
+		return 0;
+	}
+	if (!path || !(c->from_s >= 0) ||
+	    c->from_s > guide_path_length_s(path)) {
+		return -EINVAL;
+	}
+	switch (c->action) {
+	case GUIDE_START:
+		if (!(c->speed >= GUIDE_SPEED_MIN &&
+		      c->speed <= GUIDE_SPEED_MAX)) {
+			return -EINVAL;
+		}
+		g->path = path;
+		g->speed = c->speed;
+		g->takeovers = 0;
+		begin_move(g, p, q, c->from_s, ENDOSIM_GUIDE_GUIDING);
+		return 0;
+	case GUIDE_RESUME:
+		begin_move(g, p, q, c->from_s, ENDOSIM_GUIDE_GUIDING);
+		return 0;
+	case GUIDE_RESET:
+		begin_move(g, p, q, c->from_s, ENDOSIM_GUIDE_HOLDING);
+		return 0;
+	default:
+		return -EINVAL;
+	}
+}
+
+/* MOVING: a smoothstep from FROM to TO. */
+static void move_reference(struct guide *g, double dt_s)
+{
+	double u, s, ds;
+
+	g->move_t_s += dt_s;
+	u = g->move_t_s / g->move_len_s;
+	u = u < 1 ? u : 1;
+	s = u * u * (3 - 2 * u);
+	ds = 6 * u * (1 - u) / g->move_len_s;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		g->ref[a] = g->from[a] + (g->to[a] - g->from[a]) * s;
+		g->ref_v[a] = (g->to[a] - g->from[a]) * ds;
+	}
+	if (u >= 1) {
+		g->phase = g->after_move;
+		g->rate = g->speed;
+	}
+}
+
+/* GUIDING: the path at the playhead, slowed where it moves too fast. */
+static void play_reference(struct guide *g, const struct config_guide *p,
+			   double dt_s)
+{
+	double dq[ENDOSIM_AXES];
+
+	guide_path_at(g->path, g->t_s, g->ref, dq);
+	g->rate = g->speed;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		double fast = fabs(g->rate * dq[a]);
+
+		if (fast > p->speed_max[a]) {
+			g->rate *= p->speed_max[a] / fast;
+		}
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		g->ref_v[a] = g->rate * dq[a];
+	}
+	g->t_s += g->rate * dt_s;
+	if (g->t_s >= guide_path_length_s(g->path)) {
+		g->t_s = guide_path_length_s(g->path);
+		end(g, ENDOSIM_GUIDE_END_DONE);
+	}
+}
+
+/* Take-over and losing the path: how long each has held. */
+static void watch(struct guide *g, const struct config_guide *p,
+		  const double q[ENDOSIM_AXES], double dt_s)
+{
+	bool pushed = false;
+	int lost = -1;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		pushed |= fabs(g->hand[a]) > p->takeover[a];
+		if (lost < 0 && fabs(g->ref[a] - q[a]) > p->error_max[a]) {
+			lost = a;
+		}
+	}
+	g->over_s = pushed && g->phase == ENDOSIM_GUIDE_GUIDING ?
+		    g->over_s + dt_s : 0;
+	g->lost_s = lost >= 0 ? g->lost_s + dt_s : 0;
+	if (g->over_s >= p->takeover_s) {
+		g->takeovers++;
+		g->phase = ENDOSIM_GUIDE_FADING;
+		g->after_move = ENDOSIM_GUIDE_FREE;
+		g->over_s = 0;
+		g->lost_s = 0;
+	} else if (g->lost_s >= p->error_s) {
+		g->lost_axis = lost;
+		end(g, ENDOSIM_GUIDE_END_LOST);
+	}
+}
+
+void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
+		bool ramped,
+		const double q[ENDOSIM_AXES], const double v[ENDOSIM_AXES],
+		const double applied[ENDOSIM_AXES], double dt_s,
+		double force[ENDOSIM_AXES])
+{
+	double alpha = 1 - exp(-2 * M_PI * p->hand_filter_hz * dt_s);
+
+	/* what the motors push against, low-passed: the hand's push */
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		g->hand[a] += alpha * (-applied[a] - g->hand[a]);
+		g->force[a] = 0;
+		force[a] = 0;
+	}
+	if (g->phase == ENDOSIM_GUIDE_OFF) {
+		return;
+	}
+	if (!enabled) {
+		end(g, ENDOSIM_GUIDE_END_NOT_ENABLED);
+		return;
+	}
+	if (!ramped) {
+		return;
+	}
+	switch (g->phase) {
+	case ENDOSIM_GUIDE_MOVING:
+		move_reference(g, dt_s);
+		break;
+	case ENDOSIM_GUIDE_GUIDING:
+		play_reference(g, p, dt_s);
+		break;
+	case ENDOSIM_GUIDE_HOLDING:
+		memcpy(g->ref, g->to, sizeof(g->ref));
+		memset(g->ref_v, 0, sizeof(g->ref_v));
+		break;
+	case ENDOSIM_GUIDE_FADING:
+		/* the reference stays where the take-over found it */
+		memset(g->ref_v, 0, sizeof(g->ref_v));
+		g->fade -= dt_s / p->fade_s;
+		if (g->fade <= 0) {
+			g->fade = 0;
+			g->phase = g->after_move;
+			return;
+		}
+		break;
+	default: /* FREE */
+		return;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		double f = p->stiffness[a] * (g->ref[a] - q[a]) +
+			   p->damping[a] * (g->ref_v[a] - v[a]);
+
+		f = f > p->force_max[a] ? p->force_max[a] :
+		    f < -p->force_max[a] ? -p->force_max[a] : f;
+		g->force[a] = g->fade * f;
+		force[a] = g->force[a];
+	}
+	if (g->phase != ENDOSIM_GUIDE_FADING) {
+		watch(g, p, q, dt_s);
+	}
+}
+
+void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],
+		   struct endosim_guide_state *st)
+{
+	bool on = g->phase != ENDOSIM_GUIDE_OFF &&
+		  g->phase != ENDOSIM_GUIDE_FREE;
+
+	st->phase = g->phase;
+	st->ended = g->ended;
+	st->source_id = g->path ? g->path->source_id : 0;
+	st->time_s = g->t_s;
+	st->length_s = g->path ? guide_path_length_s(g->path) : 0;
+	st->speed = g->speed;
+	st->fade = g->fade;
+	st->takeovers = g->takeovers;
+	st->lost_axis = g->lost_axis >= 0 ? (uint32_t)g->lost_axis
+					  : ENDOSIM_AXES;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		st->reference[a] = on ? g->ref[a] : 0;
+		st->force[a] = g->force[a];
+		st->error[a] = on ? g->ref[a] - q[a] : 0;
+		st->hand[a] = g->hand[a];
+	}
+}

@@ -1,0 +1,151 @@
+/*
+ * guide.h - guided replay: the rig plays a recorded session back through
+ * its motors, the trainee's hands riding along on the scope (Rieger 2008).
+ *
+ * Per axis a spring-damper pulls the axis towards a reference,
+ *
+ *   F_g = fade * clamp(k (q_ref - q) + b (qdot_ref - qdot), +-force_max)
+ *
+ * added to the haptic model's force before the safety filter, which then
+ * limits the sum as it limits any command. The reference is a recorded
+ * session's axis positions (a guide_path: 100 samples a second, a cubic
+ * Hermite curve through them), played from a chosen time at a chosen speed
+ * on the loop's clock; where the recording moved an axis faster than
+ * [guide] speed_max, the playhead slows down so that it never does.
+ *
+ * What the controller does, by phase (enum endosim_guide_phase):
+ *   MOVING   the reference goes from where the scope is to a point of the
+ *            path in a straight, smooth line, no axis faster than its
+ *            speed_max (start, resume and reset begin here), then GUIDING
+ *            or HOLDING;
+ *   GUIDING  the reference plays the path;
+ *   HOLDING  the reference stays at a point of the path;
+ *   FADING   the trainee took over: the force fades out over fade_s, then
+ *   FREE     no force until resumed.
+ * Take-over: while GUIDING, the hand's force on an axis, estimated as what
+ * the motors push against (the applied command, low-passed: at a guided
+ * scope's speeds the rig's own inertia and friction take under 0.5 N),
+ * stays beyond takeover_force for takeover_s. A reference the axis cannot
+ * follow (tracking error beyond error_max for error_s, with no take-over:
+ * the scope stuck) ends the guidance with why; so do the path's end, a
+ * stop, and the rig leaving ENABLED (at once: no fade; the safety filter
+ * zeroes the torque anyway).
+ *
+ * Threads: guide_path_*() allocate (the control thread); the rest is the
+ * force loop's: no allocation, fixed work a cycle.
+ */
+#ifndef ENDOSIM_GUIDE_H
+#define ENDOSIM_GUIDE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "config.h"
+#include "endosim_shm.h"
+
+#define GUIDE_PATH_HZ 100.0 /* samples a second of a path */
+
+/* A recorded session's axis positions, GUIDE_PATH_HZ samples a second. */
+struct guide_path {
+	uint64_t source_id;      /* the session's id */
+	char case_name[64];      /* the case it was recorded on */
+	size_t n;                /* samples, >= 2 */
+	float (*q)[ENDOSIM_AXES]; /* m, rad */
+	float *tip_s_m;          /* where the tip was along the colon */
+};
+
+/*
+ * The path of the session file FILE: every record's axis positions from
+ * the first record with torque on (the session's enabled part) to the
+ * last, resampled. NULL with one line in ERR (cannot read, not a session,
+ * too short, no enabled record).
+ */
+struct guide_path *guide_path_load(const char *file, char *err,
+				   size_t errsize);
+
+/* NULL is fine. */
+void guide_path_free(struct guide_path *p);
+
+/* The path's length, s of its recording. */
+double guide_path_length_s(const struct guide_path *p);
+
+/*
+ * The path at T_S (clamped into it): positions Q and their rate of
+ * change DQ (per second of the recording).
+ */
+void guide_path_at(const struct guide_path *p, double t_s,
+		   double q[ENDOSIM_AXES], double dq[ENDOSIM_AXES]);
+
+/*
+ * The time of the path's sample nearest the axes' positions Q (a radian
+ * of a rotary axis weighs as a centimetre of insertion). Any thread: the
+ * control thread's, from the published state.
+ */
+double guide_path_nearest(const struct guide_path *p,
+			  const double q[ENDOSIM_AXES]);
+
+enum guide_action {
+	GUIDE_START = 1,  /* PATH from FROM_S at SPEED (moving there first) */
+	GUIDE_STOP,       /* fade out and end */
+	GUIDE_RESUME,     /* from FROM_S of the path in use, at its speed */
+	GUIDE_RESET,      /* move to FROM_S of the path in use and hold */
+};
+
+struct guide_command {
+	enum guide_action action;
+	const struct guide_path *path; /* GUIDE_START; the loop's until the
+					  next start (loop.h) */
+	double speed;                  /* GUIDE_START: 0.25 .. 2 */
+	double from_s;                 /* time on the path */
+};
+
+struct guide {
+	const struct guide_path *path;
+	uint32_t phase;          /* enum endosim_guide_phase */
+	uint32_t after_move;     /* the phase that follows MOVING */
+	uint32_t ended;          /* enum endosim_guide_end: why it last ended */
+	uint32_t takeovers;      /* since the start */
+	double speed;            /* the playhead's, x recording */
+	double rate;             /* this cycle's: speed, slowed where fast */
+	double t_s;              /* the playhead, s of the path */
+	double fade;             /* 1 .. 0 */
+	double move_t_s, move_len_s; /* MOVING: time in, its length */
+	double from[ENDOSIM_AXES], to[ENDOSIM_AXES]; /* MOVING's ends */
+	double over_s;           /* the hand beyond takeover_force so long */
+	double lost_s;           /* the error beyond error_max so long */
+	double hand[ENDOSIM_AXES];  /* the hand's force, estimated */
+	double ref[ENDOSIM_AXES], ref_v[ENDOSIM_AXES];
+	double force[ENDOSIM_AXES]; /* this cycle's F_g */
+	int lost_axis;           /* the axis that could not follow */
+};
+
+/* Nothing to guide: OFF. */
+void guide_init(struct guide *g);
+
+/*
+ * A command, with the axes at Q (P: the moves' speeds). 0, or -EINVAL
+ * (RESUME or RESET without a path; a speed or time out of range). Force
+ * loop.
+ */
+int guide_command(struct guide *g, const struct config_guide *p,
+		  const struct guide_command *c, const double q[ENDOSIM_AXES]);
+
+/*
+ * One cycle of DT_S: the guidance force FORCE per axis, from the axes'
+ * positions Q and speeds V and the command APPLIED to them last cycle.
+ * ENABLED: the rig is (else the guidance ends at once, no force); RAMPED:
+ * its enable ramp is done (until then the guidance waits, no force).
+ * Force loop.
+ */
+void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
+		bool ramped,
+		const double q[ENDOSIM_AXES], const double v[ENDOSIM_AXES],
+		const double applied[ENDOSIM_AXES], double dt_s,
+		double force[ENDOSIM_AXES]);
+
+/* What the guidance does, for the published state. */
+void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],
+		   struct endosim_guide_state *st);
+
+#endif

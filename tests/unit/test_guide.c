@@ -1,0 +1,525 @@
+/*
+ * test_guide.c - guided replay (daemon/rig/guide.h): the path a session
+ * file gives, and the guidance in the force loop, in lockstep on
+ * simulated time (tests/tools/offline.h), so that every answer is the same
+ * on any machine.
+ *
+ * The recording: the paper model's demo course on the normal case
+ * (config/scenarios/demo-paper.scn: a scripted hand inserting at 3 cm/s
+ * to the cecum), every cycle written to a session file as endosimd's
+ * recorder writes it. The guided runs: the same rig and colon with a
+ * passive hand (no force: the scope moves only as the motors and the
+ * colon push it), the guidance playing that file.
+ *
+ * What the gains promise ([guide] defaults): the insertion's spring of
+ * 4000 N/m holds the colon's largest force on this course (about 13 N) at
+ * 3.3 mm, so the RMS error stays under 5 mm; the roll's 2 N m/rad holds
+ * its friction torque (under 0.05 N m) at 1.4 degrees, under 3.
+ *
+ * Run from the top of the source tree (tests/run.sh does).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+
+#include "cases.h"
+#include "guide.h"
+#include "loop.h"
+#include "names.h"
+#include "offline.h"
+#include "session_file.h"
+
+#define PERIOD_S (OFFLINE_PERIOD_NS * 1e-9)
+#define CECUM_S_M 1.46  /* normal.case: where the cecum's segment starts */
+#define SOURCE_ID 7
+
+static char dir[] = "/tmp/test_guide.XXXXXX";
+static char file[256];
+static struct guide_path *path;
+static double rec_cecum_s; /* the recording's tip at the cecum, s of it */
+
+static struct offline *on_normal(struct config *cfg, struct scenario *scn)
+{
+	char err[512];
+	struct colon *c;
+	struct offline *o;
+
+	cfg->haptics.model = HAPTICS_MODEL_PAPER;
+	snprintf(cfg->colon.file, sizeof(cfg->colon.file),
+		 "config/cases/normal.case");
+	c = cases_load(cfg, NULL, err, sizeof(err));
+	if (!c) {
+		fail_msg("%s", err);
+	}
+	o = offline_create_with(cfg, c, scn, err, sizeof(err));
+	if (!o) {
+		fail_msg("%s", err);
+	}
+	return o;
+}
+
+/* The demo course, recorded into FILE as endosimd records a session. */
+static int record_course(void **unused)
+{
+	struct config cfg;
+	struct session_header h = {
+		.id = SOURCE_ID, .trainee = "expert", .case_name = "normal",
+		.started = "2026-11-25T00:00:00Z", .start_ns = OFFLINE_START_NS,
+		.period_ns = OFFLINE_PERIOD_NS, .version = "test",
+		.step_m = 0.002, .ring_vertices = 24, .segment_m = 0.05,
+	};
+	char text[1024], err[512];
+	struct scenario *scn;
+	struct offline *o;
+	long cycles;
+	double t0 = -1;
+	int fd;
+
+	(void)unused;
+	if (!mkdtemp(dir)) {
+		return -1;
+	}
+	snprintf(file, sizeof(file), "%s/7.endoses", dir);
+	fd = open(file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	config_defaults(&cfg);
+	scn = scenario_load("config/scenarios/demo-paper.scn", err,
+			    sizeof(err));
+	if (fd < 0 || !scn) {
+		return -1;
+	}
+	o = on_normal(&cfg, scn);
+	cycles = (long)(offline_length_s(o) / PERIOD_S);
+	session_header_text(&h, text, sizeof(text));
+	session_file_write_magic(fd);
+	session_file_write_frame(fd, SESSION_FRAME_HEADER, text,
+				 (uint32_t)strlen(text));
+	rec_cecum_s = -1;
+	for (long k = 0; k < cycles; k++) {
+		const struct endosim_state *st = offline_step(o);
+		struct session_record r;
+		double t = (st->stamp_ns - OFFLINE_START_NS) * 1e-9;
+
+		if (st->state == ENDOSIM_STATE_ENABLED && t0 < 0) {
+			t0 = t;
+		}
+		if (rec_cecum_s < 0 && st->scope.tip_s_m >= CECUM_S_M) {
+			rec_cecum_s = t - t0;
+		}
+		session_record_from_state(st, &r);
+		session_file_write_frame(fd, SESSION_FRAME_RECORD, &r,
+					 sizeof(r));
+	}
+	offline_destroy(o);
+	close(fd);
+	path = guide_path_load(file, err, sizeof(err));
+	if (!path) {
+		fprintf(stderr, "%s\n", err);
+		return -1;
+	}
+	printf("# the recording: %.2f s guided, the tip at the cecum at "
+	       "%.2f s\n", guide_path_length_s(path), rec_cecum_s);
+	return rec_cecum_s > 0 ? 0 : -1;
+}
+
+static int remove_course(void **unused)
+{
+	(void)unused;
+	guide_path_free(path);
+	unlink(file);
+	rmdir(dir);
+	return 0;
+}
+
+/* The normal case with a passive hand: no force on any axis until a
+ * test appends steps to its scenario (*SCN, if asked for). */
+static struct offline *passive_with(struct config *cfg, struct scenario **scn)
+{
+	struct scenario *s = scenario_create();
+
+	config_defaults(cfg);
+	if (scn) {
+		*scn = s;
+	}
+	return on_normal(cfg, s);
+}
+
+static struct offline *passive(struct config *cfg)
+{
+	return passive_with(cfg, NULL);
+}
+
+static const struct endosim_state *command(struct offline *o,
+					   enum guide_action action,
+					   double speed, double from_s)
+{
+	const struct guide_command c = {
+		.action = action, .path = path, .speed = speed,
+		.from_s = from_s,
+	};
+	const struct endosim_state *st;
+
+	offline_guide(o, &c);
+	st = offline_step(o);
+	assert_int_equal(offline_guide_answer(o), 0);
+	return st;
+}
+
+/* Steps until the guidance is in PHASE (at most MAX_S); the last state. */
+static const struct endosim_state *until(struct offline *o, uint32_t phase,
+					 double max_s)
+{
+	const struct endosim_state *st = NULL;
+
+	for (long k = 0; k < (long)(max_s / PERIOD_S); k++) {
+		st = offline_step(o);
+		if (st->guide.phase == phase) {
+			return st;
+		}
+	}
+	fail_msg("the guidance never got to %s in %.1f s",
+		 names_guide_phase(phase), max_s);
+	return st;
+}
+
+/* --- the path ---------------------------------------------------------- */
+
+/* The path through the records: its samples are the records' positions
+ * 10 ms apart, its curve passes through them with their speeds. */
+static void test_path(void **unused)
+{
+	struct session_file f = { 0 };
+	double q[ENDOSIM_AXES], dq[ENDOSIM_AXES], jump = 0;
+	size_t i = 0;
+
+	(void)unused;
+	assert_int_equal(session_file_read(file, &f), 0);
+	assert_int_equal(path->source_id, SOURCE_ID);
+	assert_string_equal(path->case_name, "normal");
+	assert_true(fabs(guide_path_length_s(path) -
+			 (f.n_records - 1) * PERIOD_S) < 0.011);
+	for (size_t k = 0; k < f.n_records; k += 997) {
+		double t = k * PERIOD_S;
+
+		guide_path_at(path, floor(t * GUIDE_PATH_HZ) / GUIDE_PATH_HZ,
+			      q, dq);
+		i = (size_t)(floor(t * GUIDE_PATH_HZ) * 10);
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			assert_true(fabs(q[a] - f.records[i].position[a]) <
+				    1e-6);
+		}
+	}
+	/* the speed along the curve: continuous across a sample, near the
+	   recorded speed */
+	for (double t = 5.0; t < 60; t += 0.37) {
+		double before[ENDOSIM_AXES], after[ENDOSIM_AXES];
+		double ts = floor(t * GUIDE_PATH_HZ) / GUIDE_PATH_HZ;
+
+		guide_path_at(path, ts - 1e-7, q, before);
+		guide_path_at(path, ts + 1e-7, q, after);
+		jump = fmax(jump, fabs(after[0] - before[0]));
+		i = (size_t)(ts / PERIOD_S + 0.5);
+		assert_true(fabs(after[0] - f.records[i].velocity[0]) < 0.01);
+	}
+	printf("# path: speed continuous within %.2g m/s across samples\n",
+	       jump);
+	assert_true(jump < 1e-3);
+	/* the nearest sample to a recorded position is where it was */
+	for (size_t k = 3000; k < f.n_records; k += 9001) {
+		double at[ENDOSIM_AXES], t;
+
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			at[a] = f.records[k].position[a];
+		}
+		t = guide_path_nearest(path, at);
+		guide_path_at(path, t, q, dq);
+		assert_true(fabs(q[0] - at[0]) < 0.002);
+	}
+	session_file_close(&f);
+}
+
+/* A file that is not a session, and one without an enabled record. */
+static void test_path_refused(void **unused)
+{
+	char err[512], bad[300];
+	struct session_record r = { .state = ENDOSIM_STATE_IDLE };
+	const char *h = "format=3\nid=8\ncase=normal\n";
+	int fd;
+
+	(void)unused;
+	assert_null(guide_path_load("config/cases/normal.case", err,
+				    sizeof(err)));
+	assert_non_null(strstr(err, "not a session file"));
+	snprintf(bad, sizeof(bad), "%s/idle.endoses", dir);
+	fd = open(bad, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	session_file_write_magic(fd);
+	session_file_write_frame(fd, SESSION_FRAME_HEADER, h,
+				 (uint32_t)strlen(h));
+	for (int k = 0; k < 100; k++) {
+		session_file_write_frame(fd, SESSION_FRAME_RECORD, &r,
+					 sizeof(r));
+	}
+	close(fd);
+	assert_null(guide_path_load(bad, err, sizeof(err)));
+	assert_non_null(strstr(err, "no record with the rig enabled"));
+	unlink(bad);
+}
+
+/* --- following --------------------------------------------------------- */
+
+/* The whole recording at SPEED with a passive hand: the positions within
+ * the promised RMS error of the recording's, the cecum at its time. */
+static void follow(double speed, double cecum_tolerance_s)
+{
+	struct config cfg;
+	struct offline *o = passive(&cfg);
+	const struct endosim_state *st;
+	double e_ins = 0, e_roll = 0, hand_max = 0, t = 0, cecum = -1;
+	long n = 0;
+
+	command(o, GUIDE_START, speed, 0);
+	until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	do {
+		st = offline_step(o);
+		if (st->guide.phase != ENDOSIM_GUIDE_GUIDING) {
+			break;
+		}
+		t += PERIOD_S;
+		e_ins += st->guide.error[0] * st->guide.error[0];
+		e_roll += st->guide.error[1] * st->guide.error[1];
+		hand_max = fmax(hand_max, fabs(st->guide.hand[0]));
+		n++;
+		if (cecum < 0 && st->scope.tip_s_m >= CECUM_S_M) {
+			cecum = t;
+		}
+		assert_int_equal(st->fault_bits, 0);
+	} while (t < 2 * guide_path_length_s(path) / speed);
+	e_ins = sqrt(e_ins / (double)n);
+	e_roll = sqrt(e_roll / (double)n);
+	printf("# %.1fx: %.2f s guided (the recording %.2f s), RMS error "
+	       "insertion %.2f mm, roll %.2f deg; the cecum at %.2f s "
+	       "(recorded %.2f s, scaled %.2f s); the hand's estimate at "
+	       "most %.2f N\n", speed, t, guide_path_length_s(path),
+	       e_ins * 1e3, e_roll * 180 / M_PI, cecum, rec_cecum_s,
+	       rec_cecum_s / speed, hand_max);
+	assert_int_equal(st->guide.ended, ENDOSIM_GUIDE_END_DONE);
+	assert_int_equal(st->guide.takeovers, 0);
+	assert_true(e_ins <= 0.005);
+	assert_true(e_roll <= 3 * M_PI / 180);
+	assert_true(cecum > 0);
+	assert_true(fabs(cecum - rec_cecum_s / speed) <= cecum_tolerance_s);
+	offline_destroy(o);
+}
+
+static void test_follow_1x(void **unused)
+{
+	(void)unused;
+	follow(1.0, 1.0);
+}
+
+static void test_follow_2x(void **unused)
+{
+	(void)unused;
+	follow(2.0, 2.0);
+}
+
+/* --- take-over, resume, reset ----------------------------------------- */
+
+/*
+ * A hand that resists 10 s into the guidance, gripping the scope where it
+ * is for 1 s (the scenario's spring-damper grip): taken over after
+ * takeover_s (plus the estimate's lag), the force zero fade_s later, the
+ * phase in the records; then resumed from the path's point nearest the
+ * scope, which the grip held back while the recording went on.
+ */
+static void test_takeover(void **unused)
+{
+	struct config cfg;
+	struct scenario *scn;
+	struct offline *o = passive_with(&cfg, &scn);
+	const struct endosim_state *st;
+	double t_push, t_over, t_zero = -1, q[ENDOSIM_AXES], dq[ENDOSIM_AXES];
+	double playhead, nearest, t;
+	struct session_record r;
+	char line[128], err[256];
+
+	(void)unused;
+	command(o, GUIDE_START, 1.0, 0);
+	until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	for (long k = 0; k < 10000; k++) {
+		st = offline_step(o);
+	}
+	t = st->scenario_time_s + 0.01;
+	snprintf(line, sizeof(line), "%.3f insertion target %.5f", t,
+		 st->axis[0].position);
+	assert_int_equal(scenario_append(scn, line, err, sizeof(err)), 0);
+	snprintf(line, sizeof(line), "%.3f insertion free", t + 1.0);
+	assert_int_equal(scenario_append(scn, line, err, sizeof(err)), 0);
+	/* the hand's own force (the simulated hand's, published) beyond the
+	   take-over's threshold from ... */
+	do {
+		st = offline_step(o);
+	} while (fabs(st->axis[0].hand) <= cfg.guide.takeover[0]);
+	t_push = st->stamp_ns * 1e-9;
+	st = until(o, ENDOSIM_GUIDE_FADING, 2);
+	t_over = st->stamp_ns * 1e-9;
+	playhead = st->guide.time_s;
+	session_record_from_state(st, &r);
+	assert_int_equal(r.guide_phase, ENDOSIM_GUIDE_FADING);
+	for (long k = 0; k < 2000; k++) {
+		st = offline_step(o);
+		if (t_zero < 0 && st->guide.force[0] == 0 &&
+		    st->guide.force[1] == 0) {
+			t_zero = st->stamp_ns * 1e-9;
+		}
+		if (t_zero >= 0) {
+			for (int a = 0; a < ENDOSIM_AXES; a++) {
+				assert_true(st->guide.force[a] == 0);
+			}
+		}
+	}
+	printf("# take-over %.3f s after the grip's force passed the "
+	       "threshold, the guidance's "
+	       "force zero %.3f s after that\n", t_over - t_push,
+	       t_zero - t_over);
+	/* the estimate is what the motors push against: it leads the hand's
+	   own force by the carriage's inertia, a few cycles at most */
+	assert_true(t_over - t_push >= cfg.guide.takeover_s - 0.02);
+	assert_true(t_over - t_push <= cfg.guide.takeover_s + 0.2);
+	assert_true(t_zero > t_over && t_zero - t_over <= 0.5 + 1e-9);
+	assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_FREE);
+	assert_int_equal(st->guide.takeovers, 1);
+
+	/* the grip held the scope back: the nearest point is where it was
+	   held, before the playhead */
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = st->axis[a].position;
+	}
+	nearest = guide_path_nearest(path, q);
+	guide_path_at(path, nearest, dq, q);
+	printf("# held at %.3f m: resumed at %.2f s of the recording "
+	       "(%.3f m there), taken over at %.2f s\n",
+	       st->axis[0].position, nearest, dq[0], playhead);
+	assert_true(nearest > 5 && nearest <= playhead);
+	assert_true(fabs(dq[0] - st->axis[0].position) < 0.005);
+	command(o, GUIDE_RESUME, 1.0, nearest);
+	st = until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	for (long k = 0; k < 2000; k++) {
+		st = offline_step(o);
+	}
+	assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_GUIDING);
+	assert_true(fabs(st->guide.error[0]) < 0.005);
+	offline_destroy(o);
+}
+
+/*
+ * Reset to the path from 20 cm off: at the path's point 20 cm back from
+ * where the scope is, no faster than speed_max, then held within 5 mm.
+ */
+static void test_reset(void **unused)
+{
+	struct config cfg;
+	struct offline *o = passive(&cfg);
+	const struct endosim_state *st;
+	double q[ENDOSIM_AXES], dq[ENDOSIM_AXES], to = -1, v_max = 0, off;
+
+	(void)unused;
+	command(o, GUIDE_START, 1.0, 0);
+	until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	for (long k = 0; k < 20000; k++) {
+		st = offline_step(o);
+	}
+	for (double t = 0; t < guide_path_length_s(path); t += 0.01) {
+		guide_path_at(path, t, q, dq);
+		if (fabs(q[0] - (st->axis[0].position - 0.20)) < 0.002) {
+			to = t;
+			break;
+		}
+	}
+	assert_true(to >= 0);
+	off = st->axis[0].position - q[0];
+	command(o, GUIDE_RESET, 1.0, to);
+	do {
+		st = offline_step(o);
+		v_max = fmax(v_max, fabs(st->axis[0].velocity));
+	} while (st->guide.phase == ENDOSIM_GUIDE_MOVING);
+	assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_HOLDING);
+	for (long k = 0; k < 1000; k++) {
+		st = offline_step(o);
+		v_max = fmax(v_max, fabs(st->axis[0].velocity));
+	}
+	printf("# reset from %.3f m off: at most %.3f m/s (limit %.3f), "
+	       "then %.2f mm from the path\n", off, v_max,
+	       cfg.guide.speed_max[0], fabs(st->guide.error[0]) * 1e3);
+	assert_true(off >= 0.198);
+	assert_true(v_max <= cfg.guide.speed_max[0] * 1.05);
+	assert_true(fabs(st->guide.error[0]) <= 0.005);
+	assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_HOLDING);
+	offline_destroy(o);
+}
+
+/* A disable ends the guidance at once, with no force; so does a stop,
+ * fading out. Commands out of range are refused. */
+static void test_ends(void **unused)
+{
+	struct config cfg;
+	struct offline *o = passive(&cfg);
+	const struct endosim_state *st;
+	const struct guide_command fast = {
+		.action = GUIDE_START, .path = path, .speed = 3,
+	};
+	const struct guide_command late = {
+		.action = GUIDE_START, .path = path, .speed = 1,
+		.from_s = guide_path_length_s(path) + 1,
+	};
+
+	(void)unused;
+	offline_guide(o, &fast);
+	offline_step(o);
+	assert_int_equal(offline_guide_answer(o), -EINVAL);
+	offline_guide(o, &late);
+	offline_step(o);
+	assert_int_equal(offline_guide_answer(o), -EINVAL);
+
+	command(o, GUIDE_START, 1.0, 0);
+	until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	command(o, GUIDE_STOP, 1.0, 0);
+	st = until(o, ENDOSIM_GUIDE_OFF, 1);
+	assert_int_equal(st->guide.ended, ENDOSIM_GUIDE_END_STOPPED);
+
+	command(o, GUIDE_START, 1.0, 0);
+	until(o, ENDOSIM_GUIDE_GUIDING, 5);
+	offline_command(o, LOOP_CMD_DISABLE);
+	st = offline_step(o);
+	assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_OFF);
+	assert_int_equal(st->guide.ended, ENDOSIM_GUIDE_END_NOT_ENABLED);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		assert_true(st->guide.force[a] == 0);
+		assert_true(st->axis[a].limited == 0);
+	}
+	offline_destroy(o);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_path),
+		cmocka_unit_test(test_path_refused),
+		cmocka_unit_test(test_follow_1x),
+		cmocka_unit_test(test_follow_2x),
+		cmocka_unit_test(test_takeover),
+		cmocka_unit_test(test_reset),
+		cmocka_unit_test(test_ends),
+	};
+
+	return cmocka_run_group_tests(tests, record_course, remove_course);
+}
