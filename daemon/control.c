@@ -270,6 +270,7 @@ static const struct handler handlers[] = {
 	  control_on_session_status },
 	{ ENDOSIM__REQUEST__BODY_SESSION_LIST, false, control_on_session_list },
 	{ ENDOSIM__REQUEST__BODY_SESSION_SHOW, false, control_on_session_show },
+	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -643,6 +644,8 @@ void control_destroy(struct control *c)
 	close_fd(c->ep);
 	close_fd(c->wake_fd);
 	free(c->clients);
+	guide_path_free(c->guide_path);
+	guide_path_free(c->guide_limbo);
 	free(c->rb.entries);
 	free(c->rb.entries_p);
 	free(c->rb.values);

@@ -31,6 +31,7 @@
 #include "cases.h"
 #include "faults.h"
 #include "fields.h"
+#include "guide.h"
 #include "inject.h"
 #include "log.h"
 #include "mono.h"
@@ -84,6 +85,7 @@ struct reply_buf {
 	Endosim__ScopeStatus scope;
 	Endosim__HapticsStatus haptics;
 	Endosim__RodStatus rod;
+	Endosim__GuideStatus guide;
 	struct endosim_state state; /* what the status reply points into */
 	Endosim__CaseListReply case_list;
 	Endosim__CaseEntry *case_entries;
@@ -124,6 +126,9 @@ struct control {
 	_Atomic bool alive;
 	_Atomic bool stop;
 	bool end;                /* a test command: the thread ends */
+	struct guide_path *guide_path;  /* the loop's (loop_guide()) */
+	struct guide_path *guide_limbo; /* handed over, never answered:
+					   freed at the end */
 };
 
 typedef void handler_fn(struct control *c, struct client *cl,
@@ -162,6 +167,7 @@ handler_fn control_on_session_status;
 handler_fn control_on_session_list;
 handler_fn control_on_session_show;
 handler_fn control_on_debug;
+handler_fn control_on_guide;
 
 /* The status reply of the newest published state (GetStatus, a push). */
 void control_build_status(struct control *c, Endosim__Reply *rep);

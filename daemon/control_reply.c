@@ -92,6 +92,8 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	s->haptics = &rb->haptics;
 	fields_to_pb(&fields_rod, &rb->rod, &st->rod);
 	s->rod = &rb->rod;
+	fields_to_pb(&fields_guide, &rb->guide, &st->guide);
+	s->guide = &rb->guide;
 	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;

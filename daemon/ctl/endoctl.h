@@ -62,4 +62,7 @@ void ctl_print_stats(const Endosim__StatsReply *s, bool json);
 /* `endoctl session ...` (endoctl_session.c). */
 int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);
 
+/* `endoctl guide ...` (endoctl_guide.c). */
+int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);
+
 #endif
