@@ -274,6 +274,50 @@ static void test_path_refused(void **unused)
 	unlink(bad);
 }
 
+/*
+ * A recording faster than speed_max (the insertion at 0.3 m/s) played at
+ * 1x on an ideal plant (the axes where the reference is): the reference
+ * moves at speed_max (0.1 m/s), the playhead at a third of the clock.
+ */
+static void test_slowed(void **unused)
+{
+	static float q[201][ENDOSIM_AXES];
+	struct guide_path p = { .n = 201, .q = q, .case_name = "normal" };
+	struct config cfg;
+	struct guide g;
+	double at[ENDOSIM_AXES] = { 0 }, v[ENDOSIM_AXES] = { 0 };
+	double f[ENDOSIM_AXES], zero[ENDOSIM_AXES] = { 0 }, t0 = 0;
+	const struct guide_command c = {
+		.action = GUIDE_START, .path = &p, .speed = 1,
+	};
+
+	(void)unused;
+	config_defaults(&cfg);
+	for (size_t i = 0; i < p.n; i++) {
+		q[i][0] = (float)(0.3 * (double)i / GUIDE_PATH_HZ);
+	}
+	guide_init(&g);
+	assert_int_equal(guide_command(&g, &cfg.guide, &c, at), 0);
+	for (int k = 0; k < 1000; k++) {
+		guide_step(&g, &cfg.guide, true, true, at, v, zero, PERIOD_S,
+			   f);
+		memcpy(at, g.ref, sizeof(at));
+		memcpy(v, g.ref_v, sizeof(v));
+		if (k == 100) {
+			t0 = g.t_s;
+		}
+		if (g.phase == ENDOSIM_GUIDE_GUIDING) {
+			assert_true(fabs(g.ref_v[0]) <=
+				    cfg.guide.speed_max[0] + 1e-12);
+		}
+	}
+	assert_int_equal(g.phase, ENDOSIM_GUIDE_GUIDING);
+	printf("# a 0.3 m/s recording: the reference at %.4f m/s, the "
+	       "playhead at %.4fx\n", g.ref_v[0], (g.t_s - t0) / 0.899);
+	assert_true(fabs(g.rate - cfg.guide.speed_max[0] / 0.3) < 1e-6);
+	assert_true(fabs(g.ref_v[0] - cfg.guide.speed_max[0]) < 1e-6);
+}
+
 /* --- following --------------------------------------------------------- */
 
 /* The whole recording at SPEED with a passive hand: the positions within
@@ -514,6 +558,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_path),
 		cmocka_unit_test(test_path_refused),
+		cmocka_unit_test(test_slowed),
 		cmocka_unit_test(test_follow_1x),
 		cmocka_unit_test(test_follow_2x),
 		cmocka_unit_test(test_takeover),
