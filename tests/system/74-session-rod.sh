@@ -53,9 +53,9 @@ check "the file grows by at most 30 MB a minute: $per_min ($bytes bytes in $span
 	float_test "$per_min <= 30"
 
 check_status "export 1 --csv" 0 ctl session export 1 --csv --out "$TMP/s.csv"
-check "the CSV ends with the rod's columns" \
-	test "$(head -n 1 "$TMP/s.csv" | cut -d, -f73-)" = \
-	"trans_rod_n,tube_rod_nm,rod_model,rod_contacts,rod_wall_n,rod_friction_n"
+check "the CSV has the rod's columns after the haptics', then the guidance's" \
+	test "$(head -n 1 "$TMP/s.csv" | cut -d, -f73-80)" = \
+	"trans_rod_n,tube_rod_nm,rod_model,rod_contacts,rod_wall_n,rod_friction_n,guide_phase,guide_time_s"
 check "... the rod model's rows: model 1, the wall pressing the tube" \
 	awk -F, 'NR > 1 { if ($75 != 1) exit 1; if ($76 > 0 && $77 > 0) n++ }
 		 END { exit n == 0 }' "$TMP/s.csv"
