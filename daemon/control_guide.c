@@ -74,7 +74,10 @@ static void hand_over(struct control *c, const struct guide_command *cmd,
 	} else if (path) {
 		guide_path_free(path);
 	}
-	if (r == -EINVAL) {
+	if (r == -EINVAL && cmd->action == GUIDE_TAKEOVER) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "guide: nothing to take over from");
+	} else if (r == -EINVAL) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
 		       "guide: speed out of 0.25 .. 2, or a time outside the "
 		       "recording");
@@ -123,6 +126,9 @@ void control_on_guide(struct control *c, struct client *cl,
 		break;
 	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_STOP:
 		cmd.action = GUIDE_STOP;
+		break;
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_TAKEOVER:
+		cmd.action = GUIDE_TAKEOVER;
 		break;
 	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME:
 	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESET:

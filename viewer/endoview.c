@@ -450,7 +450,7 @@ static void act_replay(struct replay *r, const struct ui_actions *act)
 
 static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 {
-	for (int k = 0; a->rig && k <= RIGCTL_RESET; k++) {
+	for (int k = 0; a->rig && k < RIGCTL_COMMANDS; k++) {
 		if (act->command[k]) {
 			rigctl_command(a->rig, (enum rigctl_command)k, now);
 		}

@@ -27,6 +27,8 @@ const char *const hud_keys[] = {
 	"\tright stick steer",
 	"E  X\tenable, disable the motors",
 	"Space  R\temergency stop, reset",
+	"G  F  B\tguided: take over, follow again,",
+	"\tback to the path",
 	"V  O\tview, overview's orbit back",
 	"P\tsave a picture (PNG, here)",
 	"H  Q\tthis help, quit",
@@ -249,6 +251,49 @@ static void draw_state(struct pen *p, const struct hud_info *in)
 	if (!in->replay) {
 		line(p, FONT_SMALL, dim, state_hint(in->st));
 	}
+}
+
+/*
+ * Guided replay, while it runs or the trainee has taken over: GUIDED (the
+ * session, the playhead, the speed) and the tracking error, or TAKEN OVER
+ * with the keys that give it back.
+ */
+static void draw_guide(struct pen *p, const struct endosim_guide_state *g)
+{
+	static const char *const title[] = {
+		[ENDOSIM_GUIDE_MOVING] = "GUIDED: TO THE PATH",
+		[ENDOSIM_GUIDE_GUIDING] = "GUIDED",
+		[ENDOSIM_GUIDE_HOLDING] = "GUIDED: HELD ON THE PATH",
+		[ENDOSIM_GUIDE_FADING] = "TAKING OVER",
+		[ENDOSIM_GUIDE_FREE] = "TAKEN OVER",
+	};
+	bool free = g->phase == ENDOSIM_GUIDE_FREE ||
+		    g->phase == ENDOSIM_GUIDE_FADING;
+	char text[160];
+
+	if (g->phase == ENDOSIM_GUIDE_OFF ||
+	    g->phase >= sizeof(title) / sizeof(title[0])) {
+		return;
+	}
+	gap(p);
+	line(p, FONT_LARGE, free ? amber : green, title[g->phase]);
+	if (g->length_s > 0) {
+		snprintf(text, sizeof(text), "session %llu  %.1f / %.1f s  "
+			 "x%.2f", (unsigned long long)g->source_id, g->time_s,
+			 g->length_s, g->speed);
+	} else { /* a replay: the record keeps the playhead only */
+		snprintf(text, sizeof(text), "%.1f s into the expert's",
+			 g->time_s);
+	}
+	line(p, FONT_SMALL, white, text);
+	if (free) {
+		line(p, FONT_SMALL, dim, "F: follow again, B: back to the path");
+		return;
+	}
+	snprintf(text, sizeof(text), "off the path: ins %+.1f mm, roll %+.1f "
+		 "deg (G: take over)", -g->error[0] * 1e3,
+		 -g->error[1] * 180 / M_PI);
+	line(p, FONT_SMALL, dim, text);
 }
 
 /* REPLAY, who and what; the clock; the timeline at LAY's. */
@@ -533,6 +578,9 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 	draw_state(p, in);
 	if (in->replay && in->st) {
 		draw_replay(p, in->replay, lay, fb_h);
+	}
+	if (in->st && in->link != LINK_NO_DAEMON) {
+		draw_guide(p, &in->st->guide);
 	}
 	gap(p);
 	if (in->st && in->link != LINK_NO_DAEMON) {

@@ -9,8 +9,11 @@
 
 #include <cglm/cglm.h>
 
+#include "cases.h"
+#include "config.h"
 #include "gfx.h"
 #include "log.h"
+#include "scope.h"
 #include "shapes.h"
 #include "vec3.h"
 
@@ -35,6 +38,7 @@ static const float contact_rgb[3] = { 1.0f, 0.15f, 0.1f };
 static const float colon_rgb[3] = { 0.95f, 0.55f, 0.50f };
 static const float bowed_rgb[3] = { 1.0f, 0.62f, 0.08f };
 static const float background[3] = { 0.035f, 0.045f, 0.07f };
+static const float reference_rgb[3] = { 0.30f, 1.0f, 0.55f };
 
 enum uniform { U_MVP, U_MODEL, U_COLOR, U_EYE, U_GHOST, UNIFORMS };
 
@@ -42,7 +46,7 @@ static const char *const uniform_name[UNIFORMS] = {
 	"u_mvp", "u_model", "u_color", "u_eye", "u_ghost",
 };
 
-enum { SPHERE, TUBE, STRIPE, ARROW, SHAPES };
+enum { SPHERE, TUBE, STRIPE, REFERENCE, ARROW, SHAPES };
 
 struct overview {
 	GLuint program;
@@ -127,7 +131,7 @@ static void make_shapes(struct overview *o)
 	shape_buffers(o, SPHERE, sizeof(sphere), sphere, sizeof(sphere_idx),
 		      sphere_idx, GL_STATIC_DRAW);
 	shapes_tube_index(ENDOSIM_ROD_POINTS, tube_idx);
-	for (int k = TUBE; k <= STRIPE; k++) {
+	for (int k = TUBE; k <= REFERENCE; k++) {
 		shape_buffers(o, k, (GLsizeiptr)tube_bytes, NULL,
 			      sizeof(tube_idx), tube_idx, GL_STREAM_DRAW);
 	}
@@ -361,6 +365,50 @@ static uint32_t draw_scope(const struct overview *o, const struct model *m,
 	return tris;
 }
 
+/*
+ * Guided replay's reference: the scope where the expert's recording had
+ * it now, by the paper's kinematics on the colon's centreline from the
+ * reference's axes (the shipped scope's bending section), drawn as a
+ * ghost beside the real one while the guidance pulls towards it.
+ */
+static uint32_t draw_reference(const struct overview *o,
+			       const struct model *m,
+			       const struct endosim_guide_state *g)
+{
+	static struct scope_params sp;
+	static bool have_params;
+	static struct scope_pose pose;
+	static float tube[SCOPE_TUBE_POINTS][3];
+	const struct scope_input in = {
+		.depth_m = g->reference[ENDOSIM_AXIS_INSERTION],
+		.roll_rad = g->reference[ENDOSIM_AXIS_ROLL],
+		.wheel_ud_rad = g->reference[ENDOSIM_AXIS_WHEEL_UD],
+		.wheel_lr_rad = g->reference[ENDOSIM_AXIS_WHEEL_LR],
+	};
+
+	if (g->phase != ENDOSIM_GUIDE_MOVING &&
+	    g->phase != ENDOSIM_GUIDE_GUIDING &&
+	    g->phase != ENDOSIM_GUIDE_HOLDING) {
+		return 0;
+	}
+	if (!have_params) {
+		static struct config cfg;
+
+		config_defaults(&cfg);
+		cases_scope_params(&cfg, &sp);
+		have_params = true;
+	}
+	scope_update(&sp, m->cl, &in, &pose);
+	for (int p = 0; p < SCOPE_TUBE_POINTS; p++) {
+		for (int d = 0; d < 3; d++) {
+			tube[p][d] = (float)pose.tube[p][d];
+		}
+	}
+	return draw_tube(o, REFERENCE, (const float(*)[3])tube,
+			 SCOPE_TUBE_POINTS, SCOPE_RADIUS_M, 0, reference_rgb,
+			 reference_rgb);
+}
+
 /* A region's colour: a mobile one turns amber as it bows or moves. */
 static void region_rgb(const struct model *m, const struct model_region *rg,
 		       float rgb[3])
@@ -460,6 +508,9 @@ uint32_t overview_draw(struct overview *o, const struct model *m,
 	glEnable(GL_BLEND);
 	glBlendFunc(GL_ONE, GL_ONE);
 	glUniform1f(o->u[U_GHOST], GHOST_GAIN);
+	if (st) {
+		tris += draw_reference(o, m, &st->guide);
+	}
 	tris += draw_colon(o, m, l, g);
 	end();
 	return tris;

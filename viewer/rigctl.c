@@ -144,6 +144,9 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 static const char *const command_name[] = {
 	[RIGCTL_ENABLE] = "enable", [RIGCTL_DISABLE] = "disable",
 	[RIGCTL_ESTOP] = "estop", [RIGCTL_RESET] = "reset",
+	[RIGCTL_GUIDE_TAKEOVER] = "take over",
+	[RIGCTL_GUIDE_RESUME] = "resume the guidance",
+	[RIGCTL_GUIDE_RESET] = "back to the path",
 };
 
 static void command_body(Endosim__Request *req, enum rigctl_command cmd)
@@ -152,6 +155,7 @@ static void command_body(Endosim__Request *req, enum rigctl_command cmd)
 	static Endosim__Disable disable = ENDOSIM__DISABLE__INIT;
 	static Endosim__EStop estop = ENDOSIM__ESTOP__INIT;
 	static Endosim__ResetFault reset = ENDOSIM__RESET_FAULT__INIT;
+	static Endosim__Guide guide = ENDOSIM__GUIDE__INIT;
 
 	switch (cmd) {
 	case RIGCTL_ENABLE:
@@ -169,6 +173,19 @@ static void command_body(Endosim__Request *req, enum rigctl_command cmd)
 	case RIGCTL_RESET:
 		req->body_case = ENDOSIM__REQUEST__BODY_RESET_FAULT;
 		req->reset_fault = &reset;
+		break;
+	case RIGCTL_GUIDE_TAKEOVER:
+	case RIGCTL_GUIDE_RESUME:
+	case RIGCTL_GUIDE_RESET:
+		guide.action = cmd == RIGCTL_GUIDE_TAKEOVER ?
+			       ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_TAKEOVER :
+			       cmd == RIGCTL_GUIDE_RESUME ?
+			       ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME :
+			       ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESET;
+		req->body_case = ENDOSIM__REQUEST__BODY_GUIDE;
+		req->guide = &guide;
+		break;
+	case RIGCTL_COMMANDS:
 		break;
 	}
 }

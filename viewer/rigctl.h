@@ -1,7 +1,8 @@
 /*
  * rigctl.h - endoview's commands to endosimd over the read-write socket
  * (control.sock, the endosim group): the simulated hand's forces
- * (HandInput) and the state machine (enable, disable, estop, reset).
+ * (HandInput), the state machine (enable, disable, estop, reset) and
+ * guided replay's take-over, resume and reset.
  *
  * The connection is made when first needed and again, at most every
  * RIGCTL_RETRY_S, after it failed. What cannot be done is said once in
@@ -29,6 +30,12 @@ enum rigctl_command {
 	RIGCTL_DISABLE,
 	RIGCTL_ESTOP,
 	RIGCTL_RESET,
+	/* guided replay (endoctl guide): take over, resume at the nearest
+	   point, back to the path's nearest point and held */
+	RIGCTL_GUIDE_TAKEOVER,
+	RIGCTL_GUIDE_RESUME,
+	RIGCTL_GUIDE_RESET,
+	RIGCTL_COMMANDS
 };
 
 struct rigctl;

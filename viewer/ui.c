@@ -31,6 +31,12 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->command[RIGCTL_ESTOP];
 	case GLFW_KEY_R:
 		return &a->command[RIGCTL_RESET];
+	case GLFW_KEY_G:
+		return &a->command[RIGCTL_GUIDE_TAKEOVER];
+	case GLFW_KEY_F:
+		return &a->command[RIGCTL_GUIDE_RESUME];
+	case GLFW_KEY_B:
+		return &a->command[RIGCTL_GUIDE_RESET];
 	case GLFW_KEY_V:
 	case GLFW_KEY_TAB:
 		return &a->next_view;
@@ -181,7 +187,7 @@ static double stick(float v)
 static void gamepad(struct ui *u, struct input_controls *c,
 		    struct ui_actions *a)
 {
-	static const int button[RIGCTL_RESET + 1] = {
+	static const int button[RIGCTL_RESET + 1] = { /* the guidance: keys */
 		[RIGCTL_ENABLE] = GLFW_GAMEPAD_BUTTON_START,
 		[RIGCTL_DISABLE] = GLFW_GAMEPAD_BUTTON_BACK,
 		[RIGCTL_ESTOP] = GLFW_GAMEPAD_BUTTON_B,

@@ -46,7 +46,7 @@
 
 /* One-off actions this frame. */
 struct ui_actions {
-	bool command[RIGCTL_RESET + 1]; /* by enum rigctl_command */
+	bool command[RIGCTL_COMMANDS]; /* by enum rigctl_command */
 	bool next_view, toggle_help, reset_orbit, capture, quit;
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;

@@ -673,8 +673,9 @@ static const struct {
 	  "ID | export ID --csv [--events] [--out FILE] | report ID --out DIR: "
 	  "training sessions (ID: or ./N.endoses, without endosimd)" },
 	{ "guide", ctl_cmd_guide,
-	  "start ID|FILE [--speed X] [--from S] | stop | resume | reset "
-	  "[--to S] | status: guided replay of a session through the motors" },
+	  "start ID|FILE [--speed X] [--from S] | stop | takeover | resume | "
+	  "reset [--to S] | status: guided replay of a session through the "
+	  "motors" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

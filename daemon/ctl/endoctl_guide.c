@@ -12,8 +12,8 @@
 #include "names.h"
 
 #define GUIDE_USAGE                                                          \
-	"endoctl guide start ID|FILE [--speed X] [--from S] | stop | resume " \
-	"| reset [--to S] | status\n"
+	"endoctl guide start ID|FILE [--speed X] [--from S] | stop | " \
+	"takeover | resume | reset [--to S] | status\n"
 
 /* The guidance in one line. */
 static void print_guide(const Endosim__GuideStatus *g)
@@ -112,6 +112,8 @@ int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv)
 		first = 3;
 	} else if (!strcmp(what, "stop")) {
 		g.action = ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_STOP;
+	} else if (!strcmp(what, "takeover")) {
+		g.action = ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_TAKEOVER;
 	} else if (!strcmp(what, "resume")) {
 		g.action = ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME;
 	} else if (!strcmp(what, "reset")) {

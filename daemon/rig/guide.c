@@ -238,6 +238,16 @@ static void end(struct guide *g, uint32_t why)
 	g->after_move = ENDOSIM_GUIDE_OFF;
 }
 
+/* The trainee takes over: fading out, then FREE until resumed. */
+static void take_over(struct guide *g)
+{
+	g->takeovers++;
+	g->phase = ENDOSIM_GUIDE_FADING;
+	g->after_move = ENDOSIM_GUIDE_FREE;
+	g->over_s = 0;
+	g->lost_s = 0;
+}
+
 int guide_command(struct guide *g, const struct config_guide *p,
 		  const struct guide_command *c, const double q[ENDOSIM_AXES])
 {
@@ -248,6 +258,15 @@ int guide_command(struct guide *g, const struct config_guide *p,
 		if (g->phase != ENDOSIM_GUIDE_OFF) {
 			end(g, ENDOSIM_GUIDE_END_STOPPED);
 		}
+		return 0;
+	}
+	if (c->action == GUIDE_TAKEOVER) {
+		if (g->phase == ENDOSIM_GUIDE_OFF ||
+		    g->phase == ENDOSIM_GUIDE_FREE ||
+		    g->phase == ENDOSIM_GUIDE_FADING) {
+			return -EINVAL;
+		}
+		take_over(g);
 		return 0;
 	}
 	if (!path || !(c->from_s >= 0) ||
@@ -338,11 +357,7 @@ static void watch(struct guide *g, const struct config_guide *p,
 		    g->over_s + dt_s : 0;
 	g->lost_s = lost >= 0 ? g->lost_s + dt_s : 0;
 	if (g->over_s >= p->takeover_s) {
-		g->takeovers++;
-		g->phase = ENDOSIM_GUIDE_FADING;
-		g->after_move = ENDOSIM_GUIDE_FREE;
-		g->over_s = 0;
-		g->lost_s = 0;
+		take_over(g);
 	} else if (g->lost_s >= p->error_s) {
 		g->lost_axis = lost;
 		end(g, ENDOSIM_GUIDE_END_LOST);

@@ -90,6 +90,8 @@ enum guide_action {
 	GUIDE_STOP,       /* fade out and end */
 	GUIDE_RESUME,     /* from FROM_S of the path in use, at its speed */
 	GUIDE_RESET,      /* move to FROM_S of the path in use and hold */
+	GUIDE_TAKEOVER,   /* the trainee takes over (a key): fade out, then
+			     free until resumed */
 };
 
 struct guide_command {

@@ -7,8 +7,10 @@
 # session of another case, and nothing changes; started, it follows the
 # recording within 5 mm; stopped, it fades out and says why in the status
 # and the journal; a session recorded while guided has its phases as
-# events. (The guidance's behaviour, measured cycle for cycle: test_guide.)
+# events; the trainee's take-over (the viewer's key) fades it out. (The
+# guidance's behaviour, measured cycle for cycle: test_guide.)
 . "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
 
 SESS="$TMP/sessions"
 mkdir -p "$SESS"
@@ -55,12 +57,40 @@ within_5mm() {
 }
 check "the insertion within 5 mm of the recording's" within_5mm
 check "the journal names the session" grep -q "guide: session 1 from 0.00 s at 1.00x" "$LOG"
+# endoview: GUIDED on the HUD with the session, its time and the error;
+# the reference scope drawn as a ghost in the overview
+if start_xvfb; then
+	check_status "endoview while guided" 0 view --view both --size 960x540 \
+		--frames 20 --print-state --screenshot "$TMP/guided.png"
+	check "the HUD says GUIDED" grep -q '^hud: GUIDED$' "$VIEW_OUT"
+	check "... the session, its time and speed" \
+		grep -qE '^hud: session 1  [0-9.]+ / 20.0 s  x1.00$' "$VIEW_OUT"
+	check "... how far off the path" \
+		grep -qE '^hud: off the path: ins [-+][0-9.]+ mm' "$VIEW_OUT"
+	check "the picture was written" test -s "$TMP/guided.png"
+	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
+		cp "$TMP/guided.png" "$ENDOSIM_KEEP_SHOTS/guided.png"
+else
+	skip "endoview while guided" "no Xvfb here"
+fi
 check_status "guide stop" 0 ctl guide stop
 check "off, stopped" wait_for status_true \
 	'.guide.phase == "off" and .guide.ended == "stopped"'
 check "the journal says it ended, stopped" wait_for grep -q "guide: ended (stopped)" "$LOG"
 check_status "guide resume (the path kept)" 0 ctl guide resume
 check "guiding again" wait_for phase_is guiding
+check_status "guide takeover (the viewer's key)" 0 ctl guide takeover
+check "faded out, taken over" wait_for status_true \
+	'.guide.phase == "taken-over" and .guide.takeovers == 1 and
+	 (.guide.force | all(. == 0))'
+if [ -n "${DISPLAY:-}" ]; then
+	view --view endo --size 640x360 --frames 5 --print-state
+	check "the HUD says TAKEN OVER, and the keys" eval \
+		"grep -q '^hud: TAKEN OVER$' $VIEW_OUT &&
+		 grep -q '^hud: F: follow again, B: back to the path$' $VIEW_OUT"
+fi
+check_status "a second take-over: refused (1)" 1 ctl guide takeover
+check "... nothing to take over from" grep -q "nothing to take over" "$OUT"
 check_status "guide reset --to 2" 0 ctl guide reset --to 2
 check "holding at 2 s of the recording" wait_for status_true \
 	'.guide.phase == "holding" and .guide.time_s == 2'
@@ -69,7 +99,7 @@ check "disabled: the guidance ended at once" wait_for status_true \
 	'.guide.phase == "off" and .guide.ended == "not-enabled"'
 ctl session stop >/dev/null
 ctl session export "$ID" --csv --events --out "$TMP/g.csv" >/dev/null
-for p in moving guiding fading off holding; do
+for p in moving guiding fading taken-over off holding; do
 	check "the session's events: the guidance $p" \
 		grep -q "guide: $p at" "$TMP/g.csv"
 done
