@@ -365,20 +365,35 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 	return r;
 }
 
-/* The instructor's HTML report (report.h) of session ID (or FILE) into DIR. */
-static int session_report(struct ctl *ctl, const char *id, const char *dir)
+/*
+ * The instructor's HTML report (report.h) of session ID (or FILE) into DIR;
+ * with REF (NULL: none), compared with that session (an expert's).
+ */
+static int session_report(struct ctl *ctl, const char *id, const char *dir,
+			  const char *ref)
 {
-	struct shown sh = { 0 };
-	struct metrics_result m;
-	bool recomputed;
+	struct shown sh = { 0 }, rsh = { 0 };
+	static struct metrics_result m, rm;
+	struct report_reference with = { &rsh.f, &rm };
+	bool recomputed, ref_recomputed;
 	int r = session_open(ctl, id, &sh);
 
 	if (r) {
 		return r;
 	}
+	if (ref && (r = session_open(ctl, ref, &rsh))) {
+		session_close(&sh);
+		return r;
+	}
 	r = sessionview_metrics(&sh.f, &m, &recomputed);
+	if (!r && ref) {
+		r = sessionview_metrics(&rsh.f, &rm, &ref_recomputed);
+	}
 	if (!r) {
-		r = report_write(&sh.f, &m, dir);
+		r = report_write(&sh.f, &m, ref ? &with : NULL, dir);
+	}
+	if (ref) {
+		session_close(&rsh);
 	}
 	if (r) {
 		fprintf(stderr, "endoctl: report in %s: %s\n", dir,
@@ -412,11 +427,16 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv)
 		return session_export(ctl, argc, argv);
 	}
 	if (argc == 5 && !strcmp(sub, "report") && !strcmp(argv[3], "--out")) {
-		return session_report(ctl, argv[2], argv[4]);
+		return session_report(ctl, argv[2], argv[4], NULL);
+	}
+	if (argc == 7 && !strcmp(sub, "report") && !strcmp(argv[3], "--out") &&
+	    !strcmp(argv[5], "--reference")) {
+		return session_report(ctl, argv[2], argv[4], argv[6]);
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
 		" | stop | status | list | show ID | export ID --csv [--events] "
-		"[--out FILE] | report ID --out DIR (ID: or a session file's "
+		"[--out FILE] | report ID --out DIR [--reference REF_ID] (ID: or "
+		"a session file's "
 		"path, read without endosimd)\n");
 	return EXIT_USAGE;
 }

@@ -725,6 +725,212 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	      "</body></html>\n", o);
 }
 
+/* ------------------------------------------- compared with a reference */
+
+#define ALONG_BIN_M 0.01 /* the colon in 1 cm steps */
+#define ALONG_BINS 400   /* up to 4 m */
+
+/* What a session did at each place of the colon on its way in. */
+struct along {
+	double force[ALONG_BINS]; /* the largest |insertion force|, N */
+	double loop[ALONG_BINS];  /* the largest bow of any segment, m */
+	bool seen[ALONG_BINS];
+};
+
+/* F's records until the cecum (M's; all of them if never reached), by
+ * the tip's place along the colon. */
+static void along_colon(const struct session_file *f,
+			const struct metrics_result *m, struct along *a)
+{
+	uint64_t t0 = f->n_records ? f->records[0].stamp_ns : 0;
+
+	memset(a, 0, sizeof(*a));
+	for (size_t i = 0; i < f->n_records; i++) {
+		const struct session_record *r = &f->records[i];
+		double t = (double)(r->stamp_ns - t0) * 1e-9, bow = 0;
+		long b = lround(r->tip_s_m / ALONG_BIN_M);
+
+		if (m->cecum_s >= 0 && t > m->cecum_s) {
+			break;
+		}
+		if (r->depth_m <= 0 || b < 0 || b >= ALONG_BINS) {
+			continue;
+		}
+		for (uint32_t k = 0; k < r->spans && k < ENDOSIM_SPANS; k++) {
+			bow = fmax(bow, fabs(r->bow_m[k]));
+		}
+		a->force[b] = fmax(a->force[b], fabs(r->limited[0]));
+		a->loop[b] = fmax(a->loop[b], bow);
+		a->seen[b] = true;
+	}
+}
+
+/* One series of A (FORCE or LOOP) over the colon, dashed if DASH. */
+static void along_series(const struct plot *p, const struct along *a,
+			 bool force, const char *color, bool dash)
+{
+	bool first = true;
+
+	fprintf(p->out, "<path class=\"series\" stroke=\"%s\"%s d=\"", color,
+		dash ? " stroke-dasharray=\"6 3\"" : "");
+	for (int b = 0; b < ALONG_BINS; b++) {
+		double v = force ? a->force[b] : a->loop[b];
+
+		if (!a->seen[b]) {
+			continue;
+		}
+		fprintf(p->out, "%s%.1f,%.1f", first ? "M" : " L",
+			px_x(p, b * ALONG_BIN_M), px_y(p, v));
+		first = false;
+	}
+	fputs("\"/>\n", p->out);
+}
+
+/* A legend of the trainee's (solid) and the reference's (dashed). */
+static void compare_legend(const struct plot *p)
+{
+	fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
+		"x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" x=\"%.1f\" "
+		"y=\"18\">this session</text><line class=\"key\" stroke=\"%s\" "
+		"stroke-dasharray=\"6 3\" x1=\"%.1f\" y1=\"14\" x2=\"%.1f\" "
+		"y2=\"14\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
+		"reference</text>\n", palette[0], PLOT_X + 4, PLOT_X + 22,
+		PLOT_X + 26, palette[2], PLOT_X + 130, PLOT_X + 148,
+		PLOT_X + 152);
+}
+
+/* A plot along the colon (x: the tip's place, m) of both sessions. */
+static void along_plot(FILE *o, const struct along *mine,
+		       const struct along *ref, const struct anatomy *a,
+		       bool force)
+{
+	struct plot p = { .out = o, .xscale = 1 };
+	double len = a ? anatomy_length(a) : 0, hi = force ? 10 : 0.02;
+
+	for (int b = 0; b < ALONG_BINS; b++) {
+		const struct along *s[2] = { mine, ref };
+
+		for (int k = 0; k < 2; k++) {
+			if (s[k]->seen[b]) {
+				len = fmax(len, b * ALONG_BIN_M);
+				hi = fmax(hi, force ? s[k]->force[b] :
+						      s[k]->loop[b]);
+			}
+		}
+	}
+	p.x = nice_axis(0, fmax(len, 0.1), 10);
+	p.y = nice_axis(0, hi, 5);
+	fprintf(o, "<figure id=\"%s\"><figcaption>%s</figcaption>\n<svg "
+		"class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 "
+		"0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\">\n",
+		force ? "compare-force" : "compare-loop",
+		force ? "Insertion force where the tip was, on the way in" :
+			"The largest loop where the tip was, on the way in",
+		SVG_W, SVG_H, SVG_W, SVG_H);
+	plot_ticks(&p, "the tip's place along the colon (m)",
+		   force ? "force (N)" : "bow amplitude (m)");
+	along_series(&p, ref, force, palette[2], true);
+	along_series(&p, mine, force, palette[0], false);
+	compare_legend(&p);
+	plot_end(&p);
+}
+
+/* The tip's progress over time of both, on one time axis. */
+static void compare_tip(FILE *o, const struct session_file *f,
+			const struct metrics_result *m,
+			const struct report_reference *ref)
+{
+	const struct series s = { "tip along the colon", get_tip_s, 0 };
+	struct plot p = { .out = o };
+	double dur = fmax(m->duration_s, ref->m->duration_s), hi = 0.1;
+
+	series_range(f, &s, 1, &(double){ 0 }, &hi);
+	series_range(ref->f, &s, 1, &(double){ 0 }, &hi);
+	p.xscale = dur > 300 ? 60 : 1;
+	p.x = nice_axis(0, fmax(dur, 1e-3) / p.xscale, 10);
+	plot_begin(&p, "compare-tip", "The tip's progress: this session and "
+		   "the reference", 0, hi, "distance from the anal verge (m)");
+	if (ref->f->n_records) {
+		p.t0_ns = ref->f->records[0].stamp_ns;
+		fprintf(o, "<g stroke-dasharray=\"6 3\">");
+		plot_series(&p, ref->f, &s, palette[2]);
+		fputs("</g>\n", o);
+	}
+	if (f->n_records) {
+		p.t0_ns = f->records[0].stamp_ns;
+		plot_series(&p, f, &s, palette[0]);
+	}
+	compare_legend(&p);
+	plot_end(&p);
+}
+
+static void compare_row(FILE *o, const char *what, const char *fmt,
+			double mine, double ref)
+{
+	fprintf(o, "<tr><th>%s</th><td>", what);
+	fprintf(o, fmt, mine);
+	fputs("</td><td>", o);
+	fprintf(o, fmt, ref);
+	fputs("</td></tr>\n", o);
+}
+
+/* Both sessions' main measures side by side. */
+static void compare_table(FILE *o, const struct metrics_result *m,
+			  const struct metrics_result *r)
+{
+	fputs("<table class=\"metrics\" id=\"compare-metrics\"><tr><th></th>"
+	      "<th>this session</th><th>reference</th></tr>\n", o);
+	compare_row(o, "duration (s)", "%.1f", m->duration_s, r->duration_s);
+	compare_row(o, "time to the cecum (s; -1: not reached)", "%.1f",
+		    m->cecum_s, r->cecum_s);
+	compare_row(o, "withdrawal (s)", "%.1f", m->withdrawal_s,
+		    r->withdrawal_s);
+	compare_row(o, "deepest (m along the colon)", "%.2f", m->max_tip_s_m,
+		    r->max_tip_s_m);
+	compare_row(o, "peak insertion force (N)", "%.1f",
+		    m->peak_insertion_n, r->peak_insertion_n);
+	compare_row(o, "mean insertion force (N)", "%.1f",
+		    m->mean_insertion_n, r->mean_insertion_n);
+	compare_row(o, "excessive-force episodes", "%.0f",
+		    m->force_episodes, r->force_episodes);
+	compare_row(o, "... their time (s)", "%.1f", m->force_episode_s,
+		    r->force_episode_s);
+	compare_row(o, "loop episodes", "%.0f", m->loop_episodes,
+		    r->loop_episodes);
+	compare_row(o, "largest loop (cm)", "%.1f", m->largest_loop_m * 100,
+		    r->largest_loop_m * 100);
+	compare_row(o, "discomfort index", "%.2f", m->discomfort,
+		    r->discomfort);
+	compare_row(o, "lumen lost (s)", "%.1f", m->lumen_lost_s,
+		    r->lumen_lost_s);
+	compare_row(o, "mucosa seen (%)", "%.1f", m->mucosa_seen * 100,
+		    r->mucosa_seen * 100);
+	compare_row(o, "polyps seen", "%.0f", m->polyps_seen, r->polyps_seen);
+	fputs("</table>\n", o);
+}
+
+static void page_compare(FILE *o, const struct session_file *f,
+			 const struct metrics_result *m,
+			 const struct report_reference *ref,
+			 const struct anatomy *a)
+{
+	static struct along mine, theirs;
+
+	fputs("<section id=\"compare\"><h2>Compared with the reference: "
+	      "session ", o);
+	put_header(o, ref->f, "id");
+	fputs(" (", o);
+	put_header(o, ref->f, "trainee");
+	fputs(")</h2>\n", o);
+	compare_table(o, m, ref->m);
+	along_colon(f, m, &mine);
+	along_colon(ref->f, ref->m, &theirs);
+	compare_tip(o, f, m, ref);
+	along_plot(o, &mine, &theirs, a, true);
+	along_plot(o, &mine, &theirs, a, false);
+	fputs("</section>\n", o);
+}
+
 /* The colon of F's CASE frame, its configuration, its header. */
 static struct colon *session_colon(const struct session_file *f, char *err,
 				   size_t errsize)
@@ -771,7 +977,7 @@ int report_metrics(const struct session_file *f,
 }
 
 int report_write(const struct session_file *f, const struct metrics_result *m,
-		 const char *dir)
+		 const struct report_reference *ref, const char *dir)
 {
 	char path[4096], tmp[4200], err[256];
 	struct anatomy a;
@@ -790,6 +996,9 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	}
 	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
 	page_header(o, f, m);
+	if (ref) {
+		page_compare(o, f, m, ref, have_a ? &a : NULL);
+	}
 	page_metrics(o, f, m, have_a ? &a : NULL);
 	if (ferror(o)) {
 		r = -EIO;

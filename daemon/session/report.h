@@ -28,13 +28,24 @@
 #include "metrics.h"
 #include "session_file.h"
 
+/* The session a report compares with (an expert's: `--reference`). */
+struct report_reference {
+	const struct session_file *f;
+	const struct metrics_result *m;
+};
+
 /*
  * Writes DIR/index.html (DIR is created if missing; the page is written to
  * a temporary name and renamed, so a reader never sees half of it) from
- * the session F and its metrics M. 0 or -errno; logs nothing.
+ * the session F and its metrics M; with REF (NULL: none) a section that
+ * sets both side by side: their metrics in one table, the tip's progress
+ * over time, and the insertion force and the largest loop along the
+ * colon (over where the tip was on its way in, so that the two are
+ * compared at the same place, however fast each went). 0 or -errno; logs
+ * nothing.
  */
 int report_write(const struct session_file *f, const struct metrics_result *m,
-		 const char *dir);
+		 const struct report_reference *ref, const char *dir);
 
 /*
  * Recomputes the metrics of F with P (the colon rebuilt from F's CASE

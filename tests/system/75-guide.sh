@@ -7,7 +7,8 @@
 # session of another case, and nothing changes; started, it follows the
 # recording within 5 mm; stopped, it fades out and says why in the status
 # and the journal; a session recorded while guided has its phases as
-# events; the trainee's take-over (the viewer's key) fades it out. (The
+# events; the trainee's take-over (the viewer's key) fades it out; its
+# report compares it with the expert's (--reference). (The
 # guidance's behaviour, measured cycle for cycle: test_guide.)
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
@@ -103,4 +104,11 @@ for p in moving guiding fading taken-over off holding; do
 	check "the session's events: the guidance $p" \
 		grep -q "guide: $p at" "$TMP/g.csv"
 done
+check_status "the guided session's report against the expert's" 0 \
+	ctl session report "$ID" --out "$TMP/report" --reference 1
+check "... its comparison: the reference named, its curves along the colon" \
+	eval "grep -q 'Compared with the reference: session 1 ' $TMP/report/index.html &&
+	      grep -q 'id=\"compare-force\"' $TMP/report/index.html"
+check_status "a reference that is not a session: refused (1)" 1 \
+	ctl session report "$ID" --out "$TMP/report2" --reference "$TMP/junk.endoses"
 finish

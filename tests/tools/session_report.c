@@ -38,7 +38,7 @@ int main(int argc, char **argv)
 	if (!r && metrics_format(&m, text, sizeof(text)) > 0) {
 		fputs(text, stdout);
 	}
-	r = r ? r : report_write(&f, &m, argv[2]);
+	r = r ? r : report_write(&f, &m, NULL, argv[2]);
 	if (r) {
 		fprintf(stderr, "session_report: %s: %s\n", argv[2], strerror(-r));
 	}

@@ -141,7 +141,7 @@ static void test_report_page(void **state)
 	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
 	snprintf(dir, sizeof(dir), "%s/endosim-report-%d",
 		 tmp && *tmp ? tmp : "/tmp", (int)getpid());
-	assert_int_equal(report_write(&f, &m, dir), 0); /* creates DIR */
+	assert_int_equal(report_write(&f, &m, NULL, dir), 0); /* creates DIR */
 	snprintf(path, sizeof(path), "%s/index.html", dir);
 	html = slurp(path);
 	assert_int_equal(count(html, "<svg class=\"plot\""), 4);
@@ -180,7 +180,136 @@ static void test_report_unwritable(void **state)
 
 	(void)state;
 	make_session(&f);
-	assert_true(report_write(&f, &m, "/proc/no/such/dir") < 0);
+	assert_true(report_write(&f, &m, NULL, "/proc/no/such/dir") < 0);
+}
+
+/* A session moving the tip at SPEED m/s for N records, its insertion
+ * force 100 N per metre along the colon and its sigmoid bowed 1 cm beyond
+ * 0.15 m: what it does at a place does not depend on when it got there. */
+static void along_session(struct session_file *f, struct session_record *r,
+			  size_t n, double speed, char *head)
+{
+	for (size_t k = 0; k < n; k++) {
+		double s = 0.05 + speed * (double)k * 1e-3;
+
+		memset(&r[k], 0, sizeof(r[k]));
+		r[k].stamp_ns = 1000000000ull + (uint64_t)k * 1000000ull;
+		r[k].depth_m = r[k].tip_s_m = (float)s;
+		r[k].dir[2] = 1;
+		r[k].limited[0] = (float)(100 * s);
+		r[k].spans = 2;
+		r[k].bow_m[0] = (float)(s > 0.15 ? 0.01 : 0);
+	}
+	*f = (struct session_file){
+		.header = head, .case_text = case_text, .records = r,
+		.n_records = n,
+	};
+}
+
+/* The path strings (d="...") of the Nth and N+1st series after figure ID
+ * in PAGE, into A and B. */
+static void two_paths(const char *page, const char *id, char *a, char *b,
+		      size_t size)
+{
+	const char *at = strstr(page, id);
+	char *out[2] = { a, b };
+
+	assert_non_null(at);
+	for (int k = 0; k < 2; k++) {
+		const char *d, *end;
+
+		at = strstr(at, "class=\"series\"");
+		assert_non_null(at);
+		d = strstr(at, " d=\"") + 4;
+		end = strchr(d, '"');
+		assert_true((size_t)(end - d) < size);
+		memcpy(out[k], d, (size_t)(end - d));
+		out[k][end - d] = '\0';
+		at = end;
+	}
+}
+
+/* The largest difference between the points of two SVG paths of as many
+ * points ("M x,y L x,y ..."), px; INFINITY if their points differ in
+ * number. */
+static double path_gap(const char *a, const char *b)
+{
+	double gap = 0;
+
+	while (*a && *b) {
+		char *ea, *eb;
+		double va, vb;
+
+		while (*a && !(*a == '-' || *a == '.' || (*a >= '0' && *a <= '9'))) {
+			a++;
+		}
+		while (*b && !(*b == '-' || *b == '.' || (*b >= '0' && *b <= '9'))) {
+			b++;
+		}
+		if (!*a || !*b) {
+			break;
+		}
+		va = strtod(a, &ea);
+		vb = strtod(b, &eb);
+		gap = fmax(gap, fabs(va - vb));
+		a = ea;
+		b = eb;
+	}
+	return *a || *b ? INFINITY : gap;
+}
+
+/*
+ * --reference: a trainee twice as fast as the reference over the same
+ * colon with the same force at each place: their force and loop curves
+ * along the colon are the same curve (aligned on the colon position, not
+ * on time); their tip over time is not; both sessions' measures side by
+ * side.
+ */
+static void test_report_reference(void **state)
+{
+	static struct session_record mine[10000], theirs[20000];
+	static char a[1 << 16], b[1 << 16];
+	static char head_mine[] = "format=3\nid=12\ntrainee=novice\n"
+				  "case=straight\nversion=test\n";
+	static char head_ref[] = "format=3\nid=9\ntrainee=expert\n"
+				 "case=straight\nversion=test\n";
+	struct session_file f, rf;
+	struct metrics_params p;
+	struct metrics_result m, rm;
+	struct report_reference ref = { &rf, &rm };
+	char dir[] = "/tmp/test_report_ref.XXXXXX", path[64], err[256];
+	const char *page;
+
+	(void)state;
+	load_case();
+	along_session(&f, mine, 10000, 0.02, head_mine);
+	along_session(&rf, theirs, 20000, 0.01, head_ref);
+	metrics_params_default(&p);
+	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_int_equal(report_metrics(&rf, &p, &rm, err, sizeof(err)), 0);
+	assert_non_null(mkdtemp(dir));
+	assert_int_equal(report_write(&f, &m, &ref, dir), 0);
+	snprintf(path, sizeof(path), "%s/index.html", dir);
+	page = slurp(path);
+	assert_non_null(strstr(page, "Compared with the reference: session 9 "
+				     "(expert)"));
+	assert_non_null(strstr(page, "<th>duration (s)</th><td>10.0</td>"
+				     "<td>20.0</td>"));
+	/* the same curve to a tenth of a pixel (the largest force within each
+	   centimetre: the faster session's last sample in it is 0.2 mm, the
+	   slower's 0.1 mm, short of its end) */
+	two_paths(page, "id=\"compare-force\"", a, b, sizeof(a));
+	assert_true(strlen(a) > 100);
+	assert_true(path_gap(a, b) <= 0.1 + 1e-9);
+	two_paths(page, "id=\"compare-loop\"", a, b, sizeof(a));
+	assert_true(path_gap(a, b) <= 0.1 + 1e-9);
+	two_paths(page, "id=\"compare-tip\"", a, b, sizeof(a));
+	assert_true(path_gap(a, b) > 10);
+	/* without a reference, no such section */
+	assert_int_equal(report_write(&f, &m, NULL, dir), 0);
+	assert_null(strstr(slurp(path), "id=\"compare"));
+	unlink(path);
+	rmdir(dir);
 }
 
 int main(void)
@@ -189,6 +318,7 @@ int main(void)
 		cmocka_unit_test(test_recomputed_metrics),
 		cmocka_unit_test(test_report_page),
 		cmocka_unit_test(test_report_unwritable),
+		cmocka_unit_test(test_report_reference),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
