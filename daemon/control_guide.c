@@ -46,7 +46,7 @@ static struct guide_path *load_path(struct control *c,
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, rb->error);
 		return NULL;
 	}
-	if (strcmp(p->case_name, colon_name(c->colon))) {
+	if (*p->case_name && strcmp(p->case_name, colon_name(c->colon))) {
 		snprintf(rb->error, sizeof(rb->error), "guide start: session "
 			 "%" PRIu64 " was recorded on case '%.63s', the loaded "
 			 "case is '%.63s'", p->source_id, p->case_name,

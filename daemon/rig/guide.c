@@ -6,7 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "scenario.h"
 #include "session_file.h"
 
 #define GUIDE_ROTARY_M 0.01   /* nearest point: a radian counts as 1 cm */
@@ -53,6 +55,72 @@ static bool enabled_part(const struct session_file *f, size_t *first,
 	return any;
 }
 
+/*
+ * The path of a scenario (scenario.h): where its hand's targets put each
+ * axis, sampled; an axis the hand pushes or lets go keeps its last
+ * target. NULL with ERR when it is not one, or has no target.
+ */
+static struct guide_path *scenario_path(const char *file, char *err,
+					size_t errsize)
+{
+	char why[256];
+	struct scenario *scn = scenario_load(file, why, sizeof(why));
+	struct guide_path *p = NULL;
+	double len, q[ENDOSIM_AXES] = { 0 };
+	bool any = false;
+	size_t n;
+
+	if (!scn) {
+		snprintf(err, errsize, "%s: not a session file, nor a scenario "
+			 "(%s)", file, why);
+		return NULL;
+	}
+	len = scenario_length(scn);
+	n = (size_t)(len * GUIDE_PATH_HZ) + 1;
+	if (n < 2 || !(p = path_alloc(n))) {
+		snprintf(err, errsize, "%s: %s", file, n < 2 ?
+			 "a scenario too short to guide along" :
+			 "out of memory");
+		scenario_destroy(scn);
+		return NULL;
+	}
+	for (size_t k = 0; k < n; k++) {
+		struct scenario_cmd c[ENDOSIM_AXES];
+
+		scenario_eval(scn, (double)k / GUIDE_PATH_HZ, c);
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			if (c[a].mode == SCENARIO_TARGET) {
+				q[a] = c[a].value;
+				any = true;
+			}
+			p->q[k][a] = (float)q[a];
+		}
+	}
+	scenario_destroy(scn);
+	if (!any) {
+		snprintf(err, errsize, "%s: a scenario without a target: "
+			 "nothing to guide along", file);
+		guide_path_free(p);
+		return NULL;
+	}
+	return p;
+}
+
+/* A session file begins with its magic; anything else may be a
+ * scenario. */
+static bool is_session(const char *file)
+{
+	char magic[sizeof(SESSION_FILE_MAGIC) - 1];
+	FILE *f = fopen(file, "rb");
+	bool yes = f && fread(magic, 1, sizeof(magic), f) == sizeof(magic) &&
+		   !memcmp(magic, SESSION_FILE_MAGIC, sizeof(magic));
+
+	if (f) {
+		fclose(f);
+	}
+	return yes;
+}
+
 struct guide_path *guide_path_load(const char *file, char *err,
 				   size_t errsize)
 {
@@ -61,8 +129,12 @@ struct guide_path *guide_path_load(const char *file, char *err,
 	char id[32] = "";
 	size_t first = 0, last = 0, n, r;
 	uint64_t t0, span, step = (uint64_t)(1e9 / GUIDE_PATH_HZ);
-	int e = session_file_read(file, &f);
+	int e;
 
+	if (!is_session(file) && access(file, R_OK) == 0) {
+		return scenario_path(file, err, errsize);
+	}
+	e = session_file_read(file, &f);
 	if (e) {
 		snprintf(err, errsize, "%s: %s", file,
 			 e == -EBADMSG ? "not a session file" :

@@ -49,7 +49,8 @@
 /* A recorded session's axis positions, GUIDE_PATH_HZ samples a second. */
 struct guide_path {
 	uint64_t source_id;      /* the session's id */
-	char case_name[64];      /* the case it was recorded on */
+	char case_name[64];      /* the case it was recorded on; "": any (a
+				    scenario's) */
 	size_t n;                /* samples, >= 2 */
 	float (*q)[ENDOSIM_AXES]; /* m, rad */
 	float *tip_s_m;          /* where the tip was along the colon */
@@ -58,8 +59,11 @@ struct guide_path {
 /*
  * The path of the session file FILE: every record's axis positions from
  * the first record with torque on (the session's enabled part) to the
- * last, resampled. NULL with one line in ERR (cannot read, not a session,
- * too short, no enabled record).
+ * last, resampled. Or, for a file that is not a session, of a scenario
+ * (scenario.h): its hand's targets (an axis pushed or let go keeps its
+ * last target), of no case (case_name empty, source_id 0). NULL with one
+ * line in ERR (cannot read, neither a session nor a scenario, too short,
+ * no enabled record, no target).
  */
 struct guide_path *guide_path_load(const char *file, char *err,
 				   size_t errsize);

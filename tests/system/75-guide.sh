@@ -95,6 +95,11 @@ check "... nothing to take over from" grep -q "nothing to take over" "$OUT"
 check_status "guide reset --to 2" 0 ctl guide reset --to 2
 check "holding at 2 s of the recording" wait_for status_true \
 	'.guide.phase == "holding" and .guide.time_s == 2'
+check_status "a scenario as the reference (its hand's targets)" 0 \
+	ctl guide start "$TOP/config/scenarios/demo-paper.scn" --from 3
+check "... guiding along it" wait_for status_true \
+	'.guide.phase == "guiding" and .guide.source_id == 0 and
+	 .guide.length_s > 80'
 ctl disable >/dev/null
 check "disabled: the guidance ended at once" wait_for status_true \
 	'.guide.phase == "off" and .guide.ended == "not-enabled"'

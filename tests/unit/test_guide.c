@@ -247,6 +247,35 @@ static void test_path(void **unused)
 	session_file_close(&f);
 }
 
+/* A scenario's targets as the path: where its hand would put the axes. */
+static void test_path_scenario(void **unused)
+{
+	char err[512];
+	struct guide_path *p = guide_path_load("config/scenarios/demo-paper.scn",
+					       err, sizeof(err));
+	struct scenario *scn = scenario_load("config/scenarios/demo-paper.scn",
+					     err, sizeof(err));
+	double q[ENDOSIM_AXES], dq[ENDOSIM_AXES];
+
+	(void)unused;
+	assert_non_null(p);
+	assert_non_null(scn);
+	assert_string_equal(p->case_name, "");
+	assert_true(fabs(guide_path_length_s(p) - scenario_length(scn)) <
+		    0.011);
+	for (double t = 1; t < scenario_length(scn); t += 7.3) {
+		struct scenario_cmd c[ENDOSIM_AXES];
+
+		scenario_eval(scn, floor(t * GUIDE_PATH_HZ) / GUIDE_PATH_HZ, c);
+		guide_path_at(p, floor(t * GUIDE_PATH_HZ) / GUIDE_PATH_HZ, q,
+			      dq);
+		assert_int_equal(c[0].mode, SCENARIO_TARGET);
+		assert_true(fabs(q[0] - c[0].value) < 1e-6);
+	}
+	scenario_destroy(scn);
+	guide_path_free(p);
+}
+
 /* A file that is not a session, and one without an enabled record. */
 static void test_path_refused(void **unused)
 {
@@ -258,7 +287,7 @@ static void test_path_refused(void **unused)
 	(void)unused;
 	assert_null(guide_path_load("config/cases/normal.case", err,
 				    sizeof(err)));
-	assert_non_null(strstr(err, "not a session file"));
+	assert_non_null(strstr(err, "not a session file, nor a scenario"));
 	snprintf(bad, sizeof(bad), "%s/idle.endoses", dir);
 	fd = open(bad, O_WRONLY | O_CREAT | O_TRUNC, 0644);
 	session_file_write_magic(fd);
@@ -558,6 +587,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_path),
 		cmocka_unit_test(test_path_refused),
+		cmocka_unit_test(test_path_scenario),
 		cmocka_unit_test(test_slowed),
 		cmocka_unit_test(test_follow_1x),
 		cmocka_unit_test(test_follow_2x),
