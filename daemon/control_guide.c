@@ -1,9 +1,11 @@
 /*
- * control_guide.c - guided replay's commands (GuideRequest): the session
+ * control_guide.c - guided replay's commands (the Guide request): the session
  * file read into a path here, on the control thread; the loop gets the
  * path and the command (loop_guide()) and answers within a cycle or two.
  * The path the loop plays is kept here until a later start replaces it.
  */
+#include <time.h>
+
 #include "control_private.h"
 
 /* The axes' positions of the newest published state; false if none. */
@@ -58,6 +60,27 @@ static struct guide_path *load_path(struct control *c,
 	return p;
 }
 
+/*
+ * After the loop's answer, the state of the cycle that answered: it is
+ * published at that cycle's end, after the answer (at most a period;
+ * gives up after 100 ms and answers with what there is).
+ */
+static void await_next_state(struct control *c)
+{
+	struct endosim_state st;
+	uint64_t seen, deadline = mono_ns() + 100000000ull;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	if (publish_read(c->deps.pub, &st)) {
+		return;
+	}
+	seen = st.cycle;
+	while (mono_ns() < deadline && !publish_read(c->deps.pub, &st) &&
+	       st.cycle <= seen) {
+		nanosleep(&nap, NULL);
+	}
+}
+
 /* Hands CMD to the loop; a start's PATH becomes the one kept on 0. */
 static void hand_over(struct control *c, const struct guide_command *cmd,
 		      struct guide_path *path, Endosim__Reply *rep)
@@ -85,6 +108,7 @@ static void hand_over(struct control *c, const struct guide_command *cmd,
 		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
 		       "the force loop did not take the command");
 	} else {
+		await_next_state(c);
 		control_build_status(c, rep);
 	}
 }
