@@ -22,6 +22,7 @@ static int connect_daemon(struct ctl *ctl, bool write)
 		fprintf(stderr, "endoctl: socket path too long\n");
 		return EXIT_USAGE;
 	}
+	client_close(ctl->client); /* a command's earlier request's */
 	ctl->client = client_connect(path);
 	if (!ctl->client) {
 		fprintf(stderr, "endoctl: cannot connect to %s: %s (is "
