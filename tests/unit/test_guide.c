@@ -347,6 +347,55 @@ static void test_slowed(void **unused)
 	assert_true(fabs(g.ref_v[0] - cfg.guide.speed_max[0]) < 1e-6);
 }
 
+/*
+ * A scope that cannot follow (held fast where it is, the motors' push
+ * balanced by what holds it, so no hand is felt): the guidance ends itself
+ * error_s after the error passed error_max, naming the axis, and fades
+ * out; it never takes over, never faults.
+ */
+static void test_lost(void **unused)
+{
+	static float q[1001][ENDOSIM_AXES];
+	struct guide_path p = { .n = 1001, .q = q, .case_name = "normal" };
+	struct config cfg;
+	struct guide g;
+	double at[ENDOSIM_AXES] = { 0 }, zero[ENDOSIM_AXES] = { 0 };
+	double f[ENDOSIM_AXES], t = 0, t_beyond = -1;
+	const struct guide_command c = {
+		.action = GUIDE_START, .path = &p, .speed = 1,
+	};
+
+	(void)unused;
+	config_defaults(&cfg);
+	for (size_t i = 0; i < p.n; i++) { /* 5 cm/s on the insertion */
+		q[i][0] = (float)(0.05 * (double)i / GUIDE_PATH_HZ);
+	}
+	guide_init(&g);
+	assert_int_equal(guide_command(&g, &cfg.guide, &c, at), 0);
+	while (g.phase != ENDOSIM_GUIDE_OFF && t < 10) {
+		guide_step(&g, &cfg.guide, true, true, at, zero, zero, PERIOD_S,
+			   f);
+		t += PERIOD_S;
+		if (t_beyond < 0 &&
+		    fabs(g.ref[0]) > cfg.guide.error_max[0]) {
+			t_beyond = t;
+		}
+		if (g.phase == ENDOSIM_GUIDE_FADING) {
+			assert_int_equal(g.ended, ENDOSIM_GUIDE_END_LOST);
+		}
+	}
+	printf("# held fast: the error past %.0f mm at %.3f s, the guidance "
+	       "ended %.3f s later (error_s %.1f)\n",
+	       cfg.guide.error_max[0] * 1e3, t_beyond,
+	       t - cfg.guide.fade_s - t_beyond, cfg.guide.error_s);
+	assert_int_equal(g.phase, ENDOSIM_GUIDE_OFF);
+	assert_int_equal(g.ended, ENDOSIM_GUIDE_END_LOST);
+	assert_int_equal(g.lost_axis, ENDOSIM_AXIS_INSERTION);
+	assert_int_equal(g.takeovers, 0);
+	assert_true(fabs(t - cfg.guide.fade_s - t_beyond - cfg.guide.error_s) <
+		    2 * PERIOD_S + 1e-9);
+}
+
 /* --- following --------------------------------------------------------- */
 
 /* The whole recording at SPEED with a passive hand: the positions within
@@ -589,6 +638,7 @@ int main(void)
 		cmocka_unit_test(test_path_refused),
 		cmocka_unit_test(test_path_scenario),
 		cmocka_unit_test(test_slowed),
+		cmocka_unit_test(test_lost),
 		cmocka_unit_test(test_follow_1x),
 		cmocka_unit_test(test_follow_2x),
 		cmocka_unit_test(test_takeover),
