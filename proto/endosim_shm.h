@@ -265,7 +265,7 @@ struct endosim_guide_state {
 	double fade;              /* the force's share, 1 .. 0 */
 	uint32_t takeovers;       /* since the start */
 	uint32_t lost_axis;       /* ended lost: the axis; else ENDOSIM_AXES */
-	double reference[ENDOSIM_AXES]; /* m, rad */
+	double reference[ENDOSIM_AXES]; /* m, rad (taken over: where it left) */
 	double force[ENDOSIM_AXES];     /* N, N m: in the command */
 	double error[ENDOSIM_AXES];     /* reference - position */
 	double hand[ENDOSIM_AXES];      /* N, N m: the hand's, estimated */

@@ -25,6 +25,7 @@
 #define CONTACT_RADIUS_M 0.012  /* larger than the tip: it shows round it */
 #define ARROW_M 0.03
 #define GHOST_GAIN 0.55f
+#define REFERENCE_GAIN 2.5f /* guided replay's reference: a brighter ghost */
 #define LUMEN_GIVE_M 0.005 /* a tube pressed into the wall (overview_print) */
 
 static const float scope_rgb[3] = { OVERVIEW_SCOPE_RGB };
@@ -38,7 +39,7 @@ static const float contact_rgb[3] = { 1.0f, 0.15f, 0.1f };
 static const float colon_rgb[3] = { 0.95f, 0.55f, 0.50f };
 static const float bowed_rgb[3] = { 1.0f, 0.62f, 0.08f };
 static const float background[3] = { 0.035f, 0.045f, 0.07f };
-static const float reference_rgb[3] = { 0.30f, 1.0f, 0.55f };
+static const float reference_rgb[3] = { 0.35f, 0.70f, 1.0f };
 
 enum uniform { U_MVP, U_MODEL, U_COLOR, U_EYE, U_GHOST, UNIFORMS };
 
@@ -367,9 +368,9 @@ static uint32_t draw_scope(const struct overview *o, const struct model *m,
 
 /*
  * Guided replay's reference: the scope where the expert's recording had
- * it now, by the paper's kinematics on the colon's centreline from the
- * reference's axes (the shipped scope's bending section), drawn as a
- * ghost beside the real one while the guidance pulls towards it.
+ * it now (taken over: where the guidance left off), by the paper's
+ * kinematics on the colon's centreline from the reference's axes (the
+ * shipped scope's bending section), drawn as a ghost beside the real one.
  */
 static uint32_t draw_reference(const struct overview *o,
 			       const struct model *m,
@@ -386,9 +387,7 @@ static uint32_t draw_reference(const struct overview *o,
 		.wheel_lr_rad = g->reference[ENDOSIM_AXIS_WHEEL_LR],
 	};
 
-	if (g->phase != ENDOSIM_GUIDE_MOVING &&
-	    g->phase != ENDOSIM_GUIDE_GUIDING &&
-	    g->phase != ENDOSIM_GUIDE_HOLDING) {
+	if (g->phase == ENDOSIM_GUIDE_OFF) {
 		return 0;
 	}
 	if (!have_params) {
@@ -507,10 +506,11 @@ uint32_t overview_draw(struct overview *o, const struct model *m,
 	glDepthMask(GL_FALSE);
 	glEnable(GL_BLEND);
 	glBlendFunc(GL_ONE, GL_ONE);
-	glUniform1f(o->u[U_GHOST], GHOST_GAIN);
 	if (st) {
+		glUniform1f(o->u[U_GHOST], REFERENCE_GAIN);
 		tris += draw_reference(o, m, &st->guide);
 	}
+	glUniform1f(o->u[U_GHOST], GHOST_GAIN);
 	tris += draw_colon(o, m, l, g);
 	end();
 	return tris;

@@ -501,8 +501,7 @@ void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
 void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],
 		   struct endosim_guide_state *st)
 {
-	bool on = g->phase != ENDOSIM_GUIDE_OFF &&
-		  g->phase != ENDOSIM_GUIDE_FREE;
+	bool on = g->phase != ENDOSIM_GUIDE_OFF; /* taken over: where it left */
 
 	st->phase = g->phase;
 	st->ended = g->ended;
