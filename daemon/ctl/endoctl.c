@@ -671,7 +671,8 @@ static const struct {
 			      "renders" },
 	{ "session", ctl_cmd_session,
 	  "start [--trainee NAME] [--case NAME] | stop | status | list | show "
-	  "ID | export ID --csv [--events] [--out FILE] | report ID --out DIR "
+	  "ID | export ID --csv [--events] [--out FILE] | export ID... "
+	  "--summary [--out FILE] | report ID --out DIR "
 	  "[--reference REF_ID]: "
 	  "training sessions (ID: or ./N.endoses, without endosimd)" },
 	{ "guide", ctl_cmd_guide,

@@ -321,47 +321,80 @@ out:
 	return r;
 }
 
+/* One summary row (sessionview.h) for session ID, its metrics as
+ * `session show` gives them. */
+static int summary_row(struct ctl *ctl, const char *id, FILE *out,
+		       bool *werr)
+{
+	struct shown sh = { 0 };
+	static struct metrics_result m;
+	bool recomputed;
+	int r = session_open(ctl, id, &sh);
+
+	if (r) {
+		return r;
+	}
+	r = sessionview_metrics(&sh.f, &m, &recomputed);
+	if (r) {
+		fprintf(stderr, "endoctl: %s: %s\n", id, strerror(-r));
+	} else {
+		*werr = sessionview_summary_row(out, &sh.f, &m) != 0;
+	}
+	session_close(&sh);
+	return r ? EXIT_REFUSED : 0;
+}
+
 static int session_export(struct ctl *ctl, int argc, char **argv)
 {
 	const char *out_path = NULL;
 	struct shown sh = { 0 };
-	bool csv = false, events = false;
+	bool csv = false, events = false, summary = false, werr = false;
 	FILE *out = stdout;
-	int r;
+	int r = 0, ids = 0;
 
-	for (int i = 3; i < argc; i++) {
+	for (int i = 2; i < argc; i++) {
 		if (!strcmp(argv[i], "--csv")) {
 			csv = true;
 		} else if (!strcmp(argv[i], "--events")) {
 			events = true;
+		} else if (!strcmp(argv[i], "--summary")) {
+			summary = true;
 		} else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
 			out_path = argv[++i];
+		} else if (argv[i][0] != '-' && ids == i - 2) {
+			ids++;
 		} else {
-			csv = false;
+			csv = summary = false;
 			break;
 		}
 	}
-	if (!csv) {
-		fprintf(stderr, "endoctl: session export ID|FILE --csv [--events] "
+	if (csv == summary || ids < 1 || (csv && ids != 1) ||
+	    (summary && events)) {
+		fprintf(stderr, "endoctl: session export ID|FILE --csv "
+			"[--events] [--out FILE] | export ID|FILE... --summary "
 			"[--out FILE]\n");
 		return EXIT_USAGE;
 	}
-	r = session_open(ctl, argv[2], &sh);
-	if (r) {
-		return r;
-	}
 	if (out_path && !(out = fopen(out_path, "we"))) {
 		fprintf(stderr, "endoctl: %s: %s\n", out_path, strerror(errno));
-		r = EXIT_REFUSED;
+		return EXIT_REFUSED;
 	}
-	if (out && ((events ? sessionview_events_csv(out, &sh.f)
-			    : sessionview_csv(out, &sh.f)) ||
-		    (out_path && fclose(out)))) {
+	if (summary) {
+		werr = sessionview_summary_header(out) != 0;
+		for (int k = 0; k < ids && !r && !werr; k++) {
+			r = summary_row(ctl, argv[2 + k], out, &werr);
+		}
+	} else if (!(r = session_open(ctl, argv[2], &sh))) {
+		werr = (events ? sessionview_events_csv(out, &sh.f)
+			       : sessionview_csv(out, &sh.f)) != 0;
+		session_close(&sh);
+	}
+	werr |= out_path ? fclose(out) != 0 : fflush(out) != 0;
+	if (werr) {
 		fprintf(stderr, "endoctl: %s: write error\n",
 			out_path ? out_path : "stdout");
 		r = EXIT_REFUSED;
 	}
-	session_close(&sh);
 	return r;
 }
 
@@ -435,6 +468,7 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv)
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
 		" | stop | status | list | show ID | export ID --csv [--events] "
+		"| export ID... --summary "
 		"[--out FILE] | report ID --out DIR [--reference REF_ID] (ID: or "
 		"a session file's "
 		"path, read without endosimd)\n");

@@ -97,9 +97,16 @@ struct metrics {
 	double discomfort;
 	double lumen_lost_s;
 	bool lost;                /* the previous record's */
+	bool prev_in;             /* the previous record was inserted */
 	double prev_load;         /* the previous record's discomfort rate */
 	uint32_t polyps_seen_mask;
 	struct episodes force, loop;
+	double inserted_s;        /* time with the tube in */
+	uint32_t lost_views;
+	/* the handling: the last sample, the sums */
+	bool shape_have;
+	double shape_t, shape_depth, shape_tip;
+	double shaft_in, tip_in, shaft_idle, shaft_out, tip_out;
 };
 
 void metrics_params_default(struct metrics_params *p)
@@ -575,10 +582,46 @@ static void record_progress(struct metrics *m, const struct session_record *r,
 	}
 }
 
+/*
+ * The handling, every METRICS_SHAPE_STEP_S: the depth's and the tip's
+ * moves since the last sample, summed by direction, on the way in (until
+ * the cecum) or out (from it until the tip is out).
+ */
+static void record_shape(struct metrics *m, const struct session_record *r,
+			 double t)
+{
+	double dd, ds;
+	bool out;
+
+	if (!isfinite(r->depth_m) || !isfinite(r->tip_s_m)) {
+		return;
+	}
+	if (m->shape_have && t - m->shape_t < METRICS_SHAPE_STEP_S - 1e-9) {
+		return;
+	}
+	dd = r->depth_m - m->shape_depth;
+	ds = r->tip_s_m - m->shape_tip;
+	out = m->cecum_s >= 0 && t > m->cecum_s;
+	if (m->shape_have && !out) {
+		m->shaft_in += fmax(dd, 0);
+		m->tip_in += fmax(ds, 0);
+		if (dd > 0 && ds < METRICS_IDLE_SHARE * dd) {
+			m->shaft_idle += dd;
+		}
+	} else if (m->shape_have && (m->out_s < 0 || t <= m->out_s)) {
+		m->shaft_out += fmax(-dd, 0);
+		m->tip_out += fmax(-ds, 0);
+	}
+	m->shape_have = true;
+	m->shape_t = t;
+	m->shape_depth = r->depth_m;
+	m->shape_tip = r->tip_s_m;
+}
+
 void metrics_record(struct metrics *m, const struct session_record *r)
 {
 	double t, dt, f = fabs(r->limited[0]);
-	bool inserted = r->depth_m > 0;
+	bool inserted = r->depth_m > 0, was_lost;
 
 	if (m->records == 0) {
 		m->first_ns = r->stamp_ns;
@@ -588,6 +631,7 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 	/* the previous record's state holds until this one */
 	m->discomfort += m->prev_load * dt;
 	m->lumen_lost_s += m->lost ? dt : 0;
+	m->inserted_s += m->records && m->prev_in ? dt : 0;
 	m->records++;
 	m->last_s = t;
 	f = isfinite(f) ? f : 0;
@@ -598,10 +642,14 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 		m->max_tip_s_m = fmax(m->max_tip_s_m, r->tip_s_m);
 	}
 	record_progress(m, r, t);
+	record_shape(m, r, t);
 	episodes_update(&m->force, t, f);
 	episodes_update(&m->loop, t, record_bow(r));
 	m->prev_load = record_load(m, r);
+	was_lost = m->lost;
 	m->lost = m->colon && inserted && lumen_lost(m, r);
+	m->lost_views += m->lost && !was_lost;
+	m->prev_in = inserted;
 	if (m->colon && inserted) {
 		view_evaluate(m, r, t);
 	}
@@ -646,14 +694,27 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	episodes_result(&m->force, now, &out->force_episodes,
 			&out->force_episode_s, &(double){ 0 },
 			&(double){ 0 }, &out->n_force, out->force);
-	episodes_result(&m->loop, now, &out->loop_episodes, &(double){ 0 },
+	episodes_result(&m->loop, now, &out->loop_episodes, &out->loop_s,
 			&out->longest_loop_s, &out->largest_loop_m,
 			&out->n_loop, out->loop);
+	out->shaft_in_m = m->shaft_in;
+	out->tip_in_m = m->tip_in;
+	out->chase_efficiency = m->shaft_in > 0 ? m->tip_in / m->shaft_in : 0;
+	out->shaft_idle_m = m->shaft_idle;
+	out->retraction_m = m->shaft_out;
+	out->tip_retraction_m = m->tip_out;
+	out->retraction_efficiency = m->shaft_out > 0 ?
+				     m->tip_out / m->shaft_out : 0;
+	out->clear_view = m->inserted_s > 0 ?
+			  fmax(0, 1 - m->lumen_lost_s / m->inserted_s) : 0;
+	out->lost_views = m->lost_views;
 	out->discomfort = m->discomfort;
 	out->lumen_lost_s = m->lumen_lost_s;
 	if (m->view.total_area > 0) {
 		out->mucosa_seen = m->view.seen_area / m->view.total_area;
 	}
+	out->mucosa_per_min = now > 0 ? out->mucosa_seen * 100 / (now / 60)
+				      : 0;
 	out->polyps_seen_mask = m->polyps_seen_mask;
 	out->polyps_seen = popcount32(m->polyps_seen_mask);
 	out->polyps_total = (uint32_t)m->view.polyps;
@@ -686,11 +747,7 @@ double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 #define FIELD_U(name) { #name, offsetof(struct metrics_result, name), 'u' }
 #define FIELD_L(name) { #name, offsetof(struct metrics_result, name), 'l' }
 
-static const struct field {
-	const char *key;
-	size_t offset;
-	char type; /* d double, u uint32_t, l uint64_t */
-} fields[] = {
+static const struct metrics_field fields[] = {
 	FIELD_D(duration_s), FIELD_L(records), FIELD_L(drops),
 	FIELD_D(cecum_s), FIELD_D(insertion_s), FIELD_D(withdrawal_s),
 	FIELD_D(max_tip_s_m), FIELD_D(peak_insertion_n),
@@ -699,9 +756,40 @@ static const struct field {
 	FIELD_D(longest_loop_s), FIELD_D(largest_loop_m), FIELD_D(discomfort),
 	FIELD_D(lumen_lost_s), FIELD_D(mucosa_seen), FIELD_U(polyps_seen),
 	FIELD_U(polyps_total), FIELD_U(polyps_seen_mask),
+	FIELD_D(shaft_in_m), FIELD_D(tip_in_m), FIELD_D(chase_efficiency),
+	FIELD_D(shaft_idle_m), FIELD_D(loop_s), FIELD_D(retraction_m),
+	FIELD_D(tip_retraction_m), FIELD_D(retraction_efficiency),
+	FIELD_D(clear_view), FIELD_U(lost_views), FIELD_D(mucosa_per_min),
 };
 
 #define NFIELDS (sizeof(fields) / sizeof(fields[0]))
+
+size_t metrics_fields(const struct metrics_field **out)
+{
+	*out = fields;
+	return NFIELDS;
+}
+
+double metrics_field_value(const struct metrics_result *r,
+			   const struct metrics_field *f)
+{
+	const unsigned char *at = (const unsigned char *)r + f->offset;
+	uint64_t l;
+	uint32_t u;
+	double d;
+
+	switch (f->type) {
+	case 'u':
+		memcpy(&u, at, sizeof(u));
+		return u;
+	case 'l':
+		memcpy(&l, at, sizeof(l));
+		return (double)l;
+	default:
+		memcpy(&d, at, sizeof(d));
+		return d;
+	}
+}
 
 static int put(char *buf, size_t size, size_t *used, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
@@ -721,7 +809,7 @@ static int put(char *buf, size_t size, size_t *used, const char *fmt, ...)
 	return 0;
 }
 
-static int put_field(const struct metrics_result *r, const struct field *f,
+static int put_field(const struct metrics_result *r, const struct metrics_field *f,
 		     char *buf, size_t size, size_t *used)
 {
 	const char *at = (const char *)r + f->offset;

@@ -18,7 +18,12 @@
  *     count, longest, largest amplitude, each with start, end, peak;
  *   - the patient-discomfort index: the time integral of loop stretch and
  *     wall-contact force (see metrics.c for the formula);
- *   - time with the lumen lost from view: the tip facing a wall;
+ *   - time with the lumen lost from view: the tip facing a wall; how
+ *     often it was lost; the share of the time with it in view;
+ *   - the scope's handling (3D-CoPS, CoRS): the shaft pushed in and the
+ *     tip's advance, their ratio (chase efficiency), the shaft pushed
+ *     without the tip following, the time looped; on the way out the
+ *     shaft withdrawn, the tip's retreat, their ratio;
  *   - the share of the mucosa seen: the mesh's area that came into the
  *     camera's view (field of view, within view_distance_m) at some pose;
  *   - polyps seen (those of the case that came into view).
@@ -59,6 +64,9 @@ struct metrics_params {
 
 #define METRICS_HYSTERESIS 0.9      /* an episode ends below 0.9 x threshold */
 #define METRICS_LOOKAHEAD_M 0.03    /* the lumen ahead: this far beyond tip_s */
+#define METRICS_SHAPE_STEP_S 0.1  /* the handling's sampling: 10 Hz */
+#define METRICS_IDLE_SHARE 0.2    /* the tip advancing less than this share
+				     of the shaft's push: an idle push */
 #define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
 				       colon; a case: the rectum's start) */
 
@@ -93,6 +101,25 @@ struct metrics_result {
 	uint32_t polyps_seen;
 	uint32_t polyps_total;
 	uint32_t polyps_seen_mask; /* bit k: the case's polyp k was seen */
+	/* the scope's handling, from the tube's depth and the tip's place
+	 * along the colon sampled every METRICS_SHAPE_STEP_S (3D-CoPS and
+	 * CoRS in spirit; docs/METRICS.md): on the way in (to the cecum, or
+	 * all of it when never reached) ... */
+	double shaft_in_m;         /* the shaft pushed in, summed */
+	double tip_in_m;           /* the tip's advance along the colon */
+	double chase_efficiency;   /* tip_in_m / shaft_in_m (0: none) */
+	double shaft_idle_m;       /* pushed in while the tip advanced less
+				      than METRICS_IDLE_SHARE of it */
+	double loop_s;             /* time with a loop (its episodes) */
+	/* ... and on the way out (from the cecum) */
+	double retraction_m;       /* the shaft withdrawn, summed */
+	double tip_retraction_m;   /* the tip's retreat along the colon */
+	double retraction_efficiency; /* tip_retraction_m / retraction_m */
+	/* the view */
+	double clear_view;         /* share 0..1 of the inserted time with
+				      the lumen in view */
+	uint32_t lost_views;       /* times the lumen was lost */
+	double mucosa_per_min;     /* mucosa_seen in % a minute: efficiency */
 	uint32_t n_force;          /* episodes kept below */
 	uint32_t n_loop;
 	struct metrics_episode force[METRICS_MAX_EPISODES];
@@ -129,6 +156,22 @@ void metrics_result(const struct metrics *m, struct metrics_result *out);
  * each vertex' centreline sample) seen so far; 0 without a colon. */
 double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 				   double s1_m);
+
+/* One scalar measure of struct metrics_result: its key (as the END frame,
+ * the JSON and the summary CSV name it), where it is, its type ('d'
+ * double, 'u' uint32_t, 'l' uint64_t). */
+struct metrics_field {
+	const char *key;
+	size_t offset;
+	char type;
+};
+
+/* The table of them, in the END frame's order; returns how many. */
+size_t metrics_fields(const struct metrics_field **out);
+
+/* F's value in R. */
+double metrics_field_value(const struct metrics_result *r,
+			   const struct metrics_field *f);
 
 /*
  * RESULT as "key=value\n" lines (the END frame, `session show`); returns

@@ -551,6 +551,24 @@ static void metrics_rows_view(FILE *o, const struct metrics_result *m)
 		fprintf(o, "%u of %u", m->polyps_seen, m->polyps_total);
 		row_end(o, "came into the camera's view");
 	}
+	row_begin(o, "Lumen in view", "");
+	fprintf(o, "%.0f %% of the time in, lost %u time%s",
+		100 * m->clear_view, m->lost_views,
+		m->lost_views == 1 ? "" : "s");
+	row_end(o, "clear-view share and lost-view count");
+	row_begin(o, "Scope handling, in", m->chase_efficiency >= 0.7 ?
+		  "good" : "warn");
+	fprintf(o, "chase efficiency %.2f (tip %.2f m for %.2f m of shaft), "
+		"idle push %.2f m", m->chase_efficiency, m->tip_in_m,
+		m->shaft_in_m, m->shaft_idle_m);
+	row_end(o, "how much of the push reached the tip (docs/METRICS.md)");
+	if (m->retraction_m > 0) {
+		row_begin(o, "Scope handling, out", "");
+		fprintf(o, "retraction efficiency %.2f (tip %.2f m for %.2f m "
+			"of shaft)", m->retraction_efficiency,
+			m->tip_retraction_m, m->retraction_m);
+		row_end(o, "how much of the withdrawal moved the tip");
+	}
 	if (m->drops) {
 		row_begin(o, "Records dropped", "warn");
 		fprintf(o, "%llu", (unsigned long long)m->drops);
@@ -906,6 +924,17 @@ static void compare_table(FILE *o, const struct metrics_result *m,
 	compare_row(o, "mucosa seen (%)", "%.1f", m->mucosa_seen * 100,
 		    r->mucosa_seen * 100);
 	compare_row(o, "polyps seen", "%.0f", m->polyps_seen, r->polyps_seen);
+	compare_row(o, "lumen in view (%)", "%.0f", m->clear_view * 100,
+		    r->clear_view * 100);
+	compare_row(o, "lumen lost (times)", "%.0f", m->lost_views,
+		    r->lost_views);
+	compare_row(o, "chase efficiency, in", "%.2f", m->chase_efficiency,
+		    r->chase_efficiency);
+	compare_row(o, "idle push, in (m)", "%.2f", m->shaft_idle_m,
+		    r->shaft_idle_m);
+	compare_row(o, "looped (s)", "%.1f", m->loop_s, r->loop_s);
+	compare_row(o, "retraction efficiency, out", "%.2f",
+		    m->retraction_efficiency, r->retraction_efficiency);
 	fputs("</table>\n", o);
 }
 

@@ -19,31 +19,35 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	return k;
 }
 
+/* The measures on the wire (SessionMetrics' name, metrics_result's). */
+#define METRICS_ON_WIRE(X)                                                   \
+	X(duration_s, duration_s) X(records, records) X(drops, drops)        \
+	X(cecum_s, cecum_s) X(insertion_s, insertion_s)                      \
+	X(withdrawal_s, withdrawal_s) X(max_tip_s_m, max_tip_s_m)            \
+	X(peak_insertion_n, peak_insertion_n)                                \
+	X(mean_insertion_n, mean_insertion_n)                                \
+	X(force_episodes, force_episodes) X(force_time_s, force_episode_s)   \
+	X(loop_episodes, loop_episodes) X(longest_loop_s, longest_loop_s)    \
+	X(largest_loop_m, largest_loop_m) X(discomfort, discomfort)          \
+	X(lumen_lost_s, lumen_lost_s) X(mucosa_seen, mucosa_seen)            \
+	X(polyps_seen, polyps_seen) X(polyps_total, polyps_total)            \
+	X(shaft_in_m, shaft_in_m) X(tip_in_m, tip_in_m)                      \
+	X(chase_efficiency, chase_efficiency) X(shaft_idle_m, shaft_idle_m)  \
+	X(looped_s, loop_s) X(retraction_m, retraction_m)                      \
+	X(tip_retraction_m, tip_retraction_m)                                \
+	X(retraction_efficiency, retraction_efficiency)                      \
+	X(clear_view, clear_view) X(lost_views, lost_views)                  \
+	X(mucosa_per_min, mucosa_per_min)
+
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
 			    const struct metrics_result *r)
 {
 	Endosim__SessionMetrics *m = &out->msg;
 
 	endosim__session_metrics__init(m);
-	m->duration_s = r->duration_s;
-	m->records = r->records;
-	m->drops = r->drops;
-	m->cecum_s = r->cecum_s;
-	m->insertion_s = r->insertion_s;
-	m->withdrawal_s = r->withdrawal_s;
-	m->max_tip_s_m = r->max_tip_s_m;
-	m->peak_insertion_n = r->peak_insertion_n;
-	m->mean_insertion_n = r->mean_insertion_n;
-	m->force_episodes = r->force_episodes;
-	m->force_time_s = r->force_episode_s;
-	m->loop_episodes = r->loop_episodes;
-	m->longest_loop_s = r->longest_loop_s;
-	m->largest_loop_m = r->largest_loop_m;
-	m->discomfort = r->discomfort;
-	m->lumen_lost_s = r->lumen_lost_s;
-	m->mucosa_seen = r->mucosa_seen;
-	m->polyps_seen = r->polyps_seen;
-	m->polyps_total = r->polyps_total;
+#define TO_PB(pb, c) m->pb = r->c;
+	METRICS_ON_WIRE(TO_PB)
+#undef TO_PB
 	m->n_force = episodes_out(out->force, out->force_p, r->force,
 				  r->n_force);
 	m->force = out->force_p;
@@ -68,25 +72,9 @@ void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 			  struct metrics_result *out)
 {
 	memset(out, 0, sizeof(*out));
-	out->duration_s = in->duration_s;
-	out->records = in->records;
-	out->drops = in->drops;
-	out->cecum_s = in->cecum_s;
-	out->insertion_s = in->insertion_s;
-	out->withdrawal_s = in->withdrawal_s;
-	out->max_tip_s_m = in->max_tip_s_m;
-	out->peak_insertion_n = in->peak_insertion_n;
-	out->mean_insertion_n = in->mean_insertion_n;
-	out->force_episodes = in->force_episodes;
-	out->force_episode_s = in->force_time_s;
-	out->loop_episodes = in->loop_episodes;
-	out->longest_loop_s = in->longest_loop_s;
-	out->largest_loop_m = in->largest_loop_m;
-	out->discomfort = in->discomfort;
-	out->lumen_lost_s = in->lumen_lost_s;
-	out->mucosa_seen = in->mucosa_seen;
-	out->polyps_seen = in->polyps_seen;
-	out->polyps_total = in->polyps_total;
+#define FROM_PB(pb, c) out->c = in->pb;
+	METRICS_ON_WIRE(FROM_PB)
+#undef FROM_PB
 	out->n_force = episodes_in(out->force, in->force, in->n_force);
 	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
 }

@@ -80,6 +80,16 @@ void sessionview_print(FILE *out, const struct metrics_result *m)
 		m->discomfort, m->lumen_lost_s);
 	fprintf(out, "mucosa seen       %.1f %%\npolyps seen       %u of %u\n",
 		100 * m->mucosa_seen, m->polyps_seen, m->polyps_total);
+	fprintf(out, "lumen in view     %.1f %% of the time in, lost %u times; "
+		"mucosa %.1f %% a minute\n", 100 * m->clear_view,
+		m->lost_views, m->mucosa_per_min);
+	fprintf(out, "way in            shaft %.3f m, tip %.3f m (chase "
+		"efficiency %.2f), idle push %.3f m, looped %.2f s\n",
+		m->shaft_in_m, m->tip_in_m, m->chase_efficiency,
+		m->shaft_idle_m, m->loop_s);
+	fprintf(out, "way out           shaft %.3f m, tip %.3f m (retraction "
+		"efficiency %.2f)\n", m->retraction_m, m->tip_retraction_m,
+		m->retraction_efficiency);
 }
 
 static void json_episodes(struct json *j, const char *key,
@@ -99,29 +109,78 @@ static void json_episodes(struct json *j, const char *key,
 void sessionview_json(struct json *j, const char *key,
 		      const struct metrics_result *m)
 {
+	const struct metrics_field *f;
+	size_t n = metrics_fields(&f);
+
 	json_object_begin(j, key);
-	json_double(j, "duration_s", m->duration_s);
-	json_uint(j, "records", m->records);
-	json_uint(j, "drops", m->drops);
-	json_double(j, "cecum_s", m->cecum_s);
-	json_double(j, "insertion_s", m->insertion_s);
-	json_double(j, "withdrawal_s", m->withdrawal_s);
-	json_double(j, "max_tip_s_m", m->max_tip_s_m);
-	json_double(j, "peak_insertion_n", m->peak_insertion_n);
-	json_double(j, "mean_insertion_n", m->mean_insertion_n);
-	json_uint(j, "force_episodes", m->force_episodes);
-	json_double(j, "force_episode_s", m->force_episode_s);
+	for (size_t i = 0; i < n; i++) {
+		if (f[i].type == 'd') {
+			json_double(j, f[i].key, metrics_field_value(m, &f[i]));
+		} else {
+			json_uint(j, f[i].key,
+				  (uint64_t)metrics_field_value(m, &f[i]));
+		}
+	}
 	json_episodes(j, "force", m->force, m->n_force);
-	json_uint(j, "loop_episodes", m->loop_episodes);
-	json_double(j, "longest_loop_s", m->longest_loop_s);
-	json_double(j, "largest_loop_m", m->largest_loop_m);
 	json_episodes(j, "loops", m->loop, m->n_loop);
-	json_double(j, "discomfort", m->discomfort);
-	json_double(j, "lumen_lost_s", m->lumen_lost_s);
-	json_double(j, "mucosa_seen", m->mucosa_seen);
-	json_uint(j, "polyps_seen", m->polyps_seen);
-	json_uint(j, "polyps_total", m->polyps_total);
 	json_object_end(j);
+}
+
+/* The summary CSV's header: who, what, when, then every measure. */
+int sessionview_summary_header(FILE *out)
+{
+	const struct metrics_field *f;
+	size_t n = metrics_fields(&f);
+
+	fputs("id,trainee,case,started", out);
+	for (size_t i = 0; i < n; i++) {
+		fprintf(out, ",%s", f[i].key);
+	}
+	fputc('\n', out);
+	return ferror(out) ? -EIO : 0;
+}
+
+/* TEXT as a CSV field: quoted, its quotes doubled. */
+static void csv_text(FILE *out, const char *text)
+{
+	fputc('"', out);
+	for (; text && *text; text++) {
+		if (*text == '"') {
+			fputc('"', out);
+		}
+		fputc(*text, out);
+	}
+	fputc('"', out);
+}
+
+int sessionview_summary_row(FILE *out, const struct session_file *f,
+			    const struct metrics_result *m)
+{
+	static const char *const keys[] = { "id", "trainee", "case",
+					    "started" };
+	const struct metrics_field *fl;
+	size_t n = metrics_fields(&fl);
+	char value[256];
+
+	for (size_t k = 0; k < 4; k++) {
+		if (session_text_get(f->header ? f->header : "", keys[k], value,
+				     sizeof(value))) {
+			value[0] = '\0';
+		}
+		if (k) {
+			fputc(',', out);
+		}
+		if (k == 0) {
+			fputs(value, out);
+		} else {
+			csv_text(out, value);
+		}
+	}
+	for (size_t i = 0; i < n; i++) {
+		fprintf(out, ",%.9g", metrics_field_value(m, &fl[i]));
+	}
+	fputc('\n', out);
+	return ferror(out) ? -EIO : 0;
 }
 
 /* ------------------------------------------------------------ CSV */

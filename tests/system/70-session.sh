@@ -65,6 +65,19 @@ check "every cycle recorded: consecutive cycles in the CSV" \
 	awk -F, 'NR > 2 && $2 != prev + 1 { exit 1 } { prev = $2 }' "$TMP/s.csv"
 check "the live metrics went into the file: the tip deeper than 0.1 m" \
 	float_test "$(m max_tip_s_m) > 0.1"
+check "... and the scope's handling: pushed in, the tip following" \
+	float_test "$(m shaft_in_m) > 0.1 && $(m chase_efficiency) > 0.5"
+check_status "export 1 --summary" 0 ctl session export 1 --summary \
+	--out "$TMP/summary.csv"
+summary() { # the summary CSV's column $1
+	awk -F, -v k="$1" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i }
+		NR == 2 { print $c[k] }' "$TMP/summary.csv"
+}
+check "... one row: the session, its trainee, its measures as show has them" \
+	eval '[ "$(wc -l <"$TMP/summary.csv")" = 2 ] &&
+	      [ "$(summary id)" = 1 ] &&
+	      [ "$(summary trainee)" = "\"Test Trainee\"" ] &&
+	      float_test "$(summary shaft_in_m) == $(m shaft_in_m)"'
 
 ctl session export 1 --csv --events --out "$TMP/events.csv"
 check "events: IDLE first, then ENABLED, then IDLE after the disable" \

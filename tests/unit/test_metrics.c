@@ -445,6 +445,9 @@ static void test_lumen_lost_straight(void **state)
 	}
 	metrics_result(m, &res);
 	assert_near(res.lumen_lost_s, 1.0, 2 * REC_TOL);
+	/* lost once (2 to 3 s), in view the rest of the 3.5 s inserted */
+	assert_int_equal(res.lost_views, 1);
+	assert_near(res.clear_view, 1 - 1.0 / 3.5, 3 * REC_TOL);
 	metrics_destroy(m);
 	colon_destroy(c);
 }
@@ -701,6 +704,104 @@ static void test_format_parse(void **state)
 	assert_true(out.cecum_s < 0);
 }
 
+/* ------------------------------------------ the scope's handling */
+
+/* Records K0..K1 (exclusive) with the depth and the tip's place given by
+ * DEPTH(t) and TIP(t) (t since K0), no colon. */
+static void drive(struct metrics *m, uint64_t k0, uint64_t k1, double d0,
+		  double dv, double s0, double sv)
+{
+	for (uint64_t k = k0; k < k1; k++) {
+		struct session_record r = rec(k);
+		double t = t_of(k - k0);
+
+		r.depth_m = (float)(d0 + dv * t);
+		r.tip_s_m = (float)(s0 + sv * t);
+		metrics_record(m, &r);
+	}
+}
+
+/* A straight push: the tip advances with the shaft, 1:1. */
+static void test_handling_straight(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+
+	(void)state;
+	drive(m, 0, 10 * RATE_HZ, 0.05, 0.02, 0.05, 0.02);
+	metrics_result(m, &res);
+	assert_near(res.shaft_in_m, 0.2, 0.0021);
+	assert_near(res.tip_in_m, 0.2, 0.0021);
+	assert_near(res.chase_efficiency, 1.0, 1e-4);
+	assert_near(res.shaft_idle_m, 0, 1e-9);
+	assert_near(res.retraction_m, 0, 1e-9);
+	metrics_destroy(m);
+}
+
+/* A loop: 5 s straight (0.1 m), then 5 s the shaft goes on 0.1 m while
+ * the tip stays: half the push idle, the chase efficiency 0.5. */
+static void test_handling_loop(void **state)
+{
+	struct metrics *m = metrics_at(NULL, 20);
+	struct metrics_result res;
+
+	(void)state;
+	drive(m, 0, 5 * RATE_HZ, 0.05, 0.02, 0.05, 0.02);
+	drive(m, 5 * RATE_HZ, 10 * RATE_HZ, 0.15, 0.02, 0.15, 0);
+	metrics_result(m, &res);
+	printf("# loop: shaft %.4f m, tip %.4f m, efficiency %.3f, idle "
+	       "%.4f m\n", res.shaft_in_m, res.tip_in_m, res.chase_efficiency,
+	       res.shaft_idle_m);
+	assert_near(res.shaft_in_m, 0.2, 0.0041);
+	assert_near(res.tip_in_m, 0.1, 0.0021);
+	assert_near(res.chase_efficiency, 0.5, 0.02);
+	assert_near(res.shaft_idle_m, 0.1, 0.0021);
+	metrics_destroy(m);
+}
+
+/*
+ * A withdrawal at constant speed from beyond the cecum (the normal case):
+ * the shaft and the tip retreat together until the tip leaves the rectum
+ * (1:1), and nothing of the way in counts as withdrawn.
+ */
+static void test_handling_withdrawal(void **state)
+{
+	struct colon *c = build("config/cases", "normal");
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct metrics_result res;
+	double v = 0.05, sc = colon_cecum_s(c);
+	double sx = anatomy_segment_start(colon_anatomy(c), ANATOMY_RECTUM);
+	double deep = sc + 0.03, t_turn = deep / v;
+	uint64_t k = 0;
+
+	(void)state;
+	for (; t_of(k) <= t_turn; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, v * t_of(k), 0);
+		metrics_record(m, &r);
+	}
+	for (; v * (t_of(k) - t_turn) < deep; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, cl, deep - v * (t_of(k) - t_turn), 0);
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	printf("# withdrawal from %.3f m to the rectum's %.3f m: shaft %.4f "
+	       "m, tip %.4f m, efficiency %.3f; on the way in %.4f m\n", deep,
+	       sx, res.retraction_m, res.tip_retraction_m,
+	       res.retraction_efficiency, res.shaft_in_m);
+	assert_near(res.retraction_m, deep - sx, 2 * v * METRICS_SHAPE_STEP_S);
+	assert_near(res.tip_retraction_m, res.retraction_m, 1e-4);
+	assert_near(res.retraction_efficiency, 1.0, 1e-3);
+	assert_near(res.shaft_in_m, sc, v * METRICS_SHAPE_STEP_S + 1e-3);
+	assert_near(res.chase_efficiency, 1.0, 1e-3);
+	metrics_destroy(m);
+	colon_destroy(c);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -720,6 +821,9 @@ int main(void)
 		cmocka_unit_test(test_polyps_seen),
 		cmocka_unit_test(test_drops),
 		cmocka_unit_test(test_format_parse),
+		cmocka_unit_test(test_handling_straight),
+		cmocka_unit_test(test_handling_loop),
+		cmocka_unit_test(test_handling_withdrawal),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
