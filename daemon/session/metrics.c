@@ -28,14 +28,17 @@
  *                    presses into a wall facing it (contact, normal . dir
  *                    < -cos 45 deg)
  *   mucosa seen      each vertex carries a third of the area of its
- *                    triangles; a vertex is seen at an evaluated pose when
- *                    it lies within view_distance_m of the tip, within
- *                    fov_rad / 2 of dir, and its normal faces the tip; the
- *                    share is the seen vertices' area over the whole area
+ *                    triangles; a vertex is in view at an evaluated pose
+ *                    when it lies within view_distance_m of the tip,
+ *                    within fov_rad / 2 of dir, and its normal faces the
+ *                    tip; it is seen once in view for seen_dwell_s in all
+ *                    (each evaluation in view counts 1 / view_rate_hz);
+ *                    the share is the seen vertices' area over the whole
  *   polyps seen      a polyp's centre (its wall point lifted by its radius
  *                    along the wall's normal) within view_distance_m plus
  *                    its radius, within fov_rad / 2 of dir, on the lumen's
- *                    side of the wall, at an evaluated pose
+ *                    side of the wall, at an evaluated pose: in view; found
+ *                    once in view for polyp_dwell_s in all
  *
  * Poses are evaluated (mucosa, polyps) at most view_rate_hz times a second
  * and only while inserted. The published tip is on the bowed centreline;
@@ -74,6 +77,8 @@ struct view {
 	const struct mesh *mesh;  /* the colon's: offsets only */
 	float *area;              /* per vertex: a third of its triangles' */
 	unsigned char *seen;      /* per vertex */
+	float *dwell;             /* per vertex: in view so long, s */
+	double polyp_dwell[ANATOMY_MAX_POLYPS]; /* s in view */
 	double total_area, seen_area;
 	double reach_m;           /* samples this far from tip_s are tested */
 	int polyps;
@@ -121,6 +126,8 @@ void metrics_params_default(struct metrics_params *p)
 		.lumen_angle_rad = 70 * M_PI / 180,
 		.discomfort_bow_m = 0.03,
 		.discomfort_force_n = 5,
+		.seen_dwell_s = 0.5,
+		.polyp_dwell_s = 2.5,
 	};
 }
 
@@ -317,7 +324,8 @@ static int view_init(struct view *w, const struct colon *c)
 	w->mesh = colon_mesh(c);
 	w->area = calloc(w->mesh->vertices, sizeof(*w->area));
 	w->seen = calloc(w->mesh->vertices, 1);
-	if (!w->area || !w->seen) {
+	w->dwell = calloc(w->mesh->vertices, sizeof(*w->dwell));
+	if (!w->area || !w->seen || !w->dwell) {
 		return -ENOMEM;
 	}
 	view_areas(w);
@@ -335,6 +343,7 @@ static void view_free(struct view *w)
 	centreline_destroy(w->cl);
 	free(w->area);
 	free(w->seen);
+	free(w->dwell);
 }
 
 /* The private centreline bowed as in R. */
@@ -366,7 +375,9 @@ static bool pose_sees(const struct pose *c, const double x[3], double range)
 	return d <= range && vec3_dot(x, c->dir) >= c->cos_half * d;
 }
 
-static void view_mucosa(struct view *w, const struct pose *c, double tip_s)
+/* The vertices in view at C: DT_S more of dwell each; seen past DWELL_S. */
+static void view_mucosa(struct view *w, const struct pose *c, double tip_s,
+			double dt_s, double dwell_s)
 {
 	const struct mesh *me = w->mesh;
 	double step = centreline_step(w->cl), reach = c->range_m + w->reach_m;
@@ -386,7 +397,8 @@ static void view_mucosa(struct view *w, const struct pose *c, double tip_s)
 			vertex_place(me, w->cl, v, p, n);
 			vec3_sub(x, p, c->tip);
 			if (pose_sees(c, x, c->range_m) &&
-			    vec3_dot(n, x) < 0) {
+			    vec3_dot(n, x) < 0 &&
+			    (w->dwell[v] += (float)dt_s) >= dwell_s - 1e-6) {
 				w->seen[v] = 1;
 				w->seen_area += w->area[v];
 			}
@@ -394,7 +406,10 @@ static void view_mucosa(struct view *w, const struct pose *c, double tip_s)
 	}
 }
 
-static uint32_t view_polyps(const struct view *w, const struct pose *c)
+/* The polyps in view at C: DT_S more of dwell each; the mask of those
+ * found (in view DWELL_S in all). */
+static uint32_t view_polyps(struct view *w, const struct pose *c,
+			    double dt_s, double dwell_s)
 {
 	uint32_t mask = 0;
 
@@ -408,7 +423,8 @@ static uint32_t view_polyps(const struct view *w, const struct pose *c)
 			continue; /* behind the wall */
 		}
 		vec3_axpy(x, x, w->polyp_r[k], n);
-		if (pose_sees(c, x, c->range_m + w->polyp_r[k])) {
+		if (pose_sees(c, x, c->range_m + w->polyp_r[k]) &&
+		    (w->polyp_dwell[k] += dt_s) >= dwell_s - 1e-6) {
 			mask |= 1u << k;
 		}
 	}
@@ -439,8 +455,10 @@ static void view_evaluate(struct metrics *m, const struct session_record *r,
 	w->next_s = t + 1 / m->p.view_rate_hz;
 	view_bow(w, r);
 	view_pose(m, r, &c);
-	view_mucosa(w, &c, r->tip_s_m);
-	m->polyps_seen_mask |= view_polyps(w, &c);
+	view_mucosa(w, &c, r->tip_s_m, 1 / m->p.view_rate_hz,
+		    m->p.seen_dwell_s);
+	m->polyps_seen_mask |= view_polyps(w, &c, 1 / m->p.view_rate_hz,
+					   m->p.polyp_dwell_s);
 }
 
 /* --------------------------------------------------------------- lumen */

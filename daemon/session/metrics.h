@@ -24,9 +24,9 @@
  *     tip's advance, their ratio (chase efficiency), the shaft pushed
  *     without the tip following, the time looped; on the way out the
  *     shaft withdrawn, the tip's retreat, their ratio;
- *   - the share of the mucosa seen: the mesh's area that came into the
- *     camera's view (field of view, within view_distance_m) at some pose;
- *   - polyps seen (those of the case that came into view).
+ *   - the share of the mucosa seen: the mesh's area in the camera's view
+ *     (field of view, within view_distance_m) for seen_dwell_s in all;
+ *   - polyps found: those of the case in view for polyp_dwell_s in all.
  *
  * Threads: one struct metrics belongs to one thread. metrics_create()
  * allocates (the colon's per-vertex bookkeeping); metrics_record() does
@@ -60,6 +60,10 @@ struct metrics_params {
 	 * wall-contact force of discomfort_force_n, held for 1 s adds 1 */
 	double discomfort_bow_m;
 	double discomfort_force_n;
+	/* in view so long in all before a wall point counts as seen, a
+	 * polyp as found (the virtual-withdrawal study, BMC Med Educ 2017) */
+	double seen_dwell_s;
+	double polyp_dwell_s;
 };
 
 #define METRICS_HYSTERESIS 0.9      /* an episode ends below 0.9 x threshold */
@@ -71,7 +75,7 @@ struct metrics_params {
 				       colon; a case: the rectum's start) */
 
 /* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 20 Hz, 0.2 s, 70 deg, 0.03 m,
- * 5 N. */
+ * 5 N, 0.5 s, 2.5 s. */
 void metrics_params_default(struct metrics_params *p);
 
 struct metrics_episode {

@@ -105,6 +105,8 @@ static void place(struct session_record *r, const struct centreline *cl,
 	r->depth_m = (float)s;
 }
 
+/* The metrics evaluating the view RATE_HZ times a second, with no dwell:
+ * the view's geometry alone (the dwell: test_dwell_*, metrics_dwell). */
 static struct metrics *metrics_at(const struct colon *c, double rate_hz)
 {
 	struct metrics_params p;
@@ -112,6 +114,7 @@ static struct metrics *metrics_at(const struct colon *c, double rate_hz)
 
 	metrics_params_default(&p);
 	p.view_rate_hz = rate_hz;
+	p.seen_dwell_s = p.polyp_dwell_s = 0;
 	m = metrics_create(c, &p);
 	assert_non_null(m);
 	return m;
@@ -619,6 +622,91 @@ static void test_polyps_seen(void **state)
 	colon_destroy(c);
 }
 
+/* ------------------------------------------------------------- dwell */
+
+/* The default metrics (dwell included) with polyp I of the polyps case
+ * looked at from 3 cm for HOLD_S, then the camera turned away (1 s). */
+static struct metrics_result looked_at(struct colon *c, int i, double hold_s)
+{
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics_params p;
+	struct metrics *m;
+	struct metrics_result res;
+	double s = colon_anatomy(c)->polyp[i].s_m, at[3], d[3];
+	struct session_record r = rec(0);
+	uint64_t k = 0;
+
+	metrics_params_default(&p);
+	m = metrics_create(c, &p);
+	place(&r, cl, s - 0.03, 0);
+	polyp_at(c, i, at);
+	vec3_sub(d, at, (double[3]){ r.tip[0], r.tip[1], r.tip[2] });
+	vec3_normalize(d);
+	for (int j = 0; j < 3; j++) {
+		r.dir[j] = (float)d[j];
+	}
+	for (; t_of(k) < hold_s; k++) {
+		r.stamp_ns = rec(k).stamp_ns;
+		metrics_record(m, &r);
+	}
+	place(&r, cl, s - 0.03, M_PI); /* looking back the way it came */
+	for (uint64_t j = 0; j < RATE_HZ; j++, k++) {
+		r.stamp_ns = rec(k).stamp_ns;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	metrics_destroy(m);
+	return res;
+}
+
+/* A polyp in view for 2.4 s is not found, for 2.6 s it is. */
+static void test_dwell_polyp(void **state)
+{
+	struct colon *c = build("config/cases", "polyps");
+	struct metrics_result a = looked_at(c, 0, 2.4), b = looked_at(c, 0, 2.6);
+
+	(void)state;
+	assert_int_equal(a.polyps_seen, 0);
+	assert_int_equal(b.polyps_seen, 1);
+	assert_int_equal(b.polyps_seen_mask, 1);
+	colon_destroy(c);
+}
+
+/* The default metrics' mucosa seen with the camera down a straight colon's
+ * lumen at 0.35 m for HOLD_S. */
+static double held_for(struct colon *c, double hold_s)
+{
+	struct metrics_params p;
+	struct metrics *m;
+	struct metrics_result res;
+
+	metrics_params_default(&p);
+	m = metrics_create(c, &p);
+	for (uint64_t k = 0; t_of(k) < hold_s; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, colon_centreline(c), 0.35, 0);
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	metrics_destroy(m);
+	return res.mucosa_seen;
+}
+
+/* Mucosa in view for 0.4 s is not seen; for 0.6 s it is. */
+static void test_dwell_mucosa(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	double a = held_for(c, 0.4), b = held_for(c, 0.6);
+
+	(void)state;
+	printf("# mucosa seen: %.4f after 0.4 s in view, %.4f after 0.6 s\n",
+	       a, b);
+	assert_true(a == 0);
+	assert_true(b > 0.01);
+	colon_destroy(c);
+}
+
 /* ------------------------------------------------------- drops, text */
 
 static void test_drops(void **state)
@@ -821,6 +909,8 @@ int main(void)
 		cmocka_unit_test(test_polyps_seen),
 		cmocka_unit_test(test_drops),
 		cmocka_unit_test(test_format_parse),
+		cmocka_unit_test(test_dwell_polyp),
+		cmocka_unit_test(test_dwell_mucosa),
 		cmocka_unit_test(test_handling_straight),
 		cmocka_unit_test(test_handling_loop),
 		cmocka_unit_test(test_handling_withdrawal),
