@@ -733,6 +733,14 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	}
 	out->mucosa_per_min = now > 0 ? out->mucosa_seen * 100 / (now / 60)
 				      : 0;
+	for (int i = 0; m->colon && colon_anatomy(m->colon) &&
+			i < ANATOMY_SEGMENTS; i++) {
+		const struct anatomy *a = colon_anatomy(m->colon);
+		double s0 = anatomy_segment_start(a, i);
+
+		out->mucosa_segment[i] = metrics_mucosa_seen_between(
+			m, s0, s0 + a->seg[i].length_m);
+	}
 	out->polyps_seen_mask = m->polyps_seen_mask;
 	out->polyps_seen = popcount32(m->polyps_seen_mask);
 	out->polyps_total = (uint32_t)m->view.polyps;
@@ -778,7 +786,18 @@ static const struct metrics_field fields[] = {
 	FIELD_D(shaft_idle_m), FIELD_D(loop_s), FIELD_D(retraction_m),
 	FIELD_D(tip_retraction_m), FIELD_D(retraction_efficiency),
 	FIELD_D(clear_view), FIELD_U(lost_views), FIELD_D(mucosa_per_min),
+#define FIELD_SEGMENT(i, name)                                               \
+	{ "mucosa_seen_" name,                                               \
+	  offsetof(struct metrics_result, mucosa_segment) +                  \
+		  (i) * sizeof(double), 'd' }
+	FIELD_SEGMENT(0, "anal_canal"), FIELD_SEGMENT(1, "rectum"),
+	FIELD_SEGMENT(2, "sigmoid"), FIELD_SEGMENT(3, "descending"),
+	FIELD_SEGMENT(4, "splenic_flexure"), FIELD_SEGMENT(5, "transverse"),
+	FIELD_SEGMENT(6, "hepatic_flexure"), FIELD_SEGMENT(7, "ascending"),
+	FIELD_SEGMENT(8, "cecum"),
+#undef FIELD_SEGMENT
 };
+_Static_assert(ANATOMY_SEGMENTS == 9, "metrics: a mucosa field a segment");
 
 #define NFIELDS (sizeof(fields) / sizeof(fields[0]))
 

@@ -124,6 +124,9 @@ struct metrics_result {
 				      the lumen in view */
 	uint32_t lost_views;       /* times the lumen was lost */
 	double mucosa_per_min;     /* mucosa_seen in % a minute: efficiency */
+	double mucosa_segment[ANATOMY_SEGMENTS]; /* seen, each segment's
+					   share (anal canal .. cecum); 0
+					   without a case */
 	uint32_t n_force;          /* episodes kept below */
 	uint32_t n_loop;
 	struct metrics_episode force[METRICS_MAX_EPISODES];

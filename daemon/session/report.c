@@ -544,12 +544,18 @@ static void metrics_rows_view(FILE *o, const struct metrics_result *m)
 	row_end(o, "the tip facing the wall");
 	row_begin(o, "Mucosa seen", "");
 	fprintf(o, "%.0f %%", 100 * m->mucosa_seen);
-	row_end(o, "share of the wall in view within 6 cm");
+	row_end(o, "share of the wall in view within 6 cm for 0.5 s");
+	row_begin(o, "... by segment", "");
+	for (int i = 1; i < ANATOMY_SEGMENTS; i++) { /* rectum .. cecum */
+		fprintf(o, "%s%s %.0f %%", i > 1 ? ", " : "",
+			anatomy_segment_name(i), 100 * m->mucosa_segment[i]);
+	}
+	row_end(o, "where the trainee looked, and where not");
 	if (m->polyps_total) {
 		row_begin(o, "Polyps seen", m->polyps_seen == m->polyps_total ?
 			  "good" : "bad");
 		fprintf(o, "%u of %u", m->polyps_seen, m->polyps_total);
-		row_end(o, "came into the camera's view");
+		row_end(o, "in the camera's view for 2.5 s");
 	}
 	row_begin(o, "Lumen in view", "");
 	fprintf(o, "%.0f %% of the time in, lost %u time%s",

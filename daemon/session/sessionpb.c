@@ -53,6 +53,9 @@ void sessionpb_from_metrics(struct sessionpb_metrics *out,
 	m->force = out->force_p;
 	m->n_loops = episodes_out(out->loop, out->loop_p, r->loop, r->n_loop);
 	m->loops = out->loop_p;
+	memcpy(out->segment, r->mucosa_segment, sizeof(out->segment));
+	m->n_mucosa_segment = ANATOMY_SEGMENTS;
+	m->mucosa_segment = out->segment;
 }
 
 static uint32_t episodes_in(struct metrics_episode *out,
@@ -77,6 +80,10 @@ void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 #undef FROM_PB
 	out->n_force = episodes_in(out->force, in->force, in->n_force);
 	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
+	for (size_t i = 0; i < in->n_mucosa_segment && i < ANATOMY_SEGMENTS;
+	     i++) {
+		out->mucosa_segment[i] = in->mucosa_segment[i];
+	}
 }
 
 void sessionpb_from_entry(Endosim__SessionInfo *out,

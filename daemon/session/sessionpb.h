@@ -23,6 +23,7 @@ struct sessionpb_metrics {
 	Endosim__MetricsEpisode loop[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *force_p[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *loop_p[METRICS_MAX_EPISODES];
+	double segment[ANATOMY_SEGMENTS];
 };
 
 /* OUT->msg becomes R on the wire; it points into OUT. */

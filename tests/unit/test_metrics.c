@@ -485,6 +485,13 @@ static void test_mucosa_forward_sweep(void **state)
 	assert_true(res.mucosa_seen > 0.99);
 	assert_true(res.mucosa_seen <= 1.0 + 1e-9);
 	assert_near(metrics_mucosa_seen_between(m, 0.1, len), 1.0, 1e-3);
+	/* each segment beyond the anal canal: all of it; the canal's first
+	   0.36 R is behind the first pose's cone */
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		printf("# %s %.4f\n", anatomy_segment_name(i),
+		       res.mucosa_segment[i]);
+		assert_true(res.mucosa_segment[i] > (i ? 0.999 : 0.5));
+	}
 	metrics_destroy(m);
 	colon_destroy(c);
 }
