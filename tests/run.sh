@@ -62,7 +62,8 @@ record() {
 		"$([ "$s" -eq 0 ] || echo ", $s skipped")" "$secs"
 	sed -n "s|^skip - |$suite: |p" "$out" >>"$work/skips"
 	if [ "$f" -ne 0 ]; then
-		grep -vE '^\[ +(OK|RUN) +\]' "$out" | tail -n 40 | sed 's/^/    /'
+		grep -vE '^\[ +(OK|RUN) +\]|^ok - ' "$out" | tail -n 60 |
+			sed 's/^/    /'
 		printf '%s:\n%s\n' "$suite" "$(grep -E -A1 \
 			'^not ok|^\[  FAILED  \]|ERROR: AddressSanitizer|runtime error' \
 			"$out" | grep -v '^--$' | head -n 12 | sed 's/^/  /')" \
