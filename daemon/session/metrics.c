@@ -767,6 +767,49 @@ double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 	return all > 0 ? seen / all : 0;
 }
 
+void metrics_map(const struct metrics *m, struct metrics_map *out)
+{
+	float area[METRICS_MAP_S][METRICS_MAP_A];
+	const struct mesh *me = m->view.mesh;
+	double step;
+
+	for (int i = 0; i < METRICS_MAP_S; i++) {
+		for (int k = 0; k < METRICS_MAP_A; k++) {
+			out->seen[i][k] = 0;
+			area[i][k] = 0;
+		}
+	}
+	out->length_m = 0;
+	if (!m->view.cl) {
+		for (int i = 0; i < METRICS_MAP_S; i++) {
+			for (int k = 0; k < METRICS_MAP_A; k++) {
+				out->seen[i][k] = -1;
+			}
+		}
+		return;
+	}
+	step = centreline_step(m->view.cl);
+	out->length_m = (double)(me->samples - 1) * step;
+	for (uint32_t v = 0; v < me->vertices; v++) {
+		double s = me->sample[v] * step;
+		double a = atan2(me->off[v][2], me->off[v][1]);
+		long i = lround(floor(s / out->length_m * METRICS_MAP_S));
+		long k = lround(floor((a < 0 ? a + 2 * M_PI : a) /
+				      (2 * M_PI) * METRICS_MAP_A));
+
+		i = i < 0 ? 0 : i >= METRICS_MAP_S ? METRICS_MAP_S - 1 : i;
+		k = k < 0 ? 0 : k >= METRICS_MAP_A ? METRICS_MAP_A - 1 : k;
+		area[i][k] += m->view.area[v];
+		out->seen[i][k] += m->view.seen[v] ? m->view.area[v] : 0;
+	}
+	for (int i = 0; i < METRICS_MAP_S; i++) {
+		for (int k = 0; k < METRICS_MAP_A; k++) {
+			out->seen[i][k] = area[i][k] > 0 ?
+					  out->seen[i][k] / area[i][k] : -1;
+		}
+	}
+}
+
 /* ------------------------------------------------------- format, parse */
 
 #define FIELD_D(name) { #name, offsetof(struct metrics_result, name), 'd' }

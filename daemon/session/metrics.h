@@ -180,6 +180,25 @@ size_t metrics_fields(const struct metrics_field **out);
 double metrics_field_value(const struct metrics_result *r,
 			   const struct metrics_field *f);
 
+/* The colon unrolled: METRICS_MAP_S cells along it, METRICS_MAP_A around. */
+#define METRICS_MAP_S 160
+#define METRICS_MAP_A 24
+
+struct metrics_map {
+	double length_m;          /* the colon's, along its centreline */
+	/* each cell's share 0..1 of its wall's area seen; < 0: no wall there
+	 * (a cell of the pole, past the end) */
+	float seen[METRICS_MAP_S][METRICS_MAP_A];
+};
+
+/*
+ * The unseen-mucosa map so far: each vertex (by its place along the
+ * colon and its angle around the centreline from the frame's u, as the
+ * case's polyps are placed) into its cell, the seen area over the area.
+ * Without a colon every cell < 0.
+ */
+void metrics_map(const struct metrics *m, struct metrics_map *out);
+
 /*
  * RESULT as "key=value\n" lines (the END frame, `session show`); returns
  * the length written, or -ENOSPC when SIZE is too small.

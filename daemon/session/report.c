@@ -715,9 +715,12 @@ static void page_header(FILE *o, const struct session_file *f,
 		" (recording cut short)");
 }
 
+static void page_map(FILE *o, const struct metrics_map *map,
+		     const struct anatomy *a, uint32_t found);
+
 static void page_metrics(FILE *o, const struct session_file *f,
 			 const struct metrics_result *m,
-			 const struct anatomy *a)
+			 const struct anatomy *a, const struct metrics_map *map)
 {
 	struct plot p = { .out = o };
 
@@ -734,6 +737,9 @@ static void page_metrics(FILE *o, const struct session_file *f,
 		plot_torques(&p, f, m);
 		plot_tip(&p, f, m, a);
 		plot_bows(&p, f, m, a);
+		if (map && map->length_m > 0) {
+			page_map(o, map, a, m->polyps_seen_mask);
+		}
 	} else {
 		fputs("<p class=\"none\">no records</p>\n", o);
 	}
@@ -976,24 +982,30 @@ static struct colon *session_colon(const struct session_file *f, char *err,
 	return sessioninputs_colon(f, &cfg, err, errsize);
 }
 
-int report_metrics(const struct session_file *f,
-		   const struct metrics_params *p, struct metrics_result *out,
-		   char *err, size_t errsize)
+/*
+ * F's records, with its events in time order, through new metrics with P
+ * on F's colon (*C, the caller's to destroy after the metrics; NULL
+ * without a case, ERR saying why). NULL on ENOMEM, with ERR.
+ */
+static struct metrics *metrics_of(const struct session_file *f,
+				  const struct metrics_params *p,
+				  struct colon **c, char *err, size_t errsize)
 {
-	struct colon *c = f->header ? session_colon(f, err, errsize) : NULL;
 	struct metrics *m;
 	size_t e = 0;
 
-	if (errsize && f->header && !c) {
+	*c = f->header ? session_colon(f, err, errsize) : NULL;
+	if (errsize && f->header && !*c) {
 		/* the line says why; the metrics go on without the colon */
 	} else if (errsize) {
 		err[0] = '\0';
 	}
-	m = metrics_create(c, p);
+	m = metrics_create(*c, p);
 	if (!m) {
-		colon_destroy(c);
+		colon_destroy(*c);
+		*c = NULL;
 		snprintf(err, errsize, "metrics: out of memory");
-		return -ENOMEM;
+		return NULL;
 	}
 	for (size_t i = 0; i < f->n_records; i++) {
 		for (; e < f->n_events &&
@@ -1005,36 +1017,135 @@ int report_metrics(const struct session_file *f,
 	for (; e < f->n_events; e++) {
 		metrics_event(m, &f->events[e].ev, f->events[e].text);
 	}
+	return m;
+}
+
+int report_metrics(const struct session_file *f,
+		   const struct metrics_params *p, struct metrics_result *out,
+		   char *err, size_t errsize)
+{
+	struct colon *c;
+	struct metrics *m = metrics_of(f, p, &c, err, errsize);
+
+	if (!m) {
+		return -ENOMEM;
+	}
 	metrics_result(m, out);
 	metrics_destroy(m);
 	colon_destroy(c);
 	return 0;
 }
 
+int report_map(const struct session_file *f, struct metrics_map *out)
+{
+	struct metrics_params p;
+	struct config cfg;
+	struct colon *c;
+	struct metrics *m;
+	char err[256];
+
+	sessioninputs_config(f, &cfg, err, sizeof(err));
+	sessioninputs_metrics_params(&cfg, &p);
+	m = metrics_of(f, &p, &c, err, sizeof(err));
+	if (!m) {
+		return -ENOMEM;
+	}
+	metrics_map(m, out);
+	metrics_destroy(m);
+	colon_destroy(c);
+	return 0;
+}
+
+/* The unseen-mucosa map: the colon unrolled, each cell's share seen from
+ * red (none) to pale green (all), the segments' ends, the polyps (found:
+ * filled, missed: a ring). */
+static void page_map(FILE *o, const struct metrics_map *map,
+		     const struct anatomy *a, uint32_t found)
+{
+	const double x0 = PLOT_X, y0 = PLOT_Y, w = PLOT_W, h = PLOT_H;
+	const double cw = w / METRICS_MAP_S, ch = h / METRICS_MAP_A;
+
+	fprintf(o, "<figure id=\"mucosa-map\"><figcaption>The mucosa "
+		"unrolled: seen (green) and unseen (red), polyps found "
+		"(filled) and missed (rings)</figcaption>\n<svg class=\"plot\" "
+		"xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %d %d\" "
+		"width=\"%d\" height=\"%d\" role=\"img\">\n", SVG_W, SVG_H,
+		SVG_W, SVG_H);
+	for (int i = 0; i < METRICS_MAP_S; i++) {
+		for (int k = 0; k < METRICS_MAP_A; k++) {
+			double v = map->seen[i][k];
+
+			if (v < 0) {
+				continue;
+			}
+			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
+				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
+				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
+				(int)lround(214 - 60 * v), (int)lround(60 + 170 * v),
+				(int)lround(60 + 120 * v));
+		}
+	}
+	for (int i = 0; a && i < ANATOMY_SEGMENTS && map->length_m > 0; i++) {
+		double x = x0 + anatomy_segment_start(a, i) / map->length_m * w;
+
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
+			"x=\"%.1f\" y=\"%.1f\">%s</text>\n", x, y0, x, y0 + h,
+			x + 2, y0 + h + 14 + 10 * (i % 2),
+			anatomy_segment_name(i));
+	}
+	for (int p = 0; a && p < a->polyps && map->length_m > 0; p++) {
+		double an = fmod(a->polyp[p].angle_rad, 2 * M_PI);
+
+		an = an < 0 ? an + 2 * M_PI : an;
+		fprintf(o, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" "
+			"stroke=\"#1a1a1a\" stroke-width=\"2\" fill=\"%s\">"
+			"<title>polyp %d: %s</title></circle>\n",
+			x0 + a->polyp[p].s_m / map->length_m * w,
+			y0 + an / (2 * M_PI) * h,
+			found >> p & 1 ? "#1a1a1a" : "none", p + 1,
+			found >> p & 1 ? "found" : "missed");
+	}
+	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
+		"rotate(-90)\" text-anchor=\"middle\">around (0-360 deg)"
+		"</text>\n", y0 + h / 2);
+	plot_end(&(struct plot){ .out = o });
+}
+
 int report_write(const struct session_file *f, const struct metrics_result *m,
 		 const struct report_reference *ref, const char *dir)
 {
 	char path[4096], tmp[4200], err[256];
+	struct metrics_map *map = malloc(sizeof(*map));
 	struct anatomy a;
 	bool have_a;
 	FILE *o;
 	int r = 0;
 
+	if (!map || report_map(f, map)) {
+		free(map);
+		map = NULL; /* the report without its map */
+	}
+
 	if (mkdir(dir, 0755) && errno != EEXIST) {
-		return -errno;
+		r = -errno;
+		free(map);
+		return r;
 	}
 	snprintf(path, sizeof(path), "%s/index.html", dir);
 	snprintf(tmp, sizeof(tmp), "%s.tmp", path);
 	o = fopen(tmp, "w");
 	if (!o) {
-		return -errno;
+		r = -errno;
+		free(map);
+		return r;
 	}
 	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
 	page_header(o, f, m);
 	if (ref) {
 		page_compare(o, f, m, ref, have_a ? &a : NULL);
 	}
-	page_metrics(o, f, m, have_a ? &a : NULL);
+	page_metrics(o, f, m, have_a ? &a : NULL, map);
 	if (ferror(o)) {
 		r = -EIO;
 	}
@@ -1047,5 +1158,6 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	if (r) {
 		unlink(tmp);
 	}
+	free(map);
 	return r;
 }

@@ -11,6 +11,8 @@
  *   - the roll and wheel torques (N m);
  *   - the tip's position along the colon (m) over the segments' bands;
  *   - each mobile segment's bow (m) with the loop threshold;
+ *   - the unseen-mucosa map: the colon unrolled (along, around), each
+ *     cell's share seen, the segments, the polyps found and missed;
  * force episodes and loop episodes as shaded bands on every plot, faults
  * and state changes as vertical marks, and the lists of episodes and
  * events. Long sessions are decimated to the minimum and maximum of each
@@ -57,6 +59,13 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 int report_metrics(const struct session_file *f,
 		   const struct metrics_params *p, struct metrics_result *out,
 		   char *err, size_t errsize);
+
+/*
+ * F's unseen-mucosa map (metrics.h), its records through the metrics on
+ * its colon with its configuration's parameters. 0 or -ENOMEM. The report
+ * draws it under the plots.
+ */
+int report_map(const struct session_file *f, struct metrics_map *out);
 
 /* Writes TEXT to OUT with & < > " ' escaped. */
 void report_escape(FILE *out, const char *text);

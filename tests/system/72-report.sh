@@ -5,7 +5,8 @@
 # withdrawal of ~6.5 min), its report (tests/tools/session_report, the
 # code of `endoctl session report`), rendered in headless Chromium: the
 # screenshot is not blank (dark text, the red threshold lines), the
-# rendered DOM holds the four plots with their episode bands, the
+# rendered DOM holds the four plots with their episode bands and the
+# unseen-mucosa map (its five polyps found), the
 # trainee's name escaped, no script. The screenshot stays in
 # $REPORT_SHOT (default $TMP/report.png) to be looked at.
 . "$(dirname "$0")/../common.sh"
@@ -49,8 +50,11 @@ if [ -s "$SHOT" ]; then
 fi
 
 chrome --dump-dom "file://$TMP/report/index.html" >"$TMP/dom.html"
-check "the rendered DOM has the four plots" \
-	test "$(grep -o '<svg class="plot"' "$TMP/dom.html" | wc -l)" -eq 4
+check "the rendered DOM has the four plots and the mucosa map" \
+	test "$(grep -o '<svg class="plot"' "$TMP/dom.html" | wc -l)" -eq 5
+check "... the map marks the case's five polyps, found" \
+	test "$(grep -o '<title>polyp [0-9]: found</title>' "$TMP/dom.html" |
+		wc -l)" -eq 5
 for id in plot-force plot-torque plot-tip plot-bow; do
 	check "the DOM has $id with a drawn series" \
 		sh -c 'sed -n "/<figure id=\"$1\">/,/<\/figure>/p" "$2" |

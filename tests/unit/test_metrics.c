@@ -485,6 +485,20 @@ static void test_mucosa_forward_sweep(void **state)
 	assert_true(res.mucosa_seen > 0.99);
 	assert_true(res.mucosa_seen <= 1.0 + 1e-9);
 	assert_near(metrics_mucosa_seen_between(m, 0.1, len), 1.0, 1e-3);
+	/* the map: every cell beyond 0.1 m seen in full */
+	{
+		static struct metrics_map map;
+
+		metrics_map(m, &map);
+		assert_near(map.length_m, len, 0.01);
+		for (int i = 0; i < METRICS_MAP_S; i++) {
+			for (int a = 0; a < METRICS_MAP_A; a++) {
+				if ((i + 0.0) / METRICS_MAP_S * len > 0.1) {
+					assert_true(map.seen[i][a] > 0.99);
+				}
+			}
+		}
+	}
 	/* each segment beyond the anal canal: all of it; the canal's first
 	   0.36 R is behind the first pose's cone */
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
@@ -698,6 +712,44 @@ static double held_for(struct colon *c, double hold_s)
 	metrics_result(m, &res);
 	metrics_destroy(m);
 	return res.mucosa_seen;
+}
+
+/* The map of a camera held down the lumen at 0.35 m: seen only ahead of
+ * it within the view's 6 cm, all around. */
+static void test_map_held(void **state)
+{
+	struct colon *c = build("tests/cases", "straight");
+	static struct metrics_map map;
+	struct metrics_params p;
+	struct metrics *m;
+	int ahead = 0;
+
+	(void)state;
+	metrics_params_default(&p);
+	m = metrics_create(c, &p);
+	for (uint64_t k = 0; t_of(k) < 1; k++) {
+		struct session_record r = rec(k);
+
+		place(&r, colon_centreline(c), 0.35, 0);
+		metrics_record(m, &r);
+	}
+	metrics_map(m, &map);
+	for (int i = 0; i < METRICS_MAP_S; i++) {
+		double s0 = (double)i / METRICS_MAP_S * map.length_m;
+		double s1 = (double)(i + 1) / METRICS_MAP_S * map.length_m;
+
+		for (int a = 0; a < METRICS_MAP_A; a++) {
+			if (s1 < 0.35 || s0 > 0.35 + 0.06) {
+				assert_true(map.seen[i][a] == 0);
+			} else if (s0 > 0.37 && s1 < 0.40) {
+				assert_true(map.seen[i][a] > 0.5);
+				ahead++;
+			}
+		}
+	}
+	assert_true(ahead >= 2 * METRICS_MAP_A);
+	metrics_destroy(m);
+	colon_destroy(c);
 }
 
 /* Mucosa in view for 0.4 s is not seen; for 0.6 s it is. */
@@ -918,6 +970,7 @@ int main(void)
 		cmocka_unit_test(test_format_parse),
 		cmocka_unit_test(test_dwell_polyp),
 		cmocka_unit_test(test_dwell_mucosa),
+		cmocka_unit_test(test_map_held),
 		cmocka_unit_test(test_handling_straight),
 		cmocka_unit_test(test_handling_loop),
 		cmocka_unit_test(test_handling_withdrawal),

@@ -144,7 +144,8 @@ static void test_report_page(void **state)
 	assert_int_equal(report_write(&f, &m, NULL, dir), 0); /* creates DIR */
 	snprintf(path, sizeof(path), "%s/index.html", dir);
 	html = slurp(path);
-	assert_int_equal(count(html, "<svg class=\"plot\""), 4);
+	assert_int_equal(count(html, "<svg class=\"plot\""), 5);
+	assert_non_null(strstr(html, "id=\"mucosa-map\""));
 	assert_non_null(strstr(html, "id=\"plot-force\""));
 	assert_non_null(strstr(html, "id=\"plot-torque\""));
 	assert_non_null(strstr(html, "id=\"plot-tip\""));
