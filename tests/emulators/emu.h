@@ -80,7 +80,9 @@ struct emu_lines {
 void emu_control_poll(int fd, struct emu_lines *lb,
 		      void (*fn)(void *ctx, char *line), void *ctx);
 
-/* Replaces PATH with TEXT atomically. */
+/* Replaces PATH with TEXT atomically, soon: a thread of its own writes
+ * the newest TEXT handed over, so that the caller never waits on the
+ * disk. */
 void emu_state_write(const char *path, const char *text);
 
 /* Appends a trace line: time, TAG, the bytes in hex, NOTE. */
