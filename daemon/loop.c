@@ -801,26 +801,36 @@ void loop_set_config(struct loop *l, const struct config *cfg)
 	seqlock_write_end(&l->cfg_lock);
 }
 
+/* The loop's answer (seq << 32 | result) in DONE to SEQ, waited for up
+ * to TIMEOUT_MS; -ETIMEDOUT without one. */
+static int await_answer(const _Atomic uint64_t *done, uint32_t seq,
+			int timeout_ms)
+{
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	for (;;) {
+		uint64_t d = atomic_load_explicit(done, memory_order_acquire);
+
+		if ((uint32_t)(d >> 32) == seq) {
+			return (int32_t)(uint32_t)d;
+		}
+		if (mono_ns() > deadline) {
+			return -ETIMEDOUT;
+		}
+		nanosleep(&nap, NULL);
+	}
+}
+
 int loop_debug(struct loop *l, int action, int axis, double value,
 	       int timeout_ms)
 {
 	uint32_t seq = ++l->debug_seq;
-	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
-	struct timespec nap = { .tv_nsec = 100000 };
 
 	seqlock_write_begin(&l->debug_lock);
 	l->debug_box = (struct loop_debug){ seq, action, axis, value };
 	seqlock_write_end(&l->debug_lock);
-	while (mono_ns() < deadline) {
-		uint64_t done = atomic_load_explicit(&l->debug_done,
-						     memory_order_acquire);
-
-		if ((uint32_t)(done >> 32) == seq) {
-			return (int32_t)(uint32_t)done;
-		}
-		nanosleep(&nap, NULL);
-	}
-	return -ETIMEDOUT;
+	return await_answer(&l->debug_done, seq, timeout_ms);
 }
 
 /* Leaves C in the guidance's box; returns its sequence number. */
@@ -837,23 +847,7 @@ static uint32_t post_guide(struct loop *l, const struct guide_command *c)
 
 int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms)
 {
-	uint32_t seq = post_guide(l, c);
-	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
-	struct timespec nap = { .tv_nsec = 100000 };
-
-	for (;;) {
-		uint64_t done = atomic_load_explicit(&l->guide_done,
-						     memory_order_acquire);
-
-		if ((uint32_t)(done >> 32) == seq) {
-			return (int32_t)(uint32_t)done;
-		}
-		if (mono_ns() > deadline) {
-			break;
-		}
-		nanosleep(&nap, NULL);
-	}
-	return -ETIMEDOUT;
+	return await_answer(&l->guide_done, post_guide(l, c), timeout_ms);
 }
 
 void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)

@@ -1039,13 +1039,11 @@ int report_metrics(const struct session_file *f,
 int report_map(const struct session_file *f, struct metrics_map *out)
 {
 	struct metrics_params p;
-	struct config cfg;
 	struct colon *c;
 	struct metrics *m;
 	char err[256];
 
-	sessioninputs_config(f, &cfg, err, sizeof(err));
-	sessioninputs_metrics_params(&cfg, &p);
+	sessioninputs_file_metrics_params(f, &p);
 	m = metrics_of(f, &p, &c, err, sizeof(err));
 	if (!m) {
 		return -ENOMEM;

@@ -50,6 +50,16 @@ void sessioninputs_metrics_params(const struct config *cfg,
 	p->view_rate_hz = cfg->session.view_rate_hz;
 }
 
+void sessioninputs_file_metrics_params(const struct session_file *f,
+				       struct metrics_params *p)
+{
+	struct config cfg;
+	char err[256];
+
+	sessioninputs_config(f, &cfg, err, sizeof(err));
+	sessioninputs_metrics_params(&cfg, p);
+}
+
 int sessioninputs_colon_params(const struct session_file *f,
 			       const struct config *cfg,
 			       struct colon_params *p, char *err,

@@ -37,6 +37,11 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 void sessioninputs_metrics_params(const struct config *cfg,
 				  struct metrics_params *p);
 
+/* The metrics' parameters the session F was recorded with (its CONFIG
+ * frame's, the defaults where it has none). */
+void sessioninputs_file_metrics_params(const struct session_file *f,
+				       struct metrics_params *p);
+
 /*
  * The colon's parameters: CFG's ([case] resolution, the tip's radius),
  * the resolution in F's header over them. 0, or -EINVAL when the header's

@@ -15,17 +15,6 @@
 
 /* ------------------------------------------------------------ metrics */
 
-/* The metrics' parameters the session was recorded with. */
-static void file_params(const struct session_file *f,
-			struct metrics_params *p)
-{
-	struct config cfg;
-	char err[256];
-
-	sessioninputs_config(f, &cfg, err, sizeof(err));
-	sessioninputs_metrics_params(&cfg, p);
-}
-
 int sessionview_metrics(const struct session_file *f,
 			struct metrics_result *out, bool *recomputed)
 {
@@ -36,7 +25,7 @@ int sessionview_metrics(const struct session_file *f,
 	if (f->end && !metrics_parse(f->end, out)) {
 		return 0;
 	}
-	file_params(f, &p);
+	sessioninputs_file_metrics_params(f, &p);
 	*recomputed = true;
 	return report_metrics(f, &p, out, err, sizeof(err));
 }
