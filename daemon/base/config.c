@@ -499,7 +499,7 @@ static const struct config_key keys[] = {
 	   1, "m", 0, "metrics: mucosa nearer the camera than this is seen"),
 	KD("session", "fov_deg", session.fov_deg, 140, 1, 359, "deg", 0,
 	   "metrics: the camera's full field of view"),
-	KD("session", "view_rate_hz", session.view_rate_hz, 20, 0.1, 1000, "Hz",
+	KD("session", "view_rate_hz", session.view_rate_hz, 10, 0.1, 1000, "Hz",
 	   0, "metrics: how often the mucosa and polyps seen are evaluated"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,

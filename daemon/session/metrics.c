@@ -30,14 +30,17 @@
  *   mucosa seen      each vertex carries a third of the area of its
  *                    triangles; a vertex is in view at an evaluated pose
  *                    when it lies within view_distance_m of the tip,
- *                    within fov_rad / 2 of dir, and its normal faces the
- *                    tip; it is seen once in view for seen_dwell_s in all
- *                    (each evaluation in view counts 1 / view_rate_hz);
- *                    the share is the seen vertices' area over the whole
+ *                    within fov_rad / 2 of dir, its normal faces the tip
+ *                    and no wall is in front of it (the depth test,
+ *                    depthmap.h); it is seen once in view for
+ *                    seen_dwell_s in all (each evaluation in view counts
+ *                    1 / view_rate_hz); the share is the seen vertices'
+ *                    area over the whole
  *   polyps seen      a polyp's centre (its wall point lifted by its radius
  *                    along the wall's normal) within view_distance_m plus
  *                    its radius, within fov_rad / 2 of dir, on the lumen's
- *                    side of the wall, at an evaluated pose: in view; found
+ *                    side of the wall, not hidden by the wall (the depth
+ *                    test), at an evaluated pose: in view; found
  *                    once in view for polyp_dwell_s in all
  *
  * Poses are evaluated (mucosa, polyps) at most view_rate_hz times a second
@@ -55,6 +58,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "depthmap.h"
 #include "metrics.h"
 #include "vec3.h"
 
@@ -85,6 +89,13 @@ struct view {
 	uint32_t polyp_vertex[ANATOMY_MAX_POLYPS];
 	double polyp_r[ANATOMY_MAX_POLYPS];
 	double next_s;            /* time of the next evaluation */
+	/* the occlusion test: the wall near the camera drawn into depth */
+	struct depthmap *depth;
+	float (*cam)[3];          /* per vertex: camera coordinates, ... */
+	float (*img)[3];          /* ... their projection, ... */
+	uint32_t *stamp;          /* ... valid when stamp == evaluation */
+	unsigned char *candidate; /* ... not seen yet but in view */
+	uint32_t evaluation;
 };
 
 struct metrics {
@@ -121,7 +132,7 @@ void metrics_params_default(struct metrics_params *p)
 		.loop_threshold_m = 0.01,
 		.view_distance_m = 0.06,
 		.fov_rad = 140 * M_PI / 180,
-		.view_rate_hz = 20,
+		.view_rate_hz = 10,
 		.min_episode_s = 0.2,
 		.lumen_angle_rad = 70 * M_PI / 180,
 		.discomfort_bow_m = 0.03,
@@ -325,7 +336,13 @@ static int view_init(struct view *w, const struct colon *c)
 	w->area = calloc(w->mesh->vertices, sizeof(*w->area));
 	w->seen = calloc(w->mesh->vertices, 1);
 	w->dwell = calloc(w->mesh->vertices, sizeof(*w->dwell));
-	if (!w->area || !w->seen || !w->dwell) {
+	w->depth = malloc(sizeof(*w->depth));
+	w->cam = malloc(w->mesh->vertices * sizeof(*w->cam));
+	w->img = malloc(w->mesh->vertices * sizeof(*w->img));
+	w->stamp = calloc(w->mesh->vertices, sizeof(*w->stamp));
+	w->candidate = malloc(w->mesh->vertices);
+	if (!w->area || !w->seen || !w->dwell || !w->depth || !w->cam ||
+	    !w->img || !w->stamp || !w->candidate) {
 		return -ENOMEM;
 	}
 	view_areas(w);
@@ -344,6 +361,11 @@ static void view_free(struct view *w)
 	free(w->area);
 	free(w->seen);
 	free(w->dwell);
+	free(w->depth);
+	free(w->cam);
+	free(w->img);
+	free(w->stamp);
+	free(w->candidate);
 }
 
 /* The private centreline bowed as in R. */
@@ -367,63 +389,154 @@ struct pose {
 	double range_m, cos_half;
 };
 
-/* X (a point's offset from the tip) in the camera's range and cone. */
-static bool pose_sees(const struct pose *c, const double x[3], double range)
+/* X (camera coordinates) in the camera's range and cone. */
+static bool pose_sees(const struct pose *c, const float x[3], double range)
 {
-	double d = vec3_norm(x);
+	double d = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] +
+			(double)x[2] * x[2]);
 
-	return d <= range && vec3_dot(x, c->dir) >= c->cos_half * d;
+	return d <= range && x[2] >= c->cos_half * d;
 }
 
-/* The vertices in view at C: DT_S more of dwell each; seen past DWELL_S. */
-static void view_mucosa(struct view *w, const struct pose *c, double tip_s,
-			double dt_s, double dwell_s)
+/*
+ * The samples whose rings may be in view at C (within the range of the
+ * tip and not wholly behind it, by each ring's largest offset), *I0 to
+ * *I1: their vertices in camera coordinates and projected, stamped with
+ * this evaluation, and marked candidates when not yet seen, in range and
+ * cone and facing the camera. Returns the deepest candidate's z (m; 0:
+ * none).
+ */
+static double view_vertices(struct view *w, const struct pose *c,
+			    double tip_s, long *i0, long *i1)
 {
 	const struct mesh *me = w->mesh;
 	double step = centreline_step(w->cl), reach = c->range_m + w->reach_m;
-	long i0 = lround((tip_s - reach) / step);
-	long i1 = lround((tip_s + reach) / step) + 1;
+	double deepest = 0;
+	long first = lround((tip_s - reach) / step);
+	long last = lround((tip_s + reach) / step) + 1;
 
-	i0 = i0 < 0 ? 0 : i0;
-	i1 = i1 > (long)me->samples ? (long)me->samples : i1;
-	for (long i = i0; i < i1; i++) {
+	first = first < 0 ? 0 : first;
+	last = last > (long)me->samples ? (long)me->samples : last;
+	*i0 = first;
+	*i1 = last;
+	w->evaluation++;
+	for (long i = first; i < last; i++) {
+		double x[3], rho = me->sample_rho[i] + step;
+
+		vec3_sub(x, centreline_sample(w->cl, (size_t)i)->p, c->tip);
+		if (vec3_norm(x) > c->range_m + rho ||
+		    vec3_dot(x, c->dir) < -rho) {
+			continue;
+		}
 		for (uint32_t v = me->sample_first[i];
 		     v < me->sample_first[i + 1]; v++) {
-			double p[3], n[3], x[3];
+			double p[3], n[3];
+			float *cam = w->cam[v];
 
-			if (w->seen[v]) {
-				continue;
-			}
 			vertex_place(me, w->cl, v, p, n);
 			vec3_sub(x, p, c->tip);
-			if (pose_sees(c, x, c->range_m) &&
-			    vec3_dot(n, x) < 0 &&
-			    (w->dwell[v] += (float)dt_s) >= dwell_s - 1e-6) {
-				w->seen[v] = 1;
-				w->seen_area += w->area[v];
+			depthmap_camera(w->depth, p, cam);
+			if (cam[2] >= DEPTHMAP_NEAR_M) {
+				depthmap_project(w->depth, cam, w->img[v]);
 			}
+			w->stamp[v] = w->evaluation;
+			w->candidate[v] = !w->seen[v] && vec3_dot(n, x) < 0 &&
+					  pose_sees(c, cam, c->range_m);
+			if (w->candidate[v] && cam[2] > deepest) {
+				deepest = cam[2];
+			}
+		}
+	}
+	return deepest;
+}
+
+/* The triangles of samples I0..I1 whose corners all have this
+ * evaluation's coordinates and one nearer than DEEPEST_M (no other can
+ * hide anything in question) into the depth buffer. */
+static void view_draw(struct view *w, long i0, long i1, double deepest_m)
+{
+	const struct mesh *me = w->mesh;
+	double step = centreline_step(w->cl);
+	float far = (float)(deepest_m * (1 + DEPTHMAP_SLACK));
+	uint32_t t0, nt, stamp = w->evaluation;
+
+	mesh_range(me, (double)i0 * step, (double)i1 * step, &t0, &nt);
+	for (uint32_t k = t0; k < t0 + nt; k++) {
+		const uint32_t *t = me->tri[k];
+		const float *const x[3] = { w->cam[t[0]], w->cam[t[1]],
+					    w->cam[t[2]] };
+		const float *const q[3] = { w->img[t[0]], w->img[t[1]],
+					    w->img[t[2]] };
+
+		if (w->stamp[t[0]] == stamp && w->stamp[t[1]] == stamp &&
+		    w->stamp[t[2]] == stamp &&
+		    (x[0][2] < far || x[1][2] < far || x[2][2] < far)) {
+			depthmap_triangle(w->depth, x, q);
 		}
 	}
 }
 
-/* The polyps in view at C: DT_S more of dwell each; the mask of those
- * found (in view DWELL_S in all). */
-static uint32_t view_polyps(struct view *w, const struct pose *c,
-			    double dt_s, double dwell_s)
+/* The candidates of samples I0..I1 not hidden: DT_S more of dwell each;
+ * seen past DWELL_S. */
+static void view_mucosa(struct view *w, long i0, long i1, double dt_s,
+			double dwell_s)
 {
-	uint32_t mask = 0;
+	const struct mesh *me = w->mesh;
+
+	for (uint32_t v = me->sample_first[i0]; v < me->sample_first[i1];
+	     v++) {
+		if (w->stamp[v] != w->evaluation || !w->candidate[v] ||
+		    !depthmap_visible(w->depth, w->cam[v])) {
+			continue;
+		}
+		if ((w->dwell[v] += (float)dt_s) >= dwell_s - 1e-6) {
+			w->seen[v] = 1;
+			w->seen_area += w->area[v];
+		}
+	}
+}
+
+/* The polyps not yet found (MASK: those found) in range and cone at C,
+ * on the lumen's side of the wall: their centres' camera coordinates
+ * in CAM, their bits returned; *DEEPEST the deepest z. */
+static uint32_t view_polyp_candidates(struct view *w, const struct pose *c,
+				      uint32_t found, float cam[][3],
+				      double *deepest)
+{
+	uint32_t in_view = 0;
 
 	for (int k = 0; k < w->polyps; k++) {
 		double p[3], n[3], x[3];
 
+		if (found & (1u << k)) {
+			continue;
+		}
 		vertex_place(w->mesh, w->cl, w->polyp_vertex[k], p, n);
 		vec3_normalize(n);
 		vec3_sub(x, p, c->tip);
 		if (vec3_dot(n, x) >= 0) {
 			continue; /* behind the wall */
 		}
-		vec3_axpy(x, x, w->polyp_r[k], n);
-		if (pose_sees(c, x, c->range_m + w->polyp_r[k]) &&
+		vec3_axpy(p, p, w->polyp_r[k], n);
+		depthmap_camera(w->depth, p, cam[k]);
+		if (pose_sees(c, cam[k], c->range_m + w->polyp_r[k])) {
+			in_view |= 1u << k;
+			*deepest = fmax(*deepest, cam[k][2]);
+		}
+	}
+	return in_view;
+}
+
+/* The polyps IN_VIEW not hidden: DT_S more of dwell each; the mask of
+ * those found (in view DWELL_S in all). */
+static uint32_t view_polyps(struct view *w, uint32_t in_view,
+			    const float cam[][3], double dt_s, double dwell_s)
+{
+	uint32_t mask = 0;
+
+	for (int k = 0; k < w->polyps; k++) {
+		if ((in_view & (1u << k)) &&
+		    depthmap_visible(w->depth, cam[k]) &&
 		    (w->polyp_dwell[k] += dt_s) >= dwell_s - 1e-6) {
 			mask |= 1u << k;
 		}
@@ -447,17 +560,28 @@ static void view_evaluate(struct metrics *m, const struct session_record *r,
 			  double t)
 {
 	struct view *w = &m->view;
+	float polyp_cam[ANATOMY_MAX_POLYPS][3];
+	double dt = 1 / m->p.view_rate_hz, deepest;
+	uint32_t polyps;
 	struct pose c;
+	long i0, i1;
 
 	if (t < w->next_s) {
 		return;
 	}
-	w->next_s = t + 1 / m->p.view_rate_hz;
+	w->next_s = t + dt;
 	view_bow(w, r);
 	view_pose(m, r, &c);
-	view_mucosa(w, &c, r->tip_s_m, 1 / m->p.view_rate_hz,
-		    m->p.seen_dwell_s);
-	m->polyps_seen_mask |= view_polyps(w, &c, 1 / m->p.view_rate_hz,
+	depthmap_begin(w->depth, c.tip, c.dir, m->p.fov_rad / 2);
+	deepest = view_vertices(w, &c, r->tip_s_m, &i0, &i1);
+	polyps = view_polyp_candidates(w, &c, m->polyps_seen_mask, polyp_cam,
+				       &deepest);
+	if (deepest <= 0) {
+		return; /* nothing new in view: nothing to draw */
+	}
+	view_draw(w, i0, i1, deepest);
+	view_mucosa(w, i0, i1, dt, m->p.seen_dwell_s);
+	m->polyps_seen_mask |= view_polyps(w, polyps, polyp_cam, dt,
 					   m->p.polyp_dwell_s);
 }
 
@@ -746,10 +870,11 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	out->polyps_total = (uint32_t)m->view.polyps;
 }
 
-double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
-				   double s1_m)
+double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
+			      double s1_m, double a0_rad, double a1_rad)
 {
 	const struct mesh *me = m->view.mesh;
+	bool all_around = a0_rad <= 0 && a1_rad >= 2 * M_PI;
 	double step, seen = 0, all = 0;
 
 	if (!m->view.cl) {
@@ -757,14 +882,25 @@ double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 	}
 	step = centreline_step(m->view.cl);
 	for (uint32_t v = 0; v < me->vertices; v++) {
-		double s = me->sample[v] * step;
+		double s = me->sample[v] * step, a;
 
-		if (s >= s0_m && s <= s1_m) {
+		if (s < s0_m || s > s1_m) {
+			continue;
+		}
+		a = all_around ? 0 : atan2(me->off[v][2], me->off[v][1]);
+		a = a < 0 ? a + 2 * M_PI : a;
+		if (a >= a0_rad && a <= a1_rad) {
 			all += m->view.area[v];
 			seen += m->view.seen[v] ? m->view.area[v] : 0;
 		}
 	}
 	return all > 0 ? seen / all : 0;
+}
+
+double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
+				   double s1_m)
+{
+	return metrics_mucosa_seen_in(m, s0_m, s1_m, 0, 2 * M_PI);
 }
 
 void metrics_map(const struct metrics *m, struct metrics_map *out)

@@ -25,13 +25,15 @@
  *     without the tip following, the time looped; on the way out the
  *     shaft withdrawn, the tip's retreat, their ratio;
  *   - the share of the mucosa seen: the mesh's area in the camera's view
- *     (field of view, within view_distance_m) for seen_dwell_s in all;
+ *     (field of view, within view_distance_m, not hidden behind a fold:
+ *     a depth test on the CPU, depthmap.h) for seen_dwell_s in all;
  *   - polyps found: those of the case in view for polyp_dwell_s in all.
  *
  * Threads: one struct metrics belongs to one thread. metrics_create()
  * allocates (the colon's per-vertex bookkeeping); metrics_record() does
- * not allocate or block and costs microseconds (the mucosa and polyps are
- * evaluated at most view_rate_hz times a second).
+ * not allocate or block and costs microseconds, and about a millisecond at
+ * the records where the mucosa and polyps are evaluated (at most
+ * view_rate_hz times a second; `make bench`).
  */
 #ifndef ENDOSIM_METRICS_H
 #define ENDOSIM_METRICS_H
@@ -74,7 +76,7 @@ struct metrics_params {
 #define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
 				       colon; a case: the rectum's start) */
 
-/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 20 Hz, 0.2 s, 70 deg, 0.03 m,
+/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 10 Hz, 0.2 s, 70 deg, 0.03 m,
  * 5 N, 0.5 s, 2.5 s. */
 void metrics_params_default(struct metrics_params *p);
 
@@ -163,6 +165,12 @@ void metrics_result(const struct metrics *m, struct metrics_result *out);
  * each vertex' centreline sample) seen so far; 0 without a colon. */
 double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 				   double s1_m);
+
+/* The same of the wall between S0_M and S1_M and at angles A0_RAD to
+ * A1_RAD (0 <= A0_RAD <= A1_RAD <= 2 pi) around the centreline from its
+ * frame's u towards v, as metrics_map() and the case's polyps count them. */
+double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
+			      double s1_m, double a0_rad, double a1_rad);
 
 /* One scalar measure of struct metrics_result: its key (as the END frame,
  * the JSON and the summary CSV name it), where it is, its type ('d'

@@ -12,7 +12,10 @@
 #    model and with the paper's; the loop's compute time; the
 #    shared-memory publish-to-read latency seen by a reader process.
 # 2. The colon model: build time, memory, query and kinematics cost
-#    (bench_colon).
+#    (bench_colon). The training metrics' occlusion-aware coverage
+#    (bench_metrics): a 10-minute 1 kHz session replayed, per evaluated
+#    pose and per second of session; and `endoctl session report` of a
+#    scripted session at 1 kHz (session_script) end to end.
 # 3. The force loop's cycle over the demo scenario on the normal case: the
 #    rod model at 80, 160 and 320 segments, the paper's model on its own
 #    demo, and the rod at about 2 million triangles; the forces the hand
@@ -84,6 +87,18 @@ loop_vs_cyclictest paper
 echo
 echo "=== colon model and kinematics ==="
 "$BUILD/tests/bench_colon" "$TOP/config/cases"
+
+echo
+echo "=== the metrics' occlusion-aware coverage (the depth test on the CPU) ==="
+"$BUILD/tests/bench_metrics" "$TOP/config/cases/normal.case"
+"$BUILD/tests/session_script" --rate 1000 --ring 192 \
+	"$TOP/config/cases/polyps.case" "$TMP/long.endoses" >/dev/null
+dur=$("$ENDOCTL" session show "$TMP/long.endoses" | awk '/^duration/ { print $2 }')
+t0=$EPOCHREALTIME
+"$ENDOCTL" session report "$TMP/long.endoses" --out "$TMP/long-report" >/dev/null
+awk -v a="$t0" -v b="$EPOCHREALTIME" -v d="$dur" 'BEGIN {
+	printf "endoctl session report of a scripted %.0f s session at 1 kHz (polyps case, 192 a ring): %.2f s (%.2f s per 10 minutes of session)\n", d, b - a, (b - a) / d * 600 }'
+rm -f "$TMP/long.endoses"
 
 CASE=$TOP/config/cases/normal.case
 for segments in 80 160 320; do

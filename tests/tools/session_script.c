@@ -2,9 +2,10 @@
  * session_script - writes a session file (session_file.h) of a scripted,
  * plausible colonoscopy, for the report's tests without the daemon:
  *
- *   session_script CASE_FILE OUT.endoses [TRAINEE]
+ *   session_script [--rate HZ] [--ring N] CASE_FILE OUT.endoses [TRAINEE]
  *
- * 100 Hz records: idle for 2 s, enabled; insertion at ~3 cm/s along the
+ * Records at HZ (default 100; the daemon's are 1000) on the colon at N
+ * vertices a ring (default 96; the daemon's 192): idle for 2 s, enabled; insertion at ~3 cm/s along the
  * centreline (stop and go), a sigmoid loop pushed to 3.5 cm with the
  * insertion force above 15 N, then reduced; a small transverse loop; a
  * fault with a re-enable at the splenic flexure; 10 s at the cecum; a
@@ -14,6 +15,7 @@
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,8 +27,10 @@
 #include "session_file.h"
 #include "vec3.h"
 
-#define PERIOD_NS 10000000ull
 #define START_NS 1000000000000ull
+
+static uint64_t period_ns = 10000000ull; /* --rate */
+static uint32_t ring = 96;                /* --ring */
 
 struct synth {
 	int fd;
@@ -47,7 +51,7 @@ static int put_event(struct synth *y, uint32_t kind, int axis,
 {
 	unsigned char buf[256];
 	struct session_event ev = {
-		.stamp_ns = START_NS + y->k * PERIOD_NS, .kind = kind,
+		.stamp_ns = START_NS + y->k * period_ns, .kind = kind,
 		.axis = axis, .detail = detail, .value = value,
 	};
 	size_t n = strlen(text);
@@ -114,7 +118,7 @@ static int put_record(struct synth *y, double t, double v, double look,
 
 	memset(&r, 0, sizeof(r));
 	r.cycle = y->k;
-	r.stamp_ns = START_NS + y->k * PERIOD_NS;
+	r.stamp_ns = START_NS + y->k * period_ns;
 	pose(y, &r, look, phase);
 	forces(y, &r, t, v);
 	r.scenario_time_s = (float)t;
@@ -133,12 +137,12 @@ static int set_state(struct synth *y, uint32_t state)
 /* Insertion to the cecum, with the loops and the fault on the way. */
 static int insert(struct synth *y, double cecum_s)
 {
-	double t0 = (double)y->k * PERIOD_NS * 1e-9, t = t0, v;
+	double t0 = (double)y->k * period_ns * 1e-9, t = t0, v;
 	int r = 0;
 	bool faulted = false;
 
 	while (!r && y->s < cecum_s + 0.02) {
-		t = (double)y->k * PERIOD_NS * 1e-9;
+		t = (double)y->k * period_ns * 1e-9;
 		v = 0.03 * (1 + 0.6 * sin((t - t0) / 3));
 		/* the sigmoid loop: the tip held at 0.40 m while pushing */
 		y->bow[0] = 0.035 * ramp(t, t0 + 12, t0 + 20) *
@@ -159,7 +163,7 @@ static int insert(struct synth *y, double cecum_s)
 			r = r ? r : set_state(y, 1);
 		}
 		v = y->state == 1 ? v : 0;
-		y->s += v * PERIOD_NS * 1e-9;
+		y->s += v * period_ns * 1e-9;
 		r = r ? r : put_record(y, t, v, 0.15 * sin(t), t);
 	}
 	return r;
@@ -167,21 +171,22 @@ static int insert(struct synth *y, double cecum_s)
 
 static int withdraw(struct synth *y, double cecum_s)
 {
-	double t0 = (double)y->k * PERIOD_NS * 1e-9, t;
+	double t0 = (double)y->k * period_ns * 1e-9, t;
 	int r = 0;
 
 	while (!r && y->s > 0.01) {
-		t = (double)y->k * PERIOD_NS * 1e-9 - t0;
+		t = (double)y->k * period_ns * 1e-9 - t0;
 		if (t < 10) { /* looking around the cecum */
 			r = put_record(y, t + t0, 0, 0.6, t * 1.3);
 			continue;
 		}
-		y->s -= (cecum_s / 390) * PERIOD_NS * 1e-9;
+		y->s -= (cecum_s / 390) * period_ns * 1e-9;
 		r = put_record(y, t + t0, -cecum_s / 390, 0.6, t * 2.6);
 	}
-	for (int i = 0; !r && i < 300; i++) { /* out */
+	for (uint64_t i = 0; !r && i < 3000000000ull / period_ns; i++) {
+		/* out */
 		y->s = 0;
-		r = put_record(y, (double)y->k * PERIOD_NS * 1e-9, 0, 0, 0);
+		r = put_record(y, (double)y->k * period_ns * 1e-9, 0, 0, 0);
 	}
 	return r;
 }
@@ -203,9 +208,9 @@ static int write_head(struct synth *y, const char *case_path,
 				    .id = 42, .trainee = trainee,
 				    .case_name = colon_name(y->colon),
 				    .started = "2026-11-20T09:30:00Z",
-				    .start_ns = START_NS, .period_ns = PERIOD_NS,
+				    .start_ns = START_NS, .period_ns = period_ns,
 				    .version = "synth", .step_m = 0.002,
-				    .ring_vertices = 96, .segment_m = 0.04 },
+				    .ring_vertices = ring, .segment_m = 0.04 },
 			    head, sizeof(head));
 	if (session_file_write_magic(y->fd) ||
 	    session_file_write_frame(y->fd, SESSION_FRAME_HEADER, head,
@@ -226,8 +231,8 @@ static int run(struct synth *y, const char *case_path, const char *trainee)
 	double cecum_s = colon_cecum_s(y->colon);
 	int r = write_head(y, case_path, trainee, case_text, sizeof(case_text));
 
-	for (int i = 0; !r && i < 200; i++) {
-		r = put_record(y, (double)y->k * PERIOD_NS * 1e-9, 0, 0, 0);
+	for (uint64_t i = 0; !r && i < 2000000000ull / period_ns; i++) {
+		r = put_record(y, (double)y->k * period_ns * 1e-9, 0, 0, 0);
 	}
 	r = r ? r : set_state(y, 1);
 	r = r ? r : put_event(y, SESSION_EVENT_PARAM, -1, 0, 0,
@@ -257,11 +262,29 @@ int main(int argc, char **argv)
 	char err[256];
 	int r;
 
-	if (argc < 3) {
-		fprintf(stderr, "usage: session_script CASE OUT [TRAINEE]\n");
+	for (int o; (o = getopt_long(argc, argv, "", (const struct option[]){
+			{ "rate", required_argument, NULL, 'r' },
+			{ "ring", required_argument, NULL, 'n' },
+			{ 0 } }, NULL)) != -1;) {
+		double v = o == '?' ? 0 : atof(optarg);
+
+		if (o == 'r' && v >= 1 && v <= 10000) {
+			period_ns = (uint64_t)llround(1e9 / v);
+		} else if (o == 'n' && v >= 8 && v <= 4096) {
+			ring = (uint32_t)v;
+		} else {
+			argc = 0; /* usage */
+			break;
+		}
+	}
+	argc -= optind;
+	argv += optind - 1;
+	if (argc < 2) {
+		fprintf(stderr, "usage: session_script [--rate HZ] [--ring N] "
+			"CASE OUT [TRAINEE]\n");
 		return 2;
 	}
-	cp.ring_vertices = 96;
+	cp.ring_vertices = ring;
 	if (anatomy_load(&a, argv[1], err, sizeof(err)) ||
 	    !(y.colon = colon_create(&a, &cp, err, sizeof(err)))) {
 		fprintf(stderr, "session_script: %s\n", err);
@@ -271,7 +294,7 @@ int main(int argc, char **argv)
 	y.metrics = metrics_create(y.colon, &mp);
 	y.fd = open(argv[2], O_WRONLY | O_CREAT | O_TRUNC, 0644);
 	r = y.fd < 0 || !y.metrics ? -errno :
-	    run(&y, argv[1], argc > 3 ? argv[3] : "");
+	    run(&y, argv[1], argc > 2 ? argv[3] : "");
 	if (r) {
 		fprintf(stderr, "session_script: %s: %s\n", argv[2], strerror(-r));
 	}

@@ -43,7 +43,9 @@
 #define RATE_HZ 1000
 #define REC_TOL (1.0001 / RATE_HZ) /* one record */
 
-static struct colon *build(const char *dir, const char *name)
+/* Case NAME of DIR with rings of 96 vertices every STEP_M. */
+static struct colon *build_step(const char *dir, const char *name,
+				double step_m)
 {
 	struct colon_params p = COLON_PARAMS_DEFAULT;
 	const char *env = getenv("ENDOSIM_CASES");
@@ -60,12 +62,20 @@ static struct colon *build(const char *dir, const char *name)
 		fail();
 	}
 	p.ring_vertices = 96;
+	p.step_m = step_m;
 	c = colon_create(&a, &p, err, sizeof(err));
 	if (!c) {
 		print_error("%s\n", err);
 		fail();
 	}
 	return c;
+}
+
+static struct colon *build(const char *dir, const char *name)
+{
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+
+	return build_step(dir, name, p.step_m);
 }
 
 /* Record K (at K / RATE_HZ s), inserted, at rest. */
@@ -589,6 +599,205 @@ static void test_mucosa_follows_the_bow(void **state)
 /* ------------------------------------------------------------ polyps */
 
 /* Where the polyps case's polyp K sits on the undeformed wall. */
+/* ------------------------------------------------------------ occlusion */
+
+/*
+ * deep-fold.case: a straight colon whose folds are half the radius deep
+ * (R = 22.5 mm in the sigmoid: a ridge at 11.3 mm from the axis), 2.5 mm
+ * thin, on a mesh of 0.5 mm steps. The
+ * folds of the sector around 90 deg stand at s = 0.03 k; a line of sight
+ * from the axis to a wall point at 90 deg stays in that angle's plane and
+ * meets only those. The oracle below decides each vertex by the case's
+ * analytic wall, independently of the depth buffer.
+ */
+#define FOLD_S 0.30
+#define DEG (M_PI / 180)
+
+/* Whether the straight line from E to P stays in the lumen (inside
+ * colon_lumen_radius(), the wall the mesh samples, with 0.5 mm for the
+ * mesh's chords) up to 1 mm short of P. On a colon without bends a
+ * point's place along it is its distance along the axis. */
+static bool line_of_sight(const struct colon *c, const double e[3],
+			  const double p[3])
+{
+	const struct centreline *cl = colon_centreline(c);
+	const struct centreline_point *o = centreline_sample(cl, 0);
+	double x[3], len;
+
+	vec3_sub(x, p, e);
+	len = vec3_norm(x);
+	for (double d = 0.00025; d < len - 0.001; d += 0.00025) {
+		struct centreline_point f;
+		double q[3], r[3], s, a, rho;
+
+		vec3_axpy(q, e, d / len, x);
+		vec3_sub(r, q, o->p);
+		s = vec3_dot(r, o->t);
+		centreline_at_s(cl, s, &f);
+		vec3_sub(r, q, f.p);
+		a = atan2(vec3_dot(r, f.v), vec3_dot(r, f.u));
+		rho = hypot(vec3_dot(r, f.u), vec3_dot(r, f.v));
+		if (rho > colon_lumen_radius(c, s, a) + 0.0005) {
+			return false;
+		}
+	}
+	return true;
+}
+
+/*
+ * The oracle: of the wall between S0 and S1 and at angles A0 to A1 (each
+ * vertex a third of its triangles' area, as metrics.c counts), the share
+ * a camera at E looking along DIR has in view: within view_distance_m
+ * and half the field of view, the wall facing it and, when CLEAR, nothing
+ * of the wall on the line of sight.
+ */
+static double oracle_seen(const struct colon *c, const double e[3],
+			  const double dir[3], double s0, double s1,
+			  double a0, double a1, bool clear)
+{
+	const struct mesh *me = colon_mesh(c);
+	struct metrics_params p;
+	double *area = calloc(me->vertices, sizeof(*area));
+	double step = centreline_step(colon_centreline(c)), all = 0, seen = 0;
+
+	assert_non_null(area);
+	metrics_params_default(&p);
+	for (uint32_t k = 0; k < me->triangles; k++) {
+		double v[3][3], x[3];
+
+		for (int j = 0; j < 3; j++) {
+			vec3_set(v[j], me->pos[me->tri[k][j]][0],
+				 me->pos[me->tri[k][j]][1],
+				 me->pos[me->tri[k][j]][2]);
+		}
+		vec3_sub(v[1], v[1], v[0]);
+		vec3_sub(v[2], v[2], v[0]);
+		vec3_cross(x, v[1], v[2]);
+		for (int j = 0; j < 3; j++) {
+			area[me->tri[k][j]] += vec3_norm(x) / 6;
+		}
+	}
+	for (uint32_t i = 0; i < me->vertices; i++) {
+		double s = me->sample[i] * step, pt[3], n[3], x[3], d;
+		double a = atan2(me->off[i][2], me->off[i][1]);
+
+		a = a < 0 ? a + 2 * M_PI : a;
+		if (s < s0 || s > s1 || a < a0 || a > a1) {
+			continue;
+		}
+		all += area[i];
+		vec3_set(pt, me->pos[i][0], me->pos[i][1], me->pos[i][2]);
+		vec3_set(n, me->nrm[i][0], me->nrm[i][1], me->nrm[i][2]);
+		vec3_sub(x, pt, e);
+		d = vec3_norm(x);
+		if (d <= p.view_distance_m &&
+		    vec3_dot(x, dir) >= cos(p.fov_rad / 2) * d &&
+		    vec3_dot(n, x) < 0 && (!clear || line_of_sight(c, e, pt))) {
+			seen += area[i];
+		}
+	}
+	free(area);
+	return seen / all;
+}
+
+/* One pose on the axis at S looking forward (ANGLE 0) or back (pi): the
+ * metrics' share of the wall around FOLD_S seen, against the oracle's. */
+static void one_pose(struct colon *c, double s, double angle)
+{
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *m = metrics_at(c, 20);
+	struct session_record r = rec(0);
+	double e[3], dir[3], got, want, open;
+
+	place(&r, cl, s, angle);
+	metrics_record(m, &r);
+	vec3_set(e, r.tip[0], r.tip[1], r.tip[2]);
+	vec3_set(dir, r.dir[0], r.dir[1], r.dir[2]);
+	got = metrics_mucosa_seen_between(m, FOLD_S - 0.01, FOLD_S + 0.04);
+	want = oracle_seen(c, e, dir, FOLD_S - 0.01, FOLD_S + 0.04, 0,
+			   2 * M_PI, true);
+	open = oracle_seen(c, e, dir, FOLD_S - 0.01, FOLD_S + 0.04, 0,
+			   2 * M_PI, false);
+	printf("# camera at %.2f m looking %s: seen %.4f, oracle %.4f "
+	       "(%.4f in view without the folds' shadow)\n", s,
+	       angle ? "back" : "ahead", got, want, open);
+	assert_true(fabs(got - want) < 0.03);
+	assert_true(open - want > 0.1); /* the folds hide a good part */
+	metrics_destroy(m);
+}
+
+static void test_occlusion_one_pose(void **state)
+{
+	struct colon *c = build_step("tests/cases", "deep-fold", 0.0005);
+
+	(void)state;
+	one_pose(c, FOLD_S - 0.04, 0);
+	one_pose(c, FOLD_S + 0.06, M_PI);
+	colon_destroy(c);
+}
+
+/*
+ * The fold's back (the 6 mm beyond its ridge, +-15 deg around its deepest
+ * angle): a camera sweeping past it looking ahead sees little of it, the
+ * ridge in front of it; sweeping back over it from beyond, looking back,
+ * it sees it all.
+ */
+static void test_occlusion_fold_back(void **state)
+{
+	struct colon *c = build_step("tests/cases", "deep-fold", 0.0005);
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics *ahead = metrics_at(c, RATE_HZ);
+	struct metrics *back = metrics_at(c, RATE_HZ);
+	double got_ahead, got_back, a0 = 75 * DEG, a1 = 105 * DEG;
+	uint64_t k = 0;
+
+	(void)state;
+	for (double s = FOLD_S - 0.1; s <= FOLD_S + 0.1; s += 0.001, k++) {
+		struct session_record r = rec(k), b = rec(k);
+
+		place(&r, cl, s, 0);
+		metrics_record(ahead, &r);
+		place(&b, cl, 2 * FOLD_S + 0.01 - s, M_PI);
+		metrics_record(back, &b);
+	}
+	got_ahead = metrics_mucosa_seen_in(ahead, FOLD_S, FOLD_S + 0.006,
+					   a0, a1);
+	got_back = metrics_mucosa_seen_in(back, FOLD_S, FOLD_S + 0.006, a0,
+					  a1);
+	printf("# the fold's back: seen %.4f sweeping ahead, %.4f looking "
+	       "back\n", got_ahead, got_back);
+	assert_true(got_ahead < 0.5);
+	assert_true(got_back > 0.99);
+	metrics_destroy(ahead);
+	metrics_destroy(back);
+	colon_destroy(c);
+}
+
+/* The polyp in the valley beyond the fold: hidden by the ridge from 3 cm
+ * before it (in range and within the field of view), found looking back
+ * from 2 cm beyond it. */
+static void test_occlusion_polyp(void **state)
+{
+	struct colon *c = build_step("tests/cases", "deep-fold", 0.0005);
+	const struct centreline *cl = colon_centreline(c);
+	struct metrics_result res;
+	struct metrics *m;
+
+	(void)state;
+	for (int look = 0; look < 2; look++) {
+		struct session_record r = rec(0);
+
+		m = metrics_at(c, 20);
+		place(&r, cl, look ? 0.33 : 0.278, look ? M_PI : 0);
+		metrics_record(m, &r);
+		metrics_result(m, &res);
+		assert_int_equal(res.polyps_total, 1);
+		assert_int_equal(res.polyps_seen, look ? 1 : 0);
+		metrics_destroy(m);
+	}
+	colon_destroy(c);
+}
+
 static void polyp_at(const struct colon *c, int k, double out[3])
 {
 	const struct anatomy_polyp *p = &colon_anatomy(c)->polyp[k];
@@ -966,6 +1175,9 @@ int main(void)
 		cmocka_unit_test(test_mucosa_backward_sees_nothing_ahead),
 		cmocka_unit_test(test_mucosa_follows_the_bow),
 		cmocka_unit_test(test_polyps_seen),
+		cmocka_unit_test(test_occlusion_one_pose),
+		cmocka_unit_test(test_occlusion_fold_back),
+		cmocka_unit_test(test_occlusion_polyp),
 		cmocka_unit_test(test_drops),
 		cmocka_unit_test(test_format_parse),
 		cmocka_unit_test(test_dwell_polyp),
