@@ -36,9 +36,9 @@
  *
  * Threads: the tap is the force loop's; recorder_start(),
  * recorder_stop(), recorder_param(), recorder_info() and recorder_map()
- * the control thread's (they may block briefly on the recorder's mutex; start writes
- * the file's first frames, stop waits for the last ones and the fsync);
- * create, run and destroy the main thread's.
+ * the control thread's (they may block briefly on the recorder's mutex;
+ * start writes the file's first frames, stop waits for the last ones and
+ * the fsync); create, run and destroy the main thread's.
  */
 #ifndef ENDOSIM_RECORDER_H
 #define ENDOSIM_RECORDER_H

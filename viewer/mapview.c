@@ -260,22 +260,29 @@ static float along_x(const struct mapview *v, const struct grid *g,
 	return g->x + (float)fmin(fmax(f, 0), 1) * g->w;
 }
 
+/* A share seen 0..1 as a colour: unseen red to seen green. */
+static void share_rgb(double s, float rgba[4])
+{
+	for (int c = 0; c < 3; c++) {
+		rgba[c] = (float)(unseen_rgb[c] +
+				  s * (seen_rgb[c] - unseen_rgb[c]));
+	}
+	rgba[3] = 1;
+}
+
 static void draw_cells(const struct mapview *v, struct draw2d *d,
 		       const struct grid *g)
 {
 	draw2d_rect(d, g->x, g->y, g->w, g->h, wall_rgb);
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
-			double s = livemap_share(v->cells[i * METRICS_MAP_A + k]);
-			float rgba[4] = { 0, 0, 0, 1 };
+			const uint8_t *cell = &v->cells[i * METRICS_MAP_A + k];
+			float rgba[4];
 
-			if (s < 0) {
+			if (*cell == LIVEMAP_NO_WALL) {
 				continue;
 			}
-			for (int c = 0; c < 3; c++) {
-				rgba[c] = (float)(unseen_rgb[c] +
-						  s * (seen_rgb[c] - unseen_rgb[c]));
-			}
+			share_rgb(livemap_share(*cell), rgba);
 			/* a hair's overlap: no seams between cells */
 			draw2d_rect(d, g->x + i * g->cw, g->y + k * g->ch,
 				    g->cw + 0.5f, g->ch + 0.5f, rgba);
@@ -315,8 +322,9 @@ static void draw_regions(const struct mapview *v, struct draw2d *d,
 		float x0 = along_x(v, g, r->s0_m), x1 = along_x(v, g, r->s1_m);
 
 		if (i > 0) {
-			draw2d_line(d, x0, g->y, x0, g->y + g->h + 0.4f * g->small,
-				    1.5f, line_rgb);
+			draw2d_line(d, x0, g->y, x0,
+				    g->y + g->h + 0.4f * g->small, 1.5f,
+				    line_rgb);
 		}
 		region_label(d, r->name, x1 - x0, label, sizeof(label));
 		draw2d_text(d, FONT_SMALL,

@@ -62,8 +62,9 @@ static void print_map(const Endosim__MapReply *m)
 	}
 	printf("\npolyps found: %zu\n", m->n_found);
 	for (size_t i = 0; i < m->n_found; i++) {
-		printf("  polyp %u at %.3f m, %.0f deg\n", m->found[i]->index + 1,
-		       m->found[i]->s_m, m->found[i]->angle_rad * 180 / M_PI);
+		printf("  polyp %u at %.3f m, %.0f deg\n",
+		       m->found[i]->index + 1, m->found[i]->s_m,
+		       m->found[i]->angle_rad * 180 / M_PI);
 	}
 }
 

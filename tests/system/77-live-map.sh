@@ -95,7 +95,8 @@ before_red=$(png_value "$TMP/shot1.png" "$MAP" red)
 before_green=$(png_value "$TMP/shot1.png" "$MAP" scope)
 red=$(png_value "$TMP/shot2.png" "$MAP" red)
 green=$(png_value "$TMP/shot2.png" "$MAP" scope)
-echo "# the overlay's region: red $before_red -> $red, green $before_green -> $green"
+echo "# the overlay's region: red $before_red -> $red," \
+	"green $before_green -> $green"
 check "M: the map's unseen cells in red" float_test \
 	"$red > 0.05 && $red > $before_red + 0.04"
 check "... its seen cells in green" float_test \
