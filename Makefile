@@ -89,17 +89,18 @@ endef
 #            scene, commands and the hand) and the trainee's controls; the
 #            colon rebuilt with the model's centreline and mesh, its levels
 #            of detail and the portal walk; the endoscopic view, the
-#            overview, the HUD; the replay of a session file
+#            overview, the HUD, the unseen-mucosa map; the replay of a
+#            session file
 #   service  endosimd's threads (daemon/): the force loop, safety with its
 #            fault words and the test commands' injections, publish, the
 #            control thread, the recorder of training sessions and its tap
 #   rig      the hardware (daemon/rig/): the rig interface, the simulated rig
 #            and hand, scenarios, the rig of drives, one bus thread per bus,
 #            the drive backends (EPOS4 on USB, Modbus) and their protocols
-#   session  training sessions (daemon/session/): metrics, the session
-#            directory, a session's inputs (one reader), what a session
-#            file says (views, CSV, the report); the cases: the model as
-#            the configuration sets it
+#   session  training sessions (daemon/session/): metrics and their map
+#            on the wire (livemap), the session directory, a session's
+#            inputs (one reader), what a session file says (views, CSV,
+#            the report); the cases: the model as the configuration sets it
 #   model    the colon and the endoscope (daemon/model/): case files,
 #            centreline, mesh, OBJ, the colon, contact, the scope's
 #            kinematics, the god-object, the haptics, the axes' plant, the
@@ -169,7 +170,8 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_godobject test_haptics test_session_file test_fields \
 	     test_model test_lod test_portal test_input test_timing test_shapes \
 	     test_vessels test_metrics test_report test_course test_rod \
-	     test_flex test_lumen test_clinic test_rodcourse test_guide
+	     test_flex test_lumen test_clinic test_rodcourse test_guide \
+	     test_livemap
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes

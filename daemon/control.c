@@ -270,6 +270,7 @@ static const struct handler handlers[] = {
 	  control_on_session_status },
 	{ ENDOSIM__REQUEST__BODY_SESSION_LIST, false, control_on_session_list },
 	{ ENDOSIM__REQUEST__BODY_SESSION_SHOW, false, control_on_session_show },
+	{ ENDOSIM__REQUEST__BODY_SESSION_MAP, false, control_on_session_map },
 	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
 };
 

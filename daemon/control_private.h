@@ -101,6 +101,12 @@ struct reply_buf {
 	Endosim__SessionInfo **list_infos_p;
 	struct sessiondir_entry *list_entries;
 	struct sessiondir_entry shown;     /* SessionShow's file */
+	Endosim__MapReply map;             /* SessionMap's */
+	Endosim__MapRegion map_regions[COLON_MAX_REGIONS];
+	Endosim__MapRegion *map_regions_p[COLON_MAX_REGIONS];
+	Endosim__MapPolyp map_found[ANATOMY_MAX_POLYPS];
+	Endosim__MapPolyp *map_found_p[ANATOMY_MAX_POLYPS];
+	struct recorder_map rmap;          /* what map points into */
 };
 
 struct control {
@@ -145,7 +151,8 @@ static inline void refuse(Endosim__Reply *rep, Endosim__Status status,
 /*
  * The requests, by job: status, stats, configuration, commands, the hand
  * and subscriptions, test commands (control_reply.c); the scene and the
- * cases (control_case.c); training sessions (control_session.c).
+ * cases (control_case.c); training sessions and their live map
+ * (control_session.c).
  */
 handler_fn control_on_get_status;
 handler_fn control_on_get_stats;
@@ -166,6 +173,7 @@ handler_fn control_on_session_stop;
 handler_fn control_on_session_status;
 handler_fn control_on_session_list;
 handler_fn control_on_session_show;
+handler_fn control_on_session_map;
 handler_fn control_on_debug;
 handler_fn control_on_guide;
 

@@ -297,3 +297,78 @@ void control_on_session_show(struct control *c, struct client *cl,
 	s->trainee = s->trainee ? s->trainee : "";
 	session_reply(c, rep, s);
 }
+
+/* ------------------------------------------------------------ live map */
+
+/* The map's regions: the colon's (no case loads while a session records,
+ * so it is the session's). */
+static void map_regions(struct control *c, Endosim__MapReply *m)
+{
+	struct reply_buf *rb = &c->rb;
+	int n = colon_regions(c->colon);
+
+	for (int i = 0; i < n && i < COLON_MAX_REGIONS; i++) {
+		const struct colon_region *cr = colon_region(c->colon, i);
+		Endosim__MapRegion *g = &rb->map_regions[i];
+
+		endosim__map_region__init(g);
+		g->name = (char *)cr->name;
+		g->s0_m = cr->s0_m;
+		g->s1_m = cr->s1_m;
+		rb->map_regions_p[i] = g;
+		m->n_regions++;
+	}
+	m->regions = rb->map_regions_p;
+}
+
+/* The polyps found so far, never those still to find. */
+static void map_found(struct control *c, Endosim__MapReply *m)
+{
+	struct reply_buf *rb = &c->rb;
+	const struct anatomy *a = colon_anatomy(c->colon);
+
+	for (int k = 0; a && k < a->polyps && k < ANATOMY_MAX_POLYPS; k++) {
+		Endosim__MapPolyp *p = &rb->map_found[m->n_found];
+
+		if (!(rb->rmap.polyps_found_mask >> k & 1)) {
+			continue;
+		}
+		endosim__map_polyp__init(p);
+		p->index = (uint32_t)k;
+		p->s_m = a->polyp[k].s_m;
+		p->angle_rad = a->polyp[k].angle_rad;
+		rb->map_found_p[m->n_found++] = p;
+	}
+	m->found = rb->map_found_p;
+}
+
+void control_on_session_map(struct control *c, struct client *cl,
+			    const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	Endosim__MapReply *m = &rb->map;
+	int r = recorder_map(c->deps.recorder, &rb->rmap);
+
+	(void)cl;
+	(void)req;
+	if (r) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, r == -ENOENT ?
+		       "no session is recording" :
+		       "the session's map is not made yet: ask again");
+		return;
+	}
+	endosim__map_reply__init(m);
+	m->session_id = rb->rmap.id;
+	m->time_s = rb->rmap.time_s;
+	m->length_m = rb->rmap.length_m;
+	m->along = METRICS_MAP_S;
+	m->around = METRICS_MAP_A;
+	m->cells.data = rb->rmap.cells;
+	m->cells.len = sizeof(rb->rmap.cells);
+	m->mucosa_seen = rb->rmap.mucosa_seen;
+	m->tip_s_m = rb->rmap.tip_s_m;
+	map_regions(c, m);
+	map_found(c, m);
+	rep->body_case = ENDOSIM__REPLY__BODY_MAP;
+	rep->map = m;
+}

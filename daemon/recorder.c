@@ -55,6 +55,9 @@ struct recorder {
 	bool quit;
 	enum phase phase;
 	struct recorder_info info;   /* what the control thread sees */
+	struct recorder_map map;     /* the live map the control thread sees */
+	bool map_ready;              /* map is this session's */
+	_Atomic uint64_t map_asked_ns; /* recorder_map()'s last call */
 	struct param params[PARAMS];
 	size_t n_params;
 	int stop_result;
@@ -64,7 +67,11 @@ struct recorder {
 	struct metrics *metrics;
 	unsigned char *buf;
 	size_t used;
-	uint64_t last_write_ns, last_snapshot_ns;
+	uint64_t last_write_ns, last_snapshot_ns, last_map_ns;
+	uint64_t first_stamp_ns;     /* the session's first record */
+	struct session_record last;  /* the newest record drained */
+	struct metrics_map floats;   /* metrics_map(), before quantising */
+	struct recorder_map next;    /* the map being made */
 	uint64_t records, bytes, drops_written;
 	uint64_t throttle_t0_ns, throttle_bytes;
 	uint32_t last_state, last_faults;
@@ -308,6 +315,41 @@ static void snapshot(struct recorder *r)
 	r->last_snapshot_ns = mono_ns();
 }
 
+/* The live map: made outside the lock, copied in under it. */
+static void map_snapshot(struct recorder *r, uint64_t now)
+{
+	struct recorder_map *m = &r->next;
+
+	metrics_map(r->metrics, &r->floats);
+	livemap_quantise(&r->floats, m->cells);
+	m->id = r->info.id;
+	m->length_m = r->floats.length_m;
+	m->tip_s_m = r->seen_record ? r->last.tip_s_m : 0;
+	m->time_s = r->seen_record ?
+		    (double)(r->last.stamp_ns - r->first_stamp_ns) / 1e9 : 0;
+	pthread_mutex_lock(&r->lock);
+	/* the share and the polyps as snapshot() last put them (100 ms) */
+	m->mucosa_seen = r->info.metrics.mucosa_seen;
+	m->polyps_found_mask = r->info.metrics.polyps_seen_mask;
+	r->map = *m;
+	r->map_ready = true;
+	pthread_mutex_unlock(&r->lock);
+	r->last_map_ns = now;
+}
+
+/* The map's first of a session, or its next: often while watched. */
+static bool map_due(struct recorder *r, uint64_t now)
+{
+	uint64_t asked = atomic_load_explicit(&r->map_asked_ns,
+					      memory_order_relaxed);
+	bool watched = asked &&
+		       now < asked + (uint64_t)(RECORDER_MAP_WATCHED_S * 1e9);
+	double period = watched ? RECORDER_MAP_S : RECORDER_MAP_IDLE_S;
+
+	return !r->last_map_ns ||
+	       now - r->last_map_ns >= (uint64_t)(period * 1e9);
+}
+
 /* Everything in the ring now, into the buffer; written when due. */
 static void drain(struct recorder *r)
 {
@@ -316,10 +358,14 @@ static void drain(struct recorder *r)
 
 	param_events(r);
 	while (spsc_pop(&r->tap.ring, &rec)) {
+		if (!r->seen_record) {
+			r->first_stamp_ns = rec.stamp_ns;
+		}
 		derive_events(r, &rec);
 		metrics_record(r->metrics, &rec);
 		put_frame(r, SESSION_FRAME_RECORD, &rec, sizeof(rec));
 		r->records++;
+		r->last = rec;
 	}
 	/* after their records, or those of the next drain */
 	while (spsc_pop(&r->tap.shapes, &r->shape)) {
@@ -333,6 +379,9 @@ static void drain(struct recorder *r)
 	}
 	if (now - r->last_snapshot_ns >= SNAPSHOT_NS) {
 		snapshot(r);
+	}
+	if (map_due(r, now)) {
+		map_snapshot(r, now);
 	}
 }
 
@@ -514,6 +563,7 @@ static int arm(struct recorder *r, int fd, const struct recorder_session *s,
 	r->throttle_t0_ns = r->last_write_ns = r->last_snapshot_ns =
 		mono_ns();
 	r->throttle_bytes = 0;
+	r->last_map_ns = 0; /* the first drain makes the first map */
 	r->n_params = 0;
 	atomic_store(&r->tap.drops, 0);
 	atomic_store(&r->tap.shape_drops, 0);
@@ -562,6 +612,7 @@ int recorder_start(struct recorder *r, const struct recorder_session *s,
 	}
 	pthread_mutex_lock(&r->lock);
 	r->info = in;
+	r->map_ready = false;
 	r->info.bytes = (uint64_t)st.st_size;
 	r->phase = PHASE_RECORDING;
 	atomic_store_explicit(&r->tap.recording, true, memory_order_release);
@@ -596,6 +647,22 @@ void recorder_info(struct recorder *r, struct recorder_info *info)
 	info->drops = r->phase == PHASE_RECORDING ?
 			      atomic_load(&r->tap.drops) : r->info.drops;
 	pthread_mutex_unlock(&r->lock);
+}
+
+int recorder_map(struct recorder *r, struct recorder_map *out)
+{
+	int e;
+
+	atomic_store_explicit(&r->map_asked_ns, mono_ns(),
+			      memory_order_relaxed);
+	pthread_mutex_lock(&r->lock);
+	e = r->phase != PHASE_RECORDING ? -ENOENT :
+	    !r->map_ready ? -EAGAIN : 0;
+	if (!e) {
+		*out = r->map;
+	}
+	pthread_mutex_unlock(&r->lock);
+	return e;
 }
 
 void recorder_param(struct recorder *r, const char *key, const char *value)

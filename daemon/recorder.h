@@ -26,11 +26,19 @@
  * (recorder_param()), and at stop writes the END frame (the final
  * metrics), fsyncs and closes. One session at a time.
  *
+ * While recording, the recorder also keeps the unseen-mucosa map
+ * (metrics_map(), quantised by livemap.h) for endoview's overlay and
+ * `endoctl session map` (recorder_map()): renewed every RECORDER_MAP_S
+ * while it was asked for in the last RECORDER_MAP_WATCHED_S, else every
+ * RECORDER_MAP_IDLE_S (a pass over the mesh: ~10 ms at the default
+ * resolution). It is computed outside the lock and copied in under it
+ * (4 kB), so a reader holds the recorder up for a copy at most.
+ *
  * Threads: the tap is the force loop's; recorder_start(),
- * recorder_stop(), recorder_param() and recorder_info() the control
- * thread's (they may block briefly on the recorder's mutex; start writes
- * the file's first frames, stop waits for the last ones and the fsync);
- * create, run and destroy the main thread's.
+ * recorder_stop(), recorder_param(), recorder_info() and recorder_map()
+ * the control thread's (they may block briefly on the recorder's mutex;
+ * start writes the file's first frames, stop waits for the last ones and
+ * the fsync); create, run and destroy the main thread's.
  */
 #ifndef ENDOSIM_RECORDER_H
 #define ENDOSIM_RECORDER_H
@@ -47,6 +55,7 @@
 #include "publish.h"
 #include "rig.h"
 #include "sessiontap.h"
+#include "livemap.h"
 
 #define RECORDER_NAME 64 /* trainee and case names, bytes with the NUL */
 #define RECORDER_PATH 256
@@ -79,6 +88,21 @@ struct recorder_info {
 	uint64_t drops;
 	uint64_t bytes;              /* file size so far */
 	struct metrics_result metrics; /* live: refreshed every ~100 ms */
+};
+
+#define RECORDER_MAP_S 0.25         /* the live map renewed this often, s, */
+#define RECORDER_MAP_WATCHED_S 2.0  /* while asked for within this, s; */
+#define RECORDER_MAP_IDLE_S 2.0     /* else this often, s */
+
+/* The recording session's unseen-mucosa map, as last renewed. */
+struct recorder_map {
+	uint64_t id;                 /* the session */
+	double time_s;               /* into the session (its first record) */
+	double length_m;             /* the colon's; 0: no colon geometry */
+	double mucosa_seen;          /* 0..1 of the mesh's area */
+	double tip_s_m;              /* the tip along the colon then */
+	uint32_t polyps_found_mask;  /* bit k: the case's polyp k found */
+	uint8_t cells[LIVEMAP_CELLS]; /* livemap.h */
 };
 
 struct recorder;
@@ -120,6 +144,13 @@ int recorder_stop(struct recorder *r, struct recorder_info *info);
 
 /* The current or last session; INFO->active false if none yet. */
 void recorder_info(struct recorder *r, struct recorder_info *info);
+
+/*
+ * The recording session's map into *OUT. 0; -ENOENT when no session is
+ * recording; -EAGAIN before its first map (the first drain of a session).
+ * Never allocates; holds the recorder's mutex for a copy.
+ */
+int recorder_map(struct recorder *r, struct recorder_map *out);
 
 /* A live parameter changed (SetParam): a PARAM event while recording. */
 void recorder_param(struct recorder *r, const char *key, const char *value);

@@ -37,6 +37,7 @@
 #include "link.h"
 #include "lod.h"
 #include "log.h"
+#include "mapview.h"
 #include "model.h"
 #include "mono.h"
 #include "overview.h"
@@ -87,12 +88,13 @@ struct app {
 	struct endo *endo;
 	struct overview *overview;
 	struct hud *hud;
+	struct mapview *mapview; /* the M key's overlay */
 	struct timing *timing;
 	struct colon_set colon;
 	struct input_hand hand;
 	struct overview_orbit orbit;
 	enum link_status status;
-	bool loading, help;
+	bool loading, help, map_shown;
 	uint32_t triangles, triangles_max;
 	uint64_t last_swap_ns, start_ns;
 	uint64_t frame_due_ns; /* --max-fps: the next frame not before */
@@ -327,10 +329,11 @@ static int make_renderers(struct app *a)
 	a->endo = endo_create();
 	a->overview = overview_create();
 	a->hud = hud_create();
+	a->mapview = mapview_create(a->opt.socket, a->replay != NULL);
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
-	if (!a->d2d || !a->endo || !a->overview || !a->hud || !a->timing ||
-	    !a->ui) {
+	if (!a->d2d || !a->endo || !a->overview || !a->hud || !a->mapview ||
+	    !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
 	}
@@ -463,6 +466,9 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 	}
 	if (act->toggle_help) {
 		a->help = !a->help;
+	}
+	if (act->toggle_map) {
+		a->map_shown = !a->map_shown;
 	}
 	if (act->reset_orbit) {
 		a->orbit = (struct overview_orbit){ .zoom = 1 };
@@ -615,6 +621,10 @@ static void render(struct app *a, const struct endosim_state *st,
 	}
 	hud_draw(a->hud, a->d2d, &lay, &in, w, h,
 		 a->replay ? replay_time(a->replay) : (double)now / NS);
+	if (a->map_shown) {
+		mapview_draw(a->mapview, a->d2d, w, h,
+			     a->status == LINK_LIVE ? st : NULL);
+	}
 	draw2d_end(a->d2d);
 }
 
@@ -675,6 +685,7 @@ static int frame(struct app *a)
 		st = link_state(a->link);
 		drive(a, &c, st, now);
 	}
+	mapview_update(a->mapview, a->map_shown, now);
 	current = colon_current(a, st);
 	if (st && a->status == LINK_LIVE && !a->replay) {
 		hud_record(a->hud, st, (double)now / NS);
@@ -718,6 +729,7 @@ static void report(const struct app *a)
 {
 	const struct timing *t = a->timing;
 	double secs = (double)(a->last_swap_ns - a->start_ns) / NS;
+	struct mapview_rect map;
 	struct hud_layout lay;
 	int w, h;
 
@@ -739,7 +751,9 @@ static void report(const struct app *a)
 	print_rect("overview", lay.overview, h);
 	print_rect("panel", lay.panel, h);
 	print_rect("timeline", lay.timeline, h);
-	printf("\n");
+	map = a->map_shown ? mapview_box(w, h) : (struct mapview_rect){ 0 };
+	printf(" map=%d,%d,%d,%d\n", (int)map.x, (int)map.y, (int)map.w,
+	       (int)map.h);
 }
 
 /* What the panel said, and where the overview drew the scope and the
@@ -751,6 +765,9 @@ static void report_drawn(const struct app *a)
 
 	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
 		printf("hud: %s\n", said);
+	}
+	if (a->map_shown) {
+		printf("map: %s\n", mapview_said(a->mapview));
 	}
 	if (a->overview_shown) {
 		glfwGetFramebufferSize(a->window, &w, &h);
@@ -829,6 +846,7 @@ static void cleanup(struct app *a)
 	ui_destroy(a->ui);
 	timing_destroy(a->timing);
 	hud_destroy(a->hud);
+	mapview_destroy(a->mapview);
 	overview_destroy(a->overview);
 	endo_destroy(a->endo);
 	draw2d_destroy(a->d2d);

@@ -30,6 +30,7 @@ const char *const hud_keys[] = {
 	"G  F  B\tguided: take over, follow again,",
 	"\tback to the path",
 	"V  O\tview, overview's orbit back",
+	"M\tthe unseen-mucosa map (recording)",
 	"P\tsave a picture (PNG, here)",
 	"H  Q\tthis help, quit",
 	NULL,

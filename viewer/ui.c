@@ -47,6 +47,8 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->reset_orbit;
 	case GLFW_KEY_P:
 		return &a->capture;
+	case GLFW_KEY_M:
+		return &a->toggle_map;
 	case GLFW_KEY_Q:
 	case GLFW_KEY_ESCAPE:
 		return &a->quit;

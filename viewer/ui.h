@@ -7,7 +7,7 @@
  *             Right/D twist; I K tip up, down; J L tip left, right;
  *             E enable, X disable, Space emergency stop, R reset;
  *             V next view, O overview orbit back, P save a picture,
- *             H help, Q/Esc quit
+ *             M the unseen-mucosa map, H help, Q/Esc quit
  *   mouse     on the endoscopic image: drag to steer (the wheels follow
  *             the pointer), right-drag to twist, scroll to insert;
  *             on the overview: drag to turn it, scroll to zoom
@@ -17,7 +17,7 @@
  * In a replay (ui_set_replay()) the keys drive the replay's clock instead
  * of the rig: Space pause, + - (or ] [) speed, Left Right seek 5 s back
  * or on (Shift: 30 s), Home the start, End the end; a click or a drag on
- * the timeline (struct hud_layout timeline) seeks there. V, O, P, H, Q and
+ * the timeline (struct hud_layout timeline) seeks there. V, O, P, M, H, Q and
  * the overview's mouse stay; the hand's controls are still made but a
  * replay does not use them.
  *
@@ -48,6 +48,7 @@
 struct ui_actions {
 	bool command[RIGCTL_COMMANDS]; /* by enum rigctl_command */
 	bool next_view, toggle_help, reset_orbit, capture, quit;
+	bool toggle_map;     /* the unseen-mucosa overlay (mapview.h) */
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;
 	int speed_steps;     /* +1 faster, -1 slower, per key */

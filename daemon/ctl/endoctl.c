@@ -670,8 +670,8 @@ static const struct {
 	{ "scene", cmd_scene, "info | export FILE.obj: the colon the daemon "
 			      "renders" },
 	{ "session", ctl_cmd_session,
-	  "start [--trainee NAME] [--case NAME] | stop | status | list | show "
-	  "ID | export ID --csv [--events] [--out FILE] | export ID... "
+	  "start [--trainee NAME] [--case NAME] | stop | status | map | list | "
+	  "show ID | export ID --csv [--events] [--out FILE] | export ID... "
 	  "--summary [--out FILE] | report ID --out DIR "
 	  "[--reference REF_ID]: "
 	  "training sessions (ID: or ./N.endoses, without endosimd)" },

@@ -1,7 +1,8 @@
 /*
  * endoctl.h - what the parts of endoctl share (endoctl.c: talking to
  * endosimd, the daemon's commands, main; endoctl_print.c: printing its
- * replies; endoctl_session.c: training sessions). One thread.
+ * replies; endoctl_session.c: training sessions; endoctl_map.c: the
+ * recording session's unseen-mucosa map). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -61,6 +62,10 @@ void ctl_print_stats(const Endosim__StatsReply *s, bool json);
 
 /* `endoctl session ...` (endoctl_session.c). */
 int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl session map`: the recording session's unseen-mucosa map
+ * (endoctl_map.c); 0 or the exit status. */
+int ctl_session_map(struct ctl *ctl);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);

@@ -453,6 +453,9 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv)
 	if (argc == 2 && !strcmp(sub, "list")) {
 		return session_list(ctl);
 	}
+	if (argc == 2 && !strcmp(sub, "map")) {
+		return ctl_session_map(ctl);
+	}
 	if (argc == 3 && !strcmp(sub, "show")) {
 		return session_show(ctl, argv[2]);
 	}
@@ -467,7 +470,7 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv)
 		return session_report(ctl, argv[2], argv[4], argv[6]);
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
-		" | stop | status | list | show ID | export ID --csv [--events] "
+		" | stop | status | map | list | show ID | export ID --csv [--events] "
 		"| export ID... --summary "
 		"[--out FILE] | report ID --out DIR [--reference REF_ID] (ID: or "
 		"a session file's "
