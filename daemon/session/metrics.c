@@ -123,6 +123,7 @@ struct metrics {
 	bool shape_have;
 	double shape_t, shape_depth, shape_tip;
 	double shaft_in, tip_in, shaft_idle, shaft_out, tip_out;
+	double loop_in;           /* s with a loop on the way in */
 };
 
 void metrics_params_default(struct metrics_params *p)
@@ -745,6 +746,9 @@ static void record_shape(struct metrics *m, const struct session_record *r,
 	ds = r->tip_s_m - m->shape_tip;
 	out = m->cecum_s >= 0 && t > m->cecum_s;
 	if (m->shape_have && !out) {
+		if (record_bow(r) > m->loop.on) {
+			m->loop_in += t - m->shape_t;
+		}
 		m->shaft_in += fmax(dd, 0);
 		m->tip_in += fmax(ds, 0);
 		if (dd > 0 && ds < METRICS_IDLE_SHARE * dd) {
@@ -836,9 +840,10 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	episodes_result(&m->force, now, &out->force_episodes,
 			&out->force_episode_s, &(double){ 0 },
 			&(double){ 0 }, &out->n_force, out->force);
-	episodes_result(&m->loop, now, &out->loop_episodes, &out->loop_s,
+	episodes_result(&m->loop, now, &out->loop_episodes, &(double){ 0 },
 			&out->longest_loop_s, &out->largest_loop_m,
 			&out->n_loop, out->loop);
+	out->loop_s = m->loop_in;
 	out->shaft_in_m = m->shaft_in;
 	out->tip_in_m = m->tip_in;
 	out->chase_efficiency = m->shaft_in > 0 ? m->tip_in / m->shaft_in : 0;

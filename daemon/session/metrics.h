@@ -116,7 +116,9 @@ struct metrics_result {
 	double chase_efficiency;   /* tip_in_m / shaft_in_m (0: none) */
 	double shaft_idle_m;       /* pushed in while the tip advanced less
 				      than METRICS_IDLE_SHARE of it */
-	double loop_s;             /* time with a loop (its episodes) */
+	double loop_s;             /* time with a loop (a mobile segment
+				      bowed beyond loop_threshold_m), sampled
+				      as the handling */
 	/* ... and on the way out (from the cecum) */
 	double retraction_m;       /* the shaft withdrawn, summed */
 	double tip_retraction_m;   /* the tip's retreat along the colon */

@@ -218,6 +218,22 @@ void trainee_withdraw(struct trainee *t, double distance, double speed,
 	move(t, -distance, twist_rad, speed);
 }
 
+void trainee_withdraw_looking(struct trainee *t, double distance,
+			      double speed, double look_rad, double circle_s)
+{
+	int steps = (int)ceil(distance / (speed * TRAINEE_STEP_S));
+
+	for (int i = 0; i < steps; i++) {
+		double phi = 2 * M_PI * (i + 1) * TRAINEE_STEP_S / circle_s;
+
+		t->depth -= distance / steps;
+		t->bend[0] = look_rad * cos(phi);
+		t->bend[1] = look_rad * sin(phi);
+		waypoint(t);
+	}
+	t->bend[0] = t->bend[1] = 0;
+}
+
 void trainee_hold(struct trainee *t, double seconds)
 {
 	for (double s = 0; s < seconds - 1e-9; s += TRAINEE_STEP_S) {

@@ -75,6 +75,12 @@ void trainee_push(struct trainee *t, double distance, double speed);
 void trainee_withdraw(struct trainee *t, double distance, double speed,
 		      double twist_rad);
 
+/* Withdraws by DISTANCE (m) at SPEED looking around the wall: the tip
+ * bent LOOK_RAD off straight, the bend going round once every CIRCLE_S
+ * seconds (up, right, down, left), straight again at the end. */
+void trainee_withdraw_looking(struct trainee *t, double distance,
+			      double speed, double look_rad, double circle_s);
+
 /* Lets the tube find its rest: the hand's targets moved to where the
  * carriage and the roll are, so she neither pushes nor pulls; holds for
  * SECONDS. */
