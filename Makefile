@@ -318,7 +318,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
-		$(DESTDIR)$(CASEDIR) \
+		$(DESTDIR)$(CASEDIR) $(DESTDIR)$(DATADIR)/courses \
 		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
@@ -330,6 +330,7 @@ install: all
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
 	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
+	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \
