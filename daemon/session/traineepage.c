@@ -10,24 +10,26 @@
 
 #include "htmlpage.h"
 
-/* A main measure: its key (metrics_fields()), what it is, its unit on
- * the page and the factor from the metric's unit to it. */
+/* A main measure: its key (metrics_fields()), what it is (in the
+ * table's head: short), its unit on the page and the factor from the
+ * metric's unit to it. */
 struct measure {
 	const char *key;
 	const char *title;
+	const char *brief;
 	const char *unit;
 	double scale;
 };
 
 static const struct measure measures[] = {
-	{ "cecum_s", "Time to the cecum", "min", 1.0 / 60 },
-	{ "withdrawal_s", "Withdrawal time", "min", 1.0 / 60 },
-	{ "mucosa_seen", "Mucosa seen", "%", 100 },
-	{ "force_episodes", "Excessive-force episodes", "", 1 },
-	{ "loop_episodes", "Loop episodes", "", 1 },
-	{ "peak_insertion_n", "Peak insertion force", "N", 1 },
-	{ "discomfort", "Discomfort index", "", 1 },
-	{ "polyps_seen", "Polyps found", "", 1 },
+	{ "cecum_s", "Time to the cecum", "Cecum", "min", 1.0 / 60 },
+	{ "withdrawal_s", "Withdrawal time", "Withdrawal", "min", 1.0 / 60 },
+	{ "mucosa_seen", "Mucosa seen", "Mucosa", "%", 100 },
+	{ "force_episodes", "Excessive-force episodes", "Force ep.", "", 1 },
+	{ "loop_episodes", "Loop episodes", "Loops", "", 1 },
+	{ "peak_insertion_n", "Peak insertion force", "Peak force", "N", 1 },
+	{ "discomfort", "Discomfort index", "Discomfort", "", 1 },
+	{ "polyps_seen", "Polyps found", "Polyps", "", 1 },
 };
 
 #define NMEASURES (sizeof(measures) / sizeof(measures[0]))
@@ -35,7 +37,10 @@ static const struct measure measures[] = {
 static const char page_style[] =
 	"td.met{color:#1e7d32}td.missed{color:#c62828}"
 	"span.met{color:#1e7d32}span.missed{color:#c62828}"
-	"span.met,span.missed{display:block;font-size:12px}\n"
+	"span.met,span.missed{display:block;font-size:11px;"
+	"white-space:nowrap}\n"
+	"table#sessions th,table#sessions td{font-size:12px;padding:4px 5px;"
+	"vertical-align:top}div.wide{overflow-x:auto}\n"
 	"svg circle.passed{fill:#2e7d32}svg circle.failed{fill:#c62828}"
 	"svg circle.unjudged{fill:#888}\n"
 	"p.complete{color:#1e7d32;font-weight:700;font-size:18px}"
@@ -181,11 +186,13 @@ static void session_row(FILE *o, const struct coursefile *c,
 static void page_sessions(FILE *o, const struct coursefile *c,
 			  const struct traineepage_session *s, size_t n)
 {
-	fputs("<section><h2>Sessions</h2>\n<table id=\"sessions\"><tr>"
+	fputs("<section><h2>Sessions</h2>\n<div class=\"wide\"><table "
+	      "id=\"sessions\"><tr>"
 	      "<th>Session</th><th>Date</th><th>Case</th><th>Duration</th>",
 	      o);
 	for (size_t i = 0; i < NMEASURES; i++) {
-		fprintf(o, "<th>%s%s%s%s</th>", measures[i].title,
+		fprintf(o, "<th title=\"%s\">%s%s%s%s</th>", measures[i].title,
+			measures[i].brief,
 			*measures[i].unit ? " (" : "", measures[i].unit,
 			*measures[i].unit ? ")" : "");
 	}
@@ -193,7 +200,7 @@ static void page_sessions(FILE *o, const struct coursefile *c,
 	for (size_t i = 0; i < n; i++) {
 		session_row(o, c, &s[i]);
 	}
-	fputs("</table></section>\n", o);
+	fputs("</table></div></section>\n", o);
 }
 
 /* ----------------------------------------------------- learning curves */
