@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "text.h"
+
 #define COURSEFILE_MAX_BYTES (1 << 20)
 
 struct parser {
@@ -49,20 +51,6 @@ static int fail(struct parser *p, const char *fmt, ...)
 	return -EINVAL;
 }
 
-static char *trim(char *s)
-{
-	char *end;
-
-	while (isspace((unsigned char)*s)) {
-		s++;
-	}
-	end = s + strlen(s);
-	while (end > s && isspace((unsigned char)end[-1])) {
-		*--end = '\0';
-	}
-	return s;
-}
-
 static int parse_double(const char *text, double *out)
 {
 	char *end;
@@ -94,7 +82,7 @@ static int open_section(struct parser *p, char *line)
 		return fail(p, "a section is [course] or [case NAME]");
 	}
 	*end = '\0';
-	name = trim(line + 1);
+	name = text_trim(line + 1);
 	p->in_case = NULL;
 	p->in_course = !strcmp(name, "course");
 	if (p->in_course) {
@@ -109,7 +97,7 @@ static int open_section(struct parser *p, char *line)
 		return fail(p, "unknown section [%s]: [course] or [case NAME]",
 			    name);
 	}
-	name = trim(name + 4);
+	name = text_trim(name + 4);
 	if (!*name || strlen(name) >= sizeof(p->c->cases[0].name)) {
 		return fail(p, "[case NAME]: a name of 1 to 63 bytes");
 	}
@@ -134,8 +122,8 @@ static int course_key(struct parser *p, char *line)
 		return fail(p, "expected key = value");
 	}
 	*eq = '\0';
-	key = trim(line);
-	value = trim(eq + 1);
+	key = text_trim(line);
+	value = text_trim(eq + 1);
 	if (!strcmp(key, "name") || !strcmp(key, "description")) {
 		char *to = *key == 'n' ? p->c->name : p->c->description;
 		size_t size = *key == 'n' ? sizeof(p->c->name)
@@ -178,7 +166,7 @@ static int case_req(struct parser *p, char *line)
 		return fail(p, "unknown metric '%s' (the END frame's keys: "
 			    "docs/METRICS.md)", key);
 	}
-	rest = trim(line + klen);
+	rest = text_trim(line + klen);
 	for (i = 0; i < NOPS; i++) {
 		if (!strncmp(rest, ops[i].text, strlen(ops[i].text))) {
 			break;
@@ -189,7 +177,7 @@ static int case_req(struct parser *p, char *line)
 			    rest);
 	}
 	q.op = ops[i].op;
-	rest = trim(rest + strlen(ops[i].text));
+	rest = text_trim(rest + strlen(ops[i].text));
 	if (parse_double(rest, &q.value)) {
 		return fail(p, "%s: bad number '%s'", key, rest);
 	}
@@ -204,7 +192,7 @@ static int case_req(struct parser *p, char *line)
 static int parse_line(struct parser *p, char *line)
 {
 	line[strcspn(line, "#")] = '\0';
-	line = trim(line);
+	line = text_trim(line);
 	if (!*line) {
 		return 0;
 	}

@@ -150,7 +150,8 @@ double htmlpage_px_y(const struct htmlpage_plot *p, double v)
 {
 	double u = (v - p->y.lo) / (p->y.hi - p->y.lo);
 
-	return HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - fmin(1, fmax(0, u)) * HTMLPAGE_PLOT_H;
+	return HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H -
+	       fmin(1, fmax(0, u)) * HTMLPAGE_PLOT_H;
 }
 
 static void plot_ticks(const struct htmlpage_plot *p, const char *xlabel,
@@ -164,21 +165,27 @@ static void plot_ticks(const struct htmlpage_plot *p, const char *xlabel,
 		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
 			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
 			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
-			HTMLPAGE_PLOT_X, y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W, y, HTMLPAGE_PLOT_X - 6, y + 4,
+			HTMLPAGE_PLOT_X, y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W,
+			y, HTMLPAGE_PLOT_X - 6, y + 4,
 			fabs(v) < p->y.step / 1e6 ? 0 : v);
 	}
 	for (double v = p->x.lo; v <= p->x.hi + p->x.step / 2; v += p->x.step) {
-		double x = HTMLPAGE_PLOT_X + (v - p->x.lo) / (p->x.hi - p->x.lo) * HTMLPAGE_PLOT_W;
+		double x = HTMLPAGE_PLOT_X + (v - p->x.lo) /
+			   (p->x.hi - p->x.lo) * HTMLPAGE_PLOT_W;
 
 		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
 			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
 			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n",
-			x, HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H + 16, v);
+			x, HTMLPAGE_PLOT_Y, x,
+			HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x,
+			HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H + 16, v);
 	}
 	fprintf(o, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
-		"height=\"%.1f\"/>\n", HTMLPAGE_PLOT_X, HTMLPAGE_PLOT_Y, HTMLPAGE_PLOT_W, HTMLPAGE_PLOT_H);
+		"height=\"%.1f\"/>\n", HTMLPAGE_PLOT_X, HTMLPAGE_PLOT_Y,
+		HTMLPAGE_PLOT_W, HTMLPAGE_PLOT_H);
 	fprintf(o, "<text class=\"label\" x=\"%.1f\" y=\"%d\" "
-		"text-anchor=\"middle\">%s</text>\n", HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W / 2,
+		"text-anchor=\"middle\">%s</text>\n",
+		HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W / 2,
 		HTMLPAGE_SVG_H - 4, xlabel);
 	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
 		"rotate(-90)\" text-anchor=\"middle\">%s</text>\n",
@@ -193,7 +200,8 @@ void htmlpage_plot_begin(struct htmlpage_plot *p, const char *id,
 	fprintf(p->out, "<figure id=\"%s\"><figcaption>%s</figcaption>\n"
 		"<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" "
 		"viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\" "
-		"aria-label=\"%s\">\n", id, title, HTMLPAGE_SVG_W, HTMLPAGE_SVG_H, HTMLPAGE_SVG_W, HTMLPAGE_SVG_H,
+		"aria-label=\"%s\">\n", id, title, HTMLPAGE_SVG_W,
+		HTMLPAGE_SVG_H, HTMLPAGE_SVG_W, HTMLPAGE_SVG_H,
 		title);
 	plot_ticks(p, xlabel, ylabel);
 }
@@ -210,7 +218,8 @@ void htmlpage_plot_hline(const struct htmlpage_plot *p, double v,
 
 	fprintf(p->out, "<line class=\"threshold\" x1=\"%.1f\" y1=\"%.1f\" "
 		"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"thlabel\" x=\"%.1f\" "
-		"y=\"%.1f\" text-anchor=\"end\">%s</text>\n", HTMLPAGE_PLOT_X, y,
-		HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W, y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 4, y - 4, label);
+		"y=\"%.1f\" text-anchor=\"end\">%s</text>\n", HTMLPAGE_PLOT_X,
+		y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W, y,
+		HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 4, y - 4, label);
 }
 

@@ -41,7 +41,8 @@ static void put_header(FILE *out, const struct session_file *f,
 
 /* ---------------------------------------------------------------- axes */
 
-static double rec_t(const struct htmlpage_plot *p, const struct session_record *r)
+static double rec_t(const struct htmlpage_plot *p,
+		    const struct session_record *r)
 {
 	return (double)(int64_t)(r->stamp_ns - p->t0_ns) * 1e-9;
 }
@@ -56,23 +57,27 @@ static void plot_begin(struct htmlpage_plot *p, const char *id,
 }
 
 /* Episodes as shaded bands of CLASS, from 0 to the plot's top. */
-static void plot_bands(const struct htmlpage_plot *p, const struct metrics_episode *ep,
+static void plot_bands(const struct htmlpage_plot *p,
+		       const struct metrics_episode *ep,
 		       uint32_t n, double end_s, const char *cls)
 {
 	for (uint32_t i = 0; i < n; i++) {
 		double x0 = htmlpage_px_x(p, ep[i].start_s);
-		double x1 = htmlpage_px_x(p, ep[i].end_s >= 0 ? ep[i].end_s : end_s);
+		double x1 = htmlpage_px_x(p,
+					  ep[i].end_s >= 0 ? ep[i].end_s : end_s);
 
 		fprintf(p->out, "<rect class=\"band %s\" x=\"%.1f\" y=\"%.1f\" "
 			"width=\"%.1f\" height=\"%.1f\"><title>%s %u</title>"
-			"</rect>\n", cls, x0, HTMLPAGE_PLOT_Y, fmax(x1 - x0, 1.5),
-			HTMLPAGE_PLOT_H, strcmp(cls, "force") ? "loop episode" :
-			"force episode", i + 1);
+			"</rect>\n", cls, x0, HTMLPAGE_PLOT_Y,
+			fmax(x1 - x0, 1.5), HTMLPAGE_PLOT_H,
+			strcmp(cls, "force") ? "loop episode" : "force episode",
+			i + 1);
 	}
 }
 
 /* Faults (red) and state changes (grey) as vertical marks. */
-static void plot_events(const struct htmlpage_plot *p, const struct session_file *f)
+static void plot_events(const struct htmlpage_plot *p,
+			const struct session_file *f)
 {
 	double last_x = -1e9;
 	int row = 0;
@@ -83,10 +88,13 @@ static void plot_events(const struct htmlpage_plot *p, const struct session_file
 		double x = htmlpage_px_x(p, t);
 
 		if (ev->kind == SESSION_EVENT_FAULT) {
-			fprintf(p->out, "<line class=\"event fault\" x1=\"%.1f\" "
+			fprintf(p->out,
+				"<line class=\"event fault\" x1=\"%.1f\" "
 				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"><title>"
-				"fault: %s</title></line>\n", x, HTMLPAGE_PLOT_Y, x,
-				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, names_fault(ev->detail));
+				"fault: %s</title></line>\n", x,
+				HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+				names_fault(ev->detail));
 		} else if (ev->kind == SESSION_EVENT_STATE) {
 			const char *s = names_state((uint32_t)ev->value);
 
@@ -94,10 +102,12 @@ static void plot_events(const struct htmlpage_plot *p, const struct session_file
 			row = x - last_x < 50 ? (row + 1) % 3 : 0;
 			last_x = x;
 
-			fprintf(p->out, "<line class=\"event state\" x1=\"%.1f\" "
+			fprintf(p->out,
+				"<line class=\"event state\" x1=\"%.1f\" "
 				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/><text "
 				"class=\"evlabel\" x=\"%.1f\" y=\"%.1f\">%s"
-				"</text>\n", x, HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x + 3,
+				"</text>\n", x, HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x + 3,
 				HTMLPAGE_PLOT_Y + 10 + 11 * row, s);
 		}
 	}
@@ -114,7 +124,8 @@ static void path_column(FILE *o, bool *first, double x, double a, double b)
 }
 
 /* One series, decimated to the min and max of each pixel column. */
-static void plot_series(const struct htmlpage_plot *p, const struct session_file *f,
+static void plot_series(const struct htmlpage_plot *p,
+			const struct session_file *f,
 			const struct series *s, const char *color)
 {
 	bool first = true, have = false;
@@ -126,7 +137,9 @@ static void plot_series(const struct htmlpage_plot *p, const struct session_file
 	for (size_t i = 0; i <= f->n_records; i++) {
 		const struct session_record *r = &f->records[i < f->n_records ?
 							   i : i - 1];
-		long c = i < f->n_records ? lround(htmlpage_px_x(p, rec_t(p, r))) : -2;
+		long c = i < f->n_records
+				 ? lround(htmlpage_px_x(p, rec_t(p, r)))
+				 : -2;
 		double v = i < f->n_records ? s->get(r, s->arg) : NAN;
 
 		if (c != col && have) {
@@ -165,7 +178,8 @@ static void plot_legend(const struct htmlpage_plot *p, const struct series *s,
 		x += 34 + 7.0 * (double)strlen(s[i].name);
 	}
 	if (bands) {
-		fprintf(p->out, "<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
+		fprintf(p->out,
+			"<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
 			"width=\"14\" height=\"12\"/><text class=\"legend\" "
 			"x=\"%.1f\" y=\"18\">excessive force</text>\n"
 			"<rect class=\"swatch loop\" x=\"%.1f\" y=\"8\" width=\"14\" "
@@ -208,7 +222,8 @@ static void series_range(const struct session_file *f, const struct series *s,
 }
 
 /* A plot of N series with the episodes and events marked. */
-static void plot_series_figure(struct htmlpage_plot *p, const struct session_file *f,
+static void plot_series_figure(struct htmlpage_plot *p,
+			       const struct session_file *f,
 			       const struct metrics_result *m, const char *id,
 			       const char *title, const char *ylabel,
 			       const struct series *s, int n, double lo,
@@ -257,7 +272,8 @@ static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
 }
 
 /* The segments as horizontal bands, named. */
-static void plot_segments(const struct htmlpage_plot *p, const struct anatomy *a)
+static void plot_segments(const struct htmlpage_plot *p,
+			  const struct anatomy *a)
 {
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
 		double s0 = anatomy_segment_start(a, i);
@@ -266,11 +282,13 @@ static void plot_segments(const struct htmlpage_plot *p, const struct anatomy *a
 
 		fprintf(p->out, "<rect class=\"segment s%d\" x=\"%.1f\" "
 			"y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"><title>%s"
-			"</title></rect>\n", i % 2, HTMLPAGE_PLOT_X, y0, HTMLPAGE_PLOT_W, y1 - y0,
+			"</title></rect>\n", i % 2, HTMLPAGE_PLOT_X, y0,
+			HTMLPAGE_PLOT_W, y1 - y0,
 			anatomy_segment_name(i));
 		if (y1 - y0 >= 9) { /* room for its name */
 			fprintf(p->out, "<text class=\"seglabel\" x=\"%.1f\" "
-				"y=\"%.1f\">%s</text>\n", HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 6,
+				"y=\"%.1f\">%s</text>\n",
+				HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 6,
 				(y0 + y1) / 2 + 4, anatomy_segment_name(i));
 		}
 	}
@@ -297,7 +315,8 @@ static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
 		fprintf(p->out, "<line class=\"cecum\" x1=\"%.1f\" y1=\"%.1f\" "
 			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"cecumlabel\" "
 			"x=\"%.1f\" y=\"%.1f\">cecum reached</text>\n", x,
-			HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x + 4, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - 6);
+			HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+			x + 4, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - 6);
 	}
 	plot_series(p, f, &s[0], htmlpage_color(0));
 	plot_legend(p, s, 1, true);
@@ -313,8 +332,8 @@ static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
 		if (a->seg[i].mobile) {
-			s[n] = (struct series){ anatomy_segment_name(i), get_bow,
-						n };
+			s[n] = (struct series){ anatomy_segment_name(i),
+						get_bow, n };
 			n++;
 		}
 	}
@@ -501,7 +520,8 @@ static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
 		const struct session_event *ev = &f->events[i].ev;
 
 		fprintf(o, "<tr class=\"%s\"><td>", event_kind(ev->kind));
-		htmlpage_duration(o, (double)(int64_t)(ev->stamp_ns - t0) * 1e-9);
+		htmlpage_duration(o,
+				  (double)(int64_t)(ev->stamp_ns - t0) * 1e-9);
 		fprintf(o, "</td><td>%s</td><td>", event_kind(ev->kind));
 		if (ev->kind == SESSION_EVENT_STATE) {
 			fputs(names_state((uint32_t)ev->value), o);
@@ -563,7 +583,8 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	if (f->n_records) {
 		p.t0_ns = f->records[0].stamp_ns;
 		p.xscale = m->duration_s > 300 ? 60 : 1;
-		p.x = htmlpage_axis(0, fmax(m->duration_s, 1e-3) / p.xscale, 10);
+		p.x = htmlpage_axis(0, fmax(m->duration_s, 1e-3) / p.xscale,
+				    10);
 		plot_force(&p, f, m);
 		plot_torques(&p, f, m);
 		plot_tip(&p, f, m, a);
@@ -650,13 +671,16 @@ static void along_series(const struct htmlpage_plot *p, const struct along *a,
 /* A legend of the trainee's (solid) and the reference's (dashed). */
 static void compare_legend(const struct htmlpage_plot *p)
 {
-	fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
+	fprintf(p->out,
+		"<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
 		"x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" x=\"%.1f\" "
 		"y=\"18\">this session</text><line class=\"key\" stroke=\"%s\" "
 		"stroke-dasharray=\"6 3\" x1=\"%.1f\" y1=\"14\" x2=\"%.1f\" "
 		"y2=\"14\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
-		"reference</text>\n", htmlpage_color(0), HTMLPAGE_PLOT_X + 4, HTMLPAGE_PLOT_X + 22,
-		HTMLPAGE_PLOT_X + 26, htmlpage_color(2), HTMLPAGE_PLOT_X + 130, HTMLPAGE_PLOT_X + 148,
+		"reference</text>\n", htmlpage_color(0), HTMLPAGE_PLOT_X + 4,
+		HTMLPAGE_PLOT_X + 22,
+		HTMLPAGE_PLOT_X + 26, htmlpage_color(2), HTMLPAGE_PLOT_X + 130,
+		HTMLPAGE_PLOT_X + 148,
 		HTMLPAGE_PLOT_X + 152);
 }
 
@@ -888,14 +912,16 @@ int report_map(const struct session_file *f, struct metrics_map *out)
 static void page_map(FILE *o, const struct metrics_map *map,
 		     const struct anatomy *a, uint32_t found)
 {
-	const double x0 = HTMLPAGE_PLOT_X, y0 = HTMLPAGE_PLOT_Y, w = HTMLPAGE_PLOT_W, h = HTMLPAGE_PLOT_H;
+	const double x0 = HTMLPAGE_PLOT_X, y0 = HTMLPAGE_PLOT_Y,
+	w = HTMLPAGE_PLOT_W, h = HTMLPAGE_PLOT_H;
 	const double cw = w / METRICS_MAP_S, ch = h / METRICS_MAP_A;
 
 	fprintf(o, "<figure id=\"mucosa-map\"><figcaption>The mucosa "
 		"unrolled: seen (green) and unseen (red), polyps found "
 		"(filled) and missed (rings)</figcaption>\n<svg class=\"plot\" "
 		"xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %d %d\" "
-		"width=\"%d\" height=\"%d\" role=\"img\">\n", HTMLPAGE_SVG_W, HTMLPAGE_SVG_H,
+		"width=\"%d\" height=\"%d\" role=\"img\">\n", HTMLPAGE_SVG_W,
+		HTMLPAGE_SVG_H,
 		HTMLPAGE_SVG_W, HTMLPAGE_SVG_H);
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
@@ -907,7 +933,8 @@ static void page_map(FILE *o, const struct metrics_map *map,
 			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
 				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
 				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
-				(int)lround(214 - 60 * v), (int)lround(60 + 170 * v),
+				(int)lround(214 - 60 * v),
+				(int)lround(60 + 170 * v),
 				(int)lround(60 + 120 * v));
 		}
 	}

@@ -16,8 +16,8 @@
 # screenshot is not blank. The page stays in $TMP/page (the screenshot in
 # $TRAINEE_SHOT, default $TMP/trainee.png) to be looked at.
 . "$(dirname "$0")/../common.sh"
+. "$(dirname "$0")/chrome_lib.sh"
 
-CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
 SESS="$TMP/sessions"
 SHOT=${TRAINEE_SHOT:-$TMP/trainee.png}
 ANN="Ann O'Neil <i>"
@@ -111,27 +111,9 @@ check_status "trainee list --dir: the directory without endosimd" 0 \
 check "... the same trainees" \
 	test "$(jq -c 'del(.index)' "$OUT")" = "$WANT"
 
-if [ -z "$CHROMIUM" ]; then
-	fail "chromium is installed (Debian package chromium; make deps-test)"
-	finish
-fi
-chrome() {
-	HOME="$TMP" "$CHROMIUM" --headless --no-sandbox --disable-gpu \
-		--user-data-dir="$TMP/chromium" --hide-scrollbars "$@" \
-		2>>"$TMP/chromium.log"
-}
-check "headless Chromium renders a screenshot" \
-	chrome --screenshot="$SHOT" --window-size=1280,2400 \
-	"file://$TMP/page/index.html"
-if [ -s "$SHOT" ]; then
-	read -r _ _ _ lit red _ < <("$TOOLS/png_stats" "$SHOT" rect:0,0,1280,2400)
-	lit=${lit#lit=}
-	red=${red#red=}
-	check "the screenshot has text (dark pixels: lit $lit < 0.999)" \
-		awk -v v="$lit" 'BEGIN { exit !(v < 0.999) }'
-	check "the screenshot has the failed marks and bounds (red $red > 0.00005)" \
-		awk -v v="$red" 'BEGIN { exit !(v > 0.00005) }'
-fi
+need_chromium
+check_screenshot "$TMP/page/index.html" "$SHOT" 1280 2400 \
+	"the failed marks and the bounds"
 DOM="$TMP/dom.html"
 chrome --dump-dom "file://$TMP/page/index.html" >"$DOM"
 check "the DOM says: course complete" \
