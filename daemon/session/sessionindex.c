@@ -176,7 +176,9 @@ static int read_index(const char *path, struct list *l,
 		}
 		r = list_add(l, &it);
 	}
-	qsort(l->v, l->n, sizeof(*l->v), by_id);
+	if (l->n) {
+		qsort(l->v, l->n, sizeof(*l->v), by_id);
+	}
 out:
 	fclose(f);
 	free(line);
@@ -205,7 +207,8 @@ static void read_file(const char *path, struct item *it)
 /* The index's line for the file of IT if it still matches, else NULL. */
 static struct item *match(struct list *index, const struct item *it)
 {
-	struct item *hit = bsearch(it, index->v, index->n, sizeof(*it), by_id);
+	struct item *hit = index->n ? bsearch(it, index->v, index->n,
+					      sizeof(*it), by_id) : NULL;
 
 	if (!hit || hit->x.e.bytes != it->x.e.bytes ||
 	    hit->x.mtime_ns != it->x.mtime_ns) {
@@ -254,7 +257,9 @@ static int scan(const char *dir, struct list *index, struct list *files,
 		r = add_file(dir, de->d_name, index, files, info);
 	}
 	closedir(d);
-	qsort(files->v, files->n, sizeof(*files->v), by_id);
+	if (files->n) {
+		qsort(files->v, files->n, sizeof(*files->v), by_id);
+	}
 	return r;
 }
 
