@@ -3,7 +3,8 @@
  * small session files written here (a HEADER, an END frame or none): it
  * is built when missing, fresh when nothing changed, stale after a file
  * is deleted, added or grows (only those read again), damaged after a
- * line is flipped, cut, or the whole file is garbage, and each time the
+ * byte of a number or of a name changed (which only the line's CRC
+ * tells), a line cut, or the whole file garbage, and each time the
  * sessions come back the same as the files say; a directory it may not
  * write is read all the same.
  *
@@ -192,6 +193,23 @@ static void damage(long off, const char *text)
 	close(fd);
 }
 
+/* The offset of the first TEXT in the index. */
+static long find_in_index(const char *text)
+{
+	static char buf[1 << 16];
+	FILE *f = fopen(index_path, "r");
+	size_t n;
+	char *at;
+
+	assert_non_null(f);
+	n = fread(buf, 1, sizeof(buf) - 1, f);
+	fclose(f);
+	buf[n] = '\0';
+	at = strstr(buf, text);
+	assert_non_null(at);
+	return at - buf;
+}
+
 static void test_damaged(void **state)
 {
 	struct sessionindex_entry *e;
@@ -209,6 +227,13 @@ static void test_damaged(void **state)
 	assert_int_equal(info.bad_lines, 1);
 	assert_int_equal(info.reread, 1);
 	check_sessions(e, n);
+	free(e);
+	/* a flipped letter: the line parses, only its CRC tells */
+	damage(find_in_index("Ann Smith") + 8, "x");
+	assert_int_equal(load(&e, &n, &info), 0);
+	assert_int_equal(info.state, SESSIONINDEX_DAMAGED);
+	assert_int_equal(info.bad_lines, 1);
+	check_sessions(e, n); /* "Ann Smith" again, from its file */
 	free(e);
 	damage(st.st_size - 30, NULL); /* the last line cut */
 	assert_int_equal(load(&e, &n, &info), 0);
