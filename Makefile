@@ -177,7 +177,7 @@ TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     session_shapes
 BENCH_TOOLS = bench_colon bench_haptics bench_metrics
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
-	       fuzz_epos4 fuzz_session fuzz_rod
+	       fuzz_epos4 fuzz_session fuzz_rod fuzz_course
 TEST_WINGS = $(WINGS)
 FUZZ_WINGS = session rig model base proto
 
