@@ -113,7 +113,7 @@ struct reply_buf {
 	Endosim__TraineeReply trainee;     /* TraineeSessions': */
 	Endosim__SessionInfo *trainee_infos;
 	Endosim__SessionInfo **trainee_infos_p;
-	struct sessionpb_metrics *trainee_metrics;
+	struct sessionpb_scalars *trainee_metrics;
 	struct sessionindex_entry *trainee_entries;
 };
 

@@ -49,7 +49,7 @@ static int alloc_reply(struct reply_buf *rb, size_t n)
 /* Session E as the reply's S; the recorder's own one as recording. */
 static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 				 struct sessionindex_entry *e,
-				 struct sessionpb_metrics *pm, char *path,
+				 struct sessionpb_scalars *pm, char *path,
 				 const struct recorder_info *ri)
 {
 	sessionpb_from_entry(s, &e->e);
@@ -58,7 +58,7 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 	s->path = path;
 	s->recording = ri->active && ri->recording && ri->id == e->e.id;
 	if (e->has_metrics && !s->recording) {
-		sessionpb_from_metrics(pm, &e->m);
+		sessionpb_from_scalars(pm, &e->m);
 		s->metrics = &pm->msg;
 		s->duration_s = e->m.duration_s;
 		s->records = e->m.records;
