@@ -247,7 +247,16 @@ static void json_standing(struct json *j, const struct standing *st,
 	json_object_begin(j, NULL);
 	json_string(j, "trainee", st->trainee);
 	json_uint(j, "sessions", st->sessions);
-	json_string(j, "cases", st->cases);
+	json_array_begin(j, "cases");
+	for (const char *at = st->cases; *at;) {
+		size_t n = strcspn(at, ",");
+		char name[64];
+
+		snprintf(name, sizeof(name), "%.*s", (int)n, at);
+		json_string(j, NULL, name);
+		at += n + (at[n] ? 2 : 0); /* ", " */
+	}
+	json_array_end(j);
 	json_uint(j, "last_session", st->last->id);
 	json_string(j, "last_started", st->last->started);
 	if (c) {

@@ -11,25 +11,29 @@
 #include "htmlpage.h"
 
 /* A main measure: its key (metrics_fields()), what it is (in the
- * table's head: short), its unit on the page and the factor from the
- * metric's unit to it. */
+ * table's head: short), its unit on the page, the factor from the
+ * metric's unit to it, and whether it counts (its axis: whole steps). */
 struct measure {
 	const char *key;
 	const char *title;
 	const char *brief;
 	const char *unit;
 	double scale;
+	bool count;
 };
 
 static const struct measure measures[] = {
-	{ "cecum_s", "Time to the cecum", "Cecum", "min", 1.0 / 60 },
-	{ "withdrawal_s", "Withdrawal time", "Withdrawal", "min", 1.0 / 60 },
-	{ "mucosa_seen", "Mucosa seen", "Mucosa", "%", 100 },
-	{ "force_episodes", "Excessive-force episodes", "Force ep.", "", 1 },
-	{ "loop_episodes", "Loop episodes", "Loops", "", 1 },
-	{ "peak_insertion_n", "Peak insertion force", "Peak force", "N", 1 },
-	{ "discomfort", "Discomfort index", "Discomfort", "", 1 },
-	{ "polyps_seen", "Polyps found", "Polyps", "", 1 },
+	{ "cecum_s", "Time to the cecum", "Cecum", "min", 1.0 / 60, false },
+	{ "withdrawal_s", "Withdrawal time", "Withdrawal", "min", 1.0 / 60,
+	  false },
+	{ "mucosa_seen", "Mucosa seen", "Mucosa", "%", 100, false },
+	{ "force_episodes", "Excessive-force episodes", "Force ep.", "", 1,
+	  true },
+	{ "loop_episodes", "Loop episodes", "Loops", "", 1, true },
+	{ "peak_insertion_n", "Peak insertion force", "Peak force", "N", 1,
+	  false },
+	{ "discomfort", "Discomfort index", "Discomfort", "", 1, false },
+	{ "polyps_seen", "Polyps found", "Polyps", "", 1, true },
 };
 
 #define NMEASURES (sizeof(measures) / sizeof(measures[0]))
@@ -41,7 +45,7 @@ static const char page_style[] =
 	"white-space:nowrap}\n"
 	"table#sessions th,table#sessions td{font-size:12px;padding:4px 5px;"
 	"vertical-align:top}div.wide{overflow-x:auto}\n"
-	"svg circle.passed{fill:#2e7d32}svg circle.failed{fill:#c62828}"
+	"svg circle.met{fill:#2e7d32}svg circle.missed{fill:#c62828}"
 	"svg circle.unjudged{fill:#888}\n"
 	"p.complete{color:#1e7d32;font-weight:700;font-size:18px}"
 	"p.incomplete{color:#b26a00;font-weight:700;font-size:18px}\n";
@@ -119,8 +123,8 @@ static int page_status(FILE *o, const struct coursefile *c,
 		"<p>", done ? "complete" : "incomplete",
 		done ? "course complete" : "course not complete yet");
 	htmlpage_escape(o, c->description);
-	fprintf(o, " Each case needs %u sessions in a row that meet all its "
-		"requirements.</p>\n<ul>\n", c->consecutive);
+	fprintf(o, "</p>\n<p>Each case needs %u sessions in a row that meet "
+		"all its requirements.</p>\n<ul>\n", c->consecutive);
 	for (size_t k = 0; k < c->n_cases; k++) {
 		status_case(o, c, k, &p[k], s);
 	}
@@ -250,9 +254,25 @@ static void curve_range(const struct traineepage_session *const *cs,
 		}
 	}
 	*hi = *hi > *lo ? *hi * 1.1 : *lo + 1;
+	*hi = me->count ? fmax(*hi, *lo + 5) : *hi; /* steps of 1 */
 }
 
-/* The measure over the case's N sessions CS as a line with points. */
+/* Whether M meets every requirement of K on ME: 1, 0, or -1 (none). */
+static int measure_met(const struct coursefile_case *k,
+		       const struct measure *me, const struct metrics_result *m)
+{
+	int met = -1;
+
+	for (size_t i = 0; k && i < k->n_reqs; i++) {
+		if (!strcmp(k->req[i].field->key, me->key)) {
+			met = met != 0 && coursefile_met(&k->req[i], m);
+		}
+	}
+	return met;
+}
+
+/* The measure over the case's N sessions CS as a line with points, each
+ * marked by whether it met the course's requirements on the measure. */
 static void curve_points(const struct htmlpage_plot *p,
 			 const struct traineepage_session *const *cs, size_t n,
 			 const struct coursefile_case *k,
@@ -275,18 +295,18 @@ static void curve_points(const struct htmlpage_plot *p,
 	fputs("\"/>\n", p->out);
 	for (size_t i = 0; i < n; i++) {
 		double v = measure_value(me, cs[i]->m);
-		const char *cls = !k ? "unjudged" : coursefile_passed(k,
-			cs[i]->m) ? "passed" : "failed";
+		int met = measure_met(k, me, cs[i]->m);
 
 		if (!isfinite(v)) {
 			continue;
 		}
 		fprintf(p->out, "<circle class=\"point %s\" cx=\"%.1f\" "
-			"cy=\"%.1f\" r=\"4.5\"><title>session %llu: %.3g%s%s "
-			"(%s)</title></circle>\n", cls,
-			htmlpage_px_x(p, (double)(i + 1)), htmlpage_px_y(p, v),
-			(unsigned long long)cs[i]->id, v, *me->unit ? " " : "",
-			me->unit, cls);
+			"cy=\"%.1f\" r=\"4.5\"><title>session %llu: %.3g%s%s%s"
+			"</title></circle>\n", met < 0 ? "unjudged" : met ?
+			"met" : "missed", htmlpage_px_x(p, (double)(i + 1)),
+			htmlpage_px_y(p, v), (unsigned long long)cs[i]->id, v,
+			*me->unit ? " " : "", me->unit, met < 0 ? "" : met ?
+			" (requirement met)" : " (requirement not met)");
 	}
 }
 

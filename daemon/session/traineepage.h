@@ -11,8 +11,9 @@
  *     and each of its case's requirements met or not;
  *   - the learning curves: per case, one plot per main measure across the
  *     trainee's sessions on it (the session's number on that case along
- *     x), each point marked passed or failed, the course's bound on that
- *     measure as a threshold line.
+ *     x), each point marked by whether it met the course's requirements
+ *     on that measure (grey: none), the course's bounds on it as
+ *     threshold lines.
  * Every text from the files (trainee, case, date) is HTML-escaped.
  *
  * Not for the force loop: writes files. Any thread; no shared state.
