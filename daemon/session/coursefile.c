@@ -166,6 +166,10 @@ static int case_req(struct parser *p, char *line)
 		return fail(p, "unknown metric '%s' (the END frame's keys: "
 			    "docs/METRICS.md)", key);
 	}
+	if (!strcmp(key, "polyps_seen_mask")) { /* nor on the wire */
+		return fail(p, "%s: a set of polyps, not a measure "
+			    "(polyps_seen counts them)", key);
+	}
 	rest = text_trim(line + klen);
 	for (i = 0; i < NOPS; i++) {
 		if (!strncmp(rest, ops[i].text, strlen(ops[i].text))) {

@@ -15,7 +15,8 @@
  *   [case normal]                a case's name (config/cases/NAME.case)
  *   cecum_s <= 480               KEY OP NUMBER: KEY one of metrics_fields()'
  *   withdrawal_s >= 360          keys (the END frame's, in its units: s, m,
- *   mucosa_seen >= 0.90          N, shares 0..1), OP one of <= >= < > ==
+ *   mucosa_seen >= 0.90          N, shares 0..1) but polyps_seen_mask (a
+ *                                set, not a measure), OP one of <= >= < > ==
  *   force_episodes == 0
  *
  * A session that never reached the cecum (cecum_s < 0) meets no

@@ -75,6 +75,8 @@ static void test_errors(void **state)
 	(void)state;
 	snprintf(text, sizeof(text), "%scecum_time <= 3\n", head);
 	fails(text, "c.course:5: unknown metric 'cecum_time'");
+	snprintf(text, sizeof(text), "%spolyps_seen_mask == 31\n", head);
+	fails(text, "c.course:5: polyps_seen_mask: a set of polyps");
 	snprintf(text, sizeof(text), "%scecum_s => 3\n", head);
 	fails(text, "c.course:5: cecum_s: bad operator '=>'");
 	snprintf(text, sizeof(text), "%scecum_s <= 8min\n", head);
