@@ -335,7 +335,9 @@ static int write_index(const char *dir, const struct list *files)
 	for (size_t i = 0; i < files->n && !r; i++) {
 		r = write_line(f, &files->v[i]);
 	}
-	if (fflush(f) || fsync(fd)) {
+	/* not fsynced: a cache, rewritten while a session records; one torn
+	 * by a crash is damaged, and built again */
+	if (fflush(f)) {
 		r = r ? r : -errno;
 	}
 	if (fclose(f) && !r) {
