@@ -114,6 +114,7 @@ struct reply_buf {
 	Endosim__SessionInfo *trainee_infos;
 	Endosim__SessionInfo **trainee_infos_p;
 	struct sessionpb_scalars *trainee_metrics;
+	char (*trainee_paths)[CONFIG_STR + 32];
 	struct sessionindex_entry *trainee_entries;
 };
 

@@ -5,15 +5,15 @@
  */
 #include "control_private.h"
 
-typedef char trainee_path[CONFIG_STR + 32];
-
 void control_free_trainee(struct reply_buf *rb)
 {
 	free(rb->trainee_infos);
 	free(rb->trainee_infos_p);
 	free(rb->trainee_metrics);
 	free(rb->trainee_entries);
+	free(rb->trainee_paths);
 	rb->trainee_infos = NULL;
+	rb->trainee_paths = NULL;
 	rb->trainee_infos_p = NULL;
 	rb->trainee_metrics = NULL;
 	rb->trainee_entries = NULL;
@@ -33,17 +33,17 @@ static void log_index(const char *dir, const struct sessionindex_info *in)
 	}
 }
 
-/* The reply's arrays for N sessions (paths after the metrics). */
+/* The reply's arrays for N sessions. */
 static int alloc_reply(struct reply_buf *rb, size_t n)
 {
 	size_t k = n ? n : 1;
 
 	rb->trainee_infos = calloc(k, sizeof(*rb->trainee_infos));
 	rb->trainee_infos_p = calloc(k, sizeof(*rb->trainee_infos_p));
-	rb->trainee_metrics = calloc(k, sizeof(*rb->trainee_metrics) +
-					       sizeof(trainee_path));
-	return rb->trainee_infos && rb->trainee_infos_p && rb->trainee_metrics
-		       ? 0 : -ENOMEM;
+	rb->trainee_metrics = calloc(k, sizeof(*rb->trainee_metrics));
+	rb->trainee_paths = calloc(k, sizeof(*rb->trainee_paths));
+	return rb->trainee_infos && rb->trainee_infos_p &&
+		       rb->trainee_metrics && rb->trainee_paths ? 0 : -ENOMEM;
 }
 
 /* Session E as the reply's S; the recorder's own one as recording. */
@@ -54,7 +54,7 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 {
 	sessionpb_from_entry(s, &e->e);
 	sessiondir_path(c->cfg.session.directory, e->e.id, path,
-			sizeof(trainee_path));
+			sizeof(*c->rb.trainee_paths));
 	s->path = path;
 	s->recording = ri->active && ri->recording && ri->id == e->e.id;
 	if (e->has_metrics && !s->recording) {
@@ -66,22 +66,42 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 	}
 }
 
+/* The N entries of the index that are WHO's ("": everyone's) as the
+ * reply's sessions; how many. */
+static size_t fill_sessions(struct control *c, const char *who, size_t n)
+{
+	struct reply_buf *rb = &c->rb;
+	struct recorder_info ri;
+	size_t kept = 0;
+
+	recorder_info(c->deps.recorder, &ri);
+	for (size_t i = 0; i < n; i++) {
+		struct sessionindex_entry *e = &rb->trainee_entries[i];
+
+		if (*who && strcmp(who, e->e.trainee)) {
+			continue;
+		}
+		fill_trainee_session(c, &rb->trainee_infos[kept], e,
+				     &rb->trainee_metrics[kept],
+				     rb->trainee_paths[kept], &ri);
+		rb->trainee_infos_p[kept] = &rb->trainee_infos[kept];
+		kept++;
+	}
+	return kept;
+}
+
 void control_on_trainee_sessions(struct control *c, struct client *cl,
 				 const Endosim__Request *req,
 				 Endosim__Reply *rep)
 {
-	const char *who = req->trainee_sessions->trainee, *dir;
 	struct reply_buf *rb = &c->rb;
+	char *dir = c->cfg.session.directory;
 	struct sessionindex_info info;
-	struct recorder_info ri;
-	trainee_path *paths;
-	size_t n, kept = 0;
+	size_t n;
 	int r;
 
 	(void)cl;
-	dir = c->cfg.session.directory;
 	control_free_trainee(rb);
-	recorder_info(c->deps.recorder, &ri);
 	r = sessionindex_load(dir, true, &rb->trainee_entries, &n, &info);
 	if (!r) {
 		log_index(dir, &info);
@@ -94,23 +114,11 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
 		return;
 	}
-	paths = (trainee_path *)(rb->trainee_metrics + (n ? n : 1));
-	for (size_t i = 0; i < n; i++) {
-		struct sessionindex_entry *e = &rb->trainee_entries[i];
-
-		if (*who && strcmp(who, e->e.trainee)) {
-			continue;
-		}
-		fill_trainee_session(c, &rb->trainee_infos[kept], e,
-				     &rb->trainee_metrics[kept], paths[kept],
-				     &ri);
-		rb->trainee_infos_p[kept] = &rb->trainee_infos[kept];
-		kept++;
-	}
 	endosim__trainee_reply__init(&rb->trainee);
-	rb->trainee.n_sessions = kept;
+	rb->trainee.n_sessions = fill_sessions(c, req->trainee_sessions->trainee,
+					       n);
 	rb->trainee.sessions = rb->trainee_infos_p;
-	rb->trainee.directory = c->cfg.session.directory;
+	rb->trainee.directory = dir;
 	rb->trainee.course = c->cfg.session.course;
 	rb->trainee.index = (char *)sessionindex_state_name(info.state);
 	rb->trainee.index_reread = info.reread;
