@@ -171,13 +171,13 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_model test_lod test_portal test_input test_timing test_shapes \
 	     test_vessels test_metrics test_report test_course test_rod \
 	     test_flex test_lumen test_clinic test_rodcourse test_guide \
-	     test_livemap test_separation
+	     test_livemap test_separation test_coursefile test_sessionindex
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes
 BENCH_TOOLS = bench_colon bench_haptics bench_metrics
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
-	       fuzz_epos4 fuzz_session fuzz_rod
+	       fuzz_epos4 fuzz_session fuzz_rod fuzz_course
 TEST_WINGS = $(WINGS)
 FUZZ_WINGS = session rig model base proto
 
@@ -318,7 +318,7 @@ bench: deps-bench
 install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
-		$(DESTDIR)$(CASEDIR) \
+		$(DESTDIR)$(CASEDIR) $(DESTDIR)$(DATADIR)/courses \
 		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
@@ -330,6 +330,7 @@ install: all
 			$(DESTDIR)$(SYSCONFDIR)/endosim/endosimd.conf
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
 	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
+	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \

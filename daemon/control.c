@@ -271,6 +271,8 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_SESSION_LIST, false, control_on_session_list },
 	{ ENDOSIM__REQUEST__BODY_SESSION_SHOW, false, control_on_session_show },
 	{ ENDOSIM__REQUEST__BODY_SESSION_MAP, false, control_on_session_map },
+	{ ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS, false,
+	  control_on_trainee_sessions },
 	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
 };
 
@@ -652,6 +654,7 @@ void control_destroy(struct control *c)
 	free(c->rb.values);
 	control_free_case_list(&c->rb);
 	control_free_session_list(&c->rb);
+	control_free_trainee(&c->rb);
 	scene_destroy(c->scene);
 	free(c);
 }

@@ -3,7 +3,9 @@
  * (control.c: sockets, clients, dispatch, the thread; control_reply.c:
  * status, stats, configuration, commands, the hand, subscriptions and test
  * commands; control_case.c: the scene and the cases; control_session.c:
- * training sessions). Control thread only, as all of control.h's work.
+ * training sessions; control_trainee.c: a trainee's sessions through the
+ * session directory's index). Control thread only, as all of control.h's
+ * work.
  */
 #ifndef ENDOSIM_CONTROL_PRIVATE_H
 #define ENDOSIM_CONTROL_PRIVATE_H
@@ -37,6 +39,7 @@
 #include "mono.h"
 #include "scene.h"
 #include "sessiondir.h"
+#include "sessionindex.h"
 #include "sessionpb.h"
 
 #define MAX_EVENTS 32
@@ -107,6 +110,12 @@ struct reply_buf {
 	Endosim__MapPolyp map_found[ANATOMY_MAX_POLYPS];
 	Endosim__MapPolyp *map_found_p[ANATOMY_MAX_POLYPS];
 	struct recorder_map rmap;          /* what map points into */
+	Endosim__TraineeReply trainee;     /* TraineeSessions': */
+	Endosim__SessionInfo *trainee_infos;
+	Endosim__SessionInfo **trainee_infos_p;
+	struct sessionpb_scalars *trainee_metrics;
+	char (*trainee_paths)[CONFIG_STR + 32];
+	struct sessionindex_entry *trainee_entries;
 };
 
 struct control {
@@ -174,6 +183,7 @@ handler_fn control_on_session_status;
 handler_fn control_on_session_list;
 handler_fn control_on_session_show;
 handler_fn control_on_session_map;
+handler_fn control_on_trainee_sessions;
 handler_fn control_on_debug;
 handler_fn control_on_guide;
 
@@ -183,6 +193,7 @@ void control_build_status(struct control *c, Endosim__Reply *rep);
 /* Frees the case list (the session list) the last reply was made of. */
 void control_free_case_list(struct reply_buf *rb);
 void control_free_session_list(struct reply_buf *rb);
+void control_free_trainee(struct reply_buf *rb);
 
 /* Loads case NAME (IDLE only, never during a session). 0, or -1 refused. */
 int control_load_case(struct control *c, struct client *cl,

@@ -501,6 +501,9 @@ static const struct config_key keys[] = {
 	   "metrics: the camera's full field of view"),
 	KD("session", "view_rate_hz", session.view_rate_hz, 10, 0.1, 1000, "Hz",
 	   0, "metrics: how often the mucosa and polyps seen are evaluated"),
+	KS("session", "course", session.course, "", 0,
+	   "the course file (config/courses/NAME.course) that endoctl trainee "
+	   "judges the sessions by; empty: none"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
 	   "m", LIVE, "length of the bending section behind the tip"),

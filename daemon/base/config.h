@@ -180,6 +180,7 @@ struct config {
 		double view_distance_m;
 		double fov_deg;
 		double view_rate_hz;
+		char course[CONFIG_STR];       /* coursefile.h: endoctl trainee */
 	} session;
 	struct {
 		double bending_length_m;

@@ -675,6 +675,10 @@ static const struct {
 	  "--summary [--out FILE] | report ID --out DIR "
 	  "[--reference REF_ID]: "
 	  "training sessions (ID: or ./N.endoses, without endosimd)" },
+	{ "trainee", ctl_cmd_trainee,
+	  "list [--course FILE] [--dir DIR] | report NAME --out DIR "
+	  "[--course FILE] [--dir DIR]: trainees, their sessions and course "
+	  "(--dir: a session directory, without endosimd)" },
 	{ "guide", ctl_cmd_guide,
 	  "start ID|FILE [--speed X] [--from S] | stop | takeover | resume | "
 	  "reset [--to S] | status: guided replay of a session through the "

@@ -2,7 +2,8 @@
  * endoctl.h - what the parts of endoctl share (endoctl.c: talking to
  * endosimd, the daemon's commands, main; endoctl_print.c: printing its
  * replies; endoctl_session.c: training sessions; endoctl_map.c: the
- * recording session's unseen-mucosa map). One thread.
+ * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
+ * course). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -66,6 +67,9 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);
 /* `endoctl session map`: the recording session's unseen-mucosa map
  * (endoctl_map.c); 0 or the exit status. */
 int ctl_session_map(struct ctl *ctl);
+
+/* `endoctl trainee ...` (endoctl_trainee.c). */
+int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);

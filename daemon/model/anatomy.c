@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "text.h"
+
 #define DEG (M_PI / 180.0)
 #define BEND_MARGIN 1.0 /* a bend's radius over the lumen radius, at least */
 
@@ -284,20 +286,6 @@ static const struct key *find_key(enum section sec, const char *name)
 	return NULL;
 }
 
-static char *trim(char *s)
-{
-	char *end;
-
-	while (isspace((unsigned char)*s)) {
-		s++;
-	}
-	end = s + strlen(s);
-	while (end > s && isspace((unsigned char)end[-1])) {
-		*--end = '\0';
-	}
-	return s;
-}
-
 static int parse_key(struct parser *p, char *line)
 {
 	char *eq = strchr(line, '='), *name, *value;
@@ -305,11 +293,11 @@ static int parse_key(struct parser *p, char *line)
 	size_t idx;
 
 	if (!eq) {
-		return fail(p, p->line, trim(line), "expected 'key = value'");
+		return fail(p, p->line, text_trim(line), "expected 'key = value'");
 	}
 	*eq = '\0';
-	name = trim(line);
-	value = trim(eq + 1);
+	name = text_trim(line);
+	value = text_trim(eq + 1);
 	if (p->sec == SEC_NONE) {
 		return fail(p, p->line, name, "before any [section]");
 	}
@@ -395,15 +383,15 @@ static int parse_header(struct parser *p, char *line)
 	char *close = strchr(line, ']'), *name, *arg;
 	int r;
 
-	if (!close || *trim(close + 1)) {
-		return fail(p, p->line, trim(line), "expected '[section]'");
+	if (!close || *text_trim(close + 1)) {
+		return fail(p, p->line, text_trim(line), "expected '[section]'");
 	}
 	*close = '\0';
-	name = trim(line + 1);
+	name = text_trim(line + 1);
 	arg = strpbrk(name, " \t");
 	if (arg) {
 		*arg++ = '\0';
-		arg = trim(arg);
+		arg = text_trim(arg);
 	}
 	if (p->sec != SEC_NONE && (r = finish_section(p))) {
 		return r;
@@ -452,7 +440,7 @@ static int parse_stream(struct parser *p, FILE *f)
 				    "characters", sizeof(buf) - 2);
 		}
 		buf[strcspn(buf, "#")] = '\0';
-		line = trim(buf);
+		line = text_trim(buf);
 		if (!*line) {
 			continue;
 		}

@@ -7,36 +7,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "colon.h"
+#include "htmlpage.h"
 #include "names.h"
 #include "report.h"
 #include "sessioninputs.h"
 
-#define SVG_W 1040
-#define SVG_H 250
-#define PLOT_X 70.0   /* the plot area inside the svg, px */
-#define PLOT_Y 34.0
-#define PLOT_W 950.0
-#define PLOT_H 176.0
 #define WITHDRAWAL_MARK_S 360.0
 #define MAX_EVENT_ROWS 200
-
-static const char *const palette[] = { "#1f5fa8", "#c0392b", "#2e8b57",
-				       "#8e44ad", "#d4760a", "#6d4c41" };
-
-struct axis {
-	double lo, hi, step;
-};
-
-struct plot {
-	FILE *out;
-	struct axis x, y;
-	double xscale;             /* s per unit of the x axis */
-	uint64_t t0_ns;            /* the first record's stamp */
-};
 
 struct series {
 	const char *name;
@@ -46,32 +25,6 @@ struct series {
 
 /* ---------------------------------------------------------------- text */
 
-void report_escape(FILE *out, const char *text)
-{
-	for (const char *c = text ? text : ""; *c; c++) {
-		switch (*c) {
-		case '&': fputs("&amp;", out); break;
-		case '<': fputs("&lt;", out); break;
-		case '>': fputs("&gt;", out); break;
-		case '"': fputs("&quot;", out); break;
-		case '\'': fputs("&#39;", out); break;
-		default: fputc(*c, out);
-		}
-	}
-}
-
-/* "12 min 05 s", "42.5 s" */
-static void put_duration(FILE *out, double s)
-{
-	if (s < 0 || !isfinite(s)) {
-		fputs("&ndash;", out);
-	} else if (s < 60) {
-		fprintf(out, "%.1f s", s);
-	} else {
-		fprintf(out, "%d min %02d s", (int)(s / 60), (int)fmod(s, 60));
-	}
-}
-
 /* The header's KEY, escaped, or a dash. */
 static void put_header(FILE *out, const struct session_file *f,
 		       const char *key)
@@ -80,7 +33,7 @@ static void put_header(FILE *out, const struct session_file *f,
 
 	if (f->header && !session_text_get(f->header, key, v, sizeof(v)) &&
 	    v[0]) {
-		report_escape(out, v);
+		htmlpage_escape(out, v);
 	} else {
 		fputs("&ndash;", out);
 	}
@@ -88,113 +41,43 @@ static void put_header(FILE *out, const struct session_file *f,
 
 /* ---------------------------------------------------------------- axes */
 
-static double nice_step(double range, int ticks)
-{
-	double raw = range / ticks, mag = pow(10, floor(log10(raw)));
-	double f = raw / mag;
-
-	return (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * mag;
-}
-
-static struct axis nice_axis(double lo, double hi, int ticks)
-{
-	struct axis a;
-
-	if (!(hi > lo)) {
-		hi = lo + 1;
-	}
-	a.step = nice_step(hi - lo, ticks);
-	a.lo = floor(lo / a.step + 1e-9) * a.step;
-	a.hi = ceil(hi / a.step - 1e-9) * a.step;
-	return a;
-}
-
-static double px_x(const struct plot *p, double t_s)
-{
-	double u = (t_s / p->xscale - p->x.lo) / (p->x.hi - p->x.lo);
-
-	return PLOT_X + fmin(1, fmax(0, u)) * PLOT_W;
-}
-
-static double px_y(const struct plot *p, double v)
-{
-	double u = (v - p->y.lo) / (p->y.hi - p->y.lo);
-
-	return PLOT_Y + PLOT_H - fmin(1, fmax(0, u)) * PLOT_H;
-}
-
-static double rec_t(const struct plot *p, const struct session_record *r)
+static double rec_t(const struct htmlpage_plot *p,
+		    const struct session_record *r)
 {
 	return (double)(int64_t)(r->stamp_ns - p->t0_ns) * 1e-9;
 }
 
-static void plot_ticks(const struct plot *p, const char *xlabel,
+/* A plot over the session's time (s, or min past 5 min: P->xscale). */
+static void plot_begin(struct htmlpage_plot *p, const char *id,
+		       const char *title, double ylo, double yhi,
 		       const char *ylabel)
 {
-	FILE *o = p->out;
-
-	for (double v = p->y.lo; v <= p->y.hi + p->y.step / 2; v += p->y.step) {
-		double y = px_y(p, v);
-
-		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
-			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
-			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
-			PLOT_X, y, PLOT_X + PLOT_W, y, PLOT_X - 6, y + 4,
-			fabs(v) < p->y.step / 1e6 ? 0 : v);
-	}
-	for (double v = p->x.lo; v <= p->x.hi + p->x.step / 2; v += p->x.step) {
-		double x = PLOT_X + (v - p->x.lo) / (p->x.hi - p->x.lo) * PLOT_W;
-
-		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
-			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
-			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n",
-			x, PLOT_Y, x, PLOT_Y + PLOT_H, x, PLOT_Y + PLOT_H + 16, v);
-	}
-	fprintf(o, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
-		"height=\"%.1f\"/>\n", PLOT_X, PLOT_Y, PLOT_W, PLOT_H);
-	fprintf(o, "<text class=\"label\" x=\"%.1f\" y=\"%d\" "
-		"text-anchor=\"middle\">%s</text>\n", PLOT_X + PLOT_W / 2,
-		SVG_H - 4, xlabel);
-	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
-		"rotate(-90)\" text-anchor=\"middle\">%s</text>\n",
-		PLOT_Y + PLOT_H / 2, ylabel);
-}
-
-static void plot_begin(struct plot *p, const char *id, const char *title,
-		       double ylo, double yhi, const char *ylabel)
-{
-	p->y = nice_axis(ylo, yhi, 5);
-	fprintf(p->out, "<figure id=\"%s\"><figcaption>%s</figcaption>\n"
-		"<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" "
-		"viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\" "
-		"aria-label=\"%s\">\n", id, title, SVG_W, SVG_H, SVG_W, SVG_H,
-		title);
-	plot_ticks(p, p->xscale > 1 ? "time (min)" : "time (s)", ylabel);
-}
-
-static void plot_end(struct plot *p)
-{
-	fputs("</svg></figure>\n", p->out);
+	htmlpage_plot_begin(p, id, title, ylo, yhi,
+			    p->xscale > 1 ? "time (min)" : "time (s)", ylabel);
 }
 
 /* Episodes as shaded bands of CLASS, from 0 to the plot's top. */
-static void plot_bands(const struct plot *p, const struct metrics_episode *ep,
+static void plot_bands(const struct htmlpage_plot *p,
+		       const struct metrics_episode *ep,
 		       uint32_t n, double end_s, const char *cls)
 {
 	for (uint32_t i = 0; i < n; i++) {
-		double x0 = px_x(p, ep[i].start_s);
-		double x1 = px_x(p, ep[i].end_s >= 0 ? ep[i].end_s : end_s);
+		double x0 = htmlpage_px_x(p, ep[i].start_s);
+		double x1 = htmlpage_px_x(p,
+					  ep[i].end_s >= 0 ? ep[i].end_s : end_s);
 
 		fprintf(p->out, "<rect class=\"band %s\" x=\"%.1f\" y=\"%.1f\" "
 			"width=\"%.1f\" height=\"%.1f\"><title>%s %u</title>"
-			"</rect>\n", cls, x0, PLOT_Y, fmax(x1 - x0, 1.5),
-			PLOT_H, strcmp(cls, "force") ? "loop episode" :
-			"force episode", i + 1);
+			"</rect>\n", cls, x0, HTMLPAGE_PLOT_Y,
+			fmax(x1 - x0, 1.5), HTMLPAGE_PLOT_H,
+			strcmp(cls, "force") ? "loop episode" : "force episode",
+			i + 1);
 	}
 }
 
 /* Faults (red) and state changes (grey) as vertical marks. */
-static void plot_events(const struct plot *p, const struct session_file *f)
+static void plot_events(const struct htmlpage_plot *p,
+			const struct session_file *f)
 {
 	double last_x = -1e9;
 	int row = 0;
@@ -202,13 +85,16 @@ static void plot_events(const struct plot *p, const struct session_file *f)
 	for (size_t i = 0; i < f->n_events; i++) {
 		const struct session_event *ev = &f->events[i].ev;
 		double t = (double)(int64_t)(ev->stamp_ns - p->t0_ns) * 1e-9;
-		double x = px_x(p, t);
+		double x = htmlpage_px_x(p, t);
 
 		if (ev->kind == SESSION_EVENT_FAULT) {
-			fprintf(p->out, "<line class=\"event fault\" x1=\"%.1f\" "
+			fprintf(p->out,
+				"<line class=\"event fault\" x1=\"%.1f\" "
 				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"><title>"
-				"fault: %s</title></line>\n", x, PLOT_Y, x,
-				PLOT_Y + PLOT_H, names_fault(ev->detail));
+				"fault: %s</title></line>\n", x,
+				HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+				names_fault(ev->detail));
 		} else if (ev->kind == SESSION_EVENT_STATE) {
 			const char *s = names_state((uint32_t)ev->value);
 
@@ -216,23 +102,15 @@ static void plot_events(const struct plot *p, const struct session_file *f)
 			row = x - last_x < 50 ? (row + 1) % 3 : 0;
 			last_x = x;
 
-			fprintf(p->out, "<line class=\"event state\" x1=\"%.1f\" "
+			fprintf(p->out,
+				"<line class=\"event state\" x1=\"%.1f\" "
 				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/><text "
 				"class=\"evlabel\" x=\"%.1f\" y=\"%.1f\">%s"
-				"</text>\n", x, PLOT_Y, x, PLOT_Y + PLOT_H, x + 3,
-				PLOT_Y + 10 + 11 * row, s);
+				"</text>\n", x, HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x + 3,
+				HTMLPAGE_PLOT_Y + 10 + 11 * row, s);
 		}
 	}
-}
-
-static void plot_hline(const struct plot *p, double v, const char *label)
-{
-	double y = px_y(p, v);
-
-	fprintf(p->out, "<line class=\"threshold\" x1=\"%.1f\" y1=\"%.1f\" "
-		"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"thlabel\" x=\"%.1f\" "
-		"y=\"%.1f\" text-anchor=\"end\">%s</text>\n", PLOT_X, y,
-		PLOT_X + PLOT_W, y, PLOT_X + PLOT_W - 4, y - 4, label);
 }
 
 /* The column's extremes in the order they came (peaks survive). */
@@ -246,7 +124,8 @@ static void path_column(FILE *o, bool *first, double x, double a, double b)
 }
 
 /* One series, decimated to the min and max of each pixel column. */
-static void plot_series(const struct plot *p, const struct session_file *f,
+static void plot_series(const struct htmlpage_plot *p,
+			const struct session_file *f,
 			const struct series *s, const char *color)
 {
 	bool first = true, have = false;
@@ -258,13 +137,15 @@ static void plot_series(const struct plot *p, const struct session_file *f,
 	for (size_t i = 0; i <= f->n_records; i++) {
 		const struct session_record *r = &f->records[i < f->n_records ?
 							   i : i - 1];
-		long c = i < f->n_records ? lround(px_x(p, rec_t(p, r))) : -2;
+		long c = i < f->n_records
+				 ? lround(htmlpage_px_x(p, rec_t(p, r)))
+				 : -2;
 		double v = i < f->n_records ? s->get(r, s->arg) : NAN;
 
 		if (c != col && have) {
 			path_column(p->out, &first, (double)col,
-				    px_y(p, ilo < ihi ? lo : hi),
-				    px_y(p, ilo < ihi ? hi : lo));
+				    htmlpage_px_y(p, ilo < ihi ? lo : hi),
+				    htmlpage_px_y(p, ilo < ihi ? hi : lo));
 			have = false;
 		}
 		col = c;
@@ -284,20 +165,21 @@ static void plot_series(const struct plot *p, const struct session_file *f,
 	fputs("\"/>\n", p->out);
 }
 
-static void plot_legend(const struct plot *p, const struct series *s,
+static void plot_legend(const struct htmlpage_plot *p, const struct series *s,
 			int n, bool bands)
 {
-	double x = PLOT_X + 4;
+	double x = HTMLPAGE_PLOT_X + 4;
 
 	for (int i = 0; i < n; i++) {
 		fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" "
 			"y1=\"14\" x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" "
-			"x=\"%.1f\" y=\"18\">%s</text>\n", palette[i % 6], x,
+			"x=\"%.1f\" y=\"18\">%s</text>\n", htmlpage_color(i), x,
 			x + 18, x + 22, s[i].name);
 		x += 34 + 7.0 * (double)strlen(s[i].name);
 	}
 	if (bands) {
-		fprintf(p->out, "<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
+		fprintf(p->out,
+			"<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
 			"width=\"14\" height=\"12\"/><text class=\"legend\" "
 			"x=\"%.1f\" y=\"18\">excessive force</text>\n"
 			"<rect class=\"swatch loop\" x=\"%.1f\" y=\"8\" width=\"14\" "
@@ -340,7 +222,8 @@ static void series_range(const struct session_file *f, const struct series *s,
 }
 
 /* A plot of N series with the episodes and events marked. */
-static void plot_series_figure(struct plot *p, const struct session_file *f,
+static void plot_series_figure(struct htmlpage_plot *p,
+			       const struct session_file *f,
 			       const struct metrics_result *m, const char *id,
 			       const char *title, const char *ylabel,
 			       const struct series *s, int n, double lo,
@@ -352,14 +235,14 @@ static void plot_series_figure(struct plot *p, const struct session_file *f,
 	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
 	plot_events(p, f);
 	for (int k = 0; k < n; k++) {
-		plot_series(p, f, &s[k], palette[k % 6]);
+		plot_series(p, f, &s[k], htmlpage_color(k));
 	}
 	plot_legend(p, s, n, true);
 }
 
 /* ----------------------------------------------------------- the plots */
 
-static void plot_force(struct plot *p, const struct session_file *f,
+static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 		       const struct metrics_result *m)
 {
 	const struct series s[] = { { "insertion |F|", get_limited, 0 } };
@@ -370,11 +253,11 @@ static void plot_force(struct plot *p, const struct session_file *f,
 	plot_series_figure(p, f, m, "plot-force", "Insertion force",
 			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
 	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);
-	plot_hline(p, mp.force_threshold_n, label);
-	plot_end(p);
+	htmlpage_plot_hline(p, mp.force_threshold_n, label);
+	htmlpage_plot_end(p);
 }
 
-static void plot_torques(struct plot *p, const struct session_file *f,
+static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
 			 const struct metrics_result *m)
 {
 	const struct series s[] = {
@@ -385,30 +268,33 @@ static void plot_torques(struct plot *p, const struct session_file *f,
 
 	plot_series_figure(p, f, m, "plot-torque", "Roll and wheel torques",
 			   "torque (N m)", s, 3, 0, 0);
-	plot_end(p);
+	htmlpage_plot_end(p);
 }
 
 /* The segments as horizontal bands, named. */
-static void plot_segments(const struct plot *p, const struct anatomy *a)
+static void plot_segments(const struct htmlpage_plot *p,
+			  const struct anatomy *a)
 {
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
 		double s0 = anatomy_segment_start(a, i);
 		double s1 = s0 + a->seg[i].length_m;
-		double y0 = px_y(p, s1), y1 = px_y(p, s0);
+		double y0 = htmlpage_px_y(p, s1), y1 = htmlpage_px_y(p, s0);
 
 		fprintf(p->out, "<rect class=\"segment s%d\" x=\"%.1f\" "
 			"y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"><title>%s"
-			"</title></rect>\n", i % 2, PLOT_X, y0, PLOT_W, y1 - y0,
+			"</title></rect>\n", i % 2, HTMLPAGE_PLOT_X, y0,
+			HTMLPAGE_PLOT_W, y1 - y0,
 			anatomy_segment_name(i));
 		if (y1 - y0 >= 9) { /* room for its name */
 			fprintf(p->out, "<text class=\"seglabel\" x=\"%.1f\" "
-				"y=\"%.1f\">%s</text>\n", PLOT_X + PLOT_W - 6,
+				"y=\"%.1f\">%s</text>\n",
+				HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 6,
 				(y0 + y1) / 2 + 4, anatomy_segment_name(i));
 		}
 	}
 }
 
-static void plot_tip(struct plot *p, const struct session_file *f,
+static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
 		     const struct metrics_result *m, const struct anatomy *a)
 {
 	const struct series s[] = { { "tip along the colon", get_tip_s, 0 } };
@@ -424,19 +310,20 @@ static void plot_tip(struct plot *p, const struct session_file *f,
 	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
 	plot_events(p, f);
 	if (m->cecum_s >= 0) {
-		double x = px_x(p, m->cecum_s);
+		double x = htmlpage_px_x(p, m->cecum_s);
 
 		fprintf(p->out, "<line class=\"cecum\" x1=\"%.1f\" y1=\"%.1f\" "
 			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"cecumlabel\" "
 			"x=\"%.1f\" y=\"%.1f\">cecum reached</text>\n", x,
-			PLOT_Y, x, PLOT_Y + PLOT_H, x + 4, PLOT_Y + PLOT_H - 6);
+			HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+			x + 4, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - 6);
 	}
-	plot_series(p, f, &s[0], palette[0]);
+	plot_series(p, f, &s[0], htmlpage_color(0));
 	plot_legend(p, s, 1, true);
-	plot_end(p);
+	htmlpage_plot_end(p);
 }
 
-static void plot_bows(struct plot *p, const struct session_file *f,
+static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 		      const struct metrics_result *m, const struct anatomy *a)
 {
 	struct series s[ENDOSIM_SPANS];
@@ -445,8 +332,8 @@ static void plot_bows(struct plot *p, const struct session_file *f,
 
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
 		if (a->seg[i].mobile) {
-			s[n] = (struct series){ anatomy_segment_name(i), get_bow,
-						n };
+			s[n] = (struct series){ anatomy_segment_name(i),
+						get_bow, n };
 			n++;
 		}
 	}
@@ -458,8 +345,8 @@ static void plot_bows(struct plot *p, const struct session_file *f,
 	plot_series_figure(p, f, m, "plot-bow", "Loops: the bow of each mobile "
 			   "segment", "bow amplitude (m)", s, n, 0,
 			   mp.loop_threshold_m * 1.5);
-	plot_hline(p, mp.loop_threshold_m, "loop threshold");
-	plot_end(p);
+	htmlpage_plot_hline(p, mp.loop_threshold_m, "loop threshold");
+	htmlpage_plot_end(p);
 }
 
 /* ---------------------------------------------------------- the tables */
@@ -481,18 +368,18 @@ static void metrics_rows_times(FILE *o, const struct metrics_result *m)
 	row_begin(o, "Cecum reached", reached ? "good" : "bad");
 	if (reached) {
 		fputs("yes, after ", o);
-		put_duration(o, m->cecum_s);
+		htmlpage_duration(o, m->cecum_s);
 	} else {
 		fputs("no", o);
 	}
 	row_end(o, "the tip inside the cecum");
 	row_begin(o, "Insertion time", "");
-	put_duration(o, m->insertion_s);
+	htmlpage_duration(o, m->insertion_s);
 	row_end(o, reached ? "start to cecum" : "so far: cecum not reached");
 	row_begin(o, "Withdrawal time", !reached ? "bad" :
 		  m->withdrawal_s >= WITHDRAWAL_MARK_S ? "good" : "bad");
 	if (reached) {
-		put_duration(o, m->withdrawal_s);
+		htmlpage_duration(o, m->withdrawal_s);
 	} else {
 		fputs("&ndash;", o);
 	}
@@ -515,13 +402,13 @@ static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
 	row_begin(o, "Excessive force", m->force_episodes ? "warn" : "good");
 	fprintf(o, "%u episode%s, ", m->force_episodes,
 		m->force_episodes == 1 ? "" : "s");
-	put_duration(o, m->force_episode_s);
+	htmlpage_duration(o, m->force_episode_s);
 	snprintf(note, sizeof(note), "above %g N for at least %g s",
 		 mp.force_threshold_n, mp.min_episode_s);
 	row_end(o, note);
 	row_begin(o, "Loops", m->loop_episodes ? "warn" : "good");
 	fprintf(o, "%u, longest ", m->loop_episodes);
-	put_duration(o, m->longest_loop_s);
+	htmlpage_duration(o, m->longest_loop_s);
 	fprintf(o, ", largest %.1f cm", m->largest_loop_m * 100);
 	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
 		 mp.loop_threshold_m * 100);
@@ -537,7 +424,7 @@ static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
 static void metrics_rows_view(FILE *o, const struct metrics_result *m)
 {
 	row_begin(o, "Lumen lost from view", "");
-	put_duration(o, m->lumen_lost_s);
+	htmlpage_duration(o, m->lumen_lost_s);
 	if (m->duration_s > 0) {
 		fprintf(o, " (%.0f %%)", 100 * m->lumen_lost_s / m->duration_s);
 	}
@@ -595,12 +482,12 @@ static void episode_table(FILE *o, const char *title,
 		"<th>end</th><th>duration</th><th>peak (%s)</th></tr>\n", unit);
 	for (uint32_t i = 0; i < n; i++) {
 		fprintf(o, "<tr><td>%u</td><td>", i + 1);
-		put_duration(o, ep[i].start_s);
+		htmlpage_duration(o, ep[i].start_s);
 		fputs("</td><td>", o);
 		if (ep[i].end_s >= 0) {
-			put_duration(o, ep[i].end_s);
+			htmlpage_duration(o, ep[i].end_s);
 			fputs("</td><td>", o);
-			put_duration(o, ep[i].end_s - ep[i].start_s);
+			htmlpage_duration(o, ep[i].end_s - ep[i].start_s);
 		} else {
 			fputs("still going</td><td>&ndash;", o);
 		}
@@ -633,7 +520,8 @@ static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
 		const struct session_event *ev = &f->events[i].ev;
 
 		fprintf(o, "<tr class=\"%s\"><td>", event_kind(ev->kind));
-		put_duration(o, (double)(int64_t)(ev->stamp_ns - t0) * 1e-9);
+		htmlpage_duration(o,
+				  (double)(int64_t)(ev->stamp_ns - t0) * 1e-9);
 		fprintf(o, "</td><td>%s</td><td>", event_kind(ev->kind));
 		if (ev->kind == SESSION_EVENT_STATE) {
 			fputs(names_state((uint32_t)ev->value), o);
@@ -643,7 +531,7 @@ static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
 		} else if (ev->kind == SESSION_EVENT_DROPS) {
 			fprintf(o, "%.0f records dropped so far ", ev->value);
 		}
-		report_escape(o, f->events[i].text);
+		htmlpage_escape(o, f->events[i].text);
 		fputs("</td></tr>\n", o);
 	}
 	fputs("</table>\n", o);
@@ -655,43 +543,6 @@ static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
 
 /* ------------------------------------------------------------ the page */
 
-static const char style[] =
-	"body{font-family:'DejaVu Sans',system-ui,sans-serif;margin:24px auto;"
-	"max-width:1080px;color:#222;background:#f4f5f7}\n"
-	"header,section{background:#fff;border-radius:8px;padding:16px 20px;"
-	"margin-bottom:16px;box-shadow:0 1px 3px rgba(0,0,0,.12)}\n"
-	"h1{margin:0 0 8px;font-size:24px}h2{font-size:18px;margin:0 0 10px}"
-	"h3{font-size:15px;margin:14px 0 6px}\n"
-	"dl{display:grid;grid-template-columns:repeat(3,auto 1fr);gap:4px 12px;"
-	"margin:0}dt{color:#666}dd{margin:0;font-weight:600}\n"
-	"table{border-collapse:collapse;width:100%}th,td{text-align:left;"
-	"padding:5px 8px;border-bottom:1px solid #e4e4e4;font-size:14px}\n"
-	"table.metrics th{width:200px}td.note{color:#777;font-size:12px}\n"
-	"tr.good td:first-of-type{color:#1e7d32;font-weight:700}"
-	"tr.bad td:first-of-type{color:#c62828;font-weight:700}"
-	"tr.warn td:first-of-type{color:#b26a00;font-weight:700}\n"
-	"tr.good th{border-left:5px solid #2e7d32}tr.bad th{border-left:5px "
-	"solid #c62828}tr.warn th{border-left:5px solid #ef8f00}"
-	"tr th{border-left:5px solid transparent}\n"
-	"figure{margin:0 0 14px}figcaption{font-weight:600;margin:4px 0}\n"
-	"svg.plot{display:block;max-width:100%;height:auto}\n"
-	"svg .grid{stroke:#e6e6e6;stroke-width:1}svg .frame{fill:none;"
-	"stroke:#999}\nsvg .tick,svg .legend,svg .seglabel,svg .evlabel,"
-	"svg .thlabel{font-size:11px;fill:#555}svg .label{font-size:12px;"
-	"fill:#333}\nsvg .series{fill:none;stroke-width:1.4;"
-	"stroke-linejoin:round}svg .key{stroke-width:3}\n"
-	"svg rect.force{fill:#e53935;fill-opacity:.16}svg rect.loop{"
-	"fill:#fb8c00;fill-opacity:.18}\n"
-	"svg .segment.s0{fill:#eef3fa}svg .segment.s1{fill:#fbfcfe}"
-	"svg .seglabel{text-anchor:end;fill:#6a7b90}\n"
-	"svg .event.fault{stroke:#c62828;stroke-width:1.5;stroke-dasharray:4 2}"
-	"svg .event.state{stroke:#888;stroke-dasharray:2 3}\n"
-	"svg .cecum{stroke:#2e7d32;stroke-width:1.5}svg .cecumlabel{"
-	"font-size:11px;fill:#2e7d32}\n"
-	"svg .threshold{stroke:#c62828;stroke-dasharray:6 4}"
-	"svg .thlabel{fill:#c62828}\n"
-	"p.none{color:#888;margin:2px 0}footer{color:#888;font-size:12px}\n";
-
 static void page_header(FILE *o, const struct session_file *f,
 			const struct metrics_result *m)
 {
@@ -699,7 +550,7 @@ static void page_header(FILE *o, const struct session_file *f,
 	      "<title>Colonoscopy training report ", o);
 	put_header(o, f, "id");
 	fprintf(o, "</title>\n<style>\n%s</style></head><body>\n<header>"
-		"<h1>Colonoscopy training report</h1>\n<dl>", style);
+		"<h1>Colonoscopy training report</h1>\n<dl>", htmlpage_style);
 	fputs("<dt>Trainee</dt><dd id=\"trainee\">", o);
 	put_header(o, f, "trainee");
 	fputs("</dd><dt>Case</dt><dd>", o);
@@ -707,7 +558,7 @@ static void page_header(FILE *o, const struct session_file *f,
 	fputs("</dd><dt>Date</dt><dd>", o);
 	put_header(o, f, "started");
 	fputs("</dd>\n<dt>Duration</dt><dd>", o);
-	put_duration(o, m->duration_s);
+	htmlpage_duration(o, m->duration_s);
 	fputs("</dd><dt>Session</dt><dd>", o);
 	put_header(o, f, "id");
 	fprintf(o, "</dd><dt>Records</dt><dd>%llu%s</dd></dl></header>\n",
@@ -722,7 +573,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 			 const struct metrics_result *m,
 			 const struct anatomy *a, const struct metrics_map *map)
 {
-	struct plot p = { .out = o };
+	struct htmlpage_plot p = { .out = o };
 
 	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
 	metrics_rows_times(o, m);
@@ -732,7 +583,8 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	if (f->n_records) {
 		p.t0_ns = f->records[0].stamp_ns;
 		p.xscale = m->duration_s > 300 ? 60 : 1;
-		p.x = nice_axis(0, fmax(m->duration_s, 1e-3) / p.xscale, 10);
+		p.x = htmlpage_axis(0, fmax(m->duration_s, 1e-3) / p.xscale,
+				    10);
 		plot_force(&p, f, m);
 		plot_torques(&p, f, m);
 		plot_tip(&p, f, m, a);
@@ -796,7 +648,7 @@ static void along_colon(const struct session_file *f,
 }
 
 /* One series of A (FORCE or LOOP) over the colon, dashed if DASH. */
-static void along_series(const struct plot *p, const struct along *a,
+static void along_series(const struct htmlpage_plot *p, const struct along *a,
 			 bool force, const char *color, bool dash)
 {
 	bool first = true;
@@ -810,23 +662,26 @@ static void along_series(const struct plot *p, const struct along *a,
 			continue;
 		}
 		fprintf(p->out, "%s%.1f,%.1f", first ? "M" : " L",
-			px_x(p, b * ALONG_BIN_M), px_y(p, v));
+			htmlpage_px_x(p, b * ALONG_BIN_M), htmlpage_px_y(p, v));
 		first = false;
 	}
 	fputs("\"/>\n", p->out);
 }
 
 /* A legend of the trainee's (solid) and the reference's (dashed). */
-static void compare_legend(const struct plot *p)
+static void compare_legend(const struct htmlpage_plot *p)
 {
-	fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
+	fprintf(p->out,
+		"<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
 		"x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" x=\"%.1f\" "
 		"y=\"18\">this session</text><line class=\"key\" stroke=\"%s\" "
 		"stroke-dasharray=\"6 3\" x1=\"%.1f\" y1=\"14\" x2=\"%.1f\" "
 		"y2=\"14\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
-		"reference</text>\n", palette[0], PLOT_X + 4, PLOT_X + 22,
-		PLOT_X + 26, palette[2], PLOT_X + 130, PLOT_X + 148,
-		PLOT_X + 152);
+		"reference</text>\n", htmlpage_color(0), HTMLPAGE_PLOT_X + 4,
+		HTMLPAGE_PLOT_X + 22,
+		HTMLPAGE_PLOT_X + 26, htmlpage_color(2), HTMLPAGE_PLOT_X + 130,
+		HTMLPAGE_PLOT_X + 148,
+		HTMLPAGE_PLOT_X + 152);
 }
 
 /* A plot along the colon (x: the tip's place, m) of both sessions. */
@@ -834,7 +689,7 @@ static void along_plot(FILE *o, const struct along *mine,
 		       const struct along *ref, const struct anatomy *a,
 		       bool force)
 {
-	struct plot p = { .out = o, .xscale = 1 };
+	struct htmlpage_plot p = { .out = o, .xscale = 1 };
 	double len = a ? anatomy_length(a) : 0, hi = force ? 10 : 0.02;
 
 	for (int b = 0; b < ALONG_BINS; b++) {
@@ -848,21 +703,18 @@ static void along_plot(FILE *o, const struct along *mine,
 			}
 		}
 	}
-	p.x = nice_axis(0, fmax(len, 0.1), 10);
-	p.y = nice_axis(0, hi, 5);
-	fprintf(o, "<figure id=\"%s\"><figcaption>%s</figcaption>\n<svg "
-		"class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 "
-		"0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\">\n",
-		force ? "compare-force" : "compare-loop",
-		force ? "Insertion force where the tip was, on the way in" :
-			"The largest loop where the tip was, on the way in",
-		SVG_W, SVG_H, SVG_W, SVG_H);
-	plot_ticks(&p, "the tip's place along the colon (m)",
-		   force ? "force (N)" : "bow amplitude (m)");
-	along_series(&p, ref, force, palette[2], true);
-	along_series(&p, mine, force, palette[0], false);
+	p.x = htmlpage_axis(0, fmax(len, 0.1), 10);
+	htmlpage_plot_begin(&p, force ? "compare-force" : "compare-loop",
+			    force ? "Insertion force where the tip was, on "
+				    "the way in"
+				  : "The largest loop where the tip was, on the "
+				    "way in",
+			    0, hi, "the tip's place along the colon (m)",
+			    force ? "force (N)" : "bow amplitude (m)");
+	along_series(&p, ref, force, htmlpage_color(2), true);
+	along_series(&p, mine, force, htmlpage_color(0), false);
 	compare_legend(&p);
-	plot_end(&p);
+	htmlpage_plot_end(&p);
 }
 
 /* The tip's progress over time of both, on one time axis. */
@@ -871,27 +723,27 @@ static void compare_tip(FILE *o, const struct session_file *f,
 			const struct report_reference *ref)
 {
 	const struct series s = { "tip along the colon", get_tip_s, 0 };
-	struct plot p = { .out = o };
+	struct htmlpage_plot p = { .out = o };
 	double dur = fmax(m->duration_s, ref->m->duration_s), hi = 0.1;
 
 	series_range(f, &s, 1, &(double){ 0 }, &hi);
 	series_range(ref->f, &s, 1, &(double){ 0 }, &hi);
 	p.xscale = dur > 300 ? 60 : 1;
-	p.x = nice_axis(0, fmax(dur, 1e-3) / p.xscale, 10);
+	p.x = htmlpage_axis(0, fmax(dur, 1e-3) / p.xscale, 10);
 	plot_begin(&p, "compare-tip", "The tip's progress: this session and "
 		   "the reference", 0, hi, "distance from the anal verge (m)");
 	if (ref->f->n_records) {
 		p.t0_ns = ref->f->records[0].stamp_ns;
 		fprintf(o, "<g stroke-dasharray=\"6 3\">");
-		plot_series(&p, ref->f, &s, palette[2]);
+		plot_series(&p, ref->f, &s, htmlpage_color(2));
 		fputs("</g>\n", o);
 	}
 	if (f->n_records) {
 		p.t0_ns = f->records[0].stamp_ns;
-		plot_series(&p, f, &s, palette[0]);
+		plot_series(&p, f, &s, htmlpage_color(0));
 	}
 	compare_legend(&p);
-	plot_end(&p);
+	htmlpage_plot_end(&p);
 }
 
 static void compare_row(FILE *o, const char *what, const char *fmt,
@@ -1060,15 +912,17 @@ int report_map(const struct session_file *f, struct metrics_map *out)
 static void page_map(FILE *o, const struct metrics_map *map,
 		     const struct anatomy *a, uint32_t found)
 {
-	const double x0 = PLOT_X, y0 = PLOT_Y, w = PLOT_W, h = PLOT_H;
+	const double x0 = HTMLPAGE_PLOT_X, y0 = HTMLPAGE_PLOT_Y,
+	w = HTMLPAGE_PLOT_W, h = HTMLPAGE_PLOT_H;
 	const double cw = w / METRICS_MAP_S, ch = h / METRICS_MAP_A;
 
 	fprintf(o, "<figure id=\"mucosa-map\"><figcaption>The mucosa "
 		"unrolled: seen (green) and unseen (red), polyps found "
 		"(filled) and missed (rings)</figcaption>\n<svg class=\"plot\" "
 		"xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %d %d\" "
-		"width=\"%d\" height=\"%d\" role=\"img\">\n", SVG_W, SVG_H,
-		SVG_W, SVG_H);
+		"width=\"%d\" height=\"%d\" role=\"img\">\n", HTMLPAGE_SVG_W,
+		HTMLPAGE_SVG_H,
+		HTMLPAGE_SVG_W, HTMLPAGE_SVG_H);
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
 			double v = map->seen[i][k];
@@ -1079,7 +933,8 @@ static void page_map(FILE *o, const struct metrics_map *map,
 			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
 				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
 				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
-				(int)lround(214 - 60 * v), (int)lround(60 + 170 * v),
+				(int)lround(214 - 60 * v),
+				(int)lround(60 + 170 * v),
 				(int)lround(60 + 120 * v));
 		}
 	}
@@ -1107,32 +962,24 @@ static void page_map(FILE *o, const struct metrics_map *map,
 	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
 		"rotate(-90)\" text-anchor=\"middle\">around (0-360 deg)"
 		"</text>\n", y0 + h / 2);
-	plot_end(&(struct plot){ .out = o });
+	htmlpage_plot_end(&(struct htmlpage_plot){ .out = o });
 }
 
 int report_write(const struct session_file *f, const struct metrics_result *m,
 		 const struct report_reference *ref, const char *dir)
 {
-	char path[4096], tmp[4200], err[256];
+	char tmp[4200], err[256];
 	struct metrics_map *map = malloc(sizeof(*map));
 	struct anatomy a;
 	bool have_a;
 	FILE *o;
-	int r = 0;
+	int r;
 
 	if (!map || report_map(f, map)) {
 		free(map);
 		map = NULL; /* the report without its map */
 	}
-
-	if (mkdir(dir, 0755) && errno != EEXIST) {
-		r = -errno;
-		free(map);
-		return r;
-	}
-	snprintf(path, sizeof(path), "%s/index.html", dir);
-	snprintf(tmp, sizeof(tmp), "%s.tmp", path);
-	o = fopen(tmp, "w");
+	o = htmlpage_create(dir, tmp, sizeof(tmp));
 	if (!o) {
 		r = -errno;
 		free(map);
@@ -1144,18 +991,7 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 		page_compare(o, f, m, ref, have_a ? &a : NULL);
 	}
 	page_metrics(o, f, m, have_a ? &a : NULL, map);
-	if (ferror(o)) {
-		r = -EIO;
-	}
-	if (fclose(o) && !r) {
-		r = -errno;
-	}
-	if (!r && rename(tmp, path)) {
-		r = -errno;
-	}
-	if (r) {
-		unlink(tmp);
-	}
+	r = htmlpage_commit(o, tmp, dir);
 	free(map);
 	return r;
 }

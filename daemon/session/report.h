@@ -19,6 +19,8 @@
  * pixel column, so that every peak survives. Every text that comes from
  * the file (trainee, case, event texts) is HTML-escaped.
  *
+ * The page's parts shared with the trainee's page: htmlpage.h.
+ *
  * Not for the force loop: allocates, writes files. Any thread.
  */
 #ifndef ENDOSIM_REPORT_H
@@ -66,8 +68,5 @@ int report_metrics(const struct session_file *f,
  * draws it under the plots.
  */
 int report_map(const struct session_file *f, struct metrics_map *out);
-
-/* Writes TEXT to OUT with & < > " ' escaped. */
-void report_escape(FILE *out, const char *text);
 
 #endif

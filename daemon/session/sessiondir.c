@@ -48,8 +48,7 @@ int sessiondir_path(const char *dir, uint64_t id, char *buf, size_t size)
 	return n < 0 || (size_t)n >= size ? -ENAMETOOLONG : 0;
 }
 
-/* The ID of a file named ID.endoses, or 0. */
-static uint64_t file_id(const char *name)
+uint64_t sessiondir_file_id(const char *name)
 {
 	char *end;
 	uint64_t id;
@@ -71,7 +70,7 @@ int sessiondir_next_id(const char *dir, uint64_t *id)
 		return -errno;
 	}
 	while ((e = readdir(d))) {
-		uint64_t k = file_id(e->d_name);
+		uint64_t k = sessiondir_file_id(e->d_name);
 
 		max = k > max ? k : max;
 	}
@@ -152,24 +151,63 @@ static bool end_frame_at(const unsigned char *tail, size_t n, size_t off)
 	       get_u32(tail + off + 8 + len);
 }
 
-bool sessiondir_ended(int fd, uint64_t size)
+/*
+ * The intact END frame that ends the file open as FD of SIZE bytes: its
+ * payload (malloc'd, NUL-terminated) in *TEXT when TEXT is not NULL.
+ * True when there is one.
+ */
+static bool find_end(int fd, uint64_t size, char **text)
 {
 	size_t n = size < TAIL_BYTES ? (size_t)size : TAIL_BYTES;
 	unsigned char *tail = malloc(n ? n : 1);
 	bool ended = false;
+	size_t off;
 
 	if (!tail || n < 12 || read_at(fd, tail, n, (off_t)(size - n))) {
 		free(tail);
 		return false;
 	}
-	for (size_t off = n - 12; !ended; off--) {
+	for (off = n - 12; !ended; off--) {
 		ended = end_frame_at(tail, n, off);
-		if (!off) {
+		if (ended || !off) {
 			break;
+		}
+	}
+	if (ended && text) {
+		size_t len = n - off - 12;
+
+		*text = malloc(len + 1);
+		ended = *text != NULL;
+		if (ended) {
+			memcpy(*text, tail + off + 8, len);
+			(*text)[len] = '\0';
 		}
 	}
 	free(tail);
 	return ended;
+}
+
+bool sessiondir_ended(int fd, uint64_t size)
+{
+	return find_end(fd, size, NULL);
+}
+
+int sessiondir_end_text(const char *path, char **text)
+{
+	int fd = open(path, O_RDONLY | O_CLOEXEC);
+	struct stat st;
+	int r = 0;
+
+	*text = NULL;
+	if (fd < 0 || fstat(fd, &st) < 0) {
+		r = -errno;
+	} else if (!find_end(fd, (uint64_t)st.st_size, text)) {
+		r = -ENOENT;
+	}
+	if (fd >= 0) {
+		close(fd);
+	}
+	return r;
 }
 
 static void header_value(const char *text, const char *key, char *out,
@@ -272,7 +310,7 @@ int sessiondir_list(const char *dir, struct sessiondir_entry **out,
 		return -errno;
 	}
 	while (!r && (e = readdir(d))) {
-		uint64_t id = file_id(e->d_name);
+		uint64_t id = sessiondir_file_id(e->d_name);
 
 		r = id ? add_entry(dir, id, out, n, &cap) : 0;
 	}

@@ -43,6 +43,17 @@ int sessiondir_header(const char *path, char *buf, size_t size);
 bool sessiondir_ended(int fd, uint64_t size);
 
 /*
+ * The END frame's text (metrics_format()'s lines) of the session file
+ * PATH, malloc'd and NUL-terminated, in *TEXT (free() it). 0; -ENOENT when
+ * the file does not end with an intact END (cut short, still recording);
+ * -errno.
+ */
+int sessiondir_end_text(const char *path, char **text);
+
+/* The ID of a file named ID.endoses (ID decimal, from 1), else 0. */
+uint64_t sessiondir_file_id(const char *name);
+
+/*
  * The entry of the session file PATH, its id from its header (0 when the
  * header has none). 0; -errno (-ENOENT: no such file); -EBADMSG (not a
  * session file).

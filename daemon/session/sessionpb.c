@@ -39,23 +39,36 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	X(clear_view, clear_view) X(lost_views, lost_views)                  \
 	X(mucosa_per_min, mucosa_per_min)
 
+/* R's measures into M, its segments' into SEGMENT; no episodes. */
+static void scalars_out(Endosim__SessionMetrics *m, double *segment,
+			const struct metrics_result *r)
+{
+	endosim__session_metrics__init(m);
+#define TO_PB(pb, c) m->pb = r->c;
+	METRICS_ON_WIRE(TO_PB)
+#undef TO_PB
+	memcpy(segment, r->mucosa_segment, ANATOMY_SEGMENTS * sizeof(double));
+	m->n_mucosa_segment = ANATOMY_SEGMENTS;
+	m->mucosa_segment = segment;
+}
+
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
 			    const struct metrics_result *r)
 {
 	Endosim__SessionMetrics *m = &out->msg;
 
-	endosim__session_metrics__init(m);
-#define TO_PB(pb, c) m->pb = r->c;
-	METRICS_ON_WIRE(TO_PB)
-#undef TO_PB
+	scalars_out(m, out->segment, r);
 	m->n_force = episodes_out(out->force, out->force_p, r->force,
 				  r->n_force);
 	m->force = out->force_p;
 	m->n_loops = episodes_out(out->loop, out->loop_p, r->loop, r->n_loop);
 	m->loops = out->loop_p;
-	memcpy(out->segment, r->mucosa_segment, sizeof(out->segment));
-	m->n_mucosa_segment = ANATOMY_SEGMENTS;
-	m->mucosa_segment = out->segment;
+}
+
+void sessionpb_from_scalars(struct sessionpb_scalars *out,
+			    const struct metrics_result *r)
+{
+	scalars_out(&out->msg, out->segment, r);
 }
 
 static uint32_t episodes_in(struct metrics_episode *out,

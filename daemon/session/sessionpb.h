@@ -30,6 +30,18 @@ struct sessionpb_metrics {
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
 			    const struct metrics_result *r);
 
+/* The measures alone, without their episodes (a listing of many
+ * sessions: TraineeSessions), a tenth of the size. */
+struct sessionpb_scalars {
+	Endosim__SessionMetrics msg;
+	double segment[ANATOMY_SEGMENTS];
+};
+
+/* OUT->msg becomes R on the wire without its episodes; it points into
+ * OUT. */
+void sessionpb_from_scalars(struct sessionpb_scalars *out,
+			    const struct metrics_result *r);
+
 /* The inverse (episodes beyond METRICS_MAX_EPISODES are left out). */
 void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 			  struct metrics_result *out);

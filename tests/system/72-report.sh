@@ -11,20 +11,11 @@
 # $REPORT_SHOT (default $TMP/report.png) to be looked at.
 . "$(dirname "$0")/../common.sh"
 
-CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
-if [ -z "$CHROMIUM" ]; then
-	fail "chromium is installed (Debian package chromium; make deps-test)"
-	finish
-fi
+. "$(dirname "$0")/chrome_lib.sh"
+
+need_chromium
 SHOT=${REPORT_SHOT:-$TMP/report.png}
 TRAINEE="Dr. <b>O'Brien</b> & Co"
-
-# the browser's profile and caches in the test's directory
-chrome() {
-	HOME="$TMP" "$CHROMIUM" --headless --no-sandbox --disable-gpu \
-		--user-data-dir="$TMP/chromium" --hide-scrollbars "$@" \
-		2>>"$TMP/chromium.log"
-}
 
 check "session_script writes a session file" \
 	"$TOOLS/session_script" "$CASES/polyps.case" "$TMP/s.endoses" "$TRAINEE"
@@ -36,18 +27,8 @@ check "the recomputed metrics reach the cecum" \
 check "the recomputed metrics find all 5 polyps" \
 	grep -q '^polyps_seen=5$' "$TMP/metrics"
 
-check "headless Chromium renders a screenshot" \
-	chrome --screenshot="$SHOT" --window-size=1280,2000 \
-	"file://$TMP/report/index.html"
-if [ -s "$SHOT" ]; then
-	read -r _ _ _ lit red _ < <("$TOOLS/png_stats" "$SHOT" rect:0,0,1280,2000)
-	lit=${lit#lit=}
-	red=${red#red=}
-	check "the screenshot has text (dark pixels: lit $lit < 0.999)" \
-		awk -v v="$lit" 'BEGIN { exit !(v < 0.999) }'
-	check "the screenshot has the plots' red marks (red $red > 0.00005)" \
-		awk -v v="$red" 'BEGIN { exit !(v > 0.00005) }'
-fi
+check_screenshot "$TMP/report/index.html" "$SHOT" 1280 2000 \
+	"the plots' red marks"
 
 chrome --dump-dom "file://$TMP/report/index.html" >"$TMP/dom.html"
 check "the rendered DOM has the four plots and the mucosa map" \

@@ -1,0 +1,150 @@
+#!/bin/bash
+# A trainee's course (issue 16): three sessions of one trainee on the
+# polyps case (tests/tools/session_script: a scripted colonoscopy; the
+# first cut short after ~1.8 min, so its withdrawal is under 6 min and
+# only 0 of 5 polyps were found: it fails; the other two meet every
+# requirement) and one of another trainee, in the daemon's session
+# directory; a course file asking for two sessions in a row ([session]
+# course). endoctl trainee list finds them by name through the index,
+# which the daemon builds when it is missing, keeps while it is fresh, and
+# builds again after it was deleted, damaged in one line, overwritten with
+# garbage, or went stale (a session deleted, then back): each time the
+# same trainees and the same course status. endoctl trainee report writes
+# the page, rendered in headless Chromium: the rendered DOM holds the
+# course's status, the sessions with their requirements met or not, and
+# the eight learning curves with their points and the course's bounds; the
+# screenshot is not blank. The page stays in $TMP/page (the screenshot in
+# $TRAINEE_SHOT, default $TMP/trainee.png) to be looked at.
+. "$(dirname "$0")/../common.sh"
+. "$(dirname "$0")/chrome_lib.sh"
+
+SESS="$TMP/sessions"
+SHOT=${TRAINEE_SHOT:-$TMP/trainee.png}
+ANN="Ann O'Neil <i>"
+COURSE="$TMP/test.course"
+mkdir -p "$SESS"
+
+cat >"$COURSE" <<'EOF'
+# the basic course's marks, but one episode of excessive force allowed
+# (the scripted colonoscopy has one)
+[course]
+name = test
+consecutive = 2
+[case polyps]
+cecum_s <= 480
+withdrawal_s >= 360
+mucosa_seen >= 0.90
+force_episodes <= 1
+polyps_seen >= 5
+EOF
+
+check "session_script writes the sessions" sh -c '
+	"$1" "$2" "$3/full.tmp" "$4" >/dev/null &&
+	"$1" "$2" "$3/bo.tmp" Bo >/dev/null' _ \
+	"$TOOLS/session_script" "$CASES/polyps.case" "$TMP" "$ANN"
+head -c 4000000 "$TMP/full.tmp" >"$SESS/1.endoses" # cut short
+cp "$TMP/full.tmp" "$SESS/2.endoses"
+cp "$TMP/full.tmp" "$SESS/3.endoses"
+cp "$TMP/bo.tmp" "$SESS/4.endoses"
+
+start_daemon --session-dir "$SESS" --set "session.course=$COURSE" || finish
+
+# list_json: the trainees as `endoctl --json trainee list` says, without
+# the index' state; list_index: that state
+list_json() { ctl --json trainee list | jq -c 'del(.index)'; }
+list_index() { ctl --json trainee list | jq -r .index; }
+WANT='{"directory":"'"$SESS"'","course":"test","trainees":[{"trainee":"'"$ANN"'","sessions":3,"cases":["polyps"],"last_session":3,"last_started":"2026-11-20T09:30:00Z","cases_complete":1,"course_complete":true},{"trainee":"Bo","sessions":1,"cases":["polyps"],"last_session":4,"last_started":"2026-11-20T09:30:00Z","cases_complete":0,"course_complete":false}]}'
+
+check "no index yet: built from the files' headers" \
+	test "$(list_index)" = missing
+check "trainee list: the two trainees, Ann's course complete" \
+	test "$(list_json)" = "$WANT"
+check "the index: a line per session file" \
+	test "$(wc -l <"$SESS/index")" -eq 5
+check "... then fresh" test "$(list_index)" = fresh
+check_status "trainee list (text)" 0 ctl trainee list
+check "... Ann: 3 sessions, course complete" \
+	grep -qE "^Ann O'Neil <i> +3 +polyps +3 .* complete" "$OUT"
+check "... Bo: 1 session, 0 of 1 cases" grep -qE '^Bo +1 .* 0 of 1 cases' "$OUT"
+
+rm -f "$SESS/index"
+check "the index deleted: built again" test "$(list_index)" = missing
+check "... the same trainees" test "$(list_json)" = "$WANT"
+printf 'X' | dd of="$SESS/index" bs=1 seek=60 conv=notrunc 2>/dev/null
+check "a byte of the index changed: damaged" test "$(list_index)" = damaged
+check "... the same trainees" test "$(list_json)" = "$WANT"
+check "... written again: fresh" test "$(list_index)" = fresh
+head -c 3000 /dev/urandom >"$SESS/index"
+check "the index overwritten with garbage: damaged" \
+	test "$(list_index)" = damaged
+check "... the same trainees" test "$(list_json)" = "$WANT"
+check "the daemon's log says how it found the index" \
+	grep -q "session index of $SESS damaged: 4 session files read" "$LOG"
+
+mv "$SESS/3.endoses" "$TMP/3.endoses"
+check "a session deleted: stale" test "$(list_index)" = stale
+check "... Ann: 2 sessions, the course not complete (1 of 2 in a row)" \
+	sh -c '"$1" --socket "$2" --json trainee list |
+		jq -e ".trainees[0] | .sessions == 2 and
+			(.course_complete | not)"' _ "$ENDOCTL" "$SOCK"
+mv "$TMP/3.endoses" "$SESS/3.endoses"
+check "back: stale" test "$(list_index)" = stale
+check "... the same trainees" test "$(list_json)" = "$WANT"
+
+check_status "trainee report" 0 ctl trainee report "$ANN" --out "$TMP/page"
+check "... 3 sessions, course complete" \
+	grep -q "index.html: 3 sessions, course complete" "$OUT"
+check_status "trainee report with the basic course (no force episode)" 0 \
+	ctl trainee report "$ANN" --out "$TMP/basic" \
+	--course "$TOP/config/courses/basic.course"
+check "... course not complete" grep -q "course not complete" "$OUT"
+check_status "a trainee without sessions: refused" 1 \
+	ctl trainee report Nobody --out "$TMP/nobody"
+printf '[course]\nname = x\nconsecutive = 1\n[case polyps]\ncecum <= 3\n' \
+	>"$TMP/bad.course"
+check_status "a bad course file: refused" 1 \
+	ctl trainee list --course "$TMP/bad.course"
+check "... naming its file and line" \
+	grep -q "$TMP/bad.course:5: unknown metric 'cecum'" "$OUT"
+check_status "trainee list --dir: the directory without endosimd" 0 \
+	"$ENDOCTL" --json trainee list --dir "$SESS" --course "$COURSE"
+check "... the same trainees" \
+	test "$(jq -c 'del(.index)' "$OUT")" = "$WANT"
+
+need_chromium
+check_screenshot "$TMP/page/index.html" "$SHOT" 1280 2400 \
+	"the failed marks and the bounds"
+DOM="$TMP/dom.html"
+chrome --dump-dom "file://$TMP/page/index.html" >"$DOM"
+check "the DOM says: course complete" \
+	grep -q '<p id="course-status" class="complete">course complete</p>' \
+	"$DOM"
+check "... polyps complete at session 3" \
+	grep -q '<li>polyps: complete (session 3, 2 in a row)</li>' "$DOM"
+check "the sessions table: 3 rows" \
+	test "$(grep -c '<tr id="session-[0-9]*">' "$DOM")" -eq 3
+check "... session 1 failed: cut short, withdrawal and polyps not met" \
+	sh -c 'grep "<tr id=\"session-1\">" "$1" | grep -q "(cut short).*class=\"missed\">failed.*✗ withdrawal_s &gt;= 360.*✗ polyps_seen &gt;= 5"' _ "$DOM"
+check "... sessions 2 and 3 passed, every requirement met" \
+	test "$(grep '<tr id="session-[23]">' "$DOM" |
+		grep 'class="met">passed' | grep -vc 'class="missed"')" -eq 2
+check "the learning curves: 8 plots" \
+	test "$(grep -o '<svg class="plot"' "$DOM" | wc -l)" -eq 8
+for key in cecum_s withdrawal_s mucosa_seen force_episodes loop_episodes \
+	peak_insertion_n discomfort polyps_seen; do
+	check "curve-1-$key: a line through 3 points" \
+		sh -c 'sed -n "/<figure id=\"curve-1-$1\">/,/<\/figure>/p" "$2" >"$3"
+			grep -q "<path class=\"series\" [^>]*d=\"M[0-9.]* [0-9.]* L" "$3" &&
+			test "$(grep -c "<circle class=\"point" "$3")" -eq 3' \
+		_ "$key" "$DOM" "$TMP/curve"
+done
+check "... the withdrawal's: session 1's not met, its bound of 6 min" \
+	sh -c 'sed -n "/<figure id=\"curve-1-withdrawal_s\">/,/<\/figure>/p" "$1" >"$2"
+		grep -q "<title>session 1: 0.665 min (requirement not met)</title>" "$2" &&
+		test "$(grep -c "(requirement met)</title>" "$2")" -eq 2 &&
+		grep -q "requirement ≥ 6 min</text>" "$2"' _ "$DOM" "$TMP/curve"
+check "the trainee's name is escaped" \
+	grep -qF '<dd id="trainee">Ann O'"'"'Neil &lt;i&gt;</dd>' "$DOM"
+check "the page has no script and no external asset" \
+	sh -c "! grep -qiE '<script|src=|href=\"http' '$TMP/page/index.html'"
+finish
