@@ -12,7 +12,7 @@
  *    straight tip into the loop; then both steer on to the cecum, and
  *    whenever the scope is stuck the novice first pushes 10 cm more into
  *    the loop, then both reduce it (withdrawing 10 cm turning clockwise);
- *  - the expert withdraws at 2 cm/s looking around the folds (the tip bent
+ *  - the expert withdraws at 3 cm/s looking around the folds (the tip bent
  *    0.4 rad, circling every 2 s), the novice at 6 cm/s looking ahead.
  *
  * Every measure that claims to discriminate and that these scripts
@@ -26,8 +26,11 @@
  * and why, are in docs/METRICS.md. Deterministic: the loop runs bit for
  * bit the same on every machine.
  *
- * Under AddressSanitizer (three times slower) both withdraw only 30 cm:
- * the insertion's claims are checked, the withdrawal's in the plain build.
+ * Under AddressSanitizer (three times slower; or built with
+ * -DSEPARATION_SHORT) both sessions end 10 cm past
+ * the junction, the mistake's immediate effect: there the expert's chase
+ * efficiency is higher, her idle push, time looped and peak force lower;
+ * the rest is checked in the plain build.
  *
  * Run from the top of the source tree (tests/run.sh does), or with
  * ENDOSIM_TOP naming it.
@@ -53,7 +56,7 @@
 #define SPEED 0.04 /* m/s: both trainees' pace in */
 #define IMPACTED_N_PER_M 5000 /* the tip caught in the junction's fold */
 #define LOOP_M 0.03 /* the rod model's loop threshold */
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(SEPARATION_SHORT)
 #define SANITIZED 1
 #else
 #define SANITIZED 0
@@ -120,14 +123,19 @@ static void session(bool expert, struct metrics_result *out)
 	}
 	trainee_hold_tip(t, 0);
 	trainee_relax(t, 1.0);
+	if (SANITIZED) { /* on 10 cm past the junction, and no further */
+		trainee_insert(t, junction + 0.10, SPEED, 4);
+		goto done;
+	}
 	assert_true(to_cecum(t, cecum, expert));
 	trainee_hold(t, 2.0);
-	out_m = SANITIZED ? 0.3 : trainee_state(t)->scope.depth_m - 0.10;
+	out_m = trainee_state(t)->scope.depth_m - 0.10;
 	if (expert) {
-		trainee_withdraw_looking(t, out_m, 0.02, 0.4, 2.0);
+		trainee_withdraw_looking(t, out_m, 0.03, 0.4, 2.0);
 	} else {
 		trainee_withdraw(t, out_m, 0.06, 0);
 	}
+done:
 	metrics_result(m, out);
 	metrics_destroy(m);
 	trainee_destroy(t);
@@ -153,12 +161,12 @@ static void test_expert_and_novice(void **state)
 	assert_true(e.shaft_idle_m < n.shaft_idle_m);
 	assert_true(e.loop_s < n.loop_s);
 	assert_true(e.peak_insertion_n < n.peak_insertion_n);
-	assert_true(e.force_episode_s < n.force_episode_s);
 	if (SANITIZED) {
-		printf("# sanitized build: the withdrawal's claims are checked "
-		       "in the plain build\n");
+		printf("# sanitized build: the sessions end 10 cm past the "
+		       "junction; the rest is checked in the plain build\n");
 		return;
 	}
+	assert_true(e.force_episode_s < n.force_episode_s);
 	/* the way out (CoRS, the quality mark) and what was seen (GI Mentor,
 	 * the virtual-withdrawal study) */
 	assert_true(e.tip_retraction_m > n.tip_retraction_m);
