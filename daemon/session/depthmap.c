@@ -32,7 +32,22 @@ void depthmap_begin(struct depthmap *d, const double eye[3],
 	vec3_cross(up, fwd, right);
 	d->scale = DEPTHMAP_N / 2.0 /
 		   tan(fmin(half_fov_rad, DEPTHMAP_MAX_HALF_RAD));
+	d->x0 = d->y0 = DEPTHMAP_N;
+	d->x1 = d->y1 = 0;
 	memset(d->w, 0, sizeof(d->w));
+}
+
+void depthmap_want(struct depthmap *d, const float p[3])
+{
+	/* depthmap_visible()'s pixels i, i + 1 and j, j + 1 */
+	int i = (int)floorf(p[0] - 0.5f), j = (int)floorf(p[1] - 0.5f);
+
+	i = i < 0 ? 0 : i > DEPTHMAP_N - 2 ? DEPTHMAP_N - 2 : i;
+	j = j < 0 ? 0 : j > DEPTHMAP_N - 2 ? DEPTHMAP_N - 2 : j;
+	d->x0 = i < d->x0 ? i : d->x0;
+	d->y0 = j < d->y0 ? j : d->y0;
+	d->x1 = i + 2 > d->x1 ? i + 2 : d->x1;
+	d->y1 = j + 2 > d->y1 ? j + 2 : d->y1;
 }
 
 void depthmap_camera(const struct depthmap *d, const double p[3],
@@ -103,10 +118,11 @@ static void fill(struct depthmap *d, const float *const p[3], float area)
 	}
 	y0 = (int)floorf(min3(p[0][1], p[1][1], p[2][1]));
 	y1 = (int)ceilf(max3(p[0][1], p[1][1], p[2][1]));
-	y0 = y0 < 0 ? 0 : y0;
-	y1 = y1 > DEPTHMAP_N ? DEPTHMAP_N : y1;
+	y0 = y0 < d->y0 ? d->y0 : y0;
+	y1 = y1 > d->y1 ? d->y1 : y1;
 	for (int y = y0; y < y1; y++) {
-		float py = (float)y + 0.5f, lo = 0, hi = DEPTHMAP_N;
+		float py = (float)y + 0.5f, lo = (float)d->x0 + 0.5f;
+		float hi = (float)d->x1 - 0.5f;
 		float *row = d->w[y];
 
 		for (int j = 0; j < 3; j++) {
@@ -153,7 +169,8 @@ static void fill_facing(struct depthmap *d, const float *p0, const float *p1,
 	if (area > 1e-9f &&
 	    floorf(x1 - 0.5f + EDGE_PX) >= ceilf(x0 - 0.5f - EDGE_PX) &&
 	    floorf(y1 - 0.5f + EDGE_PX) >= ceilf(y0 - 0.5f - EDGE_PX) &&
-	    x1 > 0 && y1 > 0 && x0 < DEPTHMAP_N && y0 < DEPTHMAP_N) {
+	    x1 > (float)d->x0 && y1 > (float)d->y0 && x0 < (float)d->x1 &&
+	    y0 < (float)d->y1) {
 		fill(d, q, area);
 	}
 }

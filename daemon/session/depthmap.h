@@ -38,13 +38,23 @@ struct depthmap {
 	double eye[3];
 	double axis[3][3];       /* rows: right, up, dir */
 	double scale;            /* pixels per unit of x / z */
+	int x0, y0, x1, y1;      /* drawn only in x0 <= x < x1, y0 <= y < y1 */
 	float w[DEPTHMAP_N][DEPTHMAP_N]; /* 1 / z, 1/m; 0: nothing */
 };
 
 /* An empty buffer for the camera at EYE looking along DIR (need not be
- * unit) with a field of view of HALF_FOV_RAD either side. */
+ * unit) with a field of view of HALF_FOV_RAD either side, wanting
+ * nothing drawn yet (depthmap_want()). */
 void depthmap_begin(struct depthmap *d, const double eye[3],
 		    const double dir[3], double half_fov_rad);
+
+/*
+ * The point whose projection is P (depthmap_project()) will be tested:
+ * the pixels its test reads are drawn from here on. Triangles are drawn
+ * only within the rectangle around the points wanted (a scissor, as a
+ * GPU's): the rest of the buffer, which no test reads, stays empty.
+ */
+void depthmap_want(struct depthmap *d, const float p[3]);
 
 /* World point P in camera coordinates. */
 void depthmap_camera(const struct depthmap *d, const double p[3],

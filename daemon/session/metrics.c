@@ -404,8 +404,8 @@ static bool pose_sees(const struct pose *c, const float x[3], double range)
  * tip and not wholly behind it, by each ring's largest offset), *I0 to
  * *I1: their vertices in camera coordinates and projected, stamped with
  * this evaluation, and marked candidates when not yet seen, in range and
- * cone and facing the camera. Returns the deepest candidate's z (m; 0:
- * none).
+ * cone and facing the camera (and wanted in the depth buffer). Returns the
+ * deepest candidate's z (m; 0: none).
  */
 static double view_vertices(struct view *w, const struct pose *c,
 			    double tip_s, long *i0, long *i1)
@@ -443,8 +443,12 @@ static double view_vertices(struct view *w, const struct pose *c,
 			w->stamp[v] = w->evaluation;
 			w->candidate[v] = !w->seen[v] && vec3_dot(n, x) < 0 &&
 					  pose_sees(c, cam, c->range_m);
-			if (w->candidate[v] && cam[2] > deepest) {
-				deepest = cam[2];
+			if (!w->candidate[v]) {
+				continue;
+			}
+			deepest = fmax(deepest, cam[2]);
+			if (cam[2] >= DEPTHMAP_NEAR_M) {
+				depthmap_want(w->depth, w->img[v]);
 			}
 		}
 	}
@@ -521,8 +525,14 @@ static uint32_t view_polyp_candidates(struct view *w, const struct pose *c,
 		vec3_axpy(p, p, w->polyp_r[k], n);
 		depthmap_camera(w->depth, p, cam[k]);
 		if (pose_sees(c, cam[k], c->range_m + w->polyp_r[k])) {
+			float img[3];
+
 			in_view |= 1u << k;
 			*deepest = fmax(*deepest, cam[k][2]);
+			if (cam[k][2] >= DEPTHMAP_NEAR_M) {
+				depthmap_project(w->depth, cam[k], img);
+				depthmap_want(w->depth, img);
+			}
 		}
 	}
 	return in_view;
