@@ -57,7 +57,6 @@ struct recorder {
 	struct recorder_info info;   /* what the control thread sees */
 	struct recorder_map map;     /* the live map the control thread sees */
 	bool map_ready;              /* map is this session's */
-	_Atomic uint64_t map_asked_ns; /* recorder_map()'s last call */
 	struct param params[PARAMS];
 	size_t n_params;
 	int stop_result;
@@ -337,17 +336,11 @@ static void map_snapshot(struct recorder *r, uint64_t now)
 	r->last_map_ns = now;
 }
 
-/* The map's first of a session, or its next: often while watched. */
-static bool map_due(struct recorder *r, uint64_t now)
+/* The map's first of a session, or its next. */
+static bool map_due(const struct recorder *r, uint64_t now)
 {
-	uint64_t asked = atomic_load_explicit(&r->map_asked_ns,
-					      memory_order_relaxed);
-	bool watched = asked &&
-		       now < asked + (uint64_t)(RECORDER_MAP_WATCHED_S * 1e9);
-	double period = watched ? RECORDER_MAP_S : RECORDER_MAP_IDLE_S;
-
 	return !r->last_map_ns ||
-	       now - r->last_map_ns >= (uint64_t)(period * 1e9);
+	       now - r->last_map_ns >= (uint64_t)(RECORDER_MAP_S * 1e9);
 }
 
 /* Everything in the ring now, into the buffer; written when due. */
@@ -653,8 +646,6 @@ int recorder_map(struct recorder *r, struct recorder_map *out)
 {
 	int e;
 
-	atomic_store_explicit(&r->map_asked_ns, mono_ns(),
-			      memory_order_relaxed);
 	pthread_mutex_lock(&r->lock);
 	e = r->phase != PHASE_RECORDING ? -ENOENT :
 	    !r->map_ready ? -EAGAIN : 0;

@@ -29,10 +29,9 @@
  * While recording, the recorder also keeps the unseen-mucosa map
  * (metrics_map(), quantised by livemap.h) for endoview's overlay and
  * `endoctl session map` (recorder_map()): renewed every RECORDER_MAP_S
- * while it was asked for in the last RECORDER_MAP_WATCHED_S, else every
- * RECORDER_MAP_IDLE_S (a pass over the mesh: ~10 ms at the default
- * resolution). It is computed outside the lock and copied in under it
- * (4 kB), so a reader holds the recorder up for a copy at most.
+ * (the metrics keep each cell's seen area as they go: a map is ~4000
+ * cells, microseconds). It is made outside the lock and copied in under
+ * it (4 kB), so a reader holds the recorder up for a copy at most.
  *
  * Threads: the tap is the force loop's; recorder_start(),
  * recorder_stop(), recorder_param(), recorder_info() and recorder_map()
@@ -90,9 +89,7 @@ struct recorder_info {
 	struct metrics_result metrics; /* live: refreshed every ~100 ms */
 };
 
-#define RECORDER_MAP_S 0.25         /* the live map renewed this often, s, */
-#define RECORDER_MAP_WATCHED_S 2.0  /* while asked for within this, s; */
-#define RECORDER_MAP_IDLE_S 2.0     /* else this often, s */
+#define RECORDER_MAP_S 0.25         /* the live map renewed this often, s */
 
 /* The recording session's unseen-mucosa map, as last renewed. */
 struct recorder_map {

@@ -96,6 +96,10 @@ struct view {
 	uint32_t *stamp;          /* ... valid when stamp == evaluation */
 	unsigned char *candidate; /* ... not seen yet but in view */
 	uint32_t evaluation;
+	/* the unseen-mucosa map's cells (metrics_map()), kept as it goes */
+	uint16_t *cell;           /* per vertex: i * METRICS_MAP_A + k */
+	float cell_area[METRICS_MAP_S * METRICS_MAP_A];
+	float cell_seen[METRICS_MAP_S * METRICS_MAP_A];
 };
 
 struct metrics {
@@ -292,6 +296,29 @@ static void view_areas(struct view *w)
 	w->reach_m = rho;
 }
 
+/* Each vertex' cell of the map (by its place along the colon and its
+ * angle around the centreline from the frame's u, as the case's polyps
+ * are placed) and each cell's area. */
+static void view_cells(struct view *w)
+{
+	const struct mesh *me = w->mesh;
+	double step = centreline_step(w->cl);
+	double length = (double)(me->samples - 1) * step;
+
+	for (uint32_t v = 0; v < me->vertices; v++) {
+		double a = atan2(me->off[v][2], me->off[v][1]);
+		long i = lround(floor(me->sample[v] * step / length *
+				      METRICS_MAP_S));
+		long k = lround(floor((a < 0 ? a + 2 * M_PI : a) /
+				      (2 * M_PI) * METRICS_MAP_A));
+
+		i = i < 0 ? 0 : i >= METRICS_MAP_S ? METRICS_MAP_S - 1 : i;
+		k = k < 0 ? 0 : k >= METRICS_MAP_A ? METRICS_MAP_A - 1 : k;
+		w->cell[v] = (uint16_t)(i * METRICS_MAP_A + k);
+		w->cell_area[w->cell[v]] += w->area[v];
+	}
+}
+
 /* The ring vertex nearest the polyp's angle: where the viewer draws it. */
 static uint32_t polyp_vertex(const struct mesh *me, double step,
 			     const struct anatomy_polyp *p)
@@ -342,11 +369,13 @@ static int view_init(struct view *w, const struct colon *c)
 	w->img = malloc(w->mesh->vertices * sizeof(*w->img));
 	w->stamp = calloc(w->mesh->vertices, sizeof(*w->stamp));
 	w->candidate = malloc(w->mesh->vertices);
+	w->cell = malloc(w->mesh->vertices * sizeof(*w->cell));
 	if (!w->area || !w->seen || !w->dwell || !w->depth || !w->cam ||
-	    !w->img || !w->stamp || !w->candidate) {
+	    !w->img || !w->stamp || !w->candidate || !w->cell) {
 		return -ENOMEM;
 	}
 	view_areas(w);
+	view_cells(w);
 	for (int k = 0; a && k < a->polyps && k < ANATOMY_MAX_POLYPS; k++) {
 		w->polyp_vertex[k] = polyp_vertex(w->mesh, centreline_step(src),
 						  &a->polyp[k]);
@@ -367,6 +396,7 @@ static void view_free(struct view *w)
 	free(w->img);
 	free(w->stamp);
 	free(w->candidate);
+	free(w->cell);
 }
 
 /* The private centreline bowed as in R. */
@@ -497,6 +527,7 @@ static void view_mucosa(struct view *w, long i0, long i1, double dt_s,
 		if ((w->dwell[v] += (float)dt_s) >= dwell_s - 1e-6) {
 			w->seen[v] = 1;
 			w->seen_area += w->area[v];
+			w->cell_seen[w->cell[v]] += w->area[v];
 		}
 	}
 }
@@ -920,43 +951,17 @@ double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 
 void metrics_map(const struct metrics *m, struct metrics_map *out)
 {
-	float area[METRICS_MAP_S][METRICS_MAP_A];
-	const struct mesh *me = m->view.mesh;
-	double step;
+	const struct view *w = &m->view;
 
+	out->length_m = w->cl ? (double)(w->mesh->samples - 1) *
+				centreline_step(w->cl) : 0;
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
-			out->seen[i][k] = 0;
-			area[i][k] = 0;
-		}
-	}
-	out->length_m = 0;
-	if (!m->view.cl) {
-		for (int i = 0; i < METRICS_MAP_S; i++) {
-			for (int k = 0; k < METRICS_MAP_A; k++) {
-				out->seen[i][k] = -1;
-			}
-		}
-		return;
-	}
-	step = centreline_step(m->view.cl);
-	out->length_m = (double)(me->samples - 1) * step;
-	for (uint32_t v = 0; v < me->vertices; v++) {
-		double s = me->sample[v] * step;
-		double a = atan2(me->off[v][2], me->off[v][1]);
-		long i = lround(floor(s / out->length_m * METRICS_MAP_S));
-		long k = lround(floor((a < 0 ? a + 2 * M_PI : a) /
-				      (2 * M_PI) * METRICS_MAP_A));
+			int c = i * METRICS_MAP_A + k;
 
-		i = i < 0 ? 0 : i >= METRICS_MAP_S ? METRICS_MAP_S - 1 : i;
-		k = k < 0 ? 0 : k >= METRICS_MAP_A ? METRICS_MAP_A - 1 : k;
-		area[i][k] += m->view.area[v];
-		out->seen[i][k] += m->view.seen[v] ? m->view.area[v] : 0;
-	}
-	for (int i = 0; i < METRICS_MAP_S; i++) {
-		for (int k = 0; k < METRICS_MAP_A; k++) {
-			out->seen[i][k] = area[i][k] > 0 ?
-					  out->seen[i][k] / area[i][k] : -1;
+			out->seen[i][k] = w->cl && w->cell_area[c] > 0 ?
+					  w->cell_seen[c] / w->cell_area[c] :
+					  -1;
 		}
 	}
 }

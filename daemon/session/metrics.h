@@ -205,7 +205,8 @@ struct metrics_map {
  * The unseen-mucosa map so far: each vertex (by its place along the
  * colon and its angle around the centreline from the frame's u, as the
  * case's polyps are placed) into its cell, the seen area over the area.
- * Without a colon every cell < 0.
+ * Without a colon every cell < 0. The cells are kept as vertices are
+ * seen: a map costs a pass over the cells, not the mesh.
  */
 void metrics_map(const struct metrics *m, struct metrics_map *out);
 
