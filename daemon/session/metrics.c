@@ -608,8 +608,10 @@ static void view_evaluate(struct metrics *m, const struct session_record *r,
 	struct pose c;
 	long i0, i1;
 
-	if (t < w->next_s) {
-		return;
+	if (t < w->next_s || !isfinite(r->tip_s_m) ||
+	    !isfinite(r->tip[0] + r->tip[1] + r->tip[2]) ||
+	    !isfinite(r->dir[0] + r->dir[1] + r->dir[2])) {
+		return; /* not yet, or no pose to look from */
 	}
 	w->next_s = t + dt;
 	view_bow(w, r);
