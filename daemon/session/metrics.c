@@ -929,17 +929,22 @@ double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
 		return 0;
 	}
 	step = centreline_step(m->view.cl);
-	for (uint32_t v = 0; v < me->vertices; v++) {
-		double s = me->sample[v] * step, a;
+	for (size_t i = 0; i < me->samples; i++) { /* vertices by sample */
+		double s = (double)i * step;
 
 		if (s < s0_m || s > s1_m) {
 			continue;
 		}
-		a = all_around ? 0 : atan2(me->off[v][2], me->off[v][1]);
-		a = a < 0 ? a + 2 * M_PI : a;
-		if (a >= a0_rad && a <= a1_rad) {
-			all += m->view.area[v];
-			seen += m->view.seen[v] ? m->view.area[v] : 0;
+		for (uint32_t v = me->sample_first[i];
+		     v < me->sample_first[i + 1]; v++) {
+			double a = all_around ? 0 : atan2(me->off[v][2],
+							  me->off[v][1]);
+
+			a = a < 0 ? a + 2 * M_PI : a;
+			if (a >= a0_rad && a <= a1_rad) {
+				all += m->view.area[v];
+				seen += m->view.seen[v] ? m->view.area[v] : 0;
+			}
 		}
 	}
 	return all > 0 ? seen / all : 0;
