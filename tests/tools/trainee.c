@@ -253,25 +253,37 @@ void trainee_hold_tip(struct trainee *t, double hold_n_per_m)
 	offline_hold_tip(t->off, hold_n_per_m);
 }
 
+bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
+		   double push_m)
+{
+	for (int tries = 0; tries < 6; tries++) {
+		if (trainee_insert(t, tip_s_m, speed, 4)) {
+			return true;
+		}
+		if (push_m > 0) {
+			trainee_push(t, push_m, speed);
+		}
+		trainee_withdraw(t, 0.10, speed, 0.5);
+		trainee_relax(t, 0.5);
+		if (t->s->scope.tip_s_m >= tip_s_m) {
+			return true;
+		}
+	}
+	return false;
+}
+
 bool trainee_course(struct trainee *t, const struct anatomy *a, double speed)
 {
 	double junction = anatomy_segment_start(a, ANATOMY_DESCENDING);
 	double cecum = anatomy_segment_start(a, ANATOMY_CECUM) + 0.02;
-	bool there = false;
+	bool there;
 
 	trainee_hold(t, 1.0);
 	trainee_insert(t, junction - 0.01, speed, 6);
 	trainee_push(t, 0.15, speed);
 	trainee_withdraw(t, 0.15, speed, 0.5);
 	trainee_relax(t, 1.0);
-	for (int tries = 0; tries < 6 && !there; tries++) {
-		there = trainee_insert(t, cecum, speed, 4);
-		if (!there) {
-			trainee_withdraw(t, 0.10, speed, 0.5);
-			trainee_relax(t, 0.5);
-			there = t->s->scope.tip_s_m >= cecum;
-		}
-	}
+	there = trainee_reach(t, cecum, speed, 0);
 	trainee_hold(t, 2.0);
 	trainee_withdraw(t, t->s->scope.depth_m - 0.10, 2 * speed, 0);
 	return there;

@@ -93,6 +93,16 @@ void trainee_hold_tip(struct trainee *t, double hold_n_per_m);
 void trainee_hold(struct trainee *t, double seconds);
 
 /*
+ * On to material TIP_S_M (m) at SPEED, steering; each time the scope is
+ * stuck (4 s without the tip advancing) she pushes on PUSH_M (m; 0: not
+ * at all, the novice's mistake otherwise), then reduces the loop:
+ * withdraws 10 cm turning the tube clockwise (0.5 rad) and lets it
+ * settle for 0.5 s; up to 6 tries. Returns true when the tip got there.
+ */
+bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
+		   double push_m);
+
+/*
  * The demo's course on case A (the trainee's, on the case she was made
  * with): inserting at SPEED (m/s; 3 cm/s is a trainee's pace) steering
  * into the lumen up to the sigmoid's

@@ -70,24 +70,6 @@ static void record(const struct endosim_state *s, void *arg)
 	metrics_record(arg, &r);
 }
 
-/* To the cecum: whenever the scope is stuck the novice first pushes on
- * 10 cm into the loop, then both reduce it (withdrawing 10 cm turning
- * the tube clockwise, letting it settle); whether she got there. */
-static bool to_cecum(struct trainee *t, double cecum, bool expert)
-{
-	for (int tries = 0; tries < 6; tries++) {
-		if (trainee_insert(t, cecum, SPEED, 4)) {
-			return true;
-		}
-		if (!expert) {
-			trainee_push(t, 0.10, SPEED);
-		}
-		trainee_withdraw(t, 0.10, SPEED, 0.5);
-		trainee_relax(t, 0.5);
-	}
-	return trainee_state(t)->scope.tip_s_m >= cecum;
-}
-
 /* One trainee's session: EXPERT or not; the result into OUT. */
 static void session(bool expert, struct metrics_result *out)
 {
@@ -127,7 +109,8 @@ static void session(bool expert, struct metrics_result *out)
 		trainee_insert(t, junction + 0.10, SPEED, 4);
 		goto done;
 	}
-	assert_true(to_cecum(t, cecum, expert));
+	/* when stuck the novice first pushes on 10 cm into the loop */
+	assert_true(trainee_reach(t, cecum, SPEED, expert ? 0 : 0.10));
 	trainee_hold(t, 2.0);
 	out_m = trainee_state(t)->scope.depth_m - 0.10;
 	if (expert) {
