@@ -81,65 +81,81 @@ endef
 # --- what goes where: the wings ---------------------------------------------
 # A wing is a folder and a static library. A program links its own objects
 # and the wings it uses, in the order below: a wing uses only wings after it
-# (docs/ARCHITECTURE.md has the picture and the nevers; tests/layers.sh
-# checks the includes against them).
-#   offline  the force loop off line, in lockstep (tests/tools/offline.h):
-#            the loop's own cycle on the simulated rig and hand
-#   viewer   endoview (viewer/): the link to the daemon (shared memory, the
-#            scene, commands and the hand) and the trainee's controls; the
-#            colon rebuilt with the model's centreline and mesh, its levels
-#            of detail and the portal walk; the endoscopic view, the
-#            overview, the HUD, the unseen-mucosa map; the replay of a
-#            session file
-#   service  endosimd's threads (daemon/): the force loop, safety with its
-#            fault words and the test commands' injections, publish, the
-#            control thread, the recorder of training sessions and its tap
+# (docs/ARCHITECTURE.md has the picture; tests/layers.sh checks each wing's
+# includes and each program's libraries against it). An include names its
+# wing: "model/colon.h", "rig/rig.h", "proto/fields.h".
+#
+# endosimd's own (daemon/):
+#   control  the control thread (daemon/control/): the sockets, the clients,
+#            the master configuration; its handlers: replies, cases,
+#            sessions, trainees, guided replay
+#   recorder the recorder of training sessions (daemon/recorder/)
+#   loop     the force loop (daemon/loop/): its cycle, the safety state
+#            machine and the fault words, the test commands' injections,
+#            publishing, the tap into the recorder's rings
 #   rig      the hardware (daemon/rig/): the rig interface, the simulated rig
-#            and hand, scenarios, the rig of drives, one bus thread per bus,
-#            the drive backends (EPOS4 on USB, Modbus) and their protocols
-#   session  training sessions (daemon/session/): metrics and their map
-#            on the wire (livemap), the session directory, a session's
-#            inputs (one reader), what a session file says (views, CSV,
-#            the report); the cases: the model as the configuration sets it
-#   model    the colon and the endoscope (daemon/model/): case files,
+#            and hand, scenarios, guided replay's guidance, the rig of
+#            drives, one bus thread per bus, the drive backends (EPOS4 on
+#            USB, Modbus) and their protocols
+# the shared libraries (lib/, proto/), which endoctl and endoview link too:
+#   session  training sessions (lib/session/): metrics and their map on the
+#            wire (livemap), the session directory and its index, a
+#            session's inputs (one reader), what a session file says
+#            (views, CSV, the report), courses and the trainee's page
+#   conf     the configuration (lib/conf/): every key once, its file, its
+#            printing; the cases: the model as the configuration sets it
+#   model    the colon and the endoscope (lib/model/): case files,
 #            centreline, mesh, OBJ, the colon, contact, the scope's
-#            kinematics, the god-object, the haptics, the axes' plant, the
-#            scene served; it knows nothing of the configuration
-#   base     configuration, logging, the clock, real time, histograms, rings,
-#            vectors, register maps, JSON (daemon/base/)
+#            kinematics, the god-object, the rod, the haptics, the axes'
+#            plant, the scene served; it knows nothing of the configuration
+#   base     logging, the clock, real time, histograms, rings, vectors,
+#            JSON, text (lib/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
 #            shared-memory reader, session files, names, the published
 #            fields' tables (fields.c)
-WINGS = offline viewer service rig session model base proto
+# and the tests' own:
+#   offline  the force loop off line, in lockstep (tests/tools/offline.h):
+#            the loop's own cycle on the simulated rig and hand, and the
+#            scripted trainee
+#   viewer   endoview's modules (viewer/): the link to the daemon (shared
+#            memory, the scene, commands and the hand) and the trainee's
+#            controls; the colon rebuilt with the model's centreline and
+#            mesh, its levels of detail and the portal walk; the endoscopic
+#            view, the overview, the HUD, the unseen-mucosa map; the replay
+#            of a session file
+WINGS = offline viewer control recorder loop rig session conf model base \
+	proto
 offline_SRCS = tests/tools/offline.c tests/tools/trainee.c
 viewer_SRCS = $(filter-out viewer/endoview.c,$(wildcard viewer/*.c))
-service_SRCS = $(filter-out daemon/main.c,$(wildcard daemon/*.c))
+control_SRCS = $(wildcard daemon/control/*.c)
+recorder_SRCS = $(wildcard daemon/recorder/*.c)
+loop_SRCS = $(wildcard daemon/loop/*.c)
 rig_SRCS = $(wildcard daemon/rig/*.c)
-session_SRCS = $(wildcard daemon/session/*.c)
-model_SRCS = $(wildcard daemon/model/*.c)
-base_SRCS = $(wildcard daemon/base/*.c)
+session_SRCS = $(wildcard lib/session/*.c)
+conf_SRCS = $(wildcard lib/conf/*.c)
+model_SRCS = $(wildcard lib/model/*.c)
+base_SRCS = $(wildcard lib/base/*.c)
 proto_SRCS = $(wildcard proto/*.c)
-proto_EXTRA = $(BUILD)/obj/gen/endosim.pb-c.o # the generated protocol
-WING_INCLUDES = -Iproto -Idaemon -Idaemon/base -Idaemon/model -Idaemon/rig \
-		-Idaemon/session
+proto_EXTRA = $(BUILD)/obj/gen/proto/endosim.pb-c.o # the generated protocol
+WING_INCLUDES = -I. -Ilib -Idaemon
 
 obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
 wings = $(foreach w,$(1),$(BUILD)/lib/lib$(w).a)
-PROTO_GEN = $(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h
+PROTO_GEN = $(BUILD)/gen/proto/endosim.pb-c.c $(BUILD)/gen/proto/endosim.pb-c.h
 
 # the programs: their own sources, the wings they link, their libraries
 PROGRAMS = endosimd endoctl endoview
 endosimd_SRCS = daemon/main.c
-endosimd_WINGS = service rig session model base proto
+endosimd_WINGS = control recorder loop rig session conf model base proto
 endosimd_LDLIBS = $(LDLIBS)
-# endoctl (daemon/ctl/): the CLI over the sockets; what it makes of a
-# session file (its metrics, on the colon rebuilt from the file; CSV; the
+# endoctl (endoctl/): the CLI over the sockets; what it makes of a session
+# file (its metrics, on the colon rebuilt from the file; CSV; the
 # instructor's report)
-endoctl_SRCS = $(wildcard daemon/ctl/*.c)
-endoctl_WINGS = service session model base proto
+endoctl_SRCS = $(wildcard endoctl/*.c)
+endoctl_WINGS = session conf model base proto
 endoctl_LDLIBS = $(CLIENT_LDLIBS)
 endoview_SRCS = viewer/endoview.c
-endoview_WINGS = viewer session model base proto
+endoview_WINGS = viewer session conf model base proto
 endoview_LDLIBS = $(VIEWER_LDLIBS)
 VIEWER_PKGS = glfw3 epoxy cglm stb inih
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
@@ -158,7 +174,7 @@ emulators/modbus-emu_SRCS = tests/emulators/modbus_emu.c \
 			    tests/emulators/emu.c
 bench/drives-bench_SRCS = tests/bench/drives_bench.c
 $(foreach p,$(EMULATORS) bench/drives-bench,\
-	$(eval $(p)_WINGS = rig model base proto)\
+	$(eval $(p)_WINGS = rig conf model base proto)\
 	$(eval $(p)_LDLIBS = $$(LDLIBS) $$(EMU_LIBS)))
 
 # --- unit tests (cmocka), test tools, benchmarks, fuzz targets: each one
@@ -179,7 +195,7 @@ BENCH_TOOLS = bench_colon bench_haptics bench_metrics
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
 	       fuzz_epos4 fuzz_session fuzz_rod fuzz_course
 TEST_WINGS = $(WINGS)
-FUZZ_WINGS = session rig model base proto
+FUZZ_WINGS = session rig conf model base proto
 
 .PHONY: all test check bench bench-tools demo install clean deps deps-test \
 	deps-bench deps-build deps-demo \
@@ -188,9 +204,9 @@ FUZZ_WINGS = session rig model base proto
 
 all: $(addprefix $(BUILD)/,$(PROGRAMS))
 
-$(BUILD)/gen/endosim.pb-c.c $(BUILD)/gen/endosim.pb-c.h &: proto/endosim.proto
+$(PROTO_GEN) &: proto/endosim.proto
 	@mkdir -p $(BUILD)/gen
-	protoc-c --proto_path=proto --c_out=$(BUILD)/gen $<
+	protoc-c --proto_path=. --c_out=$(BUILD)/gen $<
 
 # one compile rule: each source's object in its wing's folder under obj/,
 # the generated protocol's in obj/gen/ (whether BUILD is relative or not)
@@ -204,7 +220,7 @@ $(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 # the rod's solver runs in the force loop: -O3 vectorises its 3x3 and 6x6
 # blocks (a third fewer instructions than -O2)
-$(BUILD)/obj/daemon/model/rod.o: ALL_CFLAGS += -O3
+$(BUILD)/obj/lib/model/rod.o: ALL_CFLAGS += -O3
 
 define wing_rule
 $(BUILD)/lib/lib$(1).a: $(call obj,$($(1)_SRCS)) $($(1)_EXTRA)
@@ -225,7 +241,7 @@ $(foreach p,$(PROGRAMS) $(EMULATORS) bench/drives-bench,\
 define test_rule
 $(BUILD)/tests/$(1): $(2)/$(1).c $(call wings,$(TEST_WINGS)) $(PROTO_GEN)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) -Iviewer -Itests/tools -o $$@ $$< \
+	$$(CC) $$(ALL_CFLAGS) -Itests/tools -o $$@ $$< \
 		$(call wings,$(TEST_WINGS)) $$(LDFLAGS) $$(LDLIBS) $(3)
 endef
 $(foreach t,$(UNIT_TESTS),$(eval $(call test_rule,$(t),tests/unit,-lcmocka)))

@@ -22,22 +22,22 @@
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
-#include "names.h"
-#include "version.h"
-#include "cases.h"
-#include "config.h"
-#include "control.h"
-#include "faults.h"
-#include "hand.h"
-#include "log.h"
-#include "loop.h"
-#include "mono.h"
-#include "publish.h"
-#include "recorder.h"
-#include "rig.h"
-#include "rig_drives.h"
-#include "rig_sim.h"
-#include "scenario.h"
+#include "proto/names.h"
+#include "proto/version.h"
+#include "conf/cases.h"
+#include "conf/config.h"
+#include "control/control.h"
+#include "loop/faults.h"
+#include "rig/hand.h"
+#include "base/log.h"
+#include "loop/loop.h"
+#include "base/mono.h"
+#include "loop/publish.h"
+#include "recorder/recorder.h"
+#include "rig/rig.h"
+#include "rig/rig_drives.h"
+#include "rig/rig_sim.h"
+#include "rig/scenario.h"
 
 #define TICK_MS 50
 
@@ -313,7 +313,7 @@ static void log_event(const struct daemon *d, const struct loop_event *ev)
 		[LOOP_CMD_ENABLE] = "enable", [LOOP_CMD_DISABLE] = "disable",
 		[LOOP_CMD_ESTOP] = "emergency stop", [LOOP_CMD_RESET] = "reset",
 	};
-	double t = (double)(ev->stamp_ns - d->start_ns) / 1e9;
+	double t = (double)(ev->stamp_ns - d->start_ns) / ENDOSIM_NS_PER_S;
 
 	switch (ev->code) {
 	case LOOP_EV_STATE:

@@ -1,5 +1,5 @@
 /* client.c - see client.h. */
-#include "client.h"
+#include "proto/client.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -13,7 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "frame.h"
+#include "proto/frame.h"
 
 struct client {
 	int fd;

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "endosim.pb-c.h"
+#include "proto/endosim.pb-c.h"
 
 #define CLIENT_DEFAULT_DIR "/run/endosim"
 #define CLIENT_RO_SOCKET "status.sock"  /* read-only, mode 0666 */

@@ -21,7 +21,7 @@
 
 #include <stdint.h>
 
-#include "seqlock.h"
+#include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
 #define ENDOSIM_SHM_VERSION 6u /* 2: the scope and the colon's bows;
@@ -32,6 +32,13 @@
 				     colon's nodes, the wall's contacts;
 				  6: guided replay */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
+
+/* The unit of every *_ns stamp and period, here and in session files:
+ * CLOCK_MONOTONIC nanoseconds (base/mono.h). The one home of these
+ * factors. */
+#define ENDOSIM_NS_PER_S 1000000000ull
+#define ENDOSIM_NS_PER_MS 1000000ull
+#define ENDOSIM_S_PER_NS 1e-9
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
 enum endosim_axis {
@@ -169,7 +176,7 @@ enum endosim_model {
 };
 
 /*
- * The rod model this cycle (daemon/model/rodscope.h): the whole insertion
+ * The rod model this cycle (lib/model/rodscope.h): the whole insertion
  * tube, base (the carriage) to tip, as POINTS points evenly along it (its
  * segments' ends, every k-th when it has more than ENDOSIM_ROD_POINTS - 1
  * segments), with its material frame's roll at each (rad: the carriage's
@@ -220,7 +227,8 @@ enum endosim_stage {
 };
 
 /*
- * The safety monitors this cycle (daemon/safety.h) and every latched fault.
+ * The safety monitors this cycle (daemon/loop/safety.h) and every latched
+ * fault.
  * Torque on an axis is, while ENABLED, its command times RAMP, clamped to
  * the axis' force limit: RAMP rises from 0 to 1 over [limits]
  * enable_ramp_s after each enable, so a session never starts with a step.

@@ -1,12 +1,12 @@
 /* fields.c - see fields.h. */
-#include "fields.h"
+#include "proto/fields.h"
 
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "names.h"
-#include "session_file.h"
+#include "proto/names.h"
+#include "proto/session_file.h"
 
 #define NONE FIELDS_NONE
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

@@ -43,8 +43,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "endosim.pb-c.h"
-#include "endosim_shm.h"
+#include "proto/endosim.pb-c.h"
+#include "proto/endosim_shm.h"
 
 /* A field's kind: how the state, the wire, the record and the JSON hold it. */
 enum fields_kind {

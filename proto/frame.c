@@ -1,5 +1,5 @@
 /* frame.c - see frame.h. */
-#include "frame.h"
+#include "proto/frame.h"
 
 #include <errno.h>
 #include <stdlib.h>

@@ -1,10 +1,10 @@
 /* names.c - see names.h. */
-#include "names.h"
+#include "proto/names.h"
 
 #include <stdio.h>
 #include <string.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 static const char *const state_names[] = {
 	[ENDOSIM_STATE_IDLE] = "IDLE",
@@ -37,6 +37,12 @@ static const char *const guide_end_names[] = {
 	[ENDOSIM_GUIDE_END_DONE] = "done",
 	[ENDOSIM_GUIDE_END_NOT_ENABLED] = "not-enabled",
 	[ENDOSIM_GUIDE_END_LOST] = "lost",
+};
+
+/* endosim.proto's DebugAction, by number */
+static const char *const debug_action_names[] = {
+	NULL, "clear", "drive-fault", "drive-gone", "stale", "bus-error",
+	"speed", "position", "force", "nan", "stall", "end-control",
 };
 
 static const char *const fault_names[] = {
@@ -138,4 +144,21 @@ char *names_faults(uint32_t fault_bits, char *buf, size_t size)
 		snprintf(buf, size, "none");
 	}
 	return buf;
+}
+
+const char *names_debug_action(int action)
+{
+	return action > 0 && action < (int)COUNT(debug_action_names)
+		       ? debug_action_names[action]
+		       : NULL;
+}
+
+int names_debug_action_find(const char *name)
+{
+	for (int i = 1; i < (int)COUNT(debug_action_names); i++) {
+		if (!strcmp(name, debug_action_names[i])) {
+			return i;
+		}
+	}
+	return -1;
 }

@@ -51,4 +51,13 @@ const char *names_fault(uint32_t bit);
  */
 char *names_faults(uint32_t fault_bits, char *buf, size_t size);
 
+/*
+ * A test command's name in endoctl ("clear", "drive-fault", "stale", ...)
+ * by its number in endosim.proto's DebugAction (inject.h's enum), or NULL.
+ */
+const char *names_debug_action(int action);
+
+/* The DebugAction called NAME, or -1. */
+int names_debug_action_find(const char *name);
+
 #endif

@@ -13,9 +13,9 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "session_file.h"
+#include "proto/session_file.h"
 
-#include "fields.h"
+#include "proto/fields.h"
 
 #define FRAME_OVERHEAD 12u /* type, length, crc */
 
@@ -46,7 +46,7 @@ _Static_assert(SHAPE_HEAD == 40, "session_shape: its head is the format");
 
 uint32_t session_shape_every(uint64_t period_ns)
 {
-	uint64_t every = period_ns ? 1000000000ull /
+	uint64_t every = period_ns ? ENDOSIM_NS_PER_S /
 					     (SESSION_SHAPE_HZ * period_ns)
 				   : 1;
 

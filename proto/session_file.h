@@ -46,7 +46,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
 #define SESSION_FILE_FORMAT 3u

@@ -1,5 +1,5 @@
 /* shm_reader.c - see shm_reader.h. */
-#include "shm_reader.h"
+#include "proto/shm_reader.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -9,7 +9,7 @@
 
 #include <stdbool.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 struct shm_reader;
 

@@ -1,5 +1,5 @@
 /* state_text.c - see state_text.h. */
-#include "state_text.h"
+#include "proto/state_text.h"
 
 static void doubles(FILE *f, const char *prefix, const char *key,
 		    const double *v, int n)

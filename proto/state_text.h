@@ -20,7 +20,7 @@
 
 #include <stdio.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 /* Writes ST to F, each line prefixed with PREFIX (may be ""). */
 void state_text_print(FILE *f, const char *prefix,

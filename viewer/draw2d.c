@@ -1,5 +1,5 @@
 /* draw2d.c - see draw2d.h. */
-#include "draw2d.h"
+#include "viewer/draw2d.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -7,8 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "gfx.h"
-#include "log.h"
+#include "viewer/gfx.h"
+#include "base/log.h"
 
 #define BATCH_VERTICES 24576 /* a multiple of 6 */
 

@@ -9,7 +9,7 @@
 #ifndef ENDOVIEW_DRAW2D_H
 #define ENDOVIEW_DRAW2D_H
 
-#include "font.h"
+#include "viewer/font.h"
 
 struct draw2d;
 

@@ -1,5 +1,5 @@
 /* endo.c - see endo.h. */
-#include "endo.h"
+#include "viewer/endo.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -7,12 +7,12 @@
 
 #include <cglm/cglm.h>
 
-#include "gfx.h"
-#include "log.h"
-#include "portal.h"
-#include "shapes.h"
-#include "vec3.h"
-#include "vessels.h"
+#include "viewer/gfx.h"
+#include "base/log.h"
+#include "viewer/portal.h"
+#include "viewer/shapes.h"
+#include "base/vec3.h"
+#include "viewer/vessels.h"
 
 #define TEXTURE_PX 1024
 #define TEXTURE_SEED 20020101u

@@ -35,10 +35,10 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "endosim_shm.h"
-#include "gpumesh.h"
-#include "lod.h"
-#include "model.h"
+#include "proto/endosim_shm.h"
+#include "viewer/gpumesh.h"
+#include "viewer/lod.h"
+#include "viewer/model.h"
 
 #define ENDO_FOV_DEG 140.0
 #define ENDO_FAR_M 0.30        /* darker than a pixel's step beyond */

@@ -27,32 +27,31 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
-#include "draw2d.h"
-#include "endo.h"
-#include "font.h"
-#include "gfx.h"
-#include "gpumesh.h"
-#include "hud.h"
-#include "input.h"
-#include "link.h"
-#include "lod.h"
-#include "log.h"
-#include "mapview.h"
-#include "model.h"
-#include "mono.h"
-#include "overview.h"
-#include "replay.h"
-#include "rigctl.h"
-#include "shot.h"
-#include "state_text.h"
-#include "timing.h"
-#include "ui.h"
-#include "version.h"
+#include "viewer/draw2d.h"
+#include "viewer/endo.h"
+#include "viewer/font.h"
+#include "viewer/gfx.h"
+#include "viewer/gpumesh.h"
+#include "viewer/hud.h"
+#include "viewer/input.h"
+#include "viewer/link.h"
+#include "viewer/lod.h"
+#include "base/log.h"
+#include "viewer/mapview.h"
+#include "viewer/model.h"
+#include "base/mono.h"
+#include "viewer/overview.h"
+#include "viewer/replay.h"
+#include "viewer/rigctl.h"
+#include "viewer/shot.h"
+#include "proto/state_text.h"
+#include "viewer/timing.h"
+#include "viewer/ui.h"
+#include "proto/version.h"
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
 #define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
-#define NS 1000000000ull
 #define HEADLESS_FRAME_S (1.0 / 60) /* a replay's step per frame with --frames */
 #define REPLAY_MAX_STEP_S 0.25      /* the clock skips no more after a stall */
 #define CHART_STEP_S (HUD_CHART_S / 200) /* a replay's chart: one record per */
@@ -485,7 +484,7 @@ static void drive(struct app *a, const struct input_controls *c,
 		a->hand.engaged = false;
 		return;
 	}
-	dt = a->hand_ns ? (double)(now - a->hand_ns) / NS : 0;
+	dt = a->hand_ns ? (double)(now - a->hand_ns) / ENDOSIM_NS_PER_S : 0;
 	a->hand_ns = now;
 	if (input_step(&a->hand, c, st, fmin(dt, 0.1), now, force)) {
 		rigctl_hand(a->rig, force, HAND_HOLD_MS, now);
@@ -499,7 +498,7 @@ static const struct endosim_state *update_replay(struct app *a, uint64_t now)
 {
 	struct replay *r = a->replay;
 	double dt = a->opt.frames > 0 ? HEADLESS_FRAME_S :
-			fmin((double)(now - a->replay_ns) / NS,
+			fmin((double)(now - a->replay_ns) / ENDOSIM_NS_PER_S,
 			     REPLAY_MAX_STEP_S);
 	double t;
 
@@ -561,9 +560,11 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 		.driving = a->hand.engaged && rigctl_driving(a->rig),
 		.fps = timing_fps(a->timing),
 		.triangles = a->triangles,
-		.age_ms = st && a->status == LINK_LIVE ?
-				  (double)((int64_t)mono_ns() -
-					   (int64_t)st->publish_ns) / 1e6 : 0,
+		.age_ms = st && a->status == LINK_LIVE
+				  ? (double)((int64_t)mono_ns() -
+					     (int64_t)st->publish_ns) /
+					    ENDOSIM_NS_PER_MS
+				  : 0,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
 	};
@@ -620,7 +621,8 @@ static void render(struct app *a, const struct endosim_state *st,
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
 	}
 	hud_draw(a->hud, a->d2d, &lay, &in, w, h,
-		 a->replay ? replay_time(a->replay) : (double)now / NS);
+		 a->replay ? replay_time(a->replay)
+			   : (double)now / ENDOSIM_NS_PER_S);
 	if (a->map_shown) {
 		mapview_draw(a->mapview, a->d2d, w, h,
 			     a->status == LINK_LIVE ? st : NULL);
@@ -636,12 +638,14 @@ static void account(struct app *a, const struct endosim_state *st,
 
 	if (timed && a->last_swap_ns) {
 		timing_add(a->timing, TIMING_FRAME,
-			   (double)(swapped - a->last_swap_ns) / 1e6);
+			   (double)(swapped - a->last_swap_ns) /
+				   ENDOSIM_NS_PER_MS);
 	}
 	if (timed && st && a->status == LINK_LIVE &&
 	    swapped > st->publish_ns) {
 		timing_add(a->timing, TIMING_AGE,
-			   (double)(swapped - st->publish_ns) / 1e6);
+			   (double)(swapped - st->publish_ns) /
+				   ENDOSIM_NS_PER_MS);
 	}
 	a->last_swap_ns = swapped;
 	a->frame++;
@@ -688,7 +692,7 @@ static int frame(struct app *a)
 	mapview_update(a->mapview, a->map_shown, now);
 	current = colon_current(a, st);
 	if (st && a->status == LINK_LIVE && !a->replay) {
-		hud_record(a->hud, st, (double)now / NS);
+		hud_record(a->hud, st, (double)now / ENDOSIM_NS_PER_S);
 	}
 	render(a, st, current, now);
 	if (gfx_check("frame")) {
@@ -728,7 +732,8 @@ static void print_rect(const char *name, struct endo_rect r, int fb_h)
 static void report(const struct app *a)
 {
 	const struct timing *t = a->timing;
-	double secs = (double)(a->last_swap_ns - a->start_ns) / NS;
+	double secs =
+		(double)(a->last_swap_ns - a->start_ns) / ENDOSIM_NS_PER_S;
 	struct mapview_rect map;
 	struct hud_layout lay;
 	int w, h;
@@ -806,13 +811,13 @@ static void pace(struct app *a)
 	if (a->opt.max_fps <= 0) {
 		return;
 	}
-	period = (uint64_t)((double)NS / a->opt.max_fps);
+	period = (uint64_t)((double)ENDOSIM_NS_PER_S / a->opt.max_fps);
 	if (a->frame_due_ns <= now) {
 		a->frame_due_ns = now + period;
 		return;
 	}
-	ts.tv_sec = (time_t)(a->frame_due_ns / NS);
-	ts.tv_nsec = (long)(a->frame_due_ns % NS);
+	ts.tv_sec = (time_t)(a->frame_due_ns / ENDOSIM_NS_PER_S);
+	ts.tv_nsec = (long)(a->frame_due_ns % ENDOSIM_NS_PER_S);
 	while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) ==
 	       EINTR) {
 	}

@@ -1,5 +1,5 @@
 /* font.c - see font.h. */
-#include "font.h"
+#include "viewer/font.h"
 
 #include <errno.h>
 #include <stdio.h>

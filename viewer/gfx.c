@@ -1,9 +1,9 @@
 /* gfx.c - see gfx.h. */
-#include "gfx.h"
+#include "viewer/gfx.h"
 
 #include <stdio.h>
 
-#include "log.h"
+#include "base/log.h"
 
 static unsigned int debug_errors; /* since the last gfx_check() */
 static unsigned long errors_total;

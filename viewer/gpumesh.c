@@ -1,13 +1,13 @@
 /* gpumesh.c - see gpumesh.h. */
-#include "gpumesh.h"
+#include "viewer/gpumesh.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "gfx.h"
-#include "log.h"
-#include "vec3.h"
-#include "vessels.h"
+#include "viewer/gfx.h"
+#include "base/log.h"
+#include "base/vec3.h"
+#include "viewer/vessels.h"
 
 #define RELIEF 2.0 /* how much the folds' normals are deepened */
 

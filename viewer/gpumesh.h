@@ -12,8 +12,8 @@
 
 #include <stdint.h>
 
-#include "lod.h"
-#include "model.h"
+#include "viewer/lod.h"
+#include "viewer/model.h"
 
 struct gpumesh;
 

@@ -1,5 +1,5 @@
 /* hud.c - see hud.h. */
-#include "hud.h"
+#include "viewer/hud.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "names.h"
+#include "proto/names.h"
 
 #define CHART_SAMPLES 512
 #define CHART_DRAWN 240 /* samples across the chart */

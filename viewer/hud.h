@@ -32,11 +32,11 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "draw2d.h"
-#include "endo.h"
-#include "endosim_shm.h"
-#include "link.h"
-#include "model.h"
+#include "viewer/draw2d.h"
+#include "viewer/endo.h"
+#include "proto/endosim_shm.h"
+#include "viewer/link.h"
+#include "viewer/model.h"
 
 #define HUD_LOOP_WARN_M 0.02 /* a bow this large is a loop worth saying */
 #define HUD_CHART_S 6.0      /* seconds in the strip chart */

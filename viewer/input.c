@@ -1,5 +1,5 @@
 /* input.c - see input.h. */
-#include "input.h"
+#include "viewer/input.h"
 
 #include <math.h>
 #include <string.h>
@@ -10,7 +10,6 @@ const double input_stiffness[ENDOSIM_AXES] = { 400, 0.5, 0.05, 0.05 };
 const double input_damping[ENDOSIM_AXES] = { 40, 0.02, 0.002, 0.002 };
 const double input_strength[ENDOSIM_AXES] = { 40, 1.0, 0.15, 0.15 };
 
-#define NS 1e9
 
 bool input_active(const struct input_controls *c)
 {
@@ -67,8 +66,8 @@ bool input_step(struct input_hand *h, const struct input_controls *c,
 			take_hold(h, st);
 		}
 		h->last_used_ns = now_ns;
-	} else if (h->engaged &&
-		   (double)(now_ns - h->last_used_ns) > INPUT_RELEASE_S * NS) {
+	} else if (h->engaged && (double)(now_ns - h->last_used_ns) >
+					 INPUT_RELEASE_S * ENDOSIM_NS_PER_S) {
 		h->engaged = false;
 	}
 	if (!h->engaged) {

@@ -26,7 +26,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 #define INPUT_RELEASE_S 0.6
 #define INPUT_FAST 3.0

@@ -1,16 +1,15 @@
 /* link.c - see link.h. */
-#include "link.h"
+#include "viewer/link.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "log.h"
-#include "shm_reader.h"
+#include "base/log.h"
+#include "proto/shm_reader.h"
 
 #define READ_TRIES 8
-#define NS 1000000000ull
 
 struct link {
 	char *socket;      /* as given, NULL: the default */
@@ -66,7 +65,7 @@ static void try_open(struct link *l, uint64_t now_ns)
 	char why[192];
 	uint64_t start;
 
-	l->next_open_ns = now_ns + (uint64_t)(LINK_RETRY_S * NS);
+	l->next_open_ns = now_ns + (uint64_t)(LINK_RETRY_S * ENDOSIM_NS_PER_S);
 	l->shm = shm_reader_open(l->shm_name);
 	if (!l->shm) {
 		snprintf(why, sizeof(why), errno == ENOENT ?
@@ -149,7 +148,7 @@ double link_stale_s(const struct link *l, uint64_t now_ns)
 {
 	int64_t age = (int64_t)now_ns - (int64_t)l->st.publish_ns;
 
-	return l->have_state && age > 0 ? (double)age / NS : 0;
+	return l->have_state && age > 0 ? (double)age / ENDOSIM_NS_PER_S : 0;
 }
 
 const char *link_problem(const struct link *l)
@@ -172,7 +171,7 @@ int link_fetch_scene(struct link *l, struct client_scene **out,
 	struct client *c;
 	int r;
 
-	l->next_fetch_ns = now_ns + (uint64_t)(LINK_RETRY_S * NS);
+	l->next_fetch_ns = now_ns + (uint64_t)(LINK_RETRY_S * ENDOSIM_NS_PER_S);
 	r = client_socket_path(l->socket, false, path, sizeof(path));
 	c = r ? NULL : client_connect(path);
 	if (!c) {

@@ -23,8 +23,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "client.h"
-#include "endosim_shm.h"
+#include "proto/client.h"
+#include "proto/endosim_shm.h"
 
 #define LINK_STALE_S 0.5          /* a state this old: stale */
 #define LINK_RETRY_S 0.5          /* between attempts to (re)open */

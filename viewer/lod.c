@@ -1,5 +1,5 @@
 /* lod.c - see lod.h. */
-#include "lod.h"
+#include "viewer/lod.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -32,7 +32,7 @@
 
 #include <stdint.h>
 
-#include "mesh.h"
+#include "model/mesh.h"
 
 #define LOD_LEVELS 5
 #define LOD_OVERVIEW 4 /* the level for the overview */

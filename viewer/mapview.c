@@ -1,5 +1,5 @@
 /* mapview.c - see mapview.h. */
-#include "mapview.h"
+#include "viewer/mapview.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -8,12 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "client.h"
-#include "hud.h"
-#include "livemap.h"
-#include "log.h"
+#include "proto/client.h"
+#include "viewer/hud.h"
+#include "session/livemap.h"
+#include "base/log.h"
 
-#define NS 1000000000ull
 #define MAX_REGIONS 16
 #define MAX_FOUND 32
 #define MARGIN_PX 12.0f
@@ -202,7 +201,8 @@ void mapview_update(struct mapview *v, bool shown, uint64_t now_ns)
 		no_map(v, "no live map in a replay: the session's report has "
 			  "it (endoctl session report)");
 	} else if (now_ns >= v->next_poll_ns) {
-		v->next_poll_ns = now_ns + (uint64_t)(MAPVIEW_POLL_S * NS);
+		v->next_poll_ns =
+			now_ns + (uint64_t)(MAPVIEW_POLL_S * ENDOSIM_NS_PER_S);
 		ask(v);
 	}
 	say(v);

@@ -24,8 +24,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "draw2d.h"
-#include "endosim_shm.h"
+#include "viewer/draw2d.h"
+#include "proto/endosim_shm.h"
 
 #define MAPVIEW_POLL_S 0.5
 #define MAPVIEW_TIMEOUT_MS 100

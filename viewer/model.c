@@ -1,5 +1,5 @@
 /* model.c - see model.h. */
-#include "model.h"
+#include "viewer/model.h"
 
 #include <errno.h>
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vec3.h"
+#include "base/vec3.h"
 
 #define PLACE_TOLERANCE_M 1e-4 /* the viewer's mesh against the daemon's */
 #define PLANE_SEARCH 16        /* samples either side for a normal plane */

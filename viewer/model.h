@@ -24,10 +24,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "centreline.h"
-#include "client.h"
-#include "endosim_shm.h"
-#include "mesh.h"
+#include "model/centreline.h"
+#include "proto/client.h"
+#include "proto/endosim_shm.h"
+#include "model/mesh.h"
 
 #define MODEL_NAME 64
 #define MODEL_MAX_REGIONS 16

@@ -1,5 +1,5 @@
 /* overview.c - see overview.h. */
-#include "overview.h"
+#include "viewer/overview.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -9,13 +9,13 @@
 
 #include <cglm/cglm.h>
 
-#include "cases.h"
-#include "config.h"
-#include "gfx.h"
-#include "log.h"
-#include "scope.h"
-#include "shapes.h"
-#include "vec3.h"
+#include "conf/cases.h"
+#include "conf/config.h"
+#include "viewer/gfx.h"
+#include "base/log.h"
+#include "model/scope.h"
+#include "viewer/shapes.h"
+#include "base/vec3.h"
 
 #define FOV_DEG 30.0
 #define SCOPE_RADIUS_M 0.0065   /* a 13 mm insertion tube */

@@ -24,12 +24,12 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "draw2d.h"
-#include "endo.h"
-#include "endosim_shm.h"
-#include "gpumesh.h"
-#include "lod.h"
-#include "model.h"
+#include "viewer/draw2d.h"
+#include "viewer/endo.h"
+#include "proto/endosim_shm.h"
+#include "viewer/gpumesh.h"
+#include "viewer/lod.h"
+#include "viewer/model.h"
 
 #define OVERVIEW_SCOPE_RGB 0.20f, 0.95f, 0.30f /* the scope's green */
 

@@ -1,11 +1,11 @@
 /* portal.c - see portal.h. */
-#include "portal.h"
+#include "viewer/portal.h"
 
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 
-#include "vec3.h"
+#include "base/vec3.h"
 
 int portal_sphere_visible(const struct portal_view *v, const double c[3],
 			  double r)

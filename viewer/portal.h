@@ -24,7 +24,7 @@
 
 #include <stdint.h>
 
-#include "model.h"
+#include "viewer/model.h"
 
 #define PORTAL_MAX 48
 

@@ -1,5 +1,5 @@
 /* replay.c - see replay.h. */
-#include "replay.h"
+#include "viewer/replay.h"
 
 #include <errno.h>
 #include <math.h>
@@ -7,16 +7,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cases.h"
-#include "colon.h"
-#include "config.h"
-#include "log.h"
-#include "scene.h"
-#include "scope.h"
-#include "session_file.h"
-#include "sessioninputs.h"
+#include "conf/cases.h"
+#include "model/colon.h"
+#include "conf/config.h"
+#include "base/log.h"
+#include "model/scene.h"
+#include "model/scope.h"
+#include "proto/session_file.h"
+#include "session/sessioninputs.h"
 
-#define NS 1e9
 
 struct replay {
 	struct session_file f;
@@ -155,7 +154,7 @@ double replay_duration(const struct replay *r)
 	const struct session_record *rec = r->f.records;
 
 	return (double)(rec[r->f.n_records - 1].stamp_ns - rec[0].stamp_ns) /
-	       NS;
+	       ENDOSIM_NS_PER_S;
 }
 
 double replay_time(const struct replay *r)
@@ -198,9 +197,10 @@ double replay_speed(const struct replay *r)
 /* The record shown at T_S. */
 static size_t index_at(const struct replay *r, double t_s)
 {
-	return session_file_seek(&r->f, r->f.records[0].stamp_ns +
-						(uint64_t)llround(fmax(0, t_s) *
-								  NS));
+	return session_file_seek(
+		&r->f,
+		r->f.records[0].stamp_ns +
+			(uint64_t)llround(fmax(0, t_s) * ENDOSIM_NS_PER_S));
 }
 
 void replay_record_at(const struct replay *r, double t_s,

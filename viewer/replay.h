@@ -38,8 +38,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "client.h"
-#include "endosim_shm.h"
+#include "proto/client.h"
+#include "proto/endosim_shm.h"
 
 #define REPLAY_SCENE_ID 1
 #define REPLAY_SPEED_MIN 0.25

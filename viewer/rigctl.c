@@ -1,15 +1,14 @@
 /* rigctl.c - see rigctl.h. */
-#include "rigctl.h"
+#include "viewer/rigctl.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "client.h"
-#include "log.h"
+#include "proto/client.h"
+#include "base/log.h"
 
-#define NS 1000000000ull
 
 struct rigctl {
 	char *socket;
@@ -65,7 +64,7 @@ static int connect_rw(struct rigctl *r, uint64_t now_ns)
 	if (now_ns < r->next_try_ns) {
 		return -EAGAIN;
 	}
-	r->next_try_ns = now_ns + (uint64_t)(RIGCTL_RETRY_S * NS);
+	r->next_try_ns = now_ns + (uint64_t)(RIGCTL_RETRY_S * ENDOSIM_NS_PER_S);
 	err = client_socket_path(r->socket, true, path, sizeof(path));
 	r->c = err ? NULL : client_connect(path);
 	if (!r->c) {

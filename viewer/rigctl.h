@@ -20,7 +20,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 #define RIGCTL_RETRY_S 1.0
 #define RIGCTL_TIMEOUT_MS 200

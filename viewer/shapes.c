@@ -1,12 +1,12 @@
 /* shapes.c - see shapes.h. */
-#include "shapes.h"
+#include "viewer/shapes.h"
 
 #include <math.h>
 #include <stdbool.h>
 #include <string.h>
 
-#include "vec3.h"
-#include "vessels.h"
+#include "base/vec3.h"
+#include "viewer/vessels.h"
 
 static void put(float *v, const double p[3], const double n[3], double s,
 		double angle)

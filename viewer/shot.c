@@ -1,5 +1,5 @@
 /* shot.c - see shot.h. */
-#include "shot.h"
+#include "viewer/shot.h"
 
 #include <errno.h>
 #include <stdlib.h>

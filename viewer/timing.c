@@ -1,5 +1,5 @@
 /* timing.c - see timing.h. */
-#include "timing.h"
+#include "viewer/timing.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* ui.c - see ui.h. */
-#include "ui.h"
+#include "viewer/ui.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -31,10 +31,10 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
-#include "hud.h"
-#include "input.h"
-#include "overview.h"
-#include "rigctl.h"
+#include "viewer/hud.h"
+#include "viewer/input.h"
+#include "viewer/overview.h"
+#include "viewer/rigctl.h"
 
 #define UI_STEER_RAD_PER_PX 0.008 /* wheel turn per pixel of drag */
 #define UI_TWIST_RAD_PER_PX 0.01

@@ -1,5 +1,5 @@
 /* vessels.c - see vessels.h. */
-#include "vessels.h"
+#include "viewer/vessels.h"
 
 #include <math.h>
 #include <stdbool.h>

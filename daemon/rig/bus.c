@@ -1,5 +1,5 @@
 /* bus.c - see bus.h. */
-#include "bus.h"
+#include "rig/bus.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -9,11 +9,11 @@
 #include <string.h>
 #include <time.h>
 
-#include "names.h"
-#include "seqlock.h"
-#include "log.h"
-#include "mono.h"
-#include "rt.h"
+#include "proto/names.h"
+#include "proto/seqlock.h"
+#include "base/log.h"
+#include "base/mono.h"
+#include "base/rt.h"
 
 #define DISCONNECTED_TICK_NS 20000000ull /* publish while a device is away */
 #define CLEAR_FAULT_EVERY_NS 500000000ull
@@ -261,7 +261,8 @@ static void failed(struct bus *b, int err)
 		b->d->ops->close(b->d);
 		b->connected = false;
 		b->sample_ok = false;
-		b->next_open_ns = mono_ns() + (uint64_t)(BUS_REOPEN_S * 1e9);
+		b->next_open_ns =
+			mono_ns() + (uint64_t)(BUS_REOPEN_S * ENDOSIM_NS_PER_S);
 	} else {
 		latch(b, i, LATCH_BUS, (uint32_t)-err, b->d->why);
 	}
@@ -339,7 +340,8 @@ static void check_drives(struct bus *b)
 static void check_command_age(struct bus *b)
 {
 	uint64_t now = mono_ns();
-	uint64_t max_age = (uint64_t)(b->p.feedback_max_age_s * 1e9);
+	uint64_t max_age =
+		(uint64_t)(b->p.feedback_max_age_s * ENDOSIM_NS_PER_S);
 	char why[160];
 
 	if (!b->cmd.enable || any_latch(b) || now <= b->cmd.stamp_ns ||
@@ -348,7 +350,8 @@ static void check_command_age(struct bus *b)
 	}
 	snprintf(why, sizeof(why), "no command from the force loop for %.0f "
 		 "ms (limit %.0f ms): drives stopped",
-		 (double)(now - b->cmd.stamp_ns) / 1e6, max_age / 1e6);
+		 (double)(now - b->cmd.stamp_ns) / ENDOSIM_NS_PER_MS,
+		 (double)max_age / ENDOSIM_NS_PER_MS);
 	latch(b, -1, LATCH_BUS, ETIME, why);
 	take_all_down(b, -1);
 }
@@ -402,7 +405,7 @@ static void reopen(struct bus *b)
 	if (now < b->next_open_ns) {
 		return;
 	}
-	b->next_open_ns = now + (uint64_t)(BUS_REOPEN_S * 1e9);
+	b->next_open_ns = now + (uint64_t)(BUS_REOPEN_S * ENDOSIM_NS_PER_S);
 	if (b->d->ops->open(b->d) == 0) {
 		b->connected = true;
 		log_notice("%s: back; 'endoctl reset' clears the fault",
@@ -476,9 +479,9 @@ static void publish(struct bus *b)
 /* Sleeps until the next period (or the next tick while disconnected). */
 static uint64_t pace(struct bus *b, uint64_t next)
 {
-	uint64_t period = b->connected
-				  ? (uint64_t)(1e9 / b->p.max_rate_hz)
-				  : DISCONNECTED_TICK_NS;
+	uint64_t period =
+		b->connected ? (uint64_t)(ENDOSIM_NS_PER_S / b->p.max_rate_hz)
+			     : DISCONNECTED_TICK_NS;
 	uint64_t now = mono_ns();
 	struct timespec ts;
 
@@ -486,8 +489,8 @@ static uint64_t pace(struct bus *b, uint64_t next)
 	if (next <= now) {
 		return now; /* the bus is the limit: no debt carried */
 	}
-	ts.tv_sec = (time_t)(next / 1000000000ull);
-	ts.tv_nsec = (long)(next % 1000000000ull);
+	ts.tv_sec = (time_t)(next / ENDOSIM_NS_PER_S);
+	ts.tv_nsec = (long)(next % ENDOSIM_NS_PER_S);
 	while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) ==
 	       EINTR) {
 	}
@@ -553,7 +556,8 @@ int bus_start(struct bus *b)
 	while (!published(b)) {
 		if (mono_ns() > deadline) {
 			log_err("%s: no feedback within %.0f s of start",
-				b->d->name, START_WAIT_NS / 1e9);
+				b->d->name,
+				(double)START_WAIT_NS / ENDOSIM_NS_PER_S);
 			return -ETIMEDOUT;
 		}
 		nanosleep(&nap, NULL);
@@ -678,7 +682,7 @@ void bus_get_stats(struct bus *b, struct rig_bus_stats *st)
 	st->exchanges = atomic_load_explicit(&b->exchanges,
 					     memory_order_relaxed);
 	if (b->start_ns && now > b->start_ns) {
-		st->rate_hz = (double)st->exchanges * 1e9 /
+		st->rate_hz = (double)st->exchanges * ENDOSIM_NS_PER_S /
 			      (double)(now - b->start_ns);
 	}
 	histo_summarize(&b->exchange_h, &st->exchange);

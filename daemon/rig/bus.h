@@ -27,9 +27,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "drive.h"
-#include "histo.h"
-#include "rig.h"
+#include "rig/drive.h"
+#include "base/histo.h"
+#include "rig/rig.h"
 
 #define BUS_REOPEN_S 0.25 /* between attempts to reopen a vanished device */
 

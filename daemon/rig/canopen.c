@@ -1,5 +1,5 @@
 /* canopen.c - see canopen.h. */
-#include "canopen.h"
+#include "rig/canopen.h"
 
 #include <errno.h>
 #include <stddef.h>

@@ -1,11 +1,11 @@
 /* drive.c - see drive.h. */
-#include "drive.h"
+#include "rig/drive.h"
 
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 
-#include "mono.h"
+#include "base/mono.h"
 
 void drive_units_init(struct drive_units *u, const struct config *cfg,
 		      int axis)

@@ -29,8 +29,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "config.h"
-#include "histo.h"
+#include "conf/config.h"
+#include "base/histo.h"
 
 /* Drives one bus can carry: every axis on one Modbus line at most. */
 #define DRIVE_MAX ENDOSIM_AXES

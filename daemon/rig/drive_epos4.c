@@ -17,14 +17,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "names.h"
-#include "canopen.h"
-#include "drive.h"
-#include "epos4_frame.h"
-#include "log.h"
-#include "mono.h"
+#include "proto/names.h"
+#include "rig/canopen.h"
+#include "rig/drive.h"
+#include "rig/epos4_frame.h"
+#include "base/log.h"
+#include "base/mono.h"
 
-#define UP_TIMEOUT_NS 1000000000ull /* to reach operation enabled */
+#define UP_TIMEOUT_NS ENDOSIM_NS_PER_S /* to reach operation enabled */
 #define IN_BUF 512
 
 struct epos4 {
@@ -438,7 +438,7 @@ static int epos4_bring_up(struct drive *d, int i)
 		e->up_step = 0;
 		return drive_fail(d, 0, -ETIMEDOUT, "not in operation enabled "
 				  "within %.0f s: %s (statusword 0x%04x)",
-				  UP_TIMEOUT_NS / 1e9,
+				  (double)UP_TIMEOUT_NS / ENDOSIM_NS_PER_S,
 				  canopen_state_name(e->state), e->statusword);
 	}
 	r = r > 0 ? write_object(e, CANOPEN_CONTROLWORD, cw) : 0;

@@ -20,10 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "names.h"
-#include "drive.h"
-#include "log.h"
-#include "mono.h"
+#include "proto/names.h"
+#include "rig/drive.h"
+#include "base/log.h"
+#include "base/mono.h"
 
 #define READ_MAX 125 /* registers or bits one read may take */
 #define PLAN_MAX 3 /* position, velocity, fault: at most one read each */

@@ -1,5 +1,5 @@
 /* epos4_frame.c - see epos4_frame.h. */
-#include "epos4_frame.h"
+#include "rig/epos4_frame.h"
 
 #include <errno.h>
 #include <string.h>

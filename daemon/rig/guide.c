@@ -1,5 +1,5 @@
 /* guide.c - see guide.h. */
-#include "guide.h"
+#include "rig/guide.h"
 
 #include <errno.h>
 #include <math.h>
@@ -8,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "scenario.h"
-#include "session_file.h"
+#include "rig/scenario.h"
+#include "proto/session_file.h"
 
 #define GUIDE_ROTARY_M 0.01   /* nearest point: a radian counts as 1 cm */
 #define GUIDE_MOVE_MIN_S 0.05 /* the shortest move */
@@ -128,7 +128,7 @@ struct guide_path *guide_path_load(const char *file, char *err,
 	struct guide_path *p = NULL;
 	char id[32] = "";
 	size_t first = 0, last = 0, n, r;
-	uint64_t t0, span, step = (uint64_t)(1e9 / GUIDE_PATH_HZ);
+	uint64_t t0, span, step = (uint64_t)(ENDOSIM_NS_PER_S / GUIDE_PATH_HZ);
 	int e;
 
 	if (!is_session(file) && access(file, R_OK) == 0) {
@@ -152,7 +152,7 @@ struct guide_path *guide_path_load(const char *file, char *err,
 	n = (size_t)(span / step) + 1;
 	if (n < 2) {
 		snprintf(err, errsize, "%s: its enabled part is too short to "
-			 "guide along (%.3f s)", file, span * 1e-9);
+			 "guide along (%.3f s)", file, span * ENDOSIM_S_PER_NS);
 		goto out;
 	}
 	p = path_alloc(n);

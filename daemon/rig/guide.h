@@ -41,8 +41,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "config.h"
-#include "endosim_shm.h"
+#include "conf/config.h"
+#include "proto/endosim_shm.h"
 
 #define GUIDE_PATH_HZ 100.0 /* samples a second of a path */
 

@@ -1,10 +1,10 @@
 /* hand.c - see hand.h. */
-#include "hand.h"
+#include "rig/hand.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "seqlock.h"
+#include "proto/seqlock.h"
 
 struct live {
 	double force[ENDOSIM_AXES];
@@ -61,7 +61,7 @@ void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		h->mailbox.force[a] = force[a];
 	}
-	h->mailbox.until_ns = now_ns + (uint64_t)(hold_s * 1e9);
+	h->mailbox.until_ns = now_ns + (uint64_t)(hold_s * ENDOSIM_NS_PER_S);
 	seqlock_write_end(&h->lock);
 }
 

@@ -14,8 +14,8 @@
 
 #include <stdint.h>
 
-#include "config.h"
-#include "scenario.h"
+#include "conf/config.h"
+#include "rig/scenario.h"
 
 struct hand;
 

@@ -1,5 +1,5 @@
 /* rig.c - see rig.h. */
-#include "rig.h"
+#include "rig/rig.h"
 
 #include <stddef.h>
 

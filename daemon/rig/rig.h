@@ -29,9 +29,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "config.h"
-#include "hand.h"
-#include "histo.h"
+#include "conf/config.h"
+#include "rig/hand.h"
+#include "base/histo.h"
 
 struct rig_axis_feedback {
 	double position;       /* m or rad */

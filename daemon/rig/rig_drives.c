@@ -10,10 +10,10 @@
 #include <errno.h>
 #include <stdlib.h>
 
-#include "bus.h"
-#include "log.h"
-#include "rig_drives.h"
-#include "rig_sim.h"
+#include "rig/bus.h"
+#include "base/log.h"
+#include "rig/rig_drives.h"
+#include "rig/rig_sim.h"
 
 #define BUS_PRIORITY_BELOW_LOOP 10
 

@@ -7,9 +7,9 @@
 #ifndef ENDOSIM_RIG_DRIVES_H
 #define ENDOSIM_RIG_DRIVES_H
 
-#include "config.h"
-#include "hand.h"
-#include "rig.h"
+#include "conf/config.h"
+#include "rig/hand.h"
+#include "rig/rig.h"
 
 /*
  * The simulated axes take their hand from HAND (not owned). NULL on

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "log.h"
-#include "plant.h"
-#include "rig_sim.h"
+#include "base/log.h"
+#include "model/plant.h"
+#include "rig/rig_sim.h"
 
 struct rig_sim {
 	struct rig rig;

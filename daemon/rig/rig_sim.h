@@ -6,9 +6,9 @@
 #ifndef ENDOSIM_RIG_SIM_H
 #define ENDOSIM_RIG_SIM_H
 
-#include "config.h"
-#include "hand.h"
-#include "rig.h"
+#include "conf/config.h"
+#include "rig/hand.h"
+#include "rig/rig.h"
 
 /* The simulated rig, its hand HAND (not owned). NULL on failure, logged. */
 struct rig *rig_sim_create(const struct config *cfg, struct hand *hand);

@@ -1,5 +1,5 @@
 /* scenario.c - see scenario.h. */
-#include "scenario.h"
+#include "rig/scenario.h"
 
 #include <errno.h>
 #include <math.h>
@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "names.h"
+#include "proto/names.h"
 
 struct step {
 	double t;     /* s */

@@ -28,7 +28,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "endosim_shm.h"
+#include "proto/endosim_shm.h"
 
 enum scenario_mode {
 	SCENARIO_FREE = 0,

@@ -19,8 +19,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "colon.h"
-#include "scope.h"
+#include "model/colon.h"
+#include "model/scope.h"
 
 #define RUNS 20000
 #define BATCH 1000
@@ -30,7 +30,7 @@ static uint64_t now_ns(void)
 	struct timespec ts;
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+	return (uint64_t)ts.tv_sec * ENDOSIM_NS_PER_S + (uint64_t)ts.tv_nsec;
 }
 
 static int cmp_u64(const void *a, const void *b)

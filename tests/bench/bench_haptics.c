@@ -26,11 +26,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "config.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "conf/config.h"
 #include "offline.h"
-#include "vec3.h"
+#include "base/vec3.h"
 
 /* a series of samples, for its percentiles */
 struct series {

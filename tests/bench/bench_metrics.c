@@ -19,12 +19,12 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "colon.h"
-#include "depthmap.h"
-#include "histo.h"
-#include "metrics.h"
-#include "mono.h"
-#include "vec3.h"
+#include "model/colon.h"
+#include "session/depthmap.h"
+#include "base/histo.h"
+#include "session/metrics.h"
+#include "base/mono.h"
+#include "base/vec3.h"
 
 #define RATE_HZ 1000
 #define SESSION_S 600.0
@@ -58,7 +58,7 @@ static void pose(const struct centreline *cl, double s_in, double s_out,
 	}
 	*r = (struct session_record){
 		.cycle = k,
-		.stamp_ns = 1000000000ull + k * (1000000000ull / RATE_HZ),
+		.stamp_ns = ENDOSIM_NS_PER_S + k * (ENDOSIM_NS_PER_S / RATE_HZ),
 		.state = 1,
 		.depth_m = (float)s,
 		.tip_s_m = (float)s,
@@ -109,9 +109,11 @@ static int run(const struct colon *c, double view_rate_hz)
 	histo_summarize(&period, &h);
 	printf("view evaluated at %.0f Hz: %.0f s of session at 1 kHz in %.2f s"
 	       " (%.1f ms of CPU a second of session, %.2f %% of a CPU live); "
-	       "mucosa seen %.1f %%\n", view_rate_hz, SESSION_S,
-	       (double)total / 1e9, (double)total / 1e6 / SESSION_S,
-	       (double)total / 1e9 / SESSION_S * 100, res.mucosa_seen * 100);
+	       "mucosa seen %.1f %%\n",
+	       view_rate_hz, SESSION_S, (double)total / ENDOSIM_NS_PER_S,
+	       (double)total / ENDOSIM_NS_PER_MS / SESSION_S,
+	       (double)total / ENDOSIM_NS_PER_S / SESSION_S * 100,
+	       res.mucosa_seen * 100);
 	printf("  an evaluation and the records to the next (%llu): p50 %.0f us,"
 	       " p99 %.0f us, p99.9 %.0f us, max %.0f us, mean %.0f us\n",
 	       (unsigned long long)h.count, h.p50_us, h.p99_us, h.p999_us,

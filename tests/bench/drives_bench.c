@@ -21,12 +21,12 @@
 #include <string.h>
 #include <time.h>
 
-#include "config.h"
-#include "hand.h"
-#include "log.h"
-#include "rig_drives.h"
+#include "conf/config.h"
+#include "rig/hand.h"
+#include "base/log.h"
+#include "rig/rig_drives.h"
 
-#define TICK_NS 1000000ull /* the force loop's default period */
+#define TICK_NS ENDOSIM_NS_PER_MS /* the force loop's default period */
 
 struct options {
 	const char *config, *label;
@@ -38,7 +38,7 @@ static uint64_t now_ns(void)
 	struct timespec ts;
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+	return (uint64_t)ts.tv_sec * ENDOSIM_NS_PER_S + (uint64_t)ts.tv_nsec;
 }
 
 static int load(int argc, char **argv, struct options *o, struct config *cfg)
@@ -90,7 +90,8 @@ static bool exercise(struct rig *rig, double seconds)
 {
 	static const double zero[ENDOSIM_AXES];
 	struct rig_feedback fb;
-	uint64_t next = now_ns(), end = next + (uint64_t)(seconds * 1e9);
+	uint64_t next = now_ns(),
+		 end = next + (uint64_t)(seconds * ENDOSIM_NS_PER_S);
 	uint32_t bad = 0;
 	struct timespec ts;
 
@@ -105,8 +106,8 @@ static bool exercise(struct rig *rig, double seconds)
 			       (~fb.axis[a].status & ENDOSIM_DRIVE_PRESENT);
 		}
 		next += TICK_NS;
-		ts.tv_sec = (time_t)(next / 1000000000ull);
-		ts.tv_nsec = (long)(next % 1000000000ull);
+		ts.tv_sec = (time_t)(next / ENDOSIM_NS_PER_S);
+		ts.tv_nsec = (long)(next % ENDOSIM_NS_PER_S);
 		clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
 	}
 	rig_write(rig, now_ns(), zero, false);

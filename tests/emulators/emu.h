@@ -19,7 +19,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "plant.h"
+#include "model/plant.h"
 
 /* The motor and what turns it, at the motor shaft (rad, N m). */
 struct emu_motor {

@@ -64,8 +64,8 @@
 #include <linux/usbdevice_fs.h>
 #include <umockdev.h>
 
-#include "canopen.h"
-#include "epos4_frame.h"
+#include "rig/canopen.h"
+#include "rig/epos4_frame.h"
 #include "emu.h"
 
 #define MAX_DEV 4

@@ -49,9 +49,9 @@
 #include <termios.h>
 #include <unistd.h>
 
-#include "config.h"
-#include "log.h"
-#include "names.h"
+#include "conf/config.h"
+#include "base/log.h"
+#include "proto/names.h"
 #include "emu.h"
 
 #define MAX_ADU 260

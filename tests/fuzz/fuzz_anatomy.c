@@ -5,7 +5,7 @@
  */
 #include <stdint.h>
 
-#include "colon.h"
+#include "model/colon.h"
 #include "fuzz_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

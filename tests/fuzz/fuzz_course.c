@@ -6,7 +6,7 @@
  */
 #include <stdint.h>
 
-#include "coursefile.h"
+#include "session/coursefile.h"
 #include "fuzz_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

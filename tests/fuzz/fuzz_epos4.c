@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "epos4_frame.h"
+#include "rig/epos4_frame.h"
 
 /* Encoding a decoded frame and decoding it again changes nothing. */
 static void round_trip(const struct epos4_frame *f)

@@ -9,9 +9,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "config.h"
-#include "endosim.pb-c.h"
-#include "frame.h"
+#include "conf/config.h"
+#include "proto/endosim.pb-c.h"
+#include "proto/frame.h"
 
 static void check_request(const Endosim__Request *req)
 {

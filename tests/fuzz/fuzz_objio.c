@@ -7,9 +7,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "colon.h"
+#include "model/colon.h"
 #include "fuzz_file.h"
-#include "objio.h"
+#include "model/objio.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -20,10 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "anatomy.h"
-#include "colon.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
 #include "plain_anatomy.h"
-#include "rodscope.h"
+#include "model/rodscope.h"
 
 struct bytes {
 	const uint8_t *p;

@@ -8,8 +8,8 @@
 #include <stdint.h>
 
 #include "fuzz_file.h"
-#include "metrics.h"
-#include "session_file.h"
+#include "session/metrics.h"
+#include "proto/session_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

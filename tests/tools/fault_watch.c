@@ -40,8 +40,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "names.h"
-#include "shm_reader.h"
+#include "proto/names.h"
+#include "proto/shm_reader.h"
 
 struct watch {
 	struct endosim_state st, before, first;
@@ -63,7 +63,7 @@ static double now_s(void)
 	struct timespec ts;
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
+	return (double)ts.tv_sec + (double)ts.tv_nsec / ENDOSIM_NS_PER_S;
 }
 
 static double largest_limited(const struct endosim_state *st)

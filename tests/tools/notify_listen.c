@@ -12,6 +12,7 @@
 #include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
+#include "proto/endosim_shm.h"
 
 int main(int argc, char **argv)
 {
@@ -38,7 +39,8 @@ int main(int argc, char **argv)
 			msg[i] = msg[i] == '\n' ? ' ' : msg[i];
 		}
 		clock_gettime(CLOCK_MONOTONIC, &ts);
-		printf("%.6f %s\n", (double)ts.tv_sec + ts.tv_nsec / 1e9, msg);
+		printf("%.6f %s\n", (double)ts.tv_sec +
+		       (double)ts.tv_nsec / ENDOSIM_NS_PER_S, msg);
 		fflush(stdout);
 	}
 	perror("notify_listen: recv");

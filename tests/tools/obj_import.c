@@ -10,7 +10,7 @@
  */
 #include <stdio.h>
 
-#include "colon.h"
+#include "model/colon.h"
 
 int main(int argc, char **argv)
 {

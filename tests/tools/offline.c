@@ -4,10 +4,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hand.h"
-#include "loop.h"
-#include "rig_sim.h"
-#include "scenario.h"
+#include "rig/hand.h"
+#include "loop/loop.h"
+#include "rig/rig_sim.h"
+#include "rig/scenario.h"
 
 struct offline {
 	struct hand *hand;

@@ -18,15 +18,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "colon.h"
-#include "config.h"
-#include "endosim_shm.h"
-#include "guide.h"
-#include "haptics.h"
-#include "scenario.h"
+#include "model/colon.h"
+#include "conf/config.h"
+#include "proto/endosim_shm.h"
+#include "rig/guide.h"
+#include "model/haptics.h"
+#include "rig/scenario.h"
 
-#define OFFLINE_PERIOD_NS 1000000ull   /* 1 ms, as the daemon's default */
-#define OFFLINE_START_NS 1000000000ull /* the first cycle's stamp */
+#define OFFLINE_PERIOD_NS ENDOSIM_NS_PER_MS /* 1 ms, as the daemon's default */
+#define OFFLINE_START_NS ENDOSIM_NS_PER_S /* the first cycle's stamp */
 #define OFFLINE_SCENE_ID 1             /* the colon's scene_id */
 
 struct offline;

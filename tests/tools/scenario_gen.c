@@ -30,12 +30,12 @@
 
 #include <string.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "config.h"
-#include "scope.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "conf/config.h"
+#include "model/scope.h"
 #include "trainee.h"
-#include "vec3.h"
+#include "base/vec3.h"
 
 #define STEP_S 0.5 /* a waypoint every half second */
 

@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "report.h"
+#include "session/report.h"
 
 int main(int argc, char **argv)
 {

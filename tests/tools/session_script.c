@@ -22,10 +22,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "colon.h"
-#include "metrics.h"
-#include "session_file.h"
-#include "vec3.h"
+#include "model/colon.h"
+#include "session/metrics.h"
+#include "proto/session_file.h"
+#include "base/vec3.h"
 
 #define START_NS 1000000000000ull
 
@@ -137,12 +137,12 @@ static int set_state(struct synth *y, uint32_t state)
 /* Insertion to the cecum, with the loops and the fault on the way. */
 static int insert(struct synth *y, double cecum_s)
 {
-	double t0 = (double)y->k * period_ns * 1e-9, t = t0, v;
+	double t0 = (double)y->k * period_ns * ENDOSIM_S_PER_NS, t = t0, v;
 	int r = 0;
 	bool faulted = false;
 
 	while (!r && y->s < cecum_s + 0.02) {
-		t = (double)y->k * period_ns * 1e-9;
+		t = (double)y->k * period_ns * ENDOSIM_S_PER_NS;
 		v = 0.03 * (1 + 0.6 * sin((t - t0) / 3));
 		/* the sigmoid loop: the tip held at 0.40 m while pushing */
 		y->bow[0] = 0.035 * ramp(t, t0 + 12, t0 + 20) *
@@ -163,7 +163,7 @@ static int insert(struct synth *y, double cecum_s)
 			r = r ? r : set_state(y, 1);
 		}
 		v = y->state == 1 ? v : 0;
-		y->s += v * period_ns * 1e-9;
+		y->s += v * period_ns * ENDOSIM_S_PER_NS;
 		r = r ? r : put_record(y, t, v, 0.15 * sin(t), t);
 	}
 	return r;
@@ -171,22 +171,23 @@ static int insert(struct synth *y, double cecum_s)
 
 static int withdraw(struct synth *y, double cecum_s)
 {
-	double t0 = (double)y->k * period_ns * 1e-9, t;
+	double t0 = (double)y->k * period_ns * ENDOSIM_S_PER_NS, t;
 	int r = 0;
 
 	while (!r && y->s > 0.01) {
-		t = (double)y->k * period_ns * 1e-9 - t0;
+		t = (double)y->k * period_ns * ENDOSIM_S_PER_NS - t0;
 		if (t < 10) { /* looking around the cecum */
 			r = put_record(y, t + t0, 0, 0.6, t * 1.3);
 			continue;
 		}
-		y->s -= (cecum_s / 390) * period_ns * 1e-9;
+		y->s -= (cecum_s / 390) * period_ns * ENDOSIM_S_PER_NS;
 		r = put_record(y, t + t0, -cecum_s / 390, 0.6, t * 2.6);
 	}
 	for (uint64_t i = 0; !r && i < 3000000000ull / period_ns; i++) {
 		/* out */
 		y->s = 0;
-		r = put_record(y, (double)y->k * period_ns * 1e-9, 0, 0, 0);
+		r = put_record(y, (double)y->k * period_ns * ENDOSIM_S_PER_NS,
+			       0, 0, 0);
 	}
 	return r;
 }
@@ -232,7 +233,8 @@ static int run(struct synth *y, const char *case_path, const char *trainee)
 	int r = write_head(y, case_path, trainee, case_text, sizeof(case_text));
 
 	for (uint64_t i = 0; !r && i < 2000000000ull / period_ns; i++) {
-		r = put_record(y, (double)y->k * period_ns * 1e-9, 0, 0, 0);
+		r = put_record(y, (double)y->k * period_ns * ENDOSIM_S_PER_NS,
+			       0, 0, 0);
 	}
 	r = r ? r : set_state(y, 1);
 	r = r ? r : put_event(y, SESSION_EVENT_PARAM, -1, 0, 0,
@@ -269,7 +271,7 @@ int main(int argc, char **argv)
 		double v = o == '?' ? 0 : atof(optarg);
 
 		if (o == 'r' && v >= 1 && v <= 10000) {
-			period_ns = (uint64_t)llround(1e9 / v);
+			period_ns = (uint64_t)llround(ENDOSIM_NS_PER_S / v);
 		} else if (o == 'n' && v >= 8 && v <= 4096) {
 			ring = (uint32_t)v;
 		} else {

@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "session_file.h"
+#include "proto/session_file.h"
 
 int main(int argc, char **argv)
 {

@@ -37,11 +37,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cases.h"
+#include "conf/cases.h"
 #include "offline.h"
-#include "session_file.h"
-#include "state_text.h"
-#include "version.h"
+#include "proto/session_file.h"
+#include "proto/state_text.h"
+#include "proto/version.h"
 
 #define MAX_AT 32
 #define BATCH (64u << 10)
@@ -215,7 +215,8 @@ static void truth(const struct synth *s, long k, const struct endosim_state *st)
 	char prefix[32];
 
 	for (int i = 0; i < s->n_at; i++) {
-		if (llround(s->at[i] * 1e9 / OFFLINE_PERIOD_NS) != k) {
+		if (llround(s->at[i] * ENDOSIM_NS_PER_S / OFFLINE_PERIOD_NS) !=
+		    k) {
 			continue;
 		}
 		session_record_from_state(st, &rec);
@@ -253,8 +254,9 @@ static int run(struct synth *s, struct offline *o, long cycles)
 		truth(s, k, &st);
 	}
 	snprintf(end, sizeof(end), "cycles=%ld\nduration_s=%.3f\n", cycles,
-		 cycles > 0 ? (double)(cycles - 1) * OFFLINE_PERIOD_NS * 1e-9 :
-			      0.0);
+		 cycles > 0 ? (double)(cycles - 1) * OFFLINE_PERIOD_NS *
+				      ENDOSIM_S_PER_NS
+			    : 0.0);
 	r = r ? r : put_text(s, SESSION_FRAME_END, end);
 	if (!r && write(s->fd, s->buf, s->used) != (ssize_t)s->used) {
 		r = -EIO;
@@ -290,7 +292,8 @@ int main(int argc, char **argv)
 			strerror(errno));
 		goto out;
 	}
-	r = run(&s, o, lround(s.seconds * 1e9 / OFFLINE_PERIOD_NS) + 1);
+	r = run(&s, o,
+		lround(s.seconds * ENDOSIM_NS_PER_S / OFFLINE_PERIOD_NS) + 1);
 	if (r) {
 		fprintf(stderr, "session_synth: %s: %s\n", s.out,
 			strerror(-r));

@@ -14,15 +14,15 @@
 #include <string.h>
 #include <time.h>
 
-#include "histo.h"
-#include "shm_reader.h"
+#include "base/histo.h"
+#include "proto/shm_reader.h"
 
 static uint64_t now_ns(void)
 {
 	struct timespec ts;
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+	return (uint64_t)ts.tv_sec * ENDOSIM_NS_PER_S + (uint64_t)ts.tv_nsec;
 }
 
 int main(int argc, char **argv)
@@ -44,7 +44,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "shm_latency: %s: %s\n", argv[1], strerror(errno));
 		return 1;
 	}
-	end = now_ns() + (uint64_t)(atof(argv[2]) * 1e9);
+	end = now_ns() + (uint64_t)(atof(argv[2]) * ENDOSIM_NS_PER_S);
 	while (now_ns() < end) {
 		if (shm_reader_read(r, &st, 1) || st.cycle == last) {
 			continue;

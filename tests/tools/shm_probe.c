@@ -14,8 +14,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "names.h"
-#include "shm_reader.h"
+#include "proto/names.h"
+#include "proto/shm_reader.h"
 
 static void print_once(const struct endosim_state *st)
 {

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cases.h"
-#include "scenario.h"
-#include "vec3.h"
+#include "conf/cases.h"
+#include "rig/scenario.h"
+#include "base/vec3.h"
 
 #define STEER_AHEAD_M 0.04   /* she looks this far down the lumen */
 #define STEER_GAIN 0.5       /* rad of bend per waypoint per unit error */
@@ -133,7 +133,7 @@ static void waypoint(struct trainee *t)
 	t->t += TRAINEE_STEP_S;
 	/* up to the cycle before the next waypoint's: hers are in the
 	 * script before that cycle plays, as a file's would be */
-	while (t->s->scenario_time_s + OFFLINE_PERIOD_NS * 1e-9 <
+	while (t->s->scenario_time_s + OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS <
 	       t->t - 1e-9) {
 		t->s = offline_step(t->off);
 		if (t->watch) {

@@ -27,10 +27,10 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "config.h"
-#include "endosim_shm.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "conf/config.h"
+#include "proto/endosim_shm.h"
 #include "offline.h"
 
 #define TRAINEE_STEP_S 0.25 /* a waypoint this often */

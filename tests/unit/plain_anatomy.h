@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "anatomy.h"
+#include "model/anatomy.h"
 
 static inline void plain_anatomy(struct anatomy *a, double diameter_m)
 {

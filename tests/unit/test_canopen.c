@@ -12,7 +12,7 @@
 
 #include <cmocka.h>
 
-#include "canopen.h"
+#include "rig/canopen.h"
 
 /* The CiA 402 table (DRIVES.md): state = (sw & mask) == value. */
 static const struct {

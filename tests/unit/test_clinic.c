@@ -33,10 +33,10 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "centreline.h"
+#include "model/anatomy.h"
+#include "model/centreline.h"
 #include "trainee.h"
-#include "vec3.h"
+#include "base/vec3.h"
 
 #define HOLD_N_PER_M 5000  /* the tip impacted in the junction's fold */
 #define PUSH_STEP_M 0.02

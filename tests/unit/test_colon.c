@@ -19,13 +19,13 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "centreline.h"
-#include "colon.h"
+#include "model/anatomy.h"
+#include "model/centreline.h"
+#include "model/colon.h"
 #include "geom_assert.h"
-#include "mesh.h"
-#include "objio.h"
-#include "vec3.h"
+#include "model/mesh.h"
+#include "model/objio.h"
+#include "base/vec3.h"
 
 static const char *cases_dir(void)
 {

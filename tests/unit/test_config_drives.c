@@ -17,8 +17,8 @@
 
 #include <cmocka.h>
 
-#include "config.h"
-#include "drive.h"
+#include "conf/config.h"
+#include "rig/drive.h"
 
 static char err[512];
 

@@ -39,12 +39,12 @@
 #include <cmocka.h>
 #include <math.h>
 
-#include "cases.h"
-#include "metrics.h"
+#include "conf/cases.h"
+#include "session/metrics.h"
 #include "offline.h"
-#include "session_file.h"
+#include "proto/session_file.h"
 
-#define PERIOD_S (OFFLINE_PERIOD_NS * 1e-9)
+#define PERIOD_S (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
 #define MESENTERY_N_PER_M 600.0 /* normal.case: the sigmoid's */
 
 /* The normal case's colon as CFG sets it up (the caller owns it). */

@@ -17,7 +17,7 @@
 
 #include <cmocka.h>
 
-#include "coursefile.h"
+#include "session/coursefile.h"
 
 static struct coursefile course;
 static char err[256];

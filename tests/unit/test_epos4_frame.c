@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "epos4_frame.h"
+#include "rig/epos4_frame.h"
 
 /* CRC-16/XMODEM (poly 0x1021, init 0, no reflection), byte-wise. */
 static uint16_t xmodem(const uint8_t *p, size_t n)

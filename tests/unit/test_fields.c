@@ -24,9 +24,9 @@
 
 #include <cmocka.h>
 
-#include "fields.h"
-#include "names.h"
-#include "session_file.h"
+#include "proto/fields.h"
+#include "proto/names.h"
+#include "proto/session_file.h"
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NONE FIELDS_NONE

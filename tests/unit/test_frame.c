@@ -11,8 +11,8 @@
 
 #include <cmocka.h>
 
-#include "endosim.pb-c.h"
-#include "frame.h"
+#include "proto/endosim.pb-c.h"
+#include "proto/frame.h"
 
 #define MAX_MSG 1024
 

@@ -20,13 +20,13 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "contact.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "model/contact.h"
 #include "geom_assert.h"
-#include "godobject.h"
-#include "scope.h"
-#include "vec3.h"
+#include "model/godobject.h"
+#include "model/scope.h"
+#include "base/vec3.h"
 
 #define SKIN 1e-6  /* godobject.c keeps the proxy this far off its planes */
 #define NEAR 1e-5  /* m: "on" a plane, line or point */

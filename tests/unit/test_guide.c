@@ -32,14 +32,14 @@
 #include <fcntl.h>
 #include <math.h>
 
-#include "cases.h"
-#include "guide.h"
-#include "loop.h"
-#include "names.h"
+#include "conf/cases.h"
+#include "rig/guide.h"
+#include "loop/loop.h"
+#include "proto/names.h"
 #include "offline.h"
-#include "session_file.h"
+#include "proto/session_file.h"
 
-#define PERIOD_S (OFFLINE_PERIOD_NS * 1e-9)
+#define PERIOD_S (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
 #define CECUM_S_M 1.46  /* normal.case: where the cecum's segment starts */
 #define SOURCE_ID 7
 
@@ -107,7 +107,7 @@ static int record_course(void **unused)
 	for (long k = 0; k < cycles; k++) {
 		const struct endosim_state *st = offline_step(o);
 		struct session_record r;
-		double t = (st->stamp_ns - OFFLINE_START_NS) * 1e-9;
+		double t = (st->stamp_ns - OFFLINE_START_NS) * ENDOSIM_S_PER_NS;
 
 		if (st->state == ENDOSIM_STATE_ENABLED && t0 < 0) {
 			t0 = t;
@@ -491,9 +491,9 @@ static void test_takeover(void **unused)
 	do {
 		st = offline_step(o);
 	} while (fabs(st->axis[0].hand) <= cfg.guide.takeover[0]);
-	t_push = st->stamp_ns * 1e-9;
+	t_push = st->stamp_ns * ENDOSIM_S_PER_NS;
 	st = until(o, ENDOSIM_GUIDE_FADING, 2);
-	t_over = st->stamp_ns * 1e-9;
+	t_over = st->stamp_ns * ENDOSIM_S_PER_NS;
 	playhead = st->guide.time_s;
 	session_record_from_state(st, &r);
 	assert_int_equal(r.guide_phase, ENDOSIM_GUIDE_FADING);
@@ -501,7 +501,7 @@ static void test_takeover(void **unused)
 		st = offline_step(o);
 		if (t_zero < 0 && st->guide.force[0] == 0 &&
 		    st->guide.force[1] == 0) {
-			t_zero = st->stamp_ns * 1e-9;
+			t_zero = st->stamp_ns * ENDOSIM_S_PER_NS;
 		}
 		if (t_zero >= 0) {
 			for (int a = 0; a < ENDOSIM_AXES; a++) {

@@ -28,15 +28,15 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "cases.h"
-#include "colon.h"
-#include "config.h"
+#include "model/anatomy.h"
+#include "conf/cases.h"
+#include "model/colon.h"
+#include "conf/config.h"
 #include "geom_assert.h"
-#include "haptics.h"
-#include "plant.h"
-#include "scope.h"
-#include "vec3.h"
+#include "model/haptics.h"
+#include "model/plant.h"
+#include "model/scope.h"
+#include "base/vec3.h"
 
 #define DT 0.001
 

@@ -13,9 +13,9 @@
 
 #include <cmocka.h>
 
-#include "input.h"
+#include "viewer/input.h"
 
-#define MS 1000000ull
+#define MS ENDOSIM_NS_PER_MS
 
 static void idle_hand_does_nothing(void **state)
 {

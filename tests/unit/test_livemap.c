@@ -10,7 +10,7 @@
 
 #include <cmocka.h>
 
-#include "livemap.h"
+#include "session/livemap.h"
 
 static struct metrics_map map;
 static uint8_t cells[LIVEMAP_CELLS];

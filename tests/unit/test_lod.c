@@ -13,8 +13,8 @@
 
 #include <cmocka.h>
 
-#include "lod.h"
-#include "vec3.h"
+#include "viewer/lod.h"
+#include "base/vec3.h"
 #include "viewer_fixture.h"
 
 /* The model's vertex behind index V of a tube's levels (gpumesh.h). */

@@ -22,14 +22,14 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "flex.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "model/flex.h"
 #include "geom_assert.h"
 #include "plain_anatomy.h"
-#include "lumen.h"
-#include "rod.h"
-#include "vec3.h"
+#include "model/lumen.h"
+#include "model/rod.h"
+#include "base/vec3.h"
 
 #define DT 0.001
 

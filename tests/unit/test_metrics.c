@@ -32,13 +32,13 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "colon.h"
-#include "config.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "conf/config.h"
 #include "geom_assert.h"
-#include "metrics.h"
-#include "sessioninputs.h"
-#include "vec3.h"
+#include "session/metrics.h"
+#include "session/sessioninputs.h"
+#include "base/vec3.h"
 
 #define RATE_HZ 1000
 #define REC_TOL (1.0001 / RATE_HZ) /* one record */
@@ -83,7 +83,7 @@ static struct session_record rec(uint64_t k)
 {
 	return (struct session_record){
 		.cycle = k,
-		.stamp_ns = 5000000000ull + k * (1000000000ull / RATE_HZ),
+		.stamp_ns = 5000000000ull + k * (ENDOSIM_NS_PER_S / RATE_HZ),
 		.state = 1,
 		.depth_m = 0.1f,
 		.spans = 2,

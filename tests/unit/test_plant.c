@@ -6,7 +6,7 @@
 
 #include <cmocka.h>
 
-#include "plant.h"
+#include "model/plant.h"
 
 #define DT 0.001
 

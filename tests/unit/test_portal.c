@@ -13,11 +13,11 @@
 
 #include <cmocka.h>
 
-#include "endo.h"
-#include "lod.h"
-#include "portal.h"
-#include "scope.h"
-#include "vec3.h"
+#include "viewer/endo.h"
+#include "viewer/lod.h"
+#include "viewer/portal.h"
+#include "model/scope.h"
+#include "base/vec3.h"
 #include "viewer_fixture.h"
 
 #define MAX_TRIANGLES 16000 /* llvmpipe draws 1-2 million a second */

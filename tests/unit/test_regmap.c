@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "regmap.h"
+#include "conf/regmap.h"
 
 static struct regmap_reg reg(uint8_t table, uint8_t type, uint8_t order)
 {

@@ -22,7 +22,7 @@
 #include <cmocka.h>
 
 #include "geom_assert.h"
-#include "report.h"
+#include "session/report.h"
 
 #define N_REC 20000 /* 20 s at 1 kHz */
 
@@ -55,7 +55,8 @@ static void make_session(struct session_file *f)
 		double t = k * 1e-3;
 
 		memset(r, 0, sizeof(*r));
-		r->stamp_ns = 1000000000ull + (uint64_t)k * 1000000ull;
+		r->stamp_ns =
+			ENDOSIM_NS_PER_S + (uint64_t)k * ENDOSIM_NS_PER_MS;
 		r->depth_m = r->tip_s_m = (float)(0.01 * t + 0.05);
 		r->tip[2] = r->tip_s_m;
 		r->dir[2] = 1;
@@ -65,12 +66,14 @@ static void make_session(struct session_file *f)
 		r->bow_m[0] = (float)(t >= 14 && t < 16 ? 0.02 : 0);
 	}
 	events[0] = (struct session_file_event){
-		.ev = { .stamp_ns = 1000000000ull, .kind = SESSION_EVENT_STATE,
-			.axis = -1, .value = 1 },
+		.ev = {.stamp_ns = ENDOSIM_NS_PER_S,
+		       .kind = SESSION_EVENT_STATE,
+		       .axis = -1,
+		       .value = 1},
 		.text = "",
 	};
 	events[1] = (struct session_file_event){
-		.ev = { .stamp_ns = 1000000000ull + 9000000000ull,
+		.ev = { .stamp_ns = ENDOSIM_NS_PER_S + 9000000000ull,
 			.kind = SESSION_EVENT_FAULT, .axis = 0, .detail = 7 },
 		.text = "<evil> note",
 	};
@@ -194,7 +197,8 @@ static void along_session(struct session_file *f, struct session_record *r,
 		double s = 0.05 + speed * (double)k * 1e-3;
 
 		memset(&r[k], 0, sizeof(r[k]));
-		r[k].stamp_ns = 1000000000ull + (uint64_t)k * 1000000ull;
+		r[k].stamp_ns =
+			ENDOSIM_NS_PER_S + (uint64_t)k * ENDOSIM_NS_PER_MS;
 		r[k].depth_m = r[k].tip_s_m = (float)s;
 		r[k].dir[2] = 1;
 		r[k].limited[0] = (float)(100 * s);

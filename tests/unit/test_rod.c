@@ -18,8 +18,8 @@
 #include <cmocka.h>
 
 #include "geom_assert.h"
-#include "rod.h"
-#include "vec3.h"
+#include "model/rod.h"
+#include "base/vec3.h"
 
 #define DT 0.001
 

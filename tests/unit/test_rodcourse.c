@@ -30,8 +30,8 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "cases.h"
+#include "model/anatomy.h"
+#include "conf/cases.h"
 #include "offline.h"
 #include "trainee.h"
 

@@ -10,8 +10,9 @@
 
 #include <cmocka.h>
 
-#include "inject.h"
-#include "safety.h"
+#include "proto/names.h"
+#include "loop/inject.h"
+#include "loop/safety.h"
 
 static struct config cfg;
 
@@ -22,8 +23,8 @@ static int setup(void **state)
 	return 0;
 }
 
-#define MS 1000000ull
-#define S 1000000000ull
+#define MS ENDOSIM_NS_PER_MS
+#define S ENDOSIM_NS_PER_S
 
 static void healthy_feedback(struct rig_feedback *fb, uint64_t now)
 {
@@ -108,7 +109,8 @@ static void test_feedback_checks(void **state)
 	struct rig_feedback fb;
 	struct safety s;
 	uint64_t now = 5000000000ull;
-	uint64_t age = (uint64_t)(cfg.rig.feedback_max_age_s * 1e9);
+	uint64_t age =
+		(uint64_t)(cfg.rig.feedback_max_age_s * ENDOSIM_NS_PER_S);
 
 	(void)state;
 	safety_init(&s);
@@ -191,7 +193,8 @@ static void test_enable_ramp(void **state)
 	for (int k = 0; k <= 12; k++) {
 		double t = ramp_s * k / 10.0, scale = fmin(t / ramp_s, 1.0);
 
-		safety_filter(&s, &cfg, cmd, out, 0.1, t0 + (uint64_t)(t * 1e9));
+		safety_filter(&s, &cfg, cmd, out, 0.1,
+			      t0 + (uint64_t)(t * ENDOSIM_NS_PER_S));
 		for (int a = 0; a < ENDOSIM_AXES; a++) {
 			assert_float_equal(out[a], cmd[a] * scale, 1e-9);
 		}
@@ -218,7 +221,8 @@ static void test_saturation(void **state)
 {
 	double cmd[ENDOSIM_AXES] = { 0, 0, 0.5, 0 }; /* 5 x the wheel's */
 	double out[ENDOSIM_AXES];
-	uint64_t hold = (uint64_t)(cfg.limits.saturation_s * 1e9), t;
+	uint64_t hold = (uint64_t)(cfg.limits.saturation_s * ENDOSIM_NS_PER_S),
+		 t;
 	struct safety s;
 
 	(void)state;
@@ -276,7 +280,8 @@ static void test_saturation_auto(void **state)
 	cfg.limits.saturation_fault = CONFIG_OVERRUN_AUTO;
 	safety_init(&s);
 	safety_command(&s, SAFETY_ENABLE, 0);
-	for (t = S; t <= 3 * S + 2 * (uint64_t)(cfg.limits.saturation_s * 1e9);
+	for (t = S; t <= 3 * S + 2 * (uint64_t)(cfg.limits.saturation_s *
+						ENDOSIM_NS_PER_S);
 	     t += 100 * MS) {
 		safety_begin_cycle(&s);
 		safety_filter(&s, &cfg, cmd, out, 0.1, t);
@@ -337,7 +342,8 @@ static void test_overrun_budget(void **state)
 {
 	struct config c = cfg;
 	int budget = c.loop.overrun_budget;
-	uint64_t window = (uint64_t)(c.loop.overrun_window_s * 1e9);
+	uint64_t window =
+		(uint64_t)(c.loop.overrun_window_s * ENDOSIM_NS_PER_S);
 	uint64_t t = 10 * S;
 	struct safety s;
 
@@ -503,8 +509,11 @@ static void test_inject(void **state)
 	inject_feedback(&in, &fb);
 	assert_int_equal(fb.axis[1].status, ENDOSIM_DRIVE_PRESENT);
 	assert_int_equal(fb.axis[2].stamp_ns, 9 * S);
-	assert_int_equal(inject_find("drive-gone"), INJECT_DRIVE_GONE);
-	assert_int_equal(inject_find("nonsense"), -1);
+	assert_int_equal(names_debug_action_find("drive-gone"),
+			 INJECT_DRIVE_GONE);
+	assert_string_equal(names_debug_action(INJECT_END_CONTROL),
+			    "end-control");
+	assert_int_equal(names_debug_action_find("nonsense"), -1);
 }
 
 /*

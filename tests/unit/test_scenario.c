@@ -9,7 +9,7 @@
 
 #include <cmocka.h>
 
-#include "scenario.h"
+#include "rig/scenario.h"
 
 static char path[64];
 static char err[256];

@@ -13,9 +13,9 @@
 
 #include <cmocka.h>
 
-#include "cases.h"
-#include "config.h"
-#include "scene.h"
+#include "conf/cases.h"
+#include "conf/config.h"
+#include "model/scene.h"
 
 #define MAX_REPLY_BYTES (4u << 20)
 

@@ -15,11 +15,11 @@
 
 #include <cmocka.h>
 
-#include "centreline.h"
-#include "colon.h"
+#include "model/centreline.h"
+#include "model/colon.h"
 #include "geom_assert.h"
-#include "scope.h"
-#include "vec3.h"
+#include "model/scope.h"
+#include "base/vec3.h"
 
 #define STEP 0.002
 #define LB 0.09

@@ -47,9 +47,9 @@
 
 #include <cmocka.h>
 
-#include "anatomy.h"
-#include "metrics.h"
-#include "session_file.h"
+#include "model/anatomy.h"
+#include "session/metrics.h"
+#include "proto/session_file.h"
 #include "trainee.h"
 
 #define CASE "config/cases/polyps.case"

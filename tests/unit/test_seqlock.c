@@ -14,9 +14,9 @@
 
 #include <cmocka.h>
 
-#include "endosim_shm.h"
-#include "publish.h"
-#include "shm_reader.h"
+#include "proto/endosim_shm.h"
+#include "loop/publish.h"
+#include "proto/shm_reader.h"
 
 #define RUN_SECONDS 2.0
 #define READERS 2

@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "session_file.h"
+#include "proto/session_file.h"
 
 #define RECORDS 20
 
@@ -288,8 +288,10 @@ static void test_shape_every(void **state)
 	for (size_t i = 0; i < sizeof(periods) / sizeof(periods[0]); i++) {
 		uint64_t p = periods[i], every = session_shape_every(p);
 
-		assert_true(1e9 / (double)(every * p) >= SESSION_SHAPE_HZ);
-		assert_true(1e9 / (double)((every + 1) * p) < SESSION_SHAPE_HZ);
+		assert_true(ENDOSIM_NS_PER_S / (double)(every * p) >=
+			    SESSION_SHAPE_HZ);
+		assert_true(ENDOSIM_NS_PER_S / (double)((every + 1) * p) <
+			    SESSION_SHAPE_HZ);
 	}
 	assert_int_equal(session_shape_every(40000000), 1); /* a 25 Hz loop */
 	memset(&st, 0, sizeof(st));

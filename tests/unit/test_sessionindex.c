@@ -24,8 +24,8 @@
 
 #include <cmocka.h>
 
-#include "session_file.h"
-#include "sessionindex.h"
+#include "proto/session_file.h"
+#include "session/sessionindex.h"
 
 static char dir[256], index_path[300];
 

@@ -14,7 +14,7 @@
 
 #include <cmocka.h>
 
-#include "shapes.h"
+#include "viewer/shapes.h"
 
 #define N 91
 #define OFFSET 0.0065f

@@ -11,7 +11,7 @@
 
 #include <cmocka.h>
 
-#include "timing.h"
+#include "viewer/timing.h"
 
 static void percentiles(void **state)
 {

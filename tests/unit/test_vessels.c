@@ -14,7 +14,7 @@
 
 #include <cmocka.h>
 
-#include "vessels.h"
+#include "viewer/vessels.h"
 
 #define N 1024 /* as endoview makes it */
 

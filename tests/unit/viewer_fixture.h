@@ -10,10 +10,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cases.h"
-#include "config.h"
-#include "model.h"
-#include "scene.h"
+#include "conf/cases.h"
+#include "conf/config.h"
+#include "viewer/model.h"
+#include "model/scene.h"
 
 struct fixture {
 	struct colon *colon;

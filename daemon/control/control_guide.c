@@ -1,0 +1,176 @@
+/*
+ * control_guide.c - guided replay's commands (the Guide request): the session
+ * file read into a path here, on the control thread; the loop gets the
+ * path and the command (loop_guide()) and answers within a cycle or two.
+ * The path the loop plays is kept here until a later start replaces it.
+ */
+#include <time.h>
+
+#include "control/control_private.h"
+
+/* The axes' positions of the newest published state; false if none. */
+static bool positions(struct control *c, double q[ENDOSIM_AXES],
+		      uint32_t *state)
+{
+	struct endosim_state st;
+
+	if (publish_read(c->deps.pub, &st)) {
+		return false;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = st.axis[a].position;
+	}
+	*state = st.state;
+	return true;
+}
+
+/* The path of the request's session, its case the loaded one; NULL with
+ * REP refused. */
+static struct guide_path *load_path(struct control *c,
+				    const Endosim__Guide *g,
+				    Endosim__Reply *rep)
+{
+	struct reply_buf *rb = &c->rb;
+	char file[2 * CONFIG_STR];
+	struct guide_path *p;
+
+	if (*g->file) {
+		snprintf(file, sizeof(file), "%s", g->file);
+	} else if (!g->session_id ||
+		   sessiondir_path(c->cfg.session.directory, g->session_id,
+				   file, sizeof(file))) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "guide start: name a session (its id) or a file");
+		return NULL;
+	}
+	p = guide_path_load(file, rb->error, sizeof(rb->error));
+	if (!p) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, rb->error);
+		return NULL;
+	}
+	if (*p->case_name && strcmp(p->case_name, colon_name(c->colon))) {
+		snprintf(rb->error, sizeof(rb->error), "guide start: session "
+			 "%" PRIu64 " was recorded on case '%.63s', the loaded "
+			 "case is '%.63s'", p->source_id, p->case_name,
+			 colon_name(c->colon));
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, rb->error);
+		guide_path_free(p);
+		return NULL;
+	}
+	return p;
+}
+
+/*
+ * After the loop's answer, the state of the cycle that answered: it is
+ * published at that cycle's end, after the answer (at most a period;
+ * gives up after 100 ms and answers with what there is).
+ */
+static void await_next_state(struct control *c)
+{
+	struct endosim_state st;
+	uint64_t seen, deadline = mono_ns() + 100000000ull;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	if (publish_read(c->deps.pub, &st)) {
+		return;
+	}
+	seen = st.cycle;
+	while (mono_ns() < deadline && !publish_read(c->deps.pub, &st) &&
+	       st.cycle <= seen) {
+		nanosleep(&nap, NULL);
+	}
+}
+
+/* Hands CMD to the loop; a start's PATH becomes the one kept on 0. */
+static void hand_over(struct control *c, const struct guide_command *cmd,
+		      struct guide_path *path, Endosim__Reply *rep)
+{
+	int r = loop_guide(c->deps.loop, cmd, COMMAND_TIMEOUT_MS);
+
+	if (r == 0 && path) {
+		guide_path_free(c->guide_path);
+		c->guide_path = path;
+	} else if (r == -ETIMEDOUT && path) {
+		/* the loop may take it yet: never freed while it runs */
+		guide_path_free(c->guide_limbo);
+		c->guide_limbo = path;
+	} else if (path) {
+		guide_path_free(path);
+	}
+	if (r == -EINVAL && cmd->action == GUIDE_TAKEOVER) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "guide: nothing to take over from");
+	} else if (r == -EINVAL) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "guide: speed out of 0.25 .. 2, or a time outside the "
+		       "recording");
+	} else if (r) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
+		       "the force loop did not take the command");
+	} else {
+		await_next_state(c);
+		control_build_status(c, rep);
+	}
+}
+
+void control_on_guide(struct control *c, struct client *cl,
+		      const Endosim__Request *req, Endosim__Reply *rep)
+{
+	const Endosim__Guide *g = req->guide;
+	struct guide_command cmd = { .speed = 1 };
+	struct guide_path *path = NULL;
+	double q[ENDOSIM_AXES];
+	uint32_t state;
+
+	(void)cl;
+	if (!positions(c, q, &state)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+		       "no published state to guide from");
+		return;
+	}
+	if (g->action != ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_STOP &&
+	    state != ENDOSIM_STATE_ENABLED) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "guide: the rig is not ENABLED: enable first");
+		return;
+	}
+	switch (g->action) {
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_START:
+		path = load_path(c, g, rep);
+		if (!path) {
+			return;
+		}
+		cmd = (struct guide_command){
+			.action = GUIDE_START, .path = path,
+			.speed = g->speed > 0 ? g->speed : 1,
+			.from_s = g->from_s,
+		};
+		log_notice("guide: session %" PRIu64 " from %.2f s at %.2fx",
+			   path->source_id, cmd.from_s, cmd.speed);
+		break;
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_STOP:
+		cmd.action = GUIDE_STOP;
+		break;
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_TAKEOVER:
+		cmd.action = GUIDE_TAKEOVER;
+		break;
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME:
+	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESET:
+		if (!c->guide_path) {
+			refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+			       "guide: nothing to resume: 'guide start' first");
+			return;
+		}
+		cmd.action = g->action ==
+			     ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME ?
+			     GUIDE_RESUME : GUIDE_RESET;
+		cmd.from_s = cmd.action == GUIDE_RESET && g->from_given ?
+			     g->from_s : guide_path_nearest(c->guide_path, q);
+		break;
+	default:
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "guide: no such action");
+		return;
+	}
+	hand_over(c, &cmd, path, rep);
+}

@@ -1,0 +1,918 @@
+/* loop.c - see loop.h. */
+#include "loop/loop.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "proto/seqlock.h"
+#include "conf/cases.h"
+#include "model/haptics.h"
+#include "loop/inject.h"
+#include "base/log.h"
+#include "base/mono.h"
+#include "base/rt.h"
+#include "model/scope.h"
+#include "base/spsc.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+
+#define LOOP_STACK_BYTES (512 * 1024)
+#define LOOP_PREFAULT_BYTES (256 * 1024)
+#define LOOP_EVENTS 256
+#define CMD_SHIFT 8
+
+struct loop {
+	/* owned by the loop thread */
+	struct config cfg;
+	struct config cfg_incoming; /* scratch for a torn-free copy */
+	uint64_t cfg_seen;
+	struct safety safety;
+	struct rig_feedback fb;
+	double command[ENDOSIM_AXES];
+	double limited[ENDOSIM_AXES];
+	struct endosim_state state;
+	bool scenario_was_done;
+	struct colon *colon;
+	uint64_t scene_id;
+	struct scope_pose pose;
+	struct haptics *haptics;
+	uint64_t skipped;          /* periods skipped before this cycle */
+	uint64_t stall_ns;         /* a test command: sleep after the cycle */
+	struct inject inject;      /* test commands' sabotage */
+	uint64_t debug_seen;
+	struct guide guide;        /* guided replay (guide.h) */
+	uint64_t guide_seen;
+	bool lockstep;             /* loop_step(): stamps on the caller's clock */
+
+	/* shared */
+	struct rig *rig;
+	struct publish *pub;
+	struct session_tap *tap;   /* NULL: no recorder */
+	pthread_t thread;
+	bool running;
+	int pm_qos_fd;             /* /dev/cpu_dma_latency, held open */
+	_Atomic bool stop;
+	_Atomic uint64_t heartbeat;
+	_Atomic uint64_t overruns;
+	struct histo latency;
+	struct histo compute;
+	struct loop_info info;
+	struct spsc events;        /* loop -> main */
+	seqlock_t cfg_lock;        /* control -> loop */
+	struct config cfg_mailbox;
+	_Atomic uint64_t cmd_slot; /* control -> loop: seq << 8 | cmd, 0 empty */
+	_Atomic uint64_t cmd_done; /* loop -> control: seq << 32 | result */
+	uint32_t cmd_seq;          /* control thread's counter */
+	_Atomic(struct colon *) colon_in;  /* control -> loop */
+	_Atomic(struct colon *) colon_out; /* loop -> control: replaced or
+					      refused */
+	uint64_t scene_id_in;      /* published by colon_in's release */
+	_Atomic uint32_t fail_bits; /* main -> loop: a thread died */
+	_Atomic uint32_t fail_detail;
+	seqlock_t debug_lock;      /* control -> loop: a test command */
+	struct loop_debug debug_box;
+	_Atomic uint64_t debug_done; /* loop -> control: seq << 32 | result */
+	uint32_t debug_seq;        /* control thread's counter */
+	seqlock_t guide_lock;      /* control -> loop: a guidance command */
+	struct guide_command guide_box;
+	uint32_t guide_box_seq;
+	_Atomic uint64_t guide_done; /* loop -> control: seq << 32 | result */
+	uint32_t guide_seq;        /* control thread's counter */
+};
+
+static struct timespec to_timespec(uint64_t ns)
+{
+	return (struct timespec){ .tv_sec = (time_t)(ns / ENDOSIM_NS_PER_S),
+				  .tv_nsec = (long)(ns % ENDOSIM_NS_PER_S) };
+}
+
+struct loop *loop_create(const struct config *cfg, struct rig *rig,
+			 struct publish *pub, struct colon *colon,
+			 uint64_t scene_id)
+{
+	struct loop *l = calloc(1, sizeof(*l));
+
+	if (!l) {
+		log_err("force loop: out of memory");
+		return NULL;
+	}
+	guide_init(&l->guide);
+	if (spsc_init(&l->events, LOOP_EVENTS, sizeof(struct loop_event))) {
+		log_err("force loop: out of memory");
+		free(l);
+		return NULL;
+	}
+	{
+		struct haptics_params hp;
+
+		cases_haptics_params(cfg, &hp);
+		l->haptics = haptics_create(&hp);
+	}
+	if (!l->haptics) {
+		log_err("force loop: out of memory for the haptics' model");
+		spsc_free(&l->events);
+		free(l);
+		return NULL;
+	}
+	l->cfg = *cfg;
+	l->cfg_mailbox = *cfg;
+	seqlock_init(&l->cfg_lock);
+	l->cfg_seen = seqlock_read_begin(&l->cfg_lock);
+	seqlock_init(&l->debug_lock);
+	l->debug_seen = seqlock_read_begin(&l->debug_lock);
+	l->rig = rig;
+	l->pub = pub;
+	l->colon = colon;
+	l->scene_id = scene_id;
+	haptics_reset(l->haptics, colon);
+	safety_init(&l->safety);
+	l->pm_qos_fd = -1;
+	l->info.policy = "none";
+	l->info.period_ns = (uint32_t)(1000000000u / (unsigned)cfg->loop.rate_hz);
+	return l;
+}
+
+/* --- inside the loop thread: nothing below may block or allocate --- */
+
+static void post(struct loop *l, const struct loop_event *ev)
+{
+	/* a full ring drops the event: the state in shm still tells */
+	(void)spsc_push(&l->events, ev);
+}
+
+static void fetch_config(struct loop *l)
+{
+	uint64_t seq = seqlock_read_begin(&l->cfg_lock);
+
+	if (seq == l->cfg_seen) {
+		return;
+	}
+	memcpy(&l->cfg_incoming, &l->cfg_mailbox, sizeof(l->cfg_incoming));
+	if (!seqlock_read_retry(&l->cfg_lock, seq)) {
+		memcpy(&l->cfg, &l->cfg_incoming, sizeof(l->cfg));
+		l->cfg_seen = seq;
+	}
+}
+
+/* Takes a posted command, if any, and answers it. Returns the command. */
+static uint32_t take_command(struct loop *l, uint64_t now)
+{
+	uint64_t slot = atomic_load_explicit(&l->cmd_slot, memory_order_acquire);
+	uint32_t cmd, seq;
+	int r;
+
+	if (!slot || !atomic_compare_exchange_strong(&l->cmd_slot, &slot, 0)) {
+		return 0;
+	}
+	cmd = (uint32_t)(slot & ((1u << CMD_SHIFT) - 1));
+	seq = (uint32_t)(slot >> CMD_SHIFT);
+	if (cmd == LOOP_CMD_RESET_STATS) {
+		histo_reset(&l->latency);
+		histo_reset(&l->compute);
+		r = 0;
+	} else {
+		r = safety_command(&l->safety, (enum safety_cmd)cmd, now);
+	}
+	atomic_store_explicit(&l->cmd_done,
+			      (uint64_t)seq << 32 | (uint32_t)r,
+			      memory_order_release);
+	return cmd;
+}
+
+static void post_changes(struct loop *l, uint32_t old_state,
+			 uint32_t old_faults, uint32_t cmd, uint64_t now)
+{
+	const struct safety *s = &l->safety;
+	uint32_t added = s->faults & ~old_faults;
+
+	for (uint32_t k = 0; added; k++) {
+		uint32_t bit = 1u << k;
+
+		if (added & bit) {
+			struct loop_event ev = {
+				.stamp_ns = now, .code = LOOP_EV_FAULT,
+				.arg = bit, .axis = s->cause[k].axis,
+				.detail = s->cause[k].detail,
+				.value = s->cause[k].value,
+				.limit = s->cause[k].limit,
+			};
+			post(l, &ev);
+			added &= ~bit;
+		}
+	}
+	if (s->state != old_state) {
+		struct loop_event ev = {
+			.stamp_ns = now, .code = LOOP_EV_STATE,
+			.arg = s->state, .prev = old_state, .cmd = cmd,
+			.axis = -1,
+		};
+		post(l, &ev);
+	}
+}
+
+static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
+{
+	struct endosim_state *st = &l->state;
+	const struct safety *s = &l->safety;
+	const struct endosim_fault_cause *first = safety_first(s);
+
+	st->cycle = atomic_load_explicit(&l->heartbeat, memory_order_relaxed);
+	st->stamp_ns = now;
+	st->state = s->state;
+	st->fault_bits = s->faults;
+	st->fault_first = s->fault_bit;
+	st->fault_axis = first ? first->axis : -1;
+	st->fault_detail = first ? first->detail : 0;
+	st->fault_ns = first ? first->first_ns : 0;
+	safety_publish(s, now, &st->safety);
+	st->overruns = atomic_load_explicit(&l->overruns, memory_order_relaxed);
+	st->latency_ns = (uint32_t)(latency < UINT32_MAX ? latency : UINT32_MAX);
+	st->scenario_time_s = l->fb.hand_time_s;
+	st->scenario_done = l->fb.hand_done;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		struct endosim_axis_state *ax = &st->axis[a];
+		const struct rig_axis_feedback *f = &l->fb.axis[a];
+
+		ax->position = f->position;
+		ax->velocity = f->velocity;
+		ax->hand = f->hand;
+		ax->command = l->command[a];
+		ax->limited = l->limited[a];
+		ax->feedback_ns = f->stamp_ns;
+		ax->drive_status = f->status;
+	}
+}
+
+/* Takes a new colon from the control thread, only while IDLE. */
+static void take_colon(struct loop *l)
+{
+	struct colon *in = atomic_exchange_explicit(&l->colon_in, NULL,
+						    memory_order_acq_rel);
+
+	if (!in) {
+		return;
+	}
+	if (l->safety.state != ENDOSIM_STATE_IDLE) {
+		atomic_store_explicit(&l->colon_out, in, memory_order_release);
+		return;
+	}
+	atomic_store_explicit(&l->colon_out, l->colon, memory_order_release);
+	l->colon = in;
+	l->scene_id = l->scene_id_in;
+	haptics_reset(l->haptics, in);
+}
+
+/* The scope's pose: the paper's kinematics on the centreline, or the rod
+ * model's tube as its last step left it. */
+static void kinematics(struct loop *l)
+{
+	const struct scope_input in = {
+		.depth_m = l->fb.axis[ENDOSIM_AXIS_INSERTION].position,
+		.roll_rad = l->fb.axis[ENDOSIM_AXIS_ROLL].position,
+		.wheel_ud_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_UD].position,
+		.wheel_lr_rad = l->fb.axis[ENDOSIM_AXIS_WHEEL_LR].position,
+	};
+	struct scope_params p;
+
+	if (haptics_rod(l->haptics)) {
+		struct haptics_params par;
+		double position[ENDOSIM_AXES], velocity[ENDOSIM_AXES];
+
+		cases_haptics_params(&l->cfg, &par);
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			position[a] = l->fb.axis[a].position;
+			velocity[a] = l->fb.axis[a].velocity;
+		}
+		haptics_rod_pose(l->haptics, &par, position, velocity,
+				 &l->pose);
+		return;
+	}
+	cases_scope_params(&l->cfg, &p);
+	scope_update(&p, colon_centreline(l->colon), &in, &l->pose);
+}
+
+static void render(struct loop *l)
+{
+	struct haptics_params par;
+	double position[ENDOSIM_AXES], velocity[ENDOSIM_AXES];
+	const struct haptics_input in = {
+		.params = &par,
+		.colon = l->colon,
+		.pose = &l->pose,
+		.position = position,
+		.velocity = velocity,
+		.dt_s = l->info.period_ns * ENDOSIM_S_PER_NS,
+		.torque_on = safety_torque_on(&l->safety),
+		.applied = l->limited, /* last cycle's, not yet filtered */
+	};
+
+	cases_haptics_params(&l->cfg, &par);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		position[a] = l->fb.axis[a].position;
+		velocity[a] = l->fb.axis[a].velocity;
+	}
+	haptics_render(l->haptics, &in, l->command, &l->state.haptics);
+}
+
+static void fill_scope(struct loop *l)
+{
+	l->state.scope.scene_id = l->scene_id;
+	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
+	haptics_publish_rod(l->haptics, l->pose.roll_rad, &l->state.rod,
+			    l->state.scope.bow_m);
+}
+
+/* Takes a test command, if any (the control thread checked it is allowed). */
+static void take_debug(struct loop *l, uint64_t now)
+{
+	uint64_t seq = seqlock_read_begin(&l->debug_lock);
+	struct loop_debug d;
+	int r = 0;
+
+	if (seq == l->debug_seen) {
+		return;
+	}
+	d = l->debug_box;
+	if (seqlock_read_retry(&l->debug_lock, seq)) {
+		return; /* torn: next cycle */
+	}
+	l->debug_seen = seq;
+	if (d.action == INJECT_STALL) {
+		l->stall_ns = d.value > 0
+				      ? (uint64_t)(d.value * ENDOSIM_NS_PER_S)
+				      : 0;
+	} else {
+		r = inject_start(&l->inject, d.action, d.axis, d.value, now);
+	}
+	atomic_store_explicit(&l->debug_done,
+			      (uint64_t)d.seq << 32 | (uint32_t)r,
+			      memory_order_release);
+}
+
+/* Takes a guidance command, if any, and answers it. */
+static void take_guide(struct loop *l)
+{
+	uint64_t seq = seqlock_read_begin(&l->guide_lock);
+	struct guide_command c;
+	uint32_t box_seq;
+	double q[ENDOSIM_AXES];
+	int r;
+
+	if (seq == l->guide_seen) {
+		return;
+	}
+	c = l->guide_box;
+	box_seq = l->guide_box_seq;
+	if (seqlock_read_retry(&l->guide_lock, seq)) {
+		return; /* torn: next cycle */
+	}
+	l->guide_seen = seq;
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = l->fb.axis[a].position;
+	}
+	r = guide_command(&l->guide, &l->cfg.guide, &c, q);
+	atomic_store_explicit(&l->guide_done,
+			      (uint64_t)box_seq << 32 | (uint32_t)r,
+			      memory_order_release);
+}
+
+/*
+ * The guidance's force, added to the rendered command: only while
+ * ENABLED with the enable ramp done (last cycle's), the sum then filtered
+ * as any command is. A change of its phase is an event.
+ */
+static void guide(struct loop *l, uint64_t now)
+{
+	uint32_t old_phase = l->guide.phase;
+	double q[ENDOSIM_AXES], v[ENDOSIM_AXES], f[ENDOSIM_AXES];
+	bool enabled = l->safety.state == ENDOSIM_STATE_ENABLED;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		q[a] = l->fb.axis[a].position;
+		v[a] = l->fb.axis[a].velocity;
+	}
+	guide_step(&l->guide, &l->cfg.guide, enabled,
+		   enabled && l->safety.ramp >= 1.0, q, v, l->limited,
+		   l->info.period_ns * ENDOSIM_S_PER_NS, f);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		l->command[a] += f[a];
+	}
+	if (l->guide.phase != old_phase) {
+		post(l, &(struct loop_event){
+			.stamp_ns = now, .code = LOOP_EV_GUIDE,
+			.arg = l->guide.phase, .prev = old_phase,
+			.detail = l->guide.ended, .axis = l->guide.lost_axis,
+			.value = l->guide.t_s });
+	}
+	guide_publish(&l->guide, q, &l->state.guide);
+}
+
+/* A test command's stall, once this cycle is published. */
+static void stall(struct loop *l)
+{
+	struct timespec ts = to_timespec(l->stall_ns);
+
+	l->stall_ns = 0;
+	while (clock_nanosleep(CLOCK_MONOTONIC, 0, &ts, &ts) == EINTR) {
+	}
+}
+
+/* The loop's own causes: its overruns, a daemon thread that died. */
+static void check_loop(struct loop *l, uint64_t now)
+{
+	uint32_t bits = atomic_load_explicit(&l->fail_bits,
+					     memory_order_acquire);
+
+	if (safety_check_overruns(&l->safety, &l->cfg, l->skipped, now)) {
+		post(l, &(struct loop_event){ .stamp_ns = now, .axis = -1,
+			.code = LOOP_EV_OVER_BUDGET,
+			.arg = (uint32_t)l->safety.overrun_window });
+	}
+	l->skipped = 0;
+	if (bits) {
+		struct endosim_fault_cause c = {
+			.first_ns = now, .axis = -1,
+			.detail = atomic_load(&l->fail_detail),
+		};
+
+		safety_fault(&l->safety, bits, &c);
+	}
+}
+
+/* A non-finite value in the scope's pose or the haptic parts is a fault. */
+static void check_pipeline(struct loop *l, uint64_t now)
+{
+	const struct scope_pose *p = &l->pose;
+	const struct endosim_haptics_state *h = &l->state.haptics;
+	const double pose[] = {
+		p->depth_m, p->roll_rad, p->bend_rad[0], p->bend_rad[1],
+		p->base_s_m, p->tip_s_m, p->tip[0], p->tip[1], p->tip[2],
+		p->dir[0], p->dir[1], p->dir[2], p->up[0], p->up[1], p->up[2],
+	};
+	const double parts[] = {
+		h->proxy[0], h->proxy[1], h->proxy[2], h->f_static[0],
+		h->f_static[1], h->f_static[2], h->penetration_m,
+		h->curvature_rad, h->trans_contact_n, h->trans_friction_n,
+		h->trans_loop_n, h->wheel_contact_nm[0], h->wheel_contact_nm[1],
+		h->wheel_tension_nm[0], h->wheel_tension_nm[1],
+		h->wheel_elastic_nm[0], h->wheel_elastic_nm[1],
+		h->tube_contact_nm, h->tube_friction_nm, h->passivity_energy_j,
+		h->passivity_damping,
+	};
+
+	safety_check_finite(&l->safety, pose, sizeof(pose) / sizeof(pose[0]),
+			    -1, ENDOSIM_STAGE_KINEMATICS, now);
+	safety_check_finite(&l->safety, parts, sizeof(parts) / sizeof(parts[0]),
+			    -1, ENDOSIM_STAGE_HAPTICS, now);
+}
+
+static void cycle(struct loop *l, uint64_t now, uint64_t latency)
+{
+	uint32_t old_state = l->safety.state;
+	uint32_t old_faults = l->safety.faults;
+	uint32_t cmd;
+
+	fetch_config(l);
+	cmd = take_command(l, now);
+	take_debug(l, now);
+	take_guide(l);
+	take_colon(l);
+	safety_begin_cycle(&l->safety);
+	check_loop(l, now);
+	rig_read(l->rig, now, &l->fb);
+	inject_feedback(&l->inject, &l->fb);
+	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
+	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
+	kinematics(l);
+	render(l);
+	guide(l, now);
+	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);
+	check_pipeline(l, now);
+	safety_filter(&l->safety, &l->cfg, l->command, l->limited,
+		      l->info.period_ns * ENDOSIM_S_PER_NS, now);
+	rig_write(l->rig, now, l->limited, safety_torque_on(&l->safety));
+
+	post_changes(l, old_state, old_faults, cmd, now);
+	if (l->fb.hand_done && !l->scenario_was_done) {
+		struct loop_event ev = { .stamp_ns = now,
+					 .code = LOOP_EV_SCENARIO_END,
+					 .axis = -1 };
+		post(l, &ev);
+	}
+	l->scenario_was_done = l->fb.hand_done;
+	fill_state(l, now, latency);
+	fill_scope(l);
+	l->state.publish_ns = l->lockstep ? now : mono_ns();
+	if (l->pub) {
+		publish_state(l->pub, &l->state);
+	}
+	if (l->tap) {
+		session_tap_push(l->tap, &l->state);
+	}
+}
+
+static void prefault_stack(void)
+{
+	unsigned char buf[LOOP_PREFAULT_BYTES];
+
+	memset(buf, 0, sizeof(buf));
+	__asm__ volatile("" : : "r"(buf) : "memory");
+}
+
+/* Skips whole periods after an overrun; returns how many. */
+static uint64_t skip_overrun(uint64_t *next, uint64_t now, uint64_t period)
+{
+	uint64_t skipped;
+
+	if (now < *next + period) {
+		return 0;
+	}
+	skipped = (now - *next) / period;
+	*next += skipped * period;
+	return skipped;
+}
+
+/* After a cycle: its compute time (ns) in the histogram, the heartbeat. */
+static void count_cycle(struct loop *l, uint64_t compute)
+{
+	histo_add(&l->compute, compute);
+	l->state.compute_ns = (uint32_t)(compute < UINT32_MAX ? compute :
+								UINT32_MAX);
+	atomic_fetch_add_explicit(&l->heartbeat, 1, memory_order_release);
+}
+
+static void *loop_main(void *arg)
+{
+	struct loop *l = arg;
+	uint64_t period = l->info.period_ns;
+	uint64_t next, now, skipped;
+	struct timespec ts;
+
+	prefault_stack();
+	next = mono_ns();
+	while (!atomic_load_explicit(&l->stop, memory_order_acquire)) {
+		next += period;
+		ts = to_timespec(next);
+		while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts,
+				       NULL) == EINTR) {
+		}
+		now = mono_ns();
+		uint64_t latency = now > next ? now - next : 0;
+
+		skipped = skip_overrun(&next, now, period);
+		l->skipped = skipped;
+		if (skipped) {
+			struct loop_event ev = { .stamp_ns = now,
+						 .code = LOOP_EV_OVERRUN,
+						 .arg = (uint32_t)skipped,
+						 .axis = -1 };
+			atomic_fetch_add_explicit(&l->overruns, skipped,
+						  memory_order_relaxed);
+			post(l, &ev);
+		}
+		histo_add(&l->latency, latency);
+		cycle(l, now, latency);
+		count_cycle(l, mono_ns() - now);
+		if (l->stall_ns) {
+			stall(l);
+		}
+	}
+	/* last act: nothing energised */
+	memset(l->limited, 0, sizeof(l->limited));
+	rig_write(l->rig, mono_ns(), l->limited, false);
+	return NULL;
+}
+
+/* --- setup, from the main thread --- */
+
+static void lock_memory(struct loop *l)
+{
+	struct rlimit rl;
+
+#ifdef UNDER_ASAN
+	log_info("memory not locked: built with AddressSanitizer, whose "
+		 "shadow memory cannot be locked");
+	return;
+#endif
+	getrlimit(RLIMIT_MEMLOCK, &rl);
+	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
+		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "
+			 "(set LimitMEMLOCK=infinity); page faults may "
+			 "delay the force loop",
+			 (unsigned long long)rl.rlim_cur / 1024);
+		return;
+	}
+	if (mlockall(MCL_CURRENT | MCL_FUTURE) < 0) {
+		log_warn("memory not locked: mlockall: %m");
+		return;
+	}
+	l->info.memory_locked = true;
+}
+
+/*
+ * Holds the PM QoS request cyclictest makes: while the file stays open the
+ * CPUs do not enter idle states slower to leave than the value.
+ */
+static void hold_cpu_latency(struct loop *l)
+{
+	int32_t us = l->cfg.loop.cpu_dma_latency_us;
+	int fd;
+
+	if (us < 0) {
+		return;
+	}
+	fd = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+	if (fd < 0 || write(fd, &us, sizeof(us)) != sizeof(us)) {
+		log_warn("cannot hold /dev/cpu_dma_latency at %d us: %m; deep "
+			 "CPU idle states may delay the force loop", (int)us);
+		if (fd >= 0) {
+			close(fd);
+		}
+		return;
+	}
+	l->pm_qos_fd = fd;
+}
+
+void loop_set_tap(struct loop *l, struct session_tap *tap)
+{
+	l->tap = tap;
+}
+
+int loop_start(struct loop *l)
+{
+	struct rt_thread_params p = {
+		.name = "endosim-loop",
+		.priority = l->cfg.loop.priority,
+		.cpu = l->cfg.loop.cpu,
+		.stack_bytes = LOOP_STACK_BYTES,
+	};
+	bool fifo;
+	int r;
+
+	lock_memory(l);
+	hold_cpu_latency(l);
+	r = rt_thread_start(&l->thread, &p, loop_main, l, &fifo);
+	if (r) {
+		log_err("force loop: cannot start thread: %s", strerror(-r));
+		return r;
+	}
+	if (!fifo) {
+		log_warn("force loop: no permission for SCHED_FIFO priority %d "
+			 "(needs root or CAP_SYS_NICE with LimitRTPRIO); "
+			 "running as SCHED_OTHER without latency guarantees",
+			 l->cfg.loop.priority);
+	}
+	l->running = true;
+	l->info.policy = fifo ? "SCHED_FIFO" : "SCHED_OTHER";
+	l->info.priority = fifo ? l->cfg.loop.priority : 0;
+	log_info("force loop: %d Hz, %s priority %d, memory %slocked%s%s",
+		 l->cfg.loop.rate_hz, l->info.policy, l->info.priority,
+		 l->info.memory_locked ? "" : "not ",
+		 l->cfg.loop.cpu >= 0 ? ", pinned" : "",
+		 l->pm_qos_fd >= 0 ? ", CPU idle latency held" : "");
+	return 0;
+}
+
+void loop_stop(struct loop *l)
+{
+	if (!l->running) {
+		return;
+	}
+	atomic_store_explicit(&l->stop, true, memory_order_release);
+	pthread_join(l->thread, NULL);
+	l->running = false;
+	rig_stop(l->rig);
+}
+
+void loop_destroy(struct loop *l)
+{
+	if (!l) {
+		return;
+	}
+	loop_stop(l);
+	colon_destroy(l->colon);
+	haptics_destroy(l->haptics);
+	if (l->pm_qos_fd >= 0) {
+		close(l->pm_qos_fd);
+	}
+	spsc_free(&l->events);
+	free(l);
+}
+
+/* Leaves CMD in the slot; returns what was left there. */
+static uint64_t post_command(struct loop *l, enum loop_cmd cmd)
+{
+	uint32_t seq = ++l->cmd_seq & 0xffffff;
+	uint64_t slot = (uint64_t)seq << CMD_SHIFT | (uint64_t)cmd;
+
+	atomic_store_explicit(&l->cmd_slot, slot, memory_order_release);
+	return slot;
+}
+
+int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
+{
+	uint64_t slot = post_command(l, cmd);
+	uint32_t seq = (uint32_t)(slot >> CMD_SHIFT);
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	for (;;) {
+		uint64_t done = atomic_load_explicit(&l->cmd_done,
+						     memory_order_acquire);
+
+		if ((uint32_t)(done >> 32) == seq) {
+			return (int32_t)(uint32_t)done;
+		}
+		if (mono_ns() > deadline) {
+			uint64_t expected = slot;
+
+			if (atomic_compare_exchange_strong(&l->cmd_slot,
+							   &expected, 0)) {
+				return -ETIMEDOUT; /* withdrawn */
+			}
+			/* taken just now: its answer is a cycle away */
+			deadline += 100000000u;
+		}
+		nanosleep(&nap, NULL);
+	}
+}
+
+/* Takes the loop's answer to a swap, if there is one yet. */
+static struct colon *swap_answer(struct loop *l)
+{
+	return atomic_exchange_explicit(&l->colon_out, NULL,
+					memory_order_acq_rel);
+}
+
+const struct colon *loop_colon(const struct loop *l)
+{
+	return l->colon;
+}
+
+void loop_hold_tip(struct loop *l, double hold_n_per_m)
+{
+	haptics_hold_tip(l->haptics, hold_n_per_m);
+}
+
+int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
+		    struct colon **old, int timeout_ms)
+{
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 200000 };
+	struct colon *back;
+
+	l->scene_id_in = scene_id;
+	atomic_store_explicit(&l->colon_in, colon, memory_order_release);
+	while (!(back = swap_answer(l))) {
+		if (mono_ns() > deadline) {
+			struct colon *expected = colon;
+
+			if (atomic_compare_exchange_strong(&l->colon_in,
+							   &expected, NULL)) {
+				return -ETIMEDOUT; /* withdrawn */
+			}
+			deadline += 100000000u; /* taken just now */
+		}
+		nanosleep(&nap, NULL);
+	}
+	if (back == colon) {
+		return -EBUSY;
+	}
+	*old = back;
+	return 0;
+}
+
+void loop_set_config(struct loop *l, const struct config *cfg)
+{
+	seqlock_write_begin(&l->cfg_lock);
+	memcpy(&l->cfg_mailbox, cfg, sizeof(*cfg));
+	seqlock_write_end(&l->cfg_lock);
+}
+
+/* The loop's answer (seq << 32 | result) in DONE to SEQ, waited for up
+ * to TIMEOUT_MS; -ETIMEDOUT without one. */
+static int await_answer(const _Atomic uint64_t *done, uint32_t seq,
+			int timeout_ms)
+{
+	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	for (;;) {
+		uint64_t d = atomic_load_explicit(done, memory_order_acquire);
+
+		if ((uint32_t)(d >> 32) == seq) {
+			return (int32_t)(uint32_t)d;
+		}
+		if (mono_ns() > deadline) {
+			return -ETIMEDOUT;
+		}
+		nanosleep(&nap, NULL);
+	}
+}
+
+int loop_debug(struct loop *l, int action, int axis, double value,
+	       int timeout_ms)
+{
+	uint32_t seq = ++l->debug_seq;
+
+	seqlock_write_begin(&l->debug_lock);
+	l->debug_box = (struct loop_debug){ seq, action, axis, value };
+	seqlock_write_end(&l->debug_lock);
+	return await_answer(&l->debug_done, seq, timeout_ms);
+}
+
+/* Leaves C in the guidance's box; returns its sequence number. */
+static uint32_t post_guide(struct loop *l, const struct guide_command *c)
+{
+	uint32_t seq = ++l->guide_seq;
+
+	seqlock_write_begin(&l->guide_lock);
+	l->guide_box = *c;
+	l->guide_box_seq = seq;
+	seqlock_write_end(&l->guide_lock);
+	return seq;
+}
+
+int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms)
+{
+	return await_answer(&l->guide_done, post_guide(l, c), timeout_ms);
+}
+
+void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)
+{
+	atomic_store(&l->fail_detail, detail);
+	atomic_fetch_or_explicit(&l->fail_bits, bit, memory_order_release);
+}
+
+bool loop_pop_event(struct loop *l, struct loop_event *ev)
+{
+	return spsc_pop(&l->events, ev);
+}
+
+uint64_t loop_heartbeat(const struct loop *l)
+{
+	return atomic_load_explicit(&l->heartbeat, memory_order_acquire);
+}
+
+void loop_get_stats(const struct loop *l, struct loop_stats *st)
+{
+	st->cycles = loop_heartbeat(l);
+	st->overruns = atomic_load_explicit(&l->overruns, memory_order_relaxed);
+	histo_summarize(&l->latency, &st->latency);
+	histo_summarize(&l->compute, &st->compute);
+}
+
+const struct loop_info *loop_get_info(const struct loop *l)
+{
+	return &l->info;
+}
+
+/* --- lockstep --- */
+
+void loop_step(struct loop *l, uint64_t now_ns)
+{
+	uint64_t t0 = mono_ns();
+
+	l->lockstep = true;
+	l->skipped = 0;
+	cycle(l, now_ns, 0);
+	count_cycle(l, mono_ns() - t0);
+}
+
+void loop_post(struct loop *l, enum loop_cmd cmd)
+{
+	(void)post_command(l, cmd);
+}
+
+void loop_guide_post(struct loop *l, const struct guide_command *c)
+{
+	(void)post_guide(l, c);
+}
+
+int loop_guide_answer(const struct loop *l)
+{
+	uint64_t done = atomic_load_explicit(&l->guide_done,
+					     memory_order_acquire);
+
+	return (uint32_t)(done >> 32) == l->guide_seq ?
+	       (int32_t)(uint32_t)done : -EINPROGRESS;
+}
+
+const struct endosim_state *loop_state(const struct loop *l)
+{
+	return &l->state;
+}

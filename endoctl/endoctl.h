@@ -1,0 +1,76 @@
+/*
+ * endoctl.h - what the parts of endoctl share (endoctl.c: talking to
+ * endosimd, the daemon's commands, main; endoctl_print.c: printing its
+ * replies; endoctl_session.c: training sessions; endoctl_map.c: the
+ * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
+ * course). One thread.
+ */
+#ifndef ENDOSIM_ENDOCTL_H
+#define ENDOSIM_ENDOCTL_H
+
+#include <errno.h>
+#include <getopt.h>
+#include <inttypes.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "proto/client.h"
+#include "proto/endosim_shm.h"
+#include "proto/fields.h"
+#include "proto/names.h"
+#include "proto/version.h"
+#include "base/json.h"
+#include "model/objio.h"
+#include "session/report.h"
+#include "session/sessiondir.h"
+#include "session/sessionpb.h"
+#include "session/sessionview.h"
+
+enum {
+	EXIT_REFUSED = 1,
+	EXIT_USAGE = 2,
+	EXIT_NO_DAEMON = 3,
+	EXIT_COMM = 4,
+};
+
+struct ctl {
+	const char *socket; /* --socket, or NULL */
+	bool json;
+	int timeout_ms;
+	struct client *client;
+};
+
+typedef int command_fn(struct ctl *ctl, int argc, char **argv);
+
+/*
+ * Sends REQ over the read-only or (WRITE) the read-write socket; 0 with an
+ * OK reply in *REP (endosim__reply__free_unpacked() it), or the exit
+ * status with the reason on stderr (and, with --json, on stdout).
+ */
+int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
+		 Endosim__Reply **rep);
+
+/* A status or stats reply, as text or one JSON object (endoctl_print.c). */
+void ctl_print_status(const Endosim__StatusReply *s);
+void ctl_json_status(const Endosim__StatusReply *s);
+void ctl_print_stats(const Endosim__StatsReply *s, bool json);
+
+/* `endoctl session ...` (endoctl_session.c). */
+int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl session map`: the recording session's unseen-mucosa map
+ * (endoctl_map.c); 0 or the exit status. */
+int ctl_session_map(struct ctl *ctl);
+
+/* `endoctl trainee ...` (endoctl_trainee.c). */
+int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl guide ...` (endoctl_guide.c). */
+int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);
+
+#endif

@@ -1,0 +1,404 @@
+/*
+ * endoctl_trainee.c - endoctl's trainees (endoctl.h): their sessions found
+ * by name through the session directory's index, from endosimd
+ * (TraineeSessions: the daemon keeps the index) or read from a session
+ * directory without it (--dir: the index read, not written), judged by a
+ * course file (coursefile.h), listed or written as a page
+ * (traineepage.h).
+ */
+#include "endoctl/endoctl.h"
+#include "session/coursefile.h"
+#include "session/sessionindex.h"
+#include "session/traineepage.h"
+
+/* One session, whichever way it was found. */
+struct tsession {
+	uint64_t id;
+	char trainee[64];
+	char case_name[64];
+	char started[32];
+	bool recording;
+	bool have_m;        /* m known: the END frame's, or recomputed */
+	bool recomputed;    /* the file was cut short */
+	struct metrics_result m;
+};
+
+struct tlist {
+	struct tsession *s;
+	size_t n;
+	char course[4096];  /* the daemon's [session] course ("": none) */
+	char directory[4096];
+	char index[16];     /* how the index was found */
+};
+
+/* The metrics of the session file PATH cut short, recomputed into T. */
+static void recompute(struct tsession *t, const char *path)
+{
+	struct session_file f;
+
+	if (session_file_read(path, &f)) {
+		fprintf(stderr, "endoctl: %s: unreadable: left out of the "
+			"curves\n", path);
+		return;
+	}
+	t->have_m = sessionview_metrics(&f, &t->m, &t->recomputed) == 0;
+	session_file_close(&f);
+}
+
+static void copy_facts(struct tsession *t, uint64_t id, const char *trainee,
+		       const char *case_name, const char *started)
+{
+	t->id = id;
+	snprintf(t->trainee, sizeof(t->trainee), "%s", trainee);
+	snprintf(t->case_name, sizeof(t->case_name), "%s", case_name);
+	snprintf(t->started, sizeof(t->started), "%s", started);
+}
+
+/* TRAINEE's sessions (NULL: everyone's) from endosimd. */
+static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
+{
+	Endosim__TraineeSessions body = ENDOSIM__TRAINEE_SESSIONS__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	const Endosim__TraineeReply *t;
+	Endosim__Reply *rep;
+	int r;
+
+	body.trainee = (char *)(trainee ? trainee : "");
+	req.body_case = ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS;
+	req.trainee_sessions = &body;
+	if ((r = ctl_transact(ctl, false, &req, &rep))) {
+		return r;
+	}
+	t = rep->trainee;
+	l->s = calloc(t->n_sessions ? t->n_sessions : 1, sizeof(*l->s));
+	if (!l->s) {
+		endosim__reply__free_unpacked(rep, NULL);
+		fprintf(stderr, "endoctl: out of memory\n");
+		return EXIT_REFUSED;
+	}
+	snprintf(l->course, sizeof(l->course), "%s", t->course);
+	snprintf(l->directory, sizeof(l->directory), "%s", t->directory);
+	snprintf(l->index, sizeof(l->index), "%s", t->index);
+	for (size_t i = 0; i < t->n_sessions; i++) {
+		const Endosim__SessionInfo *s = t->sessions[i];
+		struct tsession *x = &l->s[l->n++];
+
+		copy_facts(x, s->id, s->trainee, s->case_name, s->started);
+		x->recording = s->recording;
+		if (s->metrics) {
+			sessionpb_to_metrics(s->metrics, &x->m);
+			x->have_m = true;
+		} else if (!s->recording) {
+			recompute(x, s->path);
+		}
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return 0;
+}
+
+/* TRAINEE's sessions (NULL: everyone's) read from the directory DIR. */
+static int from_dir(const char *dir, const char *trainee, struct tlist *l)
+{
+	struct sessionindex_entry *e;
+	struct sessionindex_info info;
+	char path[4096];
+	size_t n;
+	int r = sessionindex_load(dir, false, &e, &n, &info);
+
+	if (r || !(l->s = calloc(n ? n : 1, sizeof(*l->s)))) {
+		fprintf(stderr, "endoctl: %s: %s\n", dir,
+			strerror(r ? -r : ENOMEM));
+		free(r ? NULL : e);
+		return EXIT_REFUSED;
+	}
+	snprintf(l->directory, sizeof(l->directory), "%s", dir);
+	snprintf(l->index, sizeof(l->index), "%s",
+		 sessionindex_state_name(info.state));
+	for (size_t i = 0; i < n; i++) {
+		struct tsession *x;
+
+		if (trainee && strcmp(trainee, e[i].e.trainee)) {
+			continue;
+		}
+		x = &l->s[l->n++];
+		copy_facts(x, e[i].e.id, e[i].e.trainee, e[i].e.case_name,
+			   e[i].e.started);
+		x->m = e[i].m;
+		x->have_m = e[i].has_metrics;
+		if (!x->have_m && !sessiondir_path(dir, e[i].e.id, path,
+						   sizeof(path))) {
+			recompute(x, path);
+		}
+	}
+	free(e);
+	return 0;
+}
+
+/* The course named by --course (FILE), else the daemon's; *C NULL: none. */
+static int load_course(const char *file, const struct tlist *l,
+		       struct coursefile *buf, const struct coursefile **c)
+{
+	const char *path = file ? file : l->course;
+	char err[512];
+
+	*c = NULL;
+	if (!*path) {
+		return 0;
+	}
+	if (coursefile_load(buf, path, err, sizeof(err))) {
+		fprintf(stderr, "endoctl: course: %s\n", err);
+		return EXIT_REFUSED;
+	}
+	*c = buf;
+	return 0;
+}
+
+/* ---------------------------------------------------------------- list */
+
+/* How trainee I (first seen at session I) stands. */
+struct standing {
+	const char *trainee;
+	size_t sessions;
+	char cases[256];      /* "normal, polyps" */
+	const struct tsession *last;
+	size_t cases_done;    /* of the course's */
+	bool complete;
+};
+
+static void add_case(char *cases, size_t size, const char *name)
+{
+	size_t len = strlen(name), at = strlen(cases);
+
+	for (const char *p = strstr(cases, name); p; p = strstr(p + 1, name)) {
+		if ((p == cases || p[-1] == ' ') &&
+		    (p[len] == ',' || !p[len])) {
+			return;
+		}
+	}
+	snprintf(cases + at, size - at, "%s%s", at ? ", " : "", name);
+}
+
+static void stand(const struct tlist *l, size_t first,
+		  const struct coursefile *c, struct standing *st)
+{
+	const char **cases = malloc((l->n ? l->n : 1) * sizeof(*cases));
+	const struct metrics_result **m = malloc((l->n ? l->n : 1) *
+						 sizeof(*m));
+	struct coursefile_progress p[COURSEFILE_MAX_CASES];
+	size_t k = 0;
+
+	memset(st, 0, sizeof(*st));
+	st->trainee = l->s[first].trainee;
+	for (size_t i = first; i < l->n; i++) {
+		const struct tsession *s = &l->s[i];
+
+		if (strcmp(s->trainee, st->trainee)) {
+			continue;
+		}
+		st->sessions++;
+		st->last = s;
+		add_case(st->cases, sizeof(st->cases), s->case_name);
+		if (cases && m) {
+			cases[k] = s->case_name;
+			m[k++] = s->have_m ? &s->m : NULL;
+		}
+	}
+	if (c && cases && m) {
+		coursefile_progress(c, cases, m, k, p);
+		for (size_t i = 0; i < c->n_cases; i++) {
+			st->cases_done += p[i].completed != 0;
+		}
+		st->complete = coursefile_complete(c, p);
+	}
+	free(cases);
+	free(m);
+}
+
+/* Whether session I's trainee came earlier. */
+static bool trainee_seen_before(const struct tlist *l, size_t i)
+{
+	for (size_t j = 0; j < i; j++) {
+		if (!strcmp(l->s[j].trainee, l->s[i].trainee)) {
+			return true;
+		}
+	}
+	return false;
+}
+
+static void print_standing(const struct standing *st,
+			   const struct coursefile *c)
+{
+	char course[64] = "-";
+
+	if (c && st->complete) {
+		snprintf(course, sizeof(course), "complete");
+	} else if (c) {
+		snprintf(course, sizeof(course), "%zu of %zu cases", st->cases_done,
+			 c->n_cases);
+	}
+	printf("%-24s  %8zu  %-20s  %6" PRIu64 "  %-20s  %-14s\n",
+	       st->trainee, st->sessions, st->cases, st->last->id,
+	       st->last->started, course);
+}
+
+static void json_standing(struct json *j, const struct standing *st,
+			  const struct coursefile *c)
+{
+	json_object_begin(j, NULL);
+	json_string(j, "trainee", st->trainee);
+	json_uint(j, "sessions", st->sessions);
+	json_array_begin(j, "cases");
+	for (const char *at = st->cases; *at;) {
+		size_t n = strcspn(at, ",");
+		char name[64];
+
+		snprintf(name, sizeof(name), "%.*s", (int)n, at);
+		json_string(j, NULL, name);
+		at += n + (at[n] ? 2 : 0); /* ", " */
+	}
+	json_array_end(j);
+	json_uint(j, "last_session", st->last->id);
+	json_string(j, "last_started", st->last->started);
+	if (c) {
+		json_uint(j, "cases_complete", st->cases_done);
+		json_bool(j, "course_complete", st->complete);
+	}
+	json_object_end(j);
+}
+
+static void print_list(const struct ctl *ctl, const struct tlist *l,
+		       const struct coursefile *c)
+{
+	struct standing st;
+	struct json j;
+
+	if (ctl->json) {
+		json_init(&j, stdout);
+		json_object_begin(&j, NULL);
+		json_string(&j, "directory", l->directory);
+		json_string(&j, "index", l->index);
+		json_string(&j, "course", c ? c->name : "");
+		json_array_begin(&j, "trainees");
+	} else {
+		printf("%-24s  %8s  %-20s  %6s  %-20s  %-14s\n", "TRAINEE",
+		       "SESSIONS", "CASES", "LAST", "STARTED", "COURSE");
+	}
+	for (size_t i = 0; i < l->n; i++) {
+		if (trainee_seen_before(l, i)) {
+			continue;
+		}
+		stand(l, i, c, &st);
+		if (ctl->json) {
+			json_standing(&j, &st, c);
+		} else {
+			print_standing(&st, c);
+		}
+	}
+	if (ctl->json) {
+		json_array_end(&j);
+		json_object_end(&j);
+	}
+}
+
+/* -------------------------------------------------------------- report */
+
+static int write_report(const char *trainee, const struct tlist *l,
+			const struct coursefile *c, const char *out)
+{
+	struct traineepage_session *p = calloc(l->n ? l->n : 1, sizeof(*p));
+	struct standing st;
+	int r;
+
+	if (!p) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		return EXIT_REFUSED;
+	}
+	for (size_t i = 0; i < l->n; i++) {
+		p[i] = (struct traineepage_session){
+			.id = l->s[i].id, .case_name = l->s[i].case_name,
+			.started = l->s[i].started,
+			.m = l->s[i].have_m ? &l->s[i].m : NULL,
+			.recomputed = l->s[i].recomputed,
+		};
+	}
+	r = traineepage_write(trainee, p, l->n, c, out);
+	free(p);
+	if (r) {
+		fprintf(stderr, "endoctl: trainee report in %s: %s\n", out,
+			strerror(-r));
+		return EXIT_REFUSED;
+	}
+	stand(l, 0, c, &st);
+	printf("wrote %s/index.html: %zu sessions%s\n", out, l->n, !c ? "" :
+	       st.complete ? ", course complete" : ", course not complete");
+	return 0;
+}
+
+/* ------------------------------------------------------------ commands */
+
+struct targs {
+	const char *name;   /* report: the trainee */
+	const char *out;    /* report: --out DIR */
+	const char *course; /* --course FILE */
+	const char *dir;    /* --dir DIR: without endosimd */
+};
+
+/* The options after ARGV[FIRST]; false on anything else. */
+static bool parse_args(int argc, char **argv, int first, struct targs *a)
+{
+	for (int i = first; i < argc; i += 2) {
+		const char **to = !strcmp(argv[i], "--out")      ? &a->out
+				  : !strcmp(argv[i], "--course") ? &a->course
+				  : !strcmp(argv[i], "--dir")    ? &a->dir
+								 : NULL;
+
+		if (!to || i + 1 >= argc) {
+			return false;
+		}
+		*to = argv[i + 1];
+	}
+	return true;
+}
+
+static int trainee_run(struct ctl *ctl, const struct targs *a)
+{
+	static struct coursefile course;
+	const struct coursefile *c;
+	struct tlist l = { 0 };
+	int r = a->dir ? from_dir(a->dir, a->name, &l)
+		       : from_daemon(ctl, a->name, &l);
+
+	if (!r) {
+		r = load_course(a->course, &l, &course, &c);
+	}
+	if (!r && a->name && !l.n) {
+		fprintf(stderr, "endoctl: no session of trainee '%s' in %s\n",
+			a->name, l.directory);
+		r = EXIT_REFUSED;
+	}
+	if (!r) {
+		r = a->name ? write_report(a->name, &l, c, a->out)
+			    : (print_list(ctl, &l, c), 0);
+	}
+	free(l.s);
+	return r;
+}
+
+int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv)
+{
+	const char *sub = argc >= 2 ? argv[1] : "";
+	struct targs a = { 0 };
+
+	if (!strcmp(sub, "list") && parse_args(argc, argv, 2, &a) && !a.out) {
+		return trainee_run(ctl, &a);
+	}
+	if (!strcmp(sub, "report") && argc >= 3 &&
+	    parse_args(argc, argv, 3, &a) && a.out) {
+		a.name = argv[2];
+		return trainee_run(ctl, &a);
+	}
+	fprintf(stderr, "endoctl: trainee list [--course FILE] [--dir DIR] | "
+		"report NAME --out DIR [--course FILE] [--dir DIR] (--dir: a "
+		"session directory read without endosimd)\n");
+	return EXIT_USAGE;
+}

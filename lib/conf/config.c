@@ -1,0 +1,1105 @@
+/* config.c - see config.h. */
+#include "conf/config.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "proto/names.h"
+#include "base/log.h"
+
+static const char *const backend_names[] = { "sim", "drives", NULL };
+static const char *const drive_names[] = { "sim", "epos4-usb", "modbus",
+					   NULL };
+static const char *const direction_names[] = { "normal", "reversed", NULL };
+static const char *const transport_names[] = { "rtu", "tcp", NULL };
+static const char *const parity_names[] = { "none", "even", "odd", NULL };
+static const char *const yes_no[] = { "no", "yes", NULL };
+static const char *const model_names[] = { "paper", "rod", NULL };
+static const char *const overrun_fault_names[] = { "no", "yes", "auto",
+						   NULL };
+
+#define OFF(field) offsetof(struct config, field)
+#define KI(sec, key, field, d, lo, hi, u, fl, h) \
+	{ sec, key, CONFIG_INT, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+#define KD(sec, key, field, d, lo, hi, u, fl, h) \
+	{ sec, key, CONFIG_DOUBLE, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+#define KS(sec, key, field, d, fl, h) \
+	{ sec, key, CONFIG_STRING, OFF(field), 0, d, 0, 0, NULL, "", fl, h }
+#define KE(sec, key, field, d, ch, fl, h) \
+	{ sec, key, CONFIG_ENUM, OFF(field), d, NULL, 0, 0, ch, "", fl, h }
+#define KL(sec, key, field, d, fl, h) \
+	{ sec, key, CONFIG_LEVEL, OFF(field), d, NULL, 0, 0, NULL, "", fl, h }
+#define KR(sec, key, field, h) \
+	{ sec, key, CONFIG_REGISTER, OFF(field), 0, "none", 0, 0, NULL, "", 0, h }
+
+#define I_INS ENDOSIM_AXIS_INSERTION
+#define I_ROLL ENDOSIM_AXIS_ROLL
+#define I_UD ENDOSIM_AXIS_WHEEL_UD
+#define I_LR ENDOSIM_AXIS_WHEEL_LR
+#define LIVE CONFIG_LIVE
+
+/* [axis.NAME]: how motor turns and encoder counts map to axis I. */
+#define AXIS_KEYS(sec, i)                                                    \
+	KE(sec, "backend", axis[i].backend, CONFIG_DRIVE_SIM, drive_names, 0, \
+	   "sim, epos4-usb or modbus (when [rig] backend = drives)"),        \
+	KD(sec, "gear_ratio", axis[i].gear_ratio, 1.0, 0.001, 1000, "", 0,   \
+	   "motor turns per turn of the output"),                            \
+	KI(sec, "counts_per_rev", axis[i].counts_per_rev, 2048, 1, 1 << 30,  \
+	   "counts", 0, "encoder counts per motor turn (quadrature counted)"), \
+	KE(sec, "direction", axis[i].reversed, 0, direction_names, 0,        \
+	   "normal, or reversed: motor positive is axis negative")
+
+/* [guide]: one axis' guidance; AX its key's name, F and Q its force and
+ * position units in key names (n, n_m; m, rad) and in words */
+#define GUIDE_KEYS(ax, i, f, q, fw, qw, k, b, fmax, vmax, push, err)          \
+	KD("guide", ax "_stiffness_" f "_per_" q, guide.stiffness[i], k, 0, \
+	   1e6, fw "/" qw, LIVE, "k: the pull towards the reference"),     \
+	KD("guide", ax "_damping_" f "_s_per_" q, guide.damping[i], b, 0,  \
+	   1e4, fw " s/" qw, LIVE, "b: on the speed's difference from "    \
+	   "the reference's"),                                              \
+	KD("guide", ax "_force_max_" f, guide.force_max[i], fmax, 0, 100,  \
+	   fw, LIVE, "the guidance's force at most (within [limits])"),    \
+	KD("guide", ax "_speed_max_" q "_s", guide.speed_max[i], vmax,      \
+	   1e-4, 100, qw "/s", LIVE, "the reference never moves faster: "  \
+	   "a faster recording is slowed"),                                 \
+	KD("guide", ax "_takeover_" f, guide.takeover[i], push, 0, 100, fw, \
+	   LIVE, "a hand pushing so hard against the guidance takes over"), \
+	KD("guide", ax "_error_max_" q, guide.error_max[i], err, 1e-4, 10, \
+	   qw, LIVE, "tracking error beyond this for error_s: the guidance " \
+	   "cannot follow and ends")
+
+/* [epos4.NAME]: the maxon EPOS4 on USB that drives axis I. */
+#define EPOS4_KEYS(sec, i)                                                   \
+	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", CONFIG_HEX,     \
+	   "USB vendor id"),                                                 \
+	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", CONFIG_HEX,     \
+	   "USB product id"),                                                \
+	KS(sec, "serial", epos4[i].serial, "", 0,                            \
+	   "USB serial number; empty: the only drive with that id"),          \
+	KI(sec, "node_id", epos4[i].node_id, 1, 0, 127, "", 0,               \
+	   "the drive's node-ID"),                                           \
+	KD(sec, "timeout_s", epos4[i].timeout_s, 0.1, 0.001, 5, "s", 0,      \
+	   "longest wait for one USB transfer"),                             \
+	KD(sec, "feedback_max_age_s", epos4[i].feedback_max_age_s, 0.1,     \
+	   0.001, 2, "s", 0, "feedback older than this is a fault"),         \
+	KD(sec, "max_rate_hz", epos4[i].max_rate_hz, 1000, 1, 1e5, "Hz", 0, \
+	   "exchanges per second at most (the bus may allow fewer)"),         \
+	KD(sec, "rated_torque_unit_n_m", epos4[i].rated_torque_unit_n_m,     \
+	   1e-6, 1e-9, 1, "N m", 0,                                          \
+	   "what one unit of the rated torque 0x6076 is (EPOS4: 1 uN m)"),   \
+	KD(sec, "watchdog_s", epos4[i].watchdog_s, 0.1, 0, 65.535, "s", 0,   \
+	   "heartbeat consumer time 0x1016:01 written at enable: the drive " \
+	   "faults when the daemon falls silent this long; 0: off")
+
+/* [modbus.NAME]: the Modbus wheel drive of axis I and its register map. */
+#define MODBUS_DRIVE_KEYS(sec, i)                                            \
+	KI(sec, "slave", modbus_drive[i].slave, 1, 0, 255, "", 0,            \
+	   "slave id (RTU 1..247; TCP unit id)"),                            \
+	KE(sec, "combined_0x17", modbus_drive[i].combined_0x17, 0, yes_no, 0, \
+	   "write torque and read feedback in one transaction (function 0x17)"), \
+	KD(sec, "watchdog_s", modbus_drive[i].watchdog_s, 0.1, 0, 60, "s", 0, \
+	   "written to the watchdog register at enable"),                    \
+	KR(sec, "torque", modbus_drive[i].reg[REGMAP_TORQUE],                \
+	   "motor torque setpoint, N m (required)"),                         \
+	KR(sec, "enable", modbus_drive[i].reg[REGMAP_ENABLE],                \
+	   "written 1 to enable, 0 to disable"),                             \
+	KR(sec, "position", modbus_drive[i].reg[REGMAP_POSITION],            \
+	   "encoder counts (required)"),                                     \
+	KR(sec, "velocity", modbus_drive[i].reg[REGMAP_VELOCITY],            \
+	   "encoder counts per second"),                                     \
+	KR(sec, "fault", modbus_drive[i].reg[REGMAP_FAULT],                  \
+	   "the drive's fault code, 0: none"),                               \
+	KR(sec, "fault_reset", modbus_drive[i].reg[REGMAP_FAULT_RESET],      \
+	   "written 1 then 0 to clear a fault"),                             \
+	KR(sec, "watchdog", modbus_drive[i].reg[REGMAP_WATCHDOG],            \
+	   "communication watchdog, s (gets watchdog_s)")
+
+static const struct config_key keys[] = {
+	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
+	   "force-loop rate"),
+	KI("loop", "priority", loop.priority, 80, 1, 99, "", 0,
+	   "SCHED_FIFO priority of the force loop"),
+	KI("loop", "cpu", loop.cpu, -1, -1, 1023, "", 0,
+	   "CPU the force loop is pinned to; -1: not pinned"),
+	KI("loop", "cpu_dma_latency_us", loop.cpu_dma_latency_us, 0, -1, 100000,
+	   "us", 0, "hold /dev/cpu_dma_latency at this while running (keeps "
+	   "CPUs out of deep idle states); -1: leave alone"),
+	KI("loop", "overrun_budget", loop.overrun_budget, 50, 1,
+	   CONFIG_OVERRUN_BUDGET_MAX, "periods", 0, "more periods skipped than this "
+	   "within overrun_window_s misses the budget (see overrun_fault)"),
+	KD("loop", "overrun_window_s", loop.overrun_window_s, 1.0, 0.01, 60,
+	   "s", 0, "the window of overrun_budget"),
+	KE("loop", "overrun_fault", loop.overrun_fault, CONFIG_OVERRUN_AUTO,
+	   overrun_fault_names, 0, "a missed overrun budget is a fault (yes), "
+	   "a warning (no), or auto: a fault when any axis is a real drive"),
+
+	KE("rig", "backend", rig.backend, CONFIG_BACKEND_SIM, backend_names, 0,
+	   "sim: every axis simulated; drives: as each [axis.*] says"),
+	KD("rig", "insertion_min_m", rig.travel_min[I_INS], 0.0, -1, 3, "m", 0,
+	   "carriage travel, withdrawn end"),
+	KD("rig", "insertion_max_m", rig.travel_max[I_INS], 1.8, -1, 3, "m", 0,
+	   "carriage travel, inserted end"),
+	KD("rig", "roll_min_rad", rig.travel_min[I_ROLL], -6.2832, -100, 100,
+	   "rad", 0, "tube roll travel, counter-clockwise end"),
+	KD("rig", "roll_max_rad", rig.travel_max[I_ROLL], 6.2832, -100, 100,
+	   "rad", 0, "tube roll travel, clockwise end"),
+	KD("rig", "wheel_ud_min_rad", rig.travel_min[I_UD], -1.75, -10, 10,
+	   "rad", 0, "up/down wheel travel, one end"),
+	KD("rig", "wheel_ud_max_rad", rig.travel_max[I_UD], 1.75, -10, 10,
+	   "rad", 0, "up/down wheel travel, other end"),
+	KD("rig", "wheel_lr_min_rad", rig.travel_min[I_LR], -1.75, -10, 10,
+	   "rad", 0, "left/right wheel travel, one end"),
+	KD("rig", "wheel_lr_max_rad", rig.travel_max[I_LR], 1.75, -10, 10,
+	   "rad", 0, "left/right wheel travel, other end"),
+	KD("rig", "feedback_max_age_s", rig.feedback_max_age_s, 0.05, 0.001,
+	   1.0, "s", 0, "feedback older than this is a fault"),
+
+	KD("sim", "insertion_mass_kg", sim.inertia[I_INS], 0.5, 0.01, 100,
+	   "kg", 0, "moving mass of carriage and tube"),
+	KD("sim", "roll_inertia_kg_m2", sim.inertia[I_ROLL], 2e-4, 1e-7, 1,
+	   "kg m^2", 0, "inertia of the tube in roll"),
+	KD("sim", "wheel_ud_inertia_kg_m2", sim.inertia[I_UD], 2e-5, 1e-8, 1,
+	   "kg m^2", 0, "inertia of the up/down wheel"),
+	KD("sim", "wheel_lr_inertia_kg_m2", sim.inertia[I_LR], 2e-5, 1e-8, 1,
+	   "kg m^2", 0, "inertia of the left/right wheel"),
+	KD("sim", "insertion_viscous_n_s_per_m", sim.viscous[I_INS], 2.0, 0,
+	   1000, "N s/m", 0, "viscous friction of the carriage"),
+	KD("sim", "roll_viscous_n_m_s_per_rad", sim.viscous[I_ROLL], 2e-3, 0,
+	   10, "N m s/rad", 0, "viscous friction in roll"),
+	KD("sim", "wheel_ud_viscous_n_m_s_per_rad", sim.viscous[I_UD], 1e-4, 0,
+	   10, "N m s/rad", 0, "viscous friction of the up/down wheel"),
+	KD("sim", "wheel_lr_viscous_n_m_s_per_rad", sim.viscous[I_LR], 1e-4, 0,
+	   10, "N m s/rad", 0, "viscous friction of the left/right wheel"),
+	KD("sim", "insertion_coulomb_n", sim.coulomb[I_INS], 0.3, 0, 100, "N",
+	   0, "dry friction of the carriage"),
+	KD("sim", "roll_coulomb_n_m", sim.coulomb[I_ROLL], 2e-3, 0, 10, "N m",
+	   0, "dry friction in roll"),
+	KD("sim", "wheel_ud_coulomb_n_m", sim.coulomb[I_UD], 5e-4, 0, 10, "N m",
+	   0, "dry friction of the up/down wheel"),
+	KD("sim", "wheel_lr_coulomb_n_m", sim.coulomb[I_LR], 5e-4, 0, 10, "N m",
+	   0, "dry friction of the left/right wheel"),
+	KD("sim", "hand_insertion_stiffness_n_per_m", sim.hand_stiffness[I_INS],
+	   400, 0, 1e5, "N/m", 0, "scripted hand: grip stiffness, insertion"),
+	KD("sim", "hand_roll_stiffness_n_m_per_rad", sim.hand_stiffness[I_ROLL],
+	   0.5, 0, 100, "N m/rad", 0, "scripted hand: grip stiffness, roll"),
+	KD("sim", "hand_wheel_ud_stiffness_n_m_per_rad",
+	   sim.hand_stiffness[I_UD], 1.0, 0, 10, "N m/rad", 0,
+	   "scripted hand: thumb stiffness, up/down wheel"),
+	KD("sim", "hand_wheel_lr_stiffness_n_m_per_rad",
+	   sim.hand_stiffness[I_LR], 1.0, 0, 10, "N m/rad", 0,
+	   "scripted hand: thumb stiffness, left/right wheel"),
+	KD("sim", "hand_insertion_damping_n_s_per_m", sim.hand_damping[I_INS],
+	   40, 0, 1e4, "N s/m", 0, "scripted hand: damping, insertion"),
+	KD("sim", "hand_roll_damping_n_m_s_per_rad", sim.hand_damping[I_ROLL],
+	   0.02, 0, 100, "N m s/rad", 0, "scripted hand: damping, roll"),
+	KD("sim", "hand_wheel_ud_damping_n_m_s_per_rad", sim.hand_damping[I_UD],
+	   0.01, 0, 10, "N m s/rad", 0, "scripted hand: damping, up/down wheel"),
+	KD("sim", "hand_wheel_lr_damping_n_m_s_per_rad", sim.hand_damping[I_LR],
+	   0.01, 0, 10, "N m s/rad", 0,
+	   "scripted hand: damping, left/right wheel"),
+	KD("sim", "hand_insertion_max_n", sim.hand_max[I_INS], 40, 0, 200, "N",
+	   0, "strongest push or pull of the hand"),
+	KD("sim", "hand_roll_max_n_m", sim.hand_max[I_ROLL], 1.0, 0, 10, "N m",
+	   0, "strongest twist of the hand"),
+	KD("sim", "hand_wheel_ud_max_n_m", sim.hand_max[I_UD], 0.3, 0, 10,
+	   "N m", 0, "strongest thumb torque on the up/down wheel"),
+	KD("sim", "hand_wheel_lr_max_n_m", sim.hand_max[I_LR], 0.3, 0, 10,
+	   "N m", 0, "strongest thumb torque on the left/right wheel"),
+	KD("sim", "hand_insertion_max_speed_m_s", sim.hand_max_speed[I_INS],
+	   1.5, 0.01, 100, "m/s", 0, "the hand's push fades to nothing at "
+	   "this speed (a muscle's force-velocity limit)"),
+	KD("sim", "hand_roll_max_speed_rad_s", sim.hand_max_speed[I_ROLL], 15,
+	   0.01, 1000, "rad/s", 0, "the hand's twist fades to nothing at "
+	   "this speed"),
+	KD("sim", "hand_wheel_ud_max_speed_rad_s", sim.hand_max_speed[I_UD],
+	   15, 0.01, 1000, "rad/s", 0, "the thumb fades to nothing at this "
+	   "speed, up/down wheel"),
+	KD("sim", "hand_wheel_lr_max_speed_rad_s", sim.hand_max_speed[I_LR],
+	   15, 0.01, 1000, "rad/s", 0, "the thumb fades to nothing at this "
+	   "speed, left/right wheel"),
+	KD("sim", "hand_hold_s", sim.hand_hold_s, 0.25, 0.01, 10, "s", 0,
+	   "live hand input holds this long unless refreshed"),
+
+	KS("socket", "directory", socket.directory, "/run/endosim", 0,
+	   "where status.sock (read-only) and control.sock live"),
+	KS("socket", "group", socket.group, "", 0,
+	   "group owning control.sock; empty: the daemon's group"),
+	KI("socket", "max_request_bytes", socket.max_request_bytes, 65536, 256,
+	   1 << 24, "bytes", 0, "largest request accepted"),
+	KI("socket", "max_clients", socket.max_clients, 32, 1, 1024, "", 0,
+	   "connections served at once"),
+	KI("socket", "max_queued_bytes", socket.max_queued_bytes, 4 << 20,
+	   1 << 16, 1 << 26, "bytes", 0,
+	   "unsent replies held per client before it is disconnected"),
+	KD("socket", "idle_timeout_s", socket.idle_timeout_s, 60, 1, 86400, "s",
+	   0, "a client that sends nothing this long is disconnected "
+	   "(subscribers excepted)"),
+	KD("socket", "partial_timeout_s", socket.partial_timeout_s, 5, 0.1,
+	   3600, "s", 0, "a request begun but not finished within this is "
+	   "dropped with its connection"),
+
+	KS("shm", "name", shm.name, ENDOSIM_SHM_DEFAULT_NAME, 0,
+	   "POSIX shared-memory object holding the published state"),
+
+	KD("limits", "insertion_max_force_n", limits.max[I_INS], 45, 0, 100,
+	   "N", LIVE, "largest force on the carriage, either way"),
+	KD("limits", "roll_max_torque_n_m", limits.max[I_ROLL], 1.0, 0, 5,
+	   "N m", LIVE, "largest torque on the tube, either way"),
+	KD("limits", "wheel_ud_max_torque_n_m", limits.max[I_UD], 0.1, 0, 1,
+	   "N m", LIVE, "largest torque on the up/down wheel"),
+	KD("limits", "wheel_lr_max_torque_n_m", limits.max[I_LR], 0.1, 0, 1,
+	   "N m", LIVE, "largest torque on the left/right wheel"),
+	KD("limits", "enable_ramp_s", limits.enable_ramp_s, 1.0, 0, 10, "s",
+	   LIVE, "after enable, forces rise from nothing to full over this"),
+	KD("limits", "insertion_max_speed_m_s", limits.max_speed[I_INS], 2.0,
+	   0.01, 100, "m/s", 0, "a faster carriage is a runaway: a fault"),
+	KD("limits", "roll_max_speed_rad_s", limits.max_speed[I_ROLL], 30,
+	   0.01, 1000, "rad/s", 0, "a faster roll is a runaway: a fault"),
+	KD("limits", "wheel_ud_max_speed_rad_s", limits.max_speed[I_UD], 30,
+	   0.01, 1000, "rad/s", 0, "a faster up/down wheel is a runaway"),
+	KD("limits", "wheel_lr_max_speed_rad_s", limits.max_speed[I_LR], 30,
+	   0.01, 1000, "rad/s", 0, "a faster left/right wheel is a runaway"),
+	KD("limits", "travel_margin_fraction", limits.travel_margin, 0.02, 0,
+	   100, "", 0, "a position beyond either end of [rig] travel by more "
+	   "than this share of it is a fault"),
+	KD("limits", "saturation_s", limits.saturation_s, 5, 0.01, 3600, "s",
+	   0, "a force held beyond its limit longer than this, torque on, is "
+	   "a fault (see saturation_fault)"),
+	KE("limits", "saturation_fault", limits.saturation_fault,
+	   CONFIG_OVERRUN_AUTO, overrun_fault_names, 0, "a force held beyond "
+	   "its limit too long: a fault (yes), a warning (no); auto: a fault "
+	   "where a real drive turns the axis"),
+
+	KD("limits", "insertion_slew_n_per_s", limits.slew[I_INS], 4000, 1,
+	   1e6, "N/s", LIVE, "fastest change of the carriage force"),
+	KD("limits", "roll_slew_n_m_per_s", limits.slew[I_ROLL], 100, 0.01,
+	   1e5, "N m/s", LIVE, "fastest change of the tube torque"),
+	KD("limits", "wheel_ud_slew_n_m_per_s", limits.slew[I_UD], 20, 0.01,
+	   1e5, "N m/s", LIVE, "fastest change of the up/down wheel torque"),
+	KD("limits", "wheel_lr_slew_n_m_per_s", limits.slew[I_LR], 20, 0.01,
+	   1e5, "N m/s", LIVE, "fastest change of the left/right wheel torque"),
+
+	KE("haptics", "model", haptics.model, 1, model_names, 0,
+	   "rod: the insertion tube an elastic rod in a colon that moves "
+	   "([rod]); paper: the tube on the centreline (Koerner and Maenner)"),
+	KD("haptics", "scope_radius_m", haptics.scope_radius_m, 0.0065, 0, 0.02,
+	   "m", 0, "radius of the scope's tip and tube: how far from the wall "
+	   "its centre stays"),
+	KD("haptics", "wall_stiffness_n_per_m", haptics.wall_stiffness_n_per_m,
+	   2000, 0, 20000, "N/m", LIVE, "k_wall: the colon wall's spring "
+	   "against the tip"),
+	KD("haptics", "wall_damping_n_s_per_m", haptics.wall_damping_n_s_per_m,
+	   15, 0, 500, "N s/m", LIVE, "damping of the tip's penetration "
+	   "velocity while in contact"),
+	KD("haptics", "tip_lateral_stiffness_n_per_m",
+	   haptics.tip_lateral_stiffness_n_per_m, 150, 1, 100000, "N/m", LIVE,
+	   "how hard the bending section resists the wall pushing its side"),
+	KE("haptics", "force_shading", haptics.force_shading, 1, yes_no, LIVE,
+	   "contact force along interpolated normals (no facet buzz)"),
+	KD("haptics", "contact_reach_m", haptics.contact_reach_m, 0.1, 0.01,
+	   0.5, "m", LIVE, "the stretch of colon around the tip whose "
+	   "triangles are contact candidates"),
+	KD("haptics", "entry_depth_m", haptics.entry_depth_m, 0.02, 0, 0.5,
+	   "m", LIVE, "the tip touches the wall from this insertion on"),
+	KD("haptics", "friction_n_s_per_m_rad", haptics.friction_n_s_per_m_rad,
+	   8, 0, 1000, "N s/(m rad)", LIVE, "c_f: insertion friction per "
+	   "speed and per rad of the tube's turning"),
+	KD("haptics", "torsion_n_m_s_per_rad2", haptics.torsion_n_m_s_per_rad2,
+	   0.02, 0, 10, "N m s/rad^2", LIVE, "roll friction per roll speed "
+	   "and per rad of the tube's turning"),
+	KD("haptics", "wire_spacing_m", haptics.wire_spacing_m, 0.008, 0, 0.05,
+	   "m", LIVE, "dr: distance between a wheel's two Bowden wires"),
+	KD("haptics", "wire_tension_n_m_per_m", haptics.wire_tension_n_m_per_m,
+	   0.5, 0, 1000, "N m/m", LIVE, "k_t: wheel torque per metre of wire "
+	   "length difference"),
+	KD("haptics", "bending_stiffness_n_m_per_rad",
+	   haptics.bending_stiffness_n_m_per_rad, 0.01, 0, 10, "N m/rad",
+	   LIVE, "the bending section springing back straight, per rad of "
+	   "tip bend"),
+	KD("haptics", "wheel_stop_stiffness_n_m_per_rad",
+	   haptics.stop_stiffness_n_m_per_rad, 0.5, 0, 100, "N m/rad", LIVE,
+	   "each knob's end at the tip's angulation limit: its spring per rad "
+	   "of wheel past the limit"),
+	KD("haptics", "wheel_stop_damping_n_m_s_per_rad",
+	   haptics.stop_damping_n_m_s_per_rad, 4e-3, 0, 1, "N m s/rad", LIVE,
+	   "each knob's end: its damping while the wheel is past the limit"),
+	KD("haptics", "wheel_delay_s", haptics.wheel_delay_s, 0.003, 0, 0.05,
+	   "s", LIVE, "a wheel on a drive: the lag of its torque (feedback "
+	   "age, the command's way); limits the wall on it"),
+	KD("haptics", "loop_relax_s", haptics.loop_relax_s, 0.1, 0.001, 10,
+	   "s", LIVE, "time constant with which a loop follows its force "
+	   "balance"),
+	KD("haptics", "insertion_damping_n_s_per_m", haptics.damping[I_INS],
+	   0.5, 0, 100, "N s/m", LIVE, "light virtual damping of the carriage"),
+	KD("haptics", "roll_damping_n_m_s_per_rad", haptics.damping[I_ROLL],
+	   1e-3, 0, 1, "N m s/rad", LIVE, "light virtual damping in roll"),
+	KD("haptics", "wheel_ud_damping_n_m_s_per_rad", haptics.damping[I_UD],
+	   2e-4, 0, 1, "N m s/rad", LIVE,
+	   "light virtual damping of the up/down wheel"),
+	KD("haptics", "wheel_lr_damping_n_m_s_per_rad", haptics.damping[I_LR],
+	   2e-4, 0, 1, "N m s/rad", LIVE,
+	   "light virtual damping of the left/right wheel"),
+	KE("haptics", "passivity", haptics.passivity, 1, yes_no, LIVE,
+	   "passivity observer and controller on the contact forces"),
+
+	KI("rod", "segments", rod.segments, 160, 8, 1024, "", 0,
+	   "rigid segments of the insertion tube (cost grows linearly)"),
+	KD("rod", "length_m", rod.length_m, 1.6, 0.5, 3, "m", 0,
+	   "the insertion tube's length: the deepest insertion"),
+	KD("rod", "mass_per_m_kg", rod.mass_per_m_kg, 0.2, 0.01, 10, "kg/m", 0,
+	   "the insertion tube's mass per length"),
+	KD("rod", "bending_n_m2", rod.bending_n_m2, 0.03, 1e-4, 10, "N m^2",
+	   LIVE, "EI of the insertion tube (colonoscopes 0.026-0.040)"),
+	KD("rod", "torsion_n_m2", rod.torsion_n_m2, 0.45, 1e-4, 100, "N m^2",
+	   LIVE, "GJ of the insertion tube (68-88 N cm^2/deg: 0.39-0.50)"),
+	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2, 0.01, 1e-4, 10,
+	   "N m^2", LIVE, "EI of the bending section, its wires held"),
+	KD("rod", "damping_s", rod.damping_s, 0.002, 0, 1, "s", 0,
+	   "the tube's internal damping: Kelvin-Voigt time of its bending "
+	   "and twist"),
+	KD("rod", "drag_n_s_per_m2", rod.drag_n_s_per_m2, 0.5, 0, 1000,
+	   "N s/m^2", 0, "viscous drag on the tube per length and speed"),
+	KI("rod", "iterations", rod.iterations, 2, 2, 8, "", 0,
+	   "Newton iterations of the rod's solve per step"),
+	KD("rod", "wall_n_per_m2", rod.wall_n_per_m2, 1.5e5, 1e3, 1e7,
+	   "N/m^2", LIVE, "the colon wall's stiffness against the tube, per "
+	   "metre of tube"),
+	KD("rod", "wall_damping_s", rod.wall_damping_s, 0.01, 0, 1, "s", LIVE,
+	   "the wall's damping: its Kelvin-Voigt time"),
+	KD("rod", "friction", rod.friction, 0.05, 0, 2, "", LIVE,
+	   "mu: Coulomb friction of the tube on the mucosa"),
+	KD("rod", "slip_m_per_s", rod.slip_m_per_s, 0.002, 1e-5, 1, "m/s",
+	   LIVE, "below this sliding speed the tube sticks (friction "
+	   "regularised)"),
+	KD("rod", "pipe_n_per_m2", rod.pipe_n_per_m2, 1e6, 1e3, 1e8, "N/m^2",
+	   LIVE, "the rig's slitted pipe holding the tube outside, per metre"),
+	KD("rod", "coupling_n_per_m", rod.coupling_n_per_m, 3000, 10, 1e6,
+	   "N/m", LIVE, "the carriage's hold on the tube's end along the pipe"),
+	KD("rod", "coupling_n_s_per_m", rod.coupling_n_s_per_m, 20, 0, 1e4,
+	   "N s/m", LIVE, "its damping"),
+	KD("rod", "roll_n_m_per_rad", rod.roll_n_m_per_rad, 2, 0.01, 1e3,
+	   "N m/rad", LIVE, "the carriage's hold on the tube's end in roll"),
+	KD("rod", "roll_n_m_s_per_rad", rod.roll_n_m_s_per_rad, 0.005, 0, 10,
+	   "N m s/rad", LIVE, "its damping"),
+	KD("rod", "stop_n_per_m", rod.stop_n_per_m, 5000, 0, 1e6, "N/m", LIVE,
+	   "the handle at the anus: inserted past the tube's length"),
+	KD("rod", "colon_node_spacing_m", rod.colon_node_spacing_m, 0.02,
+	   0.005, 0.2, "m", 0, "the mobile colon's nodes, this far apart"),
+	KD("rod", "colon_damping_n_s_per_m", rod.colon_damping_n_s_per_m, 20,
+	   0.1, 1e5, "N s/m", LIVE, "the tissue's damping per node"),
+	KD("rod", "colon_chain_n_per_m", rod.colon_chain_n_per_m, 100, 0, 1e5,
+	   "N/m", LIVE, "the colon's continuity between its nodes"),
+	KD("rod", "colon_bending_n_per_m", rod.colon_bending_n_per_m, 300, 0,
+	   1e6, "N/m", LIVE, "the colon wall's resistance to crumpling "
+	   "between its nodes"),
+
+	KL("log", "level", log.level, LOG_INFO, LIVE,
+	   "err, warning, notice, info or debug"),
+
+	GUIDE_KEYS("insertion", I_INS, "n", "m", "N", "m", 4000, 40, 25, 0.1,
+		   6, 0.03),
+	GUIDE_KEYS("roll", I_ROLL, "n_m", "rad", "N m", "rad", 2, 0.02, 0.5,
+		   2, 0.1, 0.5),
+	GUIDE_KEYS("wheel_ud", I_UD, "n_m", "rad", "N m", "rad", 0.5, 0.002,
+		   0.08, 2, 0.04, 0.5),
+	GUIDE_KEYS("wheel_lr", I_LR, "n_m", "rad", "N m", "rad", 0.5, 0.002,
+		   0.08, 2, 0.04, 0.5),
+	KD("guide", "takeover_s", guide.takeover_s, 0.3, 0.01, 10, "s", LIVE,
+	   "a push held this long takes over from the guidance"),
+	KD("guide", "fade_s", guide.fade_s, 0.5, 0.001, 10, "s", LIVE,
+	   "taken over or stopped, the guidance fades out over this"),
+	KD("guide", "error_s", guide.error_s, 1.0, 0.01, 60, "s", LIVE,
+	   "an error beyond error_max this long: cannot follow, ends"),
+	KD("guide", "hand_filter_hz", guide.hand_filter_hz, 5, 0.1, 100, "Hz",
+	   LIVE, "low pass of the hand's estimated force"),
+	AXIS_KEYS("axis.insertion", I_INS),
+	KD("axis.insertion", "gear_radius_m", axis[I_INS].gear_radius_m, 0.015,
+	   0.001, 1, "m", 0, "radius of the pinion that drives the carriage"),
+	AXIS_KEYS("axis.roll", I_ROLL),
+	AXIS_KEYS("axis.wheel_ud", I_UD),
+	AXIS_KEYS("axis.wheel_lr", I_LR),
+
+	EPOS4_KEYS("epos4.insertion", I_INS),
+	EPOS4_KEYS("epos4.roll", I_ROLL),
+	EPOS4_KEYS("epos4.wheel_ud", I_UD),
+	EPOS4_KEYS("epos4.wheel_lr", I_LR),
+
+	KE("modbus", "transport", modbus.transport, CONFIG_MODBUS_RTU,
+	   transport_names, 0, "rtu (serial line) or tcp"),
+	KS("modbus", "device", modbus.device, "/dev/ttyUSB0", 0,
+	   "rtu: the serial device"),
+	KI("modbus", "baud", modbus.baud, 115200, 1200, 4000000, "Bd", 0,
+	   "rtu: line speed"),
+	KE("modbus", "parity", modbus.parity, CONFIG_PARITY_NONE, parity_names,
+	   0, "rtu: none, even or odd"),
+	KI("modbus", "data_bits", modbus.data_bits, 8, 5, 8, "", 0,
+	   "rtu: data bits"),
+	KI("modbus", "stop_bits", modbus.stop_bits, 1, 1, 2, "", 0,
+	   "rtu: stop bits"),
+	KE("modbus", "rs485", modbus.rs485, 0, yes_no, 0,
+	   "rtu: switch the port to RS-485 mode (TIOCSRS485)"),
+	KS("modbus", "host", modbus.host, "127.0.0.1", 0,
+	   "tcp: host name or address"),
+	KI("modbus", "port", modbus.port, 502, 1, 65535, "", 0, "tcp: port"),
+	KD("modbus", "response_timeout_s", modbus.response_timeout_s, 0.02,
+	   0.001, 5, "s", 0, "longest wait for a reply to begin"),
+	KD("modbus", "byte_timeout_s", modbus.byte_timeout_s, 0.005, 0.0001, 1,
+	   "s", 0, "longest gap inside a reply"),
+	KD("modbus", "feedback_max_age_s", modbus.feedback_max_age_s, 0.05,
+	   0.001, 2, "s", 0, "feedback older than this is a fault"),
+	KD("modbus", "max_rate_hz", modbus.max_rate_hz, 1000, 1, 1e5, "Hz", 0,
+	   "bus cycles per second at most (the line may allow fewer)"),
+
+	MODBUS_DRIVE_KEYS("modbus.insertion", I_INS),
+	MODBUS_DRIVE_KEYS("modbus.roll", I_ROLL),
+	MODBUS_DRIVE_KEYS("modbus.wheel_ud", I_UD),
+	MODBUS_DRIVE_KEYS("modbus.wheel_lr", I_LR),
+	KS("case", "directory", colon.directory, CONFIG_CASE_DIR, 0,
+	   "where the case files NAME.case live (endoctl case list)"),
+	KS("case", "name", colon.name, "normal", 0,
+	   "the case loaded at start-up: DIRECTORY/NAME.case"),
+	KS("case", "file", colon.file, "", 0,
+	   "instead of NAME: a .case file, or a Wavefront .obj colon mesh"),
+	KS("case", "centreline_file", colon.centreline_file, "", 0,
+	   "with an .obj: its centreline, 'x y z' per line; empty: the "
+	   "OBJ's own polyline"),
+	KD("case", "step_m", colon.step_m, 0.002, 0.0002, 0.01, "m", 0,
+	   "centreline sample and mesh ring spacing"),
+	KI("case", "ring_vertices", colon.ring_vertices, 192, 8, 4096, "", 0,
+	   "vertices around each ring (triangles ~ 2 x length / step_m x "
+	   "this)"),
+	KD("case", "segment_m", colon.segment_m, 0.04, 0.01, 0.5, "m", 0,
+	   "length of the mesh segments that index triangles along the colon"),
+
+	KE("debug", "test_commands", debug.test_commands, 0, yes_no, 0,
+	   "accept the test-only fault injections (endoctl debug): never on "
+	   "a rig a person touches"),
+
+	KS("session", "directory", session.directory, CONFIG_SESSION_DIR, 0,
+	   "where training sessions are recorded (ID.endoses), created if "
+	   "missing"),
+	KD("session", "ring_s", session.ring_s, 4.0, 0.1, 60, "s", 0,
+	   "the ring between the force loop and the recorder, in seconds of "
+	   "cycles: how long a stalled disk is ridden out before records drop"),
+	KD("session", "write_limit_bytes_per_s", session.write_limit_bytes_per_s,
+	   0, 0, 1e9, "B/s", 0,
+	   "for tests only: the recorder writes at most this fast (a slow "
+	   "disk); 0: unlimited"),
+	KD("session", "force_threshold_n", session.force_threshold_n, 15, 0.1,
+	   1000, "N", 0, "metrics: insertion force above this is an episode of "
+	   "excessive pressure"),
+	KD("session", "loop_threshold_m", session.loop_threshold_m, 0, 0, 1,
+	   "m", 0, "metrics: a mobile segment bowed (moved) more than this is "
+	   "a loop; 0: by the model (0.01 paper, 0.03 rod)"),
+	KD("session", "view_distance_m", session.view_distance_m, 0.06, 0.001,
+	   1, "m", 0, "metrics: mucosa nearer the camera than this is seen"),
+	KD("session", "fov_deg", session.fov_deg, 140, 1, 359, "deg", 0,
+	   "metrics: the camera's full field of view"),
+	KD("session", "view_rate_hz", session.view_rate_hz, 10, 0.1, 1000, "Hz",
+	   0, "metrics: how often the mucosa and polyps seen are evaluated"),
+	KS("session", "course", session.course, "", 0,
+	   "the course file (config/courses/NAME.course) that endoctl trainee "
+	   "judges the sessions by; empty: none"),
+
+	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
+	   "m", LIVE, "length of the bending section behind the tip"),
+	KD("scope", "ud_gain_rad_per_rad", scope.gain[0], 1.8, 0, 20, "rad/rad",
+	   LIVE, "tip bend per up/down wheel angle"),
+	KD("scope", "lr_gain_rad_per_rad", scope.gain[1], 1.6, 0, 20, "rad/rad",
+	   LIVE, "tip bend per left/right wheel angle"),
+	KD("scope", "ud_limit_rad", scope.limit_rad[0], 3.14159, 0, 3.1416,
+	   "rad", LIVE, "largest tip bend up or down (180 deg)"),
+	KD("scope", "lr_limit_rad", scope.limit_rad[1], 2.79253, 0, 3.1416,
+	   "rad", LIVE, "largest tip bend left or right (160 deg)"),
+};
+
+#define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
+
+size_t config_key_count(void)
+{
+	return KEY_COUNT;
+}
+
+const struct config_key *config_key_at(size_t i)
+{
+	return i < KEY_COUNT ? &keys[i] : NULL;
+}
+
+static const struct config_key *find(const char *section, const char *name)
+{
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		if (!strcmp(keys[i].section, section) &&
+		    !strcmp(keys[i].name, name)) {
+			return &keys[i];
+		}
+	}
+	return NULL;
+}
+
+const struct config_key *config_key_find(const char *key)
+{
+	char section[64];
+	const char *dot = strrchr(key, '.');
+
+	if (!dot || (size_t)(dot - key) >= sizeof(section)) {
+		return NULL;
+	}
+	memcpy(section, key, (size_t)(dot - key));
+	section[dot - key] = '\0';
+	return find(section, dot + 1);
+}
+
+static void *field(struct config *cfg, const struct config_key *k)
+{
+	return (char *)cfg + k->offset;
+}
+
+static const void *cfield(const struct config *cfg, const struct config_key *k)
+{
+	return (const char *)cfg + k->offset;
+}
+
+void config_defaults(struct config *cfg)
+{
+	memset(cfg, 0, sizeof(*cfg));
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		const struct config_key *k = &keys[i];
+
+		switch (k->type) {
+		case CONFIG_INT:
+		case CONFIG_ENUM:
+		case CONFIG_LEVEL:
+			*(int *)field(cfg, k) = (int)k->def;
+			break;
+		case CONFIG_DOUBLE:
+			*(double *)field(cfg, k) = k->def;
+			break;
+		case CONFIG_STRING:
+			snprintf(field(cfg, k), CONFIG_STR, "%s", k->def_str);
+			break;
+		case CONFIG_REGISTER:
+			regmap_parse(k->def_str, field(cfg, k), NULL, 0);
+			break;
+		}
+	}
+}
+
+static int parse_number(const struct config_key *k, const char *text,
+			double *out, char *why, size_t size)
+{
+	char *end;
+
+	errno = 0;
+	if (k->type == CONFIG_INT) {
+		long v = strtol(text, &end, k->flags & CONFIG_HEX ? 16 : 10);
+
+		if (!*text || *end || errno) {
+			snprintf(why, size, "'%s' is not an integer", text);
+			return -EINVAL;
+		}
+		*out = (double)v;
+	} else {
+		double v = strtod(text, &end);
+
+		if (!*text || *end || errno || !isfinite(v)) {
+			snprintf(why, size, "'%s' is not a number", text);
+			return -EINVAL;
+		}
+		*out = v;
+	}
+	if (*out < k->min || *out > k->max) {
+		snprintf(why, size, "%s is out of range [%g, %g]%s%s", text,
+			 k->min, k->max, *k->unit ? " " : "", k->unit);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int parse_choice(const struct config_key *k, const char *text,
+			int *out, char *why, size_t size)
+{
+	int n = 0;
+
+	if (k->type == CONFIG_LEVEL) {
+		*out = log_level_parse(text);
+		if (*out < 0) {
+			snprintf(why, size, "'%s' is not one of err, warning, "
+				 "notice, info, debug", text);
+			return -EINVAL;
+		}
+		return 0;
+	}
+	for (; k->choices[n]; n++) {
+		if (!strcmp(text, k->choices[n])) {
+			*out = n;
+			return 0;
+		}
+	}
+	snprintf(why, size, "'%s' is not a known choice", text);
+	return -EINVAL;
+}
+
+/* Parses TEXT into K's field of CFG; on error CFG is unchanged. */
+static int apply(struct config *cfg, const struct config_key *k,
+		 const char *text, char *why, size_t size)
+{
+	double num;
+	int choice, err;
+
+	switch (k->type) {
+	case CONFIG_INT:
+	case CONFIG_DOUBLE:
+		err = parse_number(k, text, &num, why, size);
+		if (err) {
+			return err;
+		}
+		if (k->type == CONFIG_INT) {
+			*(int *)field(cfg, k) = (int)num;
+		} else {
+			*(double *)field(cfg, k) = num;
+		}
+		break;
+	case CONFIG_STRING:
+		if (strlen(text) >= CONFIG_STR) {
+			snprintf(why, size, "longer than %d characters",
+				 CONFIG_STR - 1);
+			return -EINVAL;
+		}
+		strcpy(field(cfg, k), text);
+		break;
+	case CONFIG_ENUM:
+	case CONFIG_LEVEL:
+		err = parse_choice(k, text, &choice, why, size);
+		if (err) {
+			return err;
+		}
+		*(int *)field(cfg, k) = choice;
+		break;
+	case CONFIG_REGISTER:
+		return regmap_parse(text, field(cfg, k), why, size);
+	}
+	return 0;
+}
+
+struct parse_ctx {
+	struct config *cfg;
+	FILE *file;
+	const char *path;
+	int line;           /* line being parsed, 1-based */
+	bool at_line_start;
+	unsigned int keys_seen;
+	int first_line[KEY_COUNT]; /* 0: not set in this file */
+	char *err;
+	size_t errsize;
+};
+
+/* fgets for inih that counts lines, so errors can name them. */
+static char *read_line(char *str, int num, void *stream)
+{
+	struct parse_ctx *ctx = stream;
+	char *r = fgets(str, num, ctx->file);
+
+	if (r) {
+		if (ctx->at_line_start) {
+			ctx->line++;
+		}
+		ctx->at_line_start = strchr(r, '\n') != NULL;
+	}
+	return r;
+}
+
+static int on_key(void *user, const char *section, const char *name,
+		  const char *value)
+{
+	struct parse_ctx *ctx = user;
+	const struct config_key *k = find(section, name);
+	char why[160];
+	size_t idx;
+
+	if (*ctx->err) {
+		return 0; /* keep the first error */
+	}
+	if (!k) {
+		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: unknown key",
+			 ctx->path, ctx->line, section, name);
+		return 0;
+	}
+	idx = (size_t)(k - keys);
+	if (ctx->first_line[idx]) {
+		snprintf(ctx->err, ctx->errsize,
+			 "%s:%d: [%s] %s: duplicate key (first set on line %d)",
+			 ctx->path, ctx->line, section, name,
+			 ctx->first_line[idx]);
+		return 0;
+	}
+	if (apply(ctx->cfg, k, value, why, sizeof(why))) {
+		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: %s",
+			 ctx->path, ctx->line, section, name, why);
+		return 0;
+	}
+	ctx->first_line[idx] = ctx->line;
+	ctx->keys_seen++;
+	return 1;
+}
+
+int config_load_stream(struct config *cfg, FILE *f, const char *name,
+		       char *err, size_t errsize)
+{
+	struct parse_ctx ctx = {
+		.cfg = cfg, .file = f, .path = name, .at_line_start = true,
+		.err = err, .errsize = errsize,
+	};
+	int r;
+
+	err[0] = '\0';
+	r = ini_parse_stream(read_line, &ctx, on_key, &ctx);
+	if (*err) {
+		return -EINVAL;
+	}
+	if (r != 0) {
+		snprintf(err, errsize, "%s:%d: syntax error", name, r);
+		return -EINVAL;
+	}
+	if (!ctx.keys_seen) {
+		snprintf(err, errsize, "%s: empty configuration (no keys)",
+			 name);
+		return -EINVAL;
+	}
+	return config_check(cfg, err, errsize);
+}
+
+int config_load(struct config *cfg, const char *path, char *err,
+		size_t errsize)
+{
+	FILE *f = fopen(path, "r");
+	int r;
+
+	if (!f) {
+		r = -errno;
+		snprintf(err, errsize, "%s: cannot open: %s", path,
+			 strerror(-r));
+		return r;
+	}
+	r = config_load_stream(cfg, f, path, err, errsize);
+	fclose(f);
+	return r;
+}
+
+int config_set(struct config *cfg, const char *key, const char *value,
+	       bool live_only, char *err, size_t errsize)
+{
+	const struct config_key *k = config_key_find(key);
+	struct config tmp = *cfg;
+	char why[160];
+	int r;
+
+	if (!k) {
+		snprintf(err, errsize, "%s: unknown key", key);
+		return -ENOENT;
+	}
+	if (live_only && !(k->flags & CONFIG_LIVE)) {
+		snprintf(err, errsize,
+			 "%s: cannot change while running (restart needed)",
+			 key);
+		return -EPERM;
+	}
+	if (apply(&tmp, k, value, why, sizeof(why))) {
+		snprintf(err, errsize, "%s: %s", key, why);
+		return -EINVAL;
+	}
+	r = config_check(&tmp, err, errsize);
+	if (r) {
+		return r;
+	}
+	*cfg = tmp;
+	return 0;
+}
+
+int config_axis_backend(const struct config *cfg, int axis)
+{
+	return cfg->rig.backend == CONFIG_BACKEND_DRIVES
+		       ? cfg->axis[axis].backend
+		       : CONFIG_DRIVE_SIM;
+}
+
+bool config_saturation_faults(const struct config *cfg, int axis)
+{
+	if (cfg->limits.saturation_fault != CONFIG_OVERRUN_AUTO) {
+		return cfg->limits.saturation_fault == CONFIG_OVERRUN_FAULT;
+	}
+	return config_axis_backend(cfg, axis) != CONFIG_DRIVE_SIM;
+}
+
+bool config_overrun_faults(const struct config *cfg)
+{
+	if (cfg->loop.overrun_fault != CONFIG_OVERRUN_AUTO) {
+		return cfg->loop.overrun_fault == CONFIG_OVERRUN_FAULT;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (config_axis_backend(cfg, a) != CONFIG_DRIVE_SIM) {
+			return true;
+		}
+	}
+	return false;
+}
+
+double config_feedback_max_age_s(const struct config *cfg, int axis)
+{
+	switch (config_axis_backend(cfg, axis)) {
+	case CONFIG_DRIVE_EPOS4_USB:
+		return cfg->epos4[axis].feedback_max_age_s;
+	case CONFIG_DRIVE_MODBUS:
+		return cfg->modbus.feedback_max_age_s;
+	default:
+		return cfg->rig.feedback_max_age_s;
+	}
+}
+
+/* Two EPOS4 axes must not be able to find the same drive. */
+static int check_epos4(const struct config *cfg, char *err, size_t size)
+{
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		const struct config_epos4 *e = &cfg->epos4[a];
+
+		for (int b = 0; b < a; b++) {
+			const struct config_epos4 *o = &cfg->epos4[b];
+
+			if (config_axis_backend(cfg, a) !=
+				    CONFIG_DRIVE_EPOS4_USB ||
+			    config_axis_backend(cfg, b) !=
+				    CONFIG_DRIVE_EPOS4_USB ||
+			    e->vid != o->vid || e->pid != o->pid ||
+			    strcmp(e->serial, o->serial)) {
+				continue;
+			}
+			snprintf(err, size, "[epos4.%s] serial: '%s' names the "
+				 "same drive as [epos4.%s]; two EPOS4 need their "
+				 "serial numbers", names_axis(a), e->serial,
+				 names_axis(b));
+			return -EINVAL;
+		}
+	}
+	return 0;
+}
+
+/* Speeds libmodbus knows (it silently takes 9600 for any other). */
+static bool standard_baud(int baud)
+{
+	static const int bauds[] = {
+		1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200, 230400,
+		460800, 500000, 576000, 921600, 1000000, 1152000, 1500000,
+		2000000, 2500000, 3000000, 3500000, 4000000,
+	};
+
+	for (size_t i = 0; i < sizeof(bauds) / sizeof(bauds[0]); i++) {
+		if (bauds[i] == baud) {
+			return true;
+		}
+	}
+	return false;
+}
+
+static int check_modbus_bus(const struct config_modbus *m, char *err,
+			    size_t size)
+{
+	if (m->transport == CONFIG_MODBUS_TCP) {
+		if (!m->host[0]) {
+			snprintf(err, size, "[modbus] host: empty");
+			return -EINVAL;
+		}
+		return 0;
+	}
+	if (!m->device[0]) {
+		snprintf(err, size, "[modbus] device: empty");
+		return -EINVAL;
+	}
+	if (!standard_baud(m->baud)) {
+		snprintf(err, size, "[modbus] baud: %d is not a standard line "
+			 "speed (e.g. 9600, 115200, 1000000)", m->baud);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+/* The feedback registers of D, read with 0x17, fit one holding block. */
+static int check_combined(const struct config_modbus_drive *d,
+			  const char *axis, char *err, size_t size)
+{
+	static const int reads[] = { REGMAP_POSITION, REGMAP_VELOCITY,
+				     REGMAP_FAULT };
+	int lo = 0xFFFF, hi = 0;
+
+	if (d->reg[REGMAP_TORQUE].table != REGMAP_HOLDING) {
+		snprintf(err, size, "[modbus.%s] combined_0x17: torque must "
+			 "be a holding register", axis);
+		return -EINVAL;
+	}
+	for (size_t i = 0; i < sizeof(reads) / sizeof(reads[0]); i++) {
+		const struct regmap_reg *r = &d->reg[reads[i]];
+
+		if (r->table == REGMAP_NONE) {
+			continue;
+		}
+		if (r->table != REGMAP_HOLDING) {
+			snprintf(err, size, "[modbus.%s] %s: 0x17 reads holding "
+				 "registers only", axis,
+				 regmap_signal_name(reads[i]));
+			return -EINVAL;
+		}
+		lo = r->address < lo ? r->address : lo;
+		hi = r->address + regmap_words(r) > hi
+			     ? r->address + regmap_words(r) : hi;
+	}
+	if (hi - lo > 125) {
+		snprintf(err, size, "[modbus.%s] combined_0x17: the feedback "
+			 "registers span %d, more than one 0x17 reads (125)",
+			 axis, hi - lo);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int check_modbus_drive(const struct config_modbus_drive *d,
+			      const char *axis, char *err, size_t size)
+{
+	static const int needed[] = { REGMAP_TORQUE, REGMAP_POSITION };
+	static const int writes[] = { REGMAP_TORQUE, REGMAP_ENABLE,
+				      REGMAP_FAULT_RESET, REGMAP_WATCHDOG };
+
+	for (size_t i = 0; i < sizeof(needed) / sizeof(needed[0]); i++) {
+		if (d->reg[needed[i]].table == REGMAP_NONE) {
+			snprintf(err, size, "[modbus.%s] %s: a modbus axis needs "
+				 "it", axis, regmap_signal_name(needed[i]));
+			return -EINVAL;
+		}
+	}
+	for (size_t i = 0; i < sizeof(writes) / sizeof(writes[0]); i++) {
+		const struct regmap_reg *r = &d->reg[writes[i]];
+
+		if (r->table != REGMAP_NONE && !regmap_writable(r)) {
+			snprintf(err, size, "[modbus.%s] %s: is written: it must "
+				 "be a coil or a holding register", axis,
+				 regmap_signal_name(writes[i]));
+			return -EINVAL;
+		}
+	}
+	return d->combined_0x17 ? check_combined(d, axis, err, size) : 0;
+}
+
+static int check_modbus(const struct config *cfg, char *err, size_t size)
+{
+	bool any = false;
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		const struct config_modbus_drive *d = &cfg->modbus_drive[a];
+
+		if (config_axis_backend(cfg, a) != CONFIG_DRIVE_MODBUS) {
+			continue;
+		}
+		any = true;
+		if (check_modbus_drive(d, names_axis(a), err, size)) {
+			return -EINVAL;
+		}
+		for (int b = 0; b < a; b++) {
+			if (config_axis_backend(cfg, b) == CONFIG_DRIVE_MODBUS &&
+			    cfg->modbus_drive[b].slave == d->slave) {
+				snprintf(err, size, "[modbus.%s] slave: %d is "
+					 "[modbus.%s]'s too", names_axis(a),
+					 d->slave, names_axis(b));
+				return -EINVAL;
+			}
+		}
+	}
+	return any ? check_modbus_bus(&cfg->modbus, err, size) : 0;
+}
+
+bool config_case_name_ok(const char *name)
+{
+	size_t n = strspn(name, "abcdefghijklmnopqrstuvwxyz"
+			  "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-");
+
+	return n && !name[n];
+}
+
+int config_check(const struct config *cfg, char *err, size_t errsize)
+{
+	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize)) {
+		return -EINVAL;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (cfg->rig.travel_min[a] >= cfg->rig.travel_max[a]) {
+			snprintf(err, errsize,
+				 "[rig] %s travel: minimum %g is not below "
+				 "maximum %g", names_axis(a),
+				 cfg->rig.travel_min[a],
+				 cfg->rig.travel_max[a]);
+			return -EINVAL;
+		}
+	}
+	if (!config_case_name_ok(cfg->colon.name)) {
+		snprintf(err, errsize, "[case] name: '%s' must be letters, "
+			 "digits, '-' and '_'", cfg->colon.name);
+		return -EINVAL;
+	}
+	if (cfg->shm.name[0] != '/' || strchr(cfg->shm.name + 1, '/') ||
+	    !cfg->shm.name[1]) {
+		snprintf(err, errsize, "[shm] name: '%s' must be '/' and a "
+			 "name without further '/'", cfg->shm.name);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+void config_format(const struct config *cfg, const struct config_key *k,
+		   char *buf, size_t size)
+{
+	switch (k->type) {
+	case CONFIG_INT:
+		snprintf(buf, size, k->flags & CONFIG_HEX ? "0x%04x" : "%d",
+			 *(const int *)cfield(cfg, k));
+		break;
+	case CONFIG_DOUBLE:
+		snprintf(buf, size, "%.9g", *(const double *)cfield(cfg, k));
+		break;
+	case CONFIG_STRING:
+		snprintf(buf, size, "%s", (const char *)cfield(cfg, k));
+		break;
+	case CONFIG_ENUM:
+		snprintf(buf, size, "%s",
+			 k->choices[*(const int *)cfield(cfg, k)]);
+		break;
+	case CONFIG_LEVEL:
+		snprintf(buf, size, "%s",
+			 log_level_name(*(const int *)cfield(cfg, k)));
+		break;
+	case CONFIG_REGISTER:
+		regmap_format(cfield(cfg, k), buf, size);
+		break;
+	}
+}
+
+void config_print(const struct config *cfg, FILE *out)
+{
+	const char *section = "";
+	char value[CONFIG_STR + 32];
+	int pad;
+
+	for (size_t i = 0; i < KEY_COUNT; i++) {
+		const struct config_key *k = &keys[i];
+
+		if (strcmp(section, k->section)) {
+			section = k->section;
+			fprintf(out, "%s[%s]\n", i ? "\n" : "", section);
+		}
+		config_format(cfg, k, value, sizeof(value));
+		pad = 40 - (int)(strlen(k->name) + strlen(value));
+		fprintf(out, "%s = %s%*s ; %s%s%s%s%s\n", k->name, value,
+			pad > 0 ? pad : 0, "", *k->unit ? "[" : "", k->unit,
+			*k->unit ? "] " : "", k->help,
+			k->flags & CONFIG_LIVE ? " (live)" : "");
+	}
+}

@@ -1,0 +1,329 @@
+/*
+ * config.h - endosimd's configuration: one table declares every key once
+ * (section, name, type, default, range, unit, whether it may change while
+ * running, one line of help). The same table parses the INI file (with
+ * Debian's libinih), applies command-line overrides, prints the effective
+ * configuration and answers GetConfig/SetParam.
+ *
+ * Errors are reported as one line, "FILE:LINE: [section] key: what", in the
+ * caller's buffer, before anything else happens; the caller exits with
+ * EX_CONFIG (78).
+ *
+ * Not thread-safe: the main thread loads; afterwards the control thread owns
+ * the master copy and hands copies to the force loop (loop.h).
+ */
+#ifndef ENDOSIM_CONFIG_H
+#define ENDOSIM_CONFIG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "proto/endosim_shm.h"
+#include "model/haptics_gains.h"
+#include "conf/regmap.h"
+
+#define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
+#ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
+#define CONFIG_CASE_DIR "/usr/local/share/endosim/cases"
+#endif
+#define CONFIG_SESSION_DIR "/var/lib/endosim/sessions"
+#define CONFIG_STR 128 /* longest string value, bytes with the NUL */
+#define CONFIG_OVERRUN_BUDGET_MAX 1000 /* [loop] overrun_budget */
+
+enum config_backend {
+	CONFIG_BACKEND_SIM = 0,    /* every axis simulated */
+	CONFIG_BACKEND_DRIVES = 1, /* each axis as its [axis.NAME] says */
+};
+
+/* What a missed overrun budget is ([loop] overrun_fault). */
+enum config_overrun_fault {
+	CONFIG_OVERRUN_WARN = 0,  /* no: a warning, counted and logged */
+	CONFIG_OVERRUN_FAULT = 1, /* yes: a fault, latched */
+	CONFIG_OVERRUN_AUTO = 2,  /* a fault unless every axis is simulated */
+};
+
+/* What moves one axis ([axis.NAME] backend). */
+enum config_drive {
+	CONFIG_DRIVE_SIM = 0,
+	CONFIG_DRIVE_EPOS4_USB = 1,
+	CONFIG_DRIVE_MODBUS = 2,
+};
+
+enum config_transport { CONFIG_MODBUS_RTU = 0, CONFIG_MODBUS_TCP = 1 };
+enum config_parity {
+	CONFIG_PARITY_NONE = 0,
+	CONFIG_PARITY_EVEN,
+	CONFIG_PARITY_ODD,
+};
+
+/* One axis' mechanics: how motor turns and encoder counts map to the axis. */
+struct config_axis {
+	int backend;          /* enum config_drive */
+	double gear_ratio;    /* motor turns per turn of the output */
+	double gear_radius_m; /* insertion only: pinion radius, m per rad */
+	int counts_per_rev;   /* encoder counts per motor turn */
+	int reversed;         /* 1: motor positive is axis negative */
+};
+
+/* One maxon EPOS4 on USB ([epos4.NAME]). */
+struct config_epos4 {
+	int vid, pid;                 /* USB vendor and product id */
+	char serial[CONFIG_STR];      /* USB serial number; "": any */
+	int node_id;                  /* the drive's node-ID */
+	double timeout_s;             /* per USB transfer */
+	double feedback_max_age_s;    /* older feedback is a fault */
+	double max_rate_hz;           /* the bus thread's exchange rate cap */
+	double rated_torque_unit_n_m; /* SI value of one unit of 0x6076 */
+	double watchdog_s;            /* heartbeat consumer time 0x1016 */
+};
+
+/* The Modbus line or connection all modbus axes share ([modbus]). */
+struct config_modbus {
+	int transport;                /* enum config_transport */
+	char device[CONFIG_STR];      /* RTU: serial device */
+	int baud;
+	int parity;                   /* enum config_parity */
+	int data_bits, stop_bits;
+	int rs485;                    /* 1: switch the port to RS-485 mode */
+	char host[CONFIG_STR];        /* TCP */
+	int port;
+	double response_timeout_s;
+	double byte_timeout_s;
+	double feedback_max_age_s;
+	double max_rate_hz;
+};
+
+/* One Modbus wheel drive ([modbus.NAME]): its slave id and register map. */
+struct config_modbus_drive {
+	int slave;
+	int combined_0x17;            /* 1: write and read in one transaction */
+	double watchdog_s;            /* written to the watchdog register */
+	struct regmap_reg reg[REGMAP_SIGNALS];
+};
+
+struct config {
+	struct {
+		int rate_hz;      /* force-loop rate, Hz */
+		int priority;     /* SCHED_FIFO priority, 1..99 */
+		int cpu;          /* CPU to pin the loop to, -1: any */
+		int cpu_dma_latency_us; /* PM QoS held while running, -1: none */
+		int overrun_budget;     /* periods skipped within ... */
+		double overrun_window_s; /* ... this window: missed */
+		int overrun_fault;      /* enum config_overrun_fault */
+	} loop;
+	struct {
+		int backend;                   /* enum config_backend */
+		double travel_min[ENDOSIM_AXES]; /* m or rad */
+		double travel_max[ENDOSIM_AXES]; /* m or rad */
+		double feedback_max_age_s;     /* older feedback is a fault */
+	} rig;
+	struct {
+		double inertia[ENDOSIM_AXES];  /* kg or kg m^2 */
+		double viscous[ENDOSIM_AXES];  /* N s/m or N m s/rad */
+		double coulomb[ENDOSIM_AXES];  /* N or N m */
+		double hand_stiffness[ENDOSIM_AXES]; /* N/m or N m/rad */
+		double hand_damping[ENDOSIM_AXES];   /* N s/m or N m s/rad */
+		double hand_max[ENDOSIM_AXES]; /* N or N m */
+		double hand_max_speed[ENDOSIM_AXES]; /* m/s or rad/s */
+		double hand_hold_s;            /* default hold of live input */
+	} sim;
+	struct {
+		char directory[CONFIG_STR];
+		char group[CONFIG_STR];        /* "" : the daemon's own group */
+		int max_request_bytes;
+		int max_clients;
+		int max_queued_bytes;          /* unsent replies per client */
+		double idle_timeout_s;         /* silent clients are closed */
+		double partial_timeout_s;      /* unfinished requests too */
+	} socket;
+	struct {
+		char name[CONFIG_STR];
+	} shm;
+	struct {
+		double max[ENDOSIM_AXES];      /* N or N m, both directions */
+		double slew[ENDOSIM_AXES];     /* N/s or N m/s */
+		double enable_ramp_s;          /* torque rises over this */
+		double max_speed[ENDOSIM_AXES]; /* m/s or rad/s: a runaway */
+		double travel_margin;          /* fraction of the travel */
+		double saturation_s;           /* longest hold at a limit */
+		int saturation_fault;          /* enum config_overrun_fault:
+						  no, yes, auto (a fault on
+						  a drive's axis) */
+	} limits;
+	struct haptics_gains haptics;          /* haptics.h */
+	struct {
+		int level;                     /* syslog level */
+	} log;
+	struct config_axis axis[ENDOSIM_AXES];
+	struct config_epos4 epos4[ENDOSIM_AXES];
+	struct config_modbus modbus;
+	struct config_modbus_drive modbus_drive[ENDOSIM_AXES];
+	struct {                           /* [case] */
+		char directory[CONFIG_STR];    /* holds NAME.case files */
+		char name[CONFIG_STR];         /* the case at start-up */
+		char file[CONFIG_STR];         /* "" or a .case or .obj path */
+		char centreline_file[CONFIG_STR]; /* an .obj's points, "" */
+		double step_m;                 /* centreline and ring spacing */
+		int ring_vertices;
+		double segment_m;              /* mesh segments along s */
+	} colon;
+	struct {
+		int test_commands;   /* 1: DebugInject accepted (tests only) */
+	} debug;
+	struct {                           /* [session]: recorder.h */
+		char directory[CONFIG_STR];    /* ID.endoses files */
+		double ring_s;                 /* the record ring, s of cycles */
+		double write_limit_bytes_per_s; /* tests: a slow disk; 0 none */
+		double force_threshold_n;      /* metrics.h struct metrics_params */
+		double loop_threshold_m;
+		double view_distance_m;
+		double fov_deg;
+		double view_rate_hz;
+		char course[CONFIG_STR];       /* coursefile.h: endoctl trainee */
+	} session;
+	struct {
+		double bending_length_m;
+		double gain[2];      /* tip rad per wheel rad: ud, lr */
+		double limit_rad[2]; /* largest tip bend: ud, lr */
+	} scope;
+	struct config_rod {      /* [rod]: the rod model (rodscope.h) */
+		int segments;
+		double length_m;
+		double mass_per_m_kg;
+		double bending_n_m2;
+		double torsion_n_m2;
+		double tip_bending_n_m2;
+		double damping_s;
+		double drag_n_s_per_m2;
+		int iterations;
+		double wall_n_per_m2;
+		double wall_damping_s;
+		double friction;
+		double slip_m_per_s;
+		double pipe_n_per_m2;
+		double coupling_n_per_m;
+		double coupling_n_s_per_m;
+		double roll_n_m_per_rad;
+		double roll_n_m_s_per_rad;
+		double stop_n_per_m;
+		double colon_node_spacing_m;
+		double colon_damping_n_s_per_m;
+		double colon_chain_n_per_m;
+		double colon_bending_n_per_m;
+	} rod;
+	struct config_guide {    /* [guide]: guided replay (guide.h); per
+				    axis in enum endosim_axis order, N or
+				    N m, m or rad */
+		double stiffness[ENDOSIM_AXES];  /* N/m, N m/rad */
+		double damping[ENDOSIM_AXES];    /* N s/m, N m s/rad */
+		double force_max[ENDOSIM_AXES];  /* N, N m */
+		double speed_max[ENDOSIM_AXES];  /* m/s, rad/s */
+		double takeover[ENDOSIM_AXES];   /* N, N m: a hand's push */
+		double error_max[ENDOSIM_AXES];  /* m, rad */
+		double takeover_s;   /* the push held so long: taken over */
+		double fade_s;       /* the force fades out over this */
+		double error_s;      /* the error held so long: cannot follow */
+		double hand_filter_hz; /* the hand's force estimate's low pass */
+	} guide;
+};
+
+enum config_type {
+	CONFIG_INT,
+	CONFIG_DOUBLE,
+	CONFIG_STRING,
+	CONFIG_ENUM,
+	CONFIG_LEVEL,    /* a log level name */
+	CONFIG_REGISTER, /* a Modbus register (regmap.h), text in def_str */
+};
+
+enum config_flags {
+	CONFIG_LIVE = 1u << 0, /* may change while running (SetParam) */
+	CONFIG_HEX = 1u << 1,  /* an integer written in hexadecimal */
+};
+
+struct config_key {
+	const char *section;
+	const char *name;
+	enum config_type type;
+	size_t offset;               /* into struct config */
+	double def;                  /* numbers, enum index, level */
+	const char *def_str;         /* strings */
+	double min, max;             /* numbers, inclusive */
+	const char *const *choices;  /* enums, NULL-terminated */
+	const char *unit;
+	unsigned int flags;          /* enum config_flags */
+	const char *help;
+};
+
+/* Fills CFG with every key's default. */
+void config_defaults(struct config *cfg);
+
+/*
+ * Reads the INI file PATH over CFG. Returns 0, -ENOENT (cannot open) or
+ * -EINVAL (unknown key, bad value, duplicate, syntax error, empty file),
+ * with one line in ERR.
+ */
+int config_load(struct config *cfg, const char *path, char *err,
+		size_t errsize);
+
+/* The same for an open stream; NAME stands for the file in messages. */
+int config_load_stream(struct config *cfg, FILE *f, const char *name,
+		       char *err, size_t errsize);
+
+/*
+ * Sets KEY ("section.name") from the text VALUE as if read from the file.
+ * With LIVE_ONLY, keys without CONFIG_LIVE are refused. Returns 0, -ENOENT
+ * (no such key), -EPERM (not live) or -EINVAL (bad value), with one line in
+ * ERR. CFG is unchanged on error.
+ */
+int config_set(struct config *cfg, const char *key, const char *value,
+	       bool live_only, char *err, size_t errsize);
+
+/* True when NAME can name a case file: [A-Za-z0-9_-]+, no path. */
+bool config_case_name_ok(const char *name);
+
+/*
+ * Cross-key checks (travel min below max, distinct devices, a usable
+ * register map for each modbus axis, a case name, ...). Returns 0 or
+ * -EINVAL.
+ */
+int config_check(const struct config *cfg, char *err, size_t errsize);
+
+/* The backend that moves AXIS: CONFIG_DRIVE_SIM unless [rig] backend is
+ * drives. */
+int config_axis_backend(const struct config *cfg, int axis);
+
+/*
+ * True when a missed overrun budget latches a fault: [loop] overrun_fault
+ * is yes, or auto with some axis on a real drive. Any thread, the force
+ * loop included (no I/O, no allocation).
+ */
+bool config_overrun_faults(const struct config *cfg);
+
+/*
+ * True when AXIS held beyond its force limit for saturation_s latches a
+ * fault: [limits] saturation_fault is yes, or auto and a real drive turns
+ * the axis (a simulated axis has no motor to protect: a warning). Any
+ * thread, the force loop included.
+ */
+bool config_saturation_faults(const struct config *cfg, int axis);
+
+/* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
+double config_feedback_max_age_s(const struct config *cfg, int axis);
+
+/* The table: config_key_count() entries. */
+size_t config_key_count(void);
+const struct config_key *config_key_at(size_t i);
+
+/* The key called "section.name", or NULL. */
+const struct config_key *config_key_find(const char *key);
+
+/* Writes KEY's value in CFG as text, as it would appear in the file. */
+void config_format(const struct config *cfg, const struct config_key *key,
+		   char *buf, size_t size);
+
+/* Prints every key with its value, unit and help as a valid INI file. */
+void config_print(const struct config *cfg, FILE *out);
+
+#endif

@@ -1,0 +1,357 @@
+/* flex.c - see flex.h. */
+#include "model/flex.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/vec3.h"
+
+struct chain {
+	int span;          /* the centreline's */
+	int first, count;  /* its nodes */
+	double s0, s1;     /* m, material */
+	double k;          /* mesentery per node, N/m */
+	double h;          /* mesentery height, m */
+};
+
+struct flex {
+	struct colon *colon;
+	struct flex_params par;
+	struct chain chain[CENTRELINE_MAX_SPANS];
+	int chains;
+	int nodes;
+	double y[FLEX_MAX_NODES][3];       /* displacement now */
+	double v[FLEX_MAX_NODES][3];       /* its rate over the last step */
+	double force[FLEX_MAX_NODES][3];   /* pushed this step */
+	double stiff[FLEX_MAX_NODES];      /* and how it eases, N/m */
+	double applied[FLEX_MAX_NODES][3]; /* what the centreline has */
+	double along[FLEX_MAX_NODES][3];   /* the course's tangent at rest */
+};
+
+static bool params_ok(const struct flex_params *p)
+{
+	return p->node_spacing_m >= 0.005 && p->node_spacing_m <= 0.2 &&
+	       p->damping_n_s_per_m > 0 && p->damping_n_s_per_m < 1e6 &&
+	       p->chain_n_per_m >= 0 && p->chain_n_per_m < 1e6 &&
+	       p->bending_n_per_m >= 0 && p->bending_n_per_m < 1e7;
+}
+
+struct flex *flex_create(const struct flex_params *p)
+{
+	struct flex *f;
+
+	if (!params_ok(p)) {
+		return NULL;
+	}
+	f = calloc(1, sizeof(*f));
+	if (f) {
+		f->par = *p;
+	}
+	return f;
+}
+
+void flex_attach(struct flex *f, struct colon *colon)
+{
+	struct centreline *cl = colon_centreline(colon);
+
+	f->colon = colon;
+	f->chains = 0;
+	f->nodes = 0;
+	for (int i = 0; i < colon_regions(colon); i++) {
+		const struct colon_region *r = colon_region(colon, i);
+		struct chain *c = &f->chain[f->chains];
+		int count;
+
+		if (r->span < 0 || !(r->mesentery_n_per_m > 0) ||
+		    !(r->max_bow_m > 0)) {
+			continue;
+		}
+		centreline_span_range(cl, r->span, &c->s0, &c->s1);
+		count = (int)lround((c->s1 - c->s0) / f->par.node_spacing_m) -
+			1;
+		count = count < 1 ? 1 : count;
+		if (f->nodes + count > FLEX_MAX_NODES) {
+			count = FLEX_MAX_NODES - f->nodes;
+		}
+		if (count < 1) {
+			break;
+		}
+		c->span = r->span;
+		c->first = f->nodes;
+		c->count = count;
+		c->k = r->mesentery_n_per_m / count;
+		c->h = r->max_bow_m;
+		for (int k = 0; k < count; k++) {
+			double s_m = c->s0 + (c->s1 - c->s0) * (k + 1) /
+					       (count + 1);
+			size_t at = (size_t)lround(s_m / centreline_step(cl));
+
+			vec3_copy(f->along[f->nodes + k],
+				  centreline_base(cl, at)->t);
+		}
+		f->nodes += count;
+		f->chains++;
+	}
+	flex_reset(f);
+}
+
+void flex_destroy(struct flex *f)
+{
+	free(f);
+}
+
+static void lay(struct flex *f, const struct chain *c)
+{
+	centreline_displace(colon_centreline(f->colon), c->span,
+			    (const double(*)[3])f->y[c->first], c->count);
+	memcpy(f->applied[c->first], f->y[c->first],
+	       (size_t)c->count * sizeof(f->y[0]));
+}
+
+void flex_reset(struct flex *f)
+{
+	memset(f->y, 0, sizeof(f->y));
+	memset(f->v, 0, sizeof(f->v));
+	memset(f->force, 0, sizeof(f->force));
+	memset(f->stiff, 0, sizeof(f->stiff));
+	for (int i = 0; i < f->chains; i++) {
+		lay(f, &f->chain[i]);
+	}
+}
+
+void flex_set_params(struct flex *f, const struct flex_params *p)
+{
+	if (params_ok(p)) {
+		f->par.damping_n_s_per_m = p->damping_n_s_per_m;
+		f->par.chain_n_per_m = p->chain_n_per_m;
+		f->par.bending_n_per_m = p->bending_n_per_m;
+	}
+}
+
+void flex_clear(struct flex *f)
+{
+	memset(f->force, 0, sizeof(f->force));
+	memset(f->stiff, 0, sizeof(f->stiff));
+}
+
+/* The chain holding material S_M, and where in it (0..1); NULL: fixed. */
+static const struct chain *chain_at(const struct flex *f, double s_m,
+				    double *x)
+{
+	for (int i = 0; i < f->chains; i++) {
+		const struct chain *c = &f->chain[i];
+
+		if (s_m > c->s0 && s_m < c->s1) {
+			*x = (s_m - c->s0) / (c->s1 - c->s0);
+			return c;
+		}
+	}
+	return NULL;
+}
+
+void flex_push(struct flex *f, double s_m, const double force[3],
+	       double stiffness_n_per_m)
+{
+	double x, w[2];
+	const struct chain *c = chain_at(f, s_m, &x);
+	int j;
+
+	if (!c) {
+		return;
+	}
+	centreline_knot_weights(x, c->count, &j, w);
+	/* knots j, j + 1; knot k >= 1 is node k - 1, 0 and count + 1 are
+	 * the fixed ends */
+	for (int e = 0; e < 2; e++) {
+		int k = j + e;
+
+		if (k >= 1 && k <= c->count) {
+			vec3_axpy(f->force[c->first + k - 1],
+				  f->force[c->first + k - 1], w[e], force);
+			f->stiff[c->first + k - 1] +=
+				w[e] * fmax(stiffness_n_per_m, 0);
+		}
+	}
+}
+
+/*
+ * One implicit step of chain C, per coordinate:
+ *   (b/h + k_t + k_m) y' - k_c D2 y' + k_b D4 y' = (b/h + k_t) y + F
+ * D2 and D4 the second and fourth differences along the chain with the
+ * fixed colon beyond both ends (zero displacement and slope there), the
+ * mesentery's stiffening taken at the step's start, k_t the pushes'
+ * stiffness (the push F - k_t (y' - y) as the wall yields): a symmetric
+ * pentadiagonal system, solved by its banded LDL^T.
+ */
+static void step_chain(struct flex *f, const struct chain *c, double h)
+{
+	double bh = f->par.damping_n_s_per_m / h, kc = f->par.chain_n_per_m;
+	double kb = f->par.bending_n_per_m;
+	double l1[FLEX_MAX_NODES], l2[FLEX_MAX_NODES], dd[FLEX_MAX_NODES];
+	double z[FLEX_MAX_NODES][3];
+	int m = c->count;
+
+	for (int i = 0; i < m; i++) {
+		int n = c->first + i;
+		double q = vec3_norm(f->y[n]) / c->h, kt = f->stiff[n];
+		double a0 = bh + kt + c->k * (1 + q * q) + 2 * kc + 6 * kb;
+		double a1 = -kc - 4 * kb, a2 = kb;
+
+		l2[i] = i >= 2 ? a2 / dd[i - 2] : 0;
+		l1[i] = i >= 1 ? (a1 - (i >= 2 ? l2[i] * l1[i - 1] *
+							 dd[i - 2] : 0)) /
+					 dd[i - 1] : 0;
+		dd[i] = a0 - (i >= 1 ? l1[i] * l1[i] * dd[i - 1] : 0) -
+			(i >= 2 ? l2[i] * l2[i] * dd[i - 2] : 0);
+		for (int d = 0; d < 3; d++) {
+			z[i][d] = (bh + kt) * f->y[n][d] + f->force[n][d] -
+				  (i >= 1 ? l1[i] * z[i - 1][d] : 0) -
+				  (i >= 2 ? l2[i] * z[i - 2][d] : 0);
+		}
+	}
+	for (int i = m - 1; i >= 0; i--) {
+		for (int d = 0; d < 3; d++) {
+			z[i][d] = z[i][d] / dd[i] -
+				  (i + 1 < m ? l1[i + 1] * z[i + 1][d] : 0) -
+				  (i + 2 < m ? l2[i + 2] * z[i + 2][d] : 0);
+		}
+	}
+	for (int i = 0; i < m; i++) {
+		int n = c->first + i;
+
+		/* the mesentery keeps the colon on its course: it moves
+		 * across it, never along */
+		vec3_axpy(z[i], z[i], -vec3_dot(z[i], f->along[n]),
+			  f->along[n]);
+		for (int d = 0; d < 3; d++) {
+			f->v[n][d] = (z[i][d] - f->y[n][d]) / h;
+			f->y[n][d] = z[i][d];
+		}
+	}
+}
+
+void flex_step(struct flex *f, double dt_s)
+{
+	for (int i = 0; i < f->chains; i++) {
+		const struct chain *c = &f->chain[i];
+		bool moved = false;
+
+		step_chain(f, c, dt_s);
+		for (int k = c->first; k < c->first + c->count && !moved; k++) {
+			moved = vec3_dist(f->y[k], f->applied[k]) > FLEX_APPLY_M;
+		}
+		if (moved) {
+			lay(f, c);
+		}
+	}
+}
+
+void flex_velocity(const struct flex *f, double s_m, double v[3])
+{
+	double x, w[2];
+	const struct chain *c = chain_at(f, s_m, &x);
+	int j;
+
+	vec3_set(v, 0, 0, 0);
+	if (!c) {
+		return;
+	}
+	centreline_knot_weights(x, c->count, &j, w);
+	for (int e = 0; e < 2; e++) {
+		int k = j + e;
+
+		if (k >= 1 && k <= c->count) {
+			vec3_axpy(v, v, w[e], f->v[c->first + k - 1]);
+		}
+	}
+}
+
+int flex_nodes(const struct flex *f)
+{
+	return f->nodes;
+}
+
+int flex_span_nodes(const struct flex *f, int span)
+{
+	for (int i = 0; i < f->chains; i++) {
+		if (f->chain[i].span == span) {
+			return f->chain[i].count;
+		}
+	}
+	return 0;
+}
+
+const double *flex_node(const struct flex *f, int i)
+{
+	return f->y[i];
+}
+
+/* Chain C's node K's displacement, 0 beyond its ends (the fixed colon). */
+static const double *at(const struct flex *f, const struct chain *c, int k)
+{
+	static const double zero[3] = { 0, 0, 0 };
+
+	return k < 0 || k >= c->count ? zero : f->y[c->first + k];
+}
+
+void flex_span_forces(const struct flex *f, int span, double pushed[3],
+		      double held[3])
+{
+	double kc = f->par.chain_n_per_m, kb = f->par.bending_n_per_m;
+
+	vec3_set(pushed, 0, 0, 0);
+	vec3_set(held, 0, 0, 0);
+	for (int i = 0; i < f->chains; i++) {
+		const struct chain *c = &f->chain[i];
+
+		if (c->span != span) {
+			continue;
+		}
+		/* every node's elastic force: the mesentery's, the chain's
+		 * and the wall's (D2, D4 with the fixed colon beyond), and
+		 * along the course all of the push */
+		for (int k = 0; k < c->count; k++) {
+			int n = c->first + k;
+			double q = vec3_norm(f->y[n]) / c->h, e[3];
+
+			vec3_add(pushed, pushed, f->force[n]);
+			vec3_scale(e, f->y[n], c->k * (1 + q * q));
+			for (int d = 0; d < 3; d++) {
+				double d2 = at(f, c, k - 1)[d] -
+					    2 * at(f, c, k)[d] +
+					    at(f, c, k + 1)[d];
+				double d4 = at(f, c, k - 2)[d] -
+					    4 * at(f, c, k - 1)[d] +
+					    6 * at(f, c, k)[d] -
+					    4 * at(f, c, k + 1)[d] +
+					    at(f, c, k + 2)[d];
+
+				e[d] += -kc * d2 + kb * d4;
+			}
+			/* across the course the elastic force, along it the
+			 * mesentery takes the push */
+			vec3_axpy(e, e, -vec3_dot(e, f->along[n]), f->along[n]);
+			vec3_add(held, held, e);
+			vec3_axpy(held, held, vec3_dot(f->force[n], f->along[n]),
+				  f->along[n]);
+		}
+	}
+}
+
+double flex_span_displacement(const struct flex *f, int span)
+{
+	double most = 0;
+
+	for (int i = 0; i < f->chains; i++) {
+		const struct chain *c = &f->chain[i];
+
+		if (c->span != span) {
+			continue;
+		}
+		for (int k = c->first; k < c->first + c->count; k++) {
+			most = fmax(most, vec3_norm(f->y[k]));
+		}
+	}
+	return most;
+}

@@ -1,0 +1,223 @@
+/*
+ * metrics.h - how a trainee did: the training session's metrics, computed
+ * from the recorded states (struct session_record) one by one, the same
+ * way live in endosimd's recorder thread and afterwards from a session
+ * file (endoctl session show/report on a file cut short).
+ *
+ * What is measured (definitions, thresholds, units and the limits of each
+ * method in docs/METRICS.md; the formulas also in metrics.c):
+ *   - time to the cecum: from the first record to the first with the tip
+ *     in the cecum segment; insertion time (to the cecum) and withdrawal
+ *     time (from the cecum until the tip leaves the rectum or the session
+ *     ends); withdrawal of at least 6 minutes is a clinical quality mark;
+ *   - the insertion force (the insertion axis' force sent to the drive,
+ *     N): peak and mean while inserted; episodes above force_threshold_n
+ *     ("excessive pressure"): count, total time, each with its start,
+ *     end and peak;
+ *   - loop episodes: a mobile segment bowed more than loop_threshold_m;
+ *     count, longest, largest amplitude, each with start, end, peak;
+ *   - the patient-discomfort index: the time integral of loop stretch and
+ *     wall-contact force (see metrics.c for the formula);
+ *   - time with the lumen lost from view: the tip facing a wall; how
+ *     often it was lost; the share of the time with it in view;
+ *   - the scope's handling (3D-CoPS, CoRS): the shaft pushed in and the
+ *     tip's advance, their ratio (chase efficiency), the shaft pushed
+ *     without the tip following, the time looped; on the way out the
+ *     shaft withdrawn, the tip's retreat, their ratio;
+ *   - the share of the mucosa seen: the mesh's area in the camera's view
+ *     (field of view, within view_distance_m, not hidden behind a fold:
+ *     a depth test on the CPU, depthmap.h) for seen_dwell_s in all;
+ *   - polyps found: those of the case in view for polyp_dwell_s in all.
+ *
+ * Threads: one struct metrics belongs to one thread. metrics_create()
+ * allocates (the colon's per-vertex bookkeeping); metrics_record() does
+ * not allocate or block and costs microseconds, and about a millisecond at
+ * the records where the mucosa and polyps are evaluated (at most
+ * view_rate_hz times a second; `make bench`).
+ */
+#ifndef ENDOSIM_METRICS_H
+#define ENDOSIM_METRICS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "model/colon.h"
+#include "proto/session_file.h"
+
+#define METRICS_MAX_EPISODES 64 /* kept per kind; more are counted only */
+
+struct metrics_params {
+	double force_threshold_n;  /* excessive insertion force, N */
+	double loop_threshold_m;   /* a loop: bow amplitude above this, m */
+	double view_distance_m;    /* mucosa nearer than this can be seen */
+	double fov_rad;            /* the camera's full field of view */
+	double view_rate_hz;       /* mucosa and polyps evaluated this often */
+	/* episodes: above the threshold for at least min_episode_s; one
+	 * ends when the value falls below METRICS_HYSTERESIS x threshold */
+	double min_episode_s;
+	/* the lumen is lost when its direction 3 cm ahead is further than
+	 * this from the view direction (default: half the field of view) */
+	double lumen_angle_rad;
+	/* the discomfort index' scales: a bow of discomfort_bow_m, or a
+	 * wall-contact force of discomfort_force_n, held for 1 s adds 1 */
+	double discomfort_bow_m;
+	double discomfort_force_n;
+	/* in view so long in all before a wall point counts as seen, a
+	 * polyp as found (the virtual-withdrawal study, BMC Med Educ 2017) */
+	double seen_dwell_s;
+	double polyp_dwell_s;
+};
+
+#define METRICS_HYSTERESIS 0.9      /* an episode ends below 0.9 x threshold */
+#define METRICS_LOOKAHEAD_M 0.03    /* the lumen ahead: this far beyond tip_s */
+#define METRICS_SHAPE_STEP_S 0.1  /* the handling's sampling: 10 Hz */
+#define METRICS_IDLE_SHARE 0.2    /* the tip advancing less than this share
+				     of the shaft's push: an idle push */
+#define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
+				       colon; a case: the rectum's start) */
+
+/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 10 Hz, 0.2 s, 70 deg, 0.03 m,
+ * 5 N, 0.5 s, 2.5 s. */
+void metrics_params_default(struct metrics_params *p);
+
+struct metrics_episode {
+	double start_s;            /* since the session's first record */
+	double end_s;              /* < 0: still going */
+	double peak;               /* N for force, m for loops */
+};
+
+struct metrics_result {
+	double duration_s;         /* first to last record */
+	uint64_t records;
+	uint64_t drops;            /* records the recorder could not keep */
+	double cecum_s;            /* time to the cecum; < 0: not reached */
+	double insertion_s;        /* to the cecum (or so far) */
+	double withdrawal_s;       /* from the cecum out; 0 if not reached */
+	double max_tip_s_m;        /* deepest the tip got along the colon */
+	double peak_insertion_n;   /* |force| on the insertion axis */
+	double mean_insertion_n;   /* while inserted (depth > 0) */
+	uint32_t force_episodes;
+	double force_episode_s;    /* their total time */
+	uint32_t loop_episodes;
+	double longest_loop_s;
+	double largest_loop_m;
+	double discomfort;         /* the index, see metrics.c */
+	double lumen_lost_s;
+	double mucosa_seen;        /* share 0..1 of the mesh's area */
+	uint32_t polyps_seen;
+	uint32_t polyps_total;
+	uint32_t polyps_seen_mask; /* bit k: the case's polyp k was seen */
+	/* the scope's handling, from the tube's depth and the tip's place
+	 * along the colon sampled every METRICS_SHAPE_STEP_S (3D-CoPS and
+	 * CoRS in spirit; docs/METRICS.md): on the way in (to the cecum, or
+	 * all of it when never reached) ... */
+	double shaft_in_m;         /* the shaft pushed in, summed */
+	double tip_in_m;           /* the tip's advance along the colon */
+	double chase_efficiency;   /* tip_in_m / shaft_in_m (0: none) */
+	double shaft_idle_m;       /* pushed in while the tip advanced less
+				      than METRICS_IDLE_SHARE of it */
+	double loop_s;             /* time with a loop (a mobile segment
+				      bowed beyond loop_threshold_m), sampled
+				      as the handling */
+	/* ... and on the way out (from the cecum) */
+	double retraction_m;       /* the shaft withdrawn, summed */
+	double tip_retraction_m;   /* the tip's retreat along the colon */
+	double retraction_efficiency; /* tip_retraction_m / retraction_m */
+	/* the view */
+	double clear_view;         /* share 0..1 of the inserted time with
+				      the lumen in view */
+	uint32_t lost_views;       /* times the lumen was lost */
+	double mucosa_per_min;     /* mucosa_seen in % a minute: efficiency */
+	double mucosa_segment[ANATOMY_SEGMENTS]; /* seen, each segment's
+					   share (anal canal .. cecum); 0
+					   without a case */
+	uint32_t n_force;          /* episodes kept below */
+	uint32_t n_loop;
+	struct metrics_episode force[METRICS_MAX_EPISODES];
+	struct metrics_episode loop[METRICS_MAX_EPISODES];
+};
+
+struct metrics;
+
+/*
+ * COLON: the colon the session is on (kept, not copied: it must outlive
+ * the metrics). Only what never changes after colon_create() is read (the
+ * undeformed centreline, the mesh's offsets, normals and triangles), never
+ * the bowed state, so the force loop may bow COLON meanwhile: the metrics
+ * bow a private copy of the centreline. NULL computes everything but what
+ * needs the colon's geometry: the cecum (and so the insertion and
+ * withdrawal times), the lumen, the mucosa and the polyps. Returns NULL
+ * on allocation failure.
+ */
+struct metrics *metrics_create(const struct colon *colon,
+			       const struct metrics_params *p);
+void metrics_destroy(struct metrics *m);
+
+/* The next record, in time order. */
+void metrics_record(struct metrics *m, const struct session_record *r);
+
+/* An event of the session (drops are counted from SESSION_EVENT_DROPS). */
+void metrics_event(struct metrics *m, const struct session_event *ev,
+		   const char *text);
+
+/* The metrics so far (at the end: the session's). */
+void metrics_result(const struct metrics *m, struct metrics_result *out);
+
+/* The share 0..1 of the mesh's area between material S0_M and S1_M (by
+ * each vertex' centreline sample) seen so far; 0 without a colon. */
+double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
+				   double s1_m);
+
+/* The same of the wall between S0_M and S1_M and at angles A0_RAD to
+ * A1_RAD (0 <= A0_RAD <= A1_RAD <= 2 pi) around the centreline from its
+ * frame's u towards v, as metrics_map() and the case's polyps count them. */
+double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
+			      double s1_m, double a0_rad, double a1_rad);
+
+/* One scalar measure of struct metrics_result: its key (as the END frame,
+ * the JSON and the summary CSV name it), where it is, its type ('d'
+ * double, 'u' uint32_t, 'l' uint64_t). */
+struct metrics_field {
+	const char *key;
+	size_t offset;
+	char type;
+};
+
+/* The table of them, in the END frame's order; returns how many. */
+size_t metrics_fields(const struct metrics_field **out);
+
+/* F's value in R. */
+double metrics_field_value(const struct metrics_result *r,
+			   const struct metrics_field *f);
+
+/* The colon unrolled: METRICS_MAP_S cells along it, METRICS_MAP_A around. */
+#define METRICS_MAP_S 160
+#define METRICS_MAP_A 24
+
+struct metrics_map {
+	double length_m;          /* the colon's, along its centreline */
+	/* each cell's share 0..1 of its wall's area seen; < 0: no wall there
+	 * (a cell of the pole, past the end) */
+	float seen[METRICS_MAP_S][METRICS_MAP_A];
+};
+
+/*
+ * The unseen-mucosa map so far: each vertex (by its place along the
+ * colon and its angle around the centreline from the frame's u, as the
+ * case's polyps are placed) into its cell, the seen area over the area.
+ * Without a colon every cell < 0. The cells are kept as vertices are
+ * seen: a map costs a pass over the cells, not the mesh.
+ */
+void metrics_map(const struct metrics *m, struct metrics_map *out);
+
+/*
+ * RESULT as "key=value\n" lines (the END frame, `session show`); returns
+ * the length written, or -ENOSPC when SIZE is too small.
+ */
+int metrics_format(const struct metrics_result *result, char *buf,
+		   size_t size);
+
+/* The inverse of metrics_format(): 0, or -EINVAL naming nothing. */
+int metrics_parse(const char *text, struct metrics_result *out);
+
+#endif

@@ -1,0 +1,999 @@
+/*
+ * report.c - the instructor's HTML report (report.h).
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model/colon.h"
+#include "session/htmlpage.h"
+#include "proto/names.h"
+#include "session/report.h"
+#include "session/sessioninputs.h"
+
+#define WITHDRAWAL_MARK_S 360.0
+#define MAX_EVENT_ROWS 200
+
+struct series {
+	const char *name;
+	double (*get)(const struct session_record *r, int arg);
+	int arg;
+};
+
+/* ---------------------------------------------------------------- text */
+
+/* The header's KEY, escaped, or a dash. */
+static void put_header(FILE *out, const struct session_file *f,
+		       const char *key)
+{
+	char v[256];
+
+	if (f->header && !session_text_get(f->header, key, v, sizeof(v)) &&
+	    v[0]) {
+		htmlpage_escape(out, v);
+	} else {
+		fputs("&ndash;", out);
+	}
+}
+
+/* ---------------------------------------------------------------- axes */
+
+static double rec_t(const struct htmlpage_plot *p,
+		    const struct session_record *r)
+{
+	return (double)(int64_t)(r->stamp_ns - p->t0_ns) * ENDOSIM_S_PER_NS;
+}
+
+/* A plot over the session's time (s, or min past 5 min: P->xscale). */
+static void plot_begin(struct htmlpage_plot *p, const char *id,
+		       const char *title, double ylo, double yhi,
+		       const char *ylabel)
+{
+	htmlpage_plot_begin(p, id, title, ylo, yhi,
+			    p->xscale > 1 ? "time (min)" : "time (s)", ylabel);
+}
+
+/* Episodes as shaded bands of CLASS, from 0 to the plot's top. */
+static void plot_bands(const struct htmlpage_plot *p,
+		       const struct metrics_episode *ep,
+		       uint32_t n, double end_s, const char *cls)
+{
+	for (uint32_t i = 0; i < n; i++) {
+		double x0 = htmlpage_px_x(p, ep[i].start_s);
+		double x1 = htmlpage_px_x(p,
+					  ep[i].end_s >= 0 ? ep[i].end_s : end_s);
+
+		fprintf(p->out, "<rect class=\"band %s\" x=\"%.1f\" y=\"%.1f\" "
+			"width=\"%.1f\" height=\"%.1f\"><title>%s %u</title>"
+			"</rect>\n", cls, x0, HTMLPAGE_PLOT_Y,
+			fmax(x1 - x0, 1.5), HTMLPAGE_PLOT_H,
+			strcmp(cls, "force") ? "loop episode" : "force episode",
+			i + 1);
+	}
+}
+
+/* Faults (red) and state changes (grey) as vertical marks. */
+static void plot_events(const struct htmlpage_plot *p,
+			const struct session_file *f)
+{
+	double last_x = -1e9;
+	int row = 0;
+
+	for (size_t i = 0; i < f->n_events; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+		double t = (double)(int64_t)(ev->stamp_ns - p->t0_ns) *
+			   ENDOSIM_S_PER_NS;
+		double x = htmlpage_px_x(p, t);
+
+		if (ev->kind == SESSION_EVENT_FAULT) {
+			fprintf(p->out,
+				"<line class=\"event fault\" x1=\"%.1f\" "
+				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"><title>"
+				"fault: %s</title></line>\n", x,
+				HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+				names_fault(ev->detail));
+		} else if (ev->kind == SESSION_EVENT_STATE) {
+			const char *s = names_state((uint32_t)ev->value);
+
+			/* labels close together go one under the other */
+			row = x - last_x < 50 ? (row + 1) % 3 : 0;
+			last_x = x;
+
+			fprintf(p->out,
+				"<line class=\"event state\" x1=\"%.1f\" "
+				"y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/><text "
+				"class=\"evlabel\" x=\"%.1f\" y=\"%.1f\">%s"
+				"</text>\n", x, HTMLPAGE_PLOT_Y, x,
+				HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H, x + 3,
+				HTMLPAGE_PLOT_Y + 10 + 11 * row, s);
+		}
+	}
+}
+
+/* The column's extremes in the order they came (peaks survive). */
+static void path_column(FILE *o, bool *first, double x, double a, double b)
+{
+	fprintf(o, "%s%.1f,%.1f", *first ? "M" : " L", x, a);
+	*first = false;
+	if (fabs(a - b) >= 0.05) {
+		fprintf(o, " L%.1f,%.1f", x, b);
+	}
+}
+
+/* One series, decimated to the min and max of each pixel column. */
+static void plot_series(const struct htmlpage_plot *p,
+			const struct session_file *f,
+			const struct series *s, const char *color)
+{
+	bool first = true, have = false;
+	long col = -1;
+	double lo = 0, hi = 0;
+	size_t ilo = 0, ihi = 0;
+
+	fprintf(p->out, "<path class=\"series\" stroke=\"%s\" d=\"", color);
+	for (size_t i = 0; i <= f->n_records; i++) {
+		const struct session_record *r = &f->records[i < f->n_records ?
+							   i : i - 1];
+		long c = i < f->n_records
+				 ? lround(htmlpage_px_x(p, rec_t(p, r)))
+				 : -2;
+		double v = i < f->n_records ? s->get(r, s->arg) : NAN;
+
+		if (c != col && have) {
+			path_column(p->out, &first, (double)col,
+				    htmlpage_px_y(p, ilo < ihi ? lo : hi),
+				    htmlpage_px_y(p, ilo < ihi ? hi : lo));
+			have = false;
+		}
+		col = c;
+		if (!isfinite(v)) {
+			continue;
+		}
+		if (!have || v < lo) {
+			lo = v;
+			ilo = i;
+		}
+		if (!have || v > hi) {
+			hi = v;
+			ihi = i;
+		}
+		have = true;
+	}
+	fputs("\"/>\n", p->out);
+}
+
+static void plot_legend(const struct htmlpage_plot *p, const struct series *s,
+			int n, bool bands)
+{
+	double x = HTMLPAGE_PLOT_X + 4;
+
+	for (int i = 0; i < n; i++) {
+		fprintf(p->out, "<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" "
+			"y1=\"14\" x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" "
+			"x=\"%.1f\" y=\"18\">%s</text>\n", htmlpage_color(i), x,
+			x + 18, x + 22, s[i].name);
+		x += 34 + 7.0 * (double)strlen(s[i].name);
+	}
+	if (bands) {
+		fprintf(p->out,
+			"<rect class=\"swatch force\" x=\"%.1f\" y=\"8\" "
+			"width=\"14\" height=\"12\"/><text class=\"legend\" "
+			"x=\"%.1f\" y=\"18\">excessive force</text>\n"
+			"<rect class=\"swatch loop\" x=\"%.1f\" y=\"8\" width=\"14\" "
+			"height=\"12\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
+			"loop</text>\n", x, x + 18, x + 130, x + 148);
+	}
+}
+
+/* ---------------------------------------------------------- the values */
+
+static double get_limited(const struct session_record *r, int axis)
+{
+	return axis == 0 ? fabs(r->limited[0]) : r->limited[axis];
+}
+
+static double get_tip_s(const struct session_record *r, int arg)
+{
+	(void)arg;
+	return r->depth_m > 0 ? r->tip_s_m : NAN;
+}
+
+static double get_bow(const struct session_record *r, int k)
+{
+	return (uint32_t)k < r->spans ? fabs(r->bow_m[k]) : NAN;
+}
+
+static void series_range(const struct session_file *f, const struct series *s,
+			 int n, double *lo, double *hi)
+{
+	for (size_t i = 0; i < f->n_records; i++) {
+		for (int k = 0; k < n; k++) {
+			double v = s[k].get(&f->records[i], s[k].arg);
+
+			if (isfinite(v)) {
+				*lo = fmin(*lo, v);
+				*hi = fmax(*hi, v);
+			}
+		}
+	}
+}
+
+/* A plot of N series with the episodes and events marked. */
+static void plot_series_figure(struct htmlpage_plot *p,
+			       const struct session_file *f,
+			       const struct metrics_result *m, const char *id,
+			       const char *title, const char *ylabel,
+			       const struct series *s, int n, double lo,
+			       double hi)
+{
+	series_range(f, s, n, &lo, &hi);
+	plot_begin(p, id, title, lo, hi, ylabel);
+	plot_bands(p, m->force, m->n_force, m->duration_s, "force");
+	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
+	plot_events(p, f);
+	for (int k = 0; k < n; k++) {
+		plot_series(p, f, &s[k], htmlpage_color(k));
+	}
+	plot_legend(p, s, n, true);
+}
+
+/* ----------------------------------------------------------- the plots */
+
+static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
+		       const struct metrics_result *m)
+{
+	const struct series s[] = { { "insertion |F|", get_limited, 0 } };
+	struct metrics_params mp;
+	char label[64];
+
+	metrics_params_default(&mp);
+	plot_series_figure(p, f, m, "plot-force", "Insertion force",
+			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
+	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);
+	htmlpage_plot_hline(p, mp.force_threshold_n, label);
+	htmlpage_plot_end(p);
+}
+
+static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
+			 const struct metrics_result *m)
+{
+	const struct series s[] = {
+		{ "roll", get_limited, 1 },
+		{ "wheel up/down", get_limited, 2 },
+		{ "wheel left/right", get_limited, 3 },
+	};
+
+	plot_series_figure(p, f, m, "plot-torque", "Roll and wheel torques",
+			   "torque (N m)", s, 3, 0, 0);
+	htmlpage_plot_end(p);
+}
+
+/* The segments as horizontal bands, named. */
+static void plot_segments(const struct htmlpage_plot *p,
+			  const struct anatomy *a)
+{
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		double s0 = anatomy_segment_start(a, i);
+		double s1 = s0 + a->seg[i].length_m;
+		double y0 = htmlpage_px_y(p, s1), y1 = htmlpage_px_y(p, s0);
+
+		fprintf(p->out, "<rect class=\"segment s%d\" x=\"%.1f\" "
+			"y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"><title>%s"
+			"</title></rect>\n", i % 2, HTMLPAGE_PLOT_X, y0,
+			HTMLPAGE_PLOT_W, y1 - y0,
+			anatomy_segment_name(i));
+		if (y1 - y0 >= 9) { /* room for its name */
+			fprintf(p->out, "<text class=\"seglabel\" x=\"%.1f\" "
+				"y=\"%.1f\">%s</text>\n",
+				HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W - 6,
+				(y0 + y1) / 2 + 4, anatomy_segment_name(i));
+		}
+	}
+}
+
+static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
+		     const struct metrics_result *m, const struct anatomy *a)
+{
+	const struct series s[] = { { "tip along the colon", get_tip_s, 0 } };
+	double len = a ? anatomy_length(a) : 0;
+
+	series_range(f, s, 1, &(double){ 0 }, &len);
+	plot_begin(p, "plot-tip", "The tip's progress along the colon",
+		   0, len, "distance from the anal verge (m)");
+	if (a) {
+		plot_segments(p, a);
+	}
+	plot_bands(p, m->force, m->n_force, m->duration_s, "force");
+	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
+	plot_events(p, f);
+	if (m->cecum_s >= 0) {
+		double x = htmlpage_px_x(p, m->cecum_s);
+
+		fprintf(p->out, "<line class=\"cecum\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"cecumlabel\" "
+			"x=\"%.1f\" y=\"%.1f\">cecum reached</text>\n", x,
+			HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
+			x + 4, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - 6);
+	}
+	plot_series(p, f, &s[0], htmlpage_color(0));
+	plot_legend(p, s, 1, true);
+	htmlpage_plot_end(p);
+}
+
+static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
+		      const struct metrics_result *m, const struct anatomy *a)
+{
+	struct series s[ENDOSIM_SPANS];
+	struct metrics_params mp;
+	int n = 0;
+
+	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
+		if (a->seg[i].mobile) {
+			s[n] = (struct series){ anatomy_segment_name(i),
+						get_bow, n };
+			n++;
+		}
+	}
+	for (; n == 0 && f->n_records && n < (int)f->records[0].spans &&
+	       n < ENDOSIM_SPANS; n++) {
+		s[n] = (struct series){ "mobile segment", get_bow, n };
+	}
+	metrics_params_default(&mp);
+	plot_series_figure(p, f, m, "plot-bow", "Loops: the bow of each mobile "
+			   "segment", "bow amplitude (m)", s, n, 0,
+			   mp.loop_threshold_m * 1.5);
+	htmlpage_plot_hline(p, mp.loop_threshold_m, "loop threshold");
+	htmlpage_plot_end(p);
+}
+
+/* ---------------------------------------------------------- the tables */
+
+static void row_begin(FILE *o, const char *what, const char *mark)
+{
+	fprintf(o, "<tr class=\"%s\"><th>%s</th><td>", mark, what);
+}
+
+static void row_end(FILE *o, const char *note)
+{
+	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
+}
+
+static void metrics_rows_times(FILE *o, const struct metrics_result *m)
+{
+	bool reached = m->cecum_s >= 0;
+
+	row_begin(o, "Cecum reached", reached ? "good" : "bad");
+	if (reached) {
+		fputs("yes, after ", o);
+		htmlpage_duration(o, m->cecum_s);
+	} else {
+		fputs("no", o);
+	}
+	row_end(o, "the tip inside the cecum");
+	row_begin(o, "Insertion time", "");
+	htmlpage_duration(o, m->insertion_s);
+	row_end(o, reached ? "start to cecum" : "so far: cecum not reached");
+	row_begin(o, "Withdrawal time", !reached ? "bad" :
+		  m->withdrawal_s >= WITHDRAWAL_MARK_S ? "good" : "bad");
+	if (reached) {
+		htmlpage_duration(o, m->withdrawal_s);
+	} else {
+		fputs("&ndash;", o);
+	}
+	row_end(o, "cecum to out; at least 6 min is the quality mark");
+	row_begin(o, "Deepest point", "");
+	fprintf(o, "%.2f m", m->max_tip_s_m);
+	row_end(o, "from the anal verge along the colon");
+}
+
+static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
+{
+	struct metrics_params mp;
+	char note[96];
+
+	metrics_params_default(&mp);
+	row_begin(o, "Insertion force", "");
+	fprintf(o, "peak %.1f N, mean %.1f N", m->peak_insertion_n,
+		m->mean_insertion_n);
+	row_end(o, "what the tube pushed back against the hand");
+	row_begin(o, "Excessive force", m->force_episodes ? "warn" : "good");
+	fprintf(o, "%u episode%s, ", m->force_episodes,
+		m->force_episodes == 1 ? "" : "s");
+	htmlpage_duration(o, m->force_episode_s);
+	snprintf(note, sizeof(note), "above %g N for at least %g s",
+		 mp.force_threshold_n, mp.min_episode_s);
+	row_end(o, note);
+	row_begin(o, "Loops", m->loop_episodes ? "warn" : "good");
+	fprintf(o, "%u, longest ", m->loop_episodes);
+	htmlpage_duration(o, m->longest_loop_s);
+	fprintf(o, ", largest %.1f cm", m->largest_loop_m * 100);
+	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
+		 mp.loop_threshold_m * 100);
+	row_end(o, note);
+	row_begin(o, "Patient discomfort", "");
+	fprintf(o, "%.1f", m->discomfort);
+	snprintf(note, sizeof(note), "discomfort-seconds: 1 = a %g cm loop or "
+		 "%g N on the wall for 1 s", mp.discomfort_bow_m * 100,
+		 mp.discomfort_force_n);
+	row_end(o, note);
+}
+
+static void metrics_rows_view(FILE *o, const struct metrics_result *m)
+{
+	row_begin(o, "Lumen lost from view", "");
+	htmlpage_duration(o, m->lumen_lost_s);
+	if (m->duration_s > 0) {
+		fprintf(o, " (%.0f %%)", 100 * m->lumen_lost_s / m->duration_s);
+	}
+	row_end(o, "the tip facing the wall");
+	row_begin(o, "Mucosa seen", "");
+	fprintf(o, "%.0f %%", 100 * m->mucosa_seen);
+	row_end(o, "share of the wall in view within 6 cm for 0.5 s");
+	row_begin(o, "... by segment", "");
+	for (int i = 1; i < ANATOMY_SEGMENTS; i++) { /* rectum .. cecum */
+		fprintf(o, "%s%s %.0f %%", i > 1 ? ", " : "",
+			anatomy_segment_name(i), 100 * m->mucosa_segment[i]);
+	}
+	row_end(o, "where the trainee looked, and where not");
+	if (m->polyps_total) {
+		row_begin(o, "Polyps seen", m->polyps_seen == m->polyps_total ?
+			  "good" : "bad");
+		fprintf(o, "%u of %u", m->polyps_seen, m->polyps_total);
+		row_end(o, "in the camera's view for 2.5 s");
+	}
+	row_begin(o, "Lumen in view", "");
+	fprintf(o, "%.0f %% of the time in, lost %u time%s",
+		100 * m->clear_view, m->lost_views,
+		m->lost_views == 1 ? "" : "s");
+	row_end(o, "clear-view share and lost-view count");
+	row_begin(o, "Scope handling, in", m->chase_efficiency >= 0.7 ?
+		  "good" : "warn");
+	fprintf(o, "chase efficiency %.2f (tip %.2f m for %.2f m of shaft), "
+		"idle push %.2f m", m->chase_efficiency, m->tip_in_m,
+		m->shaft_in_m, m->shaft_idle_m);
+	row_end(o, "how much of the push reached the tip (docs/METRICS.md)");
+	if (m->retraction_m > 0) {
+		row_begin(o, "Scope handling, out", "");
+		fprintf(o, "retraction efficiency %.2f (tip %.2f m for %.2f m "
+			"of shaft)", m->retraction_efficiency,
+			m->tip_retraction_m, m->retraction_m);
+		row_end(o, "how much of the withdrawal moved the tip");
+	}
+	if (m->drops) {
+		row_begin(o, "Records dropped", "warn");
+		fprintf(o, "%llu", (unsigned long long)m->drops);
+		row_end(o, "the recording has gaps");
+	}
+}
+
+static void episode_table(FILE *o, const char *title,
+			  const struct metrics_episode *ep, uint32_t n,
+			  uint32_t count, const char *unit, double scale)
+{
+	fprintf(o, "<h3>%s</h3>\n", title);
+	if (!n) {
+		fputs("<p class=\"none\">none</p>\n", o);
+		return;
+	}
+	fprintf(o, "<table class=\"episodes\"><tr><th>#</th><th>start</th>"
+		"<th>end</th><th>duration</th><th>peak (%s)</th></tr>\n", unit);
+	for (uint32_t i = 0; i < n; i++) {
+		fprintf(o, "<tr><td>%u</td><td>", i + 1);
+		htmlpage_duration(o, ep[i].start_s);
+		fputs("</td><td>", o);
+		if (ep[i].end_s >= 0) {
+			htmlpage_duration(o, ep[i].end_s);
+			fputs("</td><td>", o);
+			htmlpage_duration(o, ep[i].end_s - ep[i].start_s);
+		} else {
+			fputs("still going</td><td>&ndash;", o);
+		}
+		fprintf(o, "</td><td>%.1f</td></tr>\n", ep[i].peak * scale);
+	}
+	fputs("</table>\n", o);
+	if (count > n) {
+		fprintf(o, "<p class=\"none\">and %u more</p>\n", count - n);
+	}
+}
+
+static const char *event_kind(uint32_t kind)
+{
+	static const char *const k[] = { "?", "state", "fault", "parameter",
+					 "drops", "note" };
+
+	return kind < 6 ? k[kind] : "?";
+}
+
+static void event_table(FILE *o, const struct session_file *f, uint64_t t0)
+{
+	fputs("<h3>Events</h3>\n", o);
+	if (!f->n_events) {
+		fputs("<p class=\"none\">none</p>\n", o);
+		return;
+	}
+	fputs("<table class=\"events\"><tr><th>time</th><th>event</th>"
+	      "<th>what</th></tr>\n", o);
+	for (size_t i = 0; i < f->n_events && i < MAX_EVENT_ROWS; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+
+		fprintf(o, "<tr class=\"%s\"><td>", event_kind(ev->kind));
+		htmlpage_duration(o, (double)(int64_t)(ev->stamp_ns - t0) *
+					     ENDOSIM_S_PER_NS);
+		fprintf(o, "</td><td>%s</td><td>", event_kind(ev->kind));
+		if (ev->kind == SESSION_EVENT_STATE) {
+			fputs(names_state((uint32_t)ev->value), o);
+		} else if (ev->kind == SESSION_EVENT_FAULT) {
+			fprintf(o, "%s (axis %s) ", names_fault(ev->detail),
+				ev->axis >= 0 ? names_axis(ev->axis) : "none");
+		} else if (ev->kind == SESSION_EVENT_DROPS) {
+			fprintf(o, "%.0f records dropped so far ", ev->value);
+		}
+		htmlpage_escape(o, f->events[i].text);
+		fputs("</td></tr>\n", o);
+	}
+	fputs("</table>\n", o);
+	if (f->n_events > MAX_EVENT_ROWS) {
+		fprintf(o, "<p class=\"none\">and %zu more</p>\n",
+			f->n_events - MAX_EVENT_ROWS);
+	}
+}
+
+/* ------------------------------------------------------------ the page */
+
+static void page_header(FILE *o, const struct session_file *f,
+			const struct metrics_result *m)
+{
+	fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+	      "<title>Colonoscopy training report ", o);
+	put_header(o, f, "id");
+	fprintf(o, "</title>\n<style>\n%s</style></head><body>\n<header>"
+		"<h1>Colonoscopy training report</h1>\n<dl>", htmlpage_style);
+	fputs("<dt>Trainee</dt><dd id=\"trainee\">", o);
+	put_header(o, f, "trainee");
+	fputs("</dd><dt>Case</dt><dd>", o);
+	put_header(o, f, "case");
+	fputs("</dd><dt>Date</dt><dd>", o);
+	put_header(o, f, "started");
+	fputs("</dd>\n<dt>Duration</dt><dd>", o);
+	htmlpage_duration(o, m->duration_s);
+	fputs("</dd><dt>Session</dt><dd>", o);
+	put_header(o, f, "id");
+	fprintf(o, "</dd><dt>Records</dt><dd>%llu%s</dd></dl></header>\n",
+		(unsigned long long)m->records, f->end ? "" :
+		" (recording cut short)");
+}
+
+static void page_map(FILE *o, const struct metrics_map *map,
+		     const struct anatomy *a, uint32_t found);
+
+static void page_metrics(FILE *o, const struct session_file *f,
+			 const struct metrics_result *m,
+			 const struct anatomy *a, const struct metrics_map *map)
+{
+	struct htmlpage_plot p = { .out = o };
+
+	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
+	metrics_rows_times(o, m);
+	metrics_rows_forces(o, m);
+	metrics_rows_view(o, m);
+	fputs("</table></section>\n<section><h2>Over time</h2>\n", o);
+	if (f->n_records) {
+		p.t0_ns = f->records[0].stamp_ns;
+		p.xscale = m->duration_s > 300 ? 60 : 1;
+		p.x = htmlpage_axis(0, fmax(m->duration_s, 1e-3) / p.xscale,
+				    10);
+		plot_force(&p, f, m);
+		plot_torques(&p, f, m);
+		plot_tip(&p, f, m, a);
+		plot_bows(&p, f, m, a);
+		if (map && map->length_m > 0) {
+			page_map(o, map, a, m->polyps_seen_mask);
+		}
+	} else {
+		fputs("<p class=\"none\">no records</p>\n", o);
+	}
+	fputs("</section>\n<section><h2>Episodes and events</h2>\n", o);
+	episode_table(o, "Excessive force", m->force, m->n_force,
+		      m->force_episodes, "N", 1);
+	episode_table(o, "Loops", m->loop, m->n_loop, m->loop_episodes, "cm",
+		      100);
+	event_table(o, f, p.t0_ns);
+	fputs("</section>\n<footer>endosim ", o);
+	put_header(o, f, "version");
+	fputs(" &middot; the metrics are defined in docs/METRICS.md</footer>\n"
+	      "</body></html>\n", o);
+}
+
+/* ------------------------------------------- compared with a reference */
+
+#define ALONG_BIN_M 0.01 /* the colon in 1 cm steps */
+#define ALONG_BINS 400   /* up to 4 m */
+
+/* What a session did at each place of the colon on its way in. */
+struct along {
+	double force[ALONG_BINS]; /* the largest |insertion force|, N */
+	double loop[ALONG_BINS];  /* the largest bow of any segment, m */
+	bool seen[ALONG_BINS];
+};
+
+/* F's records until the cecum (M's; all of them if never reached), by
+ * the tip's place along the colon. */
+static void along_colon(const struct session_file *f,
+			const struct metrics_result *m, struct along *a)
+{
+	uint64_t t0 = f->n_records ? f->records[0].stamp_ns : 0;
+
+	memset(a, 0, sizeof(*a));
+	for (size_t i = 0; i < f->n_records; i++) {
+		const struct session_record *r = &f->records[i];
+		double t = (double)(r->stamp_ns - t0) * ENDOSIM_S_PER_NS,
+		       bow = 0;
+		long b = lround(r->tip_s_m / ALONG_BIN_M);
+
+		if (m->cecum_s >= 0 && t > m->cecum_s) {
+			break;
+		}
+		if (r->depth_m <= 0 || b < 0 || b >= ALONG_BINS) {
+			continue;
+		}
+		for (uint32_t k = 0; k < r->spans && k < ENDOSIM_SPANS; k++) {
+			bow = fmax(bow, fabs(r->bow_m[k]));
+		}
+		a->force[b] = fmax(a->force[b], fabs(r->limited[0]));
+		a->loop[b] = fmax(a->loop[b], bow);
+		a->seen[b] = true;
+	}
+}
+
+/* One series of A (FORCE or LOOP) over the colon, dashed if DASH. */
+static void along_series(const struct htmlpage_plot *p, const struct along *a,
+			 bool force, const char *color, bool dash)
+{
+	bool first = true;
+
+	fprintf(p->out, "<path class=\"series\" stroke=\"%s\"%s d=\"", color,
+		dash ? " stroke-dasharray=\"6 3\"" : "");
+	for (int b = 0; b < ALONG_BINS; b++) {
+		double v = force ? a->force[b] : a->loop[b];
+
+		if (!a->seen[b]) {
+			continue;
+		}
+		fprintf(p->out, "%s%.1f,%.1f", first ? "M" : " L",
+			htmlpage_px_x(p, b * ALONG_BIN_M), htmlpage_px_y(p, v));
+		first = false;
+	}
+	fputs("\"/>\n", p->out);
+}
+
+/* A legend of the trainee's (solid) and the reference's (dashed). */
+static void compare_legend(const struct htmlpage_plot *p)
+{
+	fprintf(p->out,
+		"<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
+		"x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" x=\"%.1f\" "
+		"y=\"18\">this session</text><line class=\"key\" stroke=\"%s\" "
+		"stroke-dasharray=\"6 3\" x1=\"%.1f\" y1=\"14\" x2=\"%.1f\" "
+		"y2=\"14\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
+		"reference</text>\n", htmlpage_color(0), HTMLPAGE_PLOT_X + 4,
+		HTMLPAGE_PLOT_X + 22,
+		HTMLPAGE_PLOT_X + 26, htmlpage_color(2), HTMLPAGE_PLOT_X + 130,
+		HTMLPAGE_PLOT_X + 148,
+		HTMLPAGE_PLOT_X + 152);
+}
+
+/* A plot along the colon (x: the tip's place, m) of both sessions. */
+static void along_plot(FILE *o, const struct along *mine,
+		       const struct along *ref, const struct anatomy *a,
+		       bool force)
+{
+	struct htmlpage_plot p = { .out = o, .xscale = 1 };
+	double len = a ? anatomy_length(a) : 0, hi = force ? 10 : 0.02;
+
+	for (int b = 0; b < ALONG_BINS; b++) {
+		const struct along *s[2] = { mine, ref };
+
+		for (int k = 0; k < 2; k++) {
+			if (s[k]->seen[b]) {
+				len = fmax(len, b * ALONG_BIN_M);
+				hi = fmax(hi, force ? s[k]->force[b] :
+						      s[k]->loop[b]);
+			}
+		}
+	}
+	p.x = htmlpage_axis(0, fmax(len, 0.1), 10);
+	htmlpage_plot_begin(&p, force ? "compare-force" : "compare-loop",
+			    force ? "Insertion force where the tip was, on "
+				    "the way in"
+				  : "The largest loop where the tip was, on the "
+				    "way in",
+			    0, hi, "the tip's place along the colon (m)",
+			    force ? "force (N)" : "bow amplitude (m)");
+	along_series(&p, ref, force, htmlpage_color(2), true);
+	along_series(&p, mine, force, htmlpage_color(0), false);
+	compare_legend(&p);
+	htmlpage_plot_end(&p);
+}
+
+/* The tip's progress over time of both, on one time axis. */
+static void compare_tip(FILE *o, const struct session_file *f,
+			const struct metrics_result *m,
+			const struct report_reference *ref)
+{
+	const struct series s = { "tip along the colon", get_tip_s, 0 };
+	struct htmlpage_plot p = { .out = o };
+	double dur = fmax(m->duration_s, ref->m->duration_s), hi = 0.1;
+
+	series_range(f, &s, 1, &(double){ 0 }, &hi);
+	series_range(ref->f, &s, 1, &(double){ 0 }, &hi);
+	p.xscale = dur > 300 ? 60 : 1;
+	p.x = htmlpage_axis(0, fmax(dur, 1e-3) / p.xscale, 10);
+	plot_begin(&p, "compare-tip", "The tip's progress: this session and "
+		   "the reference", 0, hi, "distance from the anal verge (m)");
+	if (ref->f->n_records) {
+		p.t0_ns = ref->f->records[0].stamp_ns;
+		fprintf(o, "<g stroke-dasharray=\"6 3\">");
+		plot_series(&p, ref->f, &s, htmlpage_color(2));
+		fputs("</g>\n", o);
+	}
+	if (f->n_records) {
+		p.t0_ns = f->records[0].stamp_ns;
+		plot_series(&p, f, &s, htmlpage_color(0));
+	}
+	compare_legend(&p);
+	htmlpage_plot_end(&p);
+}
+
+static void compare_row(FILE *o, const char *what, const char *fmt,
+			double mine, double ref)
+{
+	fprintf(o, "<tr><th>%s</th><td>", what);
+	fprintf(o, fmt, mine);
+	fputs("</td><td>", o);
+	fprintf(o, fmt, ref);
+	fputs("</td></tr>\n", o);
+}
+
+/* Both sessions' main measures side by side. */
+static void compare_table(FILE *o, const struct metrics_result *m,
+			  const struct metrics_result *r)
+{
+	fputs("<table class=\"metrics\" id=\"compare-metrics\"><tr><th></th>"
+	      "<th>this session</th><th>reference</th></tr>\n", o);
+	compare_row(o, "duration (s)", "%.1f", m->duration_s, r->duration_s);
+	compare_row(o, "time to the cecum (s; -1: not reached)", "%.1f",
+		    m->cecum_s, r->cecum_s);
+	compare_row(o, "withdrawal (s)", "%.1f", m->withdrawal_s,
+		    r->withdrawal_s);
+	compare_row(o, "deepest (m along the colon)", "%.2f", m->max_tip_s_m,
+		    r->max_tip_s_m);
+	compare_row(o, "peak insertion force (N)", "%.1f",
+		    m->peak_insertion_n, r->peak_insertion_n);
+	compare_row(o, "mean insertion force (N)", "%.1f",
+		    m->mean_insertion_n, r->mean_insertion_n);
+	compare_row(o, "excessive-force episodes", "%.0f",
+		    m->force_episodes, r->force_episodes);
+	compare_row(o, "... their time (s)", "%.1f", m->force_episode_s,
+		    r->force_episode_s);
+	compare_row(o, "loop episodes", "%.0f", m->loop_episodes,
+		    r->loop_episodes);
+	compare_row(o, "largest loop (cm)", "%.1f", m->largest_loop_m * 100,
+		    r->largest_loop_m * 100);
+	compare_row(o, "discomfort index", "%.2f", m->discomfort,
+		    r->discomfort);
+	compare_row(o, "lumen lost (s)", "%.1f", m->lumen_lost_s,
+		    r->lumen_lost_s);
+	compare_row(o, "mucosa seen (%)", "%.1f", m->mucosa_seen * 100,
+		    r->mucosa_seen * 100);
+	compare_row(o, "polyps seen", "%.0f", m->polyps_seen, r->polyps_seen);
+	compare_row(o, "lumen in view (%)", "%.0f", m->clear_view * 100,
+		    r->clear_view * 100);
+	compare_row(o, "lumen lost (times)", "%.0f", m->lost_views,
+		    r->lost_views);
+	compare_row(o, "chase efficiency, in", "%.2f", m->chase_efficiency,
+		    r->chase_efficiency);
+	compare_row(o, "idle push, in (m)", "%.2f", m->shaft_idle_m,
+		    r->shaft_idle_m);
+	compare_row(o, "looped (s)", "%.1f", m->loop_s, r->loop_s);
+	compare_row(o, "retraction efficiency, out", "%.2f",
+		    m->retraction_efficiency, r->retraction_efficiency);
+	fputs("</table>\n", o);
+}
+
+static void page_compare(FILE *o, const struct session_file *f,
+			 const struct metrics_result *m,
+			 const struct report_reference *ref,
+			 const struct anatomy *a)
+{
+	static struct along mine, theirs;
+
+	fputs("<section id=\"compare\"><h2>Compared with the reference: "
+	      "session ", o);
+	put_header(o, ref->f, "id");
+	fputs(" (", o);
+	put_header(o, ref->f, "trainee");
+	fputs(")</h2>\n", o);
+	compare_table(o, m, ref->m);
+	along_colon(f, m, &mine);
+	along_colon(ref->f, ref->m, &theirs);
+	compare_tip(o, f, m, ref);
+	along_plot(o, &mine, &theirs, a, true);
+	along_plot(o, &mine, &theirs, a, false);
+	fputs("</section>\n", o);
+}
+
+/* The colon of F's CASE frame, its configuration, its header. */
+static struct colon *session_colon(const struct session_file *f, char *err,
+				   size_t errsize)
+{
+	struct config cfg;
+
+	sessioninputs_config(f, &cfg, err, errsize);
+	return sessioninputs_colon(f, &cfg, err, errsize);
+}
+
+/*
+ * F's records, with its events in time order, through new metrics with P
+ * on F's colon (*C, the caller's to destroy after the metrics; NULL
+ * without a case, ERR saying why). NULL on ENOMEM, with ERR.
+ */
+static struct metrics *metrics_of(const struct session_file *f,
+				  const struct metrics_params *p,
+				  struct colon **c, char *err, size_t errsize)
+{
+	struct metrics *m;
+	size_t e = 0;
+
+	*c = f->header ? session_colon(f, err, errsize) : NULL;
+	if (errsize && f->header && !*c) {
+		/* the line says why; the metrics go on without the colon */
+	} else if (errsize) {
+		err[0] = '\0';
+	}
+	m = metrics_create(*c, p);
+	if (!m) {
+		colon_destroy(*c);
+		*c = NULL;
+		snprintf(err, errsize, "metrics: out of memory");
+		return NULL;
+	}
+	for (size_t i = 0; i < f->n_records; i++) {
+		for (; e < f->n_events &&
+		       f->events[e].ev.stamp_ns <= f->records[i].stamp_ns; e++) {
+			metrics_event(m, &f->events[e].ev, f->events[e].text);
+		}
+		metrics_record(m, &f->records[i]);
+	}
+	for (; e < f->n_events; e++) {
+		metrics_event(m, &f->events[e].ev, f->events[e].text);
+	}
+	return m;
+}
+
+int report_metrics(const struct session_file *f,
+		   const struct metrics_params *p, struct metrics_result *out,
+		   char *err, size_t errsize)
+{
+	struct colon *c;
+	struct metrics *m = metrics_of(f, p, &c, err, errsize);
+
+	if (!m) {
+		return -ENOMEM;
+	}
+	metrics_result(m, out);
+	metrics_destroy(m);
+	colon_destroy(c);
+	return 0;
+}
+
+int report_map(const struct session_file *f, struct metrics_map *out)
+{
+	struct metrics_params p;
+	struct colon *c;
+	struct metrics *m;
+	char err[256];
+
+	sessioninputs_file_metrics_params(f, &p);
+	m = metrics_of(f, &p, &c, err, sizeof(err));
+	if (!m) {
+		return -ENOMEM;
+	}
+	metrics_map(m, out);
+	metrics_destroy(m);
+	colon_destroy(c);
+	return 0;
+}
+
+/* The unseen-mucosa map: the colon unrolled, each cell's share seen from
+ * red (none) to pale green (all), the segments' ends, the polyps (found:
+ * filled, missed: a ring). */
+static void page_map(FILE *o, const struct metrics_map *map,
+		     const struct anatomy *a, uint32_t found)
+{
+	const double x0 = HTMLPAGE_PLOT_X, y0 = HTMLPAGE_PLOT_Y,
+	w = HTMLPAGE_PLOT_W, h = HTMLPAGE_PLOT_H;
+	const double cw = w / METRICS_MAP_S, ch = h / METRICS_MAP_A;
+
+	fprintf(o, "<figure id=\"mucosa-map\"><figcaption>The mucosa "
+		"unrolled: seen (green) and unseen (red), polyps found "
+		"(filled) and missed (rings)</figcaption>\n<svg class=\"plot\" "
+		"xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %d %d\" "
+		"width=\"%d\" height=\"%d\" role=\"img\">\n", HTMLPAGE_SVG_W,
+		HTMLPAGE_SVG_H,
+		HTMLPAGE_SVG_W, HTMLPAGE_SVG_H);
+	for (int i = 0; i < METRICS_MAP_S; i++) {
+		for (int k = 0; k < METRICS_MAP_A; k++) {
+			double v = map->seen[i][k];
+
+			if (v < 0) {
+				continue;
+			}
+			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
+				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
+				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
+				(int)lround(214 - 60 * v),
+				(int)lround(60 + 170 * v),
+				(int)lround(60 + 120 * v));
+		}
+	}
+	for (int i = 0; a && i < ANATOMY_SEGMENTS && map->length_m > 0; i++) {
+		double x = x0 + anatomy_segment_start(a, i) / map->length_m * w;
+
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
+			"x=\"%.1f\" y=\"%.1f\">%s</text>\n", x, y0, x, y0 + h,
+			x + 2, y0 + h + 14 + 10 * (i % 2),
+			anatomy_segment_name(i));
+	}
+	for (int p = 0; a && p < a->polyps && map->length_m > 0; p++) {
+		double an = fmod(a->polyp[p].angle_rad, 2 * M_PI);
+
+		an = an < 0 ? an + 2 * M_PI : an;
+		fprintf(o, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" "
+			"stroke=\"#1a1a1a\" stroke-width=\"2\" fill=\"%s\">"
+			"<title>polyp %d: %s</title></circle>\n",
+			x0 + a->polyp[p].s_m / map->length_m * w,
+			y0 + an / (2 * M_PI) * h,
+			found >> p & 1 ? "#1a1a1a" : "none", p + 1,
+			found >> p & 1 ? "found" : "missed");
+	}
+	fprintf(o, "<text class=\"label\" transform=\"translate(16 %.1f) "
+		"rotate(-90)\" text-anchor=\"middle\">around (0-360 deg)"
+		"</text>\n", y0 + h / 2);
+	htmlpage_plot_end(&(struct htmlpage_plot){ .out = o });
+}
+
+int report_write(const struct session_file *f, const struct metrics_result *m,
+		 const struct report_reference *ref, const char *dir)
+{
+	char tmp[4200], err[256];
+	struct metrics_map *map = malloc(sizeof(*map));
+	struct anatomy a;
+	bool have_a;
+	FILE *o;
+	int r;
+
+	if (!map || report_map(f, map)) {
+		free(map);
+		map = NULL; /* the report without its map */
+	}
+	o = htmlpage_create(dir, tmp, sizeof(tmp));
+	if (!o) {
+		r = -errno;
+		free(map);
+		return r;
+	}
+	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
+	page_header(o, f, m);
+	if (ref) {
+		page_compare(o, f, m, ref, have_a ? &a : NULL);
+	}
+	page_metrics(o, f, m, have_a ? &a : NULL, map);
+	r = htmlpage_commit(o, tmp, dir);
+	free(map);
+	return r;
+}

@@ -1,0 +1,72 @@
+/*
+ * report.h - a training session's report for the instructor: one
+ * self-contained HTML page (inline CSS and SVG drawn here, no scripts, no
+ * external assets) that any browser shows.
+ *
+ * The page holds the session's header (trainee, case, date, duration), the
+ * metrics (metrics.h) with the clinical marks (withdrawal of at least
+ * 6 minutes, the cecum reached, all polyps seen), and plots over time with
+ * axes, ticks, units and legends:
+ *   - the insertion force (N) with the threshold of excessive force;
+ *   - the roll and wheel torques (N m);
+ *   - the tip's position along the colon (m) over the segments' bands;
+ *   - each mobile segment's bow (m) with the loop threshold;
+ *   - the unseen-mucosa map: the colon unrolled (along, around), each
+ *     cell's share seen, the segments, the polyps found and missed;
+ * force episodes and loop episodes as shaded bands on every plot, faults
+ * and state changes as vertical marks, and the lists of episodes and
+ * events. Long sessions are decimated to the minimum and maximum of each
+ * pixel column, so that every peak survives. Every text that comes from
+ * the file (trainee, case, event texts) is HTML-escaped.
+ *
+ * The page's parts shared with the trainee's page: htmlpage.h.
+ *
+ * Not for the force loop: allocates, writes files. Any thread.
+ */
+#ifndef ENDOSIM_REPORT_H
+#define ENDOSIM_REPORT_H
+
+#include <stdio.h>
+
+#include "model/anatomy.h"
+#include "session/metrics.h"
+#include "proto/session_file.h"
+
+/* The session a report compares with (an expert's: `--reference`). */
+struct report_reference {
+	const struct session_file *f;
+	const struct metrics_result *m;
+};
+
+/*
+ * Writes DIR/index.html (DIR is created if missing; the page is written to
+ * a temporary name and renamed, so a reader never sees half of it) from
+ * the session F and its metrics M; with REF (NULL: none) a section that
+ * sets both side by side: their metrics in one table, the tip's progress
+ * over time, and the insertion force and the largest loop along the
+ * colon (over where the tip was on its way in, so that the two are
+ * compared at the same place, however fast each went). 0 or -errno; logs
+ * nothing.
+ */
+int report_write(const struct session_file *f, const struct metrics_result *m,
+		 const struct report_reference *ref, const char *dir);
+
+/*
+ * Recomputes the metrics of F with P (the colon rebuilt from F's CASE
+ * frame, its configuration and its header's resolution: sessioninputs.h;
+ * without a case, the metrics that need no colon), the events fed in time order
+ * with the records. 0, or -ENOMEM with one line in ERR. A case that does
+ * not load leaves the colon out, as its line in ERR says.
+ */
+int report_metrics(const struct session_file *f,
+		   const struct metrics_params *p, struct metrics_result *out,
+		   char *err, size_t errsize);
+
+/*
+ * F's unseen-mucosa map (metrics.h), its records through the metrics on
+ * its colon with its configuration's parameters. 0 or -ENOMEM. The report
+ * draws it under the plots.
+ */
+int report_map(const struct session_file *f, struct metrics_map *out);
+
+#endif

@@ -1,0 +1,70 @@
+/*
+ * sessioninputs.h - the one reader of what a session was recorded with:
+ * its CONFIG frame (the configuration as --print-config printed it), its
+ * CASE frame (the case file's text) and its header's colon resolution,
+ * and what they make: the configuration, the colon's and the metrics'
+ * parameters, the colon. The recorder (the live configuration), the
+ * report, endoctl's views and the viewer's replay all take them here.
+ *
+ * Any thread but the force loop; the colon is allocated (~50 ms).
+ */
+#ifndef ENDOSIM_SESSIONINPUTS_H
+#define ENDOSIM_SESSIONINPUTS_H
+
+#include <stddef.h>
+
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "conf/config.h"
+#include "session/metrics.h"
+#include "proto/session_file.h"
+
+/*
+ * F's configuration into CFG: the defaults overridden by its CONFIG frame.
+ * 0 (also for a file without one: the defaults), or -EINVAL with the line
+ * that does not parse in ERR and CFG the defaults.
+ */
+int sessioninputs_config(const struct session_file *f, struct config *cfg,
+			 char *err, size_t errsize);
+
+/* A loop, when [session] loop_threshold_m is 0: by the haptics' model. The
+ * rod model moves the sigmoid a centimetre or two on an ordinary insertion
+ * (the tube takes the outside of its bends); its loops are larger. */
+#define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
+#define SESSION_LOOP_THRESHOLD_ROD_M 0.03
+
+/* The metrics' parameters ([session] thresholds) CFG sets. */
+void sessioninputs_metrics_params(const struct config *cfg,
+				  struct metrics_params *p);
+
+/* The metrics' parameters the session F was recorded with (its CONFIG
+ * frame's, the defaults where it has none). */
+void sessioninputs_file_metrics_params(const struct session_file *f,
+				       struct metrics_params *p);
+
+/*
+ * The colon's parameters: CFG's ([case] resolution, the tip's radius),
+ * the resolution in F's header over them. 0, or -EINVAL when the header's
+ * resolution does not add up.
+ */
+int sessioninputs_colon_params(const struct session_file *f,
+			       const struct config *cfg,
+			       struct colon_params *p, char *err,
+			       size_t errsize);
+
+/*
+ * The anatomy of F's CASE frame (anatomy_parse()): 0, -ENOENT when F has
+ * no case, or -EINVAL with one line in ERR.
+ */
+int sessioninputs_anatomy(const struct session_file *f, struct anatomy *a,
+			  char *err, size_t errsize);
+
+/*
+ * The colon of F's CASE frame with the parameters above; NULL with why in
+ * ERR (no case recorded, a case or a resolution that does not parse).
+ */
+struct colon *sessioninputs_colon(const struct session_file *f,
+				  const struct config *cfg, char *err,
+				  size_t errsize);
+
+#endif

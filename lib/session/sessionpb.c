@@ -1,0 +1,112 @@
+/* sessionpb.c - see sessionpb.h. */
+#include "session/sessionpb.h"
+
+#include <string.h>
+
+static size_t episodes_out(Endosim__MetricsEpisode *ep,
+			   Endosim__MetricsEpisode **p,
+			   const struct metrics_episode *in, uint32_t n)
+{
+	size_t k = n < METRICS_MAX_EPISODES ? n : METRICS_MAX_EPISODES;
+
+	for (size_t i = 0; i < k; i++) {
+		endosim__metrics_episode__init(&ep[i]);
+		ep[i].start_s = in[i].start_s;
+		ep[i].end_s = in[i].end_s;
+		ep[i].peak = in[i].peak;
+		p[i] = &ep[i];
+	}
+	return k;
+}
+
+/* The measures on the wire (SessionMetrics' name, metrics_result's). */
+#define METRICS_ON_WIRE(X)                                                   \
+	X(duration_s, duration_s) X(records, records) X(drops, drops)        \
+	X(cecum_s, cecum_s) X(insertion_s, insertion_s)                      \
+	X(withdrawal_s, withdrawal_s) X(max_tip_s_m, max_tip_s_m)            \
+	X(peak_insertion_n, peak_insertion_n)                                \
+	X(mean_insertion_n, mean_insertion_n)                                \
+	X(force_episodes, force_episodes) X(force_time_s, force_episode_s)   \
+	X(loop_episodes, loop_episodes) X(longest_loop_s, longest_loop_s)    \
+	X(largest_loop_m, largest_loop_m) X(discomfort, discomfort)          \
+	X(lumen_lost_s, lumen_lost_s) X(mucosa_seen, mucosa_seen)            \
+	X(polyps_seen, polyps_seen) X(polyps_total, polyps_total)            \
+	X(shaft_in_m, shaft_in_m) X(tip_in_m, tip_in_m)                      \
+	X(chase_efficiency, chase_efficiency) X(shaft_idle_m, shaft_idle_m)  \
+	X(looped_s, loop_s) X(retraction_m, retraction_m)                      \
+	X(tip_retraction_m, tip_retraction_m)                                \
+	X(retraction_efficiency, retraction_efficiency)                      \
+	X(clear_view, clear_view) X(lost_views, lost_views)                  \
+	X(mucosa_per_min, mucosa_per_min)
+
+/* R's measures into M, its segments' into SEGMENT; no episodes. */
+static void scalars_out(Endosim__SessionMetrics *m, double *segment,
+			const struct metrics_result *r)
+{
+	endosim__session_metrics__init(m);
+#define TO_PB(pb, c) m->pb = r->c;
+	METRICS_ON_WIRE(TO_PB)
+#undef TO_PB
+	memcpy(segment, r->mucosa_segment, ANATOMY_SEGMENTS * sizeof(double));
+	m->n_mucosa_segment = ANATOMY_SEGMENTS;
+	m->mucosa_segment = segment;
+}
+
+void sessionpb_from_metrics(struct sessionpb_metrics *out,
+			    const struct metrics_result *r)
+{
+	Endosim__SessionMetrics *m = &out->msg;
+
+	scalars_out(m, out->segment, r);
+	m->n_force = episodes_out(out->force, out->force_p, r->force,
+				  r->n_force);
+	m->force = out->force_p;
+	m->n_loops = episodes_out(out->loop, out->loop_p, r->loop, r->n_loop);
+	m->loops = out->loop_p;
+}
+
+void sessionpb_from_scalars(struct sessionpb_scalars *out,
+			    const struct metrics_result *r)
+{
+	scalars_out(&out->msg, out->segment, r);
+}
+
+static uint32_t episodes_in(struct metrics_episode *out,
+			    Endosim__MetricsEpisode *const *in, size_t n)
+{
+	size_t k = n < METRICS_MAX_EPISODES ? n : METRICS_MAX_EPISODES;
+
+	for (size_t i = 0; i < k; i++) {
+		out[i].start_s = in[i]->start_s;
+		out[i].end_s = in[i]->end_s;
+		out[i].peak = in[i]->peak;
+	}
+	return (uint32_t)k;
+}
+
+void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
+			  struct metrics_result *out)
+{
+	memset(out, 0, sizeof(*out));
+#define FROM_PB(pb, c) out->c = in->pb;
+	METRICS_ON_WIRE(FROM_PB)
+#undef FROM_PB
+	out->n_force = episodes_in(out->force, in->force, in->n_force);
+	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
+	for (size_t i = 0; i < in->n_mucosa_segment && i < ANATOMY_SEGMENTS;
+	     i++) {
+		out->mucosa_segment[i] = in->mucosa_segment[i];
+	}
+}
+
+void sessionpb_from_entry(Endosim__SessionInfo *out,
+			  struct sessiondir_entry *e)
+{
+	endosim__session_info__init(out);
+	out->id = e->id;
+	out->trainee = e->trainee;
+	out->case_name = e->case_name;
+	out->started = e->started;
+	out->bytes = e->bytes;
+	out->ended = e->ended;
+}

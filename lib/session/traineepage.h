@@ -1,0 +1,49 @@
+/*
+ * traineepage.h - a trainee's course for the instructor: one
+ * self-contained HTML page (htmlpage.h: inline CSS and SVG, no scripts)
+ * with
+ *   - the course's status: "course complete", or per case how many
+ *     sessions in a row have met its requirements and how many remain
+ *     (coursefile.h);
+ *   - the sessions table: id, date, case, duration, the main measures
+ *     (time to the cecum, withdrawal time, mucosa seen, excessive-force
+ *     and loop episodes, peak insertion force, discomfort, polyps found)
+ *     and each of its case's requirements met or not;
+ *   - the learning curves: per case, one plot per main measure across the
+ *     trainee's sessions on it (the session's number on that case along
+ *     x), each point marked by whether it met the course's requirements
+ *     on that measure (grey: none), the course's bounds on it as
+ *     threshold lines.
+ * Every text from the files (trainee, case, date) is HTML-escaped.
+ *
+ * Not for the force loop: writes files. Any thread; no shared state.
+ */
+#ifndef ENDOSIM_TRAINEEPAGE_H
+#define ENDOSIM_TRAINEEPAGE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "session/coursefile.h"
+#include "session/metrics.h"
+
+/* One of the trainee's sessions, in the order they were recorded. */
+struct traineepage_session {
+	uint64_t id;
+	const char *case_name;
+	const char *started;            /* UTC, ISO 8601 */
+	const struct metrics_result *m; /* NULL: not known (recording) */
+	bool recomputed;                /* m recomputed: the file was cut */
+};
+
+/*
+ * Writes DIR/index.html (DIR created if missing; written to a temporary
+ * name and renamed) for TRAINEE's N sessions S, judged by COURSE (NULL:
+ * none: no requirements, no status). 0 or -errno.
+ */
+int traineepage_write(const char *trainee,
+		      const struct traineepage_session *s, size_t n,
+		      const struct coursefile *course, const char *dir);
+
+#endif
