@@ -5,7 +5,8 @@
 # cannot be made here: common.sh's skip) neither passes nor fails; the
 # suites that skipped any are named at the end, with why.
 #
-# Suites: the include check of the wings (tests/layers.sh), the cmocka
+# Suites: the include check of the wings (tests/layers.sh), the commit
+# messages' form (tests/commits.sh), the cmocka
 # unit tests and the numbered system tests of the build in $BUILD; the same
 # again for the AddressSanitizer/UBSan build in
 # $BUILD/asan when it exists (with SANITIZED=1: a long test may shorten
@@ -113,6 +114,9 @@ system_tests() {
 started=$SECONDS
 tests/layers.sh >"$work/layers.out" 2>&1
 record "layers" "$work/layers.out" $? $((SECONDS - started))
+started=$SECONDS
+tests/commits.sh >"$work/commits.out" 2>&1
+record "commits" "$work/commits.out" $? $((SECONDS - started))
 unit_tests "$BUILD" ""
 system_tests "$BUILD" "" ""
 if [ -d "$BUILD/asan/tests" ]; then
