@@ -1,0 +1,295 @@
+/*
+ * test_patient.c - the patient's position and the fluid in the colon
+ * (posture.h, fluid.h), on simulated time:
+ *  - a turn from left lateral to right lateral goes over the back
+ *    (through supine halfway) in the turn's time, gravity a unit vector
+ *    that never jumps; every position's gravity as documented;
+ *  - fluid in a straight round tube lying across gravity: the pool's
+ *    depth is the circular segment's that holds the volume, within 1 %;
+ *  - fluid in the normal colon: its level holds each segment's volume
+ *    (against an independent sum over every sample within 5 %: the
+ *    model's rings stand 4 mm apart), the volume conserved
+ *    within 0.1 % through four position changes, the surface
+ *    perpendicular to gravity within 1 degree at rest (and lagging during
+ *    a turn), and suction under the surface empties it at the configured
+ *    rate, none above it.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "base/vec3.h"
+#include "model/anatomy.h"
+#include "model/colon.h"
+#include "model/fluid.h"
+#include "model/posture.h"
+#include "plain_anatomy.h"
+
+#define DT 0.001
+#define ML 1e-6
+
+static struct colon *normal;
+
+static int setup(void **state)
+{
+	struct colon_params p = COLON_PARAMS_DEFAULT;
+	struct anatomy a;
+	char err[256];
+
+	(void)state;
+	if (anatomy_load(&a, "config/cases/normal.case", err, sizeof(err))) {
+		fprintf(stderr, "%s\n", err);
+		return -1;
+	}
+	p.ring_vertices = 64;
+	normal = colon_create(&a, &p, err, sizeof(err));
+	return normal ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	colon_destroy(normal);
+	return 0;
+}
+
+static double angle_deg(const double a[3], const double b[3])
+{
+	return acos(fmax(-1, fmin(1, vec3_dot(a, b) /
+					  (vec3_norm(a) * vec3_norm(b))))) *
+	       180 / M_PI;
+}
+
+static void positions(void **state)
+{
+	const double want[POSTURE_POSITIONS][3] = {
+		{ 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 }, { 0, -1, 0 },
+	};
+	const double supine[3] = { 0, 1, 0 };
+	struct posture p;
+	double last[3], most_step = 0;
+
+	(void)state;
+	for (int i = 0; i < POSTURE_POSITIONS; i++) {
+		posture_reset(&p, i);
+		assert_true(angle_deg(p.down, want[i]) < 1e-9);
+		assert_int_equal(posture_find(posture_name(i)), i);
+	}
+	assert_int_equal(posture_find("sitting"), -1);
+	assert_int_equal(posture_turn(&p, 7, 1), -EINVAL);
+
+	posture_reset(&p, POSTURE_LEFT_LATERAL);
+	assert_int_equal(posture_turn(&p, POSTURE_RIGHT_LATERAL, 10), 0);
+	vec3_copy(last, p.down);
+	for (int k = 1; k <= 10000; k++) {
+		posture_step(&p, DT);
+		most_step = fmax(most_step, angle_deg(last, p.down));
+		vec3_copy(last, p.down);
+		assert_true(fabs(vec3_norm(p.down) - 1) < 1e-12);
+		if (k == 5000) { /* halfway: on the back */
+			assert_true(angle_deg(p.down, supine) < 1e-6);
+			assert_true(posture_turning(&p));
+		}
+	}
+	assert_false(posture_turning(&p));
+	assert_true(angle_deg(p.down, want[POSTURE_RIGHT_LATERAL]) < 1e-6);
+	/* eased: never more than 1.5 x the mean rate of 18 deg/s */
+	assert_true(most_step < 1.5 * 180.0 / 10 * DT);
+	/* and back over the back again */
+	posture_turn(&p, POSTURE_LEFT_LATERAL, 10);
+	for (int k = 1; k <= 5000; k++) {
+		posture_step(&p, DT);
+	}
+	assert_true(angle_deg(p.down, supine) < 1e-6);
+}
+
+/* Segment I's pool, summed over every sample of the colon: the same
+ * geometry as fluid.c's, an independent sum. */
+static double pool_sum(const struct fluid *f, int i)
+{
+	const struct centreline *cl = colon_centreline(normal);
+	const struct fluid_segment *s = &f->seg[i];
+	double v = 0, ds = centreline_step(cl);
+
+	for (size_t k = s->first; k < s->first + s->count; k++) {
+		const struct centreline_point *c = centreline_sample(cl, k);
+		double r = colon_tube_radius(normal, k);
+		double tn = vec3_dot(c->t, f->up);
+		double e = r * sqrt(fmax(0, 1 - tn * tn)) + ds * fabs(tn) / 2;
+		double x = fmax(-1, fmin(1, (s->level_m - vec3_dot(c->p, f->up)) /
+						   e));
+
+		v += ds * r * r * (acos(-x) + x * sqrt(1 - x * x));
+	}
+	return v;
+}
+
+static void fluid_pools(void **state)
+{
+	struct fluid_params fp = FLUID_PARAMS_DEFAULT;
+	double vol[FLUID_SEGMENTS] = { 0 };
+	struct posture p;
+	struct fluid f;
+	const int order[] = { POSTURE_SUPINE, POSTURE_RIGHT_LATERAL,
+			      POSTURE_PRONE, POSTURE_LEFT_LATERAL };
+	double total0 = 0, lag = 0, none[3] = { 0 };
+
+	(void)state;
+	vol[ANATOMY_SIGMOID] = 40 * ML;
+	vol[ANATOMY_TRANSVERSE] = 60 * ML;
+	vol[ANATOMY_CECUM] = 30 * ML;
+	posture_reset(&p, POSTURE_LEFT_LATERAL);
+	fluid_attach(&f, &fp, normal, vol, p.down, NULL);
+	for (int i = 0; i < FLUID_SEGMENTS; i++) {
+		total0 += f.seg[i].volume_m3;
+	}
+	for (size_t n = 0; n < sizeof(order) / sizeof(order[0]); n++) {
+		double total = 0, up[3];
+
+		posture_turn(&p, order[n], 10);
+		for (int k = 0; k < 12000; k++) { /* the turn, then 2 s */
+			posture_step(&p, DT);
+			fluid_step(&f, p.down, NULL, false, none, -1, DT);
+			vec3_scale(up, p.down, -1);
+			lag = fmax(lag, angle_deg(f.up, up));
+		}
+		vec3_scale(up, p.down, -1);
+		printf("# %s: the surface %.4f deg from level;", posture_name(
+			       order[n]), angle_deg(f.up, up));
+		assert_true(angle_deg(f.up, up) < 1);
+		for (int i = 0; i < FLUID_SEGMENTS; i++) {
+			total += f.seg[i].volume_m3;
+			if (vol[i] > 0) {
+				double v = pool_sum(&f, i);
+
+				printf(" %s %.2f mL (level's %.2f), %.1f mm "
+				       "deep;", anatomy_segment_name(i),
+				       f.seg[i].volume_m3 / ML, v / ML,
+				       f.seg[i].depth_m * 1e3);
+				assert_true(fabs(v - vol[i]) < 0.05 * vol[i]);
+				assert_true(f.seg[i].depth_m > 0.002);
+			}
+		}
+		printf("\n");
+		assert_true(fabs(total - total0) < 0.001 * total0);
+	}
+	printf("# the surface lagged gravity by %.1f deg at most in a turn\n",
+	       lag);
+	assert_true(lag > 1);
+}
+
+/* A round straight tube of radius R across gravity: the depth D of a
+ * pool holding V in length L: L R^2 A(D / R - 1) = V. */
+static double analytic_depth(double v, double l, double r)
+{
+	double lo = 0, hi = 2 * r;
+
+	for (int k = 0; k < 200; k++) {
+		double d = (lo + hi) / 2, x = d / r - 1;
+
+		if (l * r * r * (acos(-x) + x * sqrt(1 - x * x)) > v) {
+			hi = d;
+		} else {
+			lo = d;
+		}
+	}
+	return lo;
+}
+
+static void straight_pool(void **state)
+{
+	struct colon_params cp = COLON_PARAMS_DEFAULT;
+	struct fluid_params fp = FLUID_PARAMS_DEFAULT;
+	double vol[FLUID_SEGMENTS] = { 0 }, down[3] = { 0, 1, 0 };
+	struct anatomy a;
+	struct colon *c;
+	struct fluid f;
+	char err[256];
+	int i = ANATOMY_TRANSVERSE;
+
+	(void)state;
+	plain_anatomy(&a, 0.05);
+	for (int k = 0; k < ANATOMY_SEGMENTS; k++) {
+		a.seg[k].taenia_depth = 0;
+		a.seg[k].fold_depth = 0;
+	}
+	cp.ring_vertices = 64;
+	c = colon_create(&a, &cp, err, sizeof(err));
+	assert_non_null(c);
+	for (double ml = 10; ml <= 400; ml *= 2) {
+		const struct fluid_segment *s = &f.seg[i];
+		double r, l = a.seg[i].length_m, want;
+
+		vol[i] = ml * ML;
+		fluid_attach(&f, &fp, c, vol, down, NULL);
+		r = colon_tube_radius(c, s->first + s->count / 2);
+		want = analytic_depth(vol[i], l, r);
+		printf("# a straight tube %.1f mm wide: %.0f mL pools %.3f mm "
+		       "deep (analytic %.3f)\n", 2e3 * r, ml, s->depth_m * 1e3,
+		       want * 1e3);
+		assert_true(fabs(s->depth_m - want) < 0.01 * want);
+	}
+	colon_destroy(c);
+}
+
+static void suction(void **state)
+{
+	struct fluid_params fp = FLUID_PARAMS_DEFAULT;
+	double vol[FLUID_SEGMENTS] = { 0 };
+	struct posture p;
+	struct fluid f;
+	const struct centreline *cl = colon_centreline(normal);
+	const struct fluid_segment *s;
+	double bottom[3] = { 0 }, above[3], low = INFINITY, v0, t = 2;
+	int i = ANATOMY_TRANSVERSE;
+
+	(void)state;
+	vol[i] = 50 * ML;
+	posture_reset(&p, POSTURE_SUPINE);
+	fluid_attach(&f, &fp, normal, vol, p.down, NULL);
+	s = &f.seg[i];
+	for (size_t k = s->first; k < s->first + s->count; k++) {
+		const double *q = centreline_sample(cl, k)->p;
+
+		if (vec3_dot(q, f.up) < low) { /* the segment's lowest */
+			low = vec3_dot(q, f.up);
+			vec3_copy(bottom, q);
+		}
+	}
+	vec3_axpy(above, bottom, 0.05, f.up); /* 5 cm up: in the gas */
+	assert_true(fluid_under(&f, i, bottom));
+	assert_false(fluid_under(&f, i, above));
+	v0 = s->volume_m3;
+	for (int k = 0; k < (int)lround(t / DT); k++) {
+		fluid_step(&f, p.down, NULL, true, above, i, DT);
+	}
+	assert_true(s->volume_m3 == v0);
+	for (int k = 0; k < (int)lround(t / DT); k++) {
+		fluid_step(&f, p.down, NULL, true, bottom, i, DT);
+	}
+	printf("# suction under the surface: %.3f mL in %.0f s (%.3f mL at "
+	       "%.2f mL/s)\n", (v0 - s->volume_m3) / ML, t,
+	       fp.suction_m3_per_s * t / ML, fp.suction_m3_per_s / ML);
+	assert_true(fabs(v0 - s->volume_m3 - fp.suction_m3_per_s * t) <
+		    1e-6 * fp.suction_m3_per_s * t);
+	assert_true(fabs(f.sucked_m3 - fp.suction_m3_per_s * t) < 1e-12);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(positions),
+		cmocka_unit_test(straight_pool),
+		cmocka_unit_test(fluid_pools),
+		cmocka_unit_test(suction),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}
