@@ -12,6 +12,7 @@ struct chain {
 	int first, count;  /* its nodes */
 	double s0, s1;     /* m, material */
 	double k;          /* mesentery per node, N/m */
+	double mass;       /* per node, kg */
 	double h;          /* mesentery height, m */
 };
 
@@ -27,11 +28,16 @@ struct flex {
 	double stiff[FLEX_MAX_NODES];      /* and how it eases, N/m */
 	double applied[FLEX_MAX_NODES][3]; /* what the centreline has */
 	double along[FLEX_MAX_NODES][3];   /* the course's tangent at rest */
+	double rest[FLEX_MAX_NODES][3];    /* the node's place at rest */
+	double g[3];                       /* gravity, m/s^2 */
+	struct flex_pad pad;
+	double pad_n;                      /* what the pad held, N */
 };
 
 static bool params_ok(const struct flex_params *p)
 {
 	return p->node_spacing_m >= 0.005 && p->node_spacing_m <= 0.2 &&
+	       p->mass_per_m_kg >= 0 && p->mass_per_m_kg < 100 &&
 	       p->damping_n_s_per_m > 0 && p->damping_n_s_per_m < 1e6 &&
 	       p->chain_n_per_m >= 0 && p->chain_n_per_m < 1e6 &&
 	       p->bending_n_per_m >= 0 && p->bending_n_per_m < 1e7;
@@ -81,6 +87,7 @@ void flex_attach(struct flex *f, struct colon *colon)
 		c->first = f->nodes;
 		c->count = count;
 		c->k = r->mesentery_n_per_m / count;
+		c->mass = f->par.mass_per_m_kg * (c->s1 - c->s0) / (count + 1);
 		c->h = r->max_bow_m;
 		for (int k = 0; k < count; k++) {
 			double s_m = c->s0 + (c->s1 - c->s0) * (k + 1) /
@@ -89,6 +96,8 @@ void flex_attach(struct flex *f, struct colon *colon)
 
 			vec3_copy(f->along[f->nodes + k],
 				  centreline_base(cl, at)->t);
+			vec3_copy(f->rest[f->nodes + k],
+				  centreline_base(cl, at)->p);
 		}
 		f->nodes += count;
 		f->chains++;
@@ -126,7 +135,32 @@ void flex_set_params(struct flex *f, const struct flex_params *p)
 		f->par.damping_n_s_per_m = p->damping_n_s_per_m;
 		f->par.chain_n_per_m = p->chain_n_per_m;
 		f->par.bending_n_per_m = p->bending_n_per_m;
+		for (int i = 0; i < f->chains; i++) {
+			struct chain *c = &f->chain[i];
+
+			c->mass = p->mass_per_m_kg * (c->s1 - c->s0) /
+				  (c->count + 1);
+		}
+		f->par.mass_per_m_kg = p->mass_per_m_kg;
 	}
+}
+
+void flex_set_gravity(struct flex *f, const double g[3])
+{
+	vec3_copy(f->g, g);
+}
+
+void flex_set_pad(struct flex *f, const struct flex_pad *pad)
+{
+	f->pad = *pad;
+	if (!pad->on) {
+		f->pad_n = 0;
+	}
+}
+
+double flex_pad_force(const struct flex *f)
+{
+	return f->pad_n;
 }
 
 void flex_clear(struct flex *f)
@@ -175,6 +209,30 @@ void flex_push(struct flex *f, double s_m, const double force[3],
 	}
 }
 
+/* Node N displaced by Y: put back onto the pad's plane when it lies within
+ * the pad's reach on the wall's side, moving across its course only.
+ * Returns how far it was moved, m. */
+static double pad_hold(const struct flex *f, int n, double y[3])
+{
+	const struct flex_pad *p = &f->pad;
+	double x[3], r[3], across[3], depth, a;
+
+	vec3_add(x, f->rest[n], y);
+	vec3_sub(r, x, p->point);
+	depth = vec3_dot(r, p->in);              /* < 0: on the wall's side */
+	vec3_axpy(r, r, -depth, p->in);          /* off the pad's axis */
+	if (depth >= 0 || vec3_norm(r) > p->radius_m) {
+		return 0;
+	}
+	vec3_axpy(across, p->in, -vec3_dot(p->in, f->along[n]), f->along[n]);
+	a = vec3_dot(across, p->in);             /* 1 - (in . t)^2 */
+	if (a < 0.1) {
+		return 0; /* the course runs along the press: it cannot */
+	}
+	vec3_axpy(y, y, -depth / a, across);
+	return -depth / a * sqrt(a);
+}
+
 /*
  * One implicit step of chain C, per coordinate:
  *   (b/h + k_t + k_m) y' - k_c D2 y' + k_b D4 y' = (b/h + k_t) y + F
@@ -205,7 +263,8 @@ static void step_chain(struct flex *f, const struct chain *c, double h)
 		dd[i] = a0 - (i >= 1 ? l1[i] * l1[i] * dd[i - 1] : 0) -
 			(i >= 2 ? l2[i] * l2[i] * dd[i - 2] : 0);
 		for (int d = 0; d < 3; d++) {
-			z[i][d] = (bh + kt) * f->y[n][d] + f->force[n][d] -
+			z[i][d] = (bh + kt) * f->y[n][d] + f->force[n][d] +
+				  c->mass * f->g[d] -
 				  (i >= 1 ? l1[i] * z[i - 1][d] : 0) -
 				  (i >= 2 ? l2[i] * z[i - 2][d] : 0);
 		}
@@ -224,6 +283,12 @@ static void step_chain(struct flex *f, const struct chain *c, double h)
 		 * across it, never along */
 		vec3_axpy(z[i], z[i], -vec3_dot(z[i], f->along[n]),
 			  f->along[n]);
+		if (f->pad.on) {
+			double q = vec3_norm(z[i]) / c->h;
+
+			f->pad_n += (bh + c->k * (1 + q * q) + 2 * kc + 6 * kb) *
+				    pad_hold(f, n, z[i]);
+		}
 		for (int d = 0; d < 3; d++) {
 			f->v[n][d] = (z[i][d] - f->y[n][d]) / h;
 			f->y[n][d] = z[i][d];
@@ -233,6 +298,7 @@ static void step_chain(struct flex *f, const struct chain *c, double h)
 
 void flex_step(struct flex *f, double dt_s)
 {
+	f->pad_n = 0;
 	for (int i = 0; i < f->chains; i++) {
 		const struct chain *c = &f->chain[i];
 		bool moved = false;
@@ -316,6 +382,7 @@ void flex_span_forces(const struct flex *f, int span, double pushed[3],
 			double q = vec3_norm(f->y[n]) / c->h, e[3];
 
 			vec3_add(pushed, pushed, f->force[n]);
+			vec3_axpy(pushed, pushed, c->mass, f->g);
 			vec3_scale(e, f->y[n], c->k * (1 + q * q));
 			for (int d = 0; d < 3; d++) {
 				double d2 = at(f, c, k - 1)[d] -
@@ -333,7 +400,9 @@ void flex_span_forces(const struct flex *f, int span, double pushed[3],
 			 * mesentery takes the push */
 			vec3_axpy(e, e, -vec3_dot(e, f->along[n]), f->along[n]);
 			vec3_add(held, held, e);
-			vec3_axpy(held, held, vec3_dot(f->force[n], f->along[n]),
+			vec3_axpy(held, held,
+				  vec3_dot(f->force[n], f->along[n]) +
+					  c->mass * vec3_dot(f->g, f->along[n]),
 				  f->along[n]);
 		}
 	}

@@ -8,14 +8,16 @@
  * (node k at the fraction (k + 1) / (count + 1) of the span, as
  * centreline_displace() places them); a node's displacement y from rest
  * (m) obeys, every step,
- *   b dy/dt = F - k_m (1 + (|y| / h)^2) y + k_c D2 y - k_b D4 y
+ *   b dy/dt = F + m g - k_m (1 + (|y| / h)^2) y + k_c D2 y - k_b D4 y
  * across the course at rest (the mesentery holds the colon on its course:
  * a node moves in the plane normal to the course's tangent there, never
  * along it; a loop is the colon bulging, not stretching: each step's
  * displacement is projected on that plane, which balances the forces
  * exactly on a straight course and within a few per cent where the
- * course turns between nodes), F the forces the
- * tube puts on the wall around it (flex_push(): shared
+ * course turns between nodes), m g the node's weight (mass_per_m_kg of
+ * colon with its contents times the nodes' spacing, under the gravity
+ * flex_set_gravity() gives: the transverse colon sags on its mesocolon),
+ * F the forces the tube puts on the wall around it (flex_push(): shared
  * between the two knots around the contact by the knot weights, so that
  * action = reaction), k_m the mesentery's stiffness (the segment's
  * mesentery_n_per_m shared among its nodes: a uniform displacement of the
@@ -32,6 +34,14 @@
  * tridiagonal solve per span and coordinate; the stiffening taken at the
  * step's start, the tube's push easing as the wall yields with the
  * contacts' stiffness): stable at any step.
+ *
+ * A pad pressed into the abdomen (the assistant's hand, flex_set_pad())
+ * bars the nodes within its reach from bulging past it: after each step a
+ * node within radius_m of the pad's axis that lies on the abdominal
+ * wall's side of the pad's plane is put back onto the plane, moving
+ * across its course as the mesentery lets it (a one-sided constraint);
+ * the force the pad holds is the nodes' overshoot times their step
+ * stiffness (b / dt + their elastic diagonal).
  *
  * The centreline follows (centreline_displace()) whenever a node has moved
  * by more than FLEX_APPLY_M since it last did; the mesh follows where a
@@ -55,12 +65,14 @@
 
 struct flex_params {
 	double node_spacing_m;   /* 0.005..0.2 */
+	double mass_per_m_kg;    /* the colon with its contents, per m */
 	double damping_n_s_per_m; /* b, per node */
 	double chain_n_per_m;    /* k_c, between neighbours */
 	double bending_n_per_m;  /* k_b, against crumpling */
 };
 
 #define FLEX_PARAMS_DEFAULT { .node_spacing_m = 0.02, \
+			      .mass_per_m_kg = 0.3, \
 			      .damping_n_s_per_m = 20, \
 			      .chain_n_per_m = 100, \
 			      .bending_n_per_m = 300 }
@@ -87,6 +99,26 @@ void flex_reset(struct flex *f);
 
 /* Live parameters (the node spacing stays as created). */
 void flex_set_params(struct flex *f, const struct flex_params *p);
+
+/* Gravity's acceleration G (m/s^2, world); zeros: none (the default). */
+void flex_set_gravity(struct flex *f, const double g[3]);
+
+/* The assistant's pad: a disc of radius RADIUS_M about AXIS_POINT (m,
+ * world) whose plane has the normal IN (unit, from the abdominal wall
+ * into the abdomen) through AXIS_POINT. */
+struct flex_pad {
+	bool on;
+	double point[3];
+	double in[3];
+	double radius_m;
+};
+
+/* The pad from the next step on (PAD->on false: none). */
+void flex_set_pad(struct flex *f, const struct flex_pad *pad);
+
+/* The force the pad held on the colon in the last step, N (along its
+ * normal's direction, into the abdomen). */
+double flex_pad_force(const struct flex *f);
 
 /* Forgets the forces pushed since the last step. */
 void flex_clear(struct flex *f);
@@ -115,10 +147,11 @@ int flex_span_nodes(const struct flex *f, int span);
 const double *flex_node(const struct flex *f, int i);
 
 /*
- * Span SPAN's forces (N, world): PUSHED, what the tube pushed on it in the
- * last step; HELD, what holds it now: its mesentery (across the course,
- * and all of the push along it) and, through the chain, the fixed colon at
- * its ends. At rest they are equal.
+ * Span SPAN's forces (N, world): PUSHED, what loaded it in the last step
+ * (the tube's pushes and its weight); HELD, what holds it now: its
+ * mesentery (across the course, and all of the load along it) and,
+ * through the chain, the fixed colon at its ends. At rest, without the
+ * pad, they are equal.
  */
 void flex_span_forces(const struct flex *f, int span, double pushed[3],
 		      double held[3]);

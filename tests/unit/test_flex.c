@@ -11,7 +11,13 @@
  *  - a push between two knots is shared by their weights; the fixed colon
  *    takes a push without moving; the chain carries a point push to the
  *    neighbours, less than to the node pushed;
- *  - released, the colon returns to rest.
+ *  - released, the colon returns to rest;
+ *  - its weight: a span across gravity sags in its middle by the
+ *    mesentery law's answer, m g / k in the linear regime, within 2 %;
+ *    along its course gravity moves nothing;
+ *  - the assistant's pad: nodes pushed towards the wall stop at the
+ *    pad's plane within its reach and not beyond it; the pad holds the
+ *    push; lifted, nothing holds them.
  */
 #include <errno.h>
 #include <math.h>
@@ -233,12 +239,107 @@ static void test_pushes(void **state)
 	colon_destroy(c);
 }
 
+/* A span across gravity sags by m g / k per node (linear regime). */
+static void test_gravity_sag(void **state)
+{
+	const double k = 600, h = 0.06;
+	struct flex_params p = FLEX_PARAMS_DEFAULT;
+	struct colon *c = straight_colon(k, h);
+	struct flex *f;
+	const double g[3] = { 0, 9.81, 0 }, along[3] = { 0, 0, -9.81 };
+	double s0, s1, m, km, y, want;
+	int count;
+
+	(void)state;
+	p.mass_per_m_kg = 0.3;
+	f = flex_create(&p);
+	assert_non_null(f);
+	flex_attach(f, c);
+	count = flex_span_nodes(f, 0);
+	centreline_span_range(colon_centreline(c), 0, &s0, &s1);
+	m = p.mass_per_m_kg * (s1 - s0) / (count + 1);
+	km = k / count;
+	flex_set_gravity(f, g);
+	push_nodes(f, c, NULL, 5.0);
+	y = flex_node(f, count / 2)[1];
+	want = m * g[1] / km;
+	print_message("its weight: %.4f kg a node on %.1f N/m sags %.3f mm "
+		      "(m g / k = %.3f mm, h = %.0f mm)\n", m, km, y * 1e3,
+		      want * 1e3, h * 1e3);
+	assert_near(y, want, 0.02 * want);
+	/* gravity along the course: the mesentery holds it, nothing moves */
+	flex_reset(f);
+	flex_set_gravity(f, along);
+	push_nodes(f, c, NULL, 2.0);
+	assert_near(flex_span_displacement(f, 0), 0, 1e-9);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
+/* The pad bars the nodes within its reach from passing its plane. */
+static void test_pad(void **state)
+{
+	const struct flex_params p = FLEX_PARAMS_DEFAULT;
+	struct colon *c = straight_colon(600, 0.06);
+	struct flex *f = flex_create(&p);
+	const double push[3] = { 0, -2, 0 }; /* towards -y, the wall */
+	struct flex_pad pad = { .on = true, .in = { 0, 1, 0 },
+				.radius_m = 0.05 };
+	double s0, s1, mid_s, free_y, held_n = 0;
+	int count, mid, far;
+
+	(void)state;
+	assert_non_null(f);
+	flex_attach(f, c);
+	count = flex_span_nodes(f, 0);
+	mid = count / 2;
+	far = 1;
+	centreline_span_range(colon_centreline(c), 0, &s0, &s1);
+	mid_s = node_s(c, mid, count);
+	push_nodes(f, c, push, 3.0);
+	free_y = flex_node(f, mid)[1];
+	assert_true(free_y < -0.02);
+	/* the pad 1 cm in front of the course at the span's middle */
+	vec3_copy(pad.point, base_at(c, mid_s));
+	pad.point[1] -= 0.01;
+	flex_reset(f);
+	flex_set_pad(f, &pad);
+	push_nodes(f, c, push, 3.0);
+	held_n = flex_pad_force(f);
+	print_message("pad 1 cm off the course: the middle %.2f cm (free "
+		      "%.2f cm), a node %.1f cm away %.2f cm; the pad holds "
+		      "%.2f N\n", flex_node(f, mid)[1] * 100, free_y * 100,
+		      fabs(node_s(c, far, count) - mid_s) * 100,
+		      flex_node(f, far)[1] * 100, held_n);
+	for (int i = 0; i < count; i++) {
+		double off = fabs(node_s(c, i, count) - mid_s);
+
+		if (off < pad.radius_m) {
+			assert_true(flex_node(f, i)[1] >= -0.01 - 1e-9);
+		}
+	}
+	assert_near(flex_node(f, mid)[1], -0.01, 1e-6);
+	assert_true(fabs(node_s(c, far, count) - mid_s) > pad.radius_m);
+	assert_true(flex_node(f, far)[1] < -0.01 - 0.002);
+	assert_true(held_n > 2 && held_n < 2 * count);
+	/* lifted */
+	pad.on = false;
+	flex_set_pad(f, &pad);
+	push_nodes(f, c, push, 3.0);
+	assert_near(flex_node(f, mid)[1], free_y, 1e-4);
+	assert_near(flex_pad_force(f), 0, 1e-12);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_displace),
 		cmocka_unit_test(test_mesentery_law),
 		cmocka_unit_test(test_pushes),
+		cmocka_unit_test(test_gravity_sag),
+		cmocka_unit_test(test_pad),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
