@@ -12,7 +12,11 @@
  *    within 0.1 % through four position changes, the surface
  *    perpendicular to gravity within 1 degree at rest (and lagging during
  *    a turn), and suction under the surface empties it at the configured
- *    rate, none above it.
+ *    rate, none above it;
+ *  - the lens: pressed into the wall it smears in proportion to the
+ *    force above contact and the time, dipped into fluid it clouds, the
+ *    water jet clears either in its wash time, suction near the wall
+ *    reds it out with its time constant and lets go as fast.
  */
 #include <errno.h>
 #include <math.h>
@@ -29,6 +33,7 @@
 #include "model/anatomy.h"
 #include "model/colon.h"
 #include "model/fluid.h"
+#include "model/lens.h"
 #include "model/posture.h"
 #include "plain_anatomy.h"
 
@@ -282,6 +287,56 @@ static void suction(void **state)
 	assert_true(fabs(f.sucked_m3 - fp.suction_m3_per_s * t) < 1e-12);
 }
 
+static void lens(void **state)
+{
+	const struct lens_params p = LENS_PARAMS_DEFAULT;
+	struct lens_input in = { .wall_gap_m = 0.01 };
+	struct lens l;
+	double t;
+
+	(void)state;
+	lens_reset(&l);
+	in.tip_force_n = 1.5; /* 1 N above contact: 4 N s to smear */
+	for (t = 0; t < 2 - DT / 2; t += DT) {
+		lens_step(&l, &p, &in, DT);
+	}
+	print_message("pressed at 1.5 N for 2 s: smear %.3f (want %.3f)\n",
+		      l.smear, (1.5 - p.contact_n) * 2 / p.smear_n_s);
+	assert_true(fabs(l.smear - (1.5 - p.contact_n) * 2 / p.smear_n_s) <
+		    1e-6);
+	in.tip_force_n = 0.4; /* below contact: nothing more */
+	lens_step(&l, &p, &in, 1);
+	assert_true(fabs(l.smear - 0.5) < 1e-6);
+	/* dipped: murky in dip_s */
+	in.under_fluid = true;
+	for (t = 0; t < p.dip_s * 0.5 - DT / 2; t += DT) {
+		lens_step(&l, &p, &in, DT);
+	}
+	assert_true(fabs(l.murk - 0.5) < 1e-6);
+	in.under_fluid = false;
+	/* washed: half a wash time takes half off each */
+	in.water = true;
+	for (t = 0; t < p.wash_s * 0.5 - DT / 2; t += DT) {
+		lens_step(&l, &p, &in, DT);
+	}
+	assert_true(l.smear < 1e-6 && l.murk < 1e-6);
+	in.water = false;
+	/* red-out: suction within the gap */
+	in.suction = true;
+	in.wall_gap_m = p.redout_gap_m / 2;
+	for (t = 0; t < p.redout_s - DT / 2; t += DT) {
+		lens_step(&l, &p, &in, DT);
+	}
+	print_message("suction at the wall for %.1f s: red-out %.3f (1 - 1/e "
+		      "= %.3f)\n", p.redout_s, l.redout, 1 - exp(-1));
+	assert_true(fabs(l.redout - (1 - exp(-1))) < 1e-3);
+	in.wall_gap_m = p.redout_gap_m * 2; /* away from the wall */
+	for (t = 0; t < 5 * p.redout_s; t += DT) {
+		lens_step(&l, &p, &in, DT);
+	}
+	assert_true(l.redout < 0.01);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -289,6 +344,7 @@ int main(void)
 		cmocka_unit_test(straight_pool),
 		cmocka_unit_test(fluid_pools),
 		cmocka_unit_test(suction),
+		cmocka_unit_test(lens),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
