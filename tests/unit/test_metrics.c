@@ -721,7 +721,10 @@ static void one_pose(struct colon *c, double s, double angle)
 	printf("# camera at %.2f m looking %s: seen %.4f, oracle %.4f "
 	       "(%.4f in view without the folds' shadow)\n", s,
 	       angle ? "back" : "ahead", got, want, open);
-	assert_true(fabs(got - want) < 0.03);
+	/* the depth test sees 0.010 and 0.011 more than the oracle at these
+	 * poses (the buffer's pixels); a buffer of half the resolution, or a
+	 * depth slack 20 times its own, errs by 0.019 and 0.020 */
+	assert_true(fabs(got - want) < 0.013);
 	assert_true(open - want > 0.1); /* the folds hide a good part */
 	metrics_destroy(m);
 }
