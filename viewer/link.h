@@ -14,8 +14,9 @@
  * again.
  *
  * Fetching the scene is the one call that blocks (up to
- * LINK_SCENE_TIMEOUT_MS per chunk); link_update() never does. Main thread
- * only.
+ * LINK_SCENE_TIMEOUT_MS per chunk), on a connection made for it
+ * (reconnect.h); link_update() never does. What is wrong is said in
+ * link_problem() and logged once. Main thread only.
  */
 #ifndef ENDOVIEW_LINK_H
 #define ENDOVIEW_LINK_H
