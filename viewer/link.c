@@ -8,6 +8,7 @@
 
 #include "base/log.h"
 #include "proto/shm_reader.h"
+#include "session/sessioninputs.h"
 #include "viewer/reconnect.h"
 
 #define READ_TRIES 8
@@ -23,6 +24,7 @@ struct link {
 	bool have_state;
 	bool changed;
 	uint64_t next_open_ns;  /* earliest time to try to open again */
+	double loop_config_m;   /* [session] loop_threshold_m; 0: by model */
 };
 
 struct link *link_create(const char *socket, const char *shm_name)
@@ -147,6 +149,30 @@ bool link_scene_wanted(const struct link *l, uint64_t held_id,
 	       reconnect_due(l->scene, now_ns);
 }
 
+/* The daemon's [session] loop_threshold_m, asked on C; 0 (by the model)
+ * when it does not say. */
+static double ask_loop_threshold(struct client *c)
+{
+	Endosim__GetConfig body = ENDOSIM__GET_CONFIG__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	double m = 0;
+
+	body.key = "session.loop_threshold_m";
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_CONFIG;
+	req.get_config = &body;
+	if (client_request(c, &req, &rep, LINK_SCENE_TIMEOUT_MS)) {
+		return 0;
+	}
+	if (rep->status == ENDOSIM__STATUS__STATUS_OK &&
+	    rep->body_case == ENDOSIM__REPLY__BODY_CONFIG &&
+	    rep->config->n_entries == 1) {
+		m = strtod(rep->config->entries[0]->value, NULL);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return m;
+}
+
 int link_fetch_scene(struct link *l, struct client_scene **out,
 		     uint64_t now_ns)
 {
@@ -163,6 +189,9 @@ int link_fetch_scene(struct link *l, struct client_scene **out,
 	}
 	r = client_get_scene(reconnect_client(l->scene), out,
 			     LINK_SCENE_TIMEOUT_MS, &status);
+	if (!r) {
+		l->loop_config_m = ask_loop_threshold(reconnect_client(l->scene));
+	}
 	reconnect_close(l->scene);
 	if (r) {
 		reconnect_say(l->scene, "scene from %s: %s",
@@ -173,6 +202,14 @@ int link_fetch_scene(struct link *l, struct client_scene **out,
 	}
 	reconnect_clear(l->scene);
 	return 0;
+}
+
+double link_loop_threshold_m(const struct link *l)
+{
+	return sessioninputs_loop_threshold_m(l->loop_config_m,
+					      l->have_state &&
+					      l->st.rod.model ==
+					      ENDOSIM_MODEL_ROD);
 }
 
 bool link_daemon_changed(struct link *l)
