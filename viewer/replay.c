@@ -30,6 +30,7 @@ struct replay {
 	struct endosim_state st;
 	struct scope_pose pose;
 	struct session_shape shape; /* the rod model's, at or before st */
+	double loop_threshold_m;    /* the session's metrics' */
 };
 
 static const char *read_error(int r)
@@ -48,12 +49,15 @@ static const char *read_error(int r)
 /* The scope's parameters and the contact radius, from CONFIG. */
 static void read_config(struct replay *r, const char *path)
 {
+	struct metrics_params mp;
 	char err[256];
 
 	if (sessioninputs_config(&r->f, &r->cfg, err, sizeof(err))) {
 		log_warn("%s: its configuration: %s: the scope's defaults "
 			 "instead", path, err);
 	}
+	sessioninputs_file_metrics_params(&r->f, &mp);
+	r->loop_threshold_m = mp.loop_threshold_m;
 }
 
 static int build_colon(struct replay *r, const char *path, char *err,
@@ -147,6 +151,11 @@ size_t replay_records(const struct replay *r)
 size_t replay_bytes_ignored(const struct replay *r)
 {
 	return r->f.bytes_ignored;
+}
+
+double replay_loop_threshold_m(const struct replay *r)
+{
+	return r->loop_threshold_m;
 }
 
 double replay_duration(const struct replay *r)

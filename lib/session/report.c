@@ -324,11 +324,20 @@ static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
 	htmlpage_plot_end(p);
 }
 
+/* The loop threshold F's metrics counted from (sessioninputs.h), m. */
+static double loop_threshold_m(const struct session_file *f)
+{
+	struct metrics_params mp;
+
+	sessioninputs_file_metrics_params(f, &mp);
+	return mp.loop_threshold_m;
+}
+
 static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 		      const struct metrics_result *m, const struct anatomy *a)
 {
 	struct series s[ENDOSIM_SPANS];
-	struct metrics_params mp;
+	double loop_m = loop_threshold_m(f);
 	int n = 0;
 
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
@@ -342,11 +351,9 @@ static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 	       n < ENDOSIM_SPANS; n++) {
 		s[n] = (struct series){ "mobile segment", get_bow, n };
 	}
-	metrics_params_default(&mp);
 	plot_series_figure(p, f, m, "plot-bow", "Loops: the bow of each mobile "
-			   "segment", "bow amplitude (m)", s, n, 0,
-			   mp.loop_threshold_m * 1.5);
-	htmlpage_plot_hline(p, mp.loop_threshold_m, "loop threshold");
+			   "segment", "bow amplitude (m)", s, n, 0, loop_m * 1.5);
+	htmlpage_plot_hline(p, loop_m, "loop threshold");
 	htmlpage_plot_end(p);
 }
 
@@ -390,7 +397,8 @@ static void metrics_rows_times(FILE *o, const struct metrics_result *m)
 	row_end(o, "from the anal verge along the colon");
 }
 
-static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
+static void metrics_rows_forces(FILE *o, const struct session_file *f,
+				const struct metrics_result *m)
 {
 	struct metrics_params mp;
 	char note[96];
@@ -412,7 +420,7 @@ static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
 	htmlpage_duration(o, m->longest_loop_s);
 	fprintf(o, ", largest %.1f cm", m->largest_loop_m * 100);
 	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
-		 mp.loop_threshold_m * 100);
+		 loop_threshold_m(f) * 100);
 	row_end(o, note);
 	row_begin(o, "Patient discomfort", "");
 	fprintf(o, "%.1f", m->discomfort);
@@ -578,7 +586,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 
 	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
 	metrics_rows_times(o, m);
-	metrics_rows_forces(o, m);
+	metrics_rows_forces(o, f, m);
 	metrics_rows_view(o, m);
 	fputs("</table></section>\n<section><h2>Over time</h2>\n", o);
 	if (f->n_records) {

@@ -11,6 +11,7 @@
 #ifndef ENDOSIM_SESSIONINPUTS_H
 #define ENDOSIM_SESSIONINPUTS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "model/anatomy.h"
@@ -33,12 +34,22 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 #define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
 #define SESSION_LOOP_THRESHOLD_ROD_M 0.03
 
-/* The metrics' parameters ([session] thresholds) CFG sets. */
+/*
+ * The one home of the loop threshold (m) that the metrics count loops
+ * from, and so the report, endoview's loop warning and docs/METRICS.md:
+ * CONFIGURED_M ([session] loop_threshold_m) when above 0, else the
+ * model's (ROD: the rod model ran, else the paper's).
+ */
+double sessioninputs_loop_threshold_m(double configured_m, bool rod);
+
+/* The metrics' parameters ([session] thresholds) CFG sets, the loop's
+ * by CFG's model. */
 void sessioninputs_metrics_params(const struct config *cfg,
 				  struct metrics_params *p);
 
-/* The metrics' parameters the session F was recorded with (its CONFIG
- * frame's, the defaults where it has none). */
+/* The metrics' parameters the session F was recorded with: its CONFIG
+ * frame's (the defaults where it has none), the loop's by the model its
+ * records say ran (its CONFIG's without a record). */
 void sessioninputs_file_metrics_params(const struct session_file *f,
 				       struct metrics_params *p);
 

@@ -4,13 +4,15 @@
  *
  *   session_report FILE.endoses DIR
  *
- * recomputes the metrics from the records (report_metrics()), prints them
- * as key=value lines and writes DIR/index.html.
+ * recomputes the metrics from the records (report_metrics()) with the
+ * parameters the file was recorded with (sessioninputs.h), prints them as
+ * key=value lines and writes DIR/index.html.
  */
 #include <stdio.h>
 #include <string.h>
 
 #include "session/report.h"
+#include "session/sessioninputs.h"
 
 int main(int argc, char **argv)
 {
@@ -30,7 +32,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "session_report: %s: %s\n", argv[1], strerror(-r));
 		return 1;
 	}
-	metrics_params_default(&p);
+	sessioninputs_file_metrics_params(&f, &p);
 	r = report_metrics(&f, &p, &m, err, sizeof(err));
 	if (err[0]) {
 		fprintf(stderr, "session_report: %s\n", err);

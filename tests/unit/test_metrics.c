@@ -327,6 +327,37 @@ static void test_loop_threshold_by_model(void **state)
 	assert_true(p.loop_threshold_m == 0.02);
 }
 
+/* A session file's threshold, which the report and the replay's HUD
+ * take: by the model its records say ran, whatever model its CONFIG
+ * names (a tool's file may name none: the default, the rod); its CONFIG's
+ * value overrides it; without records, its CONFIG's model. */
+static void test_loop_threshold_of_file(void **state)
+{
+	struct session_record rec = { .model = ENDOSIM_MODEL_PAPER };
+	struct session_file f = { .config = "[loop]\n" };
+	struct metrics_params p;
+
+	(void)state;
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_ROD_M);
+	f.records = &rec;
+	f.n_records = 1;
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_PAPER_M);
+	rec.model = ENDOSIM_MODEL_ROD;
+	f.config = "[haptics]\nmodel = paper\n";
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_ROD_M);
+	f.config = "[session]\nloop_threshold_m = 0.05\n";
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == 0.05);
+	assert_true(sessioninputs_loop_threshold_m(0, true) ==
+		    SESSION_LOOP_THRESHOLD_ROD_M);
+	assert_true(sessioninputs_loop_threshold_m(0, false) ==
+		    SESSION_LOOP_THRESHOLD_PAPER_M);
+	assert_true(sessioninputs_loop_threshold_m(0.04, false) == 0.04);
+}
+
 static void test_loop_episodes(void **state)
 {
 	struct metrics *m = metrics_at(NULL, 20);
@@ -1171,6 +1202,7 @@ int main(void)
 		cmocka_unit_test(test_force_episode_running),
 		cmocka_unit_test(test_loop_episodes),
 		cmocka_unit_test(test_loop_threshold_by_model),
+		cmocka_unit_test(test_loop_threshold_of_file),
 		cmocka_unit_test(test_episodes_beyond_the_list),
 		cmocka_unit_test(test_discomfort_constant),
 		cmocka_unit_test(test_lumen_lost_straight),
