@@ -18,7 +18,6 @@
 #include "base/vec3.h"
 
 #define FOV_DEG 30.0
-#define SCOPE_RADIUS_M 0.0065   /* a 13 mm insertion tube */
 #define STRIPE_RADIUS_M 0.0016  /* the roll's line, on its surface */
 #define OUTSIDE 0.45f           /* the tube outside the patient: dimmer */
 #define TIP_RADIUS_M 0.006

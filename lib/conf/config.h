@@ -20,7 +20,7 @@
 #include <stdio.h>
 
 #include "proto/endosim_shm.h"
-#include "model/haptics_gains.h"
+#include "model/haptics.h"
 #include "conf/regmap.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
