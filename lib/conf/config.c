@@ -520,6 +520,9 @@ static const struct config_key keys[] = {
 	   0, 0, 1e9, "B/s", 0,
 	   "for tests only: the recorder writes at most this fast (a slow "
 	   "disk); 0: unlimited"),
+	/* the metrics' thresholds: metrics.h's METRICS_DEFAULT_*, which this
+	 * wing, below the session's, cannot name (test_config holds them to
+	 * each other) */
 	KD("session", "force_threshold_n", session.force_threshold_n, 15, 0.1,
 	   1000, "N", 0, "metrics: insertion force above this is an episode of "
 	   "excessive pressure"),

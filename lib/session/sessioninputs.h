@@ -30,7 +30,7 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 /* A loop, when [session] loop_threshold_m is 0: by the haptics' model. The
  * rod model moves the sigmoid a centimetre or two on an ordinary insertion
  * (the tube takes the outside of its bends); its loops are larger. */
-#define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
+#define SESSION_LOOP_THRESHOLD_PAPER_M METRICS_DEFAULT_LOOP_THRESHOLD_M
 #define SESSION_LOOP_THRESHOLD_ROD_M 0.03
 
 /* The metrics' parameters ([session] thresholds) CFG sets. */
