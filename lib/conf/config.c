@@ -2,7 +2,6 @@
 #include "conf/config.h"
 
 #include <errno.h>
-#include <ini.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -22,19 +21,78 @@ static const char *const model_names[] = { "paper", "rod", NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
+/* [log] level: a syslog level by name. */
+static int level_parse(const struct parse_key *k, const char *text,
+		       void *field, struct parse_file *pf, char *why,
+		       size_t size)
+{
+	int level = log_level_parse(text);
+
+	(void)k;
+	(void)pf;
+	if (level < 0) {
+		snprintf(why, size, "'%s' is not one of err, warning, notice, "
+			 "info, debug", text);
+		return -EINVAL;
+	}
+	*(int *)field = level;
+	return 0;
+}
+
+static void level_format(const struct parse_key *k, const void *field,
+			 char *buf, size_t size)
+{
+	(void)k;
+	snprintf(buf, size, "%s", log_level_name(*(const int *)field));
+}
+
+static const struct parse_ops level_ops = { level_parse, level_format };
+
+/* [modbus.NAME] SIGNAL: a register's description (regmap.h). */
+static int register_parse(const struct parse_key *k, const char *text,
+			  void *field, struct parse_file *pf, char *why,
+			  size_t size)
+{
+	(void)k;
+	(void)pf;
+	return regmap_parse(text, field, why, size);
+}
+
+static void register_format(const struct parse_key *k, const void *field,
+			    char *buf, size_t size)
+{
+	(void)k;
+	regmap_format(field, buf, size);
+}
+
+static const struct parse_ops register_ops = { register_parse,
+					       register_format };
+
 #define OFF(field) offsetof(struct config, field)
 #define KI(sec, key, field, d, lo, hi, u, fl, h) \
-	{ sec, key, CONFIG_INT, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+	{ .section = sec, .name = key, .type = PARSE_INT, \
+	  .offset = OFF(field), .def = d, .min = lo, .max = hi, .unit = u, \
+	  .flags = fl, .help = h }
 #define KD(sec, key, field, d, lo, hi, u, fl, h) \
-	{ sec, key, CONFIG_DOUBLE, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+	{ .section = sec, .name = key, .type = PARSE_DOUBLE, \
+	  .offset = OFF(field), .def = d, .min = lo, .max = hi, .unit = u, \
+	  .flags = fl, .help = h }
 #define KS(sec, key, field, d, fl, h) \
-	{ sec, key, CONFIG_STRING, OFF(field), 0, d, 0, 0, NULL, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_STRING, \
+	  .offset = OFF(field), .size = CONFIG_STR, .def_str = d, .unit = "", \
+	  .flags = fl, .help = h }
 #define KE(sec, key, field, d, ch, fl, h) \
-	{ sec, key, CONFIG_ENUM, OFF(field), d, NULL, 0, 0, ch, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_CHOICE, \
+	  .offset = OFF(field), .def = d, .choices = ch, .unit = "", \
+	  .flags = fl, .help = h }
 #define KL(sec, key, field, d, fl, h) \
-	{ sec, key, CONFIG_LEVEL, OFF(field), d, NULL, 0, 0, NULL, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_CUSTOM, \
+	  .offset = OFF(field), .def_str = d, .ops = &level_ops, .unit = "", \
+	  .flags = fl, .help = h }
 #define KR(sec, key, field, h) \
-	{ sec, key, CONFIG_REGISTER, OFF(field), 0, "none", 0, 0, NULL, "", 0, h }
+	{ .section = sec, .name = key, .type = PARSE_CUSTOM, \
+	  .offset = OFF(field), .def_str = "none", .ops = &register_ops, \
+	  .unit = "", .help = h }
 
 #define I_INS ENDOSIM_AXIS_INSERTION
 #define I_ROLL ENDOSIM_AXIS_ROLL
@@ -74,9 +132,9 @@ static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 
 /* [epos4.NAME]: the maxon EPOS4 on USB that drives axis I. */
 #define EPOS4_KEYS(sec, i)                                                   \
-	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", CONFIG_HEX,     \
+	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", PARSE_HEX,     \
 	   "USB vendor id"),                                                 \
-	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", CONFIG_HEX,     \
+	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", PARSE_HEX,     \
 	   "USB product id"),                                                \
 	KS(sec, "serial", epos4[i].serial, "", 0,                            \
 	   "USB serial number; empty: the only drive with that id"),          \
@@ -118,7 +176,7 @@ static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 	KR(sec, "watchdog", modbus_drive[i].reg[REGMAP_WATCHDOG],            \
 	   "communication watchdog, s (gets watchdog_s)")
 
-static const struct config_key keys[] = {
+static const struct parse_key keys[] = {
 	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
 	   "force-loop rate"),
 	KI("loop", "priority", loop.priority, 80, 1, 99, "", 0,
@@ -426,7 +484,7 @@ static const struct config_key keys[] = {
 	   FLEX_DEFAULT_BENDING_N_PER_M, 0, 1e6, "N/m", LIVE,
 	   "the colon wall's resistance to crumpling between its nodes"),
 
-	KL("log", "level", log.level, LOG_INFO, LIVE,
+	KL("log", "level", log.level, "info", LIVE,
 	   "err, warning, notice, info or debug"),
 
 	GUIDE_KEYS("insertion", I_INS, "n", "m", "N", "m", 4000, 40, 25, 0.1,
@@ -554,30 +612,22 @@ static const struct config_key keys[] = {
 	   "largest tip bend left or right (160 deg)"),
 };
 
-#define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
+static const struct parse_table table = {
+	.keys = keys,
+	.n = sizeof(keys) / sizeof(keys[0]),
+};
 
 size_t config_key_count(void)
 {
-	return KEY_COUNT;
+	return table.n;
 }
 
-const struct config_key *config_key_at(size_t i)
+const struct parse_key *config_key_at(size_t i)
 {
-	return i < KEY_COUNT ? &keys[i] : NULL;
+	return i < table.n ? &keys[i] : NULL;
 }
 
-static const struct config_key *find(const char *section, const char *name)
-{
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		if (!strcmp(keys[i].section, section) &&
-		    !strcmp(keys[i].name, name)) {
-			return &keys[i];
-		}
-	}
-	return NULL;
-}
-
-const struct config_key *config_key_find(const char *key)
+const struct parse_key *config_key_find(const char *key)
 {
 	char section[64];
 	const char *dot = strrchr(key, '.');
@@ -587,221 +637,24 @@ const struct config_key *config_key_find(const char *key)
 	}
 	memcpy(section, key, (size_t)(dot - key));
 	section[dot - key] = '\0';
-	return find(section, dot + 1);
-}
-
-static void *field(struct config *cfg, const struct config_key *k)
-{
-	return (char *)cfg + k->offset;
-}
-
-static const void *cfield(const struct config *cfg, const struct config_key *k)
-{
-	return (const char *)cfg + k->offset;
+	return parse_find(&table, section, dot + 1);
 }
 
 void config_defaults(struct config *cfg)
 {
 	memset(cfg, 0, sizeof(*cfg));
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		const struct config_key *k = &keys[i];
-
-		switch (k->type) {
-		case CONFIG_INT:
-		case CONFIG_ENUM:
-		case CONFIG_LEVEL:
-			*(int *)field(cfg, k) = (int)k->def;
-			break;
-		case CONFIG_DOUBLE:
-			*(double *)field(cfg, k) = k->def;
-			break;
-		case CONFIG_STRING:
-			snprintf(field(cfg, k), CONFIG_STR, "%s", k->def_str);
-			break;
-		case CONFIG_REGISTER:
-			regmap_parse(k->def_str, field(cfg, k), NULL, 0);
-			break;
-		}
-	}
-}
-
-static int parse_number(const struct config_key *k, const char *text,
-			double *out, char *why, size_t size)
-{
-	char *end;
-
-	errno = 0;
-	if (k->type == CONFIG_INT) {
-		long v = strtol(text, &end, k->flags & CONFIG_HEX ? 16 : 10);
-
-		if (!*text || *end || errno) {
-			snprintf(why, size, "'%s' is not an integer", text);
-			return -EINVAL;
-		}
-		*out = (double)v;
-	} else {
-		double v = strtod(text, &end);
-
-		if (!*text || *end || errno || !isfinite(v)) {
-			snprintf(why, size, "'%s' is not a number", text);
-			return -EINVAL;
-		}
-		*out = v;
-	}
-	if (*out < k->min || *out > k->max) {
-		snprintf(why, size, "%s is out of range [%g, %g]%s%s", text,
-			 k->min, k->max, *k->unit ? " " : "", k->unit);
-		return -EINVAL;
-	}
-	return 0;
-}
-
-static int parse_choice(const struct config_key *k, const char *text,
-			int *out, char *why, size_t size)
-{
-	int n = 0;
-
-	if (k->type == CONFIG_LEVEL) {
-		*out = log_level_parse(text);
-		if (*out < 0) {
-			snprintf(why, size, "'%s' is not one of err, warning, "
-				 "notice, info, debug", text);
-			return -EINVAL;
-		}
-		return 0;
-	}
-	for (; k->choices[n]; n++) {
-		if (!strcmp(text, k->choices[n])) {
-			*out = n;
-			return 0;
-		}
-	}
-	snprintf(why, size, "'%s' is not a known choice", text);
-	return -EINVAL;
-}
-
-/* Parses TEXT into K's field of CFG; on error CFG is unchanged. */
-static int apply(struct config *cfg, const struct config_key *k,
-		 const char *text, char *why, size_t size)
-{
-	double num;
-	int choice, err;
-
-	switch (k->type) {
-	case CONFIG_INT:
-	case CONFIG_DOUBLE:
-		err = parse_number(k, text, &num, why, size);
-		if (err) {
-			return err;
-		}
-		if (k->type == CONFIG_INT) {
-			*(int *)field(cfg, k) = (int)num;
-		} else {
-			*(double *)field(cfg, k) = num;
-		}
-		break;
-	case CONFIG_STRING:
-		if (strlen(text) >= CONFIG_STR) {
-			snprintf(why, size, "longer than %d characters",
-				 CONFIG_STR - 1);
-			return -EINVAL;
-		}
-		strcpy(field(cfg, k), text);
-		break;
-	case CONFIG_ENUM:
-	case CONFIG_LEVEL:
-		err = parse_choice(k, text, &choice, why, size);
-		if (err) {
-			return err;
-		}
-		*(int *)field(cfg, k) = choice;
-		break;
-	case CONFIG_REGISTER:
-		return regmap_parse(text, field(cfg, k), why, size);
-	}
-	return 0;
-}
-
-struct parse_ctx {
-	struct config *cfg;
-	FILE *file;
-	const char *path;
-	int line;           /* line being parsed, 1-based */
-	bool at_line_start;
-	unsigned int keys_seen;
-	int first_line[KEY_COUNT]; /* 0: not set in this file */
-	char *err;
-	size_t errsize;
-};
-
-/* fgets for inih that counts lines, so errors can name them. */
-static char *read_line(char *str, int num, void *stream)
-{
-	struct parse_ctx *ctx = stream;
-	char *r = fgets(str, num, ctx->file);
-
-	if (r) {
-		if (ctx->at_line_start) {
-			ctx->line++;
-		}
-		ctx->at_line_start = strchr(r, '\n') != NULL;
-	}
-	return r;
-}
-
-static int on_key(void *user, const char *section, const char *name,
-		  const char *value)
-{
-	struct parse_ctx *ctx = user;
-	const struct config_key *k = find(section, name);
-	char why[160];
-	size_t idx;
-
-	if (*ctx->err) {
-		return 0; /* keep the first error */
-	}
-	if (!k) {
-		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: unknown key",
-			 ctx->path, ctx->line, section, name);
-		return 0;
-	}
-	idx = (size_t)(k - keys);
-	if (ctx->first_line[idx]) {
-		snprintf(ctx->err, ctx->errsize,
-			 "%s:%d: [%s] %s: duplicate key (first set on line %d)",
-			 ctx->path, ctx->line, section, name,
-			 ctx->first_line[idx]);
-		return 0;
-	}
-	if (apply(ctx->cfg, k, value, why, sizeof(why))) {
-		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: %s",
-			 ctx->path, ctx->line, section, name, why);
-		return 0;
-	}
-	ctx->first_line[idx] = ctx->line;
-	ctx->keys_seen++;
-	return 1;
+	parse_defaults(&table, cfg);
 }
 
 int config_load_stream(struct config *cfg, FILE *f, const char *name,
 		       char *err, size_t errsize)
 {
-	struct parse_ctx ctx = {
-		.cfg = cfg, .file = f, .path = name, .at_line_start = true,
-		.err = err, .errsize = errsize,
-	};
-	int r;
+	int n = parse_ini(&table, f, name, cfg, NULL, err, errsize);
 
-	err[0] = '\0';
-	r = ini_parse_stream(read_line, &ctx, on_key, &ctx);
-	if (*err) {
-		return -EINVAL;
+	if (n < 0) {
+		return n;
 	}
-	if (r != 0) {
-		snprintf(err, errsize, "%s:%d: syntax error", name, r);
-		return -EINVAL;
-	}
-	if (!ctx.keys_seen) {
+	if (!n) {
 		snprintf(err, errsize, "%s: empty configuration (no keys)",
 			 name);
 		return -EINVAL;
@@ -829,7 +682,7 @@ int config_load(struct config *cfg, const char *path, char *err,
 int config_set(struct config *cfg, const char *key, const char *value,
 	       bool live_only, char *err, size_t errsize)
 {
-	const struct config_key *k = config_key_find(key);
+	const struct parse_key *k = config_key_find(key);
 	struct config tmp = *cfg;
 	char why[160];
 	int r;
@@ -844,7 +697,7 @@ int config_set(struct config *cfg, const char *key, const char *value,
 			 key);
 		return -EPERM;
 	}
-	if (apply(&tmp, k, value, why, sizeof(why))) {
+	if (parse_apply(k, &tmp, value, NULL, why, sizeof(why))) {
 		snprintf(err, errsize, "%s: %s", key, why);
 		return -EINVAL;
 	}
@@ -1091,32 +944,10 @@ int config_check(const struct config *cfg, char *err, size_t errsize)
 	return 0;
 }
 
-void config_format(const struct config *cfg, const struct config_key *k,
+void config_format(const struct config *cfg, const struct parse_key *k,
 		   char *buf, size_t size)
 {
-	switch (k->type) {
-	case CONFIG_INT:
-		snprintf(buf, size, k->flags & CONFIG_HEX ? "0x%04x" : "%d",
-			 *(const int *)cfield(cfg, k));
-		break;
-	case CONFIG_DOUBLE:
-		snprintf(buf, size, "%.9g", *(const double *)cfield(cfg, k));
-		break;
-	case CONFIG_STRING:
-		snprintf(buf, size, "%s", (const char *)cfield(cfg, k));
-		break;
-	case CONFIG_ENUM:
-		snprintf(buf, size, "%s",
-			 k->choices[*(const int *)cfield(cfg, k)]);
-		break;
-	case CONFIG_LEVEL:
-		snprintf(buf, size, "%s",
-			 log_level_name(*(const int *)cfield(cfg, k)));
-		break;
-	case CONFIG_REGISTER:
-		regmap_format(cfield(cfg, k), buf, size);
-		break;
-	}
+	parse_format(k, cfg, buf, size);
 }
 
 void config_print(const struct config *cfg, FILE *out)
@@ -1125,8 +956,8 @@ void config_print(const struct config *cfg, FILE *out)
 	char value[CONFIG_STR + 32];
 	int pad;
 
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		const struct config_key *k = &keys[i];
+	for (size_t i = 0; i < table.n; i++) {
+		const struct parse_key *k = &keys[i];
 
 		if (strcmp(section, k->section)) {
 			section = k->section;

@@ -265,12 +265,12 @@ static void test_table_sane(void **state)
 {
 	(void)state;
 	for (size_t i = 0; i < config_key_count(); i++) {
-		const struct config_key *k = config_key_at(i);
+		const struct parse_key *k = config_key_at(i);
 		char name[160];
 
 		assert_non_null(k->help);
 		assert_true(strlen(k->help) > 5);
-		if (k->type == CONFIG_INT || k->type == CONFIG_DOUBLE) {
+		if (k->type == PARSE_INT || k->type == PARSE_DOUBLE) {
 			assert_true(k->def >= k->min && k->def <= k->max);
 		}
 		snprintf(name, sizeof(name), "%s.%s", k->section, k->name);

@@ -59,7 +59,7 @@ static int try_reg(struct config *c, int a, int sig, const char *text)
 
 static void test_dotted_sections_and_hex(void **state)
 {
-	const struct config_key *k = config_key_find("epos4.roll.vid");
+	const struct parse_key *k = config_key_find("epos4.roll.vid");
 	struct config c;
 	char buf[64];
 
@@ -80,7 +80,7 @@ static void test_dotted_sections_and_hex(void **state)
 
 static void test_register_key(void **state)
 {
-	const struct config_key *k =
+	const struct parse_key *k =
 		config_key_find("modbus.wheel_lr.velocity");
 	struct config c;
 	char buf[160];
