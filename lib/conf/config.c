@@ -48,21 +48,21 @@ static void level_format(const struct parse_key *k, const void *field,
 
 static const struct parse_ops level_ops = { level_parse, level_format };
 
-/* [modbus.NAME] SIGNAL: a register's description (regmap.h). */
+/* [modbus.NAME] SIGNAL: a register's description (regspec.h). */
 static int register_parse(const struct parse_key *k, const char *text,
 			  void *field, struct parse_file *pf, char *why,
 			  size_t size)
 {
 	(void)k;
 	(void)pf;
-	return regmap_parse(text, field, why, size);
+	return regspec_parse(text, field, why, size);
 }
 
 static void register_format(const struct parse_key *k, const void *field,
 			    char *buf, size_t size)
 {
 	(void)k;
-	regmap_format(field, buf, size);
+	regspec_format(field, buf, size);
 }
 
 static const struct parse_ops register_ops = { register_parse,
@@ -161,19 +161,19 @@ static const struct parse_ops register_ops = { register_parse,
 	   "write torque and read feedback in one transaction (function 0x17)"), \
 	KD(sec, "watchdog_s", modbus_drive[i].watchdog_s, 0.1, 0, 60, "s", 0, \
 	   "written to the watchdog register at enable"),                    \
-	KR(sec, "torque", modbus_drive[i].reg[REGMAP_TORQUE],                \
+	KR(sec, "torque", modbus_drive[i].reg[REGSPEC_TORQUE],                \
 	   "motor torque setpoint, N m (required)"),                         \
-	KR(sec, "enable", modbus_drive[i].reg[REGMAP_ENABLE],                \
+	KR(sec, "enable", modbus_drive[i].reg[REGSPEC_ENABLE],                \
 	   "written 1 to enable, 0 to disable"),                             \
-	KR(sec, "position", modbus_drive[i].reg[REGMAP_POSITION],            \
+	KR(sec, "position", modbus_drive[i].reg[REGSPEC_POSITION],            \
 	   "encoder counts (required)"),                                     \
-	KR(sec, "velocity", modbus_drive[i].reg[REGMAP_VELOCITY],            \
+	KR(sec, "velocity", modbus_drive[i].reg[REGSPEC_VELOCITY],            \
 	   "encoder counts per second"),                                     \
-	KR(sec, "fault", modbus_drive[i].reg[REGMAP_FAULT],                  \
+	KR(sec, "fault", modbus_drive[i].reg[REGSPEC_FAULT],                  \
 	   "the drive's fault code, 0: none"),                               \
-	KR(sec, "fault_reset", modbus_drive[i].reg[REGMAP_FAULT_RESET],      \
+	KR(sec, "fault_reset", modbus_drive[i].reg[REGSPEC_FAULT_RESET],      \
 	   "written 1 then 0 to clear a fault"),                             \
-	KR(sec, "watchdog", modbus_drive[i].reg[REGMAP_WATCHDOG],            \
+	KR(sec, "watchdog", modbus_drive[i].reg[REGSPEC_WATCHDOG],            \
 	   "communication watchdog, s (gets watchdog_s)")
 
 static const struct parse_key keys[] = {
@@ -819,30 +819,30 @@ static int check_modbus_bus(const struct config_modbus *m, char *err,
 static int check_combined(const struct config_modbus_drive *d,
 			  const char *axis, char *err, size_t size)
 {
-	static const int reads[] = { REGMAP_POSITION, REGMAP_VELOCITY,
-				     REGMAP_FAULT };
+	static const int reads[] = { REGSPEC_POSITION, REGSPEC_VELOCITY,
+				     REGSPEC_FAULT };
 	int lo = 0xFFFF, hi = 0;
 
-	if (d->reg[REGMAP_TORQUE].table != REGMAP_HOLDING) {
+	if (d->reg[REGSPEC_TORQUE].table != REGSPEC_HOLDING) {
 		snprintf(err, size, "[modbus.%s] combined_0x17: torque must "
 			 "be a holding register", axis);
 		return -EINVAL;
 	}
 	for (size_t i = 0; i < sizeof(reads) / sizeof(reads[0]); i++) {
-		const struct regmap_reg *r = &d->reg[reads[i]];
+		const struct regspec *r = &d->reg[reads[i]];
 
-		if (r->table == REGMAP_NONE) {
+		if (r->table == REGSPEC_NONE) {
 			continue;
 		}
-		if (r->table != REGMAP_HOLDING) {
+		if (r->table != REGSPEC_HOLDING) {
 			snprintf(err, size, "[modbus.%s] %s: 0x17 reads holding "
 				 "registers only", axis,
-				 regmap_signal_name(reads[i]));
+				 regspec_signal_name(reads[i]));
 			return -EINVAL;
 		}
 		lo = r->address < lo ? r->address : lo;
-		hi = r->address + regmap_words(r) > hi
-			     ? r->address + regmap_words(r) : hi;
+		hi = r->address + regspec_words(r) > hi
+			     ? r->address + regspec_words(r) : hi;
 	}
 	if (hi - lo > 125) {
 		snprintf(err, size, "[modbus.%s] combined_0x17: the feedback "
@@ -856,24 +856,24 @@ static int check_combined(const struct config_modbus_drive *d,
 static int check_modbus_drive(const struct config_modbus_drive *d,
 			      const char *axis, char *err, size_t size)
 {
-	static const int needed[] = { REGMAP_TORQUE, REGMAP_POSITION };
-	static const int writes[] = { REGMAP_TORQUE, REGMAP_ENABLE,
-				      REGMAP_FAULT_RESET, REGMAP_WATCHDOG };
+	static const int needed[] = { REGSPEC_TORQUE, REGSPEC_POSITION };
+	static const int writes[] = { REGSPEC_TORQUE, REGSPEC_ENABLE,
+				      REGSPEC_FAULT_RESET, REGSPEC_WATCHDOG };
 
 	for (size_t i = 0; i < sizeof(needed) / sizeof(needed[0]); i++) {
-		if (d->reg[needed[i]].table == REGMAP_NONE) {
+		if (d->reg[needed[i]].table == REGSPEC_NONE) {
 			snprintf(err, size, "[modbus.%s] %s: a modbus axis needs "
-				 "it", axis, regmap_signal_name(needed[i]));
+				 "it", axis, regspec_signal_name(needed[i]));
 			return -EINVAL;
 		}
 	}
 	for (size_t i = 0; i < sizeof(writes) / sizeof(writes[0]); i++) {
-		const struct regmap_reg *r = &d->reg[writes[i]];
+		const struct regspec *r = &d->reg[writes[i]];
 
-		if (r->table != REGMAP_NONE && !regmap_writable(r)) {
+		if (r->table != REGSPEC_NONE && !regspec_writable(r)) {
 			snprintf(err, size, "[modbus.%s] %s: is written: it must "
 				 "be a coil or a holding register", axis,
-				 regmap_signal_name(writes[i]));
+				 regspec_signal_name(writes[i]));
 			return -EINVAL;
 		}
 	}

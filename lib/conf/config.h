@@ -24,7 +24,7 @@
 #include "base/parse.h"
 #include "proto/endosim_shm.h"
 #include "model/haptics.h"
-#include "conf/regmap.h"
+#include "conf/regspec.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
 #ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
@@ -102,7 +102,7 @@ struct config_modbus_drive {
 	int slave;
 	int combined_0x17;            /* 1: write and read in one transaction */
 	double watchdog_s;            /* written to the watchdog register */
-	struct regmap_reg reg[REGMAP_SIGNALS];
+	struct regspec reg[REGSPEC_SIGNALS];
 };
 
 struct config {
