@@ -309,8 +309,8 @@ static int begin_section(struct parse_file *pf, const char *header)
 	char *name, *arg = NULL, why[256], what[sizeof(pf->section) + 2];
 
 	if (!close) {
-		return fail(pf, pf->line, NULL, "syntax error: expected "
-			    "[section] or name = value");
+		return fail(pf, pf->line, header, "syntax error: expected "
+			    "'[section]'");
 	}
 	if (end_section(pf)) {
 		return -EINVAL;
@@ -376,8 +376,8 @@ static char *read_line(char *str, int num, void *stream)
 			return NULL;
 		}
 	} else if (*line && !strpbrk(line, "=:")) {
-		fail(pf, pf->line, NULL, "syntax error: expected [section] or "
-		     "name = value");
+		fail(pf, pf->line, line,
+		     "syntax error: expected 'key = value'");
 		return NULL;
 	}
 	memcpy(str, line, n);
@@ -459,8 +459,7 @@ int parse_ini(const struct parse_table *t, FILE *f, const char *name,
 		/* what read_line() leaves to libinih: an inline comment
 		 * before the '=' */
 		pf->err_line = NO_ERROR;
-		fail(pf, r, NULL, "syntax error: expected [section] or "
-		     "name = value");
+		fail(pf, r, NULL, "syntax error: expected 'key = value'");
 	} else if (r < 0 && pf->err_line == NO_ERROR) {
 		fail(pf, 0, NULL, "out of memory");
 	}

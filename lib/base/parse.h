@@ -41,7 +41,8 @@
  *       FILE:LINE: [SECTION] NAME: WHY (the value: parse_apply()'s WHY)
  *       FILE:LINE: [SECTION]: NAME is missing (LINE: the section's header)
  *       FILE:LINE: [SECTION]: WHY (the table's begin() refused it)
- *       FILE:LINE: syntax error: expected [section] or name = value
+ *       FILE:LINE: TEXT: syntax error: expected 'key = value' (or
+ *                  '[section]'; the TEXT is the line's)
  *       FILE:LINE: line: longer than N characters
  *
  * parse_ini() allocates its bookkeeping (an int per key) and reads the

@@ -246,15 +246,14 @@ static void test_table_errors(void **state)
 		{ "[item x]\ncolour = red\n",
 		  "t.ini:1: [item x]: length_m is missing" },
 		{ "[b]\n", "t.ini:1: [b]: unknown section" },
-		{ "[a\n", "t.ini:1: syntax error: expected [section] or "
-			  "name = value" },
-		{ "[a]\ncount 5\n", "t.ini:2: syntax error: expected [section] "
-				    "or name = value" },
+		{ "[a\n", "t.ini:1: [a: syntax error: expected '[section]'" },
+		{ "[a]\ncount 5\n", "t.ini:2: count 5: syntax error: expected "
+				    "'key = value'" },
 		{ "[a]\ncount ; = 5\n", "t.ini:2: syntax error: expected "
-					"[section] or name = value" },
+					"'key = value'" },
 		/* the first error in the file, not the first found */
-		{ "[a]\ncount 5\ncont = 1\n", "t.ini:2: syntax error: "
-		  "expected [section] or name = value" },
+		{ "[a]\ncount 5\ncont = 1\n", "t.ini:2: count 5: syntax "
+		  "error: expected 'key = value'" },
 	};
 	struct doc d;
 
