@@ -68,6 +68,12 @@ void control_on_get_scene(struct control *c, struct client *cl,
 			return;
 		}
 	}
+	if (!g->chunk) { /* the scope as it is now ([scope] is live) */
+		struct scope_params sp;
+
+		cases_scope_params(&c->cfg, &sp);
+		scene_set_scope(cs->scene, &sp, c->cfg.haptics.scope_radius_m);
+	}
 	sr = scene_reply(cs->scene, g->chunk);
 	if (!sr) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, "no such chunk");

@@ -253,7 +253,7 @@ void control_on_get_config(struct control *c, struct client *cl,
 
 	(void)cl;
 	for (size_t i = 0; i < config_key_count(); i++) {
-		const struct config_key *k = config_key_at(i);
+		const struct parse_key *k = config_key_at(i);
 		Endosim__ConfigEntry *e = &rb->entries[n];
 		char *value = rb->values[n];
 		int len = snprintf(value, sizeof(rb->values[n]), "%s.%s",
@@ -287,7 +287,7 @@ void control_on_set_param(struct control *c, struct client *cl,
 			  const Endosim__Request *req, Endosim__Reply *rep)
 {
 	const Endosim__SetParam *sp = req->set_param;
-	const struct config_key *k = config_key_find(sp->key);
+	const struct parse_key *k = config_key_find(sp->key);
 	char before[CONFIG_STR + 32];
 	int r;
 

@@ -60,10 +60,16 @@ struct flex_params {
 	double bending_n_per_m;  /* k_b, against crumpling */
 };
 
-#define FLEX_PARAMS_DEFAULT { .node_spacing_m = 0.02, \
-			      .damping_n_s_per_m = 20, \
-			      .chain_n_per_m = 100, \
-			      .bending_n_per_m = 300 }
+#define FLEX_DEFAULT_NODE_SPACING_M 0.02
+#define FLEX_DEFAULT_DAMPING_N_S_PER_M 20
+#define FLEX_DEFAULT_CHAIN_N_PER_M 100
+#define FLEX_DEFAULT_BENDING_N_PER_M 300
+
+#define FLEX_PARAMS_DEFAULT { \
+	.node_spacing_m = FLEX_DEFAULT_NODE_SPACING_M, \
+	.damping_n_s_per_m = FLEX_DEFAULT_DAMPING_N_S_PER_M, \
+	.chain_n_per_m = FLEX_DEFAULT_CHAIN_N_PER_M, \
+	.bending_n_per_m = FLEX_DEFAULT_BENDING_N_PER_M }
 
 struct flex;
 

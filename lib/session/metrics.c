@@ -133,11 +133,11 @@ struct metrics {
 void metrics_params_default(struct metrics_params *p)
 {
 	*p = (struct metrics_params){
-		.force_threshold_n = 15,
-		.loop_threshold_m = 0.01,
-		.view_distance_m = 0.06,
-		.fov_rad = 140 * M_PI / 180,
-		.view_rate_hz = 10,
+		.force_threshold_n = METRICS_DEFAULT_FORCE_THRESHOLD_N,
+		.loop_threshold_m = METRICS_DEFAULT_LOOP_THRESHOLD_M,
+		.view_distance_m = METRICS_DEFAULT_VIEW_DISTANCE_M,
+		.fov_rad = METRICS_DEFAULT_FOV_DEG * M_PI / 180,
+		.view_rate_hz = METRICS_DEFAULT_VIEW_RATE_HZ,
 		.min_episode_s = 0.2,
 		.lumen_angle_rad = 70 * M_PI / 180,
 		.discomfort_bow_m = 0.03,

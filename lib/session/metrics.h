@@ -76,8 +76,16 @@ struct metrics_params {
 #define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
 				       colon; a case: the rectum's start) */
 
-/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 10 Hz, 0.2 s, 70 deg, 0.03 m,
- * 5 N, 0.5 s, 2.5 s. */
+/* The defaults of the thresholds that the configuration's [session] sets
+ * (the configuration, a wing below this one, writes them again; test_config
+ * holds the two together). The loop threshold is the paper model's. */
+#define METRICS_DEFAULT_FORCE_THRESHOLD_N 15
+#define METRICS_DEFAULT_LOOP_THRESHOLD_M 0.01
+#define METRICS_DEFAULT_VIEW_DISTANCE_M 0.06
+#define METRICS_DEFAULT_FOV_DEG 140
+#define METRICS_DEFAULT_VIEW_RATE_HZ 10
+
+/* Defaults: the above, and 0.2 s, 70 deg, 0.03 m, 5 N, 0.5 s, 2.5 s. */
 void metrics_params_default(struct metrics_params *p);
 
 struct metrics_episode {

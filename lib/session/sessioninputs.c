@@ -117,3 +117,24 @@ struct colon *sessioninputs_colon(const struct session_file *f,
 	}
 	return colon_create(&a, &p, err, errsize);
 }
+
+struct colon *sessioninputs_file_colon(const struct session_file *f,
+				       char *err, size_t errsize)
+{
+	struct config cfg;
+	char why[256];
+
+	sessioninputs_config(f, &cfg, why, sizeof(why));
+	return sessioninputs_colon(f, &cfg, err, errsize);
+}
+
+int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
+			double *radius_m, char *err, size_t errsize)
+{
+	struct config cfg;
+	int r = sessioninputs_config(f, &cfg, err, errsize);
+
+	cases_scope_params(&cfg, p);
+	*radius_m = cfg.haptics.scope_radius_m;
+	return r;
+}

@@ -2,8 +2,8 @@
  * sessioninputs.h - the one reader of what a session was recorded with:
  * its CONFIG frame (the configuration as --print-config printed it), its
  * CASE frame (the case file's text) and its header's colon resolution,
- * and what they make: the configuration, the colon's and the metrics'
- * parameters, the colon. The recorder (the live configuration), the
+ * and what they make: the configuration, the colon's, the scope's and the
+ * metrics' parameters, the colon. The recorder (the live configuration), the
  * report, endoctl's views and the viewer's replay all take them here.
  *
  * Any thread but the force loop; the colon is allocated (~50 ms).
@@ -16,6 +16,7 @@
 
 #include "model/anatomy.h"
 #include "model/colon.h"
+#include "model/scope.h"
 #include "conf/config.h"
 #include "session/metrics.h"
 #include "proto/session_file.h"
@@ -31,7 +32,7 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 /* A loop, when [session] loop_threshold_m is 0: by the haptics' model. The
  * rod model moves the sigmoid a centimetre or two on an ordinary insertion
  * (the tube takes the outside of its bends); its loops are larger. */
-#define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
+#define SESSION_LOOP_THRESHOLD_PAPER_M METRICS_DEFAULT_LOOP_THRESHOLD_M
 #define SESSION_LOOP_THRESHOLD_ROD_M 0.03
 
 /*
@@ -77,5 +78,18 @@ int sessioninputs_anatomy(const struct session_file *f, struct anatomy *a,
 struct colon *sessioninputs_colon(const struct session_file *f,
 				  const struct config *cfg, char *err,
 				  size_t errsize);
+
+/* The same with F's own configuration (sessioninputs_config()'s). */
+struct colon *sessioninputs_file_colon(const struct session_file *f,
+				       char *err, size_t errsize);
+
+/*
+ * The scope F was recorded with: its configuration's [scope] in P, and
+ * [haptics] scope_radius_m in *RADIUS_M. 0, or -EINVAL with the line of its
+ * CONFIG frame that does not parse in ERR and the defaults in P and
+ * *RADIUS_M.
+ */
+int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
+			double *radius_m, char *err, size_t errsize);
 
 #endif
