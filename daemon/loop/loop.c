@@ -7,8 +7,6 @@
 #include <sched.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -22,16 +20,7 @@
 #include "model/scope.h"
 #include "base/spsc.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define UNDER_ASAN 1
-#endif
-#endif
-
-#define LOOP_STACK_BYTES (512 * 1024)
-#define LOOP_PREFAULT_BYTES (256 * 1024)
+#define LOOP_STACK_BYTES (512 * 1024) /* more than RT_PREFAULT_BYTES */
 #define LOOP_EVENTS 256
 #define CMD_SHIFT 8
 
@@ -525,14 +514,6 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	}
 }
 
-static void prefault_stack(void)
-{
-	unsigned char buf[LOOP_PREFAULT_BYTES];
-
-	memset(buf, 0, sizeof(buf));
-	__asm__ volatile("" : : "r"(buf) : "memory");
-}
-
 /* Skips whole periods after an overrun; returns how many. */
 static uint64_t skip_overrun(uint64_t *next, uint64_t now, uint64_t period)
 {
@@ -562,7 +543,7 @@ static void *loop_main(void *arg)
 	uint64_t next, now, skipped;
 	struct timespec ts;
 
-	prefault_stack();
+	rt_prefault_stack();
 	next = mono_ns();
 	while (!atomic_load_explicit(&l->stop, memory_order_acquire)) {
 		next += period;
@@ -598,30 +579,6 @@ static void *loop_main(void *arg)
 }
 
 /* --- setup, from the main thread --- */
-
-static void lock_memory(struct loop *l)
-{
-	struct rlimit rl;
-
-#ifdef UNDER_ASAN
-	log_info("memory not locked: built with AddressSanitizer, whose "
-		 "shadow memory cannot be locked");
-	return;
-#endif
-	getrlimit(RLIMIT_MEMLOCK, &rl);
-	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
-		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "
-			 "(set LimitMEMLOCK=infinity); page faults may "
-			 "delay the force loop",
-			 (unsigned long long)rl.rlim_cur / 1024);
-		return;
-	}
-	if (mlockall(MCL_CURRENT | MCL_FUTURE) < 0) {
-		log_warn("memory not locked: mlockall: %m");
-		return;
-	}
-	l->info.memory_locked = true;
-}
 
 /*
  * Holds the PM QoS request cyclictest makes: while the file stays open the
@@ -663,7 +620,7 @@ int loop_start(struct loop *l)
 	bool fifo;
 	int r;
 
-	lock_memory(l);
+	l->info.memory_locked = rt_lock_memory();
 	hold_cpu_latency(l);
 	r = rt_thread_start(&l->thread, &p, loop_main, l, &fifo);
 	if (r) {
