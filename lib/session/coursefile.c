@@ -60,10 +60,10 @@ static int parse_double(const char *text, double *out)
 	return errno || end == text || *end || !isfinite(*out) ? -EINVAL : 0;
 }
 
-static const struct metrics_field *find_field(const char *key)
+static const struct metricstext_field *find_field(const char *key)
 {
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	for (size_t i = 0; i < n; i++) {
 		if (!strcmp(f[i].key, key)) {
@@ -308,7 +308,7 @@ const struct coursefile_case *coursefile_case(const struct coursefile *c,
 bool coursefile_met(const struct coursefile_req *q,
 		    const struct metrics_result *m)
 {
-	double v = metrics_field_value(m, q->field);
+	double v = metricstext_field_value(m, q->field);
 
 	if (!strcmp(q->field->key, "cecum_s") && v < 0) {
 		return false; /* never reached */

@@ -50,8 +50,8 @@ int sessionview_events_csv(FILE *out, const struct session_file *f);
 
 /*
  * The summary CSV (`endoctl session export ID... --summary`): a header of
- * id, trainee, case, started and every measure (metrics_fields()' keys),
- * then one row per session of F with its metrics M. 0 or -EIO.
+ * id, trainee, case, started and every measure (metricstext_fields()'
+ * keys), then one row per session of F with its metrics M. 0 or -EIO.
  */
 int sessionview_summary_header(FILE *out);
 int sessionview_summary_row(FILE *out, const struct session_file *f,

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "session/metricstext.h"
 #include "session/report.h"
 #include "session/sessioninputs.h"
 
@@ -37,7 +38,7 @@ int main(int argc, char **argv)
 	if (err[0]) {
 		fprintf(stderr, "session_report: %s\n", err);
 	}
-	if (!r && metrics_format(&m, text, sizeof(text)) > 0) {
+	if (!r && metricstext_format(&m, text, sizeof(text)) > 0) {
 		fputs(text, stdout);
 	}
 	r = r ? r : report_write(&f, &m, NULL, argv[2]);
