@@ -5,7 +5,8 @@
  * file (endoctl session show/report on a file cut short).
  *
  * What is measured (definitions, thresholds, units and the limits of each
- * method in docs/METRICS.md; the formulas also in metrics.c):
+ * method in docs/METRICS.md; the formulas also in metrics.c and, for
+ * what the camera sees, metricsview.c):
  *   - time to the cecum: from the first record to the first with the tip
  *     in the cecum segment; insertion time (to the cecum) and withdrawal
  *     time (from the cecum until the tip leaves the rectum or the session
