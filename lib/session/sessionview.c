@@ -11,8 +11,8 @@
 
 #include "proto/fields.h"
 #include "session/metricstext.h"
-#include "session/report.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 /* ------------------------------------------------------------ metrics */
 
@@ -28,7 +28,7 @@ int sessionview_metrics(const struct session_file *f,
 	}
 	sessioninputs_file_metrics_params(f, &p);
 	*recomputed = true;
-	return report_metrics(f, &p, out, err, sizeof(err));
+	return sessionmetrics_compute(f, &p, out, err, sizeof(err));
 }
 
 static void print_episodes(FILE *out, const char *what,

@@ -19,10 +19,10 @@
 /*
  * The metrics of the session in F: parsed from its END frame, or, for a
  * file without one (a crash), computed again over its records and events
- * (*RECOMPUTED true, report_metrics()) with the thresholds of its CONFIG
- * frame's [session], on the colon rebuilt from its CASE frame and header
- * (without a colon when that fails: no mucosa or polyps then). 0 or
- * -errno.
+ * (*RECOMPUTED true, sessionmetrics_compute()) with the thresholds of its
+ * CONFIG frame's [session], on the colon rebuilt from its CASE frame and
+ * header (without a colon when that fails: no mucosa or polyps then). 0
+ * or -errno.
  */
 int sessionview_metrics(const struct session_file *f,
 			struct metrics_result *out, bool *recomputed);

@@ -4,9 +4,9 @@
  *
  *   session_report FILE.endoses DIR
  *
- * recomputes the metrics from the records (report_metrics()) with the
- * parameters the file was recorded with (sessioninputs.h), prints them as
- * key=value lines and writes DIR/index.html.
+ * recomputes the metrics from the records (sessionmetrics_compute()) with
+ * the parameters the file was recorded with (sessioninputs.h), prints
+ * them as key=value lines and writes DIR/index.html.
  */
 #include <stdio.h>
 #include <string.h>
@@ -14,6 +14,7 @@
 #include "session/metricstext.h"
 #include "session/report.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 int main(int argc, char **argv)
 {
@@ -34,7 +35,7 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	sessioninputs_file_metrics_params(&f, &p);
-	r = report_metrics(&f, &p, &m, err, sizeof(err));
+	r = sessionmetrics_compute(&f, &p, &m, err, sizeof(err));
 	if (err[0]) {
 		fprintf(stderr, "session_report: %s\n", err);
 	}
