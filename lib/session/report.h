@@ -19,7 +19,9 @@
  * pixel column, so that every peak survives. Every text that comes from
  * the file (trainee, case, event texts) is HTML-escaped.
  *
- * The page's parts shared with the trainee's page: htmlpage.h.
+ * The page's parts shared with the trainee's page: htmlpage.h; its plots
+ * over time: reportplot.h; the comparison with a reference:
+ * reportcompare.h; the metrics recomputed from a file: sessionmetrics.h.
  *
  * Not for the force loop: allocates, writes files. Any thread.
  */
