@@ -10,6 +10,7 @@
 
 #include "model/colon.h"
 #include "session/htmlpage.h"
+#include "session/livemap.h"
 #include "proto/names.h"
 #include "session/report.h"
 #include "session/reportcompare.h"
@@ -548,8 +549,8 @@ static void page_compare(FILE *o, const struct session_file *f,
 }
 
 /* The unseen-mucosa map: the colon unrolled, each cell's share seen from
- * red (none) to pale green (all), the segments' ends, the polyps (found:
- * filled, missed: a ring). */
+ * red (none) to pale green (all) on the map's ramp (livemap_colour()), the
+ * segments' ends, the polyps (found: filled, missed: a ring). */
 static void page_map(FILE *o, const struct metrics_map *map,
 		     const struct anatomy *a, uint32_t found)
 {
@@ -566,17 +567,17 @@ static void page_map(FILE *o, const struct metrics_map *map,
 		HTMLPAGE_SVG_W, HTMLPAGE_SVG_H);
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
-			double v = map->seen[i][k];
+			double v = map->seen[i][k], rgb[3];
 
 			if (v < 0) {
 				continue;
 			}
+			livemap_colour(LIVEMAP_ON_PAGE, v, rgb);
 			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
 				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
 				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
-				(int)lround(214 - 60 * v),
-				(int)lround(60 + 170 * v),
-				(int)lround(60 + 120 * v));
+				(int)lround(rgb[0]), (int)lround(rgb[1]),
+				(int)lround(rgb[2]));
 		}
 	}
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && map->length_m > 0; i++) {
