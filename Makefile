@@ -90,8 +90,9 @@ endef
 #            the master configuration; its handlers: replies, cases,
 #            sessions, trainees, guided replay
 #   recorder the recorder of training sessions (daemon/recorder/)
-#   loop     the force loop (daemon/loop/): its cycle, the safety state
-#            machine and the fault words, the test commands' injections,
+#   loop     the force loop (daemon/loop/): its cycle, the mailboxes the
+#            control thread posts to it through, the safety state machine
+#            and the fault words, the test commands' injections,
 #            publishing, the tap into the recorder's rings
 #   rig      the hardware (daemon/rig/): the rig interface, the simulated rig
 #            and hand, scenarios, guided replay's guidance, the rig of
