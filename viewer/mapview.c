@@ -38,8 +38,6 @@ struct mapview {
 	char said[256];
 };
 
-static const float unseen_rgb[4] = { 0.93f, 0.16f, 0.20f, 1 };
-static const float seen_rgb[4] = { 0.20f, 0.62f, 0.32f, 1 };
 static const float back_rgb[4] = { 0.05f, 0.06f, 0.08f, 0.96f };
 static const float wall_rgb[4] = { 0.16f, 0.17f, 0.20f, 1 };
 static const float white[4] = { 0.92f, 0.94f, 0.97f, 1 };
@@ -236,12 +234,15 @@ static float along_x(const struct mapview *v, const struct grid *g,
 	return g->x + (float)fmin(fmax(f, 0), 1) * g->w;
 }
 
-/* A share seen 0..1 as a colour: unseen red to seen green. */
+/* A share seen 0..1 as a colour: unseen red to seen green (the map's
+ * ramp, livemap_colour()). */
 static void share_rgb(double s, float rgba[4])
 {
+	double rgb[3];
+
+	livemap_colour(LIVEMAP_ON_SCREEN, s, rgb);
 	for (int c = 0; c < 3; c++) {
-		rgba[c] = (float)(unseen_rgb[c] +
-				  s * (seen_rgb[c] - unseen_rgb[c]));
+		rgba[c] = (float)(rgb[c] / 255);
 	}
 	rgba[3] = 1;
 }
@@ -368,7 +369,7 @@ static void draw_title(const struct mapview *v, struct draw2d *d,
 		       const struct mapview_rect *box, const struct grid *g)
 {
 	float base = box->y + PAD_PX + 1.1f * g->large;
-	float x = box->x + PAD_PX;
+	float x = box->x + PAD_PX, unseen[4], seen[4];
 
 	x += draw2d_text(d, FONT_LARGE, x, base, white, "UNSEEN MUCOSA");
 	if (v->have_map) {
@@ -378,8 +379,10 @@ static void draw_title(const struct mapview *v, struct draw2d *d,
 				   v->session_id, 100 * v->mucosa_seen,
 				   v->found, v->found == 1 ? "" : "s");
 		x += 3 * g->small;
-		x = legend(d, x, base, g->small, unseen_rgb, "unseen");
-		legend(d, x, base, g->small, seen_rgb, "seen");
+		share_rgb(0, unseen);
+		share_rgb(1, seen);
+		x = legend(d, x, base, g->small, unseen, "unseen");
+		legend(d, x, base, g->small, seen, "seen");
 	}
 	draw2d_text(d, FONT_SMALL, box->x + box->w - PAD_PX -
 		    draw2d_text_width(d, FONT_SMALL, "M: hide"), base, dim,

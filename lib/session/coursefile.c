@@ -50,10 +50,10 @@ static int fail(struct parser *p, const char *fmt, ...)
 	return -EINVAL;
 }
 
-static const struct metrics_field *find_field(const char *key)
+static const struct metricstext_field *find_field(const char *key)
 {
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	for (size_t i = 0; i < n; i++) {
 		if (!strcmp(f[i].key, key)) {
@@ -293,7 +293,7 @@ const struct coursefile_case *coursefile_case(const struct coursefile *c,
 bool coursefile_met(const struct coursefile_req *q,
 		    const struct metrics_result *m)
 {
-	double v = metrics_field_value(m, q->field);
+	double v = metricstext_field_value(m, q->field);
 
 	if (!strcmp(q->field->key, "cecum_s") && v < 0) {
 		return false; /* never reached */

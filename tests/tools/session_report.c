@@ -4,15 +4,17 @@
  *
  *   session_report FILE.endoses DIR
  *
- * recomputes the metrics from the records (report_metrics()) with the
- * parameters the file was recorded with (sessioninputs.h), prints them as
- * key=value lines and writes DIR/index.html.
+ * recomputes the metrics from the records (sessionmetrics_compute()) with
+ * the parameters the file was recorded with (sessioninputs.h), prints
+ * them as key=value lines and writes DIR/index.html.
  */
 #include <stdio.h>
 #include <string.h>
 
+#include "session/metricstext.h"
 #include "session/report.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 int main(int argc, char **argv)
 {
@@ -33,11 +35,11 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	sessioninputs_file_metrics_params(&f, &p);
-	r = report_metrics(&f, &p, &m, err, sizeof(err));
+	r = sessionmetrics_compute(&f, &p, &m, err, sizeof(err));
 	if (err[0]) {
 		fprintf(stderr, "session_report: %s\n", err);
 	}
-	if (!r && metrics_format(&m, text, sizeof(text)) > 0) {
+	if (!r && metricstext_format(&m, text, sizeof(text)) > 0) {
 		fputs(text, stdout);
 	}
 	r = r ? r : report_write(&f, &m, NULL, argv[2]);

@@ -14,7 +14,7 @@
  *   - the mucosa seen on a straight colon (geometry in each test);
  *   - the polyps of the polyps case: seen when looked at from 3 cm, not
  *     when behind the camera or beyond view_distance_m;
- *   - metrics_format() and metrics_parse() round trip.
+ *   - metricstext_format() and metricstext_parse() round trip.
  * Times are to one record (1 ms at 1 kHz).
  *
  * Case files are read from $ENDOSIM_CASES (default config/cases) and
@@ -37,6 +37,7 @@
 #include "conf/config.h"
 #include "geom_assert.h"
 #include "session/metrics.h"
+#include "session/metricstext.h"
 #include "session/sessioninputs.h"
 #include "base/vec3.h"
 
@@ -1059,11 +1060,11 @@ static void test_format_parse(void **state)
 	}
 	in.loop[0] = (struct metrics_episode){ 1.001, 7.1, 0.04 };
 	in.loop[1] = (struct metrics_episode){ 9, -1, 0.02 };
-	n = metrics_format(&in, buf, sizeof(buf));
+	n = metricstext_format(&in, buf, sizeof(buf));
 	assert_true(n > 0 && (size_t)n == strlen(buf));
 	assert_non_null(strstr(buf, "withdrawal_s=401.001\n"));
 	assert_non_null(strstr(buf, "loop_episode.1=9,-1,0.02\n"));
-	assert_int_equal(metrics_parse(buf, &out), 0);
+	assert_int_equal(metricstext_parse(buf, &out), 0);
 	assert_rel(out.duration_s, in.duration_s);
 	assert_int_equal(out.records, in.records);
 	assert_int_equal(out.drops, in.drops);
@@ -1081,15 +1082,16 @@ static void test_format_parse(void **state)
 	}
 	assert_rel(out.loop[1].end_s, -1);
 	/* too small a buffer, malformed text, a later version's key */
-	assert_int_equal(metrics_format(&in, buf, 100), -ENOSPC);
-	assert_int_equal(metrics_parse("records=12\nnonsense\n", &out),
+	assert_int_equal(metricstext_format(&in, buf, 100), -ENOSPC);
+	assert_int_equal(metricstext_parse("records=12\nnonsense\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("records=twelve\n", &out), -EINVAL);
-	assert_int_equal(metrics_parse("force_episode.64=1,2,3\n", &out),
+	assert_int_equal(metricstext_parse("records=twelve\n", &out), -EINVAL);
+	assert_int_equal(metricstext_parse("force_episode.64=1,2,3\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("force_episode.0=1,2\n", &out),
+	assert_int_equal(metricstext_parse("force_episode.0=1,2\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("records=12\nfuture_key=x\n", &out), 0);
+	assert_int_equal(metricstext_parse("records=12\nfuture_key=x\n", &out),
+			 0);
 	assert_int_equal(out.records, 12);
 	assert_true(out.cecum_s < 0);
 }

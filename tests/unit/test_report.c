@@ -3,7 +3,7 @@
  * memory: the page holds its four plots, the episodes as bands, the
  * events, the segments' names; text from the file is escaped; a spike of
  * one record in 20 000 survives the decimation; the metrics recomputed
- * from the file (report_metrics()) find what the records hold.
+ * from the file (sessionmetrics_compute()) find what the records hold.
  *
  * Reads tests/cases/straight.case: run from the source tree. Writes to
  * $TMPDIR.
@@ -24,6 +24,7 @@
 #include "geom_assert.h"
 #include "session/report.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 #define N_REC 20000 /* 20 s at 1 kHz */
 
@@ -117,7 +118,8 @@ static void test_recomputed_metrics(void **state)
 	(void)state;
 	make_session(&f);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
 	assert_string_equal(err, "");
 	assert_int_equal(m.records, N_REC);
 	assert_int_equal(m.force_episodes, 1);
@@ -142,7 +144,8 @@ static void test_report_page(void **state)
 	(void)state;
 	make_session(&f);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
 	snprintf(dir, sizeof(dir), "%s/endosim-report-%d",
 		 tmp && *tmp ? tmp : "/tmp", (int)getpid());
 	assert_int_equal(report_write(&f, &m, NULL, dir), 0); /* creates DIR */
@@ -291,8 +294,10 @@ static void test_report_reference(void **state)
 	along_session(&f, mine, 10000, 0.02, head_mine);
 	along_session(&rf, theirs, 20000, 0.01, head_ref);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
-	assert_int_equal(report_metrics(&rf, &p, &rm, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
+	assert_int_equal(sessionmetrics_compute(&rf, &p, &rm, err,
+						sizeof(err)), 0);
 	assert_non_null(mkdtemp(dir));
 	assert_int_equal(report_write(&f, &m, &ref, dir), 0);
 	snprintf(path, sizeof(path), "%s/index.html", dir);
@@ -355,8 +360,8 @@ static void test_report_loop_threshold(void **state)
 			records[k].model = m_of[i].model;
 		}
 		sessioninputs_file_metrics_params(&f, &p);
-		assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)),
-				 0);
+		assert_int_equal(sessionmetrics_compute(&f, &p, &m, err,
+							sizeof(err)), 0);
 		assert_int_equal(report_write(&f, &m, NULL, dir), 0);
 		page = slurp(path);
 		assert_non_null(strstr(page, m_of[i].row));
