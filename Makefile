@@ -90,8 +90,9 @@ endef
 #            the master configuration; its handlers: replies, cases,
 #            sessions, trainees, guided replay
 #   recorder the recorder of training sessions (daemon/recorder/)
-#   loop     the force loop (daemon/loop/): its cycle, the safety state
-#            machine and the fault words, the test commands' injections,
+#   loop     the force loop (daemon/loop/): its cycle, the mailboxes the
+#            control thread posts to it through, the safety state machine
+#            and the fault words, the test commands' injections,
 #            publishing, the tap into the recorder's rings
 #   rig      the hardware (daemon/rig/): the rig interface, the simulated rig
 #            and hand, scenarios, guided replay's guidance, the rig of
@@ -188,7 +189,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_vessels test_metrics test_report test_course test_rod \
 	     test_flex test_lumen test_clinic test_rodcourse test_guide \
 	     test_livemap test_separation test_coursefile test_sessionindex \
-	     test_gas test_patient
+	     test_parse test_gas test_patient
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes
@@ -220,7 +221,8 @@ $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 $(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 # the rod's solver runs in the force loop: -O3 vectorises its 3x3 and 6x6
-# blocks (a third fewer instructions than -O2)
+# blocks (a third fewer instructions than -O2; rod_algebra.h's, inline in
+# rod.c)
 $(BUILD)/obj/lib/model/rod.o: ALL_CFLAGS += -O3
 
 define wing_rule

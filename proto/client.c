@@ -329,6 +329,7 @@ static int fetch_scene(struct client *c, struct client_scene *s,
 	}
 	s->scene_id = s->info_reply->scene->scene_id;
 	s->info = s->info_reply->scene->info;
+	s->scope = s->info->scope;
 	s->vertices = s->info->vertices;
 	s->triangles = s->info->triangles;
 	chunks = s->info_reply->scene->chunks;

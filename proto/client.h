@@ -62,6 +62,8 @@ int client_receive(struct client *c, Endosim__Reply **reply, int timeout_ms);
 struct client_scene {
 	uint64_t scene_id;
 	const Endosim__SceneInfo *info;
+	const Endosim__SceneScope *scope; /* info's: the scope it is rendered
+					     with; NULL from an older daemon */
 	uint32_t vertices;
 	uint32_t triangles;
 	float (*positions)[3];     /* m, undeformed */

@@ -37,7 +37,9 @@ message_ok() {
 if [ "${1:-}" = --message ]; then
 	# the hook: comments and everything below the scissors line are git's
 	text=$(sed -e '/^# -\{8,\} >8 -\{8,\}/,$d' -e '/^#/d' "$2")
-	if ! why=$(message_ok "$text" no); then
+	merge=no
+	git rev-parse -q --verify MERGE_HEAD >/dev/null 2>&1 && merge=yes
+	if ! why=$(message_ok "$text" "$merge"); then
 		echo "commit message: $why (see README, Contributing)" >&2
 		exit 1
 	fi

@@ -122,6 +122,9 @@ for pid in $shots; do
 done
 
 echo
+# what the model in use computed: the paper's (the tip's wall force, the
+# friction, the mesentery's pull) or the rod's (the wall along the tube,
+# the tube's reaction at the carriage, how far the mobile colon moved)
 echo "=== summary ==="
 ctl status | sed -n '1,4p'
 ctl stats
@@ -135,9 +138,17 @@ jq -rs '
   "largest tip steer: up/down \(peak(.axes.wheel_ud.position) * 100 | round / 100) rad, left/right \(peak(.axes.wheel_lr.position) * 100 | round / 100) rad",
   "the tip reached \(map(.scope.tip_s_m) | max * 100 | round / 100) m along the colon (case \(.[0].case)); " +
   "in contact with the wall \((map(select(.haptics.contact)) | length) * 100 / length | round) % of the time",
+  if .[0].rod.model == "rod" then
+    "the rod model: largest wall force on the tube \(map(.rod.wall_n) | max * 10 | round / 10) N " +
+    "(at most \(map(.rod.contacts) | max) contacts, friction \(map(.rod.friction_n) | max * 10 | round / 10) N), " +
+    "on the tip \(map(.haptics.f_static | map(. * .) | add | sqrt) | max * 10 | round / 10) N; " +
+    "largest insertion reaction \(peak(.haptics.trans_rod_n) * 10 | round / 10) N at \(map(.haptics.curvature_rad) | max * 10 | round / 10) rad of turning; " +
+    "largest loop \(map(.scope.bow_m | max) | max * 1000 | round) mm (the mobile colon moved)"
+  else
   "largest wall force \(map(.haptics.f_static | map(. * .) | add | sqrt) | max * 10 | round / 10) N; " +
   "largest insertion friction \(peak(.haptics.trans_friction_n) * 10 | round / 10) N at \(map(.haptics.curvature_rad) | max * 10 | round / 10) rad of turning; " +
-  "largest loop \(map(.scope.bow_m | max) | max * 1000 | round) mm, its force \(peak(.haptics.trans_loop_n) * 10 | round / 10) N",
+  "largest loop \(map(.scope.bow_m | max) | max * 1000 | round) mm, its force \(peak(.haptics.trans_loop_n) * 10 | round / 10) N"
+  end,
   "states seen: \(map(.state) | unique | join(", ")); faults: \(map(.fault_bits) | max)"
 ' "$TMP/trace.json"
 

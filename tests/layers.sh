@@ -27,7 +27,7 @@ declare -A MAY=(
 	[control]="recorder loop rig session conf model base proto"
 	[endosimd]="control recorder loop rig session conf model base proto"
 	[endoctl]="session model base proto"
-	[viewer]="session conf model base proto"
+	[viewer]="session model base proto"
 )
 # headers of a wing it may otherwise include that stay out: the model knows
 # nothing of logging (a model function reports through its return value)

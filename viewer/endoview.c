@@ -17,7 +17,6 @@
  * not be written, or a session file that cannot be replayed; 2 usage.
  */
 #include <errno.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,7 +46,8 @@
 #include "proto/state_text.h"
 #include "viewer/timing.h"
 #include "viewer/ui.h"
-#include "proto/version.h"
+#include "viewer/viewopts.h"
+#include "viewer/viewstats.h"
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
@@ -55,17 +55,6 @@
 #define HEADLESS_FRAME_S (1.0 / 60) /* a replay's step per frame with --frames */
 #define REPLAY_MAX_STEP_S 0.25      /* the clock skips no more after a stall */
 #define CHART_STEP_S (HUD_CHART_S / 200) /* a replay's chart: one record per */
-
-enum { VIEW_EMPTY = HUD_VIEWS }; /* clear and swap only: the benchmark's */
-
-struct options {
-	const char *socket, *shm_name, *screenshot, *font, *replay;
-	int view, width, height;
-	long frames;
-	double seek_s, speed;
-	double max_fps;         /* 0: as fast as vsync lets it */
-	bool vsync, stats, print_state, paused;
-};
 
 /* The colon as fetched, in its three forms. */
 struct colon_set {
@@ -75,7 +64,7 @@ struct colon_set {
 };
 
 struct app {
-	struct options opt;
+	struct viewopts opt;
 	GLFWwindow *window;
 	struct link *link;      /* live; NULL in a replay */
 	struct rigctl *rig;     /* live; NULL in a replay */
@@ -105,177 +94,6 @@ struct app {
 	long timed_from; /* the first frame the figures count */
 };
 
-/* ------------------------------------------------------------ options */
-
-static void usage(FILE *f)
-{
-	fprintf(f,
-		"usage: endoview [--socket PATH] [--shm-name NAME]\n"
-		"                [--view endo|overview|both] [--size WxH]\n"
-		"                [--screenshot FILE.png] [--frames N]\n"
-		"                [--no-vsync] [--max-fps N] [--font FILE.ttf]\n"
-		"                [--stats] [--print-state]\n"
-		"                [--replay FILE [--seek S] [--speed X] "
-		"[--paused]]\n"
-		"  --socket PATH     endosimd's socket directory (or socket);\n"
-		"                    default $%s, else %s\n"
-		"  --shm-name NAME   its shared memory (default %s)\n"
-		"  --view V          endo (default), overview, or both\n"
-		"  --size WxH        window size (default 1280x720)\n"
-		"  --screenshot F    write the last frame to F (PNG)\n"
-		"  --frames N        draw N frames, then exit (default with\n"
-		"                    --screenshot: 45)\n"
-		"  --no-vsync        draw as fast as possible\n"
-		"  --max-fps N       draw N frames a second at most (1 to 1000:\n"
-		"                    leaves CPU to the force loop where the\n"
-		"                    drawing is done in software)\n"
-		"  --font F          a TrueType font for the HUD\n"
-		"  --stats           print the frame figures at exit\n"
-		"  --print-state     print the last frame's state at exit,\n"
-		"                    what its panel said and where its\n"
-		"                    overview drew the scope and the colon\n"
-		"  --replay FILE     play a recorded session (no daemon)\n"
-		"  --seek S          start S seconds into it\n"
-		"  --speed X         at X times real time (0.25 to 8)\n"
-		"  --paused          start paused\n",
-		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME);
-}
-
-static int parse_view(const char *s)
-{
-	static const char *const names[] = { "endo", "overview", "both",
-					     "empty" };
-
-	for (int k = 0; k < 4; k++) {
-		if (!strcmp(s, names[k])) {
-			return k;
-		}
-	}
-	return -1;
-}
-
-static int parse_size(const char *s, int *w, int *h)
-{
-	if (sscanf(s, "%dx%d", w, h) != 2 || *w < 160 || *h < 120 ||
-	    *w > 8192 || *h > 8192) {
-		return -EINVAL;
-	}
-	return 0;
-}
-
-static int parse_number(const char *s, double *out)
-{
-	char *end;
-
-	*out = strtod(s, &end);
-	return end == s || *end || !isfinite(*out) || *out < 0 ? -EINVAL : 0;
-}
-
-static int parse(int argc, char **argv, struct options *o)
-{
-	static const struct option longs[] = {
-		{ "socket", required_argument, NULL, 's' },
-		{ "shm-name", required_argument, NULL, 'm' },
-		{ "view", required_argument, NULL, 'v' },
-		{ "size", required_argument, NULL, 'z' },
-		{ "screenshot", required_argument, NULL, 'o' },
-		{ "frames", required_argument, NULL, 'n' },
-		{ "no-vsync", no_argument, NULL, 'V' },
-		{ "max-fps", required_argument, NULL, 'F' },
-		{ "font", required_argument, NULL, 'f' },
-		{ "stats", no_argument, NULL, 'S' },
-		{ "print-state", no_argument, NULL, 'P' },
-		{ "replay", required_argument, NULL, 'r' },
-		{ "seek", required_argument, NULL, 'k' },
-		{ "speed", required_argument, NULL, 'x' },
-		{ "paused", no_argument, NULL, 'p' },
-		{ "help", no_argument, NULL, 'h' },
-		{ "version", no_argument, NULL, 'R' },
-		{ 0 },
-	};
-	int c;
-
-	*o = (struct options){ .view = HUD_VIEW_ENDO, .width = 1280,
-			       .height = 720, .vsync = true, .frames = -1,
-			       .font = FONT_DEFAULT_PATH, .speed = 1 };
-	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
-		switch (c) {
-		case 's':
-			o->socket = optarg;
-			break;
-		case 'm':
-			o->shm_name = optarg;
-			break;
-		case 'v':
-			o->view = parse_view(optarg);
-			if (o->view < 0) {
-				return -EINVAL;
-			}
-			break;
-		case 'z':
-			if (parse_size(optarg, &o->width, &o->height)) {
-				return -EINVAL;
-			}
-			break;
-		case 'o':
-			o->screenshot = optarg;
-			break;
-		case 'n':
-			o->frames = strtol(optarg, NULL, 10);
-			if (o->frames < 1) {
-				return -EINVAL;
-			}
-			break;
-		case 'V':
-			o->vsync = false;
-			break;
-		case 'F':
-			if (parse_number(optarg, &o->max_fps) ||
-			    o->max_fps < 1 || o->max_fps > 1000) {
-				return -EINVAL;
-			}
-			break;
-		case 'f':
-			o->font = optarg;
-			break;
-		case 'S':
-			o->stats = true;
-			break;
-		case 'P':
-			o->print_state = true;
-			break;
-		case 'r':
-			o->replay = optarg;
-			break;
-		case 'k':
-		case 'x':
-			if (parse_number(optarg, c == 'k' ? &o->seek_s :
-							    &o->speed)) {
-				return -EINVAL;
-			}
-			break;
-		case 'p':
-			o->paused = true;
-			break;
-		case 'h':
-			usage(stdout);
-			exit(0);
-		case 'R':
-			printf("endoview %s\n", ENDOSIM_VERSION);
-			exit(0);
-		default:
-			return -EINVAL;
-		}
-	}
-	if (optind != argc) {
-		return -EINVAL;
-	}
-	if (o->screenshot && o->frames < 0) {
-		o->frames = 45;
-	}
-	return 0;
-}
-
 /* ------------------------------------------------------------ window */
 
 static void on_glfw_error(int code, const char *text)
@@ -283,7 +101,7 @@ static void on_glfw_error(int code, const char *text)
 	log_err("GLFW (0x%x): %s", code, text);
 }
 
-static GLFWwindow *open_window(const struct options *o)
+static GLFWwindow *open_window(const struct viewopts *o)
 {
 	GLFWwindow *w;
 
@@ -530,6 +348,7 @@ static void fill_replay_info(const struct app *a, const struct endosim_state *st
 		.link = LINK_LIVE,
 		.link_problem = "",
 		.st = st,
+		.loop_threshold_m = replay_loop_threshold_m(a->replay),
 		.m = a->colon.model,
 		.rig_problem = "",
 		.rig_said = "Space pause, + - speed, Left Right seek; H: keys",
@@ -553,6 +372,7 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 		.link_problem = link_problem(a->link),
 		.stale_s = link_stale_s(a->link, now),
 		.st = st,
+		.loop_threshold_m = link_loop_threshold_m(a->link),
 		.m = a->colon.model,
 		.loading = a->loading,
 		.rig_problem = rigctl_problem(a->rig),
@@ -609,7 +429,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-	if (a->opt.view == VIEW_EMPTY || w <= 0 || h <= 0) {
+	if (a->opt.view == VIEWOPTS_VIEW_EMPTY || w <= 0 || h <= 0) {
 		return; /* the benchmark's empty frame, or a minimised window */
 	}
 	hud_layout((enum hud_view)a->opt.view, w, h, &lay);
@@ -722,43 +542,26 @@ static const char *status_name(const struct app *a)
 	       s == LINK_STALE ? "stale" : "none";
 }
 
-static void print_rect(const char *name, struct endo_rect r, int fb_h)
-{
-	printf(" %s=%d,%d,%d,%d", name, r.x, fb_h - r.y - r.h, r.w, r.h);
-}
-
 /* The closing lines: the figures, and where each view lies in the image
  * (top-left origin, as in the PNG). */
 static void report(const struct app *a)
 {
-	const struct timing *t = a->timing;
-	double secs =
-		(double)(a->last_swap_ns - a->start_ns) / ENDOSIM_NS_PER_S;
-	struct mapview_rect map;
-	struct hud_layout lay;
-	int w, h;
+	struct viewstats s = {
+		.frames = a->frame,
+		.seconds = (double)(a->last_swap_ns - a->start_ns) /
+			   ENDOSIM_NS_PER_S,
+		.timing = a->timing,
+		.triangles = a->triangles,
+		.triangles_max = a->triangles_max,
+		.gl_errors = gfx_errors_total(),
+		.daemon = status_name(a),
+		.colon = a->colon.model ? a->colon.model->name : "none",
+		.view = (enum hud_view)(a->opt.view % HUD_VIEWS),
+		.map_shown = a->map_shown,
+	};
 
-	printf("endoview: frames=%ld seconds=%.2f fps=%.1f "
-	       "frame_ms_p50=%.2f frame_ms_p99=%.2f age_ms_p50=%.2f "
-	       "age_ms_p99=%.2f triangles=%u triangles_max=%u gl_errors=%lu "
-	       "daemon=%s colon=%s\n", a->frame, secs,
-	       secs > 0 ? (double)a->frame / secs : 0,
-	       timing_quantile(t, TIMING_FRAME, 0.5),
-	       timing_quantile(t, TIMING_FRAME, 0.99),
-	       timing_quantile(t, TIMING_AGE, 0.5),
-	       timing_quantile(t, TIMING_AGE, 0.99), a->triangles,
-	       a->triangles_max, gfx_errors_total(), status_name(a),
-	       a->colon.model ? a->colon.model->name : "none");
-	glfwGetFramebufferSize(a->window, &w, &h);
-	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
-	printf("endoview: layout");
-	print_rect("endo", lay.endo, h);
-	print_rect("overview", lay.overview, h);
-	print_rect("panel", lay.panel, h);
-	print_rect("timeline", lay.timeline, h);
-	map = a->map_shown ? mapview_box(w, h) : (struct mapview_rect){ 0 };
-	printf(" map=%d,%d,%d,%d\n", (int)map.x, (int)map.y, (int)map.w,
-	       (int)map.h);
+	glfwGetFramebufferSize(a->window, &s.width, &s.height);
+	viewstats_print(stdout, &s);
 }
 
 /* What the panel said, and where the overview drew the scope and the
@@ -890,8 +693,8 @@ int main(int argc, char **argv)
 	int r = 1;
 
 	log_init("endoview", LOG_INFO);
-	if (parse(argc, argv, &a.opt)) {
-		usage(stderr);
+	if (viewopts_parse(argc, argv, &a.opt)) {
+		viewopts_usage(stderr);
 		return 2;
 	}
 	if (a.opt.replay && open_replay(&a)) {

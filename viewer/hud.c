@@ -372,14 +372,14 @@ static double worst_loop(const struct endosim_scope_state *sc, int *span)
 	return worst;
 }
 
-/* The warning of the largest bow, if it is a loop worth saying. */
+/* The warning of the largest bow, if it is a loop. */
 static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
 {
 	int span;
 	double worst = worst_loop(&in->st->scope, &span);
 	char text[160];
 
-	if (worst < HUD_LOOP_WARN_M || !in->m) {
+	if (worst <= in->loop_threshold_m || !in->m) {
 		return;
 	}
 	for (int i = 0; i < in->m->regions; i++) {
@@ -395,7 +395,7 @@ static void draw_loop(struct pen *p, const struct hud_info *in, double t_s)
 }
 
 /* The rod model: how far each mobile segment has moved (its loop); in a
- * compact panel only while no loop is worth a warning, which says it. */
+ * compact panel only while there is no loop, whose warning says it. */
 static void draw_moved(struct pen *p, const struct hud_info *in)
 {
 	const struct endosim_scope_state *sc = &in->st->scope;
@@ -404,7 +404,7 @@ static void draw_moved(struct pen *p, const struct hud_info *in)
 	size_t n = strlen(text);
 	int span;
 
-	if (in->compact && worst_loop(sc, &span) >= HUD_LOOP_WARN_M) {
+	if (in->compact && worst_loop(sc, &span) > in->loop_threshold_m) {
 		return;
 	}
 	for (int i = 0; in->m && i < in->m->regions && n < sizeof(text);

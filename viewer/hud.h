@@ -5,8 +5,9 @@
  * (the colon's segment), the force on each axis as bars (what the force
  * model asks for, what the safety filter lets through), the parts of the
  * force (contact, friction, loop; the wheels' contact, wire tension,
- * elastic return), a strip chart of the last seconds, a loop warning,
- * the frame rate, and the keys; banners over the image when the daemon is
+ * elastic return), a strip chart of the last seconds, a loop warning
+ * (a mobile segment bowed beyond the threshold the session's metrics
+ * count a loop from), the frame rate, and the keys; banners over the image when the daemon is
  * missing or stale, or the colon is loading. In the rod model (struct
  * endosim_rod_state) the first line names it, a line gives how far each
  * mobile segment has moved (its loop, published in bow_m), and the parts
@@ -38,7 +39,6 @@
 #include "viewer/link.h"
 #include "viewer/model.h"
 
-#define HUD_LOOP_WARN_M 0.02 /* a bow this large is a loop worth saying */
 #define HUD_CHART_S 6.0      /* seconds in the strip chart */
 #define HUD_LINES 32         /* lines of text a panel keeps (hud_said()) */
 #define HUD_LINE 256         /* characters a line, its NUL included */
@@ -73,6 +73,8 @@ struct hud_info {
 	const char *link_problem;  /* why there is no daemon */
 	double stale_s;
 	const struct endosim_state *st; /* NULL: none yet */
+	double loop_threshold_m;   /* a loop, as the metrics count one (the
+				      link's or the replay's) */
 	const struct model *m;     /* NULL: no colon yet */
 	bool loading;              /* the colon is being fetched */
 	const char *rig_problem;   /* why the viewer cannot command */

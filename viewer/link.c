@@ -8,11 +8,15 @@
 
 #include "base/log.h"
 #include "proto/shm_reader.h"
+#include "session/sessioninputs.h"
+#include "viewer/reconnect.h"
 
 #define READ_TRIES 8
 
 struct link {
-	char *socket;      /* as given, NULL: the default */
+	/* the read-only socket, a connection for each fetch of the scene (at
+	   most every LINK_RETRY_S); its problem is the link's */
+	struct reconnect *scene;
 	char shm_name[128];
 	struct shm_reader *shm;
 	uint64_t start_ns; /* of the daemon whose state we hold */
@@ -20,8 +24,7 @@ struct link {
 	bool have_state;
 	bool changed;
 	uint64_t next_open_ns;  /* earliest time to try to open again */
-	uint64_t next_fetch_ns; /* earliest time to fetch the scene again */
-	char problem[192];
+	double loop_config_m;   /* [session] loop_threshold_m; 0: by model */
 };
 
 struct link *link_create(const char *socket, const char *shm_name)
@@ -33,12 +36,12 @@ struct link *link_create(const char *socket, const char *shm_name)
 	}
 	snprintf(l->shm_name, sizeof(l->shm_name), "%s",
 		 shm_name ? shm_name : ENDOSIM_SHM_DEFAULT_NAME);
-	l->socket = socket ? strdup(socket) : NULL;
-	if (socket && !l->socket) {
+	l->scene = reconnect_create(socket, false, LINK_RETRY_S, LOG_NOTICE,
+				    "");
+	if (!l->scene) {
 		free(l);
 		return NULL;
 	}
-	snprintf(l->problem, sizeof(l->problem), "waiting for endosimd");
 	return l;
 }
 
@@ -48,32 +51,22 @@ void link_destroy(struct link *l)
 		return;
 	}
 	shm_reader_close(l->shm);
-	free(l->socket);
+	reconnect_destroy(l->scene);
 	free(l);
-}
-
-static void say(struct link *l, const char *why)
-{
-	if (strcmp(l->problem, why)) {
-		log_notice("%s", why);
-	}
-	snprintf(l->problem, sizeof(l->problem), "%s", why);
 }
 
 static void try_open(struct link *l, uint64_t now_ns)
 {
-	char why[192];
 	uint64_t start;
 
 	l->next_open_ns = now_ns + (uint64_t)(LINK_RETRY_S * ENDOSIM_NS_PER_S);
 	l->shm = shm_reader_open(l->shm_name);
 	if (!l->shm) {
-		snprintf(why, sizeof(why), errno == ENOENT ?
-			 "no endosimd: no shared memory %s" :
-			 "shared memory %s: %s", l->shm_name,
-			 errno == EPROTO ? "another layout version" :
-					   strerror(errno));
-		say(l, why);
+		reconnect_say(l->scene, errno == ENOENT ?
+			      "no endosimd: no shared memory %s" :
+			      "shared memory %s: %s", l->shm_name,
+			      errno == EPROTO ? "another layout version" :
+						strerror(errno));
 		return;
 	}
 	start = shm_reader_header(l->shm)->start_ns;
@@ -81,25 +74,17 @@ static void try_open(struct link *l, uint64_t now_ns)
 		l->changed = true; /* a new daemon: its scene ids start again */
 	}
 	l->start_ns = start;
-	l->problem[0] = '\0';
-}
-
-static void drop(struct link *l, const char *why)
-{
-	shm_reader_close(l->shm);
-	l->shm = NULL;
-	say(l, why);
+	reconnect_clear(l->scene);
 }
 
 /* Stale: is its writer gone, or has another daemon replaced it? */
 static enum link_status check_stale(struct link *l, uint64_t now_ns)
 {
-	char why[96];
-
 	if (!shm_reader_writer_alive(l->shm)) {
-		snprintf(why, sizeof(why), "endosimd (pid %d) is gone",
-			 (int)shm_reader_header(l->shm)->writer_pid);
-		drop(l, why);
+		reconnect_say(l->scene, "endosimd (pid %d) is gone",
+			      (int)shm_reader_header(l->shm)->writer_pid);
+		shm_reader_close(l->shm);
+		l->shm = NULL;
 		return LINK_NO_DAEMON;
 	}
 	if (now_ns >= l->next_open_ns) {
@@ -108,7 +93,7 @@ static enum link_status check_stale(struct link *l, uint64_t now_ns)
 		try_open(l, now_ns);
 		if (!l->shm) {
 			l->shm = old; /* nothing newer: keep what we have */
-			l->problem[0] = '\0';
+			reconnect_clear(l->scene);
 		} else {
 			shm_reader_close(old);
 		}
@@ -153,44 +138,78 @@ double link_stale_s(const struct link *l, uint64_t now_ns)
 
 const char *link_problem(const struct link *l)
 {
-	return l->problem;
+	return reconnect_problem(l->scene);
 }
 
 bool link_scene_wanted(const struct link *l, uint64_t held_id,
 		       uint64_t now_ns)
 {
 	return l->shm && l->have_state && l->st.scope.scene_id &&
-	       l->st.scope.scene_id != held_id && now_ns >= l->next_fetch_ns;
+	       l->st.scope.scene_id != held_id &&
+	       reconnect_due(l->scene, now_ns);
+}
+
+/* The daemon's [session] loop_threshold_m, asked on C; 0 (by the model)
+ * when it does not say. */
+static double ask_loop_threshold(struct client *c)
+{
+	Endosim__GetConfig body = ENDOSIM__GET_CONFIG__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	double m = 0;
+
+	body.key = "session.loop_threshold_m";
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_CONFIG;
+	req.get_config = &body;
+	if (client_request(c, &req, &rep, LINK_SCENE_TIMEOUT_MS)) {
+		return 0;
+	}
+	if (rep->status == ENDOSIM__STATUS__STATUS_OK &&
+	    rep->body_case == ENDOSIM__REPLY__BODY_CONFIG &&
+	    rep->config->n_entries == 1) {
+		m = strtod(rep->config->entries[0]->value, NULL);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return m;
 }
 
 int link_fetch_scene(struct link *l, struct client_scene **out,
 		     uint64_t now_ns)
 {
 	Endosim__Status status = ENDOSIM__STATUS__STATUS_OK;
-	char path[108], why[192];
-	struct client *c;
 	int r;
 
-	l->next_fetch_ns = now_ns + (uint64_t)(LINK_RETRY_S * ENDOSIM_NS_PER_S);
-	r = client_socket_path(l->socket, false, path, sizeof(path));
-	c = r ? NULL : client_connect(path);
-	if (!c) {
-		r = r ? r : -errno;
-		snprintf(why, sizeof(why), "scene: %s: %s", path, strerror(-r));
-		say(l, why);
+	reconnect_now(l->scene); /* asked: fetched; the delay that this
+				    starts is for link_scene_wanted() */
+	r = reconnect_connect(l->scene, now_ns);
+	if (r < 0) {
+		reconnect_say(l->scene, "scene: %s: %s",
+			      reconnect_path(l->scene), strerror(-r));
 		return r;
 	}
-	r = client_get_scene(c, out, LINK_SCENE_TIMEOUT_MS, &status);
-	client_close(c);
+	r = client_get_scene(reconnect_client(l->scene), out,
+			     LINK_SCENE_TIMEOUT_MS, &status);
+	if (!r) {
+		l->loop_config_m = ask_loop_threshold(reconnect_client(l->scene));
+	}
+	reconnect_close(l->scene);
 	if (r) {
-		snprintf(why, sizeof(why), "scene from %s: %s", path,
-			 r == -EACCES ? client_status_text(status) :
-					strerror(-r));
-		say(l, why);
+		reconnect_say(l->scene, "scene from %s: %s",
+			      reconnect_path(l->scene),
+			      r == -EACCES ? client_status_text(status) :
+					     strerror(-r));
 		return r;
 	}
-	l->problem[0] = '\0';
+	reconnect_clear(l->scene);
 	return 0;
+}
+
+double link_loop_threshold_m(const struct link *l)
+{
+	return sessioninputs_loop_threshold_m(l->loop_config_m,
+					      l->have_state &&
+					      l->st.rod.model ==
+					      ENDOSIM_MODEL_ROD);
 }
 
 bool link_daemon_changed(struct link *l)

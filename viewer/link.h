@@ -13,9 +13,13 @@
  * and, since scene ids start again with a new daemon, fetches the scene
  * again.
  *
+ * With the scene the link asks the daemon's [session] loop_threshold_m:
+ * a loop as the daemon's metrics count one (link_loop_threshold_m()).
+ *
  * Fetching the scene is the one call that blocks (up to
- * LINK_SCENE_TIMEOUT_MS per chunk); link_update() never does. Main thread
- * only.
+ * LINK_SCENE_TIMEOUT_MS per chunk), on a connection made for it
+ * (reconnect.h); link_update() never does. What is wrong is said in
+ * link_problem() and logged once. Main thread only.
  */
 #ifndef ENDOVIEW_LINK_H
 #define ENDOVIEW_LINK_H
@@ -64,10 +68,18 @@ const char *link_problem(const struct link *l);
 bool link_scene_wanted(const struct link *l, uint64_t held_id,
 		       uint64_t now_ns);
 
-/* Fetches the scene (blocks). Returns 0 with *OUT, or a negative errno
- * with the reason in link_problem(). */
+/* Fetches the scene, and the daemon's loop threshold with it (blocks).
+ * Returns 0 with *OUT, or a negative errno with the reason in
+ * link_problem(). */
 int link_fetch_scene(struct link *l, struct client_scene **out,
 		     uint64_t now_ns);
+
+/*
+ * The bow (m) beyond which the daemon's metrics count a loop: its
+ * [session] loop_threshold_m as last fetched, or where that is 0 (or was
+ * not told) the model's the state names (sessioninputs_loop_threshold_m()).
+ */
+double link_loop_threshold_m(const struct link *l);
 
 /* True once after the daemon was replaced (the held scene is void). */
 bool link_daemon_changed(struct link *l);

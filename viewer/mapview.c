@@ -2,16 +2,15 @@
 #include "viewer/mapview.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "proto/client.h"
-#include "viewer/hud.h"
-#include "session/livemap.h"
 #include "base/log.h"
+#include "session/livemap.h"
+#include "viewer/hud.h"
+#include "viewer/reconnect.h"
 
 #define MAX_REGIONS 16
 #define MAX_FOUND 32
@@ -24,9 +23,9 @@ struct map_region {
 };
 
 struct mapview {
-	char *socket;
+	struct reconnect *rc; /* the read-only socket; its problem: why there
+				 is no map, "": there is one */
 	bool offline;
-	struct client *c;
 	uint64_t next_poll_ns;
 	bool have_map;
 	uint64_t session_id;
@@ -36,12 +35,9 @@ struct mapview {
 	int regions;
 	double found_s_m[MAX_FOUND], found_angle_rad[MAX_FOUND];
 	int found;
-	char problem[192]; /* why there is no map; empty: there is one */
 	char said[256];
 };
 
-static const float unseen_rgb[4] = { 0.93f, 0.16f, 0.20f, 1 };
-static const float seen_rgb[4] = { 0.20f, 0.62f, 0.32f, 1 };
 static const float back_rgb[4] = { 0.05f, 0.06f, 0.08f, 0.96f };
 static const float wall_rgb[4] = { 0.16f, 0.17f, 0.20f, 1 };
 static const float white[4] = { 0.92f, 0.94f, 0.97f, 1 };
@@ -57,8 +53,9 @@ struct mapview *mapview_create(const char *socket, bool offline)
 	if (!v) {
 		return NULL;
 	}
-	v->socket = socket ? strdup(socket) : NULL;
-	if (socket && !v->socket) {
+	/* no delay: the map is asked for every MAPVIEW_POLL_S */
+	v->rc = reconnect_create(socket, false, 0, LOG_INFO, "mucosa map: ");
+	if (!v->rc) {
 		free(v);
 		return NULL;
 	}
@@ -71,8 +68,7 @@ void mapview_destroy(struct mapview *v)
 	if (!v) {
 		return;
 	}
-	client_close(v->c);
-	free(v->socket);
+	reconnect_destroy(v->rc);
 	free(v);
 }
 
@@ -80,31 +76,8 @@ void mapview_destroy(struct mapview *v)
 
 static void no_map(struct mapview *v, const char *why)
 {
-	if (strcmp(v->problem, why)) {
-		log_info("mucosa map: %s", why);
-	}
-	snprintf(v->problem, sizeof(v->problem), "%s", why);
+	reconnect_say(v->rc, "%s", why);
 	v->have_map = false;
-}
-
-static int connect_ro(struct mapview *v)
-{
-	char path[108], why[192];
-	int err;
-
-	if (v->c) {
-		return 0;
-	}
-	err = client_socket_path(v->socket, false, path, sizeof(path));
-	v->c = err ? NULL : client_connect(path);
-	if (!v->c) {
-		err = err ? err : -errno;
-		snprintf(why, sizeof(why), "no endosimd: %s: %s", path,
-			 strerror(-err));
-		no_map(v, why);
-		return err;
-	}
-	return 0;
 }
 
 /* The reply's map kept, if it is one of the size drawn here. */
@@ -134,30 +107,31 @@ static void take(struct mapview *v, const Endosim__MapReply *m)
 		v->found_s_m[v->found] = m->found[i]->s_m;
 		v->found_angle_rad[v->found++] = m->found[i]->angle_rad;
 	}
-	v->problem[0] = '\0';
+	reconnect_clear(v->rc);
 	v->have_map = m->length_m > 0;
 	if (!v->have_map) {
 		no_map(v, "the colon has no geometry to map");
 	}
 }
 
-static void ask(struct mapview *v)
+static void ask(struct mapview *v, uint64_t now_ns)
 {
 	Endosim__SessionMap body = ENDOSIM__SESSION_MAP__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
-	char why[192];
-	int err;
+	char why[RECONNECT_PROBLEM];
+	int err = reconnect_connect(v->rc, now_ns);
 
-	if (connect_ro(v)) {
+	if (err < 0) {
+		snprintf(why, sizeof(why), "no endosimd: %s: %s",
+			 reconnect_path(v->rc), strerror(-err));
+		no_map(v, why);
 		return;
 	}
 	req.body_case = ENDOSIM__REQUEST__BODY_SESSION_MAP;
 	req.session_map = &body;
-	err = client_request(v->c, &req, &rep, MAPVIEW_TIMEOUT_MS);
+	err = reconnect_request(v->rc, &req, &rep, MAPVIEW_TIMEOUT_MS);
 	if (err) {
-		client_close(v->c);
-		v->c = NULL;
 		snprintf(why, sizeof(why), "no answer from endosimd: %s",
 			 strerror(-err));
 		no_map(v, why);
@@ -177,7 +151,8 @@ static void ask(struct mapview *v)
 static void say(struct mapview *v)
 {
 	if (!v->have_map) {
-		snprintf(v->said, sizeof(v->said), "%s", v->problem);
+		snprintf(v->said, sizeof(v->said), "%s",
+			 reconnect_problem(v->rc));
 		return;
 	}
 	snprintf(v->said, sizeof(v->said), "session %llu at %.1f s: %.1f %% "
@@ -190,10 +165,9 @@ static void say(struct mapview *v)
 void mapview_update(struct mapview *v, bool shown, uint64_t now_ns)
 {
 	if (!shown) {
-		client_close(v->c);
-		v->c = NULL;
+		reconnect_close(v->rc);
+		reconnect_clear(v->rc);
 		v->have_map = false;
-		v->problem[0] = '\0';
 		v->next_poll_ns = 0;
 		return;
 	}
@@ -203,7 +177,7 @@ void mapview_update(struct mapview *v, bool shown, uint64_t now_ns)
 	} else if (now_ns >= v->next_poll_ns) {
 		v->next_poll_ns =
 			now_ns + (uint64_t)(MAPVIEW_POLL_S * ENDOSIM_NS_PER_S);
-		ask(v);
+		ask(v, now_ns);
 	}
 	say(v);
 }
@@ -260,12 +234,15 @@ static float along_x(const struct mapview *v, const struct grid *g,
 	return g->x + (float)fmin(fmax(f, 0), 1) * g->w;
 }
 
-/* A share seen 0..1 as a colour: unseen red to seen green. */
+/* A share seen 0..1 as a colour: unseen red to seen green (the map's
+ * ramp, livemap_colour()). */
 static void share_rgb(double s, float rgba[4])
 {
+	double rgb[3];
+
+	livemap_colour(LIVEMAP_ON_SCREEN, s, rgb);
 	for (int c = 0; c < 3; c++) {
-		rgba[c] = (float)(unseen_rgb[c] +
-				  s * (seen_rgb[c] - unseen_rgb[c]));
+		rgba[c] = (float)(rgb[c] / 255);
 	}
 	rgba[3] = 1;
 }
@@ -392,7 +369,7 @@ static void draw_title(const struct mapview *v, struct draw2d *d,
 		       const struct mapview_rect *box, const struct grid *g)
 {
 	float base = box->y + PAD_PX + 1.1f * g->large;
-	float x = box->x + PAD_PX;
+	float x = box->x + PAD_PX, unseen[4], seen[4];
 
 	x += draw2d_text(d, FONT_LARGE, x, base, white, "UNSEEN MUCOSA");
 	if (v->have_map) {
@@ -402,8 +379,10 @@ static void draw_title(const struct mapview *v, struct draw2d *d,
 				   v->session_id, 100 * v->mucosa_seen,
 				   v->found, v->found == 1 ? "" : "s");
 		x += 3 * g->small;
-		x = legend(d, x, base, g->small, unseen_rgb, "unseen");
-		legend(d, x, base, g->small, seen_rgb, "seen");
+		share_rgb(0, unseen);
+		share_rgb(1, seen);
+		x = legend(d, x, base, g->small, unseen, "unseen");
+		legend(d, x, base, g->small, seen, "seen");
 	}
 	draw2d_text(d, FONT_SMALL, box->x + box->w - PAD_PX -
 		    draw2d_text_width(d, FONT_SMALL, "M: hide"), base, dim,
@@ -420,7 +399,8 @@ void mapview_draw(const struct mapview *v, struct draw2d *d, int w, int h,
 	draw_title(v, d, &box, &g);
 	if (!v->have_map) {
 		draw2d_text(d, FONT_LARGE, g.x, g.y + g.h / 2, dim,
-			    v->problem[0] ? v->problem : "asking endosimd");
+			    *reconnect_problem(v->rc) ? reconnect_problem(v->rc)
+						       : "asking endosimd");
 		draw2d_text(d, FONT_SMALL, g.x, g.y + g.h / 2 + 1.6f * g.large,
 			    dim, v->offline ? "" : "the map fills in while a "
 			    "training session records (endoctl session "

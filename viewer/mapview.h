@@ -12,7 +12,8 @@
  * a replay, the overlay says so instead.
  *
  * The map is asked for every MAPVIEW_POLL_S only while shown, on a
- * connection of its own, each request waiting MAPVIEW_TIMEOUT_MS at most
+ * connection of its own (reconnect.h; why there is no map logged once),
+ * each request waiting MAPVIEW_TIMEOUT_MS at most
  * (the control thread answers within a millisecond or two; rigctl's
  * requests wait up to 200 ms); hidden, the connection is closed.
  *

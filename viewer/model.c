@@ -261,6 +261,36 @@ static void copy_anatomy(struct model *m, const Endosim__SceneInfo *in)
 	}
 }
 
+/* The scope the scene is rendered with; the shipped one when it does not
+ * say (an older daemon). */
+static int copy_scope(struct model *m, const Endosim__SceneScope *sc,
+		      char *err, size_t errsize)
+{
+	const struct scope_params shipped = SCOPE_PARAMS_DEFAULT;
+
+	m->scope = shipped;
+	m->scope_radius_m = SCOPE_RADIUS_M;
+	if (!sc) {
+		return 0;
+	}
+	if (!(sc->bending_length_m > 0) || !isfinite(sc->bending_length_m) ||
+	    !isfinite(sc->ud_gain) || !isfinite(sc->lr_gain) ||
+	    !(sc->ud_limit_rad >= 0 && sc->ud_limit_rad <= M_PI) ||
+	    !(sc->lr_limit_rad >= 0 && sc->lr_limit_rad <= M_PI) ||
+	    !(sc->radius_m >= 0) || !isfinite(sc->radius_m)) {
+		snprintf(err, errsize, "scene: its scope does not add up");
+		return -EPROTO;
+	}
+	m->scope = (struct scope_params){
+		.bending_length_m = sc->bending_length_m,
+		.ud_gain = sc->ud_gain, .lr_gain = sc->lr_gain,
+		.ud_limit_rad = sc->ud_limit_rad,
+		.lr_limit_rad = sc->lr_limit_rad,
+	};
+	m->scope_radius_m = sc->radius_m;
+	return 0;
+}
+
 struct model *model_create(const struct client_scene *s, char *err,
 			   size_t errsize)
 {
@@ -272,7 +302,8 @@ struct model *model_create(const struct client_scene *s, char *err,
 	}
 	m->scene_id = s->scene_id;
 	copy_anatomy(m, s->info);
-	if (make_centreline(m, s->info, err, errsize) ||
+	if (copy_scope(m, s->scope, err, errsize) ||
+	    make_centreline(m, s->info, err, errsize) ||
 	    make_mesh(m, s, err, errsize)) {
 		model_destroy(m);
 		return NULL;

@@ -4,11 +4,13 @@
  * mesh.h) so that a bowed mobile segment is placed exactly as the haptics
  * place it.
  *
- * The centreline is made from the scene's undeformed samples and first
- * frame, the mobile spans from its span table; the mesh from each vertex'
- * sample and offset, finished (mesh_finish()) into the same vertex and
- * triangle order and the same segment table as the daemon's, with the
- * scene's normals. model_bow() then bows the spans to the amplitudes the
+ * The scope is the scene's (the shipped one, scope.h, from a daemon that
+ * does not say). The centreline is made from the scene's undeformed
+ * samples and first frame, the mobile spans from its span table; the mesh
+ * from each vertex' sample and offset, finished (mesh_finish()) into the
+ * same vertex and triangle order and the same segment table as the
+ * daemon's, with the scene's normals. model_bow() then bows the spans to
+ * the amplitudes the
  * force loop publishes (struct endosim_scope_state bow_m) with
  * centreline_bow() and mesh_place(), as colon_bow() does in the daemon;
  * in the rod model model_displace() moves them through the nodes it
@@ -28,6 +30,7 @@
 #include "proto/client.h"
 #include "proto/endosim_shm.h"
 #include "model/mesh.h"
+#include "model/scope.h"
 
 #define MODEL_NAME 64
 #define MODEL_MAX_REGIONS 16
@@ -61,6 +64,8 @@ struct model_polyp {
 struct model {
 	uint64_t scene_id;
 	char name[MODEL_NAME];
+	struct scope_params scope; /* the scope the daemon renders with */
+	double scope_radius_m;     /* its tip's and tube's */
 	struct centreline *cl;
 	struct mesh *mesh;
 	uint32_t ring;     /* vertices per ring of a generated tube; 0 if not */

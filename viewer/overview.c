@@ -9,8 +9,6 @@
 
 #include <cglm/cglm.h>
 
-#include "conf/cases.h"
-#include "conf/config.h"
 #include "viewer/gfx.h"
 #include "base/log.h"
 #include "model/scope.h"
@@ -18,7 +16,6 @@
 #include "base/vec3.h"
 
 #define FOV_DEG 30.0
-#define SCOPE_RADIUS_M 0.0065   /* a 13 mm insertion tube */
 #define STRIPE_RADIUS_M 0.0016  /* the roll's line, on its surface */
 #define OUTSIDE 0.45f           /* the tube outside the patient: dimmer */
 #define TIP_RADIUS_M 0.006
@@ -336,8 +333,8 @@ static uint32_t draw_rod(const struct overview *o, const struct model *m,
 		from++;
 	}
 	shapes_stripe(p, rod->roll, n, centreline_base(m->cl, 0)->u,
-		      (float)SCOPE_RADIUS_M, stripe);
-	return draw_tube(o, TUBE, p, n, SCOPE_RADIUS_M, from, outside_rgb,
+		      (float)m->scope_radius_m, stripe);
+	return draw_tube(o, TUBE, p, n, m->scope_radius_m, from, outside_rgb,
 			 scope_rgb) +
 	       draw_tube(o, STRIPE, (const float(*)[3])stripe, n,
 			 STRIPE_RADIUS_M, from, stripe_out_rgb, stripe_rgb);
@@ -354,7 +351,7 @@ static uint32_t draw_scope(const struct overview *o, const struct model *m,
 		tris = draw_rod(o, m, &st->rod);
 	} else {
 		tris = draw_tube(o, TUBE, (const float(*)[3])sc->tube,
-				 ENDOSIM_TUBE_POINTS, SCOPE_RADIUS_M, 0,
+				 ENDOSIM_TUBE_POINTS, m->scope_radius_m, 0,
 				 scope_rgb, scope_rgb);
 	}
 	tris += sphere_at(o, sc->tip, TIP_RADIUS_M, tip_rgb);
@@ -370,14 +367,13 @@ static uint32_t draw_scope(const struct overview *o, const struct model *m,
  * Guided replay's reference: the scope where the expert's recording had
  * it now (taken over: where the guidance left off), by the paper's
  * kinematics on the colon's centreline from the reference's axes (the
- * shipped scope's bending section), drawn as a ghost beside the real one.
+ * scope the daemon renders with: the scene's), drawn as a ghost beside the
+ * real one.
  */
 static uint32_t draw_reference(const struct overview *o,
 			       const struct model *m,
 			       const struct endosim_guide_state *g)
 {
-	static struct scope_params sp;
-	static bool have_params;
 	static struct scope_pose pose;
 	static float tube[SCOPE_TUBE_POINTS][3];
 	const struct scope_input in = {
@@ -390,21 +386,14 @@ static uint32_t draw_reference(const struct overview *o,
 	if (g->phase == ENDOSIM_GUIDE_OFF) {
 		return 0;
 	}
-	if (!have_params) {
-		static struct config cfg;
-
-		config_defaults(&cfg);
-		cases_scope_params(&cfg, &sp);
-		have_params = true;
-	}
-	scope_update(&sp, m->cl, &in, &pose);
+	scope_update(&m->scope, m->cl, &in, &pose);
 	for (int p = 0; p < SCOPE_TUBE_POINTS; p++) {
 		for (int d = 0; d < 3; d++) {
 			tube[p][d] = (float)pose.tube[p][d];
 		}
 	}
 	return draw_tube(o, REFERENCE, (const float(*)[3])tube,
-			 SCOPE_TUBE_POINTS, SCOPE_RADIUS_M, 0, reference_rgb,
+			 SCOPE_TUBE_POINTS, m->scope_radius_m, 0, reference_rgb,
 			 reference_rgb);
 }
 

@@ -7,9 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "conf/cases.h"
 #include "model/colon.h"
-#include "conf/config.h"
 #include "base/log.h"
 #include "model/scene.h"
 #include "model/scope.h"
@@ -19,7 +17,8 @@
 
 struct replay {
 	struct session_file f;
-	struct config cfg;
+	struct scope_params scope; /* recorded with */
+	double scope_radius_m;
 	struct colon *colon;
 	struct scene *scene;
 	struct client_scene cs;
@@ -30,6 +29,7 @@ struct replay {
 	struct endosim_state st;
 	struct scope_pose pose;
 	struct session_shape shape; /* the rod model's, at or before st */
+	double loop_threshold_m;    /* the session's metrics' */
 };
 
 static const char *read_error(int r)
@@ -45,15 +45,19 @@ static const char *read_error(int r)
 	}
 }
 
-/* The scope's parameters and the contact radius, from CONFIG. */
-static void read_config(struct replay *r, const char *path)
+/* The scope's parameters and radius, from CONFIG. */
+static void read_scope(struct replay *r, const char *path)
 {
+	struct metrics_params mp;
 	char err[256];
 
-	if (sessioninputs_config(&r->f, &r->cfg, err, sizeof(err))) {
+	if (sessioninputs_scope(&r->f, &r->scope, &r->scope_radius_m, err,
+				sizeof(err))) {
 		log_warn("%s: its configuration: %s: the scope's defaults "
 			 "instead", path, err);
 	}
+	sessioninputs_file_metrics_params(&r->f, &mp);
+	r->loop_threshold_m = mp.loop_threshold_m;
 }
 
 static int build_colon(struct replay *r, const char *path, char *err,
@@ -65,7 +69,7 @@ static int build_colon(struct replay *r, const char *path, char *err,
 		snprintf(err, errsize, "%s: no case recorded", path);
 		return -EINVAL;
 	}
-	r->colon = sessioninputs_colon(&r->f, &r->cfg, why, sizeof(why));
+	r->colon = sessioninputs_file_colon(&r->f, why, sizeof(why));
 	if (!r->colon) {
 		snprintf(err, errsize, "%s: its colon: %s", path, why);
 		return -EINVAL;
@@ -75,6 +79,7 @@ static int build_colon(struct replay *r, const char *path, char *err,
 		snprintf(err, errsize, "%s: out of memory", path);
 		return -ENOMEM;
 	}
+	scene_set_scope(r->scene, &r->scope, r->scope_radius_m);
 	scene_client(r->scene, &r->cs);
 	return 0;
 }
@@ -103,7 +108,7 @@ struct replay *replay_open(const char *path, char *err, size_t errsize)
 			 sizeof(r->trainee));
 	session_text_get(r->f.header, "case", r->case_name,
 			 sizeof(r->case_name));
-	read_config(r, path);
+	read_scope(r, path);
 	if (build_colon(r, path, err, errsize)) {
 		goto fail;
 	}
@@ -147,6 +152,11 @@ size_t replay_records(const struct replay *r)
 size_t replay_bytes_ignored(const struct replay *r)
 {
 	return r->f.bytes_ignored;
+}
+
+double replay_loop_threshold_m(const struct replay *r)
+{
+	return r->loop_threshold_m;
 }
 
 double replay_duration(const struct replay *r)
@@ -222,13 +232,11 @@ static void rebuild_tube(struct replay *r, size_t i)
 		rec->position[3],
 	};
 	const struct centreline *cl = colon_centreline(r->colon);
-	struct scope_params sp;
 
-	cases_scope_params(&r->cfg, &sp);
 	for (int k = 0; k < centreline_spans(cl) && k < ENDOSIM_SPANS; k++) {
 		colon_bow(r->colon, k, bows->bow_m[k], false);
 	}
-	scope_update(&sp, cl, &in, &r->pose);
+	scope_update(&r->scope, cl, &in, &r->pose);
 	for (int p = 0; p < ENDOSIM_TUBE_POINTS; p++) {
 		for (int d = 0; d < 3; d++) {
 			r->st.scope.tube[p][d] = (float)r->pose.tube[p][d];

@@ -69,6 +69,10 @@ const char *replay_case(const struct replay *r);
 size_t replay_records(const struct replay *r);
 size_t replay_bytes_ignored(const struct replay *r);
 
+/* The bow (m) beyond which the session's metrics count a loop
+ * (sessioninputs_file_metrics_params()). */
+double replay_loop_threshold_m(const struct replay *r);
+
 /* Seconds from the first record to the last. */
 double replay_duration(const struct replay *r);
 

@@ -6,17 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "proto/client.h"
 #include "base/log.h"
-
+#include "viewer/reconnect.h"
 
 struct rigctl {
-	char *socket;
-	struct client *c;
-	uint64_t next_try_ns;
-	bool hand_refused; /* until the next connection */
+	struct reconnect *rc; /* the read-write socket */
+	bool hand_refused;    /* until the next connection */
 	bool driving;
-	char problem[192];
 	char said[256];
 };
 
@@ -27,8 +23,8 @@ struct rigctl *rigctl_create(const char *socket)
 	if (!r) {
 		return NULL;
 	}
-	r->socket = socket ? strdup(socket) : NULL;
-	if (socket && !r->socket) {
+	r->rc = reconnect_create(socket, true, RIGCTL_RETRY_S, LOG_NOTICE, "");
+	if (!r->rc) {
 		free(r);
 		return NULL;
 	}
@@ -40,64 +36,41 @@ void rigctl_destroy(struct rigctl *r)
 	if (!r) {
 		return;
 	}
-	client_close(r->c);
-	free(r->socket);
+	reconnect_destroy(r->rc);
 	free(r);
-}
-
-static void say_problem(struct rigctl *r, const char *why)
-{
-	if (strcmp(r->problem, why)) {
-		log_notice("%s", why);
-	}
-	snprintf(r->problem, sizeof(r->problem), "%s", why);
 }
 
 static int connect_rw(struct rigctl *r, uint64_t now_ns)
 {
-	char path[108], why[192];
-	int err;
+	int err = reconnect_connect(r->rc, now_ns);
 
-	if (r->c) {
+	if (err == 1) {
+		reconnect_clear(r->rc);
+		r->hand_refused = false;
 		return 0;
 	}
-	if (now_ns < r->next_try_ns) {
-		return -EAGAIN;
+	if (err && err != -EAGAIN) {
+		reconnect_say(r->rc, "%s: %s: viewing only",
+			      reconnect_path(r->rc), err == -EACCES ?
+			      "no permission (not in the endosim group)" :
+			      strerror(-err));
 	}
-	r->next_try_ns = now_ns + (uint64_t)(RIGCTL_RETRY_S * ENDOSIM_NS_PER_S);
-	err = client_socket_path(r->socket, true, path, sizeof(path));
-	r->c = err ? NULL : client_connect(path);
-	if (!r->c) {
-		err = err ? err : -errno;
-		snprintf(why, sizeof(why), "%s: %s: viewing only", path,
-			 err == -EACCES ? "no permission (not in the endosim "
-					  "group)" : strerror(-err));
-		say_problem(r, why);
-		return err;
-	}
-	r->problem[0] = '\0';
-	r->hand_refused = false;
-	return 0;
+	return err;
 }
 
 /* Sends REQ; a failed exchange drops the connection. *REP on success. */
 static int exchange(struct rigctl *r, Endosim__Request *req,
 		    Endosim__Reply **rep, uint64_t now_ns)
 {
-	char why[192];
 	int err = connect_rw(r, now_ns);
 
 	if (err) {
 		return err;
 	}
-	err = client_request(r->c, req, rep, RIGCTL_TIMEOUT_MS);
+	err = reconnect_request(r->rc, req, rep, RIGCTL_TIMEOUT_MS);
 	if (err) {
-		client_close(r->c);
-		r->c = NULL;
 		r->driving = false;
-		snprintf(why, sizeof(why), "control socket: %s",
-			 strerror(-err));
-		say_problem(r, why);
+		reconnect_say(r->rc, "control socket: %s", strerror(-err));
 	}
 	return err;
 }
@@ -114,7 +87,6 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
-	char why[192];
 	int err;
 
 	if (r->hand_refused) {
@@ -131,9 +103,7 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	}
 	r->driving = rep->status == ENDOSIM__STATUS__STATUS_OK;
 	if (!r->driving && rep->status != ENDOSIM__STATUS__STATUS_BAD_VALUE) {
-		snprintf(why, sizeof(why), "hand input refused: %s",
-			 reason(rep));
-		say_problem(r, why);
+		reconnect_say(r->rc, "hand input refused: %s", reason(rep));
 		r->hand_refused = true;
 	}
 	endosim__reply__free_unpacked(rep, NULL);
@@ -197,11 +167,11 @@ int rigctl_command(struct rigctl *r, enum rigctl_command cmd,
 	int err;
 
 	command_body(&req, cmd);
-	r->next_try_ns = 0; /* the trainee asked: try now */
+	reconnect_now(r->rc); /* the trainee asked: try now */
 	err = exchange(r, &req, &rep, now_ns);
 	if (err) {
 		snprintf(r->said, sizeof(r->said), "%s: %s", command_name[cmd],
-			 r->problem);
+			 reconnect_problem(r->rc));
 		return err;
 	}
 	if (rep->status == ENDOSIM__STATUS__STATUS_OK) {
@@ -219,7 +189,7 @@ int rigctl_command(struct rigctl *r, enum rigctl_command cmd,
 
 const char *rigctl_problem(const struct rigctl *r)
 {
-	return r->problem;
+	return reconnect_problem(r->rc);
 }
 
 const char *rigctl_said(const struct rigctl *r)

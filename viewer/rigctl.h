@@ -4,11 +4,12 @@
  * (HandInput), the state machine (enable, disable, estop, reset) and
  * guided replay's take-over, resume and reset.
  *
- * The connection is made when first needed and again, at most every
- * RIGCTL_RETRY_S, after it failed. What cannot be done is said once in
- * rigctl_problem() for the screen (no permission: the viewer only views;
- * the rig is not simulated: the real handle drives it), and hand input is
- * not sent again until the connection is made anew.
+ * The connection (reconnect.h) is made when first needed and again, at
+ * most every RIGCTL_RETRY_S, after it failed. What cannot be done is said
+ * in rigctl_problem() for the screen, and logged once (no permission: the
+ * viewer only views; the rig is not simulated: the real handle drives
+ * it), and hand input is not sent again until the connection is made
+ * anew.
  *
  * Each request waits for its reply at most RIGCTL_TIMEOUT_MS (the
  * daemon's control thread answers within a millisecond or two). Main

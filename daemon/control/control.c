@@ -1,5 +1,25 @@
 /* control.c - see control.h; the parts share control_private.h. */
+#include <errno.h>
+#include <grp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/epoll.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/log.h"
+#include "base/mono.h"
+#include "conf/cases.h"
 #include "control/control_private.h"
+#include "proto/client.h"
+
+#define MAX_EVENTS 32
+#define MAX_PEER_GROUPS 256
+
+enum { TAG_WAKE = 0, TAG_RO = 1, TAG_RW = 2, TAG_CLIENT = 3 };
 
 /* ---------------------------------------------------------------- sockets */
 
@@ -505,14 +525,14 @@ static void *control_main(void *arg)
 
 static int alloc_buffers(struct control *c)
 {
-	size_t keys = config_key_count();
-
 	c->clients = calloc((size_t)c->max_clients, sizeof(*c->clients));
-	c->rb.entries = calloc(keys, sizeof(*c->rb.entries));
-	c->rb.entries_p = calloc(keys, sizeof(*c->rb.entries_p));
-	c->rb.values = calloc(keys, sizeof(*c->rb.values));
-	if (!c->clients || !c->rb.entries || !c->rb.entries_p ||
-	    !c->rb.values) {
+	c->replies = control_replies_create();
+	c->cases = control_cases_create();
+	c->sessions = control_sessions_create();
+	c->trainees = control_trainees_create();
+	c->guide = control_guide_create();
+	if (!c->clients || !c->replies || !c->cases || !c->sessions ||
+	    !c->trainees || !c->guide) {
 		log_err("control: out of memory");
 		return -ENOMEM;
 	}
@@ -649,14 +669,10 @@ void control_destroy(struct control *c)
 	close_fd(c->ep);
 	close_fd(c->wake_fd);
 	free(c->clients);
-	guide_path_free(c->guide_path);
-	guide_path_free(c->guide_limbo);
-	free(c->rb.entries);
-	free(c->rb.entries_p);
-	free(c->rb.values);
-	control_free_case_list(&c->rb);
-	control_free_session_list(&c->rb);
-	control_free_trainee(&c->rb);
-	scene_destroy(c->scene);
+	control_replies_destroy(c->replies);
+	control_cases_destroy(c->cases);
+	control_sessions_destroy(c->sessions);
+	control_trainees_destroy(c->trainees);
+	control_guide_destroy(c->guide);
 	free(c);
 }

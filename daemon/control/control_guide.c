@@ -2,11 +2,43 @@
  * control_guide.c - guided replay's commands (the Guide request): the session
  * file read into a path here, on the control thread; the loop gets the
  * path and the command (loop_guide()) and answers within a cycle or two.
- * The path the loop plays is kept here until a later start replaces it.
+ * The path the loop plays is kept here (struct control_guide) until a
+ * later start replaces it.
  */
+#include <errno.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
+#include "base/log.h"
+#include "base/mono.h"
 #include "control/control_private.h"
+#include "rig/guide.h"
+#include "session/sessiondir.h"
+
+struct control_guide {
+	struct guide_path *path;  /* the loop's (loop_guide()) */
+	struct guide_path *limbo; /* handed over, never answered: freed at
+				     the end */
+	char error[256];
+};
+
+struct control_guide *control_guide_create(void)
+{
+	return calloc(1, sizeof(struct control_guide));
+}
+
+void control_guide_destroy(struct control_guide *g)
+{
+	if (!g) {
+		return;
+	}
+	guide_path_free(g->path);
+	guide_path_free(g->limbo);
+	free(g);
+}
 
 /* The axes' positions of the newest published state; false if none. */
 static bool positions(struct control *c, double q[ENDOSIM_AXES],
@@ -30,7 +62,8 @@ static struct guide_path *load_path(struct control *c,
 				    const Endosim__Guide *g,
 				    Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	char *why = c->guide->error;
+	size_t size = sizeof(c->guide->error);
 	char file[2 * CONFIG_STR];
 	struct guide_path *p;
 
@@ -43,17 +76,17 @@ static struct guide_path *load_path(struct control *c,
 		       "guide start: name a session (its id) or a file");
 		return NULL;
 	}
-	p = guide_path_load(file, rb->error, sizeof(rb->error));
+	p = guide_path_load(file, why, size);
 	if (!p) {
-		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, rb->error);
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, why);
 		return NULL;
 	}
 	if (*p->case_name && strcmp(p->case_name, colon_name(c->colon))) {
-		snprintf(rb->error, sizeof(rb->error), "guide start: session "
+		snprintf(why, size, "guide start: session "
 			 "%" PRIu64 " was recorded on case '%.63s', the loaded "
 			 "case is '%.63s'", p->source_id, p->case_name,
 			 colon_name(c->colon));
-		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, rb->error);
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, why);
 		guide_path_free(p);
 		return NULL;
 	}
@@ -85,15 +118,16 @@ static void await_next_state(struct control *c)
 static void hand_over(struct control *c, const struct guide_command *cmd,
 		      struct guide_path *path, Endosim__Reply *rep)
 {
+	struct control_guide *g = c->guide;
 	int r = loop_guide(c->deps.loop, cmd, COMMAND_TIMEOUT_MS);
 
 	if (r == 0 && path) {
-		guide_path_free(c->guide_path);
-		c->guide_path = path;
+		guide_path_free(g->path);
+		g->path = path;
 	} else if (r == -ETIMEDOUT && path) {
 		/* the loop may take it yet: never freed while it runs */
-		guide_path_free(c->guide_limbo);
-		c->guide_limbo = path;
+		guide_path_free(g->limbo);
+		g->limbo = path;
 	} else if (path) {
 		guide_path_free(path);
 	}
@@ -156,7 +190,7 @@ void control_on_guide(struct control *c, struct client *cl,
 		break;
 	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME:
 	case ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESET:
-		if (!c->guide_path) {
+		if (!c->guide->path) {
 			refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
 			       "guide: nothing to resume: 'guide start' first");
 			return;
@@ -165,7 +199,7 @@ void control_on_guide(struct control *c, struct client *cl,
 			     ENDOSIM__GUIDE_ACTION__GUIDE_ACTION_RESUME ?
 			     GUIDE_RESUME : GUIDE_RESET;
 		cmd.from_s = cmd.action == GUIDE_RESET && g->from_given ?
-			     g->from_s : guide_path_nearest(c->guide_path, q);
+			     g->from_s : guide_path_nearest(c->guide->path, q);
 		break;
 	default:
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,

@@ -1,55 +1,29 @@
 /*
- * control_private.h - what the parts of the control thread share
- * (control.c: sockets, clients, dispatch, the thread; control_reply.c:
- * status, stats, configuration, commands, the hand, subscriptions and test
- * commands; control_case.c: the scene and the cases; control_session.c:
- * training sessions; control_trainee.c: a trainee's sessions through the
- * session directory's index). Control thread only, as all of control.h's
- * work.
+ * control_private.h - what the parts of the control thread share: the
+ * clients, the thread's state and the handlers' signature (control.c:
+ * sockets, clients, dispatch, the thread). Each family of handlers keeps
+ * the storage its replies point into, made with the control and freed
+ * with it: control_reply.c status, stats, configuration, commands, the
+ * hand, subscriptions and test commands; control_case.c the scene and the
+ * cases; control_session.c training sessions and their live map;
+ * control_trainee.c a trainee's sessions through the session directory's
+ * index; control_guide.c guided replay. Control thread only, as all of
+ * control.h's work.
  */
 #ifndef ENDOSIM_CONTROL_PRIVATE_H
 #define ENDOSIM_CONTROL_PRIVATE_H
 
-#include <errno.h>
-#include <grp.h>
-#include <inttypes.h>
-#include <math.h>
 #include <pthread.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/epoll.h>
-#include <sys/eventfd.h>
-#include <sys/socket.h>
-#include <sys/stat.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <sys/types.h>
 #include <sys/un.h>
-#include <unistd.h>
 
 #include "control/control.h"
-#include "proto/client.h"
+#include "proto/endosim.pb-c.h"
 #include "proto/frame.h"
-#include "proto/names.h"
-#include "proto/version.h"
-#include "conf/cases.h"
-#include "loop/faults.h"
-#include "proto/fields.h"
-#include "rig/guide.h"
-#include "loop/inject.h"
-#include "base/log.h"
-#include "base/mono.h"
-#include "model/scene.h"
-#include "session/sessiondir.h"
-#include "session/sessionindex.h"
-#include "session/sessionpb.h"
 
-#define MAX_EVENTS 32
-#define MAX_PEER_GROUPS 256
-#define COMMAND_TIMEOUT_MS 200
-#define MAX_PUSH_HZ 1000.0
-#define MAX_HOLD_S 10.0
-#define SWAP_TIMEOUT_MS 500
-
-enum { TAG_WAKE = 0, TAG_RO = 1, TAG_RW = 2, TAG_CLIENT = 3 };
+#define COMMAND_TIMEOUT_MS 200 /* the loop takes a command within this */
 
 struct client {
 	int fd;               /* -1: free slot */
@@ -67,56 +41,12 @@ struct client {
 	uint32_t push_seq;
 };
 
-/* Storage for the reply being built: no allocation per reply. */
-struct reply_buf {
-	Endosim__StatusReply status;
-	Endosim__AxisStatus axes[ENDOSIM_AXES];
-	Endosim__AxisStatus *axes_p[ENDOSIM_AXES];
-	Endosim__Fault faults[ENDOSIM_FAULT_BITS];
-	Endosim__Fault *faults_p[ENDOSIM_FAULT_BITS];
-	char fault_lines[ENDOSIM_FAULT_BITS][640];
-	Endosim__StatsReply stats;
-	Endosim__Histogram latency, compute;
-	Endosim__BusStats buses[ENDOSIM_AXES];
-	Endosim__BusStats *buses_p[ENDOSIM_AXES];
-	Endosim__Histogram bus_histo[ENDOSIM_AXES][2];
-	Endosim__ConfigReply config;
-	Endosim__ConfigEntry *entries;
-	Endosim__ConfigEntry **entries_p;
-	char (*values)[CONFIG_STR + 32];
-	char error[256];
-	Endosim__ScopeStatus scope;
-	Endosim__HapticsStatus haptics;
-	Endosim__RodStatus rod;
-	Endosim__GuideStatus guide;
-	struct endosim_state state; /* what the status reply points into */
-	Endosim__CaseListReply case_list;
-	Endosim__CaseEntry *case_entries;
-	Endosim__CaseEntry **case_entries_p;
-	struct cases_entry *cases;
-	char case_error[512];
-	Endosim__SessionReply session_reply;
-	Endosim__SessionInfo session;
-	struct recorder_info rinfo;        /* what session points into */
-	struct sessionpb_metrics metrics;
-	Endosim__SessionListReply session_list;
-	Endosim__SessionInfo *list_infos;
-	Endosim__SessionInfo **list_infos_p;
-	struct sessiondir_entry *list_entries;
-	struct sessiondir_entry shown;     /* SessionShow's file */
-	Endosim__MapReply map;             /* SessionMap's */
-	Endosim__MapRegion map_regions[COLON_MAX_REGIONS];
-	Endosim__MapRegion *map_regions_p[COLON_MAX_REGIONS];
-	Endosim__MapPolyp map_found[ANATOMY_MAX_POLYPS];
-	Endosim__MapPolyp *map_found_p[ANATOMY_MAX_POLYPS];
-	struct recorder_map rmap;          /* what map points into */
-	Endosim__TraineeReply trainee;     /* TraineeSessions': */
-	Endosim__SessionInfo *trainee_infos;
-	Endosim__SessionInfo **trainee_infos_p;
-	struct sessionpb_scalars *trainee_metrics;
-	char (*trainee_paths)[CONFIG_STR + 32];
-	struct sessionindex_entry *trainee_entries;
-};
+/* The families' storage (their .c files'). */
+struct control_replies;
+struct control_cases;
+struct control_sessions;
+struct control_trainees;
+struct control_guide;
 
 struct control {
 	struct config cfg;       /* the master copy */
@@ -129,11 +59,14 @@ struct control {
 	size_t max_request;
 	size_t max_queued;
 	gid_t command_gid;       /* who may command besides root */
-	struct reply_buf rb;
+	struct control_replies *replies;
+	struct control_cases *cases;
+	struct control_sessions *sessions;
+	struct control_trainees *trainees;
+	struct control_guide *guide;
 	struct colon *colon;     /* the loop's now: read its mesh only */
 	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
-	uint64_t scene_id;
-	struct scene *scene;     /* GetScene's replies, made on demand */
+	uint64_t scene_id;       /* its GetScene id */
 	uint64_t rate_t0_ns, rate_cycle0;
 	double loop_hz;
 	pthread_t thread;
@@ -141,15 +74,12 @@ struct control {
 	_Atomic bool alive;
 	_Atomic bool stop;
 	bool end;                /* a test command: the thread ends */
-	struct guide_path *guide_path;  /* the loop's (loop_guide()) */
-	struct guide_path *guide_limbo; /* handed over, never answered:
-					   freed at the end */
 };
 
 typedef void handler_fn(struct control *c, struct client *cl,
 			const Endosim__Request *req, Endosim__Reply *rep);
 
-/* Answers REP with STATUS and WHY (a constant string). */
+/* Answers REP with STATUS and WHY (a constant string, or the family's). */
 static inline void refuse(Endosim__Reply *rep, Endosim__Status status,
 			  const char *why)
 {
@@ -158,11 +88,21 @@ static inline void refuse(Endosim__Reply *rep, Endosim__Status status,
 }
 
 /*
- * The requests, by job: status, stats, configuration, commands, the hand
- * and subscriptions, test commands (control_reply.c); the scene and the
- * cases (control_case.c); training sessions and their live map
- * (control_session.c).
+ * Each family's storage: NULL on ENOMEM (logged by the caller); destroy
+ * frees it and what its last reply was made of; NULL is fine.
  */
+struct control_replies *control_replies_create(void);
+void control_replies_destroy(struct control_replies *rb);
+struct control_cases *control_cases_create(void);
+void control_cases_destroy(struct control_cases *cs);
+struct control_sessions *control_sessions_create(void);
+void control_sessions_destroy(struct control_sessions *rb);
+struct control_trainees *control_trainees_create(void);
+void control_trainees_destroy(struct control_trainees *rb);
+struct control_guide *control_guide_create(void);
+void control_guide_destroy(struct control_guide *g);
+
+/* The requests, by family (see above). */
 handler_fn control_on_get_status;
 handler_fn control_on_get_stats;
 handler_fn control_on_get_config;
@@ -174,6 +114,7 @@ handler_fn control_on_reset;
 handler_fn control_on_reset_stats;
 handler_fn control_on_hand_input;
 handler_fn control_on_subscribe;
+handler_fn control_on_debug;
 handler_fn control_on_get_scene;
 handler_fn control_on_list_cases;
 handler_fn control_on_load_case;
@@ -184,18 +125,14 @@ handler_fn control_on_session_list;
 handler_fn control_on_session_show;
 handler_fn control_on_session_map;
 handler_fn control_on_trainee_sessions;
-handler_fn control_on_debug;
 handler_fn control_on_guide;
 
-/* The status reply of the newest published state (GetStatus, a push). */
+/* The status reply of the newest published state (GetStatus, a push, a
+ * guide command's answer), in control_reply.c's storage. */
 void control_build_status(struct control *c, Endosim__Reply *rep);
 
-/* Frees the case list (the session list) the last reply was made of. */
-void control_free_case_list(struct reply_buf *rb);
-void control_free_session_list(struct reply_buf *rb);
-void control_free_trainee(struct reply_buf *rb);
-
-/* Loads case NAME (IDLE only, never during a session). 0, or -1 refused. */
+/* Loads case NAME (IDLE only, never during a session). 0, or -1 refused
+ * (REP says why). */
 int control_load_case(struct control *c, struct client *cl,
 		      const char *name, Endosim__Reply *rep);
 

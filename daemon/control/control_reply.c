@@ -3,7 +3,76 @@
  * configuration, commands, the hand, subscriptions, test commands
  * (control_private.h).
  */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "base/mono.h"
 #include "control/control_private.h"
+#include "loop/faults.h"
+#include "proto/fields.h"
+#include "proto/names.h"
+#include "proto/version.h"
+
+#define MAX_PUSH_HZ 1000.0
+#define MAX_HOLD_S 10.0
+
+/* Storage for the reply being built: no allocation per reply. */
+struct control_replies {
+	Endosim__StatusReply status;
+	Endosim__AxisStatus axes[ENDOSIM_AXES];
+	Endosim__AxisStatus *axes_p[ENDOSIM_AXES];
+	Endosim__Fault faults[ENDOSIM_FAULT_BITS];
+	Endosim__Fault *faults_p[ENDOSIM_FAULT_BITS];
+	char fault_lines[ENDOSIM_FAULT_BITS][640];
+	Endosim__ScopeStatus scope;
+	Endosim__HapticsStatus haptics;
+	Endosim__RodStatus rod;
+	Endosim__GuideStatus guide;
+	struct endosim_state state; /* what the status reply points into */
+	Endosim__StatsReply stats;
+	Endosim__Histogram latency, compute;
+	Endosim__BusStats buses[ENDOSIM_AXES];
+	Endosim__BusStats *buses_p[ENDOSIM_AXES];
+	Endosim__Histogram bus_histo[ENDOSIM_AXES][2];
+	Endosim__ConfigReply config;
+	Endosim__ConfigEntry *entries;     /* one per key */
+	Endosim__ConfigEntry **entries_p;
+	char (*values)[CONFIG_STR + 32];
+	char error[256];                   /* SetParam's refusal */
+};
+
+struct control_replies *control_replies_create(void)
+{
+	struct control_replies *rb = calloc(1, sizeof(*rb));
+	size_t keys = config_key_count();
+
+	if (!rb) {
+		return NULL;
+	}
+	rb->entries = calloc(keys, sizeof(*rb->entries));
+	rb->entries_p = calloc(keys, sizeof(*rb->entries_p));
+	rb->values = calloc(keys, sizeof(*rb->values));
+	if (!rb->entries || !rb->entries_p || !rb->values) {
+		control_replies_destroy(rb);
+		return NULL;
+	}
+	return rb;
+}
+
+void control_replies_destroy(struct control_replies *rb)
+{
+	if (!rb) {
+		return;
+	}
+	free(rb->entries);
+	free(rb->entries_p);
+	free(rb->values);
+	free(rb);
+}
 
 /* ---------------------------------------------------------------- replies */
 
@@ -12,19 +81,20 @@ static void fill_fault(struct control *c, const struct endosim_state *st,
 		       int k, size_t n)
 {
 	const struct endosim_fault_cause *fc = &st->safety.cause[k];
-	Endosim__Fault *f = &c->rb.faults[n];
+	struct control_replies *rb = c->replies;
+	Endosim__Fault *f = &rb->faults[n];
 
 	fields_to_pb(&fields_fault, f, fc);
 	faults_format(c->deps.rig, c->deps.start_ns, 1u << k, fc,
-		      c->rb.fault_lines[n], sizeof(c->rb.fault_lines[n]));
+		      rb->fault_lines[n], sizeof(rb->fault_lines[n]));
 	f->code = (uint32_t)k;
 	f->name = (char *)names_fault(1u << k);
 	f->axis = fc->axis >= 0 ? (char *)names_axis(fc->axis) : "";
 	f->time_s =
 		(double)(fc->first_ns - c->deps.start_ns) / ENDOSIM_NS_PER_S;
-	f->text = c->rb.fault_lines[n];
+	f->text = rb->fault_lines[n];
 	f->active = st->safety.active & 1u << k;
-	c->rb.faults_p[n] = f;
+	rb->faults_p[n] = f;
 }
 
 /* Every latched fault, the first one first; its line is the fault text. */
@@ -42,12 +112,12 @@ static void fill_faults(struct control *c, const struct endosim_state *st,
 		}
 	}
 	s->n_faults = n;
-	s->faults = c->rb.faults_p;
-	s->fault_text = n ? c->rb.fault_lines[0] : "";
+	s->faults = c->replies->faults_p;
+	s->fault_text = n ? c->replies->fault_lines[0] : "";
 }
 
 /* The axes: their values (fields.h) with their names and units. */
-static void fill_axes(struct reply_buf *rb, Endosim__StatusReply *s)
+static void fill_axes(struct control_replies *rb, Endosim__StatusReply *s)
 {
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		Endosim__AxisStatus *ax = &rb->axes[a];
@@ -65,7 +135,7 @@ static void fill_axes(struct reply_buf *rb, Endosim__StatusReply *s)
 /* The state's values by fields.h's tables; the rest is the daemon's. */
 void control_build_status(struct control *c, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_replies *rb = c->replies;
 	const struct loop_info *info = loop_get_info(c->deps.loop);
 	Endosim__StatusReply *s = &rb->status;
 	const struct endosim_state *st = &rb->state;
@@ -115,7 +185,7 @@ static void fill_histogram(Endosim__Histogram *h,
 /* At most one bus per axis. */
 static void fill_buses(struct control *c)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_replies *rb = c->replies;
 	struct rig_bus_stats st;
 	size_t n = 0;
 
@@ -138,7 +208,7 @@ static void fill_buses(struct control *c)
 
 static void build_stats(struct control *c, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_replies *rb = c->replies;
 	const struct loop_info *info = loop_get_info(c->deps.loop);
 	struct loop_stats st;
 
@@ -177,13 +247,13 @@ void control_on_get_stats(struct control *c, struct client *cl,
 void control_on_get_config(struct control *c, struct client *cl,
 			   const Endosim__Request *req, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_replies *rb = c->replies;
 	const char *want = req->get_config->key;
 	size_t n = 0;
 
 	(void)cl;
 	for (size_t i = 0; i < config_key_count(); i++) {
-		const struct config_key *k = config_key_at(i);
+		const struct parse_key *k = config_key_at(i);
 		Endosim__ConfigEntry *e = &rb->entries[n];
 		char *value = rb->values[n];
 		int len = snprintf(value, sizeof(rb->values[n]), "%s.%s",
@@ -217,20 +287,20 @@ void control_on_set_param(struct control *c, struct client *cl,
 			  const Endosim__Request *req, Endosim__Reply *rep)
 {
 	const Endosim__SetParam *sp = req->set_param;
-	const struct config_key *k = config_key_find(sp->key);
+	const struct parse_key *k = config_key_find(sp->key);
 	char before[CONFIG_STR + 32];
 	int r;
 
 	if (k) {
 		config_format(&c->cfg, k, before, sizeof(before));
 	}
-	r = config_set(&c->cfg, sp->key, sp->value, true, c->rb.error,
-		       sizeof(c->rb.error));
+	r = config_set(&c->cfg, sp->key, sp->value, true, c->replies->error,
+		       sizeof(c->replies->error));
 	if (r) {
 		refuse(rep, r == -ENOENT   ? ENDOSIM__STATUS__STATUS_UNKNOWN_KEY
 		       : r == -EPERM ? ENDOSIM__STATUS__STATUS_NOT_LIVE
 		       : ENDOSIM__STATUS__STATUS_BAD_VALUE,
-		       c->rb.error);
+		       c->replies->error);
 		return;
 	}
 	loop_set_config(c->deps.loop, &c->cfg);

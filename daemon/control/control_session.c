@@ -2,7 +2,61 @@
  * control_session.c - the control thread's training sessions
  * (control_private.h).
  */
+#include <errno.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "base/mono.h"
 #include "control/control_private.h"
+#include "session/sessiondir.h"
+#include "session/sessionpb.h"
+
+struct control_sessions {
+	Endosim__SessionReply session_reply;
+	Endosim__SessionInfo session;
+	struct recorder_info rinfo;        /* what session points into */
+	struct sessionpb_metrics metrics;
+	Endosim__SessionListReply session_list;
+	Endosim__SessionInfo *list_infos;
+	Endosim__SessionInfo **list_infos_p;
+	struct sessiondir_entry *list_entries;
+	struct sessiondir_entry shown;     /* SessionShow's file */
+	Endosim__MapReply map;             /* SessionMap's */
+	Endosim__MapRegion map_regions[COLON_MAX_REGIONS];
+	Endosim__MapRegion *map_regions_p[COLON_MAX_REGIONS];
+	Endosim__MapPolyp map_found[ANATOMY_MAX_POLYPS];
+	Endosim__MapPolyp *map_found_p[ANATOMY_MAX_POLYPS];
+	struct recorder_map rmap;          /* what map points into */
+	char error[256];
+};
+
+struct control_sessions *control_sessions_create(void)
+{
+	return calloc(1, sizeof(struct control_sessions));
+}
+
+/* Frees the session list the last reply was made of. */
+static void free_session_list(struct control_sessions *rb)
+{
+	free(rb->list_infos);
+	free(rb->list_infos_p);
+	free(rb->list_entries);
+	rb->list_infos = NULL;
+	rb->list_infos_p = NULL;
+	rb->list_entries = NULL;
+}
+
+void control_sessions_destroy(struct control_sessions *rb)
+{
+	if (!rb) {
+		return;
+	}
+	free_session_list(rb);
+	free(rb);
+}
 
 /* ---------------------------------------------------------------- sessions */
 
@@ -70,7 +124,7 @@ static char *case_text(const struct control *c)
 static Endosim__SessionInfo *fill_session(struct control *c,
 					  const struct recorder_info *in)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	Endosim__SessionInfo *s = &rb->session;
 
 	rb->rinfo = *in;
@@ -98,10 +152,12 @@ static Endosim__SessionInfo *fill_session(struct control *c,
 static void session_reply(struct control *c, Endosim__Reply *rep,
 			  Endosim__SessionInfo *s)
 {
-	endosim__session_reply__init(&c->rb.session_reply);
-	c->rb.session_reply.session = s;
+	struct control_sessions *rb = c->sessions;
+
+	endosim__session_reply__init(&rb->session_reply);
+	rb->session_reply.session = s;
 	rep->body_case = ENDOSIM__REPLY__BODY_SESSION;
-	rep->session = &c->rb.session_reply;
+	rep->session = &rb->session_reply;
 }
 
 static int start_session(struct control *c, const char *trainee,
@@ -133,6 +189,8 @@ void control_on_session_start(struct control *c, struct client *cl,
 			      const Endosim__Request *req, Endosim__Reply *rep)
 {
 	const Endosim__SessionStart *ss = req->session_start;
+	char *why = c->sessions->error;
+	size_t size = sizeof(c->sessions->error);
 	struct recorder_info info;
 	int r;
 
@@ -148,9 +206,9 @@ void control_on_session_start(struct control *c, struct client *cl,
 		return;
 	}
 	if (info.recording) {
-		snprintf(c->rb.error, sizeof(c->rb.error), "session %" PRIu64
-			 " is recording: 'session stop' first", info.id);
-		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, c->rb.error);
+		snprintf(why, size, "session %" PRIu64 " is recording: "
+			 "'session stop' first", info.id);
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, why);
 		return;
 	}
 	if (*ss->case_name && control_load_case(c, cl, ss->case_name, rep)) {
@@ -158,9 +216,9 @@ void control_on_session_start(struct control *c, struct client *cl,
 	}
 	r = start_session(c, ss->trainee, &info);
 	if (r) {
-		snprintf(c->rb.error, sizeof(c->rb.error), "cannot record in "
-			 "%s: %s", c->cfg.session.directory, strerror(-r));
-		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, c->rb.error);
+		snprintf(why, size, "cannot record in %s: %s",
+			 c->cfg.session.directory, strerror(-r));
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, why);
 		return;
 	}
 	log_notice("session %" PRIu64 " started (uid %d): trainee '%s', case "
@@ -203,16 +261,6 @@ void control_on_session_status(struct control *c, struct client *cl,
 	session_reply(c, rep, info.active ? fill_session(c, &info) : NULL);
 }
 
-void control_free_session_list(struct reply_buf *rb)
-{
-	free(rb->list_infos);
-	free(rb->list_infos_p);
-	free(rb->list_entries);
-	rb->list_infos = NULL;
-	rb->list_infos_p = NULL;
-	rb->list_entries = NULL;
-}
-
 /* A listed session; the recorder's own one with what it knows. */
 static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
 		       const struct recorder_info *ri)
@@ -230,14 +278,14 @@ static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
 void control_on_session_list(struct control *c, struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	struct recorder_info ri;
 	size_t n;
 	int r;
 
 	(void)cl;
 	(void)req;
-	control_free_session_list(rb);
+	free_session_list(rb);
 	recorder_info(c->deps.recorder, &ri);
 	r = sessiondir_list(c->cfg.session.directory, &rb->list_entries, &n);
 	rb->list_infos = r ? NULL : calloc(n + 1, sizeof(*rb->list_infos));
@@ -245,7 +293,7 @@ void control_on_session_list(struct control *c, struct client *cl,
 	if (r || !rb->list_infos || !rb->list_infos_p) {
 		snprintf(rb->error, sizeof(rb->error), "%s: %s",
 			 c->cfg.session.directory, strerror(r ? -r : ENOMEM));
-		control_free_session_list(rb);
+		free_session_list(rb);
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
 		return;
 	}
@@ -264,7 +312,7 @@ void control_on_session_list(struct control *c, struct client *cl,
 void control_on_session_show(struct control *c, struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	uint64_t id = req->session_show->id;
 	struct sessiondir_entry *e = &rb->shown;
 	Endosim__SessionInfo *s;
@@ -304,7 +352,7 @@ void control_on_session_show(struct control *c, struct client *cl,
  * so it is the session's). */
 static void map_regions(struct control *c, Endosim__MapReply *m)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	int n = colon_regions(c->colon);
 
 	for (int i = 0; i < n && i < COLON_MAX_REGIONS; i++) {
@@ -324,7 +372,7 @@ static void map_regions(struct control *c, Endosim__MapReply *m)
 /* The polyps found so far, never those still to find. */
 static void map_found(struct control *c, Endosim__MapReply *m)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	const struct anatomy *a = colon_anatomy(c->colon);
 
 	for (int k = 0; a && k < a->polyps && k < ANATOMY_MAX_POLYPS; k++) {
@@ -345,7 +393,7 @@ static void map_found(struct control *c, Endosim__MapReply *m)
 void control_on_session_map(struct control *c, struct client *cl,
 			    const Endosim__Request *req, Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_sessions *rb = c->sessions;
 	Endosim__MapReply *m = &rb->map;
 	int r = recorder_map(c->deps.recorder, &rb->rmap);
 

@@ -3,20 +3,54 @@
  * sessions through the session directory's index (sessionindex.h), which
  * the daemon keeps, as the directory's owner (control_private.h).
  */
-#include "control/control_private.h"
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
-void control_free_trainee(struct reply_buf *rb)
+#include "base/log.h"
+#include "control/control_private.h"
+#include "session/sessiondir.h"
+#include "session/sessionindex.h"
+#include "session/sessionpb.h"
+
+struct control_trainees {
+	Endosim__TraineeReply reply;
+	Endosim__SessionInfo *infos;
+	Endosim__SessionInfo **infos_p;
+	struct sessionpb_scalars *metrics;
+	char (*paths)[CONFIG_STR + 32];
+	struct sessionindex_entry *entries;
+	char error[256];
+};
+
+struct control_trainees *control_trainees_create(void)
 {
-	free(rb->trainee_infos);
-	free(rb->trainee_infos_p);
-	free(rb->trainee_metrics);
-	free(rb->trainee_entries);
-	free(rb->trainee_paths);
-	rb->trainee_infos = NULL;
-	rb->trainee_paths = NULL;
-	rb->trainee_infos_p = NULL;
-	rb->trainee_metrics = NULL;
-	rb->trainee_entries = NULL;
+	return calloc(1, sizeof(struct control_trainees));
+}
+
+/* Frees the sessions the last reply was made of. */
+static void free_trainee(struct control_trainees *rb)
+{
+	free(rb->infos);
+	free(rb->infos_p);
+	free(rb->metrics);
+	free(rb->entries);
+	free(rb->paths);
+	rb->infos = NULL;
+	rb->paths = NULL;
+	rb->infos_p = NULL;
+	rb->metrics = NULL;
+	rb->entries = NULL;
+}
+
+void control_trainees_destroy(struct control_trainees *rb)
+{
+	if (!rb) {
+		return;
+	}
+	free_trainee(rb);
+	free(rb);
 }
 
 /* Says how the index was found when it had to be brought up to date. */
@@ -34,16 +68,16 @@ static void log_index(const char *dir, const struct sessionindex_info *in)
 }
 
 /* The reply's arrays for N sessions. */
-static int alloc_reply(struct reply_buf *rb, size_t n)
+static int alloc_reply(struct control_trainees *rb, size_t n)
 {
 	size_t k = n ? n : 1;
 
-	rb->trainee_infos = calloc(k, sizeof(*rb->trainee_infos));
-	rb->trainee_infos_p = calloc(k, sizeof(*rb->trainee_infos_p));
-	rb->trainee_metrics = calloc(k, sizeof(*rb->trainee_metrics));
-	rb->trainee_paths = calloc(k, sizeof(*rb->trainee_paths));
-	return rb->trainee_infos && rb->trainee_infos_p &&
-		       rb->trainee_metrics && rb->trainee_paths ? 0 : -ENOMEM;
+	rb->infos = calloc(k, sizeof(*rb->infos));
+	rb->infos_p = calloc(k, sizeof(*rb->infos_p));
+	rb->metrics = calloc(k, sizeof(*rb->metrics));
+	rb->paths = calloc(k, sizeof(*rb->paths));
+	return rb->infos && rb->infos_p && rb->metrics && rb->paths ? 0
+								    : -ENOMEM;
 }
 
 /* Session E as the reply's S; the recorder's own one as recording. */
@@ -54,7 +88,7 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 {
 	sessionpb_from_entry(s, &e->e);
 	sessiondir_path(c->cfg.session.directory, e->e.id, path,
-			sizeof(*c->rb.trainee_paths));
+			sizeof(*c->trainees->paths));
 	s->path = path;
 	s->recording = ri->active && ri->recording && ri->id == e->e.id;
 	if (e->has_metrics && !s->recording) {
@@ -70,21 +104,20 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
  * reply's sessions; how many. */
 static size_t fill_sessions(struct control *c, const char *who, size_t n)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_trainees *rb = c->trainees;
 	struct recorder_info ri;
 	size_t kept = 0;
 
 	recorder_info(c->deps.recorder, &ri);
 	for (size_t i = 0; i < n; i++) {
-		struct sessionindex_entry *e = &rb->trainee_entries[i];
+		struct sessionindex_entry *e = &rb->entries[i];
 
 		if (*who && strcmp(who, e->e.trainee)) {
 			continue;
 		}
-		fill_trainee_session(c, &rb->trainee_infos[kept], e,
-				     &rb->trainee_metrics[kept],
-				     rb->trainee_paths[kept], &ri);
-		rb->trainee_infos_p[kept] = &rb->trainee_infos[kept];
+		fill_trainee_session(c, &rb->infos[kept], e, &rb->metrics[kept],
+				     rb->paths[kept], &ri);
+		rb->infos_p[kept] = &rb->infos[kept];
 		kept++;
 	}
 	return kept;
@@ -94,15 +127,15 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 				 const Endosim__Request *req,
 				 Endosim__Reply *rep)
 {
-	struct reply_buf *rb = &c->rb;
+	struct control_trainees *rb = c->trainees;
 	char *dir = c->cfg.session.directory;
 	struct sessionindex_info info;
 	size_t n;
 	int r;
 
 	(void)cl;
-	control_free_trainee(rb);
-	r = sessionindex_load(dir, true, &rb->trainee_entries, &n, &info);
+	free_trainee(rb);
+	r = sessionindex_load(dir, true, &rb->entries, &n, &info);
 	if (!r) {
 		log_index(dir, &info);
 		r = alloc_reply(rb, n);
@@ -110,20 +143,20 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 	if (r) {
 		snprintf(rb->error, sizeof(rb->error), "%s: %s", dir,
 			 strerror(-r));
-		control_free_trainee(rb);
+		free_trainee(rb);
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
 		return;
 	}
-	endosim__trainee_reply__init(&rb->trainee);
-	rb->trainee.n_sessions = fill_sessions(c, req->trainee_sessions->trainee,
-					       n);
-	rb->trainee.sessions = rb->trainee_infos_p;
-	rb->trainee.directory = dir;
-	rb->trainee.course = c->cfg.session.course;
-	rb->trainee.index = (char *)sessionindex_state_name(info.state);
-	rb->trainee.index_reread = info.reread;
-	rb->trainee.index_error = (char *)(info.write_error ?
-					   strerror(-info.write_error) : "");
+	endosim__trainee_reply__init(&rb->reply);
+	rb->reply.n_sessions = fill_sessions(c, req->trainee_sessions->trainee,
+					     n);
+	rb->reply.sessions = rb->infos_p;
+	rb->reply.directory = dir;
+	rb->reply.course = c->cfg.session.course;
+	rb->reply.index = (char *)sessionindex_state_name(info.state);
+	rb->reply.index_reread = info.reread;
+	rb->reply.index_error = (char *)(info.write_error ?
+					 strerror(-info.write_error) : "");
 	rep->body_case = ENDOSIM__REPLY__BODY_TRAINEE;
-	rep->trainee = &rb->trainee;
+	rep->trainee = &rb->reply;
 }

@@ -7,39 +7,32 @@
 #include <sched.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
-#include "proto/seqlock.h"
 #include "conf/cases.h"
 #include "model/haptics.h"
 #include "loop/inject.h"
+#include "loop/mailbox.h"
 #include "base/log.h"
 #include "base/mono.h"
 #include "base/rt.h"
 #include "model/scope.h"
 #include "base/spsc.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define UNDER_ASAN 1
-#endif
-#endif
-
-#define LOOP_STACK_BYTES (512 * 1024)
-#define LOOP_PREFAULT_BYTES (256 * 1024)
+#define LOOP_STACK_BYTES (512 * 1024) /* more than RT_PREFAULT_BYTES */
 #define LOOP_EVENTS 256
-#define CMD_SHIFT 8
+
+/* A guidance command and its request's number, in their box. */
+struct guide_post {
+	struct guide_command c;
+	uint32_t seq;
+};
 
 struct loop {
 	/* owned by the loop thread */
 	struct config cfg;
 	struct config cfg_incoming; /* scratch for a torn-free copy */
-	uint64_t cfg_seen;
 	struct safety safety;
 	struct rig_feedback fb;
 	double command[ENDOSIM_AXES];
@@ -53,9 +46,7 @@ struct loop {
 	uint64_t skipped;          /* periods skipped before this cycle */
 	uint64_t stall_ns;         /* a test command: sleep after the cycle */
 	struct inject inject;      /* test commands' sabotage */
-	uint64_t debug_seen;
 	struct guide guide;        /* guided replay (guide.h) */
-	uint64_t guide_seen;
 	bool lockstep;             /* loop_step(): stamps on the caller's clock */
 
 	/* shared */
@@ -72,26 +63,20 @@ struct loop {
 	struct histo compute;
 	struct loop_info info;
 	struct spsc events;        /* loop -> main */
-	seqlock_t cfg_lock;        /* control -> loop */
+	/* control -> loop (mailbox.h) */
+	struct mailbox_box cfg_box;
 	struct config cfg_mailbox;
-	_Atomic uint64_t cmd_slot; /* control -> loop: seq << 8 | cmd, 0 empty */
-	_Atomic uint64_t cmd_done; /* loop -> control: seq << 32 | result */
-	uint32_t cmd_seq;          /* control thread's counter */
-	_Atomic(struct colon *) colon_in;  /* control -> loop */
-	_Atomic(struct colon *) colon_out; /* loop -> control: replaced or
-					      refused */
-	uint64_t scene_id_in;      /* published by colon_in's release */
+	struct mailbox_slot cmd;
+	struct mailbox_swap colon_swap; /* struct colon * */
+	uint64_t scene_id_in;      /* published by the swap's hand-over */
+	struct mailbox_box debug_box; /* a test command */
+	struct loop_debug debug_mailbox;
+	struct mailbox_answer debug_answer;
+	struct mailbox_box guide_box; /* a guidance command */
+	struct guide_post guide_mailbox;
+	struct mailbox_answer guide_answer;
 	_Atomic uint32_t fail_bits; /* main -> loop: a thread died */
 	_Atomic uint32_t fail_detail;
-	seqlock_t debug_lock;      /* control -> loop: a test command */
-	struct loop_debug debug_box;
-	_Atomic uint64_t debug_done; /* loop -> control: seq << 32 | result */
-	uint32_t debug_seq;        /* control thread's counter */
-	seqlock_t guide_lock;      /* control -> loop: a guidance command */
-	struct guide_command guide_box;
-	uint32_t guide_box_seq;
-	_Atomic uint64_t guide_done; /* loop -> control: seq << 32 | result */
-	uint32_t guide_seq;        /* control thread's counter */
 };
 
 static struct timespec to_timespec(uint64_t ns)
@@ -130,10 +115,11 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 	}
 	l->cfg = *cfg;
 	l->cfg_mailbox = *cfg;
-	seqlock_init(&l->cfg_lock);
-	l->cfg_seen = seqlock_read_begin(&l->cfg_lock);
-	seqlock_init(&l->debug_lock);
-	l->debug_seen = seqlock_read_begin(&l->debug_lock);
+	mailbox_box_init(&l->cfg_box, &l->cfg_mailbox, sizeof(l->cfg_mailbox));
+	mailbox_box_init(&l->debug_box, &l->debug_mailbox,
+			 sizeof(l->debug_mailbox));
+	mailbox_box_init(&l->guide_box, &l->guide_mailbox,
+			 sizeof(l->guide_mailbox));
 	l->rig = rig;
 	l->pub = pub;
 	l->colon = colon;
@@ -156,30 +142,20 @@ static void post(struct loop *l, const struct loop_event *ev)
 
 static void fetch_config(struct loop *l)
 {
-	uint64_t seq = seqlock_read_begin(&l->cfg_lock);
-
-	if (seq == l->cfg_seen) {
-		return;
-	}
-	memcpy(&l->cfg_incoming, &l->cfg_mailbox, sizeof(l->cfg_incoming));
-	if (!seqlock_read_retry(&l->cfg_lock, seq)) {
+	if (mailbox_box_take(&l->cfg_box, &l->cfg_incoming)) {
 		memcpy(&l->cfg, &l->cfg_incoming, sizeof(l->cfg));
-		l->cfg_seen = seq;
 	}
 }
 
 /* Takes a posted command, if any, and answers it. Returns the command. */
 static uint32_t take_command(struct loop *l, uint64_t now)
 {
-	uint64_t slot = atomic_load_explicit(&l->cmd_slot, memory_order_acquire);
-	uint32_t cmd, seq;
+	uint32_t seq, cmd = mailbox_slot_take(&l->cmd, &seq);
 	int r;
 
-	if (!slot || !atomic_compare_exchange_strong(&l->cmd_slot, &slot, 0)) {
+	if (!cmd) {
 		return 0;
 	}
-	cmd = (uint32_t)(slot & ((1u << CMD_SHIFT) - 1));
-	seq = (uint32_t)(slot >> CMD_SHIFT);
 	if (cmd == LOOP_CMD_RESET_STATS) {
 		histo_reset(&l->latency);
 		histo_reset(&l->compute);
@@ -187,9 +163,7 @@ static uint32_t take_command(struct loop *l, uint64_t now)
 	} else {
 		r = safety_command(&l->safety, (enum safety_cmd)cmd, now);
 	}
-	atomic_store_explicit(&l->cmd_done,
-			      (uint64_t)seq << 32 | (uint32_t)r,
-			      memory_order_release);
+	mailbox_answer_set(&l->cmd.answer, seq, r);
 	return cmd;
 }
 
@@ -260,17 +234,16 @@ static void fill_state(struct loop *l, uint64_t now, uint64_t latency)
 /* Takes a new colon from the control thread, only while IDLE. */
 static void take_colon(struct loop *l)
 {
-	struct colon *in = atomic_exchange_explicit(&l->colon_in, NULL,
-						    memory_order_acq_rel);
+	struct colon *in = mailbox_swap_take(&l->colon_swap);
 
 	if (!in) {
 		return;
 	}
 	if (l->safety.state != ENDOSIM_STATE_IDLE) {
-		atomic_store_explicit(&l->colon_out, in, memory_order_release);
+		mailbox_swap_give_back(&l->colon_swap, in);
 		return;
 	}
-	atomic_store_explicit(&l->colon_out, l->colon, memory_order_release);
+	mailbox_swap_give_back(&l->colon_swap, l->colon);
 	l->colon = in;
 	l->scene_id = l->scene_id_in;
 	haptics_reset(l->haptics, in);
@@ -339,18 +312,12 @@ static void fill_scope(struct loop *l)
 /* Takes a test command, if any (the control thread checked it is allowed). */
 static void take_debug(struct loop *l, uint64_t now)
 {
-	uint64_t seq = seqlock_read_begin(&l->debug_lock);
 	struct loop_debug d;
 	int r = 0;
 
-	if (seq == l->debug_seen) {
+	if (!mailbox_box_take(&l->debug_box, &d)) {
 		return;
 	}
-	d = l->debug_box;
-	if (seqlock_read_retry(&l->debug_lock, seq)) {
-		return; /* torn: next cycle */
-	}
-	l->debug_seen = seq;
 	if (d.action == INJECT_STALL) {
 		l->stall_ns = d.value > 0
 				      ? (uint64_t)(d.value * ENDOSIM_NS_PER_S)
@@ -358,36 +325,24 @@ static void take_debug(struct loop *l, uint64_t now)
 	} else {
 		r = inject_start(&l->inject, d.action, d.axis, d.value, now);
 	}
-	atomic_store_explicit(&l->debug_done,
-			      (uint64_t)d.seq << 32 | (uint32_t)r,
-			      memory_order_release);
+	mailbox_answer_set(&l->debug_answer, d.seq, r);
 }
 
 /* Takes a guidance command, if any, and answers it. */
 static void take_guide(struct loop *l)
 {
-	uint64_t seq = seqlock_read_begin(&l->guide_lock);
-	struct guide_command c;
-	uint32_t box_seq;
+	struct guide_post g;
 	double q[ENDOSIM_AXES];
 	int r;
 
-	if (seq == l->guide_seen) {
+	if (!mailbox_box_take(&l->guide_box, &g)) {
 		return;
 	}
-	c = l->guide_box;
-	box_seq = l->guide_box_seq;
-	if (seqlock_read_retry(&l->guide_lock, seq)) {
-		return; /* torn: next cycle */
-	}
-	l->guide_seen = seq;
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		q[a] = l->fb.axis[a].position;
 	}
-	r = guide_command(&l->guide, &l->cfg.guide, &c, q);
-	atomic_store_explicit(&l->guide_done,
-			      (uint64_t)box_seq << 32 | (uint32_t)r,
-			      memory_order_release);
+	r = guide_command(&l->guide, &l->cfg.guide, &g.c, q);
+	mailbox_answer_set(&l->guide_answer, g.seq, r);
 }
 
 /*
@@ -525,14 +480,6 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	}
 }
 
-static void prefault_stack(void)
-{
-	unsigned char buf[LOOP_PREFAULT_BYTES];
-
-	memset(buf, 0, sizeof(buf));
-	__asm__ volatile("" : : "r"(buf) : "memory");
-}
-
 /* Skips whole periods after an overrun; returns how many. */
 static uint64_t skip_overrun(uint64_t *next, uint64_t now, uint64_t period)
 {
@@ -562,7 +509,7 @@ static void *loop_main(void *arg)
 	uint64_t next, now, skipped;
 	struct timespec ts;
 
-	prefault_stack();
+	rt_prefault_stack();
 	next = mono_ns();
 	while (!atomic_load_explicit(&l->stop, memory_order_acquire)) {
 		next += period;
@@ -598,30 +545,6 @@ static void *loop_main(void *arg)
 }
 
 /* --- setup, from the main thread --- */
-
-static void lock_memory(struct loop *l)
-{
-	struct rlimit rl;
-
-#ifdef UNDER_ASAN
-	log_info("memory not locked: built with AddressSanitizer, whose "
-		 "shadow memory cannot be locked");
-	return;
-#endif
-	getrlimit(RLIMIT_MEMLOCK, &rl);
-	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
-		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "
-			 "(set LimitMEMLOCK=infinity); page faults may "
-			 "delay the force loop",
-			 (unsigned long long)rl.rlim_cur / 1024);
-		return;
-	}
-	if (mlockall(MCL_CURRENT | MCL_FUTURE) < 0) {
-		log_warn("memory not locked: mlockall: %m");
-		return;
-	}
-	l->info.memory_locked = true;
-}
 
 /*
  * Holds the PM QoS request cyclictest makes: while the file stays open the
@@ -663,7 +586,7 @@ int loop_start(struct loop *l)
 	bool fifo;
 	int r;
 
-	lock_memory(l);
+	l->info.memory_locked = rt_lock_memory();
 	hold_cpu_latency(l);
 	r = rt_thread_start(&l->thread, &p, loop_main, l, &fifo);
 	if (r) {
@@ -713,49 +636,10 @@ void loop_destroy(struct loop *l)
 	free(l);
 }
 
-/* Leaves CMD in the slot; returns what was left there. */
-static uint64_t post_command(struct loop *l, enum loop_cmd cmd)
-{
-	uint32_t seq = ++l->cmd_seq & 0xffffff;
-	uint64_t slot = (uint64_t)seq << CMD_SHIFT | (uint64_t)cmd;
-
-	atomic_store_explicit(&l->cmd_slot, slot, memory_order_release);
-	return slot;
-}
-
 int loop_command(struct loop *l, enum loop_cmd cmd, int timeout_ms)
 {
-	uint64_t slot = post_command(l, cmd);
-	uint32_t seq = (uint32_t)(slot >> CMD_SHIFT);
-	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
-	struct timespec nap = { .tv_nsec = 100000 };
-
-	for (;;) {
-		uint64_t done = atomic_load_explicit(&l->cmd_done,
-						     memory_order_acquire);
-
-		if ((uint32_t)(done >> 32) == seq) {
-			return (int32_t)(uint32_t)done;
-		}
-		if (mono_ns() > deadline) {
-			uint64_t expected = slot;
-
-			if (atomic_compare_exchange_strong(&l->cmd_slot,
-							   &expected, 0)) {
-				return -ETIMEDOUT; /* withdrawn */
-			}
-			/* taken just now: its answer is a cycle away */
-			deadline += 100000000u;
-		}
-		nanosleep(&nap, NULL);
-	}
-}
-
-/* Takes the loop's answer to a swap, if there is one yet. */
-static struct colon *swap_answer(struct loop *l)
-{
-	return atomic_exchange_explicit(&l->colon_out, NULL,
-					memory_order_acq_rel);
+	return mailbox_slot_wait(&l->cmd, mailbox_slot_post(&l->cmd, cmd),
+				 timeout_ms);
 }
 
 const struct colon *loop_colon(const struct loop *l)
@@ -771,23 +655,13 @@ void loop_hold_tip(struct loop *l, double hold_n_per_m)
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 		    struct colon **old, int timeout_ms)
 {
-	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
-	struct timespec nap = { .tv_nsec = 200000 };
-	struct colon *back;
+	void *back;
+	int r;
 
 	l->scene_id_in = scene_id;
-	atomic_store_explicit(&l->colon_in, colon, memory_order_release);
-	while (!(back = swap_answer(l))) {
-		if (mono_ns() > deadline) {
-			struct colon *expected = colon;
-
-			if (atomic_compare_exchange_strong(&l->colon_in,
-							   &expected, NULL)) {
-				return -ETIMEDOUT; /* withdrawn */
-			}
-			deadline += 100000000u; /* taken just now */
-		}
-		nanosleep(&nap, NULL);
+	r = mailbox_swap_hand(&l->colon_swap, colon, &back, timeout_ms);
+	if (r) {
+		return r;
 	}
 	if (back == colon) {
 		return -EBUSY;
@@ -798,58 +672,32 @@ int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 
 void loop_set_config(struct loop *l, const struct config *cfg)
 {
-	seqlock_write_begin(&l->cfg_lock);
-	memcpy(&l->cfg_mailbox, cfg, sizeof(*cfg));
-	seqlock_write_end(&l->cfg_lock);
-}
-
-/* The loop's answer (seq << 32 | result) in DONE to SEQ, waited for up
- * to TIMEOUT_MS; -ETIMEDOUT without one. */
-static int await_answer(const _Atomic uint64_t *done, uint32_t seq,
-			int timeout_ms)
-{
-	uint64_t deadline = mono_ns() + (uint64_t)timeout_ms * 1000000u;
-	struct timespec nap = { .tv_nsec = 100000 };
-
-	for (;;) {
-		uint64_t d = atomic_load_explicit(done, memory_order_acquire);
-
-		if ((uint32_t)(d >> 32) == seq) {
-			return (int32_t)(uint32_t)d;
-		}
-		if (mono_ns() > deadline) {
-			return -ETIMEDOUT;
-		}
-		nanosleep(&nap, NULL);
-	}
+	mailbox_box_put(&l->cfg_box, cfg);
 }
 
 int loop_debug(struct loop *l, int action, int axis, double value,
 	       int timeout_ms)
 {
-	uint32_t seq = ++l->debug_seq;
+	struct loop_debug d = { mailbox_answer_next(&l->debug_answer), action,
+				axis, value };
 
-	seqlock_write_begin(&l->debug_lock);
-	l->debug_box = (struct loop_debug){ seq, action, axis, value };
-	seqlock_write_end(&l->debug_lock);
-	return await_answer(&l->debug_done, seq, timeout_ms);
+	mailbox_box_put(&l->debug_box, &d);
+	return mailbox_answer_wait(&l->debug_answer, d.seq, timeout_ms);
 }
 
 /* Leaves C in the guidance's box; returns its sequence number. */
 static uint32_t post_guide(struct loop *l, const struct guide_command *c)
 {
-	uint32_t seq = ++l->guide_seq;
+	struct guide_post g = { *c, mailbox_answer_next(&l->guide_answer) };
 
-	seqlock_write_begin(&l->guide_lock);
-	l->guide_box = *c;
-	l->guide_box_seq = seq;
-	seqlock_write_end(&l->guide_lock);
-	return seq;
+	mailbox_box_put(&l->guide_box, &g);
+	return g.seq;
 }
 
 int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms)
 {
-	return await_answer(&l->guide_done, post_guide(l, c), timeout_ms);
+	return mailbox_answer_wait(&l->guide_answer, post_guide(l, c),
+				   timeout_ms);
 }
 
 void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)
@@ -895,7 +743,7 @@ void loop_step(struct loop *l, uint64_t now_ns)
 
 void loop_post(struct loop *l, enum loop_cmd cmd)
 {
-	(void)post_command(l, cmd);
+	(void)mailbox_slot_post(&l->cmd, cmd);
 }
 
 void loop_guide_post(struct loop *l, const struct guide_command *c)
@@ -905,11 +753,7 @@ void loop_guide_post(struct loop *l, const struct guide_command *c)
 
 int loop_guide_answer(const struct loop *l)
 {
-	uint64_t done = atomic_load_explicit(&l->guide_done,
-					     memory_order_acquire);
-
-	return (uint32_t)(done >> 32) == l->guide_seq ?
-	       (int32_t)(uint32_t)done : -EINPROGRESS;
+	return mailbox_answer_last(&l->guide_answer);
 }
 
 const struct endosim_state *loop_state(const struct loop *l)

@@ -14,7 +14,7 @@
  * Every cycle it also works out the endoscope's kinematics (scope.h) on
  * the colon model it owns and publishes them (endosim_shm.h, scope).
  *
- * Talking to the loop, lock-free:
+ * Talking to the loop, lock-free (mailbox.h):
  *  - commands (enable, disable, estop, reset): loop_command(), the control
  *    thread only, one at a time, answered within a cycle or two;
  *  - live configuration: loop_set_config(), the control thread only;

@@ -20,6 +20,7 @@
 #include "base/mono.h"
 #include "session/sessiondir.h"
 #include "session/sessioninputs.h"
+#include "session/metricstext.h"
 
 #define BUF_BYTES (256 * 1024)   /* gathered frames, written in one go */
 #define FLUSH_BYTES (BUF_BYTES / 2)
@@ -407,7 +408,7 @@ static int finish(struct recorder *r)
 	quiesce(r);
 	drain(r);
 	metrics_result(r->metrics, res);
-	n = text ? metrics_format(res, text, 65536) : -ENOMEM;
+	n = text ? metricstext_format(res, text, 65536) : -ENOMEM;
 	if (n >= 0) {
 		put_frame(r, SESSION_FRAME_END, text, (uint32_t)n);
 	}

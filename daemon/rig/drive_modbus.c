@@ -1,7 +1,7 @@
 /*
  * drive_modbus.c - the modbus backend (drive.h): brushed DC wheel drives on
  * one Modbus RTU line or TCP connection (libmodbus 3.1), each with its
- * register map from the configuration (regmap.h).
+ * register map from the configuration (conf/regspec.h, rig/regmap.h).
  *
  * One exchange, per drive: the torque setpoint written (when enabled), then
  * the feedback registers read, grouped per table into as few reads as fit
@@ -22,14 +22,15 @@
 
 #include "proto/names.h"
 #include "rig/drive.h"
+#include "rig/regmap.h"
 #include "base/log.h"
 #include "base/mono.h"
 
 #define READ_MAX 125 /* registers or bits one read may take */
 #define PLAN_MAX 3 /* position, velocity, fault: at most one read each */
 
-static const int feedback[] = { REGMAP_POSITION, REGMAP_VELOCITY,
-				REGMAP_FAULT };
+static const int feedback[] = { REGSPEC_POSITION, REGSPEC_VELOCITY,
+				REGSPEC_FAULT };
 #define FEEDBACK (sizeof(feedback) / sizeof(feedback[0]))
 
 /* One read of a span of one table. */
@@ -43,7 +44,7 @@ struct mb_drive {
 	const struct config_modbus_drive *cfg;
 	struct mb_read read[PLAN_MAX];
 	int reads;
-	int of[REGMAP_SIGNALS]; /* the read holding each feedback signal */
+	int of[REGSPEC_SIGNALS]; /* the read holding each feedback signal */
 	bool enabled;
 	int up_step;
 };
@@ -66,8 +67,8 @@ static struct mb *to_mb(struct drive *d)
 /* Adds signal S to a read of its table that can take it, or a new one. */
 static void plan_signal(struct mb_drive *dr, int s)
 {
-	const struct regmap_reg *r = &dr->cfg->reg[s];
-	int lo = r->address, hi = r->address + regmap_words(r);
+	const struct regspec *r = &dr->cfg->reg[s];
+	int lo = r->address, hi = r->address + regspec_words(r);
 
 	for (int k = 0; k < dr->reads; k++) {
 		struct mb_read *rd = &dr->read[k];
@@ -91,7 +92,7 @@ static void plan_signal(struct mb_drive *dr, int s)
 static void plan(struct mb_drive *dr)
 {
 	for (size_t k = 0; k < FEEDBACK; k++) {
-		if (dr->cfg->reg[feedback[k]].table != REGMAP_NONE) {
+		if (dr->cfg->reg[feedback[k]].table != REGSPEC_NONE) {
 			plan_signal(dr, feedback[k]);
 		}
 	}
@@ -100,7 +101,7 @@ static void plan(struct mb_drive *dr)
 /* The value of feedback signal S after its read. */
 static double feedback_value(const struct mb_drive *dr, int s)
 {
-	const struct regmap_reg *r = &dr->cfg->reg[s];
+	const struct regspec *r = &dr->cfg->reg[s];
 	const struct mb_read *rd = &dr->read[dr->of[s]];
 
 	return regmap_decode(r, rd->regs + (r->address - rd->address));
@@ -135,20 +136,20 @@ static int mb_fail(struct mb *m, int i, const char *what, int address)
 
 static int write_signal(struct mb *m, int i, int s, double value)
 {
-	const struct regmap_reg *r = &m->dr[i].cfg->reg[s];
-	uint16_t w[REGMAP_MAX_WORDS];
+	const struct regspec *r = &m->dr[i].cfg->reg[s];
+	uint16_t w[REGSPEC_MAX_WORDS];
 	uint64_t t0 = mono_ns();
 	int rc;
 
-	if (r->table == REGMAP_NONE) {
+	if (r->table == REGSPEC_NONE) {
 		return 0;
 	}
 	regmap_encode(r, value, w);
 	modbus_set_slave(m->ctx, m->dr[i].cfg->slave);
 
-	if (r->table == REGMAP_COIL) {
+	if (r->table == REGSPEC_COIL) {
 		rc = modbus_write_bit(m->ctx, r->address, w[0]);
-	} else if (regmap_words(r) == 1) {
+	} else if (regspec_words(r) == 1) {
 		rc = modbus_write_register(m->ctx, r->address, w[0]);
 	} else {
 		rc = modbus_write_registers(m->ctx, r->address, 2, w);
@@ -167,9 +168,9 @@ static int read_span(struct mb *m, int i, struct mb_read *rd)
 	int rc;
 
 	switch (rd->table) {
-	case REGMAP_COIL:
-	case REGMAP_DISCRETE:
-		rc = rd->table == REGMAP_COIL
+	case REGSPEC_COIL:
+	case REGSPEC_DISCRETE:
+		rc = rd->table == REGSPEC_COIL
 			     ? modbus_read_bits(m->ctx, rd->address, rd->count,
 						bits)
 			     : modbus_read_input_bits(m->ctx, rd->address,
@@ -178,7 +179,7 @@ static int read_span(struct mb *m, int i, struct mb_read *rd)
 			rd->regs[k] = bits[k];
 		}
 		break;
-	case REGMAP_INPUT:
+	case REGSPEC_INPUT:
 		rc = modbus_read_input_registers(m->ctx, rd->address, rd->count,
 						 rd->regs);
 		break;
@@ -198,14 +199,14 @@ static int read_span(struct mb *m, int i, struct mb_read *rd)
 static int write_read(struct mb *m, int i, double torque)
 {
 	struct mb_drive *dr = &m->dr[i];
-	const struct regmap_reg *t = &dr->cfg->reg[REGMAP_TORQUE];
+	const struct regspec *t = &dr->cfg->reg[REGSPEC_TORQUE];
 	struct mb_read *rd = &dr->read[0];
-	uint16_t w[REGMAP_MAX_WORDS];
+	uint16_t w[REGSPEC_MAX_WORDS];
 	uint64_t t0 = mono_ns();
 
 	regmap_encode(t, torque, w);
 	if (modbus_write_and_read_registers(m->ctx, t->address,
-					    regmap_words(t), w, rd->address,
+					    regspec_words(t), w, rd->address,
 					    rd->count, rd->regs) < 0) {
 		return mb_fail(m, i, "write-and-read (0x17) at", t->address);
 	}
@@ -218,12 +219,12 @@ static void to_si(const struct mb *m, int i, struct drive_sample *s)
 {
 	const struct mb_drive *dr = &m->dr[i];
 	const struct drive_units *u = &m->d.units[i];
-	double code = dr->cfg->reg[REGMAP_FAULT].table != REGMAP_NONE
-			      ? feedback_value(dr, REGMAP_FAULT) : 0.0;
+	double code = dr->cfg->reg[REGSPEC_FAULT].table != REGSPEC_NONE
+			      ? feedback_value(dr, REGSPEC_FAULT) : 0.0;
 
-	s->position = feedback_value(dr, REGMAP_POSITION) * u->si_per_count;
-	s->velocity = dr->cfg->reg[REGMAP_VELOCITY].table != REGMAP_NONE
-			      ? feedback_value(dr, REGMAP_VELOCITY) *
+	s->position = feedback_value(dr, REGSPEC_POSITION) * u->si_per_count;
+	s->velocity = dr->cfg->reg[REGSPEC_VELOCITY].table != REGSPEC_NONE
+			      ? feedback_value(dr, REGSPEC_VELOCITY) *
 					u->si_per_count
 			      : 0.0;
 	s->enabled = dr->enabled;
@@ -244,7 +245,7 @@ static int exchange_one(struct mb *m, int i, double setpoint,
 		r = write_read(m, i, torque);
 	} else {
 		if (dr->enabled) {
-			r = write_signal(m, i, REGMAP_TORQUE, torque);
+			r = write_signal(m, i, REGSPEC_TORQUE, torque);
 		}
 		for (int k = 0; !r && k < dr->reads; k++) {
 			r = read_span(m, i, &dr->read[k]);
@@ -328,8 +329,8 @@ static int check_drive(struct mb *m, int i)
 
 	m->dr[i].enabled = false;
 	m->dr[i].up_step = 0;
-	r = write_signal(m, i, REGMAP_TORQUE, 0.0);
-	r = r ? r : write_signal(m, i, REGMAP_ENABLE, 0.0);
+	r = write_signal(m, i, REGSPEC_TORQUE, 0.0);
+	r = r ? r : write_signal(m, i, REGSPEC_ENABLE, 0.0);
 	r = r ? r : exchange_one(m, i, 0.0, &s);
 	if (!r) {
 		return 0;
@@ -378,16 +379,16 @@ static int mb_bring_up(struct drive *d, int i)
 
 	switch (dr->up_step) {
 	case 0:
-		r = write_signal(m, i, REGMAP_TORQUE, 0.0);
+		r = write_signal(m, i, REGSPEC_TORQUE, 0.0);
 		break;
 	case 1:
 		r = dr->cfg->watchdog_s > 0
-			    ? write_signal(m, i, REGMAP_WATCHDOG,
+			    ? write_signal(m, i, REGSPEC_WATCHDOG,
 					   dr->cfg->watchdog_s)
 			    : 0;
 		break;
 	default:
-		r = write_signal(m, i, REGMAP_ENABLE, 1.0);
+		r = write_signal(m, i, REGSPEC_ENABLE, 1.0);
 		dr->enabled = r == 0;
 		dr->up_step = 0;
 		return r;
@@ -403,17 +404,17 @@ static int mb_bring_down(struct drive *d, int i)
 
 	m->dr[i].enabled = false;
 	m->dr[i].up_step = 0;
-	r1 = write_signal(m, i, REGMAP_TORQUE, 0.0);
-	r2 = write_signal(m, i, REGMAP_ENABLE, 0.0);
+	r1 = write_signal(m, i, REGSPEC_TORQUE, 0.0);
+	r2 = write_signal(m, i, REGSPEC_ENABLE, 0.0);
 	return r1 ? r1 : r2;
 }
 
 static int mb_clear_fault(struct drive *d, int i)
 {
 	struct mb *m = to_mb(d);
-	int r = write_signal(m, i, REGMAP_FAULT_RESET, 1.0);
+	int r = write_signal(m, i, REGSPEC_FAULT_RESET, 1.0);
 
-	return r ? r : write_signal(m, i, REGMAP_FAULT_RESET, 0.0);
+	return r ? r : write_signal(m, i, REGSPEC_FAULT_RESET, 0.0);
 }
 
 static void mb_destroy(struct drive *d)

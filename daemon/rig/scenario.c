@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/parse.h"
 #include "proto/names.h"
 
 struct step {
@@ -25,18 +26,6 @@ struct scenario {
 	double end_t;  /* INFINITY when neither end nor repeat */
 	bool repeat;
 };
-
-static int parse_double(const char *text, double *out)
-{
-	char *end;
-
-	if (!text) {
-		return -EINVAL;
-	}
-	errno = 0;
-	*out = strtod(text, &end);
-	return *end || errno || !isfinite(*out) ? -EINVAL : 0;
-}
 
 static int parse_mode(struct step *st, char **tok, int ntok, char *why,
 		      size_t size)
@@ -152,26 +141,25 @@ static int parse_file(struct scenario *s, FILE *f, const char *path,
 			continue;
 		}
 		if (end_line) {
-			snprintf(err, errsize, "%s:%d: a step after the "
-				 "end/repeat on line %d", path, lineno,
-				 end_line);
-			return -EINVAL;
+			return parse_error(err, errsize, path, lineno, NULL,
+					   "a step after the end/repeat on "
+					   "line %d", end_line);
 		}
 		r = parse_line(s, &st, line, why, sizeof(why));
 		if (r < 0) {
-			snprintf(err, errsize, "%s:%d: %s", path, lineno, why);
-			return r;
+			return parse_error(err, errsize, path, lineno, NULL,
+					   "%s", why);
 		}
 		if (r == 1) {
 			end_line = lineno;
 		} else if (add_step(s, &st)) {
-			snprintf(err, errsize, "%s: out of memory", path);
+			parse_error(err, errsize, path, 0, NULL,
+				    "out of memory");
 			return -ENOMEM;
 		}
 	}
 	if (!s->count) {
-		snprintf(err, errsize, "%s: no steps", path);
-		return -EINVAL;
+		return parse_error(err, errsize, path, 0, NULL, "no steps");
 	}
 	return 0;
 }

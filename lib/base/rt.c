@@ -3,6 +3,20 @@
 
 #include <errno.h>
 #include <sched.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "base/log.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
 
 static int create(pthread_t *thread, const struct rt_thread_params *p,
 		  bool fifo, void *(*fn)(void *), void *arg)
@@ -44,4 +58,36 @@ int rt_thread_start(pthread_t *thread, const struct rt_thread_params *p,
 		pthread_setname_np(*thread, p->name);
 	}
 	return r;
+}
+
+bool rt_lock_memory(void)
+{
+	struct rlimit rl;
+
+#ifdef UNDER_ASAN
+	log_info("memory not locked: built with AddressSanitizer, whose "
+		 "shadow memory cannot be locked");
+	return false;
+#endif
+	getrlimit(RLIMIT_MEMLOCK, &rl);
+	if (geteuid() != 0 && rl.rlim_cur != RLIM_INFINITY) {
+		log_warn("memory not locked: RLIMIT_MEMLOCK is %llu KiB "
+			 "(set LimitMEMLOCK=infinity); page faults may "
+			 "delay the force loop",
+			 (unsigned long long)rl.rlim_cur / 1024);
+		return false;
+	}
+	if (mlockall(MCL_CURRENT | MCL_FUTURE) < 0) {
+		log_warn("memory not locked: mlockall: %m");
+		return false;
+	}
+	return true;
+}
+
+void rt_prefault_stack(void)
+{
+	unsigned char buf[RT_PREFAULT_BYTES];
+
+	memset(buf, 0, sizeof(buf));
+	__asm__ volatile("" : : "r"(buf) : "memory");
 }

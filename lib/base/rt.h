@@ -14,6 +14,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#define RT_PREFAULT_BYTES (256 * 1024) /* rt_prefault_stack()'s */
+
 struct rt_thread_params {
 	const char *name;    /* at most 15 characters */
 	int priority;        /* SCHED_FIFO priority, 1..99 */
@@ -22,10 +24,27 @@ struct rt_thread_params {
 };
 
 /*
- * Starts FN(ARG) with P. *FIFO tells whether it got SCHED_FIFO (false when
+ * Main thread only (it creates a thread; it may allocate): starts FN(ARG)
+ * with P. *FIFO tells whether it got SCHED_FIFO (false when
  * the process may not: the caller warns once). Returns 0 or a negative errno.
  */
 int rt_thread_start(pthread_t *thread, const struct rt_thread_params *p,
 		    void *(*fn)(void *), void *arg, bool *fifo);
+
+/*
+ * Main thread, before the real-time threads start: locks the process'
+ * memory, now and to come (mlockall), when it may (root, or an unlimited
+ * RLIMIT_MEMLOCK: LimitMEMLOCK=infinity); otherwise, or in a build with
+ * AddressSanitizer (whose shadow memory cannot be locked), logs why not.
+ * Returns whether it is locked.
+ */
+bool rt_lock_memory(void);
+
+/*
+ * A real-time thread, first thing: touches RT_PREFAULT_BYTES of its own
+ * stack (which must be larger: rt_thread_params.stack_bytes), so that
+ * with the memory locked those pages stay. Never blocks or allocates.
+ */
+void rt_prefault_stack(void);
 
 #endif

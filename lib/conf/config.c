@@ -2,7 +2,6 @@
 #include "conf/config.h"
 
 #include <errno.h>
-#include <ini.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -22,19 +21,78 @@ static const char *const model_names[] = { "paper", "rod", NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
+/* [log] level: a syslog level by name. */
+static int level_parse(const struct parse_key *k, const char *text,
+		       void *field, struct parse_file *pf, char *why,
+		       size_t size)
+{
+	int level = log_level_parse(text);
+
+	(void)k;
+	(void)pf;
+	if (level < 0) {
+		snprintf(why, size, "'%s' is not one of err, warning, notice, "
+			 "info, debug", text);
+		return -EINVAL;
+	}
+	*(int *)field = level;
+	return 0;
+}
+
+static void level_format(const struct parse_key *k, const void *field,
+			 char *buf, size_t size)
+{
+	(void)k;
+	snprintf(buf, size, "%s", log_level_name(*(const int *)field));
+}
+
+static const struct parse_ops level_ops = { level_parse, level_format };
+
+/* [modbus.NAME] SIGNAL: a register's description (regspec.h). */
+static int register_parse(const struct parse_key *k, const char *text,
+			  void *field, struct parse_file *pf, char *why,
+			  size_t size)
+{
+	(void)k;
+	(void)pf;
+	return regspec_parse(text, field, why, size);
+}
+
+static void register_format(const struct parse_key *k, const void *field,
+			    char *buf, size_t size)
+{
+	(void)k;
+	regspec_format(field, buf, size);
+}
+
+static const struct parse_ops register_ops = { register_parse,
+					       register_format };
+
 #define OFF(field) offsetof(struct config, field)
 #define KI(sec, key, field, d, lo, hi, u, fl, h) \
-	{ sec, key, CONFIG_INT, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+	{ .section = sec, .name = key, .type = PARSE_INT, \
+	  .offset = OFF(field), .def = d, .min = lo, .max = hi, .unit = u, \
+	  .flags = fl, .help = h }
 #define KD(sec, key, field, d, lo, hi, u, fl, h) \
-	{ sec, key, CONFIG_DOUBLE, OFF(field), d, NULL, lo, hi, NULL, u, fl, h }
+	{ .section = sec, .name = key, .type = PARSE_DOUBLE, \
+	  .offset = OFF(field), .def = d, .min = lo, .max = hi, .unit = u, \
+	  .flags = fl, .help = h }
 #define KS(sec, key, field, d, fl, h) \
-	{ sec, key, CONFIG_STRING, OFF(field), 0, d, 0, 0, NULL, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_STRING, \
+	  .offset = OFF(field), .size = CONFIG_STR, .def_str = d, .unit = "", \
+	  .flags = fl, .help = h }
 #define KE(sec, key, field, d, ch, fl, h) \
-	{ sec, key, CONFIG_ENUM, OFF(field), d, NULL, 0, 0, ch, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_CHOICE, \
+	  .offset = OFF(field), .def = d, .choices = ch, .unit = "", \
+	  .flags = fl, .help = h }
 #define KL(sec, key, field, d, fl, h) \
-	{ sec, key, CONFIG_LEVEL, OFF(field), d, NULL, 0, 0, NULL, "", fl, h }
+	{ .section = sec, .name = key, .type = PARSE_CUSTOM, \
+	  .offset = OFF(field), .def_str = d, .ops = &level_ops, .unit = "", \
+	  .flags = fl, .help = h }
 #define KR(sec, key, field, h) \
-	{ sec, key, CONFIG_REGISTER, OFF(field), 0, "none", 0, 0, NULL, "", 0, h }
+	{ .section = sec, .name = key, .type = PARSE_CUSTOM, \
+	  .offset = OFF(field), .def_str = "none", .ops = &register_ops, \
+	  .unit = "", .help = h }
 
 #define I_INS ENDOSIM_AXIS_INSERTION
 #define I_ROLL ENDOSIM_AXIS_ROLL
@@ -74,9 +132,9 @@ static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 
 /* [epos4.NAME]: the maxon EPOS4 on USB that drives axis I. */
 #define EPOS4_KEYS(sec, i)                                                   \
-	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", CONFIG_HEX,     \
+	KI(sec, "vid", epos4[i].vid, 0x24E7, 0, 0xFFFF, "", PARSE_HEX,     \
 	   "USB vendor id"),                                                 \
-	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", CONFIG_HEX,     \
+	KI(sec, "pid", epos4[i].pid, 0x3B01, 0, 0xFFFF, "", PARSE_HEX,     \
 	   "USB product id"),                                                \
 	KS(sec, "serial", epos4[i].serial, "", 0,                            \
 	   "USB serial number; empty: the only drive with that id"),          \
@@ -103,22 +161,22 @@ static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 	   "write torque and read feedback in one transaction (function 0x17)"), \
 	KD(sec, "watchdog_s", modbus_drive[i].watchdog_s, 0.1, 0, 60, "s", 0, \
 	   "written to the watchdog register at enable"),                    \
-	KR(sec, "torque", modbus_drive[i].reg[REGMAP_TORQUE],                \
+	KR(sec, "torque", modbus_drive[i].reg[REGSPEC_TORQUE],                \
 	   "motor torque setpoint, N m (required)"),                         \
-	KR(sec, "enable", modbus_drive[i].reg[REGMAP_ENABLE],                \
+	KR(sec, "enable", modbus_drive[i].reg[REGSPEC_ENABLE],                \
 	   "written 1 to enable, 0 to disable"),                             \
-	KR(sec, "position", modbus_drive[i].reg[REGMAP_POSITION],            \
+	KR(sec, "position", modbus_drive[i].reg[REGSPEC_POSITION],            \
 	   "encoder counts (required)"),                                     \
-	KR(sec, "velocity", modbus_drive[i].reg[REGMAP_VELOCITY],            \
+	KR(sec, "velocity", modbus_drive[i].reg[REGSPEC_VELOCITY],            \
 	   "encoder counts per second"),                                     \
-	KR(sec, "fault", modbus_drive[i].reg[REGMAP_FAULT],                  \
+	KR(sec, "fault", modbus_drive[i].reg[REGSPEC_FAULT],                  \
 	   "the drive's fault code, 0: none"),                               \
-	KR(sec, "fault_reset", modbus_drive[i].reg[REGMAP_FAULT_RESET],      \
+	KR(sec, "fault_reset", modbus_drive[i].reg[REGSPEC_FAULT_RESET],      \
 	   "written 1 then 0 to clear a fault"),                             \
-	KR(sec, "watchdog", modbus_drive[i].reg[REGMAP_WATCHDOG],            \
+	KR(sec, "watchdog", modbus_drive[i].reg[REGSPEC_WATCHDOG],            \
 	   "communication watchdog, s (gets watchdog_s)")
 
-static const struct config_key keys[] = {
+static const struct parse_key keys[] = {
 	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
 	   "force-loop rate"),
 	KI("loop", "priority", loop.priority, 80, 1, 99, "", 0,
@@ -283,121 +341,150 @@ static const struct config_key keys[] = {
 	KD("limits", "wheel_lr_slew_n_m_per_s", limits.slew[I_LR], 20, 0.01,
 	   1e5, "N m/s", LIVE, "fastest change of the left/right wheel torque"),
 
-	KE("haptics", "model", haptics.model, 1, model_names, 0,
+	KE("haptics", "model", haptics.model, HAPTICS_DEFAULT_MODEL,
+	   model_names, 0,
 	   "rod: the insertion tube an elastic rod in a colon that moves "
 	   "([rod]); paper: the tube on the centreline (Koerner and Maenner)"),
-	KD("haptics", "scope_radius_m", haptics.scope_radius_m, 0.0065, 0, 0.02,
-	   "m", 0, "radius of the scope's tip and tube: how far from the wall "
-	   "its centre stays"),
+	KD("haptics", "scope_radius_m", haptics.scope_radius_m, SCOPE_RADIUS_M,
+	   0, 0.02, "m", 0, "radius of the scope's tip and tube: how far from "
+	   "the wall its centre stays"),
 	KD("haptics", "wall_stiffness_n_per_m", haptics.wall_stiffness_n_per_m,
-	   2000, 0, 20000, "N/m", LIVE, "k_wall: the colon wall's spring "
-	   "against the tip"),
+	   HAPTICS_DEFAULT_WALL_STIFFNESS_N_PER_M, 0, 20000, "N/m", LIVE,
+	   "k_wall: the colon wall's spring against the tip"),
 	KD("haptics", "wall_damping_n_s_per_m", haptics.wall_damping_n_s_per_m,
-	   15, 0, 500, "N s/m", LIVE, "damping of the tip's penetration "
-	   "velocity while in contact"),
+	   HAPTICS_DEFAULT_WALL_DAMPING_N_S_PER_M, 0, 500, "N s/m", LIVE,
+	   "damping of the tip's penetration velocity while in contact"),
 	KD("haptics", "tip_lateral_stiffness_n_per_m",
-	   haptics.tip_lateral_stiffness_n_per_m, 150, 1, 100000, "N/m", LIVE,
-	   "how hard the bending section resists the wall pushing its side"),
-	KE("haptics", "force_shading", haptics.force_shading, 1, yes_no, LIVE,
+	   haptics.tip_lateral_stiffness_n_per_m,
+	   HAPTICS_DEFAULT_TIP_LATERAL_STIFFNESS_N_PER_M, 1, 100000, "N/m",
+	   LIVE, "how hard the bending section resists the wall pushing its "
+	   "side"),
+	KE("haptics", "force_shading", haptics.force_shading,
+	   HAPTICS_DEFAULT_FORCE_SHADING, yes_no, LIVE,
 	   "contact force along interpolated normals (no facet buzz)"),
-	KD("haptics", "contact_reach_m", haptics.contact_reach_m, 0.1, 0.01,
-	   0.5, "m", LIVE, "the stretch of colon around the tip whose "
-	   "triangles are contact candidates"),
-	KD("haptics", "entry_depth_m", haptics.entry_depth_m, 0.02, 0, 0.5,
-	   "m", LIVE, "the tip touches the wall from this insertion on"),
+	KD("haptics", "contact_reach_m", haptics.contact_reach_m,
+	   HAPTICS_DEFAULT_CONTACT_REACH_M, 0.01, 0.5, "m", LIVE,
+	   "the stretch of colon around the tip whose triangles are contact "
+	   "candidates"),
+	KD("haptics", "entry_depth_m", haptics.entry_depth_m,
+	   HAPTICS_DEFAULT_ENTRY_DEPTH_M, 0, 0.5, "m", LIVE,
+	   "the tip touches the wall from this insertion on"),
 	KD("haptics", "friction_n_s_per_m_rad", haptics.friction_n_s_per_m_rad,
-	   8, 0, 1000, "N s/(m rad)", LIVE, "c_f: insertion friction per "
-	   "speed and per rad of the tube's turning"),
+	   HAPTICS_DEFAULT_FRICTION_N_S_PER_M_RAD, 0, 1000, "N s/(m rad)",
+	   LIVE, "c_f: insertion friction per speed and per rad of the tube's "
+	   "turning"),
 	KD("haptics", "torsion_n_m_s_per_rad2", haptics.torsion_n_m_s_per_rad2,
-	   0.02, 0, 10, "N m s/rad^2", LIVE, "roll friction per roll speed "
-	   "and per rad of the tube's turning"),
-	KD("haptics", "wire_spacing_m", haptics.wire_spacing_m, 0.008, 0, 0.05,
-	   "m", LIVE, "dr: distance between a wheel's two Bowden wires"),
+	   HAPTICS_DEFAULT_TORSION_N_M_S_PER_RAD2, 0, 10, "N m s/rad^2", LIVE,
+	   "roll friction per roll speed and per rad of the tube's turning"),
+	KD("haptics", "wire_spacing_m", haptics.wire_spacing_m,
+	   SCOPE_WIRE_SPACING_M, 0, 0.05, "m", LIVE,
+	   "dr: distance between a wheel's two Bowden wires"),
 	KD("haptics", "wire_tension_n_m_per_m", haptics.wire_tension_n_m_per_m,
-	   0.5, 0, 1000, "N m/m", LIVE, "k_t: wheel torque per metre of wire "
-	   "length difference"),
+	   HAPTICS_DEFAULT_WIRE_TENSION_N_M_PER_M, 0, 1000, "N m/m", LIVE,
+	   "k_t: wheel torque per metre of wire length difference"),
 	KD("haptics", "bending_stiffness_n_m_per_rad",
-	   haptics.bending_stiffness_n_m_per_rad, 0.01, 0, 10, "N m/rad",
+	   haptics.bending_stiffness_n_m_per_rad,
+	   HAPTICS_DEFAULT_BENDING_STIFFNESS_N_M_PER_RAD, 0, 10, "N m/rad",
 	   LIVE, "the bending section springing back straight, per rad of "
 	   "tip bend"),
 	KD("haptics", "wheel_stop_stiffness_n_m_per_rad",
-	   haptics.stop_stiffness_n_m_per_rad, 0.5, 0, 100, "N m/rad", LIVE,
+	   haptics.stop_stiffness_n_m_per_rad,
+	   HAPTICS_DEFAULT_STOP_STIFFNESS_N_M_PER_RAD, 0, 100, "N m/rad", LIVE,
 	   "each knob's end at the tip's angulation limit: its spring per rad "
 	   "of wheel past the limit"),
 	KD("haptics", "wheel_stop_damping_n_m_s_per_rad",
-	   haptics.stop_damping_n_m_s_per_rad, 4e-3, 0, 1, "N m s/rad", LIVE,
+	   haptics.stop_damping_n_m_s_per_rad,
+	   HAPTICS_DEFAULT_STOP_DAMPING_N_M_S_PER_RAD, 0, 1, "N m s/rad", LIVE,
 	   "each knob's end: its damping while the wheel is past the limit"),
-	KD("haptics", "wheel_delay_s", haptics.wheel_delay_s, 0.003, 0, 0.05,
-	   "s", LIVE, "a wheel on a drive: the lag of its torque (feedback "
-	   "age, the command's way); limits the wall on it"),
-	KD("haptics", "loop_relax_s", haptics.loop_relax_s, 0.1, 0.001, 10,
-	   "s", LIVE, "time constant with which a loop follows its force "
-	   "balance"),
+	KD("haptics", "wheel_delay_s", haptics.wheel_delay_s,
+	   HAPTICS_DEFAULT_WHEEL_DELAY_S, 0, 0.05, "s", LIVE,
+	   "a wheel on a drive: the lag of its torque (feedback age, the "
+	   "command's way); limits the wall on it"),
+	KD("haptics", "loop_relax_s", haptics.loop_relax_s,
+	   HAPTICS_DEFAULT_LOOP_RELAX_S, 0.001, 10, "s", LIVE,
+	   "time constant with which a loop follows its force balance"),
 	KD("haptics", "insertion_damping_n_s_per_m", haptics.damping[I_INS],
-	   0.5, 0, 100, "N s/m", LIVE, "light virtual damping of the carriage"),
+	   HAPTICS_DEFAULT_INSERTION_DAMPING_N_S_PER_M, 0, 100, "N s/m", LIVE,
+	   "light virtual damping of the carriage"),
 	KD("haptics", "roll_damping_n_m_s_per_rad", haptics.damping[I_ROLL],
-	   1e-3, 0, 1, "N m s/rad", LIVE, "light virtual damping in roll"),
+	   HAPTICS_DEFAULT_ROLL_DAMPING_N_M_S_PER_RAD, 0, 1, "N m s/rad", LIVE,
+	   "light virtual damping in roll"),
 	KD("haptics", "wheel_ud_damping_n_m_s_per_rad", haptics.damping[I_UD],
-	   2e-4, 0, 1, "N m s/rad", LIVE,
-	   "light virtual damping of the up/down wheel"),
+	   HAPTICS_DEFAULT_WHEEL_DAMPING_N_M_S_PER_RAD, 0, 1, "N m s/rad",
+	   LIVE, "light virtual damping of the up/down wheel"),
 	KD("haptics", "wheel_lr_damping_n_m_s_per_rad", haptics.damping[I_LR],
-	   2e-4, 0, 1, "N m s/rad", LIVE,
-	   "light virtual damping of the left/right wheel"),
-	KE("haptics", "passivity", haptics.passivity, 1, yes_no, LIVE,
+	   HAPTICS_DEFAULT_WHEEL_DAMPING_N_M_S_PER_RAD, 0, 1, "N m s/rad",
+	   LIVE, "light virtual damping of the left/right wheel"),
+	KE("haptics", "passivity", haptics.passivity, HAPTICS_DEFAULT_PASSIVITY,
+	   yes_no, LIVE,
 	   "passivity observer and controller on the contact forces"),
 
-	KI("rod", "segments", rod.segments, 160, 8, 1024, "", 0,
-	   "rigid segments of the insertion tube (cost grows linearly)"),
-	KD("rod", "length_m", rod.length_m, 1.6, 0.5, 3, "m", 0,
-	   "the insertion tube's length: the deepest insertion"),
-	KD("rod", "mass_per_m_kg", rod.mass_per_m_kg, 0.2, 0.01, 10, "kg/m", 0,
-	   "the insertion tube's mass per length"),
-	KD("rod", "bending_n_m2", rod.bending_n_m2, 0.03, 1e-4, 10, "N m^2",
-	   LIVE, "EI of the insertion tube (colonoscopes 0.026-0.040)"),
-	KD("rod", "torsion_n_m2", rod.torsion_n_m2, 0.45, 1e-4, 100, "N m^2",
-	   LIVE, "GJ of the insertion tube (68-88 N cm^2/deg: 0.39-0.50)"),
-	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2, 0.01, 1e-4, 10,
-	   "N m^2", LIVE, "EI of the bending section, its wires held"),
-	KD("rod", "damping_s", rod.damping_s, 0.002, 0, 1, "s", 0,
-	   "the tube's internal damping: Kelvin-Voigt time of its bending "
+	KI("rod", "segments", rod.segments, ROD_DEFAULT_SEGMENTS, 8, 1024, "",
+	   0, "rigid segments of the insertion tube (cost grows linearly)"),
+	KD("rod", "length_m", rod.length_m, ROD_DEFAULT_LENGTH_M, 0.5, 3, "m",
+	   0, "the insertion tube's length: the deepest insertion"),
+	KD("rod", "mass_per_m_kg", rod.mass_per_m_kg, ROD_DEFAULT_MASS_PER_M_KG,
+	   0.01, 10, "kg/m", 0, "the insertion tube's mass per length"),
+	KD("rod", "bending_n_m2", rod.bending_n_m2, ROD_DEFAULT_BENDING_N_M2,
+	   1e-4, 10, "N m^2", LIVE,
+	   "EI of the insertion tube (colonoscopes 0.026-0.040)"),
+	KD("rod", "torsion_n_m2", rod.torsion_n_m2, ROD_DEFAULT_TORSION_N_M2,
+	   1e-4, 100, "N m^2", LIVE,
+	   "GJ of the insertion tube (68-88 N cm^2/deg: 0.39-0.50)"),
+	KD("rod", "tip_bending_n_m2", rod.tip_bending_n_m2,
+	   RODSCOPE_DEFAULT_TIP_BENDING_N_M2, 1e-4, 10, "N m^2", LIVE,
+	   "EI of the bending section, its wires held"),
+	KD("rod", "damping_s", rod.damping_s, ROD_DEFAULT_DAMPING_S, 0, 1, "s",
+	   0, "the tube's internal damping: Kelvin-Voigt time of its bending "
 	   "and twist"),
-	KD("rod", "drag_n_s_per_m2", rod.drag_n_s_per_m2, 0.5, 0, 1000,
-	   "N s/m^2", 0, "viscous drag on the tube per length and speed"),
-	KI("rod", "iterations", rod.iterations, 2, 2, 8, "", 0,
-	   "Newton iterations of the rod's solve per step"),
-	KD("rod", "wall_n_per_m2", rod.wall_n_per_m2, 1.5e5, 1e3, 1e7,
-	   "N/m^2", LIVE, "the colon wall's stiffness against the tube, per "
-	   "metre of tube"),
-	KD("rod", "wall_damping_s", rod.wall_damping_s, 0.01, 0, 1, "s", LIVE,
+	KD("rod", "drag_n_s_per_m2", rod.drag_n_s_per_m2,
+	   ROD_DEFAULT_DRAG_N_S_PER_M2, 0, 1000, "N s/m^2", 0,
+	   "viscous drag on the tube per length and speed"),
+	KI("rod", "iterations", rod.iterations, ROD_DEFAULT_ITERATIONS, 2, 8,
+	   "", 0, "Newton iterations of the rod's solve per step"),
+	KD("rod", "wall_n_per_m2", rod.wall_n_per_m2,
+	   LUMEN_DEFAULT_WALL_N_PER_M2, 1e3, 1e7, "N/m^2", LIVE,
+	   "the colon wall's stiffness against the tube, per metre of tube"),
+	KD("rod", "wall_damping_s", rod.wall_damping_s,
+	   LUMEN_DEFAULT_WALL_DAMPING_S, 0, 1, "s", LIVE,
 	   "the wall's damping: its Kelvin-Voigt time"),
-	KD("rod", "friction", rod.friction, 0.05, 0, 2, "", LIVE,
-	   "mu: Coulomb friction of the tube on the mucosa"),
-	KD("rod", "slip_m_per_s", rod.slip_m_per_s, 0.002, 1e-5, 1, "m/s",
-	   LIVE, "below this sliding speed the tube sticks (friction "
-	   "regularised)"),
-	KD("rod", "pipe_n_per_m2", rod.pipe_n_per_m2, 1e6, 1e3, 1e8, "N/m^2",
-	   LIVE, "the rig's slitted pipe holding the tube outside, per metre"),
-	KD("rod", "coupling_n_per_m", rod.coupling_n_per_m, 3000, 10, 1e6,
-	   "N/m", LIVE, "the carriage's hold on the tube's end along the pipe"),
-	KD("rod", "coupling_n_s_per_m", rod.coupling_n_s_per_m, 20, 0, 1e4,
-	   "N s/m", LIVE, "its damping"),
-	KD("rod", "roll_n_m_per_rad", rod.roll_n_m_per_rad, 2, 0.01, 1e3,
-	   "N m/rad", LIVE, "the carriage's hold on the tube's end in roll"),
-	KD("rod", "roll_n_m_s_per_rad", rod.roll_n_m_s_per_rad, 0.005, 0, 10,
-	   "N m s/rad", LIVE, "its damping"),
-	KD("rod", "stop_n_per_m", rod.stop_n_per_m, 5000, 0, 1e6, "N/m", LIVE,
+	KD("rod", "friction", rod.friction, LUMEN_DEFAULT_FRICTION, 0, 2, "",
+	   LIVE, "mu: Coulomb friction of the tube on the mucosa"),
+	KD("rod", "slip_m_per_s", rod.slip_m_per_s, LUMEN_DEFAULT_SLIP_M_PER_S,
+	   1e-5, 1, "m/s", LIVE, "below this sliding speed the tube sticks "
+	   "(friction regularised)"),
+	KD("rod", "pipe_n_per_m2", rod.pipe_n_per_m2,
+	   LUMEN_DEFAULT_PIPE_N_PER_M2, 1e3, 1e8, "N/m^2", LIVE,
+	   "the rig's slitted pipe holding the tube outside, per metre"),
+	KD("rod", "coupling_n_per_m", rod.coupling_n_per_m,
+	   RODSCOPE_DEFAULT_COUPLING_N_PER_M, 10, 1e6, "N/m", LIVE,
+	   "the carriage's hold on the tube's end along the pipe"),
+	KD("rod", "coupling_n_s_per_m", rod.coupling_n_s_per_m,
+	   RODSCOPE_DEFAULT_COUPLING_N_S_PER_M, 0, 1e4, "N s/m", LIVE,
+	   "its damping"),
+	KD("rod", "roll_n_m_per_rad", rod.roll_n_m_per_rad,
+	   RODSCOPE_DEFAULT_ROLL_N_M_PER_RAD, 0.01, 1e3, "N m/rad", LIVE,
+	   "the carriage's hold on the tube's end in roll"),
+	KD("rod", "roll_n_m_s_per_rad", rod.roll_n_m_s_per_rad,
+	   RODSCOPE_DEFAULT_ROLL_N_M_S_PER_RAD, 0, 10, "N m s/rad", LIVE,
+	   "its damping"),
+	KD("rod", "stop_n_per_m", rod.stop_n_per_m,
+	   RODSCOPE_DEFAULT_STOP_N_PER_M, 0, 1e6, "N/m", LIVE,
 	   "the handle at the anus: inserted past the tube's length"),
-	KD("rod", "colon_node_spacing_m", rod.colon_node_spacing_m, 0.02,
-	   0.005, 0.2, "m", 0, "the mobile colon's nodes, this far apart"),
-	KD("rod", "colon_damping_n_s_per_m", rod.colon_damping_n_s_per_m, 20,
-	   0.1, 1e5, "N s/m", LIVE, "the tissue's damping per node"),
-	KD("rod", "colon_chain_n_per_m", rod.colon_chain_n_per_m, 100, 0, 1e5,
-	   "N/m", LIVE, "the colon's continuity between its nodes"),
-	KD("rod", "colon_bending_n_per_m", rod.colon_bending_n_per_m, 300, 0,
-	   1e6, "N/m", LIVE, "the colon wall's resistance to crumpling "
-	   "between its nodes"),
+	KD("rod", "colon_node_spacing_m", rod.colon_node_spacing_m,
+	   FLEX_DEFAULT_NODE_SPACING_M, 0.005, 0.2, "m", 0,
+	   "the mobile colon's nodes, this far apart"),
+	KD("rod", "colon_damping_n_s_per_m", rod.colon_damping_n_s_per_m,
+	   FLEX_DEFAULT_DAMPING_N_S_PER_M, 0.1, 1e5, "N s/m", LIVE,
+	   "the tissue's damping per node"),
+	KD("rod", "colon_chain_n_per_m", rod.colon_chain_n_per_m,
+	   FLEX_DEFAULT_CHAIN_N_PER_M, 0, 1e5, "N/m", LIVE,
+	   "the colon's continuity between its nodes"),
+	KD("rod", "colon_bending_n_per_m", rod.colon_bending_n_per_m,
+	   FLEX_DEFAULT_BENDING_N_PER_M, 0, 1e6, "N/m", LIVE,
+	   "the colon wall's resistance to crumpling between its nodes"),
 
-	KL("log", "level", log.level, LOG_INFO, LIVE,
+	KL("log", "level", log.level, "info", LIVE,
 	   "err, warning, notice, info or debug"),
 
 	GUIDE_KEYS("insertion", I_INS, "n", "m", "N", "m", 4000, 40, 25, 0.1,
@@ -467,12 +554,14 @@ static const struct config_key keys[] = {
 	KS("case", "centreline_file", colon.centreline_file, "", 0,
 	   "with an .obj: its centreline, 'x y z' per line; empty: the "
 	   "OBJ's own polyline"),
-	KD("case", "step_m", colon.step_m, 0.002, 0.0002, 0.01, "m", 0,
-	   "centreline sample and mesh ring spacing"),
-	KI("case", "ring_vertices", colon.ring_vertices, 192, 8, 4096, "", 0,
+	KD("case", "step_m", colon.step_m, COLON_DEFAULT_STEP_M, 0.0002, 0.01,
+	   "m", 0, "centreline sample and mesh ring spacing"),
+	KI("case", "ring_vertices", colon.ring_vertices,
+	   COLON_DEFAULT_RING_VERTICES, 8, 4096, "", 0,
 	   "vertices around each ring (triangles ~ 2 x length / step_m x "
 	   "this)"),
-	KD("case", "segment_m", colon.segment_m, 0.04, 0.01, 0.5, "m", 0,
+	KD("case", "segment_m", colon.segment_m, COLON_DEFAULT_SEGMENT_M, 0.01,
+	   0.5, "m", 0,
 	   "length of the mesh segments that index triangles along the colon"),
 
 	KE("debug", "test_commands", debug.test_commands, 0, yes_no, 0,
@@ -489,6 +578,9 @@ static const struct config_key keys[] = {
 	   0, 0, 1e9, "B/s", 0,
 	   "for tests only: the recorder writes at most this fast (a slow "
 	   "disk); 0: unlimited"),
+	/* the metrics' thresholds: metrics.h's METRICS_DEFAULT_*, which this
+	 * wing, below the session's, cannot name (test_config holds them to
+	 * each other) */
 	KD("session", "force_threshold_n", session.force_threshold_n, 15, 0.1,
 	   1000, "N", 0, "metrics: insertion force above this is an episode of "
 	   "excessive pressure"),
@@ -505,42 +597,37 @@ static const struct config_key keys[] = {
 	   "the course file (config/courses/NAME.course) that endoctl trainee "
 	   "judges the sessions by; empty: none"),
 
-	KD("scope", "bending_length_m", scope.bending_length_m, 0.09, 0.01, 0.3,
-	   "m", LIVE, "length of the bending section behind the tip"),
-	KD("scope", "ud_gain_rad_per_rad", scope.gain[0], 1.8, 0, 20, "rad/rad",
-	   LIVE, "tip bend per up/down wheel angle"),
-	KD("scope", "lr_gain_rad_per_rad", scope.gain[1], 1.6, 0, 20, "rad/rad",
-	   LIVE, "tip bend per left/right wheel angle"),
-	KD("scope", "ud_limit_rad", scope.limit_rad[0], 3.14159, 0, 3.1416,
-	   "rad", LIVE, "largest tip bend up or down (180 deg)"),
-	KD("scope", "lr_limit_rad", scope.limit_rad[1], 2.79253, 0, 3.1416,
-	   "rad", LIVE, "largest tip bend left or right (160 deg)"),
+	KD("scope", "bending_length_m", scope.bending_length_m,
+	   SCOPE_DEFAULT_BENDING_LENGTH_M, 0.01, 0.3, "m", LIVE,
+	   "length of the bending section behind the tip"),
+	KD("scope", "ud_gain_rad_per_rad", scope.gain[0], SCOPE_DEFAULT_UD_GAIN,
+	   0, 20, "rad/rad", LIVE, "tip bend per up/down wheel angle"),
+	KD("scope", "lr_gain_rad_per_rad", scope.gain[1], SCOPE_DEFAULT_LR_GAIN,
+	   0, 20, "rad/rad", LIVE, "tip bend per left/right wheel angle"),
+	KD("scope", "ud_limit_rad", scope.limit_rad[0],
+	   SCOPE_DEFAULT_UD_LIMIT_RAD, 0, 3.1416, "rad", LIVE,
+	   "largest tip bend up or down (180 deg)"),
+	KD("scope", "lr_limit_rad", scope.limit_rad[1],
+	   SCOPE_DEFAULT_LR_LIMIT_RAD, 0, 3.1416, "rad", LIVE,
+	   "largest tip bend left or right (160 deg)"),
 };
 
-#define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
+static const struct parse_table table = {
+	.keys = keys,
+	.n = sizeof(keys) / sizeof(keys[0]),
+};
 
 size_t config_key_count(void)
 {
-	return KEY_COUNT;
+	return table.n;
 }
 
-const struct config_key *config_key_at(size_t i)
+const struct parse_key *config_key_at(size_t i)
 {
-	return i < KEY_COUNT ? &keys[i] : NULL;
+	return i < table.n ? &keys[i] : NULL;
 }
 
-static const struct config_key *find(const char *section, const char *name)
-{
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		if (!strcmp(keys[i].section, section) &&
-		    !strcmp(keys[i].name, name)) {
-			return &keys[i];
-		}
-	}
-	return NULL;
-}
-
-const struct config_key *config_key_find(const char *key)
+const struct parse_key *config_key_find(const char *key)
 {
 	char section[64];
 	const char *dot = strrchr(key, '.');
@@ -550,221 +637,24 @@ const struct config_key *config_key_find(const char *key)
 	}
 	memcpy(section, key, (size_t)(dot - key));
 	section[dot - key] = '\0';
-	return find(section, dot + 1);
-}
-
-static void *field(struct config *cfg, const struct config_key *k)
-{
-	return (char *)cfg + k->offset;
-}
-
-static const void *cfield(const struct config *cfg, const struct config_key *k)
-{
-	return (const char *)cfg + k->offset;
+	return parse_find(&table, section, dot + 1);
 }
 
 void config_defaults(struct config *cfg)
 {
 	memset(cfg, 0, sizeof(*cfg));
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		const struct config_key *k = &keys[i];
-
-		switch (k->type) {
-		case CONFIG_INT:
-		case CONFIG_ENUM:
-		case CONFIG_LEVEL:
-			*(int *)field(cfg, k) = (int)k->def;
-			break;
-		case CONFIG_DOUBLE:
-			*(double *)field(cfg, k) = k->def;
-			break;
-		case CONFIG_STRING:
-			snprintf(field(cfg, k), CONFIG_STR, "%s", k->def_str);
-			break;
-		case CONFIG_REGISTER:
-			regmap_parse(k->def_str, field(cfg, k), NULL, 0);
-			break;
-		}
-	}
-}
-
-static int parse_number(const struct config_key *k, const char *text,
-			double *out, char *why, size_t size)
-{
-	char *end;
-
-	errno = 0;
-	if (k->type == CONFIG_INT) {
-		long v = strtol(text, &end, k->flags & CONFIG_HEX ? 16 : 10);
-
-		if (!*text || *end || errno) {
-			snprintf(why, size, "'%s' is not an integer", text);
-			return -EINVAL;
-		}
-		*out = (double)v;
-	} else {
-		double v = strtod(text, &end);
-
-		if (!*text || *end || errno || !isfinite(v)) {
-			snprintf(why, size, "'%s' is not a number", text);
-			return -EINVAL;
-		}
-		*out = v;
-	}
-	if (*out < k->min || *out > k->max) {
-		snprintf(why, size, "%s is out of range [%g, %g]%s%s", text,
-			 k->min, k->max, *k->unit ? " " : "", k->unit);
-		return -EINVAL;
-	}
-	return 0;
-}
-
-static int parse_choice(const struct config_key *k, const char *text,
-			int *out, char *why, size_t size)
-{
-	int n = 0;
-
-	if (k->type == CONFIG_LEVEL) {
-		*out = log_level_parse(text);
-		if (*out < 0) {
-			snprintf(why, size, "'%s' is not one of err, warning, "
-				 "notice, info, debug", text);
-			return -EINVAL;
-		}
-		return 0;
-	}
-	for (; k->choices[n]; n++) {
-		if (!strcmp(text, k->choices[n])) {
-			*out = n;
-			return 0;
-		}
-	}
-	snprintf(why, size, "'%s' is not a known choice", text);
-	return -EINVAL;
-}
-
-/* Parses TEXT into K's field of CFG; on error CFG is unchanged. */
-static int apply(struct config *cfg, const struct config_key *k,
-		 const char *text, char *why, size_t size)
-{
-	double num;
-	int choice, err;
-
-	switch (k->type) {
-	case CONFIG_INT:
-	case CONFIG_DOUBLE:
-		err = parse_number(k, text, &num, why, size);
-		if (err) {
-			return err;
-		}
-		if (k->type == CONFIG_INT) {
-			*(int *)field(cfg, k) = (int)num;
-		} else {
-			*(double *)field(cfg, k) = num;
-		}
-		break;
-	case CONFIG_STRING:
-		if (strlen(text) >= CONFIG_STR) {
-			snprintf(why, size, "longer than %d characters",
-				 CONFIG_STR - 1);
-			return -EINVAL;
-		}
-		strcpy(field(cfg, k), text);
-		break;
-	case CONFIG_ENUM:
-	case CONFIG_LEVEL:
-		err = parse_choice(k, text, &choice, why, size);
-		if (err) {
-			return err;
-		}
-		*(int *)field(cfg, k) = choice;
-		break;
-	case CONFIG_REGISTER:
-		return regmap_parse(text, field(cfg, k), why, size);
-	}
-	return 0;
-}
-
-struct parse_ctx {
-	struct config *cfg;
-	FILE *file;
-	const char *path;
-	int line;           /* line being parsed, 1-based */
-	bool at_line_start;
-	unsigned int keys_seen;
-	int first_line[KEY_COUNT]; /* 0: not set in this file */
-	char *err;
-	size_t errsize;
-};
-
-/* fgets for inih that counts lines, so errors can name them. */
-static char *read_line(char *str, int num, void *stream)
-{
-	struct parse_ctx *ctx = stream;
-	char *r = fgets(str, num, ctx->file);
-
-	if (r) {
-		if (ctx->at_line_start) {
-			ctx->line++;
-		}
-		ctx->at_line_start = strchr(r, '\n') != NULL;
-	}
-	return r;
-}
-
-static int on_key(void *user, const char *section, const char *name,
-		  const char *value)
-{
-	struct parse_ctx *ctx = user;
-	const struct config_key *k = find(section, name);
-	char why[160];
-	size_t idx;
-
-	if (*ctx->err) {
-		return 0; /* keep the first error */
-	}
-	if (!k) {
-		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: unknown key",
-			 ctx->path, ctx->line, section, name);
-		return 0;
-	}
-	idx = (size_t)(k - keys);
-	if (ctx->first_line[idx]) {
-		snprintf(ctx->err, ctx->errsize,
-			 "%s:%d: [%s] %s: duplicate key (first set on line %d)",
-			 ctx->path, ctx->line, section, name,
-			 ctx->first_line[idx]);
-		return 0;
-	}
-	if (apply(ctx->cfg, k, value, why, sizeof(why))) {
-		snprintf(ctx->err, ctx->errsize, "%s:%d: [%s] %s: %s",
-			 ctx->path, ctx->line, section, name, why);
-		return 0;
-	}
-	ctx->first_line[idx] = ctx->line;
-	ctx->keys_seen++;
-	return 1;
+	parse_defaults(&table, cfg);
 }
 
 int config_load_stream(struct config *cfg, FILE *f, const char *name,
 		       char *err, size_t errsize)
 {
-	struct parse_ctx ctx = {
-		.cfg = cfg, .file = f, .path = name, .at_line_start = true,
-		.err = err, .errsize = errsize,
-	};
-	int r;
+	int n = parse_ini(&table, f, name, cfg, NULL, err, errsize);
 
-	err[0] = '\0';
-	r = ini_parse_stream(read_line, &ctx, on_key, &ctx);
-	if (*err) {
-		return -EINVAL;
+	if (n < 0) {
+		return n;
 	}
-	if (r != 0) {
-		snprintf(err, errsize, "%s:%d: syntax error", name, r);
-		return -EINVAL;
-	}
-	if (!ctx.keys_seen) {
+	if (!n) {
 		snprintf(err, errsize, "%s: empty configuration (no keys)",
 			 name);
 		return -EINVAL;
@@ -792,7 +682,7 @@ int config_load(struct config *cfg, const char *path, char *err,
 int config_set(struct config *cfg, const char *key, const char *value,
 	       bool live_only, char *err, size_t errsize)
 {
-	const struct config_key *k = config_key_find(key);
+	const struct parse_key *k = config_key_find(key);
 	struct config tmp = *cfg;
 	char why[160];
 	int r;
@@ -807,7 +697,7 @@ int config_set(struct config *cfg, const char *key, const char *value,
 			 key);
 		return -EPERM;
 	}
-	if (apply(&tmp, k, value, why, sizeof(why))) {
+	if (parse_apply(k, &tmp, value, NULL, why, sizeof(why))) {
 		snprintf(err, errsize, "%s: %s", key, why);
 		return -EINVAL;
 	}
@@ -929,30 +819,30 @@ static int check_modbus_bus(const struct config_modbus *m, char *err,
 static int check_combined(const struct config_modbus_drive *d,
 			  const char *axis, char *err, size_t size)
 {
-	static const int reads[] = { REGMAP_POSITION, REGMAP_VELOCITY,
-				     REGMAP_FAULT };
+	static const int reads[] = { REGSPEC_POSITION, REGSPEC_VELOCITY,
+				     REGSPEC_FAULT };
 	int lo = 0xFFFF, hi = 0;
 
-	if (d->reg[REGMAP_TORQUE].table != REGMAP_HOLDING) {
+	if (d->reg[REGSPEC_TORQUE].table != REGSPEC_HOLDING) {
 		snprintf(err, size, "[modbus.%s] combined_0x17: torque must "
 			 "be a holding register", axis);
 		return -EINVAL;
 	}
 	for (size_t i = 0; i < sizeof(reads) / sizeof(reads[0]); i++) {
-		const struct regmap_reg *r = &d->reg[reads[i]];
+		const struct regspec *r = &d->reg[reads[i]];
 
-		if (r->table == REGMAP_NONE) {
+		if (r->table == REGSPEC_NONE) {
 			continue;
 		}
-		if (r->table != REGMAP_HOLDING) {
+		if (r->table != REGSPEC_HOLDING) {
 			snprintf(err, size, "[modbus.%s] %s: 0x17 reads holding "
 				 "registers only", axis,
-				 regmap_signal_name(reads[i]));
+				 regspec_signal_name(reads[i]));
 			return -EINVAL;
 		}
 		lo = r->address < lo ? r->address : lo;
-		hi = r->address + regmap_words(r) > hi
-			     ? r->address + regmap_words(r) : hi;
+		hi = r->address + regspec_words(r) > hi
+			     ? r->address + regspec_words(r) : hi;
 	}
 	if (hi - lo > 125) {
 		snprintf(err, size, "[modbus.%s] combined_0x17: the feedback "
@@ -966,24 +856,24 @@ static int check_combined(const struct config_modbus_drive *d,
 static int check_modbus_drive(const struct config_modbus_drive *d,
 			      const char *axis, char *err, size_t size)
 {
-	static const int needed[] = { REGMAP_TORQUE, REGMAP_POSITION };
-	static const int writes[] = { REGMAP_TORQUE, REGMAP_ENABLE,
-				      REGMAP_FAULT_RESET, REGMAP_WATCHDOG };
+	static const int needed[] = { REGSPEC_TORQUE, REGSPEC_POSITION };
+	static const int writes[] = { REGSPEC_TORQUE, REGSPEC_ENABLE,
+				      REGSPEC_FAULT_RESET, REGSPEC_WATCHDOG };
 
 	for (size_t i = 0; i < sizeof(needed) / sizeof(needed[0]); i++) {
-		if (d->reg[needed[i]].table == REGMAP_NONE) {
+		if (d->reg[needed[i]].table == REGSPEC_NONE) {
 			snprintf(err, size, "[modbus.%s] %s: a modbus axis needs "
-				 "it", axis, regmap_signal_name(needed[i]));
+				 "it", axis, regspec_signal_name(needed[i]));
 			return -EINVAL;
 		}
 	}
 	for (size_t i = 0; i < sizeof(writes) / sizeof(writes[0]); i++) {
-		const struct regmap_reg *r = &d->reg[writes[i]];
+		const struct regspec *r = &d->reg[writes[i]];
 
-		if (r->table != REGMAP_NONE && !regmap_writable(r)) {
+		if (r->table != REGSPEC_NONE && !regspec_writable(r)) {
 			snprintf(err, size, "[modbus.%s] %s: is written: it must "
 				 "be a coil or a holding register", axis,
-				 regmap_signal_name(writes[i]));
+				 regspec_signal_name(writes[i]));
 			return -EINVAL;
 		}
 	}
@@ -1054,32 +944,10 @@ int config_check(const struct config *cfg, char *err, size_t errsize)
 	return 0;
 }
 
-void config_format(const struct config *cfg, const struct config_key *k,
+void config_format(const struct config *cfg, const struct parse_key *k,
 		   char *buf, size_t size)
 {
-	switch (k->type) {
-	case CONFIG_INT:
-		snprintf(buf, size, k->flags & CONFIG_HEX ? "0x%04x" : "%d",
-			 *(const int *)cfield(cfg, k));
-		break;
-	case CONFIG_DOUBLE:
-		snprintf(buf, size, "%.9g", *(const double *)cfield(cfg, k));
-		break;
-	case CONFIG_STRING:
-		snprintf(buf, size, "%s", (const char *)cfield(cfg, k));
-		break;
-	case CONFIG_ENUM:
-		snprintf(buf, size, "%s",
-			 k->choices[*(const int *)cfield(cfg, k)]);
-		break;
-	case CONFIG_LEVEL:
-		snprintf(buf, size, "%s",
-			 log_level_name(*(const int *)cfield(cfg, k)));
-		break;
-	case CONFIG_REGISTER:
-		regmap_format(cfield(cfg, k), buf, size);
-		break;
-	}
+	parse_format(k, cfg, buf, size);
 }
 
 void config_print(const struct config *cfg, FILE *out)
@@ -1088,8 +956,8 @@ void config_print(const struct config *cfg, FILE *out)
 	char value[CONFIG_STR + 32];
 	int pad;
 
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		const struct config_key *k = &keys[i];
+	for (size_t i = 0; i < table.n; i++) {
+		const struct parse_key *k = &keys[i];
 
 		if (strcmp(section, k->section)) {
 			section = k->section;

@@ -1,13 +1,15 @@
 /*
  * config.h - endosimd's configuration: one table declares every key once
  * (section, name, type, default, range, unit, whether it may change while
- * running, one line of help). The same table parses the INI file (with
- * Debian's libinih), applies command-line overrides, prints the effective
- * configuration and answers GetConfig/SetParam.
+ * running, one line of help), the defaults of the model's parameters by
+ * their owners' names (scope.h, haptics.h, rodscope.h, ...). The same table
+ * parses the INI file (parse.h's kit, over Debian's libinih), applies
+ * command-line overrides, prints the effective configuration and answers
+ * GetConfig/SetParam.
  *
- * Errors are reported as one line, "FILE:LINE: [section] key: what", in the
- * caller's buffer, before anything else happens; the caller exits with
- * EX_CONFIG (78).
+ * Errors are reported as one line, "FILE:LINE: [section] key: what" (the
+ * kit's, parse.h), in the caller's buffer, before anything else happens;
+ * the caller exits with EX_CONFIG (78).
  *
  * Not thread-safe: the main thread loads; afterwards the control thread owns
  * the master copy and hands copies to the force loop (loop.h).
@@ -19,9 +21,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "base/parse.h"
 #include "proto/endosim_shm.h"
-#include "model/haptics_gains.h"
-#include "conf/regmap.h"
+#include "model/haptics.h"
+#include "conf/regspec.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
 #ifndef CONFIG_CASE_DIR /* the Makefile sets it to $(DATADIR)/cases */
@@ -99,7 +102,7 @@ struct config_modbus_drive {
 	int slave;
 	int combined_0x17;            /* 1: write and read in one transaction */
 	double watchdog_s;            /* written to the watchdog register */
-	struct regmap_reg reg[REGMAP_SIGNALS];
+	struct regspec reg[REGSPEC_SIGNALS];
 };
 
 struct config {
@@ -228,32 +231,9 @@ struct config {
 	} guide;
 };
 
-enum config_type {
-	CONFIG_INT,
-	CONFIG_DOUBLE,
-	CONFIG_STRING,
-	CONFIG_ENUM,
-	CONFIG_LEVEL,    /* a log level name */
-	CONFIG_REGISTER, /* a Modbus register (regmap.h), text in def_str */
-};
-
+/* The keys' own flags (struct parse_key flags). */
 enum config_flags {
-	CONFIG_LIVE = 1u << 0, /* may change while running (SetParam) */
-	CONFIG_HEX = 1u << 1,  /* an integer written in hexadecimal */
-};
-
-struct config_key {
-	const char *section;
-	const char *name;
-	enum config_type type;
-	size_t offset;               /* into struct config */
-	double def;                  /* numbers, enum index, level */
-	const char *def_str;         /* strings */
-	double min, max;             /* numbers, inclusive */
-	const char *const *choices;  /* enums, NULL-terminated */
-	const char *unit;
-	unsigned int flags;          /* enum config_flags */
-	const char *help;
+	CONFIG_LIVE = PARSE_USER, /* may change while running (SetParam) */
 };
 
 /* Fills CFG with every key's default. */
@@ -312,15 +292,15 @@ bool config_saturation_faults(const struct config *cfg, int axis);
 /* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
 double config_feedback_max_age_s(const struct config *cfg, int axis);
 
-/* The table: config_key_count() entries. */
+/* The table (parse.h's keys): config_key_count() entries. */
 size_t config_key_count(void);
-const struct config_key *config_key_at(size_t i);
+const struct parse_key *config_key_at(size_t i);
 
 /* The key called "section.name", or NULL. */
-const struct config_key *config_key_find(const char *key);
+const struct parse_key *config_key_find(const char *key);
 
 /* Writes KEY's value in CFG as text, as it would appear in the file. */
-void config_format(const struct config *cfg, const struct config_key *key,
+void config_format(const struct config *cfg, const struct parse_key *key,
 		   char *buf, size_t size);
 
 /* Prints every key with its value, unit and help as a valid INI file. */

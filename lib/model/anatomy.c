@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/text.h"
+#include "base/parse.h"
 
 #define DEG (M_PI / 180.0)
 #define BEND_MARGIN 1.0 /* a bend's radius over the lumen radius, at least */
@@ -23,79 +23,18 @@ static const char *const segment_names[ANATOMY_SEGMENTS] = {
 static const char *const shape_names[] = { "sessile", "pedunculated",
 					   "flat", NULL };
 
-enum section { SEC_NONE, SEC_CASE, SEC_LUMEN, SEC_SEGMENT, SEC_POLYP };
-
-enum key_type {
-	KEY_DOUBLE, /* a number in the key's unit */
-	KEY_DEG,    /* degrees in the file, radians in the struct */
-	KEY_BOOL,   /* yes or no */
-	KEY_NAME,   /* [A-Za-z0-9_-]+, ANATOMY_NAME */
-	KEY_TEXT,   /* free text, ANATOMY_TEXT */
-	KEY_SHAPE,  /* a polyp shape */
-	KEY_BEND,   /* ANGLE_DEG RADIUS_M PLANE_DEG, repeatable */
-};
-
-struct key {
-	enum section sec;
-	const char *name;
-	enum key_type type;
-	size_t off; /* into struct anatomy, anatomy_segment or anatomy_polyp */
-	double min, max;
-	bool required;
-};
-
-#define A(f) offsetof(struct anatomy, f)
-#define S(f) offsetof(struct anatomy_segment, f)
-#define P(f) offsetof(struct anatomy_polyp, f)
-
-static const struct key keys[] = {
-	{ SEC_CASE, "name", KEY_NAME, A(name), 0, 0, true },
-	{ SEC_CASE, "description", KEY_TEXT, A(description), 0, 0, false },
-	{ SEC_LUMEN, "taenia_angle_deg", KEY_DEG, A(taenia_angle_rad), -360,
-	  360, false },
-	{ SEC_LUMEN, "taenia_depth", KEY_DOUBLE, 0, 0, 0.4, false },
-	{ SEC_LUMEN, "fold_depth", KEY_DOUBLE, 0, 0, 0.5, false },
-	{ SEC_LUMEN, "fold_spacing_m", KEY_DOUBLE, A(fold_spacing_m), 0.005,
-	  0.2, false },
-	{ SEC_LUMEN, "fold_width_m", KEY_DOUBLE, A(fold_width_m), 0.001, 0.05,
-	  false },
-	{ SEC_SEGMENT, "length_m", KEY_DOUBLE, S(length_m), 0.01, 2.0, true },
-	{ SEC_SEGMENT, "diameter_m", KEY_DOUBLE, S(diameter_m), 0.01, 0.12,
-	  true },
-	{ SEC_SEGMENT, "taenia_depth", KEY_DOUBLE, S(taenia_depth), 0, 0.4,
-	  false },
-	{ SEC_SEGMENT, "fold_depth", KEY_DOUBLE, S(fold_depth), 0, 0.5, false },
-	{ SEC_SEGMENT, "mobile", KEY_BOOL, S(mobile), 0, 0, false },
-	{ SEC_SEGMENT, "mesentery_n_per_m", KEY_DOUBLE, S(mesentery_n_per_m),
-	  1, 1e5, false },
-	{ SEC_SEGMENT, "mesentery_height_m", KEY_DOUBLE,
-	  S(mesentery_height_m), 0.005, 0.2, false },
-	{ SEC_SEGMENT, "bend", KEY_BEND, 0, 0, 0, false },
-	{ SEC_POLYP, "s_m", KEY_DOUBLE, P(s_m), 0, 3, true },
-	{ SEC_POLYP, "angle_deg", KEY_DEG, P(angle_rad), -360, 360, true },
-	{ SEC_POLYP, "diameter_m", KEY_DOUBLE, P(diameter_m), 0.001, 0.06,
-	  true },
-	{ SEC_POLYP, "shape", KEY_SHAPE, P(shape), 0, 0, false },
-};
-
-#define KEY_COUNT (sizeof(keys) / sizeof(keys[0]))
-
-/* The state of one file being read. */
-struct parser {
-	struct anatomy *a;
+/* The state of one case file being read (parse_file_user()): the anatomy
+ * as it grows, and the lines its checks name. */
+struct reader {
+	struct anatomy a;
 	const char *path;
 	char *err;
 	size_t errsize;
-	int line;
-	enum section sec;
-	int sec_line;        /* the current section's header */
-	char sec_name[64];   /* for messages: "segment rectum", "polyp" */
-	void *target;        /* the struct the section's keys land in */
-	int key_line[KEY_COUNT]; /* in this section, 0: not seen */
-	int segments;        /* [segment] sections read */
+	double taenia_depth, fold_depth; /* [lumen]'s, for segments without */
 	bool seen_case, seen_lumen;
-	double taenia_depth, fold_depth;   /* [lumen] defaults */
-	int seg_line[ANATOMY_SEGMENTS];    /* header lines */
+	bool in_segment;                 /* the current section's kind */
+	int segments;                    /* [segment] sections read */
+	int lines;                       /* in the file */
 	int bend_line[ANATOMY_SEGMENTS][ANATOMY_MAX_BENDS];
 	int length_line[ANATOMY_SEGMENTS];
 	int mobile_line[ANATOMY_SEGMENTS];
@@ -103,21 +42,18 @@ struct parser {
 	int polyp_line[ANATOMY_MAX_POLYPS];
 };
 
-static int fail(struct parser *p, int line, const char *what, const char *fmt,
+static int fail(struct reader *r, int line, const char *what, const char *fmt,
 		...) __attribute__((format(printf, 4, 5)));
 
 /* "FILE:LINE: WHAT: message"; always returns -EINVAL. */
-static int fail(struct parser *p, int line, const char *what, const char *fmt,
+static int fail(struct reader *r, int line, const char *what, const char *fmt,
 		...)
 {
-	char msg[160];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	parse_verror(r->err, r->errsize, r->path, line, what, fmt, ap);
 	va_end(ap);
-	snprintf(p->err, p->errsize, "%s:%d: %s: %s", p->path, line, what,
-		 msg);
 	return -EINVAL;
 }
 
@@ -146,395 +82,333 @@ double anatomy_length(const struct anatomy *a)
 	return anatomy_segment_start(a, ANATOMY_SEGMENTS);
 }
 
-static int parse_double(const char *text, double *out)
-{
-	char *end;
+/* ------------------------------------------------- the keys' own types */
 
-	errno = 0;
-	*out = strtod(text, &end);
-	return !*text || *end || errno || !isfinite(*out) ? -EINVAL : 0;
-}
-
-static int parse_number(struct parser *p, const struct key *k,
-			const char *text, double *out)
+/* A name: [A-Za-z0-9_-]+ in the key's size. */
+static int name_parse(const struct parse_key *k, const char *text,
+		      void *field, struct parse_file *pf, char *why,
+		      size_t size)
 {
-	if (parse_double(text, out)) {
-		return fail(p, p->line, k->name, "'%s' is not a number", text);
+	(void)pf;
+	if (strlen(text) >= k->size) {
+		snprintf(why, size, "longer than %zu characters", k->size - 1);
+		return -EINVAL;
 	}
-	if (*out < k->min || *out > k->max) {
-		return fail(p, p->line, k->name, "%s is out of range [%g, %g]",
-			    text, k->min, k->max);
+	for (const char *c = text; *c; c++) {
+		if (!isalnum((unsigned char)*c) && *c != '-' && *c != '_') {
+			snprintf(why, size, "'%s': use letters, digits, '-' "
+				 "and '_'", text);
+			return -EINVAL;
+		}
 	}
+	if (!*text) {
+		snprintf(why, size, "empty");
+		return -EINVAL;
+	}
+	strcpy(field, text);
 	return 0;
 }
 
-static int parse_bend(struct parser *p, const struct key *k, char *text)
+/* Degrees in the file, radians in the struct. */
+static int deg_parse(const struct parse_key *k, const char *text, void *field,
+		     struct parse_file *pf, char *why, size_t size)
 {
-	struct anatomy_segment *seg = p->target;
-	struct anatomy_bend *b = &seg->bend[seg->bends];
-	char *tok[4], *save = NULL;
+	double deg;
+
+	(void)pf;
+	if (parse_number(text, k->min, k->max, k->unit, &deg, why, size)) {
+		return -EINVAL;
+	}
+	*(double *)field = deg * DEG;
+	return 0;
+}
+
+/* yes or no, into a bool. */
+static int bool_parse(const struct parse_key *k, const char *text,
+		      void *field, struct parse_file *pf, char *why,
+		      size_t size)
+{
+	(void)k;
+	(void)pf;
+	if (strcmp(text, "yes") && strcmp(text, "no")) {
+		snprintf(why, size, "'%s' is not a known choice", text);
+		return -EINVAL;
+	}
+	*(bool *)field = !strcmp(text, "yes");
+	return 0;
+}
+
+/* ANGLE_DEG RADIUS_M PLANE_DEG: the segment's next bend. */
+static int bend_parse(const struct parse_key *k, const char *text,
+		      void *field, struct parse_file *pf, char *why,
+		      size_t size)
+{
+	struct reader *r = parse_file_user(pf);
+	struct anatomy_segment *seg = field;
+	char copy[PARSE_MAX_LINE + 1], *tok[4], *save = NULL;
 	double v[3];
 	int n = 0;
 
-	for (char *t = strtok_r(text, " \t", &save); t && n < 4;
+	(void)k;
+	snprintf(copy, sizeof(copy), "%s", text);
+	for (char *t = strtok_r(copy, " \t", &save); t && n < 4;
 	     t = strtok_r(NULL, " \t", &save)) {
 		tok[n++] = t;
 	}
 	if (n != 3 || parse_double(tok[0], &v[0]) ||
 	    parse_double(tok[1], &v[1]) || parse_double(tok[2], &v[2])) {
-		return fail(p, p->line, k->name,
-			    "expected ANGLE_DEG RADIUS_M PLANE_DEG");
+		snprintf(why, size, "expected ANGLE_DEG RADIUS_M PLANE_DEG");
+		return -EINVAL;
 	}
 	if (v[0] <= 0 || v[0] > 180 || v[1] <= 0 || v[1] > 2 ||
 	    fabs(v[2]) > 360) {
-		return fail(p, p->line, k->name, "angle must be in (0, 180] "
-			    "deg, radius in (0, 2] m, plane in [-360, 360] "
-			    "deg");
+		snprintf(why, size, "angle must be in (0, 180] deg, radius in "
+			 "(0, 2] m, plane in [-360, 360] deg");
+		return -EINVAL;
 	}
 	if (seg->bends == ANATOMY_MAX_BENDS) {
-		return fail(p, p->line, k->name, "more than %d bends",
-			    ANATOMY_MAX_BENDS);
+		snprintf(why, size, "more than %d bends", ANATOMY_MAX_BENDS);
+		return -EINVAL;
 	}
-	b->angle_rad = v[0] * DEG;
-	b->radius_m = v[1];
-	b->plane_rad = v[2] * DEG;
-	p->bend_line[p->segments - 1][seg->bends++] = p->line;
+	seg->bend[seg->bends] = (struct anatomy_bend){
+		.angle_rad = v[0] * DEG, .radius_m = v[1],
+		.plane_rad = v[2] * DEG,
+	};
+	r->bend_line[r->segments - 1][seg->bends++] = parse_file_line(pf);
 	return 0;
 }
 
-static int parse_choice(struct parser *p, const struct key *k,
-			const char *text, const char *const *choices, int *out)
-{
-	for (int i = 0; choices[i]; i++) {
-		if (!strcmp(text, choices[i])) {
-			*out = i;
-			return 0;
-		}
-	}
-	return fail(p, p->line, k->name, "'%s' is not a known choice", text);
-}
+static const struct parse_ops name_ops = { name_parse, NULL };
+static const struct parse_ops deg_ops = { deg_parse, NULL };
+static const struct parse_ops bool_ops = { bool_parse, NULL };
+static const struct parse_ops bend_ops = { bend_parse, NULL };
 
-static int parse_text(struct parser *p, const struct key *k, const char *text,
-		      char *out, size_t size, bool name)
-{
-	if (strlen(text) >= size) {
-		return fail(p, p->line, k->name, "longer than %zu characters",
-			    size - 1);
-	}
-	for (const char *c = text; name && *c; c++) {
-		if (!isalnum((unsigned char)*c) && *c != '-' && *c != '_') {
-			return fail(p, p->line, k->name, "'%s': use letters, "
-				    "digits, '-' and '_'", text);
-		}
-	}
-	if (name && !*text) {
-		return fail(p, p->line, k->name, "empty");
-	}
-	strcpy(out, text);
-	return 0;
-}
+/* ------------------------------------------------------------ the keys */
 
-/* Stores VALUE for K; [lumen]'s depths go to the parser's defaults. */
-static int apply(struct parser *p, const struct key *k, char *value)
-{
-	static const char *const bools[] = { "no", "yes", NULL };
-	char *dst = (char *)p->target + k->off;
-	double num;
-	int choice = 0, r;
+#define R(f) offsetof(struct reader, f) /* [case], [lumen] */
+#define S(f) offsetof(struct anatomy_segment, f)
+#define P(f) offsetof(struct anatomy_polyp, f)
+#define NUM(sec, key, off, lo, hi, fl) \
+	{ .section = sec, .name = key, .type = PARSE_DOUBLE, .offset = off, \
+	  .min = lo, .max = hi, .unit = "", .flags = fl }
+#define DEG_KEY(sec, key, off, fl) \
+	{ .section = sec, .name = key, .type = PARSE_CUSTOM, .offset = off, \
+	  .ops = &deg_ops, .min = -360, .max = 360, .unit = "", .flags = fl }
+#define REQ PARSE_REQUIRED
 
-	switch (k->type) {
-	case KEY_DOUBLE:
-	case KEY_DEG:
-		r = parse_number(p, k, value, &num);
-		if (r) {
-			return r;
-		}
-		if (p->sec == SEC_LUMEN && !strcmp(k->name, "taenia_depth")) {
-			p->taenia_depth = num;
-		} else if (p->sec == SEC_LUMEN &&
-			   !strcmp(k->name, "fold_depth")) {
-			p->fold_depth = num;
-		} else {
-			*(double *)dst = k->type == KEY_DEG ? num * DEG : num;
-		}
-		return 0;
-	case KEY_BOOL:
-		r = parse_choice(p, k, value, bools, &choice);
-		if (!r) {
-			*(bool *)dst = choice;
-		}
-		return r;
-	case KEY_SHAPE:
-		return parse_choice(p, k, value, shape_names, (int *)dst);
-	case KEY_NAME:
-		return parse_text(p, k, value, dst, ANATOMY_NAME, true);
-	case KEY_TEXT:
-		return parse_text(p, k, value, dst, ANATOMY_TEXT, false);
-	case KEY_BEND:
-		return parse_bend(p, k, value);
-	}
-	return -EINVAL;
-}
+static const struct parse_key keys[] = {
+	{ .section = "case", .name = "name", .type = PARSE_CUSTOM,
+	  .offset = R(a.name), .size = ANATOMY_NAME, .ops = &name_ops,
+	  .unit = "", .flags = REQ },
+	{ .section = "case", .name = "description", .type = PARSE_STRING,
+	  .offset = R(a.description), .size = ANATOMY_TEXT, .unit = "" },
+	DEG_KEY("lumen", "taenia_angle_deg", R(a.taenia_angle_rad), 0),
+	NUM("lumen", "taenia_depth", R(taenia_depth), 0, 0.4, 0),
+	NUM("lumen", "fold_depth", R(fold_depth), 0, 0.5, 0),
+	NUM("lumen", "fold_spacing_m", R(a.fold_spacing_m), 0.005, 0.2, 0),
+	NUM("lumen", "fold_width_m", R(a.fold_width_m), 0.001, 0.05, 0),
+	NUM("segment", "length_m", S(length_m), 0.01, 2.0, REQ),
+	NUM("segment", "diameter_m", S(diameter_m), 0.01, 0.12, REQ),
+	NUM("segment", "taenia_depth", S(taenia_depth), 0, 0.4, 0),
+	NUM("segment", "fold_depth", S(fold_depth), 0, 0.5, 0),
+	{ .section = "segment", .name = "mobile", .type = PARSE_CUSTOM,
+	  .offset = S(mobile), .ops = &bool_ops, .unit = "" },
+	NUM("segment", "mesentery_n_per_m", S(mesentery_n_per_m), 1, 1e5, 0),
+	NUM("segment", "mesentery_height_m", S(mesentery_height_m), 0.005,
+	    0.2, 0),
+	{ .section = "segment", .name = "bend", .type = PARSE_CUSTOM,
+	  .offset = 0, .ops = &bend_ops, .unit = "",
+	  .flags = PARSE_REPEATS },
+	NUM("polyp", "s_m", P(s_m), 0, 3, REQ),
+	DEG_KEY("polyp", "angle_deg", P(angle_rad), REQ),
+	NUM("polyp", "diameter_m", P(diameter_m), 0.001, 0.06, REQ),
+	{ .section = "polyp", .name = "shape", .type = PARSE_CHOICE,
+	  .offset = P(shape), .choices = shape_names, .unit = "" },
+};
 
-static const struct key *find_key(enum section sec, const char *name)
-{
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		if (keys[i].sec == sec && !strcmp(keys[i].name, name)) {
-			return &keys[i];
-		}
-	}
-	return NULL;
-}
+/* ------------------------------------------------------- the sections */
 
-static int parse_key(struct parser *p, char *line)
-{
-	char *eq = strchr(line, '='), *name, *value;
-	const struct key *k;
-	size_t idx;
-
-	if (!eq) {
-		return fail(p, p->line, text_trim(line), "expected 'key = value'");
-	}
-	*eq = '\0';
-	name = text_trim(line);
-	value = text_trim(eq + 1);
-	if (p->sec == SEC_NONE) {
-		return fail(p, p->line, name, "before any [section]");
-	}
-	k = find_key(p->sec, name);
-	if (!k) {
-		return fail(p, p->line, name, "unknown key in [%s]",
-			    p->sec_name);
-	}
-	idx = (size_t)(k - keys);
-	if (p->key_line[idx] && k->type != KEY_BEND) {
-		return fail(p, p->line, name, "duplicate key (first set on "
-			    "line %d)", p->key_line[idx]);
-	}
-	p->key_line[idx] = p->line;
-	return apply(p, k, value);
-}
-
-/* The line KEY of the current section was set on, 0 if not. */
-static int line_of(const struct parser *p, const char *key)
-{
-	const struct key *k = find_key(p->sec, key);
-
-	return k ? p->key_line[k - keys] : 0;
-}
-
-/* Checks what a section needs once all its keys are read. */
-static int finish_section(struct parser *p)
-{
-	for (size_t i = 0; i < KEY_COUNT; i++) {
-		if (keys[i].sec == p->sec && keys[i].required &&
-		    !p->key_line[i]) {
-			return fail(p, p->sec_line, p->sec_name,
-				    "%s is missing", keys[i].name);
-		}
-	}
-	if (p->sec == SEC_SEGMENT) {
-		int id = p->segments - 1;
-
-		p->length_line[id] = line_of(p, "length_m");
-		p->mobile_line[id] = line_of(p, "mobile");
-		p->seg_set_taenia[id] = line_of(p, "taenia_depth") != 0;
-		p->seg_set_fold[id] = line_of(p, "fold_depth") != 0;
-	}
-	return 0;
-}
-
-static int open_segment(struct parser *p, const char *name)
+static int open_segment(struct reader *r, const char *name, void **base,
+			char *why, size_t size)
 {
 	struct anatomy_segment *seg;
 
-	if (p->segments == ANATOMY_SEGMENTS) {
-		return fail(p, p->line, p->sec_name, "all %d segments are "
-			    "already there", ANATOMY_SEGMENTS);
-	}
-	if (strcmp(name, segment_names[p->segments])) {
-		return fail(p, p->line, p->sec_name, "expected [segment %s] "
-			    "next (segments run from the anal verge in order: "
-			    "anal_canal ... cecum)", segment_names[p->segments]);
-	}
-	seg = &p->a->seg[p->segments];
-	seg->mesentery_n_per_m = 150;
-	seg->mesentery_height_m = 0.06;
-	p->seg_line[p->segments] = p->line;
-	p->target = seg;
-	p->segments++;
-	return 0;
-}
-
-static int open_polyp(struct parser *p)
-{
-	if (p->a->polyps == ANATOMY_MAX_POLYPS) {
-		return fail(p, p->line, "[polyp]", "more than %d polyps",
-			    ANATOMY_MAX_POLYPS);
-	}
-	p->polyp_line[p->a->polyps] = p->line;
-	p->target = &p->a->polyp[p->a->polyps++];
-	return 0;
-}
-
-/* "[name]" or "[segment NAME]": ends the previous section, opens one. */
-static int parse_header(struct parser *p, char *line)
-{
-	char *close = strchr(line, ']'), *name, *arg;
-	int r;
-
-	if (!close || *text_trim(close + 1)) {
-		return fail(p, p->line, text_trim(line), "expected '[section]'");
-	}
-	*close = '\0';
-	name = text_trim(line + 1);
-	arg = strpbrk(name, " \t");
-	if (arg) {
-		*arg++ = '\0';
-		arg = text_trim(arg);
-	}
-	if (p->sec != SEC_NONE && (r = finish_section(p))) {
-		return r;
-	}
-	snprintf(p->sec_name, sizeof(p->sec_name), "[%s%s%s]", name,
-		 arg ? " " : "", arg ? arg : "");
-	memset(p->key_line, 0, sizeof(p->key_line));
-	p->sec_line = p->line;
-	if (!p->seen_case && strcmp(name, "case")) {
-		return fail(p, p->line, p->sec_name, "the file must start "
-			    "with [case]");
-	}
-	if (!strcmp(name, "segment") && arg) {
-		p->sec = SEC_SEGMENT;
-		return open_segment(p, arg);
-	}
-	if (arg) {
-		return fail(p, p->line, p->sec_name, "unknown section");
-	}
-	if (!strcmp(name, "polyp")) {
-		p->sec = SEC_POLYP;
-		return open_polyp(p);
-	}
-	if ((!strcmp(name, "case") && !p->seen_case) ||
-	    (!strcmp(name, "lumen") && !p->seen_lumen)) {
-		p->sec = !strcmp(name, "case") ? SEC_CASE : SEC_LUMEN;
-		p->seen_case = true;
-		p->seen_lumen |= p->sec == SEC_LUMEN;
-		p->target = p->a;
-		return 0;
-	}
-	return fail(p, p->line, p->sec_name, !strcmp(name, "case") ||
-		    !strcmp(name, "lumen") ? "appears twice" :
-		    "unknown section (case, lumen, segment NAME, polyp)");
-}
-
-static int parse_stream(struct parser *p, FILE *f)
-{
-	char buf[512], *line;
-	int r;
-
-	while (fgets(buf, sizeof(buf), f)) {
-		p->line++;
-		if (!strchr(buf, '\n') && !feof(f)) {
-			return fail(p, p->line, "line", "longer than %zu "
-				    "characters", sizeof(buf) - 2);
-		}
-		buf[strcspn(buf, "#")] = '\0';
-		line = text_trim(buf);
-		if (!*line) {
-			continue;
-		}
-		r = *line == '[' ? parse_header(p, line) : parse_key(p, line);
-		if (r) {
-			return r;
-		}
-	}
-	if (p->sec == SEC_NONE) {
-		snprintf(p->err, p->errsize, "%s: [case]: missing (empty "
-			 "file)", p->path);
+	if (r->segments == ANATOMY_SEGMENTS) {
+		snprintf(why, size, "all %d segments are already there",
+			 ANATOMY_SEGMENTS);
 		return -EINVAL;
 	}
-	return finish_section(p);
+	if (strcmp(name, segment_names[r->segments])) {
+		snprintf(why, size, "expected [segment %s] next (segments run "
+			 "from the anal verge in order: anal_canal ... cecum)",
+			 segment_names[r->segments]);
+		return -EINVAL;
+	}
+	seg = &r->a.seg[r->segments++];
+	seg->mesentery_n_per_m = 150;
+	seg->mesentery_height_m = 0.06;
+	r->in_segment = true;
+	*base = seg;
+	return 0;
 }
 
-static int check_segment(struct parser *p, int id)
+static int open_polyp(struct reader *r, int line, void **base, char *why,
+		      size_t size)
 {
-	const struct anatomy_segment *seg = &p->a->seg[id];
+	if (r->a.polyps == ANATOMY_MAX_POLYPS) {
+		snprintf(why, size, "more than %d polyps", ANATOMY_MAX_POLYPS);
+		return -EINVAL;
+	}
+	r->polyp_line[r->a.polyps] = line;
+	*base = &r->a.polyp[r->a.polyps++];
+	return 0;
+}
+
+/* "[case]", "[lumen]", "[segment NAME]" or "[polyp]" begins. */
+static int begin(struct parse_file *pf, const char *kind, const char *arg,
+		 void **base, char *why, size_t size)
+{
+	struct reader *r = parse_file_user(pf);
+	bool is_case = !strcmp(kind, "case"), is_lumen = !strcmp(kind, "lumen");
+
+	r->in_segment = false;
+	if (!r->seen_case && !is_case) {
+		snprintf(why, size, "the file must start with [case]");
+		return -EINVAL;
+	}
+	if (!strcmp(kind, "segment") && arg) {
+		return open_segment(r, arg, base, why, size);
+	}
+	if (arg) {
+		snprintf(why, size, "unknown section");
+		return -EINVAL;
+	}
+	if (!strcmp(kind, "polyp")) {
+		return open_polyp(r, parse_file_line(pf), base, why, size);
+	}
+	if ((is_case && !r->seen_case) || (is_lumen && !r->seen_lumen)) {
+		r->seen_case = true;
+		r->seen_lumen |= is_lumen;
+		*base = r;
+		return 0;
+	}
+	snprintf(why, size, "%s", is_case || is_lumen ? "appears twice" :
+		 "unknown section (case, lumen, segment NAME, polyp)");
+	return -EINVAL;
+}
+
+static const struct parse_table table;
+
+/* The line segment key NAME was set on (SET_ON: the kit's), 0 if not. */
+static int segment_line(const int *set_on, const char *name)
+{
+	return set_on[parse_find(&table, "segment", name) - keys];
+}
+
+/* A section ends: a segment's lines for the checks after the file. */
+static void end(struct parse_file *pf, const int *set_on)
+{
+	struct reader *r = parse_file_user(pf);
+	int id = r->segments - 1;
+
+	r->lines = parse_file_line(pf);
+	if (!r->in_segment) {
+		return;
+	}
+	r->length_line[id] = segment_line(set_on, "length_m");
+	r->mobile_line[id] = segment_line(set_on, "mobile");
+	r->seg_set_taenia[id] = segment_line(set_on, "taenia_depth") != 0;
+	r->seg_set_fold[id] = segment_line(set_on, "fold_depth") != 0;
+}
+
+static const struct parse_table table = {
+	.keys = keys,
+	.n = sizeof(keys) / sizeof(keys[0]),
+	.flags = PARSE_HASH_COMMENTS | PARSE_KIND_ARG | PARSE_PER_SECTION,
+	.begin = begin,
+	.end = end,
+};
+
+/* ------------------------------------------------- after the file */
+
+static int check_segment(struct reader *r, int id)
+{
+	const struct anatomy_segment *seg = &r->a.seg[id];
 	double arc = 0;
 
 	for (int b = 0; b < seg->bends; b++) {
 		arc += seg->bend[b].angle_rad * seg->bend[b].radius_m;
 		if (seg->bend[b].radius_m <
 		    BEND_MARGIN * seg->diameter_m / 2) {
-			return fail(p, p->bend_line[id][b], "bend", "radius "
+			return fail(r, r->bend_line[id][b], "bend", "radius "
 				    "%g m is below the lumen radius %g m: the "
 				    "wall would fold inside the bend",
 				    seg->bend[b].radius_m, seg->diameter_m / 2);
 		}
 	}
 	if (arc > seg->length_m) {
-		return fail(p, p->length_line[id], "length_m", "%g m is "
+		return fail(r, r->length_line[id], "length_m", "%g m is "
 			    "shorter than the bends' arcs (%g m)",
 			    seg->length_m, arc);
 	}
 	if (seg->mobile && (id == 0 || id == ANATOMY_SEGMENTS - 1 ||
-			    p->a->seg[id - 1].mobile)) {
-		return fail(p, p->mobile_line[id], "mobile", "not allowed on "
+			    r->a.seg[id - 1].mobile)) {
+		return fail(r, r->mobile_line[id], "mobile", "not allowed on "
 			    "the first or last segment or beside another "
 			    "mobile segment");
 	}
 	return 0;
 }
 
-static int check_polyp(struct parser *p, int i)
+static int check_polyp(struct reader *r, int i)
 {
-	const struct anatomy_polyp *po = &p->a->polyp[i];
-	double len = anatomy_length(p->a);
+	const struct anatomy_polyp *po = &r->a.polyp[i];
+	double len = anatomy_length(&r->a);
 	int id = 0;
 
 	if (po->s_m <= 0 || po->s_m >= len) {
-		return fail(p, p->polyp_line[i], "[polyp]", "s_m %g m is not "
+		return fail(r, r->polyp_line[i], "[polyp]", "s_m %g m is not "
 			    "inside the colon (0, %g) m", po->s_m, len);
 	}
 	while (id < ANATOMY_SEGMENTS - 1 &&
-	       po->s_m >= anatomy_segment_start(p->a, id + 1)) {
+	       po->s_m >= anatomy_segment_start(&r->a, id + 1)) {
 		id++;
 	}
-	if (po->diameter_m >= p->a->seg[id].diameter_m / 2) {
-		return fail(p, p->polyp_line[i], "[polyp]", "diameter_m %g m "
+	if (po->diameter_m >= r->a.seg[id].diameter_m / 2) {
+		return fail(r, r->polyp_line[i], "[polyp]", "diameter_m %g m "
 			    "is too large for the %s lumen (%g m)",
 			    po->diameter_m, segment_names[id],
-			    p->a->seg[id].diameter_m);
+			    r->a.seg[id].diameter_m);
 	}
 	return 0;
 }
 
-static int check(struct parser *p)
+static int check(struct reader *r)
 {
-	int r;
+	int e;
 
-	if (p->segments < ANATOMY_SEGMENTS) {
-		return fail(p, p->line, "[segment]", "[segment %s] is missing",
-			    segment_names[p->segments]);
+	if (r->segments < ANATOMY_SEGMENTS) {
+		return fail(r, r->lines, "[segment]", "[segment %s] is missing",
+			    segment_names[r->segments]);
 	}
 	for (int id = 0; id < ANATOMY_SEGMENTS; id++) {
-		struct anatomy_segment *seg = &p->a->seg[id];
+		struct anatomy_segment *seg = &r->a.seg[id];
 
-		if (!p->seg_set_taenia[id]) {
-			seg->taenia_depth = p->taenia_depth;
+		if (!r->seg_set_taenia[id]) {
+			seg->taenia_depth = r->taenia_depth;
 		}
-		if (!p->seg_set_fold[id]) {
-			seg->fold_depth = p->fold_depth;
+		if (!r->seg_set_fold[id]) {
+			seg->fold_depth = r->fold_depth;
 		}
-		r = check_segment(p, id);
-		if (r) {
-			return r;
+		e = check_segment(r, id);
+		if (e) {
+			return e;
 		}
 	}
-	for (int i = 0; i < p->a->polyps; i++) {
-		r = check_polyp(p, i);
-		if (r) {
-			return r;
+	for (int i = 0; i < r->a.polyps; i++) {
+		e = check_polyp(r, i);
+		if (e) {
+			return e;
 		}
 	}
 	return 0;
@@ -544,25 +418,27 @@ static int check(struct parser *p)
 static int load_stream(struct anatomy *a, FILE *f, const char *path,
 		       char *err, size_t errsize)
 {
-	struct parser *p = calloc(1, sizeof(*p));
-	int r;
+	struct reader *r = calloc(1, sizeof(*r));
+	int n;
 
-	if (!p) {
+	if (!r) {
 		snprintf(err, errsize, "%s: out of memory", path);
 		return -ENOMEM;
 	}
-	memset(a, 0, sizeof(*a));
-	a->fold_spacing_m = 0.03;
-	a->fold_width_m = 0.005;
-	*p = (struct parser){ .a = a, .path = path, .err = err,
-			      .errsize = errsize, .taenia_depth = 0.10,
-			      .fold_depth = 0.15 };
-	r = parse_stream(p, f);
-	if (!r) {
-		r = check(p);
+	*r = (struct reader){ .path = path, .err = err, .errsize = errsize,
+			      .taenia_depth = 0.10, .fold_depth = 0.15 };
+	r->a.fold_spacing_m = 0.03;
+	r->a.fold_width_m = 0.005;
+	n = parse_ini(&table, f, path, r, r, err, errsize);
+	if (n >= 0 && !r->seen_case) {
+		snprintf(err, errsize, "%s: [case]: missing (empty file)",
+			 path);
+		n = -EINVAL;
 	}
-	free(p);
-	return r;
+	n = n < 0 ? n : check(r);
+	*a = r->a;
+	free(r);
+	return n;
 }
 
 static int cannot_open(const char *path, char *err, size_t errsize)

@@ -3,7 +3,10 @@
  * the anal verge, and its pathologies, read from a case file.
  *
  * Case file format (config/cases/NAME.case): lines "key = value" under
- * section headers; '#' starts a comment; blank lines are ignored.
+ * section headers; '#' starts a comment anywhere, ';' at a line's start or
+ * after a blank; blank lines are ignored. Read by the parsing kit over
+ * libinih (base/parse.h has the grammar), from a file or a session's CASE
+ * frame.
  *
  *   [case]                      once, first
  *   name = normal               required; letters, digits, '-', '_'
@@ -55,10 +58,11 @@
  * wall would fold on the inside of the bend), mobile segments as above,
  * polyps inside the colon and smaller than the lumen.
  *
- * Errors are one line "FILE:LINE: key: what" (or "FILE:LINE: [section]:
- * what") in the caller's buffer. Loading reads the file and does not
- * allocate beyond stdio; struct anatomy is plain data (copy it freely).
- * Any thread.
+ * Errors are one line "FILE:LINE: [section] key: what", "FILE:LINE:
+ * [section]: what" or, for the checks after the file, "FILE:LINE: key:
+ * what", in the caller's buffer. Loading reads the file and allocates only
+ * while it reads; struct anatomy is plain data (copy it freely). Any
+ * thread.
  */
 #ifndef ENDOSIM_ANATOMY_H
 #define ENDOSIM_ANATOMY_H

@@ -46,6 +46,7 @@
 #include "model/centreline.h"
 #include "model/contact.h"
 #include "model/mesh.h"
+#include "model/scope.h"
 
 #define COLON_MAX_REGIONS ANATOMY_SEGMENTS
 
@@ -57,8 +58,16 @@ struct colon_params {
 				    surface's inset (contact.h), 0..0.02 */
 };
 
-#define COLON_PARAMS_DEFAULT { .step_m = 0.002, .ring_vertices = 192, \
-			       .segment_m = 0.04, .contact_radius_m = 0.0065 }
+/* The default resolution ([case] in the configuration); the contact
+ * radius is the scope's (scope.h). */
+#define COLON_DEFAULT_STEP_M 0.002
+#define COLON_DEFAULT_RING_VERTICES 192
+#define COLON_DEFAULT_SEGMENT_M 0.04
+
+#define COLON_PARAMS_DEFAULT { .step_m = COLON_DEFAULT_STEP_M, \
+			       .ring_vertices = COLON_DEFAULT_RING_VERTICES, \
+			       .segment_m = COLON_DEFAULT_SEGMENT_M, \
+			       .contact_radius_m = SCOPE_RADIUS_M }
 
 /* A named stretch of the colon: an anatomical segment, or the whole of an
  * imported colon. */

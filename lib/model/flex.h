@@ -71,11 +71,18 @@ struct flex_params {
 	double bending_n_per_m;  /* k_b, against crumpling */
 };
 
-#define FLEX_PARAMS_DEFAULT { .node_spacing_m = 0.02, \
-			      .mass_per_m_kg = 0.3, \
-			      .damping_n_s_per_m = 20, \
-			      .chain_n_per_m = 100, \
-			      .bending_n_per_m = 300 }
+#define FLEX_DEFAULT_NODE_SPACING_M 0.02
+#define FLEX_DEFAULT_MASS_PER_M_KG 0.3 /* a guess: wall and contents */
+#define FLEX_DEFAULT_DAMPING_N_S_PER_M 20
+#define FLEX_DEFAULT_CHAIN_N_PER_M 100
+#define FLEX_DEFAULT_BENDING_N_PER_M 300
+
+#define FLEX_PARAMS_DEFAULT { \
+	.node_spacing_m = FLEX_DEFAULT_NODE_SPACING_M, \
+	.mass_per_m_kg = FLEX_DEFAULT_MASS_PER_M_KG, \
+	.damping_n_s_per_m = FLEX_DEFAULT_DAMPING_N_S_PER_M, \
+	.chain_n_per_m = FLEX_DEFAULT_CHAIN_N_PER_M, \
+	.bending_n_per_m = FLEX_DEFAULT_BENDING_N_PER_M }
 
 struct flex;
 

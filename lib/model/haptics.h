@@ -120,9 +120,93 @@
 
 #include "model/colon.h"
 #include "proto/endosim_shm.h"
-#include "model/haptics_gains.h"
 #include "model/rodscope.h"
 #include "model/scope.h"
+
+/* [haptics] model: which model renders the forces. */
+enum haptics_model {
+	HAPTICS_MODEL_PAPER = 0, /* the paper's: the tube on the centreline */
+	HAPTICS_MODEL_ROD = 1,   /* an elastic rod in a colon that moves */
+};
+
+/* The model's gains: the configuration's [haptics] (every key with its
+ * unit and range in `endosimd --print-config`). Units in the names. */
+struct haptics_gains {
+	int model;                     /* enum haptics_model (not live) */
+	double scope_radius_m;         /* the tip: the contact inset */
+	double wall_stiffness_n_per_m;
+	double wall_damping_n_s_per_m;
+	double tip_lateral_stiffness_n_per_m; /* bending section */
+	int force_shading;             /* 1: interpolated normals */
+	double contact_reach_m;        /* colon searched around the tip */
+	double entry_depth_m;          /* contact from this depth on */
+	double friction_n_s_per_m_rad; /* c_f */
+	double torsion_n_m_s_per_rad2; /* roll friction per turning */
+	double wire_spacing_m;         /* dr */
+	double wire_tension_n_m_per_m; /* k_t */
+	double bending_stiffness_n_m_per_rad;
+	double stop_stiffness_n_m_per_rad; /* each knob's end */
+	double stop_damping_n_m_s_per_rad;
+	double wheel_delay_s;          /* a drive's wheel: its lag */
+	double loop_relax_s;           /* how fast a loop follows */
+	double damping[ENDOSIM_AXES];  /* N s/m or N m s/rad */
+	int passivity;                 /* 1: passivity observer on */
+};
+
+/* The gains' defaults, each written once (the configuration's table takes
+ * them); the scope's radius and wire spacing are scope.h's. */
+#define HAPTICS_DEFAULT_MODEL HAPTICS_MODEL_ROD
+#define HAPTICS_DEFAULT_WALL_STIFFNESS_N_PER_M 2000
+#define HAPTICS_DEFAULT_WALL_DAMPING_N_S_PER_M 15
+#define HAPTICS_DEFAULT_TIP_LATERAL_STIFFNESS_N_PER_M 150
+#define HAPTICS_DEFAULT_FORCE_SHADING 1
+#define HAPTICS_DEFAULT_CONTACT_REACH_M 0.1
+#define HAPTICS_DEFAULT_ENTRY_DEPTH_M 0.02
+#define HAPTICS_DEFAULT_FRICTION_N_S_PER_M_RAD 8
+#define HAPTICS_DEFAULT_TORSION_N_M_S_PER_RAD2 0.02
+#define HAPTICS_DEFAULT_WIRE_TENSION_N_M_PER_M 0.5
+#define HAPTICS_DEFAULT_BENDING_STIFFNESS_N_M_PER_RAD 0.01
+#define HAPTICS_DEFAULT_STOP_STIFFNESS_N_M_PER_RAD 0.5
+#define HAPTICS_DEFAULT_STOP_DAMPING_N_M_S_PER_RAD 4e-3
+#define HAPTICS_DEFAULT_WHEEL_DELAY_S 0.003
+#define HAPTICS_DEFAULT_LOOP_RELAX_S 0.1
+#define HAPTICS_DEFAULT_INSERTION_DAMPING_N_S_PER_M 0.5
+#define HAPTICS_DEFAULT_ROLL_DAMPING_N_M_S_PER_RAD 1e-3
+#define HAPTICS_DEFAULT_WHEEL_DAMPING_N_M_S_PER_RAD 2e-4
+#define HAPTICS_DEFAULT_PASSIVITY 1
+
+#define HAPTICS_GAINS_DEFAULT { \
+	.model = HAPTICS_DEFAULT_MODEL, \
+	.scope_radius_m = SCOPE_RADIUS_M, \
+	.wall_stiffness_n_per_m = HAPTICS_DEFAULT_WALL_STIFFNESS_N_PER_M, \
+	.wall_damping_n_s_per_m = HAPTICS_DEFAULT_WALL_DAMPING_N_S_PER_M, \
+	.tip_lateral_stiffness_n_per_m = \
+		HAPTICS_DEFAULT_TIP_LATERAL_STIFFNESS_N_PER_M, \
+	.force_shading = HAPTICS_DEFAULT_FORCE_SHADING, \
+	.contact_reach_m = HAPTICS_DEFAULT_CONTACT_REACH_M, \
+	.entry_depth_m = HAPTICS_DEFAULT_ENTRY_DEPTH_M, \
+	.friction_n_s_per_m_rad = HAPTICS_DEFAULT_FRICTION_N_S_PER_M_RAD, \
+	.torsion_n_m_s_per_rad2 = HAPTICS_DEFAULT_TORSION_N_M_S_PER_RAD2, \
+	.wire_spacing_m = SCOPE_WIRE_SPACING_M, \
+	.wire_tension_n_m_per_m = HAPTICS_DEFAULT_WIRE_TENSION_N_M_PER_M, \
+	.bending_stiffness_n_m_per_rad = \
+		HAPTICS_DEFAULT_BENDING_STIFFNESS_N_M_PER_RAD, \
+	.stop_stiffness_n_m_per_rad = \
+		HAPTICS_DEFAULT_STOP_STIFFNESS_N_M_PER_RAD, \
+	.stop_damping_n_m_s_per_rad = \
+		HAPTICS_DEFAULT_STOP_DAMPING_N_M_S_PER_RAD, \
+	.wheel_delay_s = HAPTICS_DEFAULT_WHEEL_DELAY_S, \
+	.loop_relax_s = HAPTICS_DEFAULT_LOOP_RELAX_S, \
+	.damping = { \
+		[ENDOSIM_AXIS_INSERTION] = \
+			HAPTICS_DEFAULT_INSERTION_DAMPING_N_S_PER_M, \
+		[ENDOSIM_AXIS_ROLL] = \
+			HAPTICS_DEFAULT_ROLL_DAMPING_N_M_S_PER_RAD, \
+		[ENDOSIM_AXIS_WHEEL_UD] = \
+			HAPTICS_DEFAULT_WHEEL_DAMPING_N_M_S_PER_RAD, \
+		[ENDOSIM_AXIS_WHEEL_LR] = \
+			HAPTICS_DEFAULT_WHEEL_DAMPING_N_M_S_PER_RAD }, \
+	.passivity = HAPTICS_DEFAULT_PASSIVITY }
 
 struct haptics;
 

@@ -44,6 +44,7 @@
 #include "model/colon.h"
 #include "model/flex.h"
 #include "model/rod.h"
+#include "model/scope.h"
 
 #define LUMEN_WALK 64                 /* samples walked per step, at most */
 #define LUMEN_PIPE_CLEARANCE_M 0.001  /* the guide's play around the tube */
@@ -57,10 +58,18 @@ struct lumen_params {
 	double tube_radius_m;    /* r: the insertion tube's outer radius */
 };
 
-#define LUMEN_PARAMS_DEFAULT { .wall_n_per_m2 = 1.5e5, \
-			       .wall_damping_s = 0.01, .friction = 0.05, \
-			       .slip_m_per_s = 0.002, \
-			       .pipe_n_per_m2 = 1e6, .tube_radius_m = 0.0065 }
+#define LUMEN_DEFAULT_WALL_N_PER_M2 1.5e5
+#define LUMEN_DEFAULT_WALL_DAMPING_S 0.01
+#define LUMEN_DEFAULT_FRICTION 0.05
+#define LUMEN_DEFAULT_SLIP_M_PER_S 0.002
+#define LUMEN_DEFAULT_PIPE_N_PER_M2 1e6
+
+#define LUMEN_PARAMS_DEFAULT { .wall_n_per_m2 = LUMEN_DEFAULT_WALL_N_PER_M2, \
+			       .wall_damping_s = LUMEN_DEFAULT_WALL_DAMPING_S, \
+			       .friction = LUMEN_DEFAULT_FRICTION, \
+			       .slip_m_per_s = LUMEN_DEFAULT_SLIP_M_PER_S, \
+			       .pipe_n_per_m2 = LUMEN_DEFAULT_PIPE_N_PER_M2, \
+			       .tube_radius_m = SCOPE_RADIUS_M }
 
 /* This step's totals. */
 struct lumen_totals {

@@ -58,6 +58,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "model/scope.h"
+
 #define ROD_MIN_SEGMENTS 2
 #define ROD_MAX_SEGMENTS 1024
 
@@ -78,11 +80,24 @@ struct rod_params {
 /* A colonoscope's insertion tube (docs/ARCHITECTURE.md, SCOPE-MECHANICS):
  * 1.6 m in 160 segments, EI 0.03 N m^2, GJ 0.45 N m^2 (78 N cm^2/deg),
  * 0.2 kg/m. */
-#define ROD_PARAMS_DEFAULT { .segments = 160, .length_m = 1.6, \
-			     .radius_m = 0.0065, .mass_per_m_kg = 0.2, \
-			     .bending_n_m2 = 0.03, .torsion_n_m2 = 0.45, \
-			     .damping_s = 0.002, .drag_n_s_per_m2 = 0.5, \
-			     .iterations = 2 }
+#define ROD_DEFAULT_SEGMENTS 160
+#define ROD_DEFAULT_LENGTH_M 1.6
+#define ROD_DEFAULT_MASS_PER_M_KG 0.2
+#define ROD_DEFAULT_BENDING_N_M2 0.03
+#define ROD_DEFAULT_TORSION_N_M2 0.45
+#define ROD_DEFAULT_DAMPING_S 0.002
+#define ROD_DEFAULT_DRAG_N_S_PER_M2 0.5
+#define ROD_DEFAULT_ITERATIONS 2
+
+#define ROD_PARAMS_DEFAULT { .segments = ROD_DEFAULT_SEGMENTS, \
+			     .length_m = ROD_DEFAULT_LENGTH_M, \
+			     .radius_m = SCOPE_RADIUS_M, \
+			     .mass_per_m_kg = ROD_DEFAULT_MASS_PER_M_KG, \
+			     .bending_n_m2 = ROD_DEFAULT_BENDING_N_M2, \
+			     .torsion_n_m2 = ROD_DEFAULT_TORSION_N_M2, \
+			     .damping_s = ROD_DEFAULT_DAMPING_S, \
+			     .drag_n_s_per_m2 = ROD_DEFAULT_DRAG_N_S_PER_M2, \
+			     .iterations = ROD_DEFAULT_ITERATIONS }
 
 /* A segment's load, linear in its motion over the step (above). */
 struct rod_load {

@@ -68,17 +68,25 @@ struct rodscope_params {
 	double wire_spacing_m;            /* dr: the wires from the axis */
 };
 
-#define RODSCOPE_PARAMS_DEFAULT { .rod = ROD_PARAMS_DEFAULT, \
-				  .bending_length_m = 0.09, \
-				  .tip_bending_n_m2 = 0.01, \
-				  .lumen = LUMEN_PARAMS_DEFAULT, \
-				  .flex = FLEX_PARAMS_DEFAULT, \
-				  .coupling_n_per_m = 3000, \
-				  .coupling_n_s_per_m = 20, \
-				  .roll_n_m_per_rad = 2, \
-				  .roll_n_m_s_per_rad = 0.005, \
-				  .stop_n_per_m = 5000, \
-				  .wire_spacing_m = 0.008 }
+#define RODSCOPE_DEFAULT_TIP_BENDING_N_M2 0.01
+#define RODSCOPE_DEFAULT_COUPLING_N_PER_M 3000
+#define RODSCOPE_DEFAULT_COUPLING_N_S_PER_M 20
+#define RODSCOPE_DEFAULT_ROLL_N_M_PER_RAD 2
+#define RODSCOPE_DEFAULT_ROLL_N_M_S_PER_RAD 0.005
+#define RODSCOPE_DEFAULT_STOP_N_PER_M 5000
+
+#define RODSCOPE_PARAMS_DEFAULT { \
+	.rod = ROD_PARAMS_DEFAULT, \
+	.bending_length_m = SCOPE_DEFAULT_BENDING_LENGTH_M, \
+	.tip_bending_n_m2 = RODSCOPE_DEFAULT_TIP_BENDING_N_M2, \
+	.lumen = LUMEN_PARAMS_DEFAULT, \
+	.flex = FLEX_PARAMS_DEFAULT, \
+	.coupling_n_per_m = RODSCOPE_DEFAULT_COUPLING_N_PER_M, \
+	.coupling_n_s_per_m = RODSCOPE_DEFAULT_COUPLING_N_S_PER_M, \
+	.roll_n_m_per_rad = RODSCOPE_DEFAULT_ROLL_N_M_PER_RAD, \
+	.roll_n_m_s_per_rad = RODSCOPE_DEFAULT_ROLL_N_M_S_PER_RAD, \
+	.stop_n_per_m = RODSCOPE_DEFAULT_STOP_N_PER_M, \
+	.wire_spacing_m = SCOPE_WIRE_SPACING_M }
 
 /* What the rig's axes are this step. */
 struct rodscope_axes {

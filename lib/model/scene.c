@@ -20,6 +20,7 @@ struct scene {
 	Endosim__ScenePolyp *polyp_p[ANATOMY_MAX_POLYPS];
 	Endosim__SceneSegment *segment;
 	Endosim__SceneSegment **segment_p;
+	Endosim__SceneScope scope;
 };
 
 static void fill_regions(struct scene *s)
@@ -204,6 +205,19 @@ static void triangle_chunk(struct scene *s, uint32_t k)
 	s->chunk.indices = &m->tri[first][0];
 }
 
+void scene_set_scope(struct scene *s, const struct scope_params *p,
+		     double radius_m)
+{
+	endosim__scene_scope__init(&s->scope);
+	s->scope.bending_length_m = p->bending_length_m;
+	s->scope.ud_gain = p->ud_gain;
+	s->scope.lr_gain = p->lr_gain;
+	s->scope.ud_limit_rad = p->ud_limit_rad;
+	s->scope.lr_limit_rad = p->lr_limit_rad;
+	s->scope.radius_m = radius_m;
+	s->info.scope = &s->scope;
+}
+
 Endosim__SceneReply *scene_reply(struct scene *s, uint32_t chunk)
 {
 	if (chunk >= scene_chunks(s)) {
@@ -234,6 +248,7 @@ void scene_client(struct scene *s, struct client_scene *out)
 	memset(out, 0, sizeof(*out));
 	out->scene_id = s->id;
 	out->info = &s->info;
+	out->scope = s->info.scope;
 	out->vertices = m->vertices;
 	out->triangles = m->triangles;
 	out->positions = m->pos;

@@ -5,7 +5,9 @@
  * (SCENE_TRIANGLES_PER_CHUNK, ~1.5 MB each), so that no reply passes a
  * few MiB whatever the resolution.
  *
- * The replies point into the colon's undeformed centreline and mesh,
+ * Chunk 0 also says which scope the colon is rendered with (the scope's
+ * parameters, scene_set_scope()). The replies point into the colon's
+ * undeformed centreline and mesh,
  * which nobody writes once built (the force loop bows the centreline's
  * current samples only), so the control thread may serve them while the
  * loop runs. Any one thread that is not the force loop (endosimd's control
@@ -19,6 +21,7 @@
 
 #include "proto/client.h"
 #include "model/colon.h"
+#include "model/scope.h"
 #include "proto/endosim.pb-c.h"
 
 #define SCENE_VERTICES_PER_CHUNK 32768u
@@ -35,6 +38,13 @@ void scene_destroy(struct scene *s);
 
 uint64_t scene_id(const struct scene *s);
 uint32_t scene_chunks(const struct scene *s);
+
+/*
+ * The scope chunk 0 describes from now on (SceneInfo's scope): P and the
+ * tip's and tube's RADIUS_M. Until it is set, chunk 0 has none.
+ */
+void scene_set_scope(struct scene *s, const struct scope_params *p,
+		     double radius_m);
 
 /*
  * The reply for chunk CHUNK: valid until the next call on S. Returns NULL

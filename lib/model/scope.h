@@ -49,12 +49,26 @@ struct scope_params {
 	double lr_limit_rad;     /* |bend_lr| at most, 0..pi */
 };
 
-/* Gains that take the rig's default wheel travel (+-1.75 rad) to the
- * default limits. */
-#define SCOPE_PARAMS_DEFAULT { .bending_length_m = 0.09, \
-			       .ud_gain = 1.8, .lr_gain = 1.6, \
-			       .ud_limit_rad = M_PI, \
-			       .lr_limit_rad = 160 * M_PI / 180 }
+/*
+ * The shipped scope, each of its defaults written here once: the model's
+ * *_PARAMS_DEFAULT and the configuration's keys ([scope], [haptics]
+ * scope_radius_m and wire_spacing_m, [rod]) take them. The gains take the
+ * rig's default wheel travel (+-1.75 rad) to the limits, which are 180 and
+ * 160 deg as `endosimd --print-config` writes them (%.9g).
+ */
+#define SCOPE_RADIUS_M 0.0065            /* the tip and the tube: 13 mm */
+#define SCOPE_WIRE_SPACING_M 0.008       /* dr: a wheel's two wires apart */
+#define SCOPE_DEFAULT_BENDING_LENGTH_M 0.09
+#define SCOPE_DEFAULT_UD_GAIN 1.8
+#define SCOPE_DEFAULT_LR_GAIN 1.6
+#define SCOPE_DEFAULT_UD_LIMIT_RAD 3.14159
+#define SCOPE_DEFAULT_LR_LIMIT_RAD 2.79253
+
+#define SCOPE_PARAMS_DEFAULT { \
+	.bending_length_m = SCOPE_DEFAULT_BENDING_LENGTH_M, \
+	.ud_gain = SCOPE_DEFAULT_UD_GAIN, .lr_gain = SCOPE_DEFAULT_LR_GAIN, \
+	.ud_limit_rad = SCOPE_DEFAULT_UD_LIMIT_RAD, \
+	.lr_limit_rad = SCOPE_DEFAULT_LR_LIMIT_RAD }
 
 struct scope_input {
 	double depth_m;      /* insertion axis, m */

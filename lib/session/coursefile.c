@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/parse.h"
 #include "base/text.h"
 
 #define COURSEFILE_MAX_BYTES (1 << 20)
@@ -41,29 +42,18 @@ static int fail(struct parser *p, const char *fmt, ...)
 /* "NAME:LINE: message"; always returns -EINVAL. */
 static int fail(struct parser *p, const char *fmt, ...)
 {
-	char msg[200];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	parse_verror(p->err, p->errsize, p->name, p->line, NULL, fmt, ap);
 	va_end(ap);
-	snprintf(p->err, p->errsize, "%s:%d: %s", p->name, p->line, msg);
 	return -EINVAL;
 }
 
-static int parse_double(const char *text, double *out)
+static const struct metricstext_field *find_field(const char *key)
 {
-	char *end;
-
-	errno = 0;
-	*out = strtod(text, &end);
-	return errno || end == text || *end || !isfinite(*out) ? -EINVAL : 0;
-}
-
-static const struct metrics_field *find_field(const char *key)
-{
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	for (size_t i = 0; i < n; i++) {
 		if (!strcmp(f[i].key, key)) {
@@ -222,19 +212,14 @@ static int finish(struct parser *p)
 			      : !p->c->n_cases     ? "no [case NAME] section"
 						   : NULL;
 
+	p->line = 0;
 	for (size_t i = 0; !missing && i < p->c->n_cases; i++) {
 		if (!p->c->cases[i].n_reqs) {
-			p->line = 0;
-			snprintf(p->err, p->errsize, "%s: [case %s] has no "
-				 "requirement", p->name, p->c->cases[i].name);
-			return -EINVAL;
+			return fail(p, "[case %s] has no requirement",
+				    p->c->cases[i].name);
 		}
 	}
-	if (missing) {
-		snprintf(p->err, p->errsize, "%s: %s", p->name, missing);
-		return -EINVAL;
-	}
-	return 0;
+	return missing ? fail(p, "%s", missing) : 0;
 }
 
 int coursefile_parse(struct coursefile *c, const char *text, const char *name,
@@ -308,7 +293,7 @@ const struct coursefile_case *coursefile_case(const struct coursefile *c,
 bool coursefile_met(const struct coursefile_req *q,
 		    const struct metrics_result *m)
 {
-	double v = metrics_field_value(m, q->field);
+	double v = metricstext_field_value(m, q->field);
 
 	if (!strcmp(q->field->key, "cecum_s") && v < 0) {
 		return false; /* never reached */

@@ -13,11 +13,11 @@
  *   consecutive = 3              sessions in a row, 1 .. 100
  *
  *   [case normal]                a case's name (config/cases/NAME.case)
- *   cecum_s <= 480               KEY OP NUMBER: KEY one of metrics_fields()'
- *   withdrawal_s >= 360          keys (the END frame's, in its units: s, m,
- *   mucosa_seen >= 0.90          N, shares 0..1) but polyps_seen_mask (a
- *                                set, not a measure), OP one of <= >= < > ==
- *   force_episodes == 0
+ *   cecum_s <= 480               KEY OP NUMBER: KEY one of
+ *   withdrawal_s >= 360          metricstext_fields()' keys (the END
+ *   mucosa_seen >= 0.90          frame's, in its units: s, m, N, shares
+ *   force_episodes == 0          0..1) but polyps_seen_mask (a set, not a
+ *                                measure), OP one of <= >= < > ==
  *
  * A session that never reached the cecum (cecum_s < 0) meets no
  * requirement on cecum_s. A case is complete when `consecutive` of the
@@ -34,6 +34,7 @@
 #include <stddef.h>
 
 #include "session/metrics.h"
+#include "session/metricstext.h"
 
 #define COURSEFILE_MAX_CASES 16
 #define COURSEFILE_MAX_REQS 16
@@ -48,7 +49,7 @@ enum coursefile_op {
 };
 
 struct coursefile_req {
-	const struct metrics_field *field; /* into metrics_fields()' table */
+	const struct metricstext_field *field; /* metricstext_fields()' */
 	enum coursefile_op op;
 	double value;                      /* in the field's unit */
 };

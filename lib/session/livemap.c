@@ -3,6 +3,13 @@
 
 #include <math.h>
 
+/* The ramp's ends, unseen then seen, 0..255 a channel: on the screen
+ * 0.93, 0.16, 0.20 and 0.20, 0.62, 0.32 of full scale. */
+static const double ramp[][2][3] = {
+	[LIVEMAP_ON_PAGE] = { { 214, 60, 60 }, { 154, 230, 180 } },
+	[LIVEMAP_ON_SCREEN] = { { 237.15, 40.8, 51 }, { 51, 158.1, 81.6 } },
+};
+
 void livemap_quantise(const struct metrics_map *map,
 		      uint8_t cells[LIVEMAP_CELLS])
 {
@@ -37,4 +44,14 @@ double livemap_mean_seen(const uint8_t *cells, size_t n)
 		}
 	}
 	return walls ? sum / (double)walls : 0;
+}
+
+void livemap_colour(enum livemap_background bg, double share,
+		    double rgb[3])
+{
+	const double *unseen = ramp[bg][0], *seen = ramp[bg][1];
+
+	for (int c = 0; c < 3; c++) {
+		rgb[c] = unseen[c] + share * (seen[c] - unseen[c]);
+	}
 }

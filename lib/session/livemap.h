@@ -29,6 +29,23 @@ void livemap_quantise(const struct metrics_map *map,
 double livemap_share(uint8_t cell);
 
 /*
+ * The map's colour ramp, the one the report (report.h) and endoview's
+ * overlay (viewer/mapview.h) paint a cell with: its share seen 0..1 as a
+ * colour from unseen, red, to seen, green, each channel linear in the
+ * share, 0..255 (sRGB). Its ends are the background's: on the report's
+ * white page a pale green reads as seen; on endoview's dark overlay a
+ * deeper green (and a brighter red) does.
+ */
+enum livemap_background {
+	LIVEMAP_ON_PAGE,   /* the report's: 214,60,60 to 154,230,180 */
+	LIVEMAP_ON_SCREEN, /* endoview's */
+};
+
+/* SHARE's colour on BG into RGB (0..255 each). */
+void livemap_colour(enum livemap_background bg, double share,
+		    double rgb[3]);
+
+/*
  * The mean share seen over the N cells with wall (each cell counted
  * alike, not by its area: metrics_result's mucosa_seen weighs by area);
  * 0 when none has wall.

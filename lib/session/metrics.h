@@ -5,7 +5,8 @@
  * file (endoctl session show/report on a file cut short).
  *
  * What is measured (definitions, thresholds, units and the limits of each
- * method in docs/METRICS.md; the formulas also in metrics.c):
+ * method in docs/METRICS.md; the formulas also in metrics.c and, for
+ * what the camera sees, metricsview.c):
  *   - time to the cecum: from the first record to the first with the tip
  *     in the cecum segment; insertion time (to the cecum) and withdrawal
  *     time (from the cecum until the tip leaves the rectum or the session
@@ -76,8 +77,16 @@ struct metrics_params {
 #define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
 				       colon; a case: the rectum's start) */
 
-/* Defaults: 15 N, 0.01 m, 0.06 m, 140 deg, 10 Hz, 0.2 s, 70 deg, 0.03 m,
- * 5 N, 0.5 s, 2.5 s. */
+/* The defaults of the thresholds that the configuration's [session] sets
+ * (the configuration, a wing below this one, writes them again; test_config
+ * holds the two together). The loop threshold is the paper model's. */
+#define METRICS_DEFAULT_FORCE_THRESHOLD_N 15
+#define METRICS_DEFAULT_LOOP_THRESHOLD_M 0.01
+#define METRICS_DEFAULT_VIEW_DISTANCE_M 0.06
+#define METRICS_DEFAULT_FOV_DEG 140
+#define METRICS_DEFAULT_VIEW_RATE_HZ 10
+
+/* Defaults: the above, and 0.2 s, 70 deg, 0.03 m, 5 N, 0.5 s, 2.5 s. */
 void metrics_params_default(struct metrics_params *p);
 
 struct metrics_episode {
@@ -174,22 +183,6 @@ double metrics_mucosa_seen_between(const struct metrics *m, double s0_m,
 double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
 			      double s1_m, double a0_rad, double a1_rad);
 
-/* One scalar measure of struct metrics_result: its key (as the END frame,
- * the JSON and the summary CSV name it), where it is, its type ('d'
- * double, 'u' uint32_t, 'l' uint64_t). */
-struct metrics_field {
-	const char *key;
-	size_t offset;
-	char type;
-};
-
-/* The table of them, in the END frame's order; returns how many. */
-size_t metrics_fields(const struct metrics_field **out);
-
-/* F's value in R. */
-double metrics_field_value(const struct metrics_result *r,
-			   const struct metrics_field *f);
-
 /* The colon unrolled: METRICS_MAP_S cells along it, METRICS_MAP_A around. */
 #define METRICS_MAP_S 160
 #define METRICS_MAP_A 24
@@ -209,15 +202,5 @@ struct metrics_map {
  * seen: a map costs a pass over the cells, not the mesh.
  */
 void metrics_map(const struct metrics *m, struct metrics_map *out);
-
-/*
- * RESULT as "key=value\n" lines (the END frame, `session show`); returns
- * the length written, or -ENOSPC when SIZE is too small.
- */
-int metrics_format(const struct metrics_result *result, char *buf,
-		   size_t size);
-
-/* The inverse of metrics_format(): 0, or -EINVAL naming nothing. */
-int metrics_parse(const char *text, struct metrics_result *out);
 
 #endif

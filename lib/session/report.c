@@ -10,18 +10,16 @@
 
 #include "model/colon.h"
 #include "session/htmlpage.h"
+#include "session/livemap.h"
 #include "proto/names.h"
 #include "session/report.h"
+#include "session/reportcompare.h"
+#include "session/reportplot.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 #define WITHDRAWAL_MARK_S 360.0
 #define MAX_EVENT_ROWS 200
-
-struct series {
-	const char *name;
-	double (*get)(const struct session_record *r, int arg);
-	int arg;
-};
 
 /* ---------------------------------------------------------------- text */
 
@@ -40,21 +38,6 @@ static void put_header(FILE *out, const struct session_file *f,
 }
 
 /* ---------------------------------------------------------------- axes */
-
-static double rec_t(const struct htmlpage_plot *p,
-		    const struct session_record *r)
-{
-	return (double)(int64_t)(r->stamp_ns - p->t0_ns) * ENDOSIM_S_PER_NS;
-}
-
-/* A plot over the session's time (s, or min past 5 min: P->xscale). */
-static void plot_begin(struct htmlpage_plot *p, const char *id,
-		       const char *title, double ylo, double yhi,
-		       const char *ylabel)
-{
-	htmlpage_plot_begin(p, id, title, ylo, yhi,
-			    p->xscale > 1 ? "time (min)" : "time (s)", ylabel);
-}
 
 /* Episodes as shaded bands of CLASS, from 0 to the plot's top. */
 static void plot_bands(const struct htmlpage_plot *p,
@@ -114,60 +97,8 @@ static void plot_events(const struct htmlpage_plot *p,
 	}
 }
 
-/* The column's extremes in the order they came (peaks survive). */
-static void path_column(FILE *o, bool *first, double x, double a, double b)
-{
-	fprintf(o, "%s%.1f,%.1f", *first ? "M" : " L", x, a);
-	*first = false;
-	if (fabs(a - b) >= 0.05) {
-		fprintf(o, " L%.1f,%.1f", x, b);
-	}
-}
-
-/* One series, decimated to the min and max of each pixel column. */
-static void plot_series(const struct htmlpage_plot *p,
-			const struct session_file *f,
-			const struct series *s, const char *color)
-{
-	bool first = true, have = false;
-	long col = -1;
-	double lo = 0, hi = 0;
-	size_t ilo = 0, ihi = 0;
-
-	fprintf(p->out, "<path class=\"series\" stroke=\"%s\" d=\"", color);
-	for (size_t i = 0; i <= f->n_records; i++) {
-		const struct session_record *r = &f->records[i < f->n_records ?
-							   i : i - 1];
-		long c = i < f->n_records
-				 ? lround(htmlpage_px_x(p, rec_t(p, r)))
-				 : -2;
-		double v = i < f->n_records ? s->get(r, s->arg) : NAN;
-
-		if (c != col && have) {
-			path_column(p->out, &first, (double)col,
-				    htmlpage_px_y(p, ilo < ihi ? lo : hi),
-				    htmlpage_px_y(p, ilo < ihi ? hi : lo));
-			have = false;
-		}
-		col = c;
-		if (!isfinite(v)) {
-			continue;
-		}
-		if (!have || v < lo) {
-			lo = v;
-			ilo = i;
-		}
-		if (!have || v > hi) {
-			hi = v;
-			ihi = i;
-		}
-		have = true;
-	}
-	fputs("\"/>\n", p->out);
-}
-
-static void plot_legend(const struct htmlpage_plot *p, const struct series *s,
-			int n, bool bands)
+static void plot_legend(const struct htmlpage_plot *p,
+			const struct reportplot_series *s, int n, bool bands)
 {
 	double x = HTMLPAGE_PLOT_X + 4;
 
@@ -196,30 +127,9 @@ static double get_limited(const struct session_record *r, int axis)
 	return axis == 0 ? fabs(r->limited[0]) : r->limited[axis];
 }
 
-static double get_tip_s(const struct session_record *r, int arg)
-{
-	(void)arg;
-	return r->depth_m > 0 ? r->tip_s_m : NAN;
-}
-
 static double get_bow(const struct session_record *r, int k)
 {
 	return (uint32_t)k < r->spans ? fabs(r->bow_m[k]) : NAN;
-}
-
-static void series_range(const struct session_file *f, const struct series *s,
-			 int n, double *lo, double *hi)
-{
-	for (size_t i = 0; i < f->n_records; i++) {
-		for (int k = 0; k < n; k++) {
-			double v = s[k].get(&f->records[i], s[k].arg);
-
-			if (isfinite(v)) {
-				*lo = fmin(*lo, v);
-				*hi = fmax(*hi, v);
-			}
-		}
-	}
 }
 
 /* A plot of N series with the episodes and events marked. */
@@ -227,16 +137,16 @@ static void plot_series_figure(struct htmlpage_plot *p,
 			       const struct session_file *f,
 			       const struct metrics_result *m, const char *id,
 			       const char *title, const char *ylabel,
-			       const struct series *s, int n, double lo,
-			       double hi)
+			       const struct reportplot_series *s, int n,
+			       double lo, double hi)
 {
-	series_range(f, s, n, &lo, &hi);
-	plot_begin(p, id, title, lo, hi, ylabel);
+	reportplot_range(f, s, n, &lo, &hi);
+	reportplot_begin(p, id, title, lo, hi, ylabel);
 	plot_bands(p, m->force, m->n_force, m->duration_s, "force");
 	plot_bands(p, m->loop, m->n_loop, m->duration_s, "loop");
 	plot_events(p, f);
 	for (int k = 0; k < n; k++) {
-		plot_series(p, f, &s[k], htmlpage_color(k));
+		reportplot_series(p, f, &s[k], htmlpage_color(k));
 	}
 	plot_legend(p, s, n, true);
 }
@@ -246,7 +156,9 @@ static void plot_series_figure(struct htmlpage_plot *p,
 static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 		       const struct metrics_result *m)
 {
-	const struct series s[] = { { "insertion |F|", get_limited, 0 } };
+	const struct reportplot_series s[] = {
+		{ "insertion |F|", get_limited, 0 },
+	};
 	struct metrics_params mp;
 	char label[64];
 
@@ -261,7 +173,7 @@ static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
 			 const struct metrics_result *m)
 {
-	const struct series s[] = {
+	const struct reportplot_series s[] = {
 		{ "roll", get_limited, 1 },
 		{ "wheel up/down", get_limited, 2 },
 		{ "wheel left/right", get_limited, 3 },
@@ -298,12 +210,14 @@ static void plot_segments(const struct htmlpage_plot *p,
 static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
 		     const struct metrics_result *m, const struct anatomy *a)
 {
-	const struct series s[] = { { "tip along the colon", get_tip_s, 0 } };
+	const struct reportplot_series s[] = {
+		{ "tip along the colon", reportplot_tip_s, 0 },
+	};
 	double len = a ? anatomy_length(a) : 0;
 
-	series_range(f, s, 1, &(double){ 0 }, &len);
-	plot_begin(p, "plot-tip", "The tip's progress along the colon",
-		   0, len, "distance from the anal verge (m)");
+	reportplot_range(f, s, 1, &(double){ 0 }, &len);
+	reportplot_begin(p, "plot-tip", "The tip's progress along the colon",
+			 0, len, "distance from the anal verge (m)");
 	if (a) {
 		plot_segments(p, a);
 	}
@@ -319,34 +233,42 @@ static void plot_tip(struct htmlpage_plot *p, const struct session_file *f,
 			HTMLPAGE_PLOT_Y, x, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H,
 			x + 4, HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H - 6);
 	}
-	plot_series(p, f, &s[0], htmlpage_color(0));
+	reportplot_series(p, f, &s[0], htmlpage_color(0));
 	plot_legend(p, s, 1, true);
 	htmlpage_plot_end(p);
+}
+
+/* The loop threshold F's metrics counted from (sessioninputs.h), m. */
+static double loop_threshold_m(const struct session_file *f)
+{
+	struct metrics_params mp;
+
+	sessioninputs_file_metrics_params(f, &mp);
+	return mp.loop_threshold_m;
 }
 
 static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 		      const struct metrics_result *m, const struct anatomy *a)
 {
-	struct series s[ENDOSIM_SPANS];
-	struct metrics_params mp;
+	struct reportplot_series s[ENDOSIM_SPANS];
+	double loop_m = loop_threshold_m(f);
 	int n = 0;
 
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && n < ENDOSIM_SPANS; i++) {
 		if (a->seg[i].mobile) {
-			s[n] = (struct series){ anatomy_segment_name(i),
-						get_bow, n };
+			s[n] = (struct reportplot_series){
+				anatomy_segment_name(i), get_bow, n };
 			n++;
 		}
 	}
 	for (; n == 0 && f->n_records && n < (int)f->records[0].spans &&
 	       n < ENDOSIM_SPANS; n++) {
-		s[n] = (struct series){ "mobile segment", get_bow, n };
+		s[n] = (struct reportplot_series){ "mobile segment", get_bow,
+						   n };
 	}
-	metrics_params_default(&mp);
 	plot_series_figure(p, f, m, "plot-bow", "Loops: the bow of each mobile "
-			   "segment", "bow amplitude (m)", s, n, 0,
-			   mp.loop_threshold_m * 1.5);
-	htmlpage_plot_hline(p, mp.loop_threshold_m, "loop threshold");
+			   "segment", "bow amplitude (m)", s, n, 0, loop_m * 1.5);
+	htmlpage_plot_hline(p, loop_m, "loop threshold");
 	htmlpage_plot_end(p);
 }
 
@@ -390,7 +312,8 @@ static void metrics_rows_times(FILE *o, const struct metrics_result *m)
 	row_end(o, "from the anal verge along the colon");
 }
 
-static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
+static void metrics_rows_forces(FILE *o, const struct session_file *f,
+				const struct metrics_result *m)
 {
 	struct metrics_params mp;
 	char note[96];
@@ -412,7 +335,7 @@ static void metrics_rows_forces(FILE *o, const struct metrics_result *m)
 	htmlpage_duration(o, m->longest_loop_s);
 	fprintf(o, ", largest %.1f cm", m->largest_loop_m * 100);
 	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
-		 mp.loop_threshold_m * 100);
+		 loop_threshold_m(f) * 100);
 	row_end(o, note);
 	row_begin(o, "Patient discomfort", "");
 	fprintf(o, "%.1f", m->discomfort);
@@ -578,7 +501,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 
 	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
 	metrics_rows_times(o, m);
-	metrics_rows_forces(o, m);
+	metrics_rows_forces(o, f, m);
 	metrics_rows_view(o, m);
 	fputs("</table></section>\n<section><h2>Over time</h2>\n", o);
 	if (f->n_records) {
@@ -610,307 +533,24 @@ static void page_metrics(FILE *o, const struct session_file *f,
 
 /* ------------------------------------------- compared with a reference */
 
-#define ALONG_BIN_M 0.01 /* the colon in 1 cm steps */
-#define ALONG_BINS 400   /* up to 4 m */
-
-/* What a session did at each place of the colon on its way in. */
-struct along {
-	double force[ALONG_BINS]; /* the largest |insertion force|, N */
-	double loop[ALONG_BINS];  /* the largest bow of any segment, m */
-	bool seen[ALONG_BINS];
-};
-
-/* F's records until the cecum (M's; all of them if never reached), by
- * the tip's place along the colon. */
-static void along_colon(const struct session_file *f,
-			const struct metrics_result *m, struct along *a)
-{
-	uint64_t t0 = f->n_records ? f->records[0].stamp_ns : 0;
-
-	memset(a, 0, sizeof(*a));
-	for (size_t i = 0; i < f->n_records; i++) {
-		const struct session_record *r = &f->records[i];
-		double t = (double)(r->stamp_ns - t0) * ENDOSIM_S_PER_NS,
-		       bow = 0;
-		long b = lround(r->tip_s_m / ALONG_BIN_M);
-
-		if (m->cecum_s >= 0 && t > m->cecum_s) {
-			break;
-		}
-		if (r->depth_m <= 0 || b < 0 || b >= ALONG_BINS) {
-			continue;
-		}
-		for (uint32_t k = 0; k < r->spans && k < ENDOSIM_SPANS; k++) {
-			bow = fmax(bow, fabs(r->bow_m[k]));
-		}
-		a->force[b] = fmax(a->force[b], fabs(r->limited[0]));
-		a->loop[b] = fmax(a->loop[b], bow);
-		a->seen[b] = true;
-	}
-}
-
-/* One series of A (FORCE or LOOP) over the colon, dashed if DASH. */
-static void along_series(const struct htmlpage_plot *p, const struct along *a,
-			 bool force, const char *color, bool dash)
-{
-	bool first = true;
-
-	fprintf(p->out, "<path class=\"series\" stroke=\"%s\"%s d=\"", color,
-		dash ? " stroke-dasharray=\"6 3\"" : "");
-	for (int b = 0; b < ALONG_BINS; b++) {
-		double v = force ? a->force[b] : a->loop[b];
-
-		if (!a->seen[b]) {
-			continue;
-		}
-		fprintf(p->out, "%s%.1f,%.1f", first ? "M" : " L",
-			htmlpage_px_x(p, b * ALONG_BIN_M), htmlpage_px_y(p, v));
-		first = false;
-	}
-	fputs("\"/>\n", p->out);
-}
-
-/* A legend of the trainee's (solid) and the reference's (dashed). */
-static void compare_legend(const struct htmlpage_plot *p)
-{
-	fprintf(p->out,
-		"<line class=\"key\" stroke=\"%s\" x1=\"%.1f\" y1=\"14\" "
-		"x2=\"%.1f\" y2=\"14\"/><text class=\"legend\" x=\"%.1f\" "
-		"y=\"18\">this session</text><line class=\"key\" stroke=\"%s\" "
-		"stroke-dasharray=\"6 3\" x1=\"%.1f\" y1=\"14\" x2=\"%.1f\" "
-		"y2=\"14\"/><text class=\"legend\" x=\"%.1f\" y=\"18\">"
-		"reference</text>\n", htmlpage_color(0), HTMLPAGE_PLOT_X + 4,
-		HTMLPAGE_PLOT_X + 22,
-		HTMLPAGE_PLOT_X + 26, htmlpage_color(2), HTMLPAGE_PLOT_X + 130,
-		HTMLPAGE_PLOT_X + 148,
-		HTMLPAGE_PLOT_X + 152);
-}
-
-/* A plot along the colon (x: the tip's place, m) of both sessions. */
-static void along_plot(FILE *o, const struct along *mine,
-		       const struct along *ref, const struct anatomy *a,
-		       bool force)
-{
-	struct htmlpage_plot p = { .out = o, .xscale = 1 };
-	double len = a ? anatomy_length(a) : 0, hi = force ? 10 : 0.02;
-
-	for (int b = 0; b < ALONG_BINS; b++) {
-		const struct along *s[2] = { mine, ref };
-
-		for (int k = 0; k < 2; k++) {
-			if (s[k]->seen[b]) {
-				len = fmax(len, b * ALONG_BIN_M);
-				hi = fmax(hi, force ? s[k]->force[b] :
-						      s[k]->loop[b]);
-			}
-		}
-	}
-	p.x = htmlpage_axis(0, fmax(len, 0.1), 10);
-	htmlpage_plot_begin(&p, force ? "compare-force" : "compare-loop",
-			    force ? "Insertion force where the tip was, on "
-				    "the way in"
-				  : "The largest loop where the tip was, on the "
-				    "way in",
-			    0, hi, "the tip's place along the colon (m)",
-			    force ? "force (N)" : "bow amplitude (m)");
-	along_series(&p, ref, force, htmlpage_color(2), true);
-	along_series(&p, mine, force, htmlpage_color(0), false);
-	compare_legend(&p);
-	htmlpage_plot_end(&p);
-}
-
-/* The tip's progress over time of both, on one time axis. */
-static void compare_tip(FILE *o, const struct session_file *f,
-			const struct metrics_result *m,
-			const struct report_reference *ref)
-{
-	const struct series s = { "tip along the colon", get_tip_s, 0 };
-	struct htmlpage_plot p = { .out = o };
-	double dur = fmax(m->duration_s, ref->m->duration_s), hi = 0.1;
-
-	series_range(f, &s, 1, &(double){ 0 }, &hi);
-	series_range(ref->f, &s, 1, &(double){ 0 }, &hi);
-	p.xscale = dur > 300 ? 60 : 1;
-	p.x = htmlpage_axis(0, fmax(dur, 1e-3) / p.xscale, 10);
-	plot_begin(&p, "compare-tip", "The tip's progress: this session and "
-		   "the reference", 0, hi, "distance from the anal verge (m)");
-	if (ref->f->n_records) {
-		p.t0_ns = ref->f->records[0].stamp_ns;
-		fprintf(o, "<g stroke-dasharray=\"6 3\">");
-		plot_series(&p, ref->f, &s, htmlpage_color(2));
-		fputs("</g>\n", o);
-	}
-	if (f->n_records) {
-		p.t0_ns = f->records[0].stamp_ns;
-		plot_series(&p, f, &s, htmlpage_color(0));
-	}
-	compare_legend(&p);
-	htmlpage_plot_end(&p);
-}
-
-static void compare_row(FILE *o, const char *what, const char *fmt,
-			double mine, double ref)
-{
-	fprintf(o, "<tr><th>%s</th><td>", what);
-	fprintf(o, fmt, mine);
-	fputs("</td><td>", o);
-	fprintf(o, fmt, ref);
-	fputs("</td></tr>\n", o);
-}
-
-/* Both sessions' main measures side by side. */
-static void compare_table(FILE *o, const struct metrics_result *m,
-			  const struct metrics_result *r)
-{
-	fputs("<table class=\"metrics\" id=\"compare-metrics\"><tr><th></th>"
-	      "<th>this session</th><th>reference</th></tr>\n", o);
-	compare_row(o, "duration (s)", "%.1f", m->duration_s, r->duration_s);
-	compare_row(o, "time to the cecum (s; -1: not reached)", "%.1f",
-		    m->cecum_s, r->cecum_s);
-	compare_row(o, "withdrawal (s)", "%.1f", m->withdrawal_s,
-		    r->withdrawal_s);
-	compare_row(o, "deepest (m along the colon)", "%.2f", m->max_tip_s_m,
-		    r->max_tip_s_m);
-	compare_row(o, "peak insertion force (N)", "%.1f",
-		    m->peak_insertion_n, r->peak_insertion_n);
-	compare_row(o, "mean insertion force (N)", "%.1f",
-		    m->mean_insertion_n, r->mean_insertion_n);
-	compare_row(o, "excessive-force episodes", "%.0f",
-		    m->force_episodes, r->force_episodes);
-	compare_row(o, "... their time (s)", "%.1f", m->force_episode_s,
-		    r->force_episode_s);
-	compare_row(o, "loop episodes", "%.0f", m->loop_episodes,
-		    r->loop_episodes);
-	compare_row(o, "largest loop (cm)", "%.1f", m->largest_loop_m * 100,
-		    r->largest_loop_m * 100);
-	compare_row(o, "discomfort index", "%.2f", m->discomfort,
-		    r->discomfort);
-	compare_row(o, "lumen lost (s)", "%.1f", m->lumen_lost_s,
-		    r->lumen_lost_s);
-	compare_row(o, "mucosa seen (%)", "%.1f", m->mucosa_seen * 100,
-		    r->mucosa_seen * 100);
-	compare_row(o, "polyps seen", "%.0f", m->polyps_seen, r->polyps_seen);
-	compare_row(o, "lumen in view (%)", "%.0f", m->clear_view * 100,
-		    r->clear_view * 100);
-	compare_row(o, "lumen lost (times)", "%.0f", m->lost_views,
-		    r->lost_views);
-	compare_row(o, "chase efficiency, in", "%.2f", m->chase_efficiency,
-		    r->chase_efficiency);
-	compare_row(o, "idle push, in (m)", "%.2f", m->shaft_idle_m,
-		    r->shaft_idle_m);
-	compare_row(o, "looped (s)", "%.1f", m->loop_s, r->loop_s);
-	compare_row(o, "retraction efficiency, out", "%.2f",
-		    m->retraction_efficiency, r->retraction_efficiency);
-	fputs("</table>\n", o);
-}
-
 static void page_compare(FILE *o, const struct session_file *f,
 			 const struct metrics_result *m,
 			 const struct report_reference *ref,
 			 const struct anatomy *a)
 {
-	static struct along mine, theirs;
-
 	fputs("<section id=\"compare\"><h2>Compared with the reference: "
 	      "session ", o);
 	put_header(o, ref->f, "id");
 	fputs(" (", o);
 	put_header(o, ref->f, "trainee");
 	fputs(")</h2>\n", o);
-	compare_table(o, m, ref->m);
-	along_colon(f, m, &mine);
-	along_colon(ref->f, ref->m, &theirs);
-	compare_tip(o, f, m, ref);
-	along_plot(o, &mine, &theirs, a, true);
-	along_plot(o, &mine, &theirs, a, false);
+	reportcompare_write(o, f, m, ref, a);
 	fputs("</section>\n", o);
 }
 
-/* The colon of F's CASE frame, its configuration, its header. */
-static struct colon *session_colon(const struct session_file *f, char *err,
-				   size_t errsize)
-{
-	struct config cfg;
-
-	sessioninputs_config(f, &cfg, err, errsize);
-	return sessioninputs_colon(f, &cfg, err, errsize);
-}
-
-/*
- * F's records, with its events in time order, through new metrics with P
- * on F's colon (*C, the caller's to destroy after the metrics; NULL
- * without a case, ERR saying why). NULL on ENOMEM, with ERR.
- */
-static struct metrics *metrics_of(const struct session_file *f,
-				  const struct metrics_params *p,
-				  struct colon **c, char *err, size_t errsize)
-{
-	struct metrics *m;
-	size_t e = 0;
-
-	*c = f->header ? session_colon(f, err, errsize) : NULL;
-	if (errsize && f->header && !*c) {
-		/* the line says why; the metrics go on without the colon */
-	} else if (errsize) {
-		err[0] = '\0';
-	}
-	m = metrics_create(*c, p);
-	if (!m) {
-		colon_destroy(*c);
-		*c = NULL;
-		snprintf(err, errsize, "metrics: out of memory");
-		return NULL;
-	}
-	for (size_t i = 0; i < f->n_records; i++) {
-		for (; e < f->n_events &&
-		       f->events[e].ev.stamp_ns <= f->records[i].stamp_ns; e++) {
-			metrics_event(m, &f->events[e].ev, f->events[e].text);
-		}
-		metrics_record(m, &f->records[i]);
-	}
-	for (; e < f->n_events; e++) {
-		metrics_event(m, &f->events[e].ev, f->events[e].text);
-	}
-	return m;
-}
-
-int report_metrics(const struct session_file *f,
-		   const struct metrics_params *p, struct metrics_result *out,
-		   char *err, size_t errsize)
-{
-	struct colon *c;
-	struct metrics *m = metrics_of(f, p, &c, err, errsize);
-
-	if (!m) {
-		return -ENOMEM;
-	}
-	metrics_result(m, out);
-	metrics_destroy(m);
-	colon_destroy(c);
-	return 0;
-}
-
-int report_map(const struct session_file *f, struct metrics_map *out)
-{
-	struct metrics_params p;
-	struct colon *c;
-	struct metrics *m;
-	char err[256];
-
-	sessioninputs_file_metrics_params(f, &p);
-	m = metrics_of(f, &p, &c, err, sizeof(err));
-	if (!m) {
-		return -ENOMEM;
-	}
-	metrics_map(m, out);
-	metrics_destroy(m);
-	colon_destroy(c);
-	return 0;
-}
-
 /* The unseen-mucosa map: the colon unrolled, each cell's share seen from
- * red (none) to pale green (all), the segments' ends, the polyps (found:
- * filled, missed: a ring). */
+ * red (none) to pale green (all) on the map's ramp (livemap_colour()), the
+ * segments' ends, the polyps (found: filled, missed: a ring). */
 static void page_map(FILE *o, const struct metrics_map *map,
 		     const struct anatomy *a, uint32_t found)
 {
@@ -927,17 +567,17 @@ static void page_map(FILE *o, const struct metrics_map *map,
 		HTMLPAGE_SVG_W, HTMLPAGE_SVG_H);
 	for (int i = 0; i < METRICS_MAP_S; i++) {
 		for (int k = 0; k < METRICS_MAP_A; k++) {
-			double v = map->seen[i][k];
+			double v = map->seen[i][k], rgb[3];
 
 			if (v < 0) {
 				continue;
 			}
+			livemap_colour(LIVEMAP_ON_PAGE, v, rgb);
 			fprintf(o, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.2f\" "
 				"height=\"%.2f\" fill=\"rgb(%d,%d,%d)\"/>\n",
 				x0 + i * cw, y0 + k * ch, cw + 0.05, ch + 0.05,
-				(int)lround(214 - 60 * v),
-				(int)lround(60 + 170 * v),
-				(int)lround(60 + 120 * v));
+				(int)lround(rgb[0]), (int)lround(rgb[1]),
+				(int)lround(rgb[2]));
 		}
 	}
 	for (int i = 0; a && i < ANATOMY_SEGMENTS && map->length_m > 0; i++) {
@@ -977,7 +617,7 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	FILE *o;
 	int r;
 
-	if (!map || report_map(f, map)) {
+	if (!map || sessionmetrics_map(f, map)) {
 		free(map);
 		map = NULL; /* the report without its map */
 	}

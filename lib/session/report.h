@@ -19,7 +19,9 @@
  * pixel column, so that every peak survives. Every text that comes from
  * the file (trainee, case, event texts) is HTML-escaped.
  *
- * The page's parts shared with the trainee's page: htmlpage.h.
+ * The page's parts shared with the trainee's page: htmlpage.h; its plots
+ * over time: reportplot.h; the comparison with a reference:
+ * reportcompare.h; the metrics recomputed from a file: sessionmetrics.h.
  *
  * Not for the force loop: allocates, writes files. Any thread.
  */
@@ -50,23 +52,5 @@ struct report_reference {
  */
 int report_write(const struct session_file *f, const struct metrics_result *m,
 		 const struct report_reference *ref, const char *dir);
-
-/*
- * Recomputes the metrics of F with P (the colon rebuilt from F's CASE
- * frame, its configuration and its header's resolution: sessioninputs.h;
- * without a case, the metrics that need no colon), the events fed in time order
- * with the records. 0, or -ENOMEM with one line in ERR. A case that does
- * not load leaves the colon out, as its line in ERR says.
- */
-int report_metrics(const struct session_file *f,
-		   const struct metrics_params *p, struct metrics_result *out,
-		   char *err, size_t errsize);
-
-/*
- * F's unseen-mucosa map (metrics.h), its records through the metrics on
- * its colon with its configuration's parameters. 0 or -ENOMEM. The report
- * draws it under the plots.
- */
-int report_map(const struct session_file *f, struct metrics_map *out);
 
 #endif

@@ -43,7 +43,7 @@ int sessiondir_header(const char *path, char *buf, size_t size);
 bool sessiondir_ended(int fd, uint64_t size);
 
 /*
- * The END frame's text (metrics_format()'s lines) of the session file
+ * The END frame's text (metricstext_format()'s lines) of the session file
  * PATH, malloc'd and NUL-terminated, in *TEXT (free() it). 0; -ENOENT when
  * the file does not end with an intact END (cut short, still recording);
  * -errno.

@@ -1,5 +1,6 @@
 /* sessionindex.c - see sessionindex.h. */
 #include "session/sessionindex.h"
+#include "session/metricstext.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -69,7 +70,7 @@ static int parse_metrics(char *text, struct metrics_result *m)
 	for (char *c = text; *c; c++) {
 		*c = *c == ' ' ? '\n' : *c;
 	}
-	return metrics_parse(text, m);
+	return metricstext_parse(text, m);
 }
 
 static int parse_u64(const char *s, uint64_t *out)
@@ -199,7 +200,7 @@ static void read_file(const char *path, struct item *it)
 	e->bytes = bytes; /* the size the index is checked against */
 	it->bad = r != 0;
 	it->x.has_metrics = !r && e->ended && !sessiondir_end_text(path, &end) &&
-			    !metrics_parse(end, &it->x.m);
+			    !metricstext_parse(end, &it->x.m);
 	it->x.m.n_force = it->x.m.n_loop = 0;
 	free(end);
 }
@@ -285,7 +286,7 @@ static int write_line(FILE *f, const struct item *it)
 		return -ENOMEM;
 	}
 	if (it->x.has_metrics &&
-	    metrics_format(&it->x.m, metrics, sizeof(metrics)) > 0) {
+	    metricstext_format(&it->x.m, metrics, sizeof(metrics)) > 0) {
 		for (char *c = metrics; *c; c++) {
 			*c = *c == '\n' ? ' ' : *c;
 		}

@@ -2,9 +2,9 @@
  * sessionindex.h - the index of a session directory (sessiondir.h): the
  * file DIR/index, one line per ID.endoses file with what its header says
  * (trainee, case, start), its size and modification time, and the
- * metrics of its END frame (the scalars, metrics_fields(); no episodes),
- * so that a trainee's sessions are found and judged without replaying
- * files (endoctl trainee).
+ * metrics of its END frame (the scalars, metricstext_fields(); no
+ * episodes), so that a trainee's sessions are found and judged without
+ * replaying files (endoctl trainee).
  *
  * The session files are the truth; the index only saves reading them. A
  * load checks it against the directory: a file added, one removed, or

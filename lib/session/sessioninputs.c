@@ -33,18 +33,23 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 	return 0;
 }
 
+double sessioninputs_loop_threshold_m(double configured_m, bool rod)
+{
+	if (configured_m > 0) {
+		return configured_m;
+	}
+	return rod ? SESSION_LOOP_THRESHOLD_ROD_M
+		   : SESSION_LOOP_THRESHOLD_PAPER_M;
+}
+
 void sessioninputs_metrics_params(const struct config *cfg,
 				  struct metrics_params *p)
 {
 	metrics_params_default(p);
 	p->force_threshold_n = cfg->session.force_threshold_n;
-	p->loop_threshold_m = cfg->session.loop_threshold_m;
-	if (!(p->loop_threshold_m > 0)) {
-		p->loop_threshold_m =
-			cfg->haptics.model == HAPTICS_MODEL_ROD
-				? SESSION_LOOP_THRESHOLD_ROD_M
-				: SESSION_LOOP_THRESHOLD_PAPER_M;
-	}
+	p->loop_threshold_m = sessioninputs_loop_threshold_m(
+		cfg->session.loop_threshold_m,
+		cfg->haptics.model == HAPTICS_MODEL_ROD);
 	p->view_distance_m = cfg->session.view_distance_m;
 	p->fov_rad = cfg->session.fov_deg * M_PI / 180;
 	p->view_rate_hz = cfg->session.view_rate_hz;
@@ -57,6 +62,11 @@ void sessioninputs_file_metrics_params(const struct session_file *f,
 	char err[256];
 
 	sessioninputs_config(f, &cfg, err, sizeof(err));
+	if (f->n_records) {
+		cfg.haptics.model = f->records[0].model == ENDOSIM_MODEL_ROD
+					    ? HAPTICS_MODEL_ROD
+					    : HAPTICS_MODEL_PAPER;
+	}
 	sessioninputs_metrics_params(&cfg, p);
 }
 
@@ -106,4 +116,25 @@ struct colon *sessioninputs_colon(const struct session_file *f,
 		return NULL;
 	}
 	return colon_create(&a, &p, err, errsize);
+}
+
+struct colon *sessioninputs_file_colon(const struct session_file *f,
+				       char *err, size_t errsize)
+{
+	struct config cfg;
+	char why[256];
+
+	sessioninputs_config(f, &cfg, why, sizeof(why));
+	return sessioninputs_colon(f, &cfg, err, errsize);
+}
+
+int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
+			double *radius_m, char *err, size_t errsize)
+{
+	struct config cfg;
+	int r = sessioninputs_config(f, &cfg, err, errsize);
+
+	cases_scope_params(&cfg, p);
+	*radius_m = cfg.haptics.scope_radius_m;
+	return r;
 }

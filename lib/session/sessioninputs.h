@@ -2,8 +2,8 @@
  * sessioninputs.h - the one reader of what a session was recorded with:
  * its CONFIG frame (the configuration as --print-config printed it), its
  * CASE frame (the case file's text) and its header's colon resolution,
- * and what they make: the configuration, the colon's and the metrics'
- * parameters, the colon. The recorder (the live configuration), the
+ * and what they make: the configuration, the colon's, the scope's and the
+ * metrics' parameters, the colon. The recorder (the live configuration), the
  * report, endoctl's views and the viewer's replay all take them here.
  *
  * Any thread but the force loop; the colon is allocated (~50 ms).
@@ -11,10 +11,12 @@
 #ifndef ENDOSIM_SESSIONINPUTS_H
 #define ENDOSIM_SESSIONINPUTS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "model/anatomy.h"
 #include "model/colon.h"
+#include "model/scope.h"
 #include "conf/config.h"
 #include "session/metrics.h"
 #include "proto/session_file.h"
@@ -30,15 +32,25 @@ int sessioninputs_config(const struct session_file *f, struct config *cfg,
 /* A loop, when [session] loop_threshold_m is 0: by the haptics' model. The
  * rod model moves the sigmoid a centimetre or two on an ordinary insertion
  * (the tube takes the outside of its bends); its loops are larger. */
-#define SESSION_LOOP_THRESHOLD_PAPER_M 0.01
+#define SESSION_LOOP_THRESHOLD_PAPER_M METRICS_DEFAULT_LOOP_THRESHOLD_M
 #define SESSION_LOOP_THRESHOLD_ROD_M 0.03
 
-/* The metrics' parameters ([session] thresholds) CFG sets. */
+/*
+ * The one home of the loop threshold (m) that the metrics count loops
+ * from, and so the report, endoview's loop warning and docs/METRICS.md:
+ * CONFIGURED_M ([session] loop_threshold_m) when above 0, else the
+ * model's (ROD: the rod model ran, else the paper's).
+ */
+double sessioninputs_loop_threshold_m(double configured_m, bool rod);
+
+/* The metrics' parameters ([session] thresholds) CFG sets, the loop's
+ * by CFG's model. */
 void sessioninputs_metrics_params(const struct config *cfg,
 				  struct metrics_params *p);
 
-/* The metrics' parameters the session F was recorded with (its CONFIG
- * frame's, the defaults where it has none). */
+/* The metrics' parameters the session F was recorded with: its CONFIG
+ * frame's (the defaults where it has none), the loop's by the model its
+ * records say ran (its CONFIG's without a record). */
 void sessioninputs_file_metrics_params(const struct session_file *f,
 				       struct metrics_params *p);
 
@@ -66,5 +78,18 @@ int sessioninputs_anatomy(const struct session_file *f, struct anatomy *a,
 struct colon *sessioninputs_colon(const struct session_file *f,
 				  const struct config *cfg, char *err,
 				  size_t errsize);
+
+/* The same with F's own configuration (sessioninputs_config()'s). */
+struct colon *sessioninputs_file_colon(const struct session_file *f,
+				       char *err, size_t errsize);
+
+/*
+ * The scope F was recorded with: its configuration's [scope] in P, and
+ * [haptics] scope_radius_m in *RADIUS_M. 0, or -EINVAL with the line of its
+ * CONFIG frame that does not parse in ERR and the defaults in P and
+ * *RADIUS_M.
+ */
+int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
+			double *radius_m, char *err, size_t errsize);
 
 #endif

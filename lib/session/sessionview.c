@@ -10,8 +10,9 @@
 #include <string.h>
 
 #include "proto/fields.h"
-#include "session/report.h"
+#include "session/metricstext.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 /* ------------------------------------------------------------ metrics */
 
@@ -22,12 +23,12 @@ int sessionview_metrics(const struct session_file *f,
 	char err[512];
 
 	*recomputed = false;
-	if (f->end && !metrics_parse(f->end, out)) {
+	if (f->end && !metricstext_parse(f->end, out)) {
 		return 0;
 	}
 	sessioninputs_file_metrics_params(f, &p);
 	*recomputed = true;
-	return report_metrics(f, &p, out, err, sizeof(err));
+	return sessionmetrics_compute(f, &p, out, err, sizeof(err));
 }
 
 static void print_episodes(FILE *out, const char *what,
@@ -98,16 +99,17 @@ static void json_episodes(struct json *j, const char *key,
 void sessionview_json(struct json *j, const char *key,
 		      const struct metrics_result *m)
 {
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	json_object_begin(j, key);
 	for (size_t i = 0; i < n; i++) {
-		if (f[i].type == 'd') {
-			json_double(j, f[i].key, metrics_field_value(m, &f[i]));
+		if (f[i].kind == FIELDS_DOUBLE) {
+			json_double(j, f[i].key,
+				    metricstext_field_value(m, &f[i]));
 		} else {
 			json_uint(j, f[i].key,
-				  (uint64_t)metrics_field_value(m, &f[i]));
+				  (uint64_t)metricstext_field_value(m, &f[i]));
 		}
 	}
 	json_episodes(j, "force", m->force, m->n_force);
@@ -118,8 +120,8 @@ void sessionview_json(struct json *j, const char *key,
 /* The summary CSV's header: who, what, when, then every measure. */
 int sessionview_summary_header(FILE *out)
 {
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	fputs("id,trainee,case,started", out);
 	for (size_t i = 0; i < n; i++) {
@@ -147,8 +149,8 @@ int sessionview_summary_row(FILE *out, const struct session_file *f,
 {
 	static const char *const keys[] = { "id", "trainee", "case",
 					    "started" };
-	const struct metrics_field *fl;
-	size_t n = metrics_fields(&fl);
+	const struct metricstext_field *fl;
+	size_t n = metricstext_fields(&fl);
 	char value[256];
 
 	for (size_t k = 0; k < 4; k++) {
@@ -166,7 +168,7 @@ int sessionview_summary_row(FILE *out, const struct session_file *f,
 		}
 	}
 	for (size_t i = 0; i < n; i++) {
-		fprintf(out, ",%.9g", metrics_field_value(m, &fl[i]));
+		fprintf(out, ",%.9g", metricstext_field_value(m, &fl[i]));
 	}
 	fputc('\n', out);
 	return ferror(out) ? -EIO : 0;

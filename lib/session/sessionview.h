@@ -19,10 +19,10 @@
 /*
  * The metrics of the session in F: parsed from its END frame, or, for a
  * file without one (a crash), computed again over its records and events
- * (*RECOMPUTED true, report_metrics()) with the thresholds of its CONFIG
- * frame's [session], on the colon rebuilt from its CASE frame and header
- * (without a colon when that fails: no mucosa or polyps then). 0 or
- * -errno.
+ * (*RECOMPUTED true, sessionmetrics_compute()) with the thresholds of its
+ * CONFIG frame's [session], on the colon rebuilt from its CASE frame and
+ * header (without a colon when that fails: no mucosa or polyps then). 0
+ * or -errno.
  */
 int sessionview_metrics(const struct session_file *f,
 			struct metrics_result *out, bool *recomputed);
@@ -50,8 +50,8 @@ int sessionview_events_csv(FILE *out, const struct session_file *f);
 
 /*
  * The summary CSV (`endoctl session export ID... --summary`): a header of
- * id, trainee, case, started and every measure (metrics_fields()' keys),
- * then one row per session of F with its metrics M. 0 or -EIO.
+ * id, trainee, case, started and every measure (metricstext_fields()'
+ * keys), then one row per session of F with its metrics M. 0 or -EIO.
  */
 int sessionview_summary_header(FILE *out);
 int sessionview_summary_row(FILE *out, const struct session_file *f,

@@ -9,8 +9,9 @@
 #include <unistd.h>
 
 #include "session/htmlpage.h"
+#include "session/metricstext.h"
 
-/* A main measure: its key (metrics_fields()), what it is (in the
+/* A main measure: its key (metricstext_fields()), what it is (in the
  * table's head: short), its unit on the page, the factor from the
  * metric's unit to it, and whether it counts (its axis: whole steps). */
 struct measure {
@@ -55,12 +56,12 @@ static const char page_style[] =
 static double measure_value(const struct measure *me,
 			    const struct metrics_result *m)
 {
-	const struct metrics_field *f;
-	size_t n = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t n = metricstext_fields(&f);
 
 	for (size_t i = 0; i < n; i++) {
 		if (!strcmp(f[i].key, me->key)) {
-			double v = metrics_field_value(m, &f[i]);
+			double v = metricstext_field_value(m, &f[i]);
 
 			return !strcmp(me->key, "cecum_s") && v < 0
 				       ? NAN : v * me->scale;

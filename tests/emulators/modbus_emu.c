@@ -2,8 +2,9 @@
  * modbus_emu.c - brushed DC wheel drives on a Modbus line, emulated: a
  * libmodbus slave answering for every modbus axis of an endosimd
  * configuration, with that configuration's slave ids and register maps
- * (read with the daemon's own config.c and regmap.c), each drive turning a
- * motor (emu.h) with the torque written to it plus a scripted hand.
+ * (read with the daemon's own config.c and regspec.c, turned into values
+ * with the rig's regmap.c), each drive turning a motor (emu.h) with the
+ * torque written to it plus a scripted hand.
  *
  * Where it listens:
  *   --pty LINK     RTU on a new pseudo-terminal whose other end is symlinked
@@ -52,6 +53,7 @@
 #include "conf/config.h"
 #include "base/log.h"
 #include "proto/names.h"
+#include "rig/regmap.h"
 #include "emu.h"
 
 #define MAX_ADU 260
@@ -99,37 +101,37 @@ static volatile sig_atomic_t stop;
 
 /* --- the registers ---------------------------------------------------- */
 
-static uint16_t *words_at(modbus_mapping_t *m, const struct regmap_reg *r)
+static uint16_t *words_at(modbus_mapping_t *m, const struct regspec *r)
 {
 	switch (r->table) {
-	case REGMAP_INPUT:
+	case REGSPEC_INPUT:
 		return m->tab_input_registers + r->address;
-	case REGMAP_HOLDING:
+	case REGSPEC_HOLDING:
 		return m->tab_registers + r->address;
 	default:
 		return NULL;
 	}
 }
 
-static uint8_t *bit_at(modbus_mapping_t *m, const struct regmap_reg *r)
+static uint8_t *bit_at(modbus_mapping_t *m, const struct regspec *r)
 {
-	return r->table == REGMAP_COIL ? m->tab_bits + r->address
+	return r->table == REGSPEC_COIL ? m->tab_bits + r->address
 				       : m->tab_input_bits + r->address;
 }
 
 static void put(struct slave *s, int sig, double value)
 {
-	const struct regmap_reg *r = &s->cfg->reg[sig];
-	uint16_t w[REGMAP_MAX_WORDS];
+	const struct regspec *r = &s->cfg->reg[sig];
+	uint16_t w[REGSPEC_MAX_WORDS];
 	uint16_t *dst;
 
-	if (r->table == REGMAP_NONE) {
+	if (r->table == REGSPEC_NONE) {
 		return;
 	}
 	regmap_encode(r, value, w);
 	dst = words_at(s->map, r);
 	if (dst) {
-		memcpy(dst, w, sizeof(uint16_t) * (size_t)regmap_words(r));
+		memcpy(dst, w, sizeof(uint16_t) * (size_t)regspec_words(r));
 	} else {
 		*bit_at(s->map, r) = (uint8_t)w[0];
 	}
@@ -138,11 +140,11 @@ static void put(struct slave *s, int sig, double value)
 /* The value of signal SIG as the master left it; DEF when unmapped. */
 static double get(struct slave *s, int sig, double def)
 {
-	const struct regmap_reg *r = &s->cfg->reg[sig];
+	const struct regspec *r = &s->cfg->reg[sig];
 	uint16_t bit[1];
 	uint16_t *src;
 
-	if (r->table == REGMAP_NONE) {
+	if (r->table == REGSPEC_NONE) {
 		return def;
 	}
 	src = words_at(s->map, r);
@@ -156,18 +158,18 @@ static double get(struct slave *s, int sig, double def)
 /* Room for every register of the map, per table. */
 static modbus_mapping_t *new_map(const struct config_modbus_drive *c)
 {
-	int top[REGMAP_HOLDING + 1] = { 0 };
+	int top[REGSPEC_HOLDING + 1] = { 0 };
 
-	for (int sig = 0; sig < REGMAP_SIGNALS; sig++) {
-		const struct regmap_reg *r = &c->reg[sig];
-		int end = r->address + regmap_words(r);
+	for (int sig = 0; sig < REGSPEC_SIGNALS; sig++) {
+		const struct regspec *r = &c->reg[sig];
+		int end = r->address + regspec_words(r);
 
-		if (r->table != REGMAP_NONE && end > top[r->table]) {
+		if (r->table != REGSPEC_NONE && end > top[r->table]) {
 			top[r->table] = end;
 		}
 	}
-	return modbus_mapping_new(top[REGMAP_COIL], top[REGMAP_DISCRETE],
-				  top[REGMAP_HOLDING], top[REGMAP_INPUT]);
+	return modbus_mapping_new(top[REGSPEC_COIL], top[REGSPEC_DISCRETE],
+				  top[REGSPEC_HOLDING], top[REGSPEC_INPUT]);
 }
 
 /* --- the drive ---------------------------------------------------------- */
@@ -183,10 +185,10 @@ static double counts(const struct slave *s)
  */
 static void put_nan(struct slave *s, int sig)
 {
-	const struct regmap_reg *r = &s->cfg->reg[sig];
+	const struct regspec *r = &s->cfg->reg[sig];
 	uint16_t *w = words_at(s->map, r);
 
-	if (r->type != REGMAP_F32 || !w) {
+	if (r->type != REGSPEC_F32 || !w) {
 		return;
 	}
 	put(s, sig, 1.0);
@@ -198,36 +200,36 @@ static void put_nan(struct slave *s, int sig)
 /* What the master will read: the motor as the drive measures it. */
 static void before_reply(struct slave *s)
 {
-	put(s, REGMAP_POSITION, counts(s));
-	put(s, REGMAP_VELOCITY, s->motor.plant.v * s->cpr / (2.0 * M_PI));
+	put(s, REGSPEC_POSITION, counts(s));
+	put(s, REGSPEC_VELOCITY, s->motor.plant.v * s->cpr / (2.0 * M_PI));
 	if (s->nan) {
-		put_nan(s, REGMAP_VELOCITY);
+		put_nan(s, REGSPEC_VELOCITY);
 	}
-	put(s, REGMAP_FAULT, s->fault);
+	put(s, REGSPEC_FAULT, s->fault);
 }
 
 /* What the master wrote: torque, enable, fault reset. */
 static void after_reply(struct slave *s, double now)
 {
-	bool reset = get(s, REGMAP_FAULT_RESET, 0) != 0;
+	bool reset = get(s, REGSPEC_FAULT_RESET, 0) != 0;
 
 	if (reset && !s->reset_was_set && !s->sticky) {
 		s->fault = 0;
 	}
 	s->reset_was_set = reset;
-	s->enabled = get(s, REGMAP_ENABLE, 1) != 0;
+	s->enabled = get(s, REGSPEC_ENABLE, 1) != 0;
 	s->last_request_s = now;
 }
 
 /* The drive's own reactions: torque applied, its watchdog. */
 static void drive(struct slave *s, double now)
 {
-	double wd = get(s, REGMAP_WATCHDOG, 0);
+	double wd = get(s, REGSPEC_WATCHDOG, 0);
 
 	if (s->enabled && !s->fault && wd > 0 && now - s->last_request_s > wd) {
 		s->fault = WATCHDOG_FAULT;
 	}
-	s->torque_nm = s->enabled && !s->fault ? get(s, REGMAP_TORQUE, 0) : 0;
+	s->torque_nm = s->enabled && !s->fault ? get(s, REGSPEC_TORQUE, 0) : 0;
 	s->motor.drive_nm = s->torque_nm;
 }
 

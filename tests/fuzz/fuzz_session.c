@@ -9,6 +9,7 @@
 
 #include "fuzz_file.h"
 #include "session/metrics.h"
+#include "session/metricstext.h"
 #include "proto/session_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -33,7 +34,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		session_shape_to_state(&shape, &st);
 	}
 	if (f.end) {
-		metrics_parse(f.end, &m);
+		metricstext_parse(f.end, &m);
 	}
 	session_file_close(&f);
 	return 0;

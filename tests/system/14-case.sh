@@ -39,9 +39,11 @@ printf '[case]\nname = broken\n[segment anal_canal]\nlength_m = -1\n' >"$bad/bro
 stop_daemon
 start_daemon --set "case.directory=$bad" || finish
 check_status "case list leaves the broken file out" 0 ctl case list
-check "and says why, with its line" grep -q "broken.case:4: length_m" "$OUT"
+check "and says why, with its line" grep -qF \
+	"broken.case:4: [segment anal_canal] length_m" "$OUT"
 check_status "loading it is refused" 1 ctl case load broken
-check "with file, line and key" grep -q "broken.case:4: length_m: -1 is out of range" "$OUT"
+check "with file, line and key" grep -qF \
+	"broken.case:4: [segment anal_canal] length_m: -1 is out of range" "$OUT"
 check "the daemon keeps its case" test "$(status_field .case)" = normal
 
 # the scene: chunked GetScene, export as OBJ, import again

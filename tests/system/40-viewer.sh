@@ -11,7 +11,8 @@
 # overview draws the published tube (green inside the patient, dimmer in
 # the rig's pipe), the sigmoid where its nodes moved it (amber there,
 # round the tube), and the HUD names the model and the loop the state
-# gives; a stalled daemon reads as stale; the keyboard and the mouse drive
+# gives, warning of a loop only beyond the daemon's loop threshold (the
+# metrics'); a stalled daemon reads as stale; the keyboard and the mouse drive
 # the simulated hand; a daemon that goes away is shown gone, and its
 # successor's colon is fetched. No run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
@@ -95,7 +96,8 @@ scope_box() {
 # come to look at it); these three in the paper model (its demo course,
 # scenario_gen --model paper). The rod model's: the tube pushed in
 # straight at 10 cm/s, its tip stopped in the sigmoid, which it carries
-# away from where it lay (5 cm by 8 s).
+# away from where it lay (5 cm by 8 s), on a daemon whose metrics count
+# a loop from 20 cm only.
 "$TOOLS/scenario_gen" --model paper "$TOP/config/cases/normal.case" 0.1 \
 	>"$TMP/fast.scn"
 awk '/^#/ || $1 <= 4.5' "$TMP/fast.scn" >"$TMP/held.scn"
@@ -119,7 +121,8 @@ use_slot loop
 start_daemon --scenario "$TMP/loop.scn" --set haptics.model=paper || finish
 ctl enable >/dev/null
 use_slot rod
-start_daemon --set haptics.model=rod --scenario "$(scenario rod \
+start_daemon --set haptics.model=rod --set session.loop_threshold_m=0.2 \
+	--scenario "$(scenario rod \
 	'0 insertion target 0.90 9' '0 wheel_ud target 0 0.1' \
 	'0 wheel_lr target 0 0.1' '60 end')" || finish
 ctl enable >/dev/null
@@ -259,6 +262,8 @@ check "rod: the HUD gives the sigmoid's loop as the state does" grep -q \
 	"$VIEW_OUT"
 check "rod: the HUD gives the wall along the tube" \
 	grep -qE '^hud: tube on the wall: [1-9][0-9]* contacts?, [0-9.]+ N' "$VIEW_OUT"
+check "rod: no loop warning below the daemon's loop threshold (20 cm)" \
+	sh -c '! grep "^hud: LOOP" "$1"' _ "$VIEW_OUT"
 stop_daemon
 
 # --- the keyboard's hand; the daemon gone and back -----------------------
@@ -315,7 +320,9 @@ use_slot loop
 WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the sigmoid bows 5 cm" \
 	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
 check_status "overview, loop: screenshot" 0 view --view overview \
-	--frames 8 --screenshot "$TMP/loop.png"
+	--frames 8 --screenshot "$TMP/loop.png" --print-state
+check "loop: the HUD says it, beyond the paper model's 1 cm" \
+	grep -q '^hud: LOOP: the sigmoid bows [0-9.]* cm$' "$VIEW_OUT"
 check "the loop and the contact held through the screenshot" \
 	status_true '.scope.bow_m[0] > 0.04 and .haptics.contact'
 for what in amber red; do

@@ -4,13 +4,17 @@
  *
  *   session_report FILE.endoses DIR
  *
- * recomputes the metrics from the records (report_metrics()), prints them
- * as key=value lines and writes DIR/index.html.
+ * recomputes the metrics from the records (sessionmetrics_compute()) with
+ * the parameters the file was recorded with (sessioninputs.h), prints
+ * them as key=value lines and writes DIR/index.html.
  */
 #include <stdio.h>
 #include <string.h>
 
+#include "session/metricstext.h"
 #include "session/report.h"
+#include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 int main(int argc, char **argv)
 {
@@ -30,12 +34,12 @@ int main(int argc, char **argv)
 		fprintf(stderr, "session_report: %s: %s\n", argv[1], strerror(-r));
 		return 1;
 	}
-	metrics_params_default(&p);
-	r = report_metrics(&f, &p, &m, err, sizeof(err));
+	sessioninputs_file_metrics_params(&f, &p);
+	r = sessionmetrics_compute(&f, &p, &m, err, sizeof(err));
 	if (err[0]) {
 		fprintf(stderr, "session_report: %s\n", err);
 	}
-	if (!r && metrics_format(&m, text, sizeof(text)) > 0) {
+	if (!r && metricstext_format(&m, text, sizeof(text)) > 0) {
 		fputs(text, stdout);
 	}
 	r = r ? r : report_write(&f, &m, NULL, argv[2]);

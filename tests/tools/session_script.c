@@ -24,6 +24,7 @@
 
 #include "model/colon.h"
 #include "session/metrics.h"
+#include "session/metricstext.h"
 #include "proto/session_file.h"
 #include "base/vec3.h"
 
@@ -246,7 +247,7 @@ static int run(struct synth *y, const char *case_path, const char *trainee)
 		return r;
 	}
 	metrics_result(y->metrics, &res);
-	r = metrics_format(&res, end, sizeof(end));
+	r = metricstext_format(&res, end, sizeof(end));
 	if (r < 0) {
 		return r;
 	}

@@ -1,5 +1,6 @@
 /* test_config.c - the configuration table: every class of bad input gives
- * one line naming the file, the line and the key; good input round-trips. */
+ * one line naming the file, the line and the key; good input round-trips;
+ * its defaults are the model's and the metrics' own. */
 #include <errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,7 +12,10 @@
 
 #include <cmocka.h>
 
+#include "conf/cases.h"
 #include "conf/config.h"
+#include "session/metrics.h"
+#include "session/sessioninputs.h"
 
 static char path[64];
 static char err[512];
@@ -261,17 +265,182 @@ static void test_table_sane(void **state)
 {
 	(void)state;
 	for (size_t i = 0; i < config_key_count(); i++) {
-		const struct config_key *k = config_key_at(i);
+		const struct parse_key *k = config_key_at(i);
 		char name[160];
 
 		assert_non_null(k->help);
 		assert_true(strlen(k->help) > 5);
-		if (k->type == CONFIG_INT || k->type == CONFIG_DOUBLE) {
+		if (k->type == PARSE_INT || k->type == PARSE_DOUBLE) {
 			assert_true(k->def >= k->min && k->def <= k->max);
 		}
 		snprintf(name, sizeof(name), "%s.%s", k->section, k->name);
 		assert_ptr_equal(config_key_find(name), k);
 	}
+}
+
+/* ----------------------------------------- the owners' defaults, once */
+
+static int mismatches;
+
+/* One parameter: the configuration's GOT against its owner's WANT. */
+static void same(const char *name, double got, double want)
+{
+	if (got != want) {
+		print_error("%s: the configuration gives %.17g, its owner "
+			    "%.17g\n", name, got, want);
+		mismatches++;
+	}
+}
+
+#define SAME(got, want, field) \
+	same(#field, (double)(got).field, (double)(want).field)
+
+static void same_rodscope(const struct rodscope_params *c)
+{
+	const struct rodscope_params m = RODSCOPE_PARAMS_DEFAULT;
+
+	SAME(*c, m, rod.segments);
+	SAME(*c, m, rod.length_m);
+	SAME(*c, m, rod.radius_m);
+	SAME(*c, m, rod.mass_per_m_kg);
+	SAME(*c, m, rod.bending_n_m2);
+	SAME(*c, m, rod.torsion_n_m2);
+	SAME(*c, m, rod.damping_s);
+	SAME(*c, m, rod.drag_n_s_per_m2);
+	SAME(*c, m, rod.iterations);
+	SAME(*c, m, bending_length_m);
+	SAME(*c, m, tip_bending_n_m2);
+	SAME(*c, m, lumen.wall_n_per_m2);
+	SAME(*c, m, lumen.wall_damping_s);
+	SAME(*c, m, lumen.friction);
+	SAME(*c, m, lumen.slip_m_per_s);
+	SAME(*c, m, lumen.pipe_n_per_m2);
+	SAME(*c, m, lumen.tube_radius_m);
+	SAME(*c, m, flex.node_spacing_m);
+	SAME(*c, m, flex.damping_n_s_per_m);
+	SAME(*c, m, flex.chain_n_per_m);
+	SAME(*c, m, flex.bending_n_per_m);
+	SAME(*c, m, coupling_n_per_m);
+	SAME(*c, m, coupling_n_s_per_m);
+	SAME(*c, m, roll_n_m_per_rad);
+	SAME(*c, m, roll_n_m_s_per_rad);
+	SAME(*c, m, stop_n_per_m);
+	SAME(*c, m, wire_spacing_m);
+}
+
+static void same_haptics(const struct haptics_params *c)
+{
+	const struct haptics_gains m = HAPTICS_GAINS_DEFAULT;
+	const struct scope_params s = SCOPE_PARAMS_DEFAULT;
+
+	SAME(c->gains, m, model);
+	SAME(c->gains, m, scope_radius_m);
+	SAME(c->gains, m, wall_stiffness_n_per_m);
+	SAME(c->gains, m, wall_damping_n_s_per_m);
+	SAME(c->gains, m, tip_lateral_stiffness_n_per_m);
+	SAME(c->gains, m, force_shading);
+	SAME(c->gains, m, contact_reach_m);
+	SAME(c->gains, m, entry_depth_m);
+	SAME(c->gains, m, friction_n_s_per_m_rad);
+	SAME(c->gains, m, torsion_n_m_s_per_rad2);
+	SAME(c->gains, m, wire_spacing_m);
+	SAME(c->gains, m, wire_tension_n_m_per_m);
+	SAME(c->gains, m, bending_stiffness_n_m_per_rad);
+	SAME(c->gains, m, stop_stiffness_n_m_per_rad);
+	SAME(c->gains, m, stop_damping_n_m_s_per_rad);
+	SAME(c->gains, m, wheel_delay_s);
+	SAME(c->gains, m, loop_relax_s);
+	SAME(c->gains, m, damping[ENDOSIM_AXIS_INSERTION]);
+	SAME(c->gains, m, damping[ENDOSIM_AXIS_ROLL]);
+	SAME(c->gains, m, damping[ENDOSIM_AXIS_WHEEL_UD]);
+	SAME(c->gains, m, damping[ENDOSIM_AXIS_WHEEL_LR]);
+	SAME(c->gains, m, passivity);
+	same("bending_length_m", c->bending_length_m, s.bending_length_m);
+	same("wheel_gain[0]", c->wheel_gain[0], s.ud_gain);
+	same("wheel_gain[1]", c->wheel_gain[1], s.lr_gain);
+	same("wheel_limit_rad[0]", c->wheel_limit_rad[0], s.ud_limit_rad);
+	same("wheel_limit_rad[1]", c->wheel_limit_rad[1], s.lr_limit_rad);
+	same_rodscope(&c->rod);
+}
+
+/* The metrics' thresholds, with the loop's by the paper model (0 in the
+ * configuration: by the model; the metrics' default is the paper's). */
+static void same_metrics(const struct config *cfg)
+{
+	struct config paper = *cfg;
+	struct metrics_params c, m;
+
+	paper.haptics.model = HAPTICS_MODEL_PAPER;
+	sessioninputs_metrics_params(&paper, &c);
+	metrics_params_default(&m);
+	SAME(c, m, force_threshold_n);
+	SAME(c, m, loop_threshold_m);
+	SAME(c, m, view_distance_m);
+	SAME(c, m, fov_rad);
+	SAME(c, m, view_rate_hz);
+}
+
+/* CFG's model parameters (cases.h) field by field against the owners'. */
+static void same_as_owners(const struct config *cfg)
+{
+	const struct colon_params mc = COLON_PARAMS_DEFAULT;
+	const struct scope_params ms = SCOPE_PARAMS_DEFAULT;
+	struct colon_params cc;
+	struct scope_params cs;
+	struct rodscope_params cr;
+	struct haptics_params ch;
+
+	cases_colon_params(cfg, &cc);
+	SAME(cc, mc, step_m);
+	SAME(cc, mc, ring_vertices);
+	SAME(cc, mc, segment_m);
+	SAME(cc, mc, contact_radius_m);
+	cases_scope_params(cfg, &cs);
+	SAME(cs, ms, bending_length_m);
+	SAME(cs, ms, ud_gain);
+	SAME(cs, ms, lr_gain);
+	SAME(cs, ms, ud_limit_rad);
+	SAME(cs, ms, lr_limit_rad);
+	cases_rod_params(cfg, &cr);
+	same_rodscope(&cr);
+	cases_haptics_params(cfg, &ch);
+	same_haptics(&ch);
+	same_metrics(cfg);
+}
+
+/*
+ * Each default is written once, in the module that owns it (scope.h,
+ * colon.h, rod.h, lumen.h, flex.h, rodscope.h, haptics.h), and the
+ * table refers to it; the metrics' thresholds twice (metrics.h and the
+ * table). The configuration's defaults, as config_defaults() sets them
+ * and as --print-config writes them and a file reads them back, make the
+ * owners' parameters exactly: a default typed into the table, or edited
+ * in one place only, or printed with less precision than it has, fails.
+ */
+static void test_defaults_are_the_owners(void **state)
+{
+	struct config cfg, printed;
+	char *text = NULL;
+	size_t size = 0;
+	FILE *f;
+
+	(void)state;
+	mismatches = 0;
+	config_defaults(&cfg);
+	same_as_owners(&cfg);
+	f = open_memstream(&text, &size);
+	assert_non_null(f);
+	config_print(&cfg, f);
+	fclose(f);
+	f = fmemopen(text, size, "r");
+	assert_non_null(f);
+	config_defaults(&printed);
+	assert_int_equal(config_load_stream(&printed, f, "printed", err,
+					    sizeof(err)), 0);
+	fclose(f);
+	free(text);
+	same_as_owners(&printed);
+	assert_int_equal(mismatches, 0);
 }
 
 int main(void)
@@ -291,6 +460,7 @@ int main(void)
 		cmocka_unit_test(test_set_live_only),
 		cmocka_unit_test(test_print_round_trip),
 		cmocka_unit_test(test_table_sane),
+		cmocka_unit_test(test_defaults_are_the_owners),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

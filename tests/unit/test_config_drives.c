@@ -52,14 +52,14 @@ static void modbus_wheels(struct config *c)
 /* Sets register SIG of axis A directly (no cross-key check), then checks. */
 static int try_reg(struct config *c, int a, int sig, const char *text)
 {
-	assert_int_equal(regmap_parse(text, &c->modbus_drive[a].reg[sig], err,
+	assert_int_equal(regspec_parse(text, &c->modbus_drive[a].reg[sig], err,
 				      sizeof(err)), 0);
 	return config_check(c, err, sizeof(err));
 }
 
 static void test_dotted_sections_and_hex(void **state)
 {
-	const struct config_key *k = config_key_find("epos4.roll.vid");
+	const struct parse_key *k = config_key_find("epos4.roll.vid");
 	struct config c;
 	char buf[64];
 
@@ -80,7 +80,7 @@ static void test_dotted_sections_and_hex(void **state)
 
 static void test_register_key(void **state)
 {
-	const struct config_key *k =
+	const struct parse_key *k =
 		config_key_find("modbus.wheel_lr.velocity");
 	struct config c;
 	char buf[160];
@@ -128,23 +128,24 @@ static void test_modbus_checks(void **state)
 	assert_non_null(strstr(err, "[modbus.wheel_lr] slave"));
 
 	modbus_wheels(&c);
-	assert_int_equal(try_reg(&c, UD, REGMAP_TORQUE, "none"), -EINVAL);
+	assert_int_equal(try_reg(&c, UD, REGSPEC_TORQUE, "none"), -EINVAL);
 	assert_non_null(strstr(err, "[modbus.wheel_ud] torque"));
 
 	modbus_wheels(&c);
-	assert_int_equal(try_reg(&c, UD, REGMAP_ENABLE, "discrete 3"), -EINVAL);
+	assert_int_equal(try_reg(&c, UD, REGSPEC_ENABLE, "discrete 3"),
+			 -EINVAL);
 	assert_non_null(strstr(err, "[modbus.wheel_ud] enable"));
 
 	modbus_wheels(&c);
 	c.modbus_drive[UD].combined_0x17 = 1;
 	assert_int_equal(config_check(&c, err, sizeof(err)), -EINVAL);
 	assert_non_null(strstr(err, "position: 0x17 reads holding"));
-	assert_int_equal(try_reg(&c, UD, REGMAP_POSITION, "holding 0x10 i32"),
+	assert_int_equal(try_reg(&c, UD, REGSPEC_POSITION, "holding 0x10 i32"),
 			 0);
-	assert_int_equal(try_reg(&c, UD, REGMAP_FAULT, "holding 0x200"),
+	assert_int_equal(try_reg(&c, UD, REGSPEC_FAULT, "holding 0x200"),
 			 -EINVAL);
 	assert_non_null(strstr(err, "span"));
-	assert_int_equal(try_reg(&c, UD, REGMAP_FAULT, "holding 0x20"), 0);
+	assert_int_equal(try_reg(&c, UD, REGSPEC_FAULT, "holding 0x20"), 0);
 
 	modbus_wheels(&c);
 	c.modbus.baud = 100000;

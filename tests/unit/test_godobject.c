@@ -30,7 +30,6 @@
 
 #define SKIN 1e-6  /* godobject.c keeps the proxy this far off its planes */
 #define NEAR 1e-5  /* m: "on" a plane, line or point */
-#define COLON_PARAMS_DEFAULT_RADIUS 0.0065 /* COLON_PARAMS_DEFAULT's inset */
 
 /* ------------------------------------------------------------ walls */
 
@@ -591,7 +590,7 @@ static void test_jump_across_folds(void **state)
 {
 	struct colon *c = load_case("normal");
 	const struct centreline *cl = colon_centreline(c);
-	double theta = M_PI / 3, inset = COLON_PARAMS_DEFAULT_RADIUS;
+	double theta = M_PI / 3, inset = SCOPE_RADIUS_M; /* the colon's */
 	int stopped = 0, jumps = 0;
 
 	(void)state;

@@ -6,7 +6,8 @@
  *    section's base tangent and the view direction);
  *  - wire tension: a planar bend Theta in a wire's plane gives dr Theta
  *    (1%), an S-curve ~0, a bend across a wire ~0, a roll of 90 deg swaps
- *    the wheels;
+ *    the wheels; the rod model's the same over its tube laid on the
+ *    bend, and dr times its own turning once it has settled;
  *  - contact torques by the Jacobian equal the paper's n . F_static
  *    projection ((Lb/2) n . F per rad of bend) with a straight tip;
  *  - loops: with the tip held, pushing grows the loop while the tip stays,
@@ -80,21 +81,32 @@ static void add_bend(struct anatomy *a, int seg, double deg, double radius,
 	};
 }
 
-static void world_init(struct world *w, const struct anatomy *a)
+/* A world of MODEL's haptics (HAPTICS_MODEL_PAPER or _ROD) on A. */
+static void world_init_model(struct world *w, const struct anatomy *a,
+			     int model)
 {
 	struct colon_params p = COLON_PARAMS_DEFAULT;
+	struct haptics_params hp;
 	char err[256];
 
 	memset(w, 0, sizeof(*w));
 	config_defaults(&w->cfg);
+	w->cfg.haptics.model = model;
 	/* the physics alone: no virtual damping of the axes */
 	memset(w->cfg.haptics.damping, 0, sizeof(w->cfg.haptics.damping));
 	p.ring_vertices = 96;
 	w->colon = colon_create(a, &p, err, sizeof(err));
 	assert_non_null(w->colon);
-	w->h = haptics_create(NULL); /* the paper's model */
+	cases_haptics_params(&w->cfg, &hp);
+	w->h = haptics_create(&hp);
 	assert_non_null(w->h);
 	haptics_reset(w->h, w->colon);
+}
+
+/* The paper's model. */
+static void world_init(struct world *w, const struct anatomy *a)
+{
+	world_init_model(w, a, HAPTICS_MODEL_PAPER);
 }
 
 static void world_free(struct world *w)
@@ -118,7 +130,11 @@ static void step(struct world *w, const double q[ENDOSIM_AXES],
 
 	cases_scope_params(&w->cfg, &sp);
 	cases_haptics_params(&w->cfg, &hp);
-	scope_update(&sp, colon_centreline(w->colon), &in, &w->pose);
+	if (haptics_rod(w->h)) {
+		haptics_rod_pose(w->h, &hp, q, qd, &w->pose);
+	} else {
+		scope_update(&sp, colon_centreline(w->colon), &in, &w->pose);
+	}
 	haptics_render(w->h, &hi, w->cmd, &w->out);
 }
 
@@ -130,6 +146,27 @@ static double roll_into_bend(const struct world *w, double s)
 
 	centreline_at_s(colon_centreline(w->colon), s, &q);
 	return atan2(vec3_dot(q.k, q.v), vec3_dot(q.k, q.u));
+}
+
+/* The rod model's tube inserted to DEPTH (m): the angle (rad) between its
+ * first segment inside the patient and its last before the bending
+ * section, from the published shape (the segments' ends). */
+static double rod_turning(const struct world *w, double depth)
+{
+	const struct config_rod *c = &w->cfg.rod;
+	double l = c->length_m / c->segments, bow[ENDOSIM_SPANS], ta[3], tb[3];
+	int first = (int)ceil((c->length_m - depth) / l - 0.5);
+	int last = c->segments -
+		   (int)lround(w->cfg.scope.bending_length_m / l) - 1;
+	struct endosim_rod_state rs;
+
+	haptics_publish_rod(w->h, 0, &rs, bow);
+	assert_int_equal(rs.points, c->segments + 1);
+	for (int d = 0; d < 3; d++) {
+		ta[d] = rs.point[first + 1][d] - rs.point[first][d];
+		tb[d] = rs.point[last + 1][d] - rs.point[last][d];
+	}
+	return acos(vec3_dot(ta, tb) / (vec3_norm(ta) * vec3_norm(tb)));
 }
 
 /* ------------------------------------------------------------ friction */
@@ -279,60 +316,129 @@ static void test_friction_bent_tip(void **state)
 
 /* ------------------------------------------------------------ tension */
 
-static void test_tension_planar_bend(void **state)
+/*
+ * A planar bend Theta of 90 deg (the descending colon's, 6 cm radius) in
+ * W's tube at depth Q[0], each roll laid anew (the rod model's: its first
+ * step lies on the course): the wire on the bend's inside is shorter by
+ * dr Theta (1 %), the one across it has none, and each quarter turn of
+ * the roll takes the bend on to the next wire: d1 (up/down) first, then
+ * -d2, -d1, d2. Returns the roll that turns d1 into the bend.
+ */
+static double check_quarter_turns(struct world *w, double q[4])
 {
 	const double theta = M_PI / 2, zero[4] = { 0 };
-	struct anatomy a;
-	struct world w;
-	double q[4] = { 0.8, 0, 0, 0 }, dr, roll;
+	double dr = w->cfg.haptics.wire_spacing_m;
+	double roll = roll_into_bend(w, 0.53 + 0.075);
 
-	(void)state;
+	for (int k = 0; k < 4; k++) {
+		q[1] = roll + k * M_PI / 2;
+		haptics_reset(w->h, w->colon);
+		step(w, q, zero);
+		assert_near(w->out.wire_dl_m[0],
+			    -cos(k * M_PI / 2) * dr * theta,
+			    0.01 * dr * theta);
+		assert_near(w->out.wire_dl_m[1], sin(k * M_PI / 2) * dr * theta,
+			    0.01 * dr * theta);
+	}
+	return roll;
+}
+
+static void bend_world(struct world *w, int model)
+{
+	struct anatomy a;
+
 	smooth_anatomy(&a);
 	add_bend(&a, ANATOMY_DESCENDING, 90, 0.06, 0);
-	world_init(&w, &a);
-	dr = w.cfg.haptics.wire_spacing_m;
-	roll = roll_into_bend(&w, 0.53 + 0.075);
-	/* the bend in the up/down wire's plane */
-	q[1] = roll;
+	world_init_model(w, &a, model);
+}
+
+static void test_tension_planar_bend(void **state)
+{
+	const double zero[4] = { 0 };
+	struct world w;
+	double q[4] = { 0.8, 0, 0, 0 };
+
+	(void)state;
+	bend_world(&w, HAPTICS_MODEL_PAPER);
+	q[1] = check_quarter_turns(&w, q);
 	step(&w, q, zero);
-	assert_float_equal(fabs(w.out.wire_dl_m[0]), dr * theta,
-			   0.01 * dr * theta);
-	assert_true(fabs(w.out.wire_dl_m[1]) < 0.01 * dr * theta);
 	assert_float_equal(w.out.wheel_tension_nm[0],
 			   w.cfg.haptics.wire_tension_n_m_per_m *
 				   w.out.wire_dl_m[0], 1e-12);
-	/* a quarter turn of the tube: the left/right wire has it, the
-	 * up/down wire lies across the bend and has none */
-	q[1] = roll + M_PI / 2;
-	step(&w, q, zero);
-	assert_float_equal(fabs(w.out.wire_dl_m[1]), dr * theta,
-			   0.01 * dr * theta);
-	assert_true(fabs(w.out.wire_dl_m[0]) < 0.01 * dr * theta);
 	world_free(&w);
 }
 
-static void test_tension_s_curve_cancels(void **state)
+/*
+ * The rod model's wires (rodscope.h) are over the tube's own shape, the
+ * inserted segments before the bending section: on the course's bend as
+ * the paper's; then, left to settle with its tip bent in that plane, the
+ * tube takes a shape of its own, and the up/down wire is dr times the
+ * angle between its first segment inside and its last before the bending
+ * section (0.5 %: the sum of the joints' sines against their angles).
+ */
+static void test_rod_tension_planar_bend(void **state)
+{
+	const double theta = M_PI / 2, zero[4] = { 0 };
+	struct world w;
+	double q[4] = { 0.8, 0, 0, 0 }, dr, turn;
+
+	(void)state;
+	bend_world(&w, HAPTICS_MODEL_ROD);
+	dr = w.cfg.haptics.wire_spacing_m;
+	q[1] = check_quarter_turns(&w, q);
+	q[2] = 0.5;
+	haptics_reset(w.h, w.colon);
+	for (int k = 0; k < 200; k++) {
+		step(&w, q, zero);
+	}
+	turn = rod_turning(&w, q[0]);
+	printf("# the rod settled: turning %.4f rad (the course's %.4f), "
+	       "wires %.3f mm, %.3f mm (dr times it: %.3f mm)\n", turn,
+	       theta, w.out.wire_dl_m[0] * 1e3, w.out.wire_dl_m[1] * 1e3,
+	       dr * turn * 1e3);
+	assert_true(fabs(turn - theta) > 0.05 * theta); /* its own shape */
+	assert_near(w.out.wire_dl_m[0], -dr * turn, 0.005 * dr * turn);
+	assert_true(fabs(w.out.wire_dl_m[1]) < 0.005 * dr * turn);
+	world_free(&w);
+}
+
+/* An S-curve (two 60 deg bends in opposite directions) in MODEL's tube,
+ * laid anew at each roll: the wires cancel at every roll, while the tube
+ * has turned through both bends (TURN_TOL: relative). */
+static void check_s_curve(int model, double turn_tol)
 {
 	const double theta = M_PI / 3, zero[4] = { 0 };
 	struct anatomy a;
 	struct world w;
 	double q[4] = { 0.8, 0, 0, 0 }, dr;
 
-	(void)state;
 	smooth_anatomy(&a);
 	add_bend(&a, ANATOMY_DESCENDING, 60, 0.06, 0);
 	add_bend(&a, ANATOMY_DESCENDING, 60, 0.06, 180);
-	world_init(&w, &a);
+	world_init_model(&w, &a, model);
 	dr = w.cfg.haptics.wire_spacing_m;
 	for (double roll = 0; roll < 2 * M_PI; roll += M_PI / 8) {
 		q[1] = roll;
+		haptics_reset(w.h, w.colon);
 		step(&w, q, zero);
 		assert_true(fabs(w.out.wire_dl_m[0]) < 0.02 * dr * theta);
 		assert_true(fabs(w.out.wire_dl_m[1]) < 0.02 * dr * theta);
 	}
-	/* while the tube has turned through both bends */
-	assert_float_equal(w.out.curvature_rad, 2 * theta, 0.02 * theta);
+	assert_near(w.out.curvature_rad, 2 * theta, turn_tol * 2 * theta);
 	world_free(&w);
+}
+
+static void test_tension_s_curve_cancels(void **state)
+{
+	(void)state;
+	check_s_curve(HAPTICS_MODEL_PAPER, 0.01);
+}
+
+/* (the rod's turning counts its joints' rotations, 2 % short here) */
+static void test_rod_tension_s_curve_cancels(void **state)
+{
+	(void)state;
+	check_s_curve(HAPTICS_MODEL_ROD, 0.05);
 }
 
 /* ------------------------------------------------------------ contact */
@@ -1052,6 +1158,8 @@ int main(void)
 		cmocka_unit_test(test_friction_bent_tip),
 		cmocka_unit_test(test_tension_planar_bend),
 		cmocka_unit_test(test_tension_s_curve_cancels),
+		cmocka_unit_test(test_rod_tension_planar_bend),
+		cmocka_unit_test(test_rod_tension_s_curve_cancels),
 		cmocka_unit_test(test_contact_torque_is_projection),
 		cmocka_unit_test(test_head_on_is_k_delta),
 		cmocka_unit_test(test_loop_grows_and_returns),

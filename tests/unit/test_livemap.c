@@ -1,6 +1,7 @@
 /* test_livemap.c - the unseen-mucosa map on the wire (livemap.h): each
  * share to its byte and back within half a step, the cells' order, the
- * cells without wall, the mean over the walls only. */
+ * cells without wall, the mean over the walls only; the map's colour
+ * ramp. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -97,6 +98,49 @@ static void test_mean_over_walls(void **state)
 	assert_true(livemap_mean_seen(none, 0) == 0);
 }
 
+/*
+ * The map's colour ramp: each channel from the unseen end to the seen one
+ * and straight between; on the page the report's colours, on the screen
+ * what 77-live-map's pixel statistics count as red and as green
+ * (png_stats.c).
+ */
+static void test_colour_ramp(void **state)
+{
+	static const double page[2][3] = { { 214, 60, 60 },
+					   { 154, 230, 180 } };
+	double end[2][3], c[3];
+
+	(void)state;
+	for (int bg = LIVEMAP_ON_PAGE; bg <= LIVEMAP_ON_SCREEN; bg++) {
+		livemap_colour(bg, 0, end[0]);
+		livemap_colour(bg, 1, end[1]);
+		for (int k = 0; k <= 10; k++) {
+			livemap_colour(bg, k / 10.0, c);
+			for (int ch = 0; ch < 3; ch++) {
+				double want = end[0][ch] +
+					      k / 10.0 * (end[1][ch] -
+							  end[0][ch]);
+
+				assert_true(fabs(c[ch] - want) < 1e-9);
+				assert_true(c[ch] >= 0 && c[ch] <= 255);
+			}
+		}
+		if (bg == LIVEMAP_ON_PAGE) {
+			for (int ch = 0; ch < 3; ch++) {
+				assert_true(fabs(end[0][ch] - page[0][ch]) <
+					    1e-9);
+				assert_true(fabs(end[1][ch] - page[1][ch]) <
+					    1e-9);
+			}
+			continue;
+		}
+		assert_true(end[0][0] > 200 && end[0][1] < 100 &&
+			    end[0][2] < 100);
+		assert_true(end[1][1] > 120 && end[1][1] > end[1][0] + 50 &&
+			    end[1][1] > end[1][2] + 50);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -104,6 +148,7 @@ int main(void)
 		cmocka_unit_test(test_order_and_precision),
 		cmocka_unit_test(test_round_trip),
 		cmocka_unit_test(test_mean_over_walls),
+		cmocka_unit_test(test_colour_ramp),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -14,7 +14,7 @@
  *   - the mucosa seen on a straight colon (geometry in each test);
  *   - the polyps of the polyps case: seen when looked at from 3 cm, not
  *     when behind the camera or beyond view_distance_m;
- *   - metrics_format() and metrics_parse() round trip.
+ *   - metricstext_format() and metricstext_parse() round trip.
  * Times are to one record (1 ms at 1 kHz).
  *
  * Case files are read from $ENDOSIM_CASES (default config/cases) and
@@ -37,6 +37,7 @@
 #include "conf/config.h"
 #include "geom_assert.h"
 #include "session/metrics.h"
+#include "session/metricstext.h"
 #include "session/sessioninputs.h"
 #include "base/vec3.h"
 
@@ -325,6 +326,37 @@ static void test_loop_threshold_by_model(void **state)
 	cfg.session.loop_threshold_m = 0.02;
 	sessioninputs_metrics_params(&cfg, &p);
 	assert_true(p.loop_threshold_m == 0.02);
+}
+
+/* A session file's threshold, which the report and the replay's HUD
+ * take: by the model its records say ran, whatever model its CONFIG
+ * names (a tool's file may name none: the default, the rod); its CONFIG's
+ * value overrides it; without records, its CONFIG's model. */
+static void test_loop_threshold_of_file(void **state)
+{
+	struct session_record rec = { .model = ENDOSIM_MODEL_PAPER };
+	struct session_file f = { .config = "[loop]\n" };
+	struct metrics_params p;
+
+	(void)state;
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_ROD_M);
+	f.records = &rec;
+	f.n_records = 1;
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_PAPER_M);
+	rec.model = ENDOSIM_MODEL_ROD;
+	f.config = "[haptics]\nmodel = paper\n";
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_ROD_M);
+	f.config = "[session]\nloop_threshold_m = 0.05\n";
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == 0.05);
+	assert_true(sessioninputs_loop_threshold_m(0, true) ==
+		    SESSION_LOOP_THRESHOLD_ROD_M);
+	assert_true(sessioninputs_loop_threshold_m(0, false) ==
+		    SESSION_LOOP_THRESHOLD_PAPER_M);
+	assert_true(sessioninputs_loop_threshold_m(0.04, false) == 0.04);
 }
 
 static void test_loop_episodes(void **state)
@@ -721,7 +753,10 @@ static void one_pose(struct colon *c, double s, double angle)
 	printf("# camera at %.2f m looking %s: seen %.4f, oracle %.4f "
 	       "(%.4f in view without the folds' shadow)\n", s,
 	       angle ? "back" : "ahead", got, want, open);
-	assert_true(fabs(got - want) < 0.03);
+	/* the depth test sees 0.010 and 0.011 more than the oracle at these
+	 * poses (the buffer's pixels); a buffer of half the resolution, or a
+	 * depth slack 20 times its own, errs by 0.019 and 0.020 */
+	assert_true(fabs(got - want) < 0.013);
 	assert_true(open - want > 0.1); /* the folds hide a good part */
 	metrics_destroy(m);
 }
@@ -1025,11 +1060,11 @@ static void test_format_parse(void **state)
 	}
 	in.loop[0] = (struct metrics_episode){ 1.001, 7.1, 0.04 };
 	in.loop[1] = (struct metrics_episode){ 9, -1, 0.02 };
-	n = metrics_format(&in, buf, sizeof(buf));
+	n = metricstext_format(&in, buf, sizeof(buf));
 	assert_true(n > 0 && (size_t)n == strlen(buf));
 	assert_non_null(strstr(buf, "withdrawal_s=401.001\n"));
 	assert_non_null(strstr(buf, "loop_episode.1=9,-1,0.02\n"));
-	assert_int_equal(metrics_parse(buf, &out), 0);
+	assert_int_equal(metricstext_parse(buf, &out), 0);
 	assert_rel(out.duration_s, in.duration_s);
 	assert_int_equal(out.records, in.records);
 	assert_int_equal(out.drops, in.drops);
@@ -1047,15 +1082,16 @@ static void test_format_parse(void **state)
 	}
 	assert_rel(out.loop[1].end_s, -1);
 	/* too small a buffer, malformed text, a later version's key */
-	assert_int_equal(metrics_format(&in, buf, 100), -ENOSPC);
-	assert_int_equal(metrics_parse("records=12\nnonsense\n", &out),
+	assert_int_equal(metricstext_format(&in, buf, 100), -ENOSPC);
+	assert_int_equal(metricstext_parse("records=12\nnonsense\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("records=twelve\n", &out), -EINVAL);
-	assert_int_equal(metrics_parse("force_episode.64=1,2,3\n", &out),
+	assert_int_equal(metricstext_parse("records=twelve\n", &out), -EINVAL);
+	assert_int_equal(metricstext_parse("force_episode.64=1,2,3\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("force_episode.0=1,2\n", &out),
+	assert_int_equal(metricstext_parse("force_episode.0=1,2\n", &out),
 			 -EINVAL);
-	assert_int_equal(metrics_parse("records=12\nfuture_key=x\n", &out), 0);
+	assert_int_equal(metricstext_parse("records=12\nfuture_key=x\n", &out),
+			 0);
 	assert_int_equal(out.records, 12);
 	assert_true(out.cecum_s < 0);
 }
@@ -1168,6 +1204,7 @@ int main(void)
 		cmocka_unit_test(test_force_episode_running),
 		cmocka_unit_test(test_loop_episodes),
 		cmocka_unit_test(test_loop_threshold_by_model),
+		cmocka_unit_test(test_loop_threshold_of_file),
 		cmocka_unit_test(test_episodes_beyond_the_list),
 		cmocka_unit_test(test_discomfort_constant),
 		cmocka_unit_test(test_lumen_lost_straight),

@@ -2,7 +2,8 @@
  * test_model.c - the viewer's colon (viewer/model.h): rebuilt from what
  * GetScene serves, it is the daemon's colon vertex for vertex, also bowed
  * or moved by the rod model's nodes; it names the region of any s; it
- * keeps a camera inside the lumen, out of the cecum's closed end too.
+ * keeps a camera inside the lumen, out of the cecum's closed end too; its
+ * scope is the scene's.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -305,6 +306,44 @@ static void refuses_bad_scene(void **state)
 	fixture_teardown(&f);
 }
 
+/* The scope is the scene's; the shipped one when the scene has none; a
+ * scene whose scope does not add up is refused. */
+static void takes_the_scenes_scope(void **state)
+{
+	const struct scope_params shipped = SCOPE_PARAMS_DEFAULT;
+	const struct scope_params p = {
+		.bending_length_m = 0.1, .ud_gain = 2, .lr_gain = 1.5,
+		.ud_limit_rad = 3, .lr_limit_rad = 2.5,
+	};
+	const struct scope_params bad = { .bending_length_m = 0 };
+	struct fixture f;
+	struct model *m;
+	char err[256];
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.004, 32);
+	assert_null(f.cs.scope);
+	assert_true(f.model->scope.ud_limit_rad == shipped.ud_limit_rad);
+	assert_true(f.model->scope.bending_length_m ==
+		    shipped.bending_length_m);
+	assert_true(f.model->scope_radius_m == SCOPE_RADIUS_M);
+	scene_set_scope(f.scene, &p, 0.007);
+	scene_client(f.scene, &f.cs);
+	m = model_create(&f.cs, err, sizeof(err));
+	assert_non_null(m);
+	assert_true(m->scope.bending_length_m == 0.1);
+	assert_true(m->scope.ud_gain == 2);
+	assert_true(m->scope.lr_gain == 1.5);
+	assert_true(m->scope.ud_limit_rad == 3);
+	assert_true(m->scope.lr_limit_rad == 2.5);
+	assert_true(m->scope_radius_m == 0.007);
+	model_destroy(m);
+	scene_set_scope(f.scene, &bad, 0.007);
+	assert_null(model_create(&f.cs, err, sizeof(err)));
+	assert_non_null(strstr(err, "scope"));
+	fixture_teardown(&f);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -316,6 +355,7 @@ int main(void)
 		cmocka_unit_test(keeps_inside),
 		cmocka_unit_test(knows_a_tube),
 		cmocka_unit_test(refuses_bad_scene),
+		cmocka_unit_test(takes_the_scenes_scope),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,8 @@
 /*
- * test_regmap.c - Modbus register map conversions: every type in every
- * byte and word order against raw words written out by hand, scale and
- * offset both ways, rounding and clamping, bits, and the text form.
+ * test_regmap.c - Modbus register map conversions (rig/regmap.h): every
+ * type in every byte and word order against raw words written out by
+ * hand, scale and offset both ways, rounding and clamping, bits; and the
+ * register's description in its text form (conf/regspec.h).
  */
 #include <errno.h>
 #include <math.h>
@@ -13,11 +14,12 @@
 
 #include <cmocka.h>
 
-#include "conf/regmap.h"
+#include "conf/regspec.h"
+#include "rig/regmap.h"
 
-static struct regmap_reg reg(uint8_t table, uint8_t type, uint8_t order)
+static struct regspec reg(uint8_t table, uint8_t type, uint8_t order)
 {
-	return (struct regmap_reg){ .table = table, .type = type,
+	return (struct regspec){ .table = table, .type = type,
 				    .order = order, .address = 0x10,
 				    .scale = 1.0 };
 }
@@ -27,23 +29,23 @@ static const struct {
 	uint8_t order;
 	uint16_t w[2];
 } orders32[] = {
-	{ REGMAP_ABCD, { 0x1122, 0x3344 } },
-	{ REGMAP_CDAB, { 0x3344, 0x1122 } },
-	{ REGMAP_BADC, { 0x2211, 0x4433 } },
-	{ REGMAP_DCBA, { 0x4433, 0x2211 } },
+	{ REGSPEC_ABCD, { 0x1122, 0x3344 } },
+	{ REGSPEC_CDAB, { 0x3344, 0x1122 } },
+	{ REGSPEC_BADC, { 0x2211, 0x4433 } },
+	{ REGSPEC_DCBA, { 0x4433, 0x2211 } },
 };
 
 static void test_u32_i32_orders(void **state)
 {
 	(void)state;
 	for (size_t i = 0; i < 4; i++) {
-		struct regmap_reg u = reg(REGMAP_INPUT, REGMAP_U32,
+		struct regspec u = reg(REGSPEC_INPUT, REGSPEC_U32,
 					  orders32[i].order);
-		struct regmap_reg s = reg(REGMAP_INPUT, REGMAP_I32,
+		struct regspec s = reg(REGSPEC_INPUT, REGSPEC_I32,
 					  orders32[i].order);
 		uint16_t w[2];
 
-		assert_int_equal(regmap_words(&u), 2);
+		assert_int_equal(regspec_words(&u), 2);
 		assert_true(regmap_decode(&u, orders32[i].w) == 0x11223344);
 		assert_true(regmap_decode(&s, orders32[i].w) == 0x11223344);
 		assert_int_equal(regmap_encode(&u, 0x11223344, w), 0);
@@ -57,18 +59,18 @@ static void test_negative_i32(void **state)
 	static const uint16_t abcd[] = { 0xFFFF, 0xFFFE };
 	static const uint16_t cdab[] = { 0xFFFE, 0xFFFF };
 	static const uint16_t badc[] = { 0xFFFF, 0xFEFF };
-	struct regmap_reg r = reg(REGMAP_HOLDING, REGMAP_I32, REGMAP_ABCD);
+	struct regspec r = reg(REGSPEC_HOLDING, REGSPEC_I32, REGSPEC_ABCD);
 	uint16_t w[2];
 
 	(void)state;
 	assert_true(regmap_decode(&r, abcd) == -2.0);
-	r.order = REGMAP_CDAB;
+	r.order = REGSPEC_CDAB;
 	assert_true(regmap_decode(&r, cdab) == -2.0);
 	regmap_encode(&r, -2.0, w);
 	assert_memory_equal(w, cdab, sizeof(w));
-	r.order = REGMAP_BADC;
+	r.order = REGSPEC_BADC;
 	assert_true(regmap_decode(&r, badc) == -2.0);
-	r.type = REGMAP_U32;
+	r.type = REGSPEC_U32;
 	assert_true(regmap_decode(&r, badc) == 4294967294.0);
 }
 
@@ -79,15 +81,15 @@ static void test_f32_orders(void **state)
 		uint8_t order;
 		uint16_t w[2];
 	} f[] = {
-		{ REGMAP_ABCD, { 0xBFC0, 0x0000 } },
-		{ REGMAP_CDAB, { 0x0000, 0xBFC0 } },
-		{ REGMAP_BADC, { 0xC0BF, 0x0000 } },
-		{ REGMAP_DCBA, { 0x0000, 0xC0BF } },
+		{ REGSPEC_ABCD, { 0xBFC0, 0x0000 } },
+		{ REGSPEC_CDAB, { 0x0000, 0xBFC0 } },
+		{ REGSPEC_BADC, { 0xC0BF, 0x0000 } },
+		{ REGSPEC_DCBA, { 0x0000, 0xC0BF } },
 	};
 
 	(void)state;
 	for (size_t i = 0; i < 4; i++) {
-		struct regmap_reg r = reg(REGMAP_INPUT, REGMAP_F32, f[i].order);
+		struct regspec r = reg(REGSPEC_INPUT, REGSPEC_F32, f[i].order);
 		uint16_t w[2];
 
 		assert_true(regmap_decode(&r, f[i].w) == -1.5);
@@ -100,30 +102,30 @@ static void test_16_bit_orders(void **state)
 {
 	static const uint16_t ab[] = { 0x1234 }, ba[] = { 0x3412 };
 	static const uint16_t neg[] = { 0xFFFE }, neg_ba[] = { 0xFEFF };
-	struct regmap_reg r = reg(REGMAP_HOLDING, REGMAP_U16, REGMAP_ABCD);
+	struct regspec r = reg(REGSPEC_HOLDING, REGSPEC_U16, REGSPEC_ABCD);
 	uint16_t w[1];
 
 	(void)state;
-	assert_int_equal(regmap_words(&r), 1);
+	assert_int_equal(regspec_words(&r), 1);
 	assert_true(regmap_decode(&r, ab) == 0x1234);
-	r.order = REGMAP_CDAB; /* word order means nothing to one word */
+	r.order = REGSPEC_CDAB; /* word order means nothing to one word */
 	assert_true(regmap_decode(&r, ab) == 0x1234);
-	r.order = REGMAP_BADC;
+	r.order = REGSPEC_BADC;
 	assert_true(regmap_decode(&r, ba) == 0x1234);
 	regmap_encode(&r, 0x1234, w);
 	assert_int_equal(w[0], 0x3412);
-	r.order = REGMAP_DCBA;
+	r.order = REGSPEC_DCBA;
 	assert_true(regmap_decode(&r, ba) == 0x1234);
-	r = reg(REGMAP_HOLDING, REGMAP_I16, REGMAP_ABCD);
+	r = reg(REGSPEC_HOLDING, REGSPEC_I16, REGSPEC_ABCD);
 	assert_true(regmap_decode(&r, neg) == -2.0);
-	r.order = REGMAP_BADC;
+	r.order = REGSPEC_BADC;
 	assert_true(regmap_decode(&r, neg_ba) == -2.0);
 }
 
 static void test_scale_offset(void **state)
 {
 	static const uint16_t raw[] = { 0xFF9C }; /* -100 */
-	struct regmap_reg r = reg(REGMAP_HOLDING, REGMAP_I16, REGMAP_ABCD);
+	struct regspec r = reg(REGSPEC_HOLDING, REGSPEC_I16, REGSPEC_ABCD);
 	uint16_t w[1];
 
 	(void)state;
@@ -141,7 +143,7 @@ static void test_scale_offset(void **state)
 
 static void test_clamped(void **state)
 {
-	struct regmap_reg r = reg(REGMAP_HOLDING, REGMAP_I16, REGMAP_ABCD);
+	struct regspec r = reg(REGSPEC_HOLDING, REGSPEC_I16, REGSPEC_ABCD);
 	uint16_t w[2];
 
 	(void)state;
@@ -151,14 +153,14 @@ static void test_clamped(void **state)
 	assert_int_equal(w[0], 0x8000);
 	assert_int_equal(regmap_encode(&r, NAN, w), -ERANGE);
 	assert_int_equal(w[0], 0);
-	r.type = REGMAP_U16;
+	r.type = REGSPEC_U16;
 	assert_int_equal(regmap_encode(&r, -1, w), -ERANGE);
 	assert_int_equal(w[0], 0);
-	r.type = REGMAP_U32;
+	r.type = REGSPEC_U32;
 	assert_int_equal(regmap_encode(&r, 5e9, w), -ERANGE);
 	assert_int_equal(w[0], 0xFFFF);
 	assert_int_equal(w[1], 0xFFFF);
-	r.type = REGMAP_I32;
+	r.type = REGSPEC_I32;
 	assert_int_equal(regmap_encode(&r, -3e9, w), -ERANGE);
 	assert_int_equal(w[0], 0x8000);
 	assert_int_equal(w[1], 0x0000);
@@ -167,48 +169,48 @@ static void test_clamped(void **state)
 static void test_bits(void **state)
 {
 	static const uint16_t on[] = { 1 }, off[] = { 0 };
-	struct regmap_reg r = reg(REGMAP_COIL, REGMAP_U16, REGMAP_ABCD);
+	struct regspec r = reg(REGSPEC_COIL, REGSPEC_U16, REGSPEC_ABCD);
 	uint16_t w[1];
 
 	(void)state;
-	assert_true(regmap_writable(&r));
+	assert_true(regspec_writable(&r));
 	assert_true(regmap_decode(&r, on) == 1.0);
 	assert_true(regmap_decode(&r, off) == 0.0);
 	regmap_encode(&r, 1.0, w);
 	assert_int_equal(w[0], 1);
 	assert_int_equal(regmap_encode(&r, 2.0, w), -ERANGE);
 	assert_int_equal(w[0], 1);
-	r.table = REGMAP_DISCRETE;
-	assert_false(regmap_writable(&r));
-	r.table = REGMAP_INPUT;
-	assert_false(regmap_writable(&r));
-	r.table = REGMAP_NONE;
-	assert_int_equal(regmap_words(&r), 0);
+	r.table = REGSPEC_DISCRETE;
+	assert_false(regspec_writable(&r));
+	r.table = REGSPEC_INPUT;
+	assert_false(regspec_writable(&r));
+	r.table = REGSPEC_NONE;
+	assert_int_equal(regspec_words(&r), 0);
 }
 
 static void test_parse(void **state)
 {
-	struct regmap_reg r;
+	struct regspec r;
 	char why[200];
 
 	(void)state;
-	assert_int_equal(regmap_parse("input 0x0002 i32 cdab scale=0.001 "
+	assert_int_equal(regspec_parse("input 0x0002 i32 cdab scale=0.001 "
 				      "offset=-2", &r, why, sizeof(why)), 0);
-	assert_int_equal(r.table, REGMAP_INPUT);
+	assert_int_equal(r.table, REGSPEC_INPUT);
 	assert_int_equal(r.address, 2);
-	assert_int_equal(r.type, REGMAP_I32);
-	assert_int_equal(r.order, REGMAP_CDAB);
+	assert_int_equal(r.type, REGSPEC_I32);
+	assert_int_equal(r.order, REGSPEC_CDAB);
 	assert_true(r.scale == 0.001 && r.offset == -2);
-	assert_int_equal(regmap_parse("coil 17", &r, why, sizeof(why)), 0);
-	assert_int_equal(r.table, REGMAP_COIL);
+	assert_int_equal(regspec_parse("coil 17", &r, why, sizeof(why)), 0);
+	assert_int_equal(r.table, REGSPEC_COIL);
 	assert_int_equal(r.address, 17);
-	assert_int_equal(r.type, REGMAP_U16);
+	assert_int_equal(r.type, REGSPEC_U16);
 	assert_true(r.scale == 1.0 && r.offset == 0.0);
-	assert_int_equal(regmap_parse("none", &r, why, sizeof(why)), 0);
-	assert_int_equal(r.table, REGMAP_NONE);
-	assert_int_equal(regmap_parse("holding 65535 ba", &r, why,
+	assert_int_equal(regspec_parse("none", &r, why, sizeof(why)), 0);
+	assert_int_equal(r.table, REGSPEC_NONE);
+	assert_int_equal(regspec_parse("holding 65535 ba", &r, why,
 				      sizeof(why)), 0);
-	assert_int_equal(r.order, REGMAP_BADC);
+	assert_int_equal(r.order, REGSPEC_BADC);
 }
 
 static void test_parse_errors(void **state)
@@ -218,18 +220,18 @@ static void test_parse_errors(void **state)
 		"holding 1 i23", "holding 1 scale=0", "holding 1 scale=abc",
 		"holding 1 offset=", "coil 1 i32", "none 1",
 	};
-	struct regmap_reg r = reg(REGMAP_INPUT, REGMAP_F32, REGMAP_DCBA);
+	struct regspec r = reg(REGSPEC_INPUT, REGSPEC_F32, REGSPEC_DCBA);
 	char why[200];
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
 		why[0] = '\0';
-		assert_int_equal(regmap_parse(bad[i], &r, why, sizeof(why)),
+		assert_int_equal(regspec_parse(bad[i], &r, why, sizeof(why)),
 				 -EINVAL);
 		assert_true(why[0] != '\0');
 		/* unchanged on error */
-		assert_int_equal(r.table, REGMAP_INPUT);
-		assert_int_equal(r.type, REGMAP_F32);
+		assert_int_equal(r.table, REGSPEC_INPUT);
+		assert_int_equal(r.type, REGSPEC_F32);
 	}
 }
 
@@ -244,13 +246,13 @@ static void test_format_roundtrip(void **state)
 		"none",
 	};
 	char buf[160], why[200];
-	struct regmap_reg r;
+	struct regspec r;
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(texts) / sizeof(texts[0]); i++) {
-		assert_int_equal(regmap_parse(texts[i], &r, why, sizeof(why)),
+		assert_int_equal(regspec_parse(texts[i], &r, why, sizeof(why)),
 				 0);
-		regmap_format(&r, buf, sizeof(buf));
+		regspec_format(&r, buf, sizeof(buf));
 		assert_string_equal(buf, texts[i]);
 	}
 }

@@ -3,7 +3,7 @@
  * memory: the page holds its four plots, the episodes as bands, the
  * events, the segments' names; text from the file is escaped; a spike of
  * one record in 20 000 survives the decimation; the metrics recomputed
- * from the file (report_metrics()) find what the records hold.
+ * from the file (sessionmetrics_compute()) find what the records hold.
  *
  * Reads tests/cases/straight.case: run from the source tree. Writes to
  * $TMPDIR.
@@ -23,6 +23,8 @@
 
 #include "geom_assert.h"
 #include "session/report.h"
+#include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 
 #define N_REC 20000 /* 20 s at 1 kHz */
 
@@ -116,7 +118,8 @@ static void test_recomputed_metrics(void **state)
 	(void)state;
 	make_session(&f);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
 	assert_string_equal(err, "");
 	assert_int_equal(m.records, N_REC);
 	assert_int_equal(m.force_episodes, 1);
@@ -141,7 +144,8 @@ static void test_report_page(void **state)
 	(void)state;
 	make_session(&f);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
 	snprintf(dir, sizeof(dir), "%s/endosim-report-%d",
 		 tmp && *tmp ? tmp : "/tmp", (int)getpid());
 	assert_int_equal(report_write(&f, &m, NULL, dir), 0); /* creates DIR */
@@ -290,8 +294,10 @@ static void test_report_reference(void **state)
 	along_session(&f, mine, 10000, 0.02, head_mine);
 	along_session(&rf, theirs, 20000, 0.01, head_ref);
 	metrics_params_default(&p);
-	assert_int_equal(report_metrics(&f, &p, &m, err, sizeof(err)), 0);
-	assert_int_equal(report_metrics(&rf, &p, &rm, err, sizeof(err)), 0);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
+	assert_int_equal(sessionmetrics_compute(&rf, &p, &rm, err,
+						sizeof(err)), 0);
 	assert_non_null(mkdtemp(dir));
 	assert_int_equal(report_write(&f, &m, &ref, dir), 0);
 	snprintf(path, sizeof(path), "%s/index.html", dir);
@@ -317,6 +323,62 @@ static void test_report_reference(void **state)
 	rmdir(dir);
 }
 
+/* The number after the last y1=" in PAGE before AT. */
+static double y1_before(const char *page, const char *at)
+{
+	while (at > page && strncmp(at, "y1=\"", 4)) {
+		at--;
+	}
+	assert_true(at > page);
+	return strtod(at + 4, NULL);
+}
+
+/*
+ * The loop row and the bow plot's threshold line give the threshold the
+ * metrics counted from: the session's (sessioninputs.h), 1 cm in the
+ * paper model, 3 cm in the rod's (its records' model).
+ */
+static void test_report_loop_threshold(void **state)
+{
+	static const struct { uint32_t model; const char *row, *tick; } m_of[] = {
+		{ ENDOSIM_MODEL_PAPER, "bowed more than 1 cm", ">0.01</text>" },
+		{ ENDOSIM_MODEL_ROD, "bowed more than 3 cm", ">0.03</text>" },
+	};
+	char dir[] = "/tmp/test_report_loop.XXXXXX", path[64], err[256];
+	struct session_file f;
+	struct metrics_params p;
+	struct metrics_result m;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	snprintf(path, sizeof(path), "%s/index.html", dir);
+	for (size_t i = 0; i < sizeof(m_of) / sizeof(m_of[0]); i++) {
+		const char *page, *bow, *tick, *line;
+
+		make_session(&f);
+		for (size_t k = 0; k < f.n_records; k++) {
+			records[k].model = m_of[i].model;
+		}
+		sessioninputs_file_metrics_params(&f, &p);
+		assert_int_equal(sessionmetrics_compute(&f, &p, &m, err,
+							sizeof(err)), 0);
+		assert_int_equal(report_write(&f, &m, NULL, dir), 0);
+		page = slurp(path);
+		assert_non_null(strstr(page, m_of[i].row));
+		/* the line at the height of the axis' grid line for it */
+		bow = strstr(page, "id=\"plot-bow\"");
+		assert_non_null(bow);
+		tick = strstr(bow, m_of[i].tick);
+		line = strstr(bow, "<line class=\"threshold\"");
+		assert_non_null(tick);
+		assert_non_null(line);
+		assert_near(y1_before(bow, strchr(line, '>')),
+			    y1_before(bow, tick), 0.05);
+	}
+	unlink(path);
+	rmdir(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -324,6 +386,7 @@ int main(void)
 		cmocka_unit_test(test_report_page),
 		cmocka_unit_test(test_report_unwritable),
 		cmocka_unit_test(test_report_reference),
+		cmocka_unit_test(test_report_loop_threshold),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

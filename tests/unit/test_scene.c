@@ -2,13 +2,15 @@
  * test_scene.c - GetScene's replies: chunk 0 carries the case and its
  * centreline, the other chunks cover every vertex and triangle exactly
  * once, in order, each packed reply within a few MiB even at 2 million
- * triangles, and what they carry is the colon itself.
+ * triangles, and what they carry is the colon itself; chunk 0 says which
+ * scope the colon is rendered with.
  */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -132,12 +134,52 @@ static void test_bad_case_name_refused(void **state)
 	assert_non_null(strstr(err, "config/cases/nope.case: cannot open"));
 }
 
+/* The scope set is the one chunk 0 carries, packed and read back. */
+static void test_scope_on_the_wire(void **state)
+{
+	const struct scope_params p = {
+		.bending_length_m = 0.1, .ud_gain = 2, .lr_gain = 1.5,
+		.ud_limit_rad = 3, .lr_limit_rad = 2.5,
+	};
+	struct colon *c = load("normal", 0.004, 32);
+	struct scene *s = scene_create(c, 3);
+	struct client_scene cs;
+	Endosim__SceneReply *r = scene_reply(s, 0), *back;
+	uint8_t *buf;
+	size_t n;
+
+	(void)state;
+	assert_null(r->info->scope);
+	scene_set_scope(s, &p, 0.007);
+	r = scene_reply(s, 0);
+	n = endosim__scene_reply__get_packed_size(r);
+	buf = malloc(n);
+	assert_non_null(buf);
+	endosim__scene_reply__pack(r, buf);
+	back = endosim__scene_reply__unpack(NULL, n, buf);
+	assert_non_null(back);
+	assert_non_null(back->info->scope);
+	assert_true(back->info->scope->bending_length_m == 0.1);
+	assert_true(back->info->scope->ud_gain == 2);
+	assert_true(back->info->scope->lr_gain == 1.5);
+	assert_true(back->info->scope->ud_limit_rad == 3);
+	assert_true(back->info->scope->lr_limit_rad == 2.5);
+	assert_true(back->info->scope->radius_m == 0.007);
+	endosim__scene_reply__free_unpacked(back, NULL);
+	free(buf);
+	scene_client(s, &cs);
+	assert_ptr_equal(cs.scope, r->info->scope);
+	scene_destroy(s);
+	colon_destroy(c);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_chunks_cover_default_mesh),
 		cmocka_unit_test(test_chunks_stay_small_at_two_million),
 		cmocka_unit_test(test_bad_case_name_refused),
+		cmocka_unit_test(test_scope_on_the_wire),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

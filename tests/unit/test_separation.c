@@ -49,6 +49,7 @@
 
 #include "model/anatomy.h"
 #include "session/metrics.h"
+#include "session/metricstext.h"
 #include "proto/session_file.h"
 #include "trainee.h"
 
@@ -127,8 +128,8 @@ done:
 static void test_expert_and_novice(void **state)
 {
 	static struct metrics_result e, n;
-	const struct metrics_field *f;
-	size_t nf = metrics_fields(&f);
+	const struct metricstext_field *f;
+	size_t nf = metricstext_fields(&f);
 
 	(void)state;
 	session(true, &e);
@@ -136,8 +137,8 @@ static void test_expert_and_novice(void **state)
 	printf("# %-28s %12s %12s\n", "measure", "expert", "novice");
 	for (size_t i = 0; i < nf; i++) {
 		printf("# %-28s %12.4f %12.4f\n", f[i].key,
-		       metrics_field_value(&e, &f[i]),
-		       metrics_field_value(&n, &f[i]));
+		       metricstext_field_value(&e, &f[i]),
+		       metricstext_field_value(&n, &f[i]));
 	}
 	/* the way in (3D-CoPS, GI Mentor's excessive pressure) */
 	assert_true(e.chase_efficiency > n.chase_efficiency);

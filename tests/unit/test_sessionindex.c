@@ -26,6 +26,7 @@
 
 #include "proto/session_file.h"
 #include "session/sessionindex.h"
+#include "session/metricstext.h"
 
 static char dir[256], index_path[300];
 
@@ -52,7 +53,7 @@ static void write_session(uint64_t id, const char *trainee,
 	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_HEADER,
 						  header, (uint32_t)n), 0);
 	if (ended) {
-		n = metrics_format(&m, end, sizeof(end));
+		n = metricstext_format(&m, end, sizeof(end));
 		assert_true(n > 0);
 		assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_END,
 							  end, (uint32_t)n), 0);

@@ -1,6 +1,9 @@
 /*
- * regmap.h - a Modbus drive's register map: where each signal lives and how
- * its raw register value turns into a physical value.
+ * regspec.h - a Modbus drive's register map as the configuration describes
+ * it: where each signal lives, its type, byte order, scale and offset, and
+ * the text the configuration writes it in. The rig turns raw registers
+ * into values by it (rig/regmap.h); the configuration only reads, checks
+ * and prints it, so endoctl and endoview need no rig.
  *
  * Every vendor's map differs, so each signal of a wheel drive is one line
  * of the configuration:
@@ -31,75 +34,74 @@
  *
  * Pure computation: safe in any thread.
  */
-#ifndef ENDOSIM_REGMAP_H
-#define ENDOSIM_REGMAP_H
+#ifndef ENDOSIM_REGSPEC_H
+#define ENDOSIM_REGSPEC_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
-enum regmap_table {
-	REGMAP_NONE = 0, /* the signal is not used */
-	REGMAP_COIL,
-	REGMAP_DISCRETE,
-	REGMAP_INPUT,
-	REGMAP_HOLDING,
+enum regspec_table {
+	REGSPEC_NONE = 0, /* the signal is not used */
+	REGSPEC_COIL,
+	REGSPEC_DISCRETE,
+	REGSPEC_INPUT,
+	REGSPEC_HOLDING,
 };
 
-enum regmap_type { REGMAP_U16, REGMAP_I16, REGMAP_U32, REGMAP_I32, REGMAP_F32 };
+enum regspec_type {
+	REGSPEC_U16,
+	REGSPEC_I16,
+	REGSPEC_U32,
+	REGSPEC_I32,
+	REGSPEC_F32,
+};
 
-enum regmap_order { REGMAP_ABCD, REGMAP_CDAB, REGMAP_BADC, REGMAP_DCBA };
+enum regspec_order { REGSPEC_ABCD, REGSPEC_CDAB, REGSPEC_BADC, REGSPEC_DCBA };
 
-enum regmap_signal {
-	REGMAP_TORQUE,
-	REGMAP_ENABLE,
-	REGMAP_POSITION,
-	REGMAP_VELOCITY,
-	REGMAP_FAULT,
-	REGMAP_FAULT_RESET,
-	REGMAP_WATCHDOG,
-	REGMAP_SIGNALS,
+enum regspec_signal {
+	REGSPEC_TORQUE,
+	REGSPEC_ENABLE,
+	REGSPEC_POSITION,
+	REGSPEC_VELOCITY,
+	REGSPEC_FAULT,
+	REGSPEC_FAULT_RESET,
+	REGSPEC_WATCHDOG,
+	REGSPEC_SIGNALS,
 };
 
 /* Registers (or bits) one value takes: at most 2. */
-#define REGMAP_MAX_WORDS 2
+#define REGSPEC_MAX_WORDS 2
 
-struct regmap_reg {
-	uint8_t table;    /* enum regmap_table */
-	uint8_t type;     /* enum regmap_type */
-	uint8_t order;    /* enum regmap_order */
+struct regspec {
+	uint8_t table;    /* enum regspec_table */
+	uint8_t type;     /* enum regspec_type */
+	uint8_t order;    /* enum regspec_order */
 	uint16_t address;
 	double scale;     /* value per raw unit, not 0 */
 	double offset;    /* value at raw 0 */
 };
 
 /* "torque", "enable", ... */
-const char *regmap_signal_name(enum regmap_signal s);
+const char *regspec_signal_name(enum regspec_signal s);
 
 /* Registers (bits, for coil and discrete) R spans: 1 or 2; 0 when unused. */
-int regmap_words(const struct regmap_reg *r);
+int regspec_words(const struct regspec *r);
+
+/* True when R is a bit (coil or discrete). */
+bool regspec_bit(const struct regspec *r);
 
 /* True when R can be written (coil or holding). */
-bool regmap_writable(const struct regmap_reg *r);
-
-/* The physical value of the raw registers WORDS (regmap_words() of them). */
-double regmap_decode(const struct regmap_reg *r, const uint16_t *words);
-
-/*
- * The raw registers for VALUE, rounded to the nearest count. Returns 0, or
- * -ERANGE when VALUE is beyond the type (WORDS then hold the nearest end) or
- * not a number (WORDS then hold raw 0).
- */
-int regmap_encode(const struct regmap_reg *r, double value, uint16_t *words);
+bool regspec_writable(const struct regspec *r);
 
 /*
  * Parses TEXT (the syntax above). Returns 0, or -EINVAL with the reason in
  * WHY. R is unchanged on error.
  */
-int regmap_parse(const char *text, struct regmap_reg *r, char *why,
-		 size_t size);
+int regspec_parse(const char *text, struct regspec *r, char *why,
+		  size_t size);
 
-/* Writes R in the syntax regmap_parse() reads, defaults left out. */
-void regmap_format(const struct regmap_reg *r, char *buf, size_t size);
+/* Writes R in the syntax regspec_parse() reads, defaults left out. */
+void regspec_format(const struct regspec *r, char *buf, size_t size);
 
 #endif

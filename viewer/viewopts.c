@@ -1,0 +1,182 @@
+/* viewopts.c - see viewopts.h. */
+#include "viewer/viewopts.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "proto/client.h"
+#include "proto/endosim_shm.h"
+#include "proto/version.h"
+#include "viewer/font.h"
+
+void viewopts_usage(FILE *f)
+{
+	fprintf(f,
+		"usage: endoview [--socket PATH] [--shm-name NAME]\n"
+		"                [--view endo|overview|both] [--size WxH]\n"
+		"                [--screenshot FILE.png] [--frames N]\n"
+		"                [--no-vsync] [--max-fps N] [--font FILE.ttf]\n"
+		"                [--stats] [--print-state]\n"
+		"                [--replay FILE [--seek S] [--speed X] "
+		"[--paused]]\n"
+		"  --socket PATH     endosimd's socket directory (or socket);\n"
+		"                    default $%s, else %s\n"
+		"  --shm-name NAME   its shared memory (default %s)\n"
+		"  --view V          endo (default), overview, or both\n"
+		"  --size WxH        window size (default 1280x720)\n"
+		"  --screenshot F    write the last frame to F (PNG)\n"
+		"  --frames N        draw N frames, then exit (default with\n"
+		"                    --screenshot: 45)\n"
+		"  --no-vsync        draw as fast as possible\n"
+		"  --max-fps N       draw N frames a second at most (1 to 1000:\n"
+		"                    leaves CPU to the force loop where the\n"
+		"                    drawing is done in software)\n"
+		"  --font F          a TrueType font for the HUD\n"
+		"  --stats           print the frame figures at exit\n"
+		"  --print-state     print the last frame's state at exit,\n"
+		"                    what its panel said and where its\n"
+		"                    overview drew the scope and the colon\n"
+		"  --replay FILE     play a recorded session (no daemon)\n"
+		"  --seek S          start S seconds into it\n"
+		"  --speed X         at X times real time (0.25 to 8)\n"
+		"  --paused          start paused\n",
+		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME);
+}
+
+static int parse_view(const char *s)
+{
+	static const char *const names[] = { "endo", "overview", "both",
+					     "empty" };
+
+	for (int k = 0; k < 4; k++) {
+		if (!strcmp(s, names[k])) {
+			return k;
+		}
+	}
+	return -1;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+	if (sscanf(s, "%dx%d", w, h) != 2 || *w < 160 || *h < 120 ||
+	    *w > 8192 || *h > 8192) {
+		return -EINVAL;
+	}
+	return 0;
+}
+
+static int parse_number(const char *s, double *out)
+{
+	char *end;
+
+	*out = strtod(s, &end);
+	return end == s || *end || !isfinite(*out) || *out < 0 ? -EINVAL : 0;
+}
+
+int viewopts_parse(int argc, char **argv, struct viewopts *o)
+{
+	static const struct option longs[] = {
+		{ "socket", required_argument, NULL, 's' },
+		{ "shm-name", required_argument, NULL, 'm' },
+		{ "view", required_argument, NULL, 'v' },
+		{ "size", required_argument, NULL, 'z' },
+		{ "screenshot", required_argument, NULL, 'o' },
+		{ "frames", required_argument, NULL, 'n' },
+		{ "no-vsync", no_argument, NULL, 'V' },
+		{ "max-fps", required_argument, NULL, 'F' },
+		{ "font", required_argument, NULL, 'f' },
+		{ "stats", no_argument, NULL, 'S' },
+		{ "print-state", no_argument, NULL, 'P' },
+		{ "replay", required_argument, NULL, 'r' },
+		{ "seek", required_argument, NULL, 'k' },
+		{ "speed", required_argument, NULL, 'x' },
+		{ "paused", no_argument, NULL, 'p' },
+		{ "help", no_argument, NULL, 'h' },
+		{ "version", no_argument, NULL, 'R' },
+		{ 0 },
+	};
+	int c;
+
+	*o = (struct viewopts){ .view = HUD_VIEW_ENDO, .width = 1280,
+				.height = 720, .vsync = true, .frames = -1,
+				.font = FONT_DEFAULT_PATH, .speed = 1 };
+	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
+		switch (c) {
+		case 's':
+			o->socket = optarg;
+			break;
+		case 'm':
+			o->shm_name = optarg;
+			break;
+		case 'v':
+			o->view = parse_view(optarg);
+			if (o->view < 0) {
+				return -EINVAL;
+			}
+			break;
+		case 'z':
+			if (parse_size(optarg, &o->width, &o->height)) {
+				return -EINVAL;
+			}
+			break;
+		case 'o':
+			o->screenshot = optarg;
+			break;
+		case 'n':
+			o->frames = strtol(optarg, NULL, 10);
+			if (o->frames < 1) {
+				return -EINVAL;
+			}
+			break;
+		case 'V':
+			o->vsync = false;
+			break;
+		case 'F':
+			if (parse_number(optarg, &o->max_fps) ||
+			    o->max_fps < 1 || o->max_fps > 1000) {
+				return -EINVAL;
+			}
+			break;
+		case 'f':
+			o->font = optarg;
+			break;
+		case 'S':
+			o->stats = true;
+			break;
+		case 'P':
+			o->print_state = true;
+			break;
+		case 'r':
+			o->replay = optarg;
+			break;
+		case 'k':
+		case 'x':
+			if (parse_number(optarg, c == 'k' ? &o->seek_s :
+							    &o->speed)) {
+				return -EINVAL;
+			}
+			break;
+		case 'p':
+			o->paused = true;
+			break;
+		case 'h':
+			viewopts_usage(stdout);
+			exit(0);
+		case 'R':
+			printf("endoview %s\n", ENDOSIM_VERSION);
+			exit(0);
+		default:
+			return -EINVAL;
+		}
+	}
+	if (optind != argc) {
+		return -EINVAL;
+	}
+	if (o->screenshot && o->frames < 0) {
+		o->frames = 45;
+	}
+	return 0;
+}

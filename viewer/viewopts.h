@@ -1,0 +1,45 @@
+/*
+ * viewopts.h - endoview's command line (endoview.c's usage):
+ *
+ *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
+ *            [--size WxH] [--screenshot FILE.png] [--frames N]
+ *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
+ *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
+ *
+ * The main thread, at start-up; no allocation (the strings point into
+ * argv).
+ */
+#ifndef ENDOVIEW_VIEWOPTS_H
+#define ENDOVIEW_VIEWOPTS_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "viewer/hud.h"
+
+/* --view empty: clear and swap only, the benchmark's */
+enum { VIEWOPTS_VIEW_EMPTY = HUD_VIEWS };
+
+struct viewopts {
+	const char *socket, *shm_name, *screenshot, *font, *replay;
+	int view, width, height; /* enum hud_view or VIEWOPTS_VIEW_EMPTY;
+				    px */
+	long frames;            /* -1: until closed */
+	double seek_s, speed;
+	double max_fps;         /* 0: as fast as vsync lets it */
+	bool vsync, stats, print_state, paused;
+};
+
+/* The usage and every option's line of help into F. */
+void viewopts_usage(FILE *f);
+
+/*
+ * ARGV into O, the defaults where an option is not given (1280x720, the
+ * endoscopic view, vsync, DejaVu Sans, speed 1; with --screenshot 45
+ * frames). 0, or -EINVAL for a malformed or unknown option or an
+ * argument left over. --help prints the usage and --version the version
+ * to stdout and exit(0).
+ */
+int viewopts_parse(int argc, char **argv, struct viewopts *o);
+
+#endif
