@@ -8,11 +8,11 @@
 #include <string.h>
 
 #include "base/vec3.h"
+#include "model/rod_algebra.h"
 
 #define HARD_COMPLIANCE 1e-10 /* m/N: a hard row's floor (0.1 nm per N)
 				 keeps the system definite when rows are
 				 redundant (both ends clamped) */
-#define CHOL_FLOOR 1e-300     /* a pivot below this: the system is broken */
 
 typedef double mat3[3][3];
 typedef double mat6[6][6];
@@ -74,307 +74,6 @@ struct rod {
 	int links;
 	double h;                  /* the last step */
 };
-
-/* ---------------------------------------------------------------- algebra */
-
-static void quat_mul(const double a[4], const double b[4], double out[4])
-{
-	double r[4] = {
-		a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-		a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-		a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-		a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-	};
-
-	memcpy(out, r, sizeof(r));
-}
-
-static void quat_conj(const double a[4], double out[4])
-{
-	out[0] = a[0];
-	out[1] = -a[1];
-	out[2] = -a[2];
-	out[3] = -a[3];
-}
-
-static void quat_normalize(double q[4])
-{
-	double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-
-	for (int i = 0; i < 4; i++) {
-		q[i] /= n;
-	}
-}
-
-/* Q turned by the small rotation vector W (world): (1 + w/2) q. */
-static void quat_turn(double q[4], const double w[3])
-{
-	double dq[4] = { 0, w[0] / 2, w[1] / 2, w[2] / 2 }, t[4];
-
-	quat_mul(dq, q, t);
-	for (int i = 0; i < 4; i++) {
-		q[i] += t[i];
-	}
-	quat_normalize(q);
-}
-
-/* The world rotation that took Q0 to Q: 2 Im(q conj(q0)), short way. */
-static void rotation_since(const double q[4], const double q0[4],
-			   double out[3])
-{
-	double c[4], d[4];
-
-	quat_conj(q0, c);
-	quat_mul(q, c, d);
-	if (d[0] < 0) {
-		vec3_set(out, -2 * d[1], -2 * d[2], -2 * d[3]);
-	} else {
-		vec3_set(out, 2 * d[1], 2 * d[2], 2 * d[3]);
-	}
-}
-
-/* The rotation matrix of unit Q: columns d1, d2, d3. */
-static void quat_matrix(const double q[4], double m[3][3])
-{
-	double w = q[0], x = q[1], y = q[2], z = q[3];
-
-	m[0][0] = 1 - 2 * (y * y + z * z);
-	m[0][1] = 2 * (x * y - w * z);
-	m[0][2] = 2 * (x * z + w * y);
-	m[1][0] = 2 * (x * y + w * z);
-	m[1][1] = 1 - 2 * (x * x + z * z);
-	m[1][2] = 2 * (y * z - w * x);
-	m[2][0] = 2 * (x * z - w * y);
-	m[2][1] = 2 * (y * z + w * x);
-	m[2][2] = 1 - 2 * (x * x + y * y);
-}
-
-/* The unit quaternion of rotation matrix M (columns orthonormal). */
-static void quat_from_matrix(const double m[3][3], double q[4])
-{
-	double tr = m[0][0] + m[1][1] + m[2][2];
-
-	if (tr > 0) {
-		double s = 2 * sqrt(tr + 1);
-
-		q[0] = s / 4;
-		q[1] = (m[2][1] - m[1][2]) / s;
-		q[2] = (m[0][2] - m[2][0]) / s;
-		q[3] = (m[1][0] - m[0][1]) / s;
-	} else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
-		double s = 2 * sqrt(1 + m[0][0] - m[1][1] - m[2][2]);
-
-		q[0] = (m[2][1] - m[1][2]) / s;
-		q[1] = s / 4;
-		q[2] = (m[0][1] + m[1][0]) / s;
-		q[3] = (m[0][2] + m[2][0]) / s;
-	} else if (m[1][1] > m[2][2]) {
-		double s = 2 * sqrt(1 + m[1][1] - m[0][0] - m[2][2]);
-
-		q[0] = (m[0][2] - m[2][0]) / s;
-		q[1] = (m[0][1] + m[1][0]) / s;
-		q[2] = s / 4;
-		q[3] = (m[1][2] + m[2][1]) / s;
-	} else {
-		double s = 2 * sqrt(1 + m[2][2] - m[0][0] - m[1][1]);
-
-		q[0] = (m[1][0] - m[0][1]) / s;
-		q[1] = (m[0][2] + m[2][0]) / s;
-		q[2] = (m[1][2] + m[2][1]) / s;
-		q[3] = s / 4;
-	}
-	quat_normalize(q);
-}
-
-/*
- * R = conj(A) B taken the short way (R0 >= 0), and G = (r0 I - [rv]x)
- * M^T, M = R(A): d (2 Im R) = G (dtheta_b - dtheta_a) for world
- * rotations.
- */
-static void relative(const double a[4], const double b[4],
-		     const double m[3][3], double r[4], double g[3][3])
-{
-	double ca[4], k[3][3];
-
-	quat_conj(a, ca);
-	quat_mul(ca, b, r);
-	if (r[0] < 0) {
-		for (int i = 0; i < 4; i++) {
-			r[i] = -r[i];
-		}
-	}
-	k[0][0] = r[0];
-	k[0][1] = r[3];
-	k[0][2] = -r[2];
-	k[1][0] = -r[3];
-	k[1][1] = r[0];
-	k[1][2] = r[1];
-	k[2][0] = r[2];
-	k[2][1] = -r[1];
-	k[2][2] = r[0];
-	for (int i = 0; i < 3; i++) {
-		for (int j = 0; j < 3; j++) {
-			g[i][j] = k[i][0] * m[j][0] + k[i][1] * m[j][1] +
-				  k[i][2] * m[j][2];
-		}
-	}
-}
-
-
-/* OUT = A B^T (3x3). */
-static void m3_abt(const mat3 a, const mat3 b, mat3 out)
-{
-	for (int i = 0; i < 3; i++) {
-		for (int j = 0; j < 3; j++) {
-			out[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] +
-				    a[i][2] * b[j][2];
-		}
-	}
-}
-
-/* OUT += A B (3x3), into the block at (R0, C0) of a 6x6. */
-static void m6_add_ab(mat6 out, int r0, int c0, const mat3 a, const mat3 b)
-{
-	for (int i = 0; i < 3; i++) {
-		for (int j = 0; j < 3; j++) {
-			out[r0 + i][c0 + j] += a[i][0] * b[0][j] +
-					       a[i][1] * b[1][j] +
-					       a[i][2] * b[2][j];
-		}
-	}
-}
-
-/* OUT = A X (3x3 times 3), added with SIGN. */
-static void m3_mv_acc(const mat3 a, const double x[3], double sign,
-		      double out[3])
-{
-	for (int i = 0; i < 3; i++) {
-		out[i] += sign * (a[i][0] * x[0] + a[i][1] * x[1] +
-				  a[i][2] * x[2]);
-	}
-}
-
-/* OUT += A^T X. */
-static void m3_mtv_acc(const mat3 a, const double x[3], double out[3])
-{
-	for (int i = 0; i < 3; i++) {
-		out[i] += a[0][i] * x[0] + a[1][i] * x[1] + a[2][i] * x[2];
-	}
-}
-
-/* [e]x times SIGN. */
-static void m3_cross(mat3 m, const double e[3], double sign)
-{
-	m[0][0] = 0;
-	m[0][1] = -sign * e[2];
-	m[0][2] = sign * e[1];
-	m[1][0] = sign * e[2];
-	m[1][1] = 0;
-	m[1][2] = -sign * e[0];
-	m[2][0] = -sign * e[1];
-	m[2][1] = sign * e[0];
-	m[2][2] = 0;
-}
-
-static void m3_identity(mat3 m, double k)
-{
-	memset(m, 0, sizeof(mat3));
-	m[0][0] = m[1][1] = m[2][2] = k;
-}
-
-/* The inverse of the symmetric positive definite A; -1 when it is not. */
-static int m3_inverse(const mat3 a, mat3 out)
-{
-	double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
-	double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
-	double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
-	double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-
-	if (!(det > CHOL_FLOOR) || !(a[0][0] > 0)) {
-		return -1;
-	}
-	out[0][0] = c00 / det;
-	out[1][0] = c01 / det;
-	out[2][0] = c02 / det;
-	out[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
-	out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
-	out[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
-	out[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
-	out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
-	out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
-	return 0;
-}
-
-/*
- * In place Cholesky of the SPD 6x6 A: its lower triangle becomes L with
- * the reciprocal of each diagonal element on the diagonal (the solves
- * multiply). -1 when not definite.
- */
-static int chol6(mat6 a)
-{
-	for (int j = 0; j < 6; j++) {
-		double d = a[j][j];
-
-		for (int k = 0; k < j; k++) {
-			d -= a[j][k] * a[j][k];
-		}
-		if (!(d > CHOL_FLOOR)) {
-			return -1;
-		}
-		d = 1 / sqrt(d);
-		a[j][j] = d;
-		for (int i = j + 1; i < 6; i++) {
-			double s = a[i][j];
-
-			for (int k = 0; k < j; k++) {
-				s -= a[i][k] * a[j][k];
-			}
-			a[i][j] = s * d;
-		}
-	}
-	return 0;
-}
-
-/* X = L^-1 X (chol6()'s factor). */
-static void lower_solve(const mat6 l, double x[6])
-{
-	for (int i = 0; i < 6; i++) {
-		double s = x[i];
-
-		for (int k = 0; k < i; k++) {
-			s -= l[i][k] * x[k];
-		}
-		x[i] = s * l[i][i];
-	}
-}
-
-/* X = L^-T X. */
-static void upper_solve(const mat6 l, double x[6])
-{
-	for (int i = 5; i >= 0; i--) {
-		double s = x[i];
-
-		for (int k = i + 1; k < 6; k++) {
-			s -= l[k][i] * x[k];
-		}
-		x[i] = s * l[i][i];
-	}
-}
-
-/* B = L^-1 B, all six columns at once. */
-static void lower_solve6(const mat6 l, mat6 b)
-{
-	for (int i = 0; i < 6; i++) {
-		for (int k = 0; k < i; k++) {
-			for (int j = 0; j < 6; j++) {
-				b[i][j] -= l[i][k] * b[k][j];
-			}
-		}
-		for (int j = 0; j < 6; j++) {
-			b[i][j] *= l[i][i];
-		}
-	}
-}
 
 /* ---------------------------------------------------------------- life */
 
@@ -463,7 +162,7 @@ struct rod *rod_create(const struct rod_params *p)
 	for (int i = 0; i < n; i++) {
 		vec3_set(r->seg[i].p, 0, 0, (i + 0.5) * r->l);
 		r->seg[i].q[0] = 1;
-		m3_identity(r->seg[i].rm, 1);
+		rod_algebra_m3_identity(r->seg[i].rm, 1);
 	}
 	return r;
 }
@@ -509,15 +208,6 @@ static void normal_to(const double t[3], const double d[3], double out[3])
 	vec3_normalize(out);
 }
 
-/* D1 of unit Q's frame. */
-static void quat_axis_d1(const double q[4], double d1[3])
-{
-	double m[3][3];
-
-	quat_matrix(q, m);
-	vec3_set(d1, m[0][0], m[1][0], m[2][0]);
-}
-
 /* U carried from tangent A to tangent B by the rotation about A x B
  * (Rodrigues). */
 static void transport(const double a[3], const double b[3], double u[3])
@@ -547,7 +237,7 @@ void rod_frame_quat(const double t[3], const double u[3], double q[4])
 		m[k][1] = d2[k];
 		m[k][2] = t[k];
 	}
-	quat_from_matrix(m, q);
+	rod_algebra_quat_from_matrix(m, q);
 }
 
 void rod_lay(struct rod *r, const double (*ends)[3], const double d1[3])
@@ -566,8 +256,8 @@ void rod_lay(struct rod *r, const double (*ends)[3], const double d1[3])
 			transport(t_prev, t, u);
 		}
 		rod_frame_quat(t, u, s->q);
-		quat_axis_d1(s->q, u);
-		quat_matrix(s->q, s->rm);
+		rod_algebra_quat_axis_d1(s->q, u);
+		rod_algebra_quat_matrix(s->q, s->rm);
 		vec3_add(s->p, ends[i], ends[i + 1]);
 		vec3_scale(s->p, s->p, 0.5);
 		vec3_set(s->v, 0, 0, 0);
@@ -621,12 +311,12 @@ void rod_set_anchor(struct rod *r, enum rod_end end,
 		double q[4];
 
 		memcpy(q, a->q, sizeof(q));
-		quat_normalize(q);
+		rod_algebra_quat_normalize(q);
 		vec3_sub(moved, a->p, an->p);
-		rotation_since(q, an->q, moved + 3);
+		rod_algebra_rotation_since(q, an->q, moved + 3);
 	}
 	*an = *a;
-	quat_normalize(an->q);
+	rod_algebra_quat_normalize(an->q);
 	k->anchor = an;
 	for (int i = 0; i < 6; i++) {
 		k->alpha[i] = fmax(a->compliance[i], HARD_COMPLIANCE);
@@ -658,7 +348,7 @@ void rod_load_point(struct rod_load *l, const double off[3],
 
 	/* the point moves by dp - [off]x dtheta: a spring K there has the
 	 * rotational block [off]x^T K [off]x = -[off]x K [off]x */
-	m3_cross(e, off, 1);
+	rod_algebra_m3_cross(e, off, 1);
 	if (f) {
 		double t[3];
 
@@ -694,7 +384,7 @@ void rod_load_point(struct rod_load *l, const double off[3],
 	if (b && v_ref) {
 		double bv[3] = { 0, 0, 0 }, t[3];
 
-		m3_mv_acc(b, v_ref, 1, bv);
+		rod_algebra_m3_mv_acc(b, v_ref, 1, bv);
 		vec3_add(l->btv, l->btv, bv);
 		vec3_cross(t, off, bv);
 		vec3_add(l->brw, l->brw, t);
@@ -716,8 +406,9 @@ static int predict(struct rod *r, int i, double h, double vs[3],
 	double rm[3][3], drag = r->par.drag_n_s_per_m2 * r->l;
 	mat3 mt, mr;
 
-	quat_matrix(s->q, rm);
-	m3_identity(mt, r->mass + h * drag); /* drag: towards rest */
+	rod_algebra_quat_matrix(s->q, rm);
+	/* drag: towards rest */
+	rod_algebra_m3_identity(mt, r->mass + h * drag);
 	for (int a = 0; a < 3; a++) {
 		for (int b = 0; b < 3; b++) {
 			mr[a][b] = rm[a][0] * r->inertia[0] * rm[b][0] +
@@ -727,7 +418,7 @@ static int predict(struct rod *r, int i, double h, double vs[3],
 	}
 	vec3_scale(vs, s->v, r->mass);
 	vec3_set(ws, 0, 0, 0);
-	m3_mv_acc(mr, s->w, 1, ws);
+	rod_algebra_m3_mv_acc(mr, s->w, 1, ws);
 	if (s->loaded) {
 		for (int a = 0; a < 3; a++) {
 			vs[a] += h * (ld->f[a] + ld->btv[a]);
@@ -740,15 +431,16 @@ static int predict(struct rod *r, int i, double h, double vs[3],
 			}
 		}
 	}
-	if (m3_inverse(mt, s->pinv) || m3_inverse(mr, s->qinv)) {
+	if (rod_algebra_m3_inverse(mt, s->pinv) ||
+	    rod_algebra_m3_inverse(mr, s->qinv)) {
 		return -1;
 	}
 	vec3_copy(mt[0], vs);
 	vec3_set(vs, 0, 0, 0);
-	m3_mv_acc(s->pinv, mt[0], 1, vs);
+	rod_algebra_m3_mv_acc(s->pinv, mt[0], 1, vs);
 	vec3_copy(mr[0], ws);
 	vec3_set(ws, 0, 0, 0);
-	m3_mv_acc(s->qinv, mr[0], 1, ws);
+	rod_algebra_m3_mv_acc(s->qinv, mr[0], 1, ws);
 	return 0;
 }
 
@@ -768,15 +460,16 @@ static void refresh(struct rod *r)
 	for (int i = 0; i < r->n; i++) {
 		struct seg *s = &r->seg[i];
 
-		quat_matrix(s->q, s->rm);
+		rod_algebra_quat_matrix(s->q, s->rm);
 		vec3_sub(s->dp, s->p, s->p0);
-		rotation_since(s->q, s->q0, s->dth);
+		rod_algebra_rotation_since(s->q, s->q0, s->dth);
 	}
 }
 
 /*
  * A joint's rows: C = (end_a - end_b, 2 Im(conj(q_a) q_b) - theta0) and
- * its blocks: a [I, -[e_a]x; 0, -G], b [-I, [e_b]x; 0, G] (relative()).
+ * its blocks: a [I, -[e_a]x; 0, -G], b [-I, [e_b]x; 0, G]
+ * (rod_algebra_relative()).
  */
 static void joint_rows(const struct rod *r, struct link *k)
 {
@@ -788,7 +481,7 @@ static void joint_rows(const struct rod *r, struct link *k)
 	end_offset(r, b, ROD_BASE, eb);
 	vec3_add(pa, a->p, ea);
 	vec3_add(pb, b->p, eb);
-	relative(a->q, b->q, (const double(*)[3])a->rm, q, sb->z);
+	rod_algebra_relative(a->q, b->q, (const double(*)[3])a->rm, q, sb->z);
 	for (int i = 0; i < 3; i++) {
 		k->c[i] = pa[i] - pb[i];
 		k->c[3 + i] = 2 * q[1 + i] - k->rest[i];
@@ -798,8 +491,8 @@ static void joint_rows(const struct rod *r, struct link *k)
 	}
 	sa->ts = 1;
 	sb->ts = -1;
-	m3_cross(sa->x, ea, -1);
-	m3_cross(sb->x, eb, 1);
+	rod_algebra_m3_cross(sa->x, ea, -1);
+	rod_algebra_m3_cross(sb->x, eb, 1);
 }
 
 /* An anchor's rows: C = (R^T (end - P), 2 Im(conj(Q) q)), the segment's
@@ -816,9 +509,9 @@ static void anchor_rows(const struct rod *r, struct link *k,
 	end_offset(r, s, end, e);
 	vec3_add(pe, s->p, e);
 	vec3_sub(d, pe, an->p);
-	quat_matrix(an->q, ra);
-	relative(an->q, s->q, (const double(*)[3])ra, q, sd->z);
-	m3_cross(ex, e, -1);
+	rod_algebra_quat_matrix(an->q, ra);
+	rod_algebra_relative(an->q, s->q, (const double(*)[3])ra, q, sd->z);
+	rod_algebra_m3_cross(ex, e, -1);
 	sd->ts = 0;
 	for (int a = 0; a < 3; a++) {
 		k->c[a] = ra[0][a] * d[0] + ra[1][a] * d[1] + ra[2][a] * d[2];
@@ -866,18 +559,18 @@ static void rhs(const struct rod *r, struct link *k, double h)
 		if (sd->ts) {
 			vec3_axpy(jdx, jdx, sd->ts, sg->dp);
 		} else {
-			m3_mv_acc(sd->t, sg->dp, 1, jdx);
+			rod_algebra_m3_mv_acc(sd->t, sg->dp, 1, jdx);
 		}
-		m3_mv_acc(sd->x, sg->dth, 1, jdx);
-		m3_mv_acc(sd->z, sg->dth, 1, jdx + 3);
+		rod_algebra_m3_mv_acc(sd->x, sg->dth, 1, jdx);
+		rod_algebra_m3_mv_acc(sd->z, sg->dth, 1, jdx + 3);
 	}
 	if (k == &r->end[ROD_BASE] || k == &r->end[ROD_TIP]) {
 		/* a coupling damps the motion relative to its anchor's */
 		const double *am = r->anchor_moved[k == &r->end[ROD_TIP]];
 		const struct side *sd = &k->s[k == &r->end[ROD_BASE] ? 1 : 0];
 
-		m3_mv_acc(sd->t, am, -1, jdx);
-		m3_mv_acc(sd->z, am + 3, -1, jdx + 3);
+		rod_algebra_m3_mv_acc(sd->t, am, -1, jdx);
+		rod_algebra_m3_mv_acc(sd->z, am + 3, -1, jdx + 3);
 	}
 	for (int i = 0; i < 6; i++) {
 		double at = k->alpha[i] / (h * h), gam = k->tau[i] / h;
@@ -898,10 +591,10 @@ static void side_products(const struct rod *r, struct side *sd)
 			vec3_scale(sd->pt[i], s->pinv[i], sd->ts);
 		}
 	} else {
-		m3_abt(s->pinv, sd->t, sd->pt);
+		rod_algebra_m3_abt(s->pinv, sd->t, sd->pt);
 	}
-	m3_abt(s->qinv, sd->x, sd->qx);
-	m3_abt(s->qinv, sd->z, sd->qz);
+	rod_algebra_m3_abt(s->qinv, sd->x, sd->qx);
+	rod_algebra_m3_abt(s->qinv, sd->z, sd->qz);
 }
 
 /* OUT += J_1 M^-1 J_2^T for sides 1 and 2 of the same segment:
@@ -915,12 +608,12 @@ static void coupling(const struct side *s1, const struct side *s2, mat6 out)
 			}
 		}
 	} else {
-		m6_add_ab(out, 0, 0, s1->t, s2->pt);
+		rod_algebra_m6_add_ab(out, 0, 0, s1->t, s2->pt);
 	}
-	m6_add_ab(out, 0, 0, s1->x, s2->qx);
-	m6_add_ab(out, 0, 3, s1->x, s2->qz);
-	m6_add_ab(out, 3, 0, s1->z, s2->qx);
-	m6_add_ab(out, 3, 3, s1->z, s2->qz);
+	rod_algebra_m6_add_ab(out, 0, 0, s1->x, s2->qx);
+	rod_algebra_m6_add_ab(out, 0, 3, s1->x, s2->qz);
+	rod_algebra_m6_add_ab(out, 3, 0, s1->z, s2->qx);
+	rod_algebra_m6_add_ab(out, 3, 3, s1->z, s2->qz);
 }
 
 /*
@@ -964,7 +657,7 @@ static int factor(struct rod *r)
 				}
 			}
 		}
-		if (chol6(k->l)) {
+		if (rod_algebra_chol6(k->l)) {
 			return -1;
 		}
 		if (c + 1 == r->links) {
@@ -972,7 +665,7 @@ static int factor(struct rod *r)
 		}
 		memset(k->v, 0, sizeof(k->v));
 		coupling(&k->s[1], &r->chain[c + 1]->s[0], k->v);
-		lower_solve6(k->l, k->v);
+		rod_algebra_lower_solve6(k->l, k->v);
 	}
 	return 0;
 }
@@ -995,7 +688,7 @@ static void solve(struct rod *r)
 				k->g[i] -= t;
 			}
 		}
-		lower_solve(k->l, k->g);
+		rod_algebra_lower_solve(k->l, k->g);
 	}
 	for (int c = r->links - 1; c >= 0; c--) {
 		struct link *k = r->chain[c];
@@ -1012,7 +705,7 @@ static void solve(struct rod *r)
 				k->g[i] -= t;
 			}
 		}
-		upper_solve(k->l, k->g);
+		rod_algebra_upper_solve(k->l, k->g);
 	}
 }
 
@@ -1038,16 +731,16 @@ static void apply(struct rod *r)
 				continue;
 			}
 			sg = &r->seg[sd->seg];
-			m3_mv_acc(sd->pt, k->g, 1, sg->dp);
-			m3_mv_acc(sd->qx, k->g, 1, sg->dth);
-			m3_mv_acc(sd->qz, k->g + 3, 1, sg->dth);
+			rod_algebra_m3_mv_acc(sd->pt, k->g, 1, sg->dp);
+			rod_algebra_m3_mv_acc(sd->qx, k->g, 1, sg->dth);
+			rod_algebra_m3_mv_acc(sd->qz, k->g + 3, 1, sg->dth);
 		}
 	}
 	for (int i = 0; i < r->n; i++) {
 		struct seg *sg = &r->seg[i];
 
 		vec3_add(sg->p, sg->p, sg->dp);
-		quat_turn(sg->q, sg->dth);
+		rod_algebra_quat_turn(sg->q, sg->dth);
 	}
 }
 
@@ -1092,7 +785,7 @@ void rod_step(struct rod *r, double dt_s)
 		memcpy(s->q0, s->q, sizeof(s->q));
 		vec3_axpy(s->p, s->p, h, vs);
 		vec3_scale(ws, ws, h);
-		quat_turn(s->q, ws);
+		rod_algebra_quat_turn(s->q, ws);
 	}
 	for (int it = 0; it < r->par.iterations; it++) {
 		refresh(r);
@@ -1143,7 +836,7 @@ void rod_frame(const struct rod *r, int i, double d1[3], double d2[3],
 {
 	double m[3][3];
 
-	quat_matrix(r->seg[i].q, m);
+	rod_algebra_quat_matrix(r->seg[i].q, m);
 	vec3_set(d1, m[0][0], m[1][0], m[2][0]);
 	vec3_set(d2, m[0][1], m[1][1], m[2][1]);
 	vec3_set(d3, m[0][2], m[1][2], m[2][2]);
@@ -1178,10 +871,10 @@ void rod_anchor_wrench(const struct rod *r, enum rod_end end, double f[3],
 	if (sd->ts) {
 		vec3_scale(f, lam, sd->ts);
 	} else {
-		m3_mtv_acc(sd->t, lam, f);
+		rod_algebra_m3_mtv_acc(sd->t, lam, f);
 	}
-	m3_mtv_acc(sd->x, lam, tau);
-	m3_mtv_acc(sd->z, lam + 3, tau);
+	rod_algebra_m3_mtv_acc(sd->x, lam, tau);
+	rod_algebra_m3_mtv_acc(sd->z, lam + 3, tau);
 	rod_end_point(r, sd->seg, end, pe);
 	vec3_sub(arm, r->seg[sd->seg].p, pe);
 	vec3_cross(t, arm, f);
@@ -1192,9 +885,9 @@ void rod_joint_rotation(const struct rod *r, int joint, double theta[3])
 {
 	double q[4], g[3][3], m[3][3];
 
-	quat_matrix(r->seg[joint].q, m);
-	relative(r->seg[joint].q, r->seg[joint + 1].q, (const double(*)[3])m,
-		 q, g);
+	rod_algebra_quat_matrix(r->seg[joint].q, m);
+	rod_algebra_relative(r->seg[joint].q, r->seg[joint + 1].q,
+			     (const double(*)[3])m, q, g);
 	vec3_set(theta, 2 * q[1], 2 * q[2], 2 * q[3]);
 }
 
