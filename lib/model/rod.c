@@ -22,7 +22,8 @@ struct seg {
 	double p0[3], q0[4];           /* at the step's start */
 	mat3 rm;                       /* R(q) now: d1, d2, d3 in columns */
 	double dp[3], dth[3];          /* moved since the step's start (by
-					  refresh()), or by apply() */
+					  predict(), refresh()), or by
+					  apply() */
 	mat3 pinv, qinv;               /* effective inverse mass: translation,
 					  rotation (world) */
 	bool loaded;
@@ -395,18 +396,20 @@ void rod_load_point(struct rod_load *l, const double off[3],
 
 /*
  * Segment I's effective masses M + h B + h^2 K (translation, rotation),
- * inverted, and its predicted velocities: (M + hB + h^2K) v* = M v +
- * h (f + B v_ref). Returns -1 when a mass is not definite (bad loads).
+ * inverted, its matrix R(q) at the step's start, and its predicted motion
+ * over the step, dp = h v*, dtheta = h w* with (M + hB + h^2K) v* = M v +
+ * h (f + B v_ref), which the step's first iteration takes in linearly.
+ * Returns -1 when a mass is not definite (bad loads).
  */
-static int predict(struct rod *r, int i, double h, double vs[3],
-		   double ws[3])
+static int predict(struct rod *r, int i, double h)
 {
 	struct seg *s = &r->seg[i];
 	const struct rod_load *ld = &r->load[i];
-	double rm[3][3], drag = r->par.drag_n_s_per_m2 * r->l;
+	double vs[3], ws[3], drag = r->par.drag_n_s_per_m2 * r->l;
+	const double (*rm)[3] = (const double(*)[3])s->rm;
 	mat3 mt, mr;
 
-	rod_algebra_quat_matrix(s->q, rm);
+	rod_algebra_quat_matrix(s->q, s->rm);
 	/* drag: towards rest */
 	rod_algebra_m3_identity(mt, r->mass + h * drag);
 	for (int a = 0; a < 3; a++) {
@@ -435,12 +438,10 @@ static int predict(struct rod *r, int i, double h, double vs[3],
 	    rod_algebra_m3_inverse(mr, s->qinv)) {
 		return -1;
 	}
-	vec3_copy(mt[0], vs);
-	vec3_set(vs, 0, 0, 0);
-	rod_algebra_m3_mv_acc(s->pinv, mt[0], 1, vs);
-	vec3_copy(mr[0], ws);
-	vec3_set(ws, 0, 0, 0);
-	rod_algebra_m3_mv_acc(s->qinv, mr[0], 1, ws);
+	vec3_set(s->dp, 0, 0, 0);
+	rod_algebra_m3_mv_acc(s->pinv, vs, h, s->dp);
+	vec3_set(s->dth, 0, 0, 0);
+	rod_algebra_m3_mv_acc(s->qinv, ws, h, s->dth);
 	return 0;
 }
 
@@ -543,8 +544,10 @@ static void rows(struct rod *r)
  * Link K's right-hand side: (-C - alpha~ lambda - gamma J dx) / (1 +
  * gamma) per row, and its diagonal's compliance alpha~ / (1 + gamma)
  * (Macklin et al.'s damped XPBD, each row scaled to keep it symmetric).
+ * FIRST: the rows were taken at the step's start and the segments' dx is
+ * the predicted motion, not yet made: C is C + J dx there.
  */
-static void rhs(const struct rod *r, struct link *k, double h)
+static void rhs(const struct rod *r, struct link *k, double h, bool first)
 {
 	double jdx[6] = { 0 };
 
@@ -563,6 +566,9 @@ static void rhs(const struct rod *r, struct link *k, double h)
 		}
 		rod_algebra_m3_mv_acc(sd->x, sg->dth, 1, jdx);
 		rod_algebra_m3_mv_acc(sd->z, sg->dth, 1, jdx + 3);
+	}
+	for (int i = 0; first && i < 6; i++) {
+		k->c[i] += jdx[i];
 	}
 	if (k == &r->end[ROD_BASE] || k == &r->end[ROD_TIP]) {
 		/* a coupling damps the motion relative to its anchor's */
@@ -710,10 +716,11 @@ static void solve(struct rod *r)
 }
 
 /* Applies dlambda (in g): each segment moves by M^-1 J^T dlambda of the
- * links on both its sides, summed first (one turn per segment). */
-static void apply(struct rod *r)
+ * links on both its sides, summed first (one turn per segment), and on
+ * the FIRST iteration by its predicted motion too. */
+static void apply(struct rod *r, bool first)
 {
-	for (int i = 0; i < r->n; i++) {
+	for (int i = 0; i < r->n && !first; i++) {
 		memset(r->seg[i].dp, 0, sizeof(r->seg[i].dp));
 		memset(r->seg[i].dth, 0, sizeof(r->seg[i].dth));
 	}
@@ -775,30 +782,32 @@ void rod_step(struct rod *r, double dt_s)
 	build_chain(r);
 	for (int i = 0; i < r->n; i++) {
 		struct seg *s = &r->seg[i];
-		double vs[3], ws[3];
 
-		if (predict(r, i, h, vs, ws)) {
+		if (predict(r, i, h)) {
 			broken(r);
 			return;
 		}
 		memcpy(s->p0, s->p, sizeof(s->p));
 		memcpy(s->q0, s->q, sizeof(s->q));
-		vec3_axpy(s->p, s->p, h, vs);
-		vec3_scale(ws, ws, h);
-		rod_algebra_quat_turn(s->q, ws);
 	}
+	/* the first iteration linearises at the step's start, where the
+	 * segments are: the loads' predicted motion enters the solve
+	 * linearly (rhs()), so that a rod at rest in equilibrium stays put
+	 * whatever h and the inertia (rod.h) */
 	for (int it = 0; it < r->par.iterations; it++) {
-		refresh(r);
+		if (it > 0) {
+			refresh(r);
+		}
 		rows(r);
 		for (int c = 0; c < r->links; c++) {
-			rhs(r, r->chain[c], h);
+			rhs(r, r->chain[c], h, it == 0);
 		}
 		if (it == 0 && factor(r)) {
 			broken(r);
 			return;
 		}
 		solve(r);
-		apply(r);
+		apply(r, it == 0);
 	}
 	refresh(r);
 	for (int i = 0; i < r->n; i++) {

@@ -31,10 +31,17 @@
  * stiff rods", CGF 2018): each step is an implicit Euler step of the
  * whole rod with the XPBD compliance form (Macklin, Mueller, Chentanez
  * 2016: compliance in SI units, the stiffness independent of the step),
- * and damping as a Kelvin-Voigt retardation time per row. Statics are
- * exact when the rod comes to rest (the analytic tests: cantilever, Euler
- * buckling, torsion, capstan); a fixed number of iterations keeps the work
- * per step bounded: the force loop can run it.
+ * and damping as a Kelvin-Voigt retardation time per row. The step's
+ * first iteration linearises the joints where the segments are at its
+ * start, with the loads' motion over the step in the solve (not made
+ * first and linearised after: a torque on a light segment would turn it
+ * by h^2 tau / I, far beyond the linearisation, before its joints held
+ * it). A rod at rest in equilibrium is then left where it is, so statics
+ * are exact when the rod comes to rest, whatever the step and the
+ * segments' inertia (the analytic tests: cantilever, elastica, an end
+ * couple's circle, Euler buckling, torsion, capstan, at 1 and 2 ms); a
+ * fixed number of iterations keeps the work per step bounded: the force
+ * loop can run it.
  *
  * Loads: before each step the caller may load any segment with a force
  * and a torque linear in its motion over the step,

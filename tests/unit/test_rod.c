@@ -1,6 +1,9 @@
 /*
  * test_rod.c - the elastic rod against mechanics (rod.h): the cantilever's
- * tip deflection P L^3 / (3 EI), Euler's buckling load pi^2 EI / (4 L^2)
+ * tip deflection P L^3 / (3 EI) and, bent far, the elastica's; a
+ * clamped rod rolled into a circle of radius EI / M by an end couple M,
+ * a tube twisted at its surface held with the torques' sum, all the same
+ * whatever the step (1 or 2 ms); Euler's buckling load pi^2 EI / (4 L^2)
  * of a clamped-free rod, the twist T L / GJ of a rod turned at its base
  * with its tip held, the capstan F_out / F_in = exp(mu theta) of a rod
  * pulled through a bend, a rest bend taken exactly, the anchor's reaction
@@ -65,8 +68,11 @@ static void clamp_at_origin(struct rod *r, double angle_about_x)
 	rod_set_anchor(r, ROD_BASE, &a);
 }
 
-/* A force F at the tip's end point, for the next step. */
-static void load_tip(struct rod *r, const double f[3])
+/* Loads the rod for the next step with what ARG says. */
+typedef void load_fn(struct rod *r, const void *arg);
+
+/* A force F (N, double[3]) at the tip's end point. */
+static void load_tip(struct rod *r, const void *f)
 {
 	int n = rod_segments(r);
 	double d1[3], d2[3], d3[3], off[3];
@@ -76,21 +82,59 @@ static void load_tip(struct rod *r, const double f[3])
 	rod_load_point(rod_load(r, n - 1), off, f, NULL, NULL, NULL);
 }
 
-/* Steps with a tip force F until the rod has been at rest for 0.5 s (or
- * STEPS ran): an oscillation passes through rest at its turning points. */
-static void settle(struct rod *r, const double f[3], int steps)
+/* A couple M (N m, double[3]) on the tip's segment. */
+static void load_couple(struct rod *r, const void *m)
 {
-	int still = 0;
+	struct rod_load *l = rod_load(r, rod_segments(r) - 1);
 
-	for (int k = 0; k < steps && still < 500; k++) {
-		rod_clear_loads(r);
-		if (f) {
-			load_tip(r, f);
+	vec3_add(l->tau, l->tau, m);
+}
+
+/* Each segment twisted about its axis by a tangential force F (N,
+ * double) at either side of its surface, as a wall's friction is put. */
+static void load_twist(struct rod *r, const void *f)
+{
+	double radius = rod_params(r)->radius_m;
+
+	for (int i = 0; i < rod_segments(r); i++) {
+		double d1[3], d2[3], d3[3], off[3], push[3];
+
+		rod_frame(r, i, d1, d2, d3);
+		for (int side = -1; side <= 1; side += 2) {
+			vec3_scale(off, d1, side * radius);
+			vec3_scale(push, d2, side * *(const double *)f);
+			rod_load_point(rod_load(r, i), off, push, NULL, NULL,
+				       NULL);
 		}
-		rod_step(r, DT);
+	}
+}
+
+/* Steps of DT_S with LOAD (may be NULL) until the rod has been at rest for
+ * 0.5 s (or STEPS ran): an oscillation passes through rest at its turning
+ * points. Returns the widest gap the joints had after a step. */
+static double settle_at(struct rod *r, double dt_s, load_fn *load,
+			const void *arg, int steps)
+{
+	int still = 0, rest = (int)lround(0.5 / dt_s);
+	double gap = 0;
+
+	for (int k = 0; k < steps && still < rest; k++) {
+		rod_clear_loads(r);
+		if (load) {
+			load(r, arg);
+		}
+		rod_step(r, dt_s);
+		gap = fmax(gap, rod_joint_gap(r));
 		still = rod_kinetic_energy(r) < 1e-16 ? still + 1 : 0;
 	}
 	assert_true(rod_finite(r));
+	return gap;
+}
+
+/* Steps with a tip force F (may be NULL) at DT, as settle_at(). */
+static void settle(struct rod *r, const double f[3], int steps)
+{
+	settle_at(r, DT, f ? load_tip : NULL, f, steps);
 }
 
 static void tip_point(const struct rod *r, double out[3])
@@ -125,6 +169,121 @@ static void test_cantilever(void **state)
 		vec3_set(moment, 0, plane ? 0 : -P * L, plane ? P * L : 0);
 		assert_near(rf[2 - plane], P, 1e-3 * P);
 		assert_vec_near(rt, moment, 0.01 * P * L);
+		rod_destroy(r);
+	}
+}
+
+/* The loop's steps: the settled shape must not depend on which. */
+static const double steps_s[] = { 0.001, 0.002 };
+
+/*
+ * The elastica: a clamped rod under a dead tip load P normal to it, P L^2
+ * / EI = 2, bends far: its tip deflects 0.49346 L and comes 0.16064 L
+ * nearer the clamp (theta'' = -(P / EI) cos theta, theta(0) = 0,
+ * theta'(L) = 0, integrated). Within 0.1 % at each of the loop's steps,
+ * and the same shape at both: the light segment at the tip, turned by
+ * the load, does not move its rest with the step. 100 segments: the
+ * discretisation's error 1 / N^2 is 0.01 % of each.
+ */
+static void test_elastica(void **state)
+{
+	const double L = 0.3, EI = 0.03, P = 2 * EI / (L * L);
+	const double deflection = 0.49346, shortening = 0.16064;
+	const double f[3] = { 0, 0, -P };
+	double tip[2][3];
+
+	(void)state;
+	for (int k = 0; k < 2; k++) {
+		struct rod *r = straight_rod(100, L, EI, 0.45);
+
+		clamp_at_origin(r, 0);
+		settle_at(r, steps_s[k], load_tip, f, 20000);
+		tip_point(r, tip[k]);
+		print_message("elastica at %.0f ms: tip deflection %.6f L, "
+			      "shortening %.6f L (%.5f, %.5f)\n",
+			      steps_s[k] * 1e3, -tip[k][2] / L,
+			      1 - tip[k][0] / L, deflection, shortening);
+		assert_near(-tip[k][2] / L, deflection, 1e-3 * deflection);
+		assert_near(1 - tip[k][0] / L, shortening, 1e-3 * shortening);
+		rod_destroy(r);
+	}
+	assert_vec_near(tip[0], tip[1], 1e-6 * L);
+}
+
+/*
+ * An end couple M rolls a clamped rod into a circular arc of radius R =
+ * EI / M: here half a circle, its tip over the clamp at 2 R. A couple on
+ * the tip's light segment alone, h^2 M / I far above a radian at either
+ * step: its joints stay closed as it rolls up. The chain settles as a
+ * polygon whose joints each hold (EI / l) sin(phi) = M: its ends within
+ * (M l / EI)^2 R of the arc (1e-3 R at 100 segments).
+ */
+static void test_end_couple(void **state)
+{
+	const double L = 0.3, EI = 0.03, M = M_PI * EI / L, R = EI / M;
+	const double centre[3] = { 0, 0, R }, top[3] = { 0, 0, 2 * R };
+	const double couple[3] = { 0, -M, 0 }; /* rolls +x towards +z */
+	const int n = 100;
+	double tol = (M * L / n / EI) * (M * L / n / EI) * R;
+
+	(void)state;
+	for (int k = 0; k < 2; k++) {
+		struct rod *r = straight_rod(n, L, EI, 0.45);
+		double gap, off = 0, tip[3];
+
+		clamp_at_origin(r, 0);
+		gap = settle_at(r, steps_s[k], load_couple, couple, 20000);
+		for (int i = 0; i < n; i++) {
+			double e[3];
+
+			rod_end_point(r, i, ROD_TIP, e);
+			off = fmax(off, fabs(vec3_dist(e, centre) - R));
+		}
+		tip_point(r, tip);
+		print_message("end couple at %.0f ms: the ends off the circle "
+			      "%.2e R at most, the tip %.2e R off its top; "
+			      "joints open %.1e m at most\n", steps_s[k] * 1e3,
+			      off / R, vec3_dist(tip, top) / R, gap);
+		assert_true(gap < 1e-6);
+		assert_true(off < tol);
+		assert_vec_near(tip, top, tol);
+		rod_destroy(r);
+	}
+}
+
+/*
+ * The wall's friction twists the tube at its surface: 160 segments of
+ * the scope, each turned by a couple T = 2 r F of tangential forces, are
+ * held by the clamp with their sum N T (the roll the hand feels) at
+ * either step; the twist up to the tip is the sum of T (N - 1 - j) l / GJ
+ * over the joints j.
+ */
+static void test_twist_load(void **state)
+{
+	const double F = 0.5, L = 0.5, GJ = 0.45;
+	const int n = 160;
+
+	(void)state;
+	for (int k = 0; k < 2; k++) {
+		struct rod *r = straight_rod(n, L, 0.03, GJ);
+		double t = 2 * rod_params(r)->radius_m * F, f[3], tau[3];
+		double twist = 0, want = 0;
+
+		clamp_at_origin(r, 0);
+		settle_at(r, steps_s[k], load_twist, &F, 20000);
+		rod_anchor_wrench(r, ROD_BASE, f, tau);
+		for (int j = 0; j < n - 1; j++) {
+			double th[3];
+
+			rod_joint_rotation(r, j, th);
+			twist += 2 * asin(th[2] / 2);
+			want += t * (n - 1 - j) * (L / n) / GJ;
+		}
+		print_message("twist load at %.0f ms: the clamp holds %.6f N m "
+			      "(N T %.6f N m); twisted %.6f rad (%.6f rad)\n",
+			      steps_s[k] * 1e3, -tau[0], n * t, twist, want);
+		assert_near(-tau[0], n * t, 1e-3 * n * t);
+		assert_near(twist, want, 1e-3 * want);
 		rod_destroy(r);
 	}
 }
@@ -399,6 +558,9 @@ int main(void)
 		cmocka_unit_test(test_still),
 		cmocka_unit_test(test_rest_bend),
 		cmocka_unit_test(test_cantilever),
+		cmocka_unit_test(test_elastica),
+		cmocka_unit_test(test_end_couple),
+		cmocka_unit_test(test_twist_load),
 		cmocka_unit_test(test_torsion),
 		cmocka_unit_test(test_euler_buckling),
 		cmocka_unit_test(test_capstan),
