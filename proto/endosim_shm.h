@@ -24,13 +24,14 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 6u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 7u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
 				  5: the rod model: the tube's shape, the
 				     colon's nodes, the wall's contacts;
-				  6: guided replay */
+				  6: guided replay;
+				  7: the patient's body */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -101,7 +102,7 @@ struct endosim_axis_state {
 
 /*
  * The endoscope as the force loop sees it this cycle, in the colon's
- * coordinates (m; x to the patient's left, y anterior, z cranial), and
+ * coordinates (m; x to the patient's left, y posterior, z cranial), and
  * the colon's deformation. s is the material arc length from the anal
  * verge on the undeformed colon (GetScene's centreline). The paper's
  * model bows the mobile segments: a viewer bows its copy of the
@@ -279,6 +280,61 @@ struct endosim_guide_state {
 	double hand[ENDOSIM_AXES];      /* N, N m: the hand's, estimated */
 };
 
+/* The patient's body (lib/model/patient.h). */
+#define ENDOSIM_SEGMENTS 9 /* anal canal, rectum, sigmoid, descending,
+			      splenic flexure, transverse, hepatic flexure,
+			      ascending, cecum */
+
+/* Where the patient lies (gravity in the body's frame: +x, +y, -x, -y). */
+enum endosim_position {
+	ENDOSIM_POSITION_LEFT_LATERAL = 0,
+	ENDOSIM_POSITION_SUPINE = 1,
+	ENDOSIM_POSITION_RIGHT_LATERAL = 2,
+	ENDOSIM_POSITION_PRONE = 3,
+};
+
+/* The handle's valves, as the force loop took them this cycle. */
+enum endosim_valve {
+	ENDOSIM_VALVE_AIR = 1u << 0,     /* the air/water valve covered: air */
+	ENDOSIM_VALVE_WATER = 1u << 1,   /* pressed: water onto the lens */
+	ENDOSIM_VALVE_SUCTION = 1u << 2, /* the suction valve pressed */
+};
+
+/*
+ * The gas that holds the colon open, the patient's position and gravity,
+ * the fluid, the assistant's hand and the lens. Body frame (x to the
+ * patient's left, y posterior, z cranial); each segment's lumen radius is
+ * its factor times the case's (a viewer places the mesh so:
+ * gas_factor_at()); a pool's surface is the plane of normal fluid_up at
+ * height fluid_level_m along it.
+ */
+struct endosim_patient_state {
+	uint32_t enabled;        /* 0: none (the case's lumen, no gravity) */
+	uint32_t valves;         /* enum endosim_valve bits */
+	uint32_t position;       /* enum endosim_position, or turning to */
+	uint32_t turning;        /* 1 while being turned */
+	double turn;             /* the turn's progress 0..1 */
+	double down[3];          /* gravity's direction (unit) */
+	double gas_m3;           /* gas in the colon */
+	double pressure_pa;      /* its pressure above the atmosphere */
+	double gas_in_m3;        /* pumped in since the case was loaded */
+	double factor[ENDOSIM_SEGMENTS];        /* lumen radius / the case's */
+	double transmural_pa[ENDOSIM_SEGMENTS]; /* across each wall */
+	double tension_n_per_m[ENDOSIM_SEGMENTS]; /* Laplace's p r */
+	double fluid_m3[ENDOSIM_SEGMENTS];      /* pooled in each segment */
+	double fluid_level_m[ENDOSIM_SEGMENTS]; /* its surface along fluid_up */
+	double fluid_up[3];      /* the surfaces' normal (unit) */
+	int32_t hand_site;       /* the site pressed (the scene's), -1: none */
+	uint32_t tip_in_fluid;   /* 1: the tip under a surface */
+	double hand_n;           /* the assistant's press, N */
+	double pad_n;            /* what the pad holds of the colon, N */
+	double lens_smear;       /* 0..1: the mucosa's smear on the lens */
+	double lens_murk;        /* 0..1: the fluid's */
+	double lens_redout;      /* 0..1: the mucosa sucked onto it */
+	int32_t burst_segment;   /* the first segment torn, -1: none */
+	uint32_t reserved;
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -300,6 +356,7 @@ struct endosim_state {
 	struct endosim_safety_state safety;
 	struct endosim_rod_state rod;
 	struct endosim_guide_state guide;
+	struct endosim_patient_state patient;
 };
 
 struct endosim_shm {

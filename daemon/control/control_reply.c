@@ -394,7 +394,7 @@ void control_on_hand_input(struct control *c, struct client *cl,
 			return;
 		}
 	}
-	hand_set_live(c->deps.hand, hi->force, hold, mono_ns());
+	hand_set_live(c->deps.hand, hi->force, 0, hold, mono_ns());
 }
 
 void control_on_subscribe(struct control *c, struct client *cl,

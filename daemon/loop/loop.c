@@ -291,6 +291,7 @@ static void render(struct loop *l)
 		.dt_s = l->info.period_ns * ENDOSIM_S_PER_NS,
 		.torque_on = safety_torque_on(&l->safety),
 		.applied = l->limited, /* last cycle's, not yet filtered */
+		.valves = l->fb.valves,
 	};
 
 	cases_haptics_params(&l->cfg, &par);
@@ -307,6 +308,7 @@ static void fill_scope(struct loop *l)
 	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
 	haptics_publish_rod(l->haptics, l->pose.roll_rad, &l->state.rod,
 			    l->state.scope.bow_m);
+	patient_publish(haptics_patient(l->haptics), &l->state.patient);
 }
 
 /* Takes a test command, if any (the control thread checked it is allowed). */
@@ -650,6 +652,11 @@ const struct colon *loop_colon(const struct loop *l)
 void loop_hold_tip(struct loop *l, double hold_n_per_m)
 {
 	haptics_hold_tip(l->haptics, hold_n_per_m);
+}
+
+struct patient *loop_patient(struct loop *l)
+{
+	return haptics_patient(l->haptics);
 }
 
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,

@@ -209,6 +209,11 @@ const struct colon *loop_colon(const struct loop *l);
  * HOLD_N_PER_M, or let go (0) (haptics_hold_tip()), for the clinic's
  * tests. */
 void loop_hold_tip(struct loop *l, double hold_n_per_m);
+
+/* In lockstep: the patient's body (patient.h), for the tools and tests
+ * that turn the patient, press the abdomen or look inside; the daemon's
+ * control thread goes through the loop's patient mailbox instead. */
+struct patient *loop_patient(struct loop *l);
 void loop_post(struct loop *l, enum loop_cmd cmd);
 /* In lockstep: a guidance command for the next cycle; its answer is
  * loop_guide_answer()'s after that cycle (-EINPROGRESS before). */

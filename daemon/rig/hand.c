@@ -8,6 +8,7 @@
 
 struct live {
 	double force[ENDOSIM_AXES];
+	uint32_t valves;
 	uint64_t until_ns;
 };
 
@@ -55,12 +56,13 @@ const struct scenario *hand_scenario(const struct hand *h)
 }
 
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
-		   double hold_s, uint64_t now_ns)
+		   uint32_t valves, double hold_s, uint64_t now_ns)
 {
 	seqlock_write_begin(&h->lock);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		h->mailbox.force[a] = force[a];
 	}
+	h->mailbox.valves = valves;
 	h->mailbox.until_ns = now_ns + (uint64_t)(hold_s * ENDOSIM_NS_PER_S);
 	seqlock_write_end(&h->lock);
 }
@@ -126,4 +128,9 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		}
 		force[a] = muscle(f, vel[a], h->max[a], h->max_speed[a]);
 	}
+}
+
+uint32_t hand_valves(const struct hand *h, uint64_t now_ns)
+{
+	return now_ns < h->cached.until_ns ? h->cached.valves : 0;
 }

@@ -29,11 +29,12 @@ void hand_destroy(struct hand *h);
 const struct scenario *hand_scenario(const struct hand *h);
 
 /*
- * Control thread (one writer): live forces (N, N m, N m, N m) that hold for
- * HOLD_S seconds after NOW_NS (CLOCK_MONOTONIC). Lock-free.
+ * Control thread (one writer): live forces (N, N m, N m, N m) and the
+ * handle's valves (enum endosim_valve bits) that hold for HOLD_S seconds
+ * after NOW_NS (CLOCK_MONOTONIC). Lock-free.
  */
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
-		   double hold_s, uint64_t now_ns);
+		   uint32_t valves, double hold_s, uint64_t now_ns);
 
 /*
  * Force loop: the hand's force on each axis at scenario time T_S given the
@@ -42,5 +43,12 @@ void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		 const double pos[ENDOSIM_AXES], const double vel[ENDOSIM_AXES],
 		 double force[ENDOSIM_AXES]);
+
+/*
+ * Force loop, after hand_forces() of the same cycle: the valves the hand
+ * holds (enum endosim_valve bits): the live input's while it holds, else
+ * none (released). Never blocks.
+ */
+uint32_t hand_valves(const struct hand *h, uint64_t now_ns);
 
 #endif

@@ -46,6 +46,9 @@ struct rig_feedback {
 	struct rig_axis_feedback axis[ENDOSIM_AXES];
 	double hand_time_s;    /* simulated hand: time into the scenario */
 	bool hand_done;        /* simulated hand: scenario ended */
+	uint32_t valves;       /* the handle's (enum endosim_valve): pressed
+				  or covered; a stale or lost input reads
+				  released (0) */
 };
 
 /* What one bus thread achieves (bus.h). */

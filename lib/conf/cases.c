@@ -39,6 +39,47 @@ void cases_haptics_params(const struct config *cfg, struct haptics_params *p)
 		p->wheel_max_n_m[w] = cfg->limits.max[ENDOSIM_AXIS_WHEEL_UD + w];
 	}
 	cases_rod_params(cfg, &p->rod);
+	cases_patient_params(cfg, &p->patient);
+}
+
+void cases_patient_params(const struct config *cfg,
+			  struct patient_params *p)
+{
+	const struct config_patient *c = &cfg->patient;
+
+	*p = (struct patient_params){
+		.enabled = c->enabled,
+		.gas = {
+			.kind = c->gas,
+			.pump_m3_per_s = c->pump_m3_per_s,
+			.suction_m3_per_s = c->suction_m3_per_s,
+			.leak_m3_per_s_pa = c->leak_m3_per_s_pa,
+			.leak_pa = c->leak_pa,
+			.absorb_air_per_s = c->absorb_air_per_s,
+			.absorb_co2_per_s = c->absorb_co2_per_s,
+			.relief_pa = c->relief_pa,
+			.wall_strength_n_per_m = c->wall_strength_n_per_m,
+			.hydrostatic_pa_per_m = c->hydrostatic_pa_per_m,
+		},
+		.fluid = {
+			.suction_m3_per_s = c->suction_fluid_m3_per_s,
+			.settle_s = c->fluid_settle_s,
+		},
+		.lens = {
+			.contact_n = c->lens_contact_n,
+			.smear_n_s = c->lens_smear_n_s,
+			.dip_s = c->lens_dip_s,
+			.wash_s = c->lens_wash_s,
+			.redout_gap_m = c->lens_redout_gap_m,
+			.redout_s = c->lens_redout_s,
+		},
+		.start_position = c->position,
+		.turn_s = c->turn_s,
+		.gravity_m_s2 = PATIENT_GRAVITY_M_S2,
+		.hand_n = c->hand_n,
+		.hand_max_n = c->hand_max_n,
+		.abdomen_n_per_m = c->abdomen_n_per_m,
+	};
 }
 
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p)
@@ -67,6 +108,7 @@ void cases_rod_params(const struct config *cfg, struct rodscope_params *p)
 		.node_spacing_m = r->colon_node_spacing_m,
 		.damping_n_s_per_m = r->colon_damping_n_s_per_m,
 		.chain_n_per_m = r->colon_chain_n_per_m,
+		.mass_per_m_kg = r->colon_mass_per_m_kg,
 		.bending_n_per_m = r->colon_bending_n_per_m,
 	};
 	p->coupling_n_per_m = r->coupling_n_per_m;

@@ -39,6 +39,8 @@ void cases_scope_params(const struct config *cfg, struct scope_params *p);
 void cases_haptics_params(const struct config *cfg,
 			  struct haptics_params *p);
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p);
+void cases_patient_params(const struct config *cfg,
+			  struct patient_params *p);
 
 /*
  * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is

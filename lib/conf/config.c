@@ -18,6 +18,10 @@ static const char *const transport_names[] = { "rtu", "tcp", NULL };
 static const char *const parity_names[] = { "none", "even", "odd", NULL };
 static const char *const yes_no[] = { "no", "yes", NULL };
 static const char *const model_names[] = { "paper", "rod", NULL };
+static const char *const gas_names[] = { "air", "co2", NULL };
+static const char *const position_names[] = { "left-lateral", "supine",
+					      "right-lateral", "prone",
+					      NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
@@ -483,6 +487,81 @@ static const struct parse_key keys[] = {
 	KD("rod", "colon_bending_n_per_m", rod.colon_bending_n_per_m,
 	   FLEX_DEFAULT_BENDING_N_PER_M, 0, 1e6, "N/m", LIVE,
 	   "the colon wall's resistance to crumpling between its nodes"),
+	KD("rod", "colon_mass_per_m_kg", rod.colon_mass_per_m_kg,
+	   FLEX_DEFAULT_MASS_PER_M_KG, 0, 10, "kg/m", LIVE,
+	   "the mobile colon's mass with its contents, per metre: gravity "
+	   "sags it on its mesentery"),
+
+	KE("patient", "enabled", patient.enabled, PATIENT_DEFAULT_ENABLED,
+	   yes_no, 0,
+	   "yes: a patient around the colon (gas, gravity, fluid, the "
+	   "assistant's hand, the lens); no: the case's lumen, always open"),
+	KE("patient", "gas", patient.gas, GAS_AIR, gas_names, LIVE,
+	   "what the pump blows in: air, or co2 (absorbed far faster)"),
+	KE("patient", "position", patient.position, POSTURE_LEFT_LATERAL,
+	   position_names, 0, "where the patient lies at the start: "
+	   "left-lateral, supine, right-lateral or prone"),
+	KD("patient", "turn_s", patient.turn_s, PATIENT_DEFAULT_TURN_S, 0, 60,
+	   "s", LIVE, "a change of position takes this long"),
+	KD("patient", "pump_m3_per_s", patient.pump_m3_per_s,
+	   GAS_DEFAULT_PUMP_M3_PER_S, 0, 1e-3, "m^3/s", LIVE,
+	   "the pump's flow while the air/water valve is covered (2 L/min: "
+	   "3.33e-5)"),
+	KD("patient", "suction_m3_per_s", patient.suction_m3_per_s,
+	   GAS_DEFAULT_SUCTION_M3_PER_S, 0, 1e-3, "m^3/s", LIVE,
+	   "gas the suction valve takes out, the tip in gas"),
+	KD("patient", "suction_fluid_m3_per_s", patient.suction_fluid_m3_per_s,
+	   FLUID_DEFAULT_SUCTION_M3_PER_S, 0, 1e-3, "m^3/s", LIVE,
+	   "fluid it takes out, the tip under a pool's surface"),
+	KD("patient", "leak_pa", patient.leak_pa, GAS_DEFAULT_LEAK_PA, 0, 2e4,
+	   "Pa", LIVE, "the anus holds the gas below this pressure"),
+	KD("patient", "leak_m3_per_s_pa", patient.leak_m3_per_s_pa,
+	   GAS_DEFAULT_LEAK_M3_PER_S_PA, 0, 1e-5, "m^3/(s Pa)", LIVE,
+	   "and leaks this much above it, per Pa"),
+	KD("patient", "absorb_air_per_s", patient.absorb_air_per_s,
+	   GAS_DEFAULT_ABSORB_AIR_PER_S, 0, 1, "1/s", LIVE,
+	   "the share of the gas absorbed through the wall a second: air"),
+	KD("patient", "absorb_co2_per_s", patient.absorb_co2_per_s,
+	   GAS_DEFAULT_ABSORB_CO2_PER_S, 0, 1, "1/s", LIVE,
+	   "the same for CO2 (~150 times air's)"),
+	KD("patient", "relief_pa", patient.relief_pa, GAS_DEFAULT_RELIEF_PA, 0,
+	   1e5, "Pa", LIVE, "the pump stops at this pressure (an "
+	   "insufflator's 50 mmHg: 6666); 0: never"),
+	KD("patient", "wall_strength_n_per_m", patient.wall_strength_n_per_m,
+	   GAS_DEFAULT_WALL_STRENGTH_N_PER_M, 10, 1e5, "N/m", LIVE,
+	   "a wall tears when its tension (pressure times radius) passes "
+	   "this: a perforation"),
+	KD("patient", "hydrostatic_pa_per_m", patient.hydrostatic_pa_per_m,
+	   GAS_DEFAULT_HYDROSTATIC_PA_PER_M, 0, 1e5, "Pa/m", LIVE,
+	   "the abdomen's contents' pressure per metre of depth (0.74 mmHg "
+	   "per cm)"),
+	KD("patient", "fluid_settle_s", patient.fluid_settle_s,
+	   FLUID_DEFAULT_SETTLE_S, 0, 10, "s", LIVE,
+	   "a pool's surface follows gravity with this time constant"),
+	KD("patient", "hand_n", patient.hand_n, PATIENT_DEFAULT_HAND_N, 1, 100,
+	   "N", LIVE, "the assistant presses with this unless told"),
+	KD("patient", "hand_max_n", patient.hand_max_n,
+	   PATIENT_DEFAULT_HAND_MAX_N, 1, 100, "N", LIVE,
+	   "and never harder than this"),
+	KD("patient", "abdomen_n_per_m", patient.abdomen_n_per_m,
+	   PATIENT_DEFAULT_ABDOMEN_N_PER_M, 10, 1e5, "N/m", LIVE,
+	   "how far the belly gives under the pad: force over this"),
+	KD("patient", "lens_contact_n", patient.lens_contact_n,
+	   LENS_DEFAULT_CONTACT_N, 0, 50, "N", LIVE,
+	   "the tip pressed harder than this smears the lens"),
+	KD("patient", "lens_smear_n_s", patient.lens_smear_n_s,
+	   LENS_DEFAULT_SMEAR_N_S, 0.01, 1000, "N s", LIVE,
+	   "force above contact times seconds that smears it fully"),
+	KD("patient", "lens_dip_s", patient.lens_dip_s, LENS_DEFAULT_DIP_S,
+	   0.01, 100, "s", LIVE, "under a pool this long clouds it fully"),
+	KD("patient", "lens_wash_s", patient.lens_wash_s, LENS_DEFAULT_WASH_S,
+	   0.01, 100, "s", LIVE, "the water jet clears it in this"),
+	KD("patient", "lens_redout_gap_m", patient.lens_redout_gap_m,
+	   LENS_DEFAULT_REDOUT_GAP_M, 0, 0.05, "m", LIVE,
+	   "suction this close to the wall pulls the mucosa onto the lens"),
+	KD("patient", "lens_redout_s", patient.lens_redout_s,
+	   LENS_DEFAULT_REDOUT_S, 0.001, 10, "s", LIVE,
+	   "the red-out's time constant"),
 
 	KL("log", "level", log.level, "info", LIVE,
 	   "err, warning, notice, info or debug"),

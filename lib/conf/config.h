@@ -214,7 +214,34 @@ struct config {
 		double colon_damping_n_s_per_m;
 		double colon_chain_n_per_m;
 		double colon_bending_n_per_m;
+		double colon_mass_per_m_kg;
 	} rod;
+	struct config_patient {  /* [patient]: the patient's body (patient.h) */
+		int enabled;         /* 0 no, 1 yes */
+		int gas;             /* enum gas_kind */
+		int position;        /* enum posture_position: at the start */
+		double turn_s;
+		double pump_m3_per_s;
+		double suction_m3_per_s;
+		double suction_fluid_m3_per_s;
+		double leak_pa;
+		double leak_m3_per_s_pa;
+		double absorb_air_per_s;
+		double absorb_co2_per_s;
+		double relief_pa;
+		double wall_strength_n_per_m;
+		double hydrostatic_pa_per_m;
+		double fluid_settle_s;
+		double hand_n;
+		double hand_max_n;
+		double abdomen_n_per_m;
+		double lens_contact_n;
+		double lens_smear_n_s;
+		double lens_dip_s;
+		double lens_wash_s;
+		double lens_redout_gap_m;
+		double lens_redout_s;
+	} patient;
 	struct config_guide {    /* [guide]: guided replay (guide.h); per
 				    axis in enum endosim_axis order, N or
 				    N m, m or rad */

@@ -40,6 +40,7 @@ struct reader {
 	int mobile_line[ANATOMY_SEGMENTS];
 	bool seg_set_taenia[ANATOMY_SEGMENTS], seg_set_fold[ANATOMY_SEGMENTS];
 	int polyp_line[ANATOMY_MAX_POLYPS];
+	int site_line[ANATOMY_MAX_SITES];
 };
 
 static int fail(struct reader *r, int line, const char *what, const char *fmt,
@@ -75,6 +76,16 @@ double anatomy_segment_start(const struct anatomy *a, int id)
 		s += a->seg[k].length_m;
 	}
 	return s;
+}
+
+int anatomy_site_find(const struct anatomy *a, const char *name)
+{
+	for (int i = 0; i < a->sites; i++) {
+		if (!strcmp(a->site[i].name, name)) {
+			return i;
+		}
+	}
+	return -1;
 }
 
 double anatomy_length(const struct anatomy *a)
@@ -178,7 +189,37 @@ static int bend_parse(const struct parse_key *k, const char *text,
 	return 0;
 }
 
+/* "X Y Z": three numbers into a double[3] (position_m, direction). */
+static int vec_parse(const struct parse_key *k, const char *text,
+		     void *field, struct parse_file *pf, char *why,
+		     size_t size)
+{
+	char copy[PARSE_MAX_LINE + 1], *tok[4], *save = NULL;
+	double out[3];
+	int n = 0;
+
+	(void)pf;
+	snprintf(copy, sizeof(copy), "%s", text);
+	for (char *t = strtok_r(copy, " \t", &save); t && n < 4;
+	     t = strtok_r(NULL, " \t", &save)) {
+		tok[n++] = t;
+	}
+	if (n != 3) {
+		snprintf(why, size, "'%s' is not three numbers X Y Z", text);
+		return -EINVAL;
+	}
+	for (int i = 0; i < 3; i++) {
+		if (parse_number(tok[i], k->min, k->max, k->unit, &out[i], why,
+				 size)) {
+			return -EINVAL;
+		}
+	}
+	memcpy(field, out, sizeof(out));
+	return 0;
+}
+
 static const struct parse_ops name_ops = { name_parse, NULL };
+static const struct parse_ops vec_ops = { vec_parse, NULL };
 static const struct parse_ops deg_ops = { deg_parse, NULL };
 static const struct parse_ops bool_ops = { bool_parse, NULL };
 static const struct parse_ops bend_ops = { bend_parse, NULL };
@@ -188,6 +229,7 @@ static const struct parse_ops bend_ops = { bend_parse, NULL };
 #define R(f) offsetof(struct reader, f) /* [case], [lumen] */
 #define S(f) offsetof(struct anatomy_segment, f)
 #define P(f) offsetof(struct anatomy_polyp, f)
+#define T(f) offsetof(struct anatomy_site, f)
 #define NUM(sec, key, off, lo, hi, fl) \
 	{ .section = sec, .name = key, .type = PARSE_DOUBLE, .offset = off, \
 	  .min = lo, .max = hi, .unit = "", .flags = fl }
@@ -216,6 +258,11 @@ static const struct parse_key keys[] = {
 	NUM("segment", "mesentery_n_per_m", S(mesentery_n_per_m), 1, 1e5, 0),
 	NUM("segment", "mesentery_height_m", S(mesentery_height_m), 0.005,
 	    0.2, 0),
+	NUM("segment", "wall_collapsed", S(wall_collapsed), 0.1, 1, 0),
+	NUM("segment", "wall_max", S(wall_max), 1, 2, 0),
+	NUM("segment", "wall_nominal_pa", S(wall_nominal_pa), 200, 10000, 0),
+	NUM("segment", "wall_beta", S(wall_beta), 0.3, 5, 0),
+	NUM("segment", "fluid_m3", S(fluid_m3), 0, 0.002, 0),
 	{ .section = "segment", .name = "bend", .type = PARSE_CUSTOM,
 	  .offset = 0, .ops = &bend_ops, .unit = "",
 	  .flags = PARSE_REPEATS },
@@ -224,6 +271,13 @@ static const struct parse_key keys[] = {
 	NUM("polyp", "diameter_m", P(diameter_m), 0.001, 0.06, REQ),
 	{ .section = "polyp", .name = "shape", .type = PARSE_CHOICE,
 	  .offset = P(shape), .choices = shape_names, .unit = "" },
+	{ .section = "site", .name = "position_m", .type = PARSE_CUSTOM,
+	  .offset = T(position_m), .ops = &vec_ops, .min = -1, .max = 1,
+	  .unit = "m", .flags = REQ },
+	{ .section = "site", .name = "direction", .type = PARSE_CUSTOM,
+	  .offset = T(direction), .ops = &vec_ops, .min = -1, .max = 1,
+	  .unit = "" },
+	NUM("site", "radius_m", T(radius_m), 0.01, 0.2, 0),
 };
 
 /* ------------------------------------------------------- the sections */
@@ -247,6 +301,10 @@ static int open_segment(struct reader *r, const char *name, void **base,
 	seg = &r->a.seg[r->segments++];
 	seg->mesentery_n_per_m = 150;
 	seg->mesentery_height_m = 0.06;
+	seg->wall_collapsed = ANATOMY_DEFAULT_WALL_COLLAPSED;
+	seg->wall_max = ANATOMY_DEFAULT_WALL_MAX;
+	seg->wall_nominal_pa = ANATOMY_DEFAULT_WALL_NOMINAL_PA;
+	seg->wall_beta = ANATOMY_DEFAULT_WALL_BETA;
 	r->in_segment = true;
 	*base = seg;
 	return 0;
@@ -264,7 +322,35 @@ static int open_polyp(struct reader *r, int line, void **base, char *why,
 	return 0;
 }
 
-/* "[case]", "[lumen]", "[segment NAME]" or "[polyp]" begins. */
+/* A site's name: as a case's. */
+static const struct parse_key site_name = { .size = ANATOMY_NAME };
+
+static int open_site(struct reader *r, const char *name, int line,
+		     void **base, char *why, size_t size)
+{
+	struct anatomy_site *t;
+
+	if (r->a.sites == ANATOMY_MAX_SITES) {
+		snprintf(why, size, "more than %d sites", ANATOMY_MAX_SITES);
+		return -EINVAL;
+	}
+	t = &r->a.site[r->a.sites];
+	if (name_parse(&site_name, name, t->name, NULL, why, size)) {
+		return -EINVAL;
+	}
+	if (anatomy_site_find(&r->a, name) >= 0) {
+		snprintf(why, size, "[site %s] appears twice", name);
+		return -EINVAL;
+	}
+	r->site_line[r->a.sites++] = line;
+	t->direction[1] = 1;
+	t->radius_m = ANATOMY_DEFAULT_SITE_RADIUS_M;
+	*base = t;
+	return 0;
+}
+
+/* "[case]", "[lumen]", "[segment NAME]", "[site NAME]" or "[polyp]"
+ * begins. */
 static int begin(struct parse_file *pf, const char *kind, const char *arg,
 		 void **base, char *why, size_t size)
 {
@@ -278,6 +364,9 @@ static int begin(struct parse_file *pf, const char *kind, const char *arg,
 	}
 	if (!strcmp(kind, "segment") && arg) {
 		return open_segment(r, arg, base, why, size);
+	}
+	if (!strcmp(kind, "site") && arg) {
+		return open_site(r, arg, parse_file_line(pf), base, why, size);
 	}
 	if (arg) {
 		snprintf(why, size, "unknown section");
@@ -293,7 +382,8 @@ static int begin(struct parse_file *pf, const char *kind, const char *arg,
 		return 0;
 	}
 	snprintf(why, size, "%s", is_case || is_lumen ? "appears twice" :
-		 "unknown section (case, lumen, segment NAME, polyp)");
+		 "unknown section (case, lumen, segment NAME, site NAME, "
+		 "polyp)");
 	return -EINVAL;
 }
 
@@ -383,6 +473,24 @@ static int check_polyp(struct reader *r, int i)
 	return 0;
 }
 
+/* A site's direction made a unit vector (it must have one). */
+static int check_site(struct reader *r, int i)
+{
+	struct anatomy_site *t = &r->a.site[i];
+	double n = sqrt(t->direction[0] * t->direction[0] +
+			t->direction[1] * t->direction[1] +
+			t->direction[2] * t->direction[2]);
+
+	if (!(n > 1e-6)) {
+		return fail(r, r->site_line[i], "direction", "[site %s]: no "
+			    "direction", t->name);
+	}
+	for (int d = 0; d < 3; d++) {
+		t->direction[d] /= n;
+	}
+	return 0;
+}
+
 static int check(struct reader *r)
 {
 	int e;
@@ -407,6 +515,12 @@ static int check(struct reader *r)
 	}
 	for (int i = 0; i < r->a.polyps; i++) {
 		e = check_polyp(r, i);
+		if (e) {
+			return e;
+		}
+	}
+	for (int i = 0; i < r->a.sites; i++) {
+		e = check_site(r, i);
 		if (e) {
 			return e;
 		}

@@ -33,6 +33,12 @@
  *                               never two mobile segments side by side
  *   mesentery_n_per_m = 150     stiffness of the mesentery (mobile only)
  *   mesentery_height_m = 0.06   largest bow of the segment (mobile only)
+ *   wall_collapsed = 0.4        optional, the wall's pressure-volume law
+ *   wall_max = 1.25             (gas.h): the radius factor collapsed and
+ *   wall_nominal_pa = 2000      the one it stiffens towards, the
+ *   wall_beta = 1.5             transmural pressure at the case's radius
+ *                               and the law's shape (defaults below)
+ *   fluid_m3 = 0                optional: residual fluid pooled in it
  *   bend = ANGLE_DEG RADIUS_M PLANE_DEG
  *                               repeatable, up to ANATOMY_MAX_BENDS: an arc
  *                               of ANGLE_DEG (0..180) with radius RADIUS_M;
@@ -44,14 +50,26 @@
  *                               A segment's straight remainder is shared
  *                               equally before, between and after its bends.
  *
+ *   [site NAME]                 repeatable, up to ANATOMY_MAX_SITES: a
+ *                               place where the assistant presses on the
+ *                               abdomen (llq over the sigmoid, umbilical
+ *                               under the transverse colon's apex, ...)
+ *   position_m = X Y Z          required: the pad's centre on the
+ *                               abdominal wall, m
+ *   direction = X Y Z           into the abdomen (default 0 1 0: from the
+ *                               front towards the back)
+ *   radius_m = 0.06             the pad's reach about its axis
+ *
  *   [polyp]                     repeatable, up to ANATOMY_MAX_POLYPS
  *   s_m = 0.62                  required: distance from the anal verge
  *   angle_deg = 45              required: around the lumen from the frame's u
  *   diameter_m = 0.008          required
  *   shape = sessile             sessile (default), pedunculated or flat
  *
- * Coordinates (colon.h): metres, x to the patient's left, y anterior, z
- * cranial; the anal verge at the origin, the colon starting cranially.
+ * Coordinates (colon.h): metres, x to the patient's left, y posterior, z
+ * cranial (DICOM's LPS: the mobile sigmoid and transverse colon hang
+ * towards -y, the front, from the flexures on the back wall); the anal
+ * verge at the origin, the colon starting cranially.
  *
  * Checks beyond each value's range: every segment present and in order,
  * bends fit in their segment, no bend tighter than the lumen radius (the
@@ -73,6 +91,16 @@
 #define ANATOMY_SEGMENTS 9
 #define ANATOMY_MAX_BENDS 8
 #define ANATOMY_MAX_POLYPS 32
+#define ANATOMY_MAX_SITES 8
+
+/* The wall's law's defaults (gas.h, docs/PATIENT.md): folds meeting at 40
+ * % of the radius, stiffening towards 125 %, the case's radius at 15 mmHg
+ * (CT colonography's distension), beta 1.5 (barostat fits: 1-2). */
+#define ANATOMY_DEFAULT_WALL_COLLAPSED 0.4
+#define ANATOMY_DEFAULT_WALL_MAX 1.25
+#define ANATOMY_DEFAULT_WALL_NOMINAL_PA 2000.0
+#define ANATOMY_DEFAULT_WALL_BETA 1.5
+#define ANATOMY_DEFAULT_SITE_RADIUS_M 0.06
 #define ANATOMY_NAME 64
 #define ANATOMY_TEXT 160
 
@@ -108,8 +136,20 @@ struct anatomy_segment {
 	bool mobile;
 	double mesentery_n_per_m;  /* mobile segments: N/m */
 	double mesentery_height_m; /* mobile segments: largest bow, m */
+	double wall_collapsed;     /* radius factor, 0.1..1 */
+	double wall_max;           /* radius factor, 1..2 */
+	double wall_nominal_pa;    /* Pa, 200..10000 */
+	double wall_beta;          /* 0.3..5 */
+	double fluid_m3;           /* residual fluid, 0..0.002 */
 	struct anatomy_bend bend[ANATOMY_MAX_BENDS];
 	int bends;
+};
+
+struct anatomy_site {
+	char name[ANATOMY_NAME];
+	double position_m[3];      /* on the abdominal wall, body frame */
+	double direction[3];       /* unit, into the abdomen */
+	double radius_m;
 };
 
 struct anatomy_polyp {
@@ -128,7 +168,12 @@ struct anatomy {
 	struct anatomy_segment seg[ANATOMY_SEGMENTS];
 	struct anatomy_polyp polyp[ANATOMY_MAX_POLYPS];
 	int polyps;
+	struct anatomy_site site[ANATOMY_MAX_SITES];
+	int sites;
 };
+
+/* The site called NAME, or -1. */
+int anatomy_site_find(const struct anatomy *a, const char *name);
 
 /*
  * Reads the case file PATH into A. Returns 0, -ENOENT or another negative

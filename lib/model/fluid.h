@@ -45,8 +45,11 @@ struct fluid_params {
 
 /* Suction through a 3.7 mm channel empties ~0.5 L/min of fluid; the
  * surface settles within about a second of a turn. */
-#define FLUID_PARAMS_DEFAULT { .suction_m3_per_s = 0.5e-3 / 60, \
-			       .settle_s = 0.3 }
+#define FLUID_DEFAULT_SUCTION_M3_PER_S 8.3e-6 /* 0.5 L/min */
+#define FLUID_DEFAULT_SETTLE_S 0.3
+#define FLUID_PARAMS_DEFAULT { \
+	.suction_m3_per_s = FLUID_DEFAULT_SUCTION_M3_PER_S, \
+	.settle_s = FLUID_DEFAULT_SETTLE_S }
 
 struct fluid_segment {
 	double volume_m3;       /* V_i */

@@ -188,11 +188,22 @@ static void measure_segment(const struct colon *colon, int i,
 	vec3_scale(s->centre, c, 1.0 / (double)(b - a + 1));
 }
 
+struct gas_law gas_law_of(const struct anatomy *a, int i)
+{
+	const struct anatomy_segment *s = &a->seg[i];
+
+	return (struct gas_law){ .kind = GAS_LAW_POWEXP,
+				 .collapsed = s->wall_collapsed,
+				 .max = s->wall_max,
+				 .nominal_pa = s->wall_nominal_pa,
+				 .beta = s->wall_beta,
+				 .collapse_pa = GAS_COLLAPSE_PA };
+}
+
 void gas_attach(struct gas *g, const struct gas_params *p,
 		const struct colon *colon, const struct gas_law *law,
 		const double down[3])
 {
-	const struct gas_law def = GAS_LAW_DEFAULT;
 	struct gas_input in = { .down = { down[0], down[1], down[2] } };
 	double p_abd[GAS_SEGMENTS], most = 0;
 
@@ -205,7 +216,8 @@ void gas_attach(struct gas *g, const struct gas_params *p,
 	g->segments = GAS_SEGMENTS;
 	for (int i = 0; i < GAS_SEGMENTS; i++) {
 		measure_segment(colon, i, &g->seg[i]);
-		g->seg[i].law = law ? law[i] : def;
+		g->seg[i].law = law ? law[i]
+				    : gas_law_of(colon_anatomy(colon), i);
 		g->seg[i].factor = 1;
 	}
 	/* as much gas as holds the uppermost segment at its nominal p */

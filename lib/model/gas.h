@@ -74,13 +74,15 @@ struct gas_law {
 	double collapse_pa;  /* under suction: e-fold of the volume, Pa */
 };
 
-/* Literature-based defaults (docs/PATIENT.md): folds meeting at 40 % of
- * the radius, the wall stiffening towards 125 %, the case's radius at 15
- * mmHg (CT colonography's distension), beta 1.5 (the barostat fits' range
- * 1-2). */
-#define GAS_LAW_DEFAULT { .kind = GAS_LAW_POWEXP, .collapsed = 0.4, \
-			  .max = 1.25, .nominal_pa = 15 * GAS_PA_PER_MMHG, \
-			  .beta = 1.5, .collapse_pa = 2 * GAS_PA_PER_MMHG }
+/* The case's defaults (anatomy.h); under suction the collapsed lumen
+ * empties e-fold every 2 mmHg. */
+#define GAS_COLLAPSE_PA (2 * GAS_PA_PER_MMHG)
+#define GAS_LAW_DEFAULT { .kind = GAS_LAW_POWEXP, \
+			  .collapsed = ANATOMY_DEFAULT_WALL_COLLAPSED, \
+			  .max = ANATOMY_DEFAULT_WALL_MAX, \
+			  .nominal_pa = ANATOMY_DEFAULT_WALL_NOMINAL_PA, \
+			  .beta = ANATOMY_DEFAULT_WALL_BETA, \
+			  .collapse_pa = GAS_COLLAPSE_PA }
 
 struct gas_params {
 	int kind;                   /* enum gas_kind */
@@ -98,21 +100,29 @@ struct gas_params {
 /* Defaults (their reasons in docs/PATIENT.md): an endoscope's air pump
  * (~2 L/min), suction 3 L/min, the anus leaking above 20 mmHg at 1 L/min
  * per 10 mmHg more, air absorbed over hours and CO2 in minutes (150
- * times faster), no relief (an endoscope's own pump reaches > 300 mmHg),
- * a wall strength that tears the normal case's cecum at ~81 mmHg, 0.74
- * mmHg per cm of depth. */
+ * times faster), no relief (an endoscope's own pump reaches > 300 mmHg;
+ * an insufflator's stops at 50), a wall strength that tears the normal
+ * case's cecum at ~81 mmHg, 0.74 mmHg per cm of depth. */
+#define GAS_DEFAULT_PUMP_M3_PER_S 3.3e-5      /* 2.0 L/min */
+#define GAS_DEFAULT_SUCTION_M3_PER_S 5e-5      /* 3.0 L/min */
+#define GAS_DEFAULT_LEAK_M3_PER_S_PA 1.25e-8   /* 1 L/min per 10 mmHg */
+#define GAS_DEFAULT_LEAK_PA 2670.0             /* 20 mmHg */
+#define GAS_DEFAULT_ABSORB_AIR_PER_S 2e-5
+#define GAS_DEFAULT_ABSORB_CO2_PER_S 3e-3
+#define GAS_DEFAULT_RELIEF_PA 0.0
+#define GAS_DEFAULT_WALL_STRENGTH_N_PER_M 540.0
+#define GAS_DEFAULT_HYDROSTATIC_PA_PER_M 9866.0 /* 0.74 mmHg per cm */
+
 #define GAS_PARAMS_DEFAULT { .kind = GAS_AIR, \
-			     .pump_m3_per_s = 2e-3 / 60, \
-			     .suction_m3_per_s = 3e-3 / 60, \
-			     .leak_m3_per_s_pa = 1e-3 / 60 / \
-						 (10 * GAS_PA_PER_MMHG), \
-			     .leak_pa = 20 * GAS_PA_PER_MMHG, \
-			     .absorb_air_per_s = 2e-5, \
-			     .absorb_co2_per_s = 3e-3, \
-			     .relief_pa = 0, \
-			     .wall_strength_n_per_m = 540, \
-			     .hydrostatic_pa_per_m = \
-				     0.74 * GAS_PA_PER_MMHG * 100 }
+	.pump_m3_per_s = GAS_DEFAULT_PUMP_M3_PER_S, \
+	.suction_m3_per_s = GAS_DEFAULT_SUCTION_M3_PER_S, \
+	.leak_m3_per_s_pa = GAS_DEFAULT_LEAK_M3_PER_S_PA, \
+	.leak_pa = GAS_DEFAULT_LEAK_PA, \
+	.absorb_air_per_s = GAS_DEFAULT_ABSORB_AIR_PER_S, \
+	.absorb_co2_per_s = GAS_DEFAULT_ABSORB_CO2_PER_S, \
+	.relief_pa = GAS_DEFAULT_RELIEF_PA, \
+	.wall_strength_n_per_m = GAS_DEFAULT_WALL_STRENGTH_N_PER_M, \
+	.hydrostatic_pa_per_m = GAS_DEFAULT_HYDROSTATIC_PA_PER_M }
 
 /* This step's inputs. */
 struct gas_input {
@@ -151,13 +161,16 @@ struct gas {
 /*
  * Sets P and the segments of a generated COLON (an imported one has no
  * segments: the gas stays detached, every factor 1) with the wall LAW
- * each segment's case gives (NULL: GAS_LAW_DEFAULT for all), filled with
+ * of each segment (NULL: its case's, anatomy.h), filled with
  * as much gas as holds the uppermost segment at its nominal pressure
  * under gravity DOWN (zeros: none). No allocation.
  */
 void gas_attach(struct gas *g, const struct gas_params *p,
 		const struct colon *colon, const struct gas_law *law,
 		const double down[3]);
+
+/* Segment I's wall law as case A gives it. */
+struct gas_law gas_law_of(const struct anatomy *a, int i);
 
 /* Live parameters (the kind of gas, flows, strength). */
 void gas_set_params(struct gas *g, const struct gas_params *p);

@@ -21,6 +21,14 @@ struct haptics *haptics_create(const struct haptics_params *p)
 	}
 	h->fresh = true;
 	h->model = p ? p->gains.model : HAPTICS_MODEL_PAPER;
+	if (p) {
+		patient_init(&h->patient, &p->patient);
+	} else {
+		struct patient_params none = PATIENT_PARAMS_DEFAULT;
+
+		none.enabled = false;
+		patient_init(&h->patient, &none);
+	}
 	if (h->model == HAPTICS_MODEL_ROD && haptics_rod_create(h, &p->rod)) {
 		free(h);
 		return NULL;
@@ -65,12 +73,36 @@ void haptics_reset(struct haptics *h, struct colon *colon)
 	memset(h->last_x, 0, sizeof(h->last_x));
 	haptics_rod_reset(h, colon);
 	haptics_paper_reset(h, colon);
+	patient_attach(&h->patient, colon);
+	h->tip_force_n = 0;
+	h->tip_gap_m = INFINITY;
+}
+
+struct patient *haptics_patient(struct haptics *h)
+{
+	return &h->patient;
+}
+
+/* The patient's cycle, from the tip as it is and its contact's last. */
+static void step_patient(struct haptics *h, const struct haptics_input *in)
+{
+	struct patient_input pi = {
+		.valves = in->valves,
+		.tip_s_m = in->pose->tip_s_m,
+		.tip_force_n = h->tip_force_n,
+		.wall_gap_m = h->tip_gap_m,
+	};
+
+	patient_set_params(&h->patient, &in->params->patient);
+	vec3_copy(pi.tip, in->pose->tip);
+	patient_step(&h->patient, &pi, in->dt_s);
 }
 
 void haptics_render(struct haptics *h, const struct haptics_input *in,
 		    double command[ENDOSIM_AXES],
 		    struct endosim_haptics_state *out)
 {
+	step_patient(h, in);
 	if (h->model == HAPTICS_MODEL_ROD) {
 		haptics_rod_render(h, in, command, out);
 	} else {
@@ -80,9 +112,11 @@ void haptics_render(struct haptics *h, const struct haptics_input *in,
 
 /* ---------------------------------------------------------------- frames */
 
-/* The centreline's frame at one sample, now and before any bow. */
+/* The centreline's frame at one sample, now and before any bow, and the
+ * lumen's radius factor there (the gas's: 1 as the case drew it). */
 struct frame_map {
 	const struct centreline_point *now, *base;
+	double f;
 };
 
 static void frame_at(const struct centreline *cl, double s_m,
@@ -96,27 +130,36 @@ static void frame_at(const struct centreline *cl, double s_m,
 	m->base = centreline_base(cl, k);
 }
 
-/* V from frame A's coordinates into frame B's: sum_e e_B (e_A . v). */
-static void turn(const struct centreline_point *a,
-		 const struct centreline_point *b, const double v[3],
-		 double out[3])
+/* V from frame A's coordinates into frame B's, its parts across the
+ * course (u, v) scaled by K: sum_e e_B (e_A . v) k_e. */
+static void turn_scaled(const struct centreline_point *a,
+			const struct centreline_point *b, const double v[3],
+			double k, double out[3])
 {
 	double r[3] = { 0, 0, 0 };
 
 	vec3_axpy(r, r, vec3_dot(a->t, v), b->t);
-	vec3_axpy(r, r, vec3_dot(a->u, v), b->u);
-	vec3_axpy(r, r, vec3_dot(a->v, v), b->v);
+	vec3_axpy(r, r, k * vec3_dot(a->u, v), b->u);
+	vec3_axpy(r, r, k * vec3_dot(a->v, v), b->v);
 	vec3_copy(out, r);
 }
 
-/* A point from the colon now into its material placement, and back. */
+/*
+ * A point from the colon now into its material placement, and back: the
+ * lumen as the gas holds it is the material's scaled about the centreline
+ * by f, so the part across the course scales by 1 / f into the material
+ * and by f out of it (f = 1: the frames' turn alone). A displacement or a
+ * force goes as a point does; a velocity or a direction into the
+ * material as a point; a normal out of it by the inverse transpose (1 /
+ * f across, then made unit).
+ */
 static void point_to_base(const struct frame_map *m, const double x[3],
 			  double out[3])
 {
 	double d[3];
 
 	vec3_sub(d, x, m->now->p);
-	turn(m->now, m->base, d, d);
+	turn_scaled(m->now, m->base, d, 1 / m->f, d);
 	vec3_add(out, m->base->p, d);
 }
 
@@ -126,7 +169,7 @@ static void point_to_now(const struct frame_map *m, const double x[3],
 	double d[3];
 
 	vec3_sub(d, x, m->base->p);
-	turn(m->base, m->now, d, d);
+	turn_scaled(m->base, m->now, d, m->f, d);
 	vec3_add(out, m->now->p, d);
 }
 
@@ -250,6 +293,26 @@ static bool lost(const struct haptics *h, const struct haptics_input *in,
 	return vec3_dist(h->go.proxy, m->base->p) > LOST_LUMENS * widest;
 }
 
+/* The tip's clearance to the wall as the gas holds it (TIP_B: its place
+ * in the material, M its frame): the lumen's radius there less the tip's
+ * distance from the centreline, both scaled by f, less the tip's own
+ * radius. */
+static double tip_gap(const struct haptics_input *in,
+		      const struct frame_map *m, const double tip_b[3])
+{
+	const struct centreline *cl = colon_centreline(in->colon);
+	double d[3], along, r, k = floor(in->pose->tip_s_m /
+					      centreline_step(cl) + 0.5);
+	size_t n = centreline_count(cl);
+	size_t i = k < 0 ? 0 : k >= (double)n ? n - 1 : (size_t)k;
+
+	vec3_sub(d, tip_b, m->base->p);
+	along = vec3_dot(d, m->base->t);
+	vec3_axpy(d, d, -along, m->base->t);
+	r = colon_tube_radius(in->colon, i) - vec3_norm(d);
+	return fmax(0, m->f * r - in->params->gains.scope_radius_m);
+}
+
 void haptics_touch_wall(struct haptics *h, const struct haptics_input *in,
 			const double tip_v[3], struct haptics_touch *t)
 {
@@ -261,7 +324,10 @@ void haptics_touch_wall(struct haptics *h, const struct haptics_input *in,
 
 	memset(t, 0, sizeof(*t));
 	frame_at(colon_centreline(in->colon), p->tip_s_m, &m);
+	m.f = patient_factor_at(&h->patient, p->tip_s_m);
 	point_to_base(&m, p->tip, tip_b);
+	h->tip_gap_m = tip_gap(in, &m, tip_b);
+	h->tip_force_n = 0;
 	if (h->fresh || p->depth_m < par->gains.entry_depth_m) {
 		godobject_reset(&h->go, tip_b);
 		h->fresh = false;
@@ -285,12 +351,20 @@ void haptics_touch_wall(struct haptics *h, const struct haptics_input *in,
 	} else {
 		tip_velocity(in, vel);
 	}
-	turn(m.now, m.base, vel, vel_b);
-	turn(m.now, m.base, p->dir, dir_b);
+	turn_scaled(m.now, m.base, vel, 1 / m.f, vel_b);
+	turn_scaled(m.now, m.base, p->dir, 1 / m.f, dir_b);
+	if (m.f != 1) {
+		vec3_normalize(dir_b);
+	}
 	static_force(h, par, tip_b, dir_b, vel_b, t);
-	turn(m.base, m.now, t->force, t->force);
-	turn(m.base, m.now, t->spring, t->spring);
-	turn(m.base, m.now, t->normal, t->normal);
+	turn_scaled(m.base, m.now, t->force, m.f, t->force);
+	turn_scaled(m.base, m.now, t->spring, m.f, t->spring);
+	turn_scaled(m.base, m.now, t->normal, 1 / m.f, t->normal);
+	if (m.f != 1) {
+		vec3_normalize(t->normal);
+	}
+	h->tip_force_n = vec3_norm(t->force);
+	h->tip_gap_m = 0;
 }
 
 void haptics_publish_touch(const struct haptics_touch *t,

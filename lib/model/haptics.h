@@ -119,6 +119,7 @@
 #include <stdbool.h>
 
 #include "model/colon.h"
+#include "model/patient.h"
 #include "proto/endosim_shm.h"
 #include "model/rodscope.h"
 #include "model/scope.h"
@@ -223,6 +224,7 @@ struct haptics_params {
 	double wheel_max_n_m[2];       /* each wheel's torque limit */
 	bool driven[ENDOSIM_AXES];     /* a drive behind a bus, not simulated */
 	struct rodscope_params rod;    /* the rod model's ([rod]) */
+	struct patient_params patient; /* the patient's body ([patient]) */
 };
 
 struct haptics_input {
@@ -235,6 +237,7 @@ struct haptics_input {
 	bool torque_on;                /* the forces reach the hand */
 	const double *applied;         /* N, N m per axis: the setpoints the
 					  drives held over the last period */
+	uint32_t valves;               /* the handle's (enum endosim_valve) */
 };
 
 /*
@@ -267,6 +270,14 @@ void haptics_publish_rod(const struct haptics *h, double roll_rad,
 /* The rod model's tip held by a spring of HOLD_N_PER_M where it is, or
  * let go (0): rodscope_hold_tip(); nothing in the paper's model. */
 void haptics_hold_tip(struct haptics *h, double hold_n_per_m);
+
+/*
+ * The patient's body (patient.h), which haptics_render() steps each cycle
+ * before the model renders: its commands (patient_turn(), patient_press(),
+ * patient_release()) are the force loop's to give; its state to publish
+ * (patient_publish()). Force loop.
+ */
+struct patient *haptics_patient(struct haptics *h);
 
 /* The rod model renders (else the paper's). */
 bool haptics_rod(const struct haptics *h);

@@ -26,6 +26,9 @@ struct haptics {
 	struct haptics_rod_tube rod; /* the rod model's */
 	double energy[ENDOSIM_AXES]; /* passivity observers, J */
 	double last_x[ENDOSIM_AXES]; /* axis positions last cycle */
+	struct patient patient;      /* the body around the colon */
+	double tip_force_n;          /* the wall's on the tip last cycle */
+	double tip_gap_m;            /* its clearance to the wall then */
 };
 
 /* The contact this cycle, in the colon's coordinates now. */

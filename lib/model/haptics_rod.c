@@ -130,6 +130,18 @@ static double rod_wheel_scale(const struct haptics_input *in, int w)
 	return most / k;
 }
 
+/* The patient's gas, gravity and hand on the tube and the colon. */
+static void rod_patient(struct haptics *h)
+{
+	struct flex_pad pad;
+	double g[3];
+
+	patient_gravity(&h->patient, g);
+	patient_pad(&h->patient, &pad);
+	rodscope_set_patient(h->rod.rs, h->patient.p.enabled ?
+					  h->patient.factor : NULL, g, &pad);
+}
+
 void haptics_rod_render(struct haptics *h, const struct haptics_input *in,
 			double command[ENDOSIM_AXES],
 			struct endosim_haptics_state *out)
@@ -146,7 +158,9 @@ void haptics_rod_render(struct haptics *h, const struct haptics_input *in,
 	haptics_touch_wall(h, in, h->rod.tip_v, &t);
 	haptics_publish_touch(&t, out);
 	rod_tip(in, &t, &tip);
+	rod_patient(h);
 	rodscope_step(h->rod.rs, &a, &tip, in->dt_s, &ro);
+	h->patient.pad_n = rodscope_pad_force(h->rod.rs);
 	for (int w = 0; w < 2; w++) {
 		contact[ENDOSIM_AXIS_WHEEL_UD + w] = ro.wheel_nm[w] *
 						     rod_wheel_scale(in, w);

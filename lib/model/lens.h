@@ -38,9 +38,18 @@ struct lens_params {
  * lens smears over about 4 s, a second in a pool clouds it, the jet
  * clears it in a second, suction within 3 mm of the wall reds out within
  * a fifth of a second. */
-#define LENS_PARAMS_DEFAULT { .contact_n = 0.5, .smear_n_s = 4, \
-			      .dip_s = 1, .wash_s = 1, \
-			      .redout_gap_m = 0.003, .redout_s = 0.2 }
+#define LENS_DEFAULT_CONTACT_N 0.5
+#define LENS_DEFAULT_SMEAR_N_S 4.0
+#define LENS_DEFAULT_DIP_S 1.0
+#define LENS_DEFAULT_WASH_S 1.0
+#define LENS_DEFAULT_REDOUT_GAP_M 0.003
+#define LENS_DEFAULT_REDOUT_S 0.2
+#define LENS_PARAMS_DEFAULT { .contact_n = LENS_DEFAULT_CONTACT_N, \
+			      .smear_n_s = LENS_DEFAULT_SMEAR_N_S, \
+			      .dip_s = LENS_DEFAULT_DIP_S, \
+			      .wash_s = LENS_DEFAULT_WASH_S, \
+			      .redout_gap_m = LENS_DEFAULT_REDOUT_GAP_M, \
+			      .redout_s = LENS_DEFAULT_REDOUT_S }
 
 struct lens {
 	double smear;   /* 0..1: red, the mucosa's */

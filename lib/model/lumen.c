@@ -29,6 +29,7 @@ struct touch {
 struct lumen {
 	int n;
 	struct touch *t;
+	const double *factor; /* the gas's, or NULL */
 };
 
 struct lumen *lumen_create(int segments)
@@ -196,8 +197,11 @@ static bool load_wall(struct lumen *l, struct rod *rod, int i,
 	t->s_m = (double)t->sample * ds;
 	radial(cl, t->sample, x, rho);
 	r = vec3_norm(rho);
-	free_r = fmax(colon_tube_radius(colon, (size_t)t->sample) -
-			      p->tube_radius_m, 0);
+	free_r = colon_tube_radius(colon, (size_t)t->sample);
+	if (l->factor) {
+		free_r *= gas_factor_at(colon, l->factor, t->s_m);
+	}
+	free_r = fmax(free_r - p->tube_radius_m, 0);
 	t->on = r > free_r - ONSET_WIDTHS * ONSET_M && r > 0 && i + 1 < l->n;
 	if (!t->on) {
 		return true;
@@ -245,6 +249,11 @@ static bool comes_in(const struct touch *t, const struct colon *colon,
 	along = vec3_dot(d, c0->t);
 	vec3_axpy(d, d, -along, c0->t);
 	return along >= 0 && vec3_norm(d) < colon_tube_radius(colon, 0);
+}
+
+void lumen_set_factors(struct lumen *l, const double *factor)
+{
+	l->factor = factor;
 }
 
 void lumen_load(struct lumen *l, struct rod *rod, const struct colon *colon,

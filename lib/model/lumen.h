@@ -7,7 +7,8 @@
  * the lumen: with c(k), t(k) the centreline sample nearest p (found from
  * the segment's previous nearest sample by walking while the distance
  * falls: O(1) per step, at most LUMEN_WALK samples) and R(k) the lumen's
- * radius for the tube there (colon_tube_radius()), the radial offset
+ * radius for the tube there (colon_tube_radius(), times the gas's
+ * factor there: lumen_set_factors()), the radial offset
  *   rho = (p - c) - ((p - c) . t) t     (beyond the cecum's end: p - c)
  * may be at most R - r; beyond it by delta the wall pushes back along
  * n = -rho / |rho| with
@@ -43,6 +44,7 @@
 
 #include "model/colon.h"
 #include "model/flex.h"
+#include "model/gas.h"
 #include "model/rod.h"
 #include "model/scope.h"
 
@@ -110,6 +112,14 @@ void lumen_load(struct lumen *l, struct rod *rod, const struct colon *colon,
  */
 void lumen_react(struct lumen *l, const struct rod *rod, struct flex *flex,
 		 struct lumen_totals *out);
+
+/*
+ * The lumen's radius factors the gas holds each segment at (gas.h: nine,
+ * as published; NULL, the default: the case's radii); the tube meets the
+ * wall at colon_tube_radius() times gas_factor_at(). FACTOR must outlive
+ * its use.
+ */
+void lumen_set_factors(struct lumen *l, const double *factor);
 
 /* Segment I's nearest centreline sample (after lumen_load()), or -1 in
  * the pipe. */

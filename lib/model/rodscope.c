@@ -18,6 +18,7 @@ struct rodscope {
 	double *sigma;      /* per segment: where it would be on the course */
 	double (*ends)[3];  /* room for a laid tube's joint points */
 	double hold;        /* N/m: the tip held (0: free) */
+	double g[3];        /* gravity, m/s^2 */
 };
 
 static int bending_segments(const struct rodscope_params *p, double l)
@@ -337,6 +338,22 @@ static void wires(const struct rodscope *rs, double dl[2], double *turning)
 	*turning = turn;
 }
 
+void rodscope_set_patient(struct rodscope *rs, const double *factor,
+			  const double g[3], const struct flex_pad *pad)
+{
+	struct flex_pad none = { .on = false };
+
+	vec3_copy(rs->g, g);
+	lumen_set_factors(rs->lumen, factor);
+	flex_set_gravity(rs->flex, g);
+	flex_set_pad(rs->flex, pad ? pad : &none);
+}
+
+double rodscope_pad_force(const struct rodscope *rs)
+{
+	return flex_pad_force(rs->flex);
+}
+
 void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,
 		   const struct rodscope_tip *tip, double dt_s,
 		   struct rodscope_out *out)
@@ -350,6 +367,15 @@ void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,
 	rod_clear_loads(rs->rod);
 	set_anchor(rs, a);
 	set_rest(rs, a);
+	if (rs->g[0] || rs->g[1] || rs->g[2]) { /* the tube's weight */
+		double m = p->rod.mass_per_m_kg * rod_segment_length(rs->rod);
+
+		for (int i = 0; i < rs->n; i++) {
+			struct rod_load *ld = rod_load(rs->rod, i);
+
+			vec3_axpy(ld->f, ld->f, m, rs->g);
+		}
+	}
 	if (tip && tip->on) {
 		double d1[3], d2[3], d3[3], off[3];
 

@@ -153,6 +153,18 @@ void rodscope_pose(const struct rodscope *rs, const struct rodscope_axes *a,
 void rodscope_hold_tip(struct rodscope *rs, double hold_n_per_m);
 
 /* One step of DT_S: the tube, its contacts, the colon. */
+/*
+ * The patient around the tube for the next steps: the lumen's radius
+ * FACTOR per segment (gas.h; NULL: the case's, held by pointer), gravity
+ * G (m/s^2, body frame: on every segment of the tube and the mobile
+ * colon's nodes; zeros: none) and the assistant's PAD (NULL: none).
+ */
+void rodscope_set_patient(struct rodscope *rs, const double *factor,
+			  const double g[3], const struct flex_pad *pad);
+
+/* The force the pad held on the colon in the last step, N. */
+double rodscope_pad_force(const struct rodscope *rs);
+
 void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,
 		   const struct rodscope_tip *tip, double dt_s,
 		   struct rodscope_out *out);

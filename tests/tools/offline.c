@@ -87,7 +87,7 @@ const struct endosim_state *offline_step(struct offline *o)
 void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 		  double hold_s)
 {
-	hand_set_live(o->hand, force, hold_s, o->stamp_ns);
+	hand_set_live(o->hand, force, 0, hold_s, o->stamp_ns);
 }
 
 uint64_t offline_hash(uint64_t h, const struct endosim_state *st)

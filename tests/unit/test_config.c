@@ -320,12 +320,44 @@ static void same_rodscope(const struct rodscope_params *c)
 	SAME(*c, m, flex.damping_n_s_per_m);
 	SAME(*c, m, flex.chain_n_per_m);
 	SAME(*c, m, flex.bending_n_per_m);
+	SAME(*c, m, flex.mass_per_m_kg);
 	SAME(*c, m, coupling_n_per_m);
 	SAME(*c, m, coupling_n_s_per_m);
 	SAME(*c, m, roll_n_m_per_rad);
 	SAME(*c, m, roll_n_m_s_per_rad);
 	SAME(*c, m, stop_n_per_m);
 	SAME(*c, m, wire_spacing_m);
+}
+
+static void same_patient(const struct patient_params *c)
+{
+	const struct patient_params m = PATIENT_PARAMS_DEFAULT;
+
+	SAME(*c, m, enabled);
+	SAME(*c, m, gas.kind);
+	SAME(*c, m, gas.pump_m3_per_s);
+	SAME(*c, m, gas.suction_m3_per_s);
+	SAME(*c, m, gas.leak_m3_per_s_pa);
+	SAME(*c, m, gas.leak_pa);
+	SAME(*c, m, gas.absorb_air_per_s);
+	SAME(*c, m, gas.absorb_co2_per_s);
+	SAME(*c, m, gas.relief_pa);
+	SAME(*c, m, gas.wall_strength_n_per_m);
+	SAME(*c, m, gas.hydrostatic_pa_per_m);
+	SAME(*c, m, fluid.suction_m3_per_s);
+	SAME(*c, m, fluid.settle_s);
+	SAME(*c, m, lens.contact_n);
+	SAME(*c, m, lens.smear_n_s);
+	SAME(*c, m, lens.dip_s);
+	SAME(*c, m, lens.wash_s);
+	SAME(*c, m, lens.redout_gap_m);
+	SAME(*c, m, lens.redout_s);
+	SAME(*c, m, start_position);
+	SAME(*c, m, turn_s);
+	SAME(*c, m, gravity_m_s2);
+	SAME(*c, m, hand_n);
+	SAME(*c, m, hand_max_n);
+	SAME(*c, m, abdomen_n_per_m);
 }
 
 static void same_haptics(const struct haptics_params *c)
@@ -361,6 +393,7 @@ static void same_haptics(const struct haptics_params *c)
 	same("wheel_limit_rad[0]", c->wheel_limit_rad[0], s.ud_limit_rad);
 	same("wheel_limit_rad[1]", c->wheel_limit_rad[1], s.lr_limit_rad);
 	same_rodscope(&c->rod);
+	same_patient(&c->patient);
 }
 
 /* The metrics' thresholds, with the loop's by the paper model (0 in the
@@ -410,7 +443,8 @@ static void same_as_owners(const struct config *cfg)
 
 /*
  * Each default is written once, in the module that owns it (scope.h,
- * colon.h, rod.h, lumen.h, flex.h, rodscope.h, haptics.h), and the
+ * colon.h, rod.h, lumen.h, flex.h, rodscope.h, haptics.h, gas.h, fluid.h,
+ * lens.h, patient.h), and the
  * table refers to it; the metrics' thresholds twice (metrics.h and the
  * table). The configuration's defaults, as config_defaults() sets them
  * and as --print-config writes them and a file reads them back, make the

@@ -1,0 +1,226 @@
+/* patient.c - see patient.h. */
+#include "model/patient.h"
+
+#include <errno.h>
+#include <math.h>
+#include <string.h>
+
+#include "base/vec3.h"
+
+static void factors_one(struct patient *pt)
+{
+	for (int i = 0; i < GAS_SEGMENTS; i++) {
+		pt->factor[i] = 1;
+	}
+}
+
+void patient_init(struct patient *pt, const struct patient_params *p)
+{
+	struct patient_params keep = *p; /* P may be PT's own */
+
+	memset(pt, 0, sizeof(*pt));
+	pt->p = keep;
+	pt->site = -1;
+	pt->torn = -1;
+	pt->gas.burst_segment = -1;
+	posture_reset(&pt->posture, keep.start_position);
+	lens_reset(&pt->lens);
+	factors_one(pt);
+}
+
+/* The gas's inputs this cycle. */
+static void gas_input(const struct patient *pt, bool suction_gas,
+		      struct gas_input *in)
+{
+	memset(in, 0, sizeof(*in));
+	in->air = pt->valves & ENDOSIM_VALVE_AIR;
+	in->suction = suction_gas;
+	vec3_copy(in->down, pt->posture.down);
+	fluid_volumes(&pt->fluid, in->fluid_m3);
+}
+
+static void take_factors(struct patient *pt)
+{
+	for (int i = 0; i < GAS_SEGMENTS; i++) {
+		pt->factor[i] = i < pt->gas.segments ? pt->gas.seg[i].factor : 1;
+	}
+}
+
+void patient_attach(struct patient *pt, const struct colon *colon)
+{
+	const struct anatomy *a = colon_anatomy(colon);
+	double fluid[FLUID_SEGMENTS] = { 0 };
+	struct gas_input in;
+
+	patient_init(pt, &pt->p);
+	pt->colon = colon;
+	if (!pt->p.enabled) {
+		return;
+	}
+	for (int i = 0; a && i < FLUID_SEGMENTS; i++) {
+		fluid[i] = a->seg[i].fluid_m3;
+	}
+	gas_attach(&pt->gas, &pt->p.gas, colon, NULL, pt->posture.down);
+	fluid_attach(&pt->fluid, &pt->p.fluid, colon, fluid,
+		     pt->posture.down, NULL);
+	gas_input(pt, false, &in);
+	gas_set_volume(&pt->gas, pt->gas.volume_m3, &in); /* with the fluid */
+	take_factors(pt);
+	fluid_settle(&pt->fluid, pt->factor);
+}
+
+void patient_set_params(struct patient *pt, const struct patient_params *p)
+{
+	bool enabled = pt->p.enabled;
+	int start = pt->p.start_position;
+
+	pt->p = *p;
+	pt->p.enabled = enabled;
+	pt->p.start_position = start;
+	gas_set_params(&pt->gas, &p->gas);
+	fluid_set_params(&pt->fluid, &p->fluid);
+	if (pt->site >= 0 && pt->hand_n > p->hand_max_n) {
+		pt->hand_n = p->hand_max_n;
+	}
+}
+
+int patient_turn(struct patient *pt, int position)
+{
+	if (!pt->p.enabled) {
+		return -EINVAL;
+	}
+	return posture_turn(&pt->posture, position, pt->p.turn_s);
+}
+
+int patient_press(struct patient *pt, int site, double force_n)
+{
+	const struct anatomy *a = pt->colon ? colon_anatomy(pt->colon) : NULL;
+	double f = force_n > 0 ? force_n : pt->p.hand_n;
+
+	if (!pt->p.enabled || !a || site < 0 || site >= a->sites ||
+	    !(f <= pt->p.hand_max_n)) {
+		return -EINVAL;
+	}
+	pt->site = site;
+	pt->hand_n = f;
+	return 0;
+}
+
+void patient_release(struct patient *pt)
+{
+	pt->site = -1;
+	pt->hand_n = 0;
+	pt->pad_n = 0;
+}
+
+int patient_step(struct patient *pt, const struct patient_input *in,
+		 double dt_s)
+{
+	struct gas_input gi;
+	struct lens_input li;
+	int seg;
+
+	pt->valves = in->valves;
+	pt->torn = -1;
+	if (!pt->p.enabled || !pt->colon) {
+		return -1;
+	}
+	posture_step(&pt->posture, dt_s);
+	seg = fluid_segment_at(&pt->fluid, in->tip_s_m);
+	pt->tip_in_fluid = fluid_step(&pt->fluid, pt->posture.down, pt->factor,
+				      in->valves & ENDOSIM_VALVE_SUCTION,
+				      in->tip, seg, dt_s);
+	gas_input(pt, (in->valves & ENDOSIM_VALVE_SUCTION) &&
+			      !pt->tip_in_fluid, &gi);
+	pt->torn = gas_step(&pt->gas, &gi, dt_s);
+	take_factors(pt);
+	li = (struct lens_input){
+		.tip_force_n = in->tip_force_n,
+		.under_fluid = pt->tip_in_fluid,
+		.water = in->valves & ENDOSIM_VALVE_WATER,
+		.suction = in->valves & ENDOSIM_VALVE_SUCTION,
+		.wall_gap_m = in->wall_gap_m,
+	};
+	lens_step(&pt->lens, &pt->p.lens, &li, dt_s);
+	return pt->torn;
+}
+
+void patient_gravity(const struct patient *pt, double g[3])
+{
+	if (!pt->p.enabled) {
+		vec3_set(g, 0, 0, 0);
+		return;
+	}
+	vec3_scale(g, pt->posture.down, pt->p.gravity_m_s2);
+}
+
+void patient_pad(const struct patient *pt, struct flex_pad *out)
+{
+	const struct anatomy *a = pt->colon ? colon_anatomy(pt->colon) : NULL;
+	const struct anatomy_site *s;
+	double in;
+
+	memset(out, 0, sizeof(*out));
+	if (!pt->p.enabled || !a || pt->site < 0 || pt->site >= a->sites) {
+		return;
+	}
+	s = &a->site[pt->site];
+	in = pt->p.abdomen_n_per_m > 0 ? pt->hand_n / pt->p.abdomen_n_per_m
+				       : 0;
+	out->on = true;
+	vec3_copy(out->in, s->direction);
+	vec3_axpy(out->point, s->position_m, in, s->direction);
+	out->radius_m = s->radius_m;
+}
+
+double patient_factor_at(const struct patient *pt, double s_m)
+{
+	if (!pt->p.enabled || !pt->colon) {
+		return 1;
+	}
+	return gas_factor_at(pt->colon, pt->factor, s_m);
+}
+
+void patient_publish(const struct patient *pt,
+		     struct endosim_patient_state *out)
+{
+	memset(out, 0, sizeof(*out));
+	out->hand_site = -1;
+	out->burst_segment = -1;
+	out->valves = pt->valves;
+	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
+		out->factor[i] = 1;
+	}
+	if (!pt->p.enabled) {
+		return;
+	}
+	out->enabled = 1;
+	out->position = (uint32_t)pt->posture.position;
+	out->turning = posture_turning(&pt->posture);
+	out->turn = posture_progress(&pt->posture);
+	vec3_copy(out->down, pt->posture.down);
+	out->gas_m3 = pt->gas.volume_m3;
+	out->pressure_pa = pt->gas.pressure_pa;
+	out->gas_in_m3 = pt->gas.flow_in_m3;
+	for (int i = 0; i < ENDOSIM_SEGMENTS && i < GAS_SEGMENTS; i++) {
+		out->factor[i] = pt->factor[i];
+		if (i < pt->gas.segments) {
+			out->transmural_pa[i] = pt->gas.seg[i].transmural_pa;
+			out->tension_n_per_m[i] =
+				pt->gas.seg[i].tension_n_per_m;
+		}
+		if (i < pt->fluid.segments) {
+			out->fluid_m3[i] = pt->fluid.seg[i].volume_m3;
+			out->fluid_level_m[i] = pt->fluid.seg[i].level_m;
+		}
+	}
+	vec3_copy(out->fluid_up, pt->fluid.up);
+	out->hand_site = pt->site;
+	out->tip_in_fluid = pt->tip_in_fluid;
+	out->hand_n = pt->hand_n;
+	out->pad_n = pt->pad_n;
+	out->lens_smear = pt->lens.smear;
+	out->lens_murk = pt->lens.murk;
+	out->lens_redout = pt->lens.redout;
+	out->burst_segment = pt->gas.burst_segment;
+}
