@@ -25,6 +25,8 @@
 #include "proto/names.h"
 #include "proto/version.h"
 #include "base/json.h"
+#include "model/anatomy.h"
+#include "model/gas.h"
 #include "model/objio.h"
 #include "session/report.h"
 #include "session/sessiondir.h"
@@ -59,6 +61,14 @@ int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
 void ctl_print_status(const Endosim__StatusReply *s);
 void ctl_json_status(const Endosim__StatusReply *s);
 void ctl_print_stats(const Endosim__StatsReply *s, bool json);
+
+/*
+ * The patient in one line, for `status` and `patient status`: where it
+ * lies (turning), the gas (L, mmHg), the hand, the valves, a
+ * perforation. Into OUT (SIZE bytes, NUL-terminated).
+ */
+void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
+			 size_t size);
 
 /* `endoctl session ...` (endoctl_session.c). */
 int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);

@@ -190,6 +190,39 @@ static void print_rod(const Endosim__RodStatus *r,
 	       h->tube_rod_nm);
 }
 
+/* The patient's line, when there is one (ctl_patient_summary()). */
+static void print_patient(const Endosim__PatientStatus *p)
+{
+	char line[256];
+
+	if (!p || !p->enabled) {
+		return;
+	}
+	ctl_patient_summary(p, line, sizeof(line));
+	printf("patient   %s\n", line);
+}
+
+void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
+			 size_t size)
+{
+	int n = snprintf(out, size, "%s%s, gas %.2f L at %.1f mmHg, hand ",
+			 p->turning ? "turning to " : "",
+			 names_position(p->position), p->gas_m3 * 1e3,
+			 p->pressure_pa / GAS_PA_PER_MMHG);
+
+	if (n >= 0 && (size_t)n < size) {
+		n += snprintf(out + n, size - (size_t)n, *p->site ?
+			      "%s %.0f N" : "off", p->site, p->hand_n);
+	}
+	if (n >= 0 && (size_t)n < size) {
+		n += snprintf(out + n, size - (size_t)n, ", valves %s%s%s",
+			      names_valves(p->valves),
+			      p->burst_segment >= 0 ? ", PERFORATED: " : "",
+			      p->burst_segment >= 0 ?
+			      anatomy_segment_name(p->burst_segment) : "");
+	}
+}
+
 void ctl_print_status(const Endosim__StatusReply *s)
 {
 	printf("state     %s\n", names_state((uint32_t)s->state));
@@ -234,6 +267,7 @@ void ctl_print_status(const Endosim__StatusReply *s)
 	if (s->rod && s->haptics) {
 		print_rod(s->rod, s->haptics);
 	}
+	print_patient(s->patient);
 	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
 	       "velocity", "hand", "command", "limited", "drive");
 	for (size_t i = 0; i < s->n_axes; i++) {
