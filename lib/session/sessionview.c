@@ -207,8 +207,7 @@ static void put_value(FILE *out, const struct session_record *r,
 	}
 }
 
-/* The session's start: the header's start_ns, else its first record. */
-static uint64_t start_ns(const struct session_file *f)
+uint64_t sessionview_start_ns(const struct session_file *f)
 {
 	char v[32];
 
@@ -245,7 +244,7 @@ int sessionview_csv(FILE *out, const struct session_file *f)
 	struct fields_column cols[sizeof(struct session_record) /
 				  sizeof(float)];
 	size_t n = fields_columns(cols, sizeof(cols) / sizeof(cols[0]));
-	uint64_t t0 = start_ns(f);
+	uint64_t t0 = sessionview_start_ns(f);
 
 	assert(n <= sizeof(cols) / sizeof(cols[0]));
 	n = held_columns(f, cols, n);
@@ -281,7 +280,7 @@ static void put_quoted(FILE *out, const char *text)
 
 int sessionview_events_csv(FILE *out, const struct session_file *f)
 {
-	uint64_t t0 = start_ns(f);
+	uint64_t t0 = sessionview_start_ns(f);
 
 	fprintf(out, "t_s,kind,axis,detail,value,text\n");
 	for (size_t i = 0; i < f->n_events; i++) {
