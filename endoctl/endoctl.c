@@ -504,6 +504,11 @@ static void print_scene_info(const struct client_scene *s, bool json)
 		json_uint(&j, "samples", in->n_centreline / 3);
 		json_uint(&j, "segments", in->n_segments);
 		json_uint(&j, "polyps", in->n_polyps);
+		json_array_begin(&j, "sites");
+		for (size_t i = 0; i < in->n_sites; i++) {
+			json_string(&j, NULL, in->sites[i]->name);
+		}
+		json_array_end(&j);
 		json_object_end(&j);
 		return;
 	}
@@ -517,6 +522,17 @@ static void print_scene_info(const struct client_scene *s, bool json)
 
 		printf("  %-16s %6.3f .. %6.3f m%s\n", r->name, r->s0_m,
 		       r->s1_m, r->span >= 0 ? "  mobile" : "");
+	}
+	for (size_t i = 0; i < in->n_sites; i++) {
+		const Endosim__SceneSite *x = in->sites[i];
+
+		if (x->n_position_m == 3 && x->n_direction == 3) {
+			printf("  site %-11s at %.3f %.3f %.3f m, in along "
+			       "%.2f %.2f %.2f, reach %.3f m\n", x->name,
+			       x->position_m[0], x->position_m[1],
+			       x->position_m[2], x->direction[0],
+			       x->direction[1], x->direction[2], x->radius_m);
+		}
 	}
 }
 
