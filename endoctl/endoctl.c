@@ -705,6 +705,16 @@ static const struct {
 	  "start ID|FILE [--speed X] [--from S] | stop | takeover | resume | "
 	  "reset [--to S] | status: guided replay of a session through the "
 	  "motors" },
+	{ "patient", ctl_cmd_patient,
+	  "status | position left-lateral|supine|right-lateral|prone | "
+	  "press SITE [--force N] | release | valve air|water|suction on "
+	  "[--for S] | valve air|water|suction off: the patient's body "
+	  "([patient] enabled): a turn takes [patient] turn_s; SITE one of "
+	  "the case's (scene info), N up to [patient] hand_max_n (default "
+	  "hand_n); a valve is spring-loaded as on a real handle: `on` "
+	  "holds it S s (default 2, at most 10), then it springs back, "
+	  "`off` lets go at once (simulated rig only: the live hand input, "
+	  "the scenario's hand held off meanwhile)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -3,7 +3,8 @@
  * endosimd, the daemon's commands, main; endoctl_print.c: printing its
  * replies; endoctl_session.c: training sessions; endoctl_map.c: the
  * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
- * course). One thread.
+ * course; endoctl_guide.c: guided replay; endoctl_patient.c: the
+ * patient). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -82,5 +83,11 @@ int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl patient ...` (endoctl_patient.c). */
+int ctl_cmd_patient(struct ctl *ctl, int argc, char **argv);
+
+/* The patient as one JSON object, its fields in fields.h's order. */
+void ctl_json_patient(const Endosim__PatientStatus *p);
 
 #endif

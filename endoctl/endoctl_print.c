@@ -147,6 +147,14 @@ static void json_message(struct json *j, const char *key,
 	json_object_end(j);
 }
 
+void ctl_json_patient(const Endosim__PatientStatus *p)
+{
+	struct json j;
+
+	json_init(&j, stdout);
+	json_message(&j, NULL, &fields_patient, p);
+}
+
 void ctl_json_status(const Endosim__StatusReply *s)
 {
 	struct json j;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "base/log.h"
 #include "base/mono.h"
@@ -185,6 +186,22 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;
+}
+
+void control_await_state(struct control *c)
+{
+	struct endosim_state st;
+	uint64_t seen, deadline = mono_ns() + 100000000ull;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	if (publish_read(c->deps.pub, &st)) {
+		return;
+	}
+	seen = st.cycle;
+	while (mono_ns() < deadline && !publish_read(c->deps.pub, &st) &&
+	       st.cycle <= seen) {
+		nanosleep(&nap, NULL);
+	}
 }
 
 static void fill_histogram(Endosim__Histogram *h,
