@@ -713,8 +713,9 @@ static const struct {
 	  "the case's (scene info), N up to [patient] hand_max_n (default "
 	  "hand_n); a valve is spring-loaded as on a real handle: `on` "
 	  "holds it S s (default 2, at most 10), then it springs back, "
-	  "`off` lets go at once (simulated rig only: the live hand input, "
-	  "the scenario's hand held off meanwhile)" },
+	  "`off` lets go at once; the other valves held stay held with it "
+	  "(simulated rig only: the live hand input, the scenario's hand "
+	  "held off meanwhile)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -136,8 +136,8 @@ static int patient_press(struct ctl *ctl, int argc, char **argv,
 
 /*
  * valve NAME on [--for S] | off: the valves held now (the status'), with
- * NAME pressed or let go, held for S s (on) or lapsing at once (off,
- * when no other valve stays pressed), as a finger on the handle would.
+ * NAME pressed or let go, all held for S s (on; off: the default) or
+ * lapsing at once (none left pressed), as fingers on the handle would.
  */
 static int patient_valve(struct ctl *ctl, int argc, char **argv)
 {
