@@ -19,9 +19,6 @@ static const char *const parity_names[] = { "none", "even", "odd", NULL };
 static const char *const yes_no[] = { "no", "yes", NULL };
 static const char *const model_names[] = { "paper", "rod", NULL };
 static const char *const gas_names[] = { "air", "co2", NULL };
-static const char *const position_names[] = { "left-lateral", "supine",
-					      "right-lateral", "prone",
-					      NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
@@ -499,7 +496,7 @@ static const struct parse_key keys[] = {
 	KE("patient", "gas", patient.gas, GAS_AIR, gas_names, LIVE,
 	   "what the pump blows in: air, or co2 (absorbed far faster)"),
 	KE("patient", "position", patient.position, POSTURE_LEFT_LATERAL,
-	   position_names, 0, "where the patient lies at the start: "
+	   names_positions, 0, "where the patient lies at the start: "
 	   "left-lateral, supine, right-lateral or prone"),
 	KD("patient", "turn_s", patient.turn_s, PATIENT_DEFAULT_TURN_S, 0, 60,
 	   "s", LIVE, "a change of position takes this long"),
