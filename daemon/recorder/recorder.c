@@ -465,14 +465,20 @@ static bool map_due(const struct recorder *r, uint64_t now)
 		       (uint64_t)(RECORDER_MAP_S * ENDOSIM_NS_PER_S);
 }
 
-/* Everything in the ring now, into the buffer; written when due. */
+/*
+ * What the ring holds, into the buffer; written when due. At most a
+ * ring's worth a call: on a disk slower than the loop the ring fills
+ * again while a full buffer is written, and the live status (snapshot())
+ * must not wait for a drain that never ends.
+ */
 static void drain(struct recorder *r)
 {
+	size_t left = r->tap.ring.mask + 1;
 	struct session_record rec;
 	uint64_t now;
 
 	param_events(r);
-	while (spsc_pop(&r->tap.ring, &rec)) {
+	while (left-- && spsc_pop(&r->tap.ring, &rec)) {
 		if (!r->seen_record) {
 			r->first_stamp_ns = rec.stamp_ns;
 		}
