@@ -4,15 +4,16 @@
 # patient` turns the patient (the status says turning, then settled),
 # has the assistant press at a site with the default force and with
 # --force, and let go; works the simulated handle's valves (air held
-# raises the gas volume; the valves held stay held; off lets go at once).
+# raises the gas volume; the valves held stay held; off lets go at once);
+# a wall made weak tears the uppermost segment (a perforation).
 # Refused, with nothing changed: on the read-only socket, an unknown
 # position or site (the valid ones listed), a press above hand_max_n,
 # and every command when the patient is disabled. The status (JSON and
 # text) and `scene info` have the patient's fields and the case's sites;
 # a session recorded across it all has each change as an event (export
-# --events, show) and the patient's CSV columns. (The mailbox and the
-# refusals in the loop, cycle for cycle: test_mailbox; the records and
-# their columns: test_fields, test_session_file.)
+# --events, show, the report) and the patient's CSV columns. (The
+# mailbox and the refusals in the loop, cycle for cycle: test_mailbox;
+# the records and their columns: test_fields, test_session_file.)
 . "$(dirname "$0")/../common.sh"
 
 # the patient disabled, in a slot of its own, meanwhile
@@ -103,6 +104,15 @@ check "... let go at once" wait_for p_true '.valves == "none"'
 check "patient status --json: the patient's object" eval \
 	"ctl --json patient status | jq -e '.enabled and .position == \"supine\" and .valves == \"none\"'"
 
+# --- a perforation: supine, the transverse colon lies uppermost and is
+# the most distended (its wall's tension ~37 N/m at 15 mmHg, the others'
+# under 30): a wall of 32 N/m tears it and no other -------------------------
+check_status "a weak wall (set live)" 0 ctl set patient.wall_strength_n_per_m 32
+check "the transverse colon tears: burst_segment 5" \
+	wait_for p_true '.burst_segment == 5'
+check "status: PERFORATED" eval \
+	"ctl status | grep -q '^patient   .*, PERFORATED: transverse$'"
+
 # --- the session ------------------------------------------------------------
 check_status "session stop" 0 ctl session stop
 ctl session export "$ID" --csv --events --out "$TMP/events.csv" >/dev/null
@@ -113,9 +123,15 @@ for ev in ',position,-1,0,0,"settled left-lateral"' \
 	',hand,0,1,30,"pressed at llq, 30 N"' ',hand,-1,0,0,"released"' \
 	',valve,-1,1,1,"air on"' ',valve,-1,2,1,"water on"' \
 	',valve,-1,1,0,"air off"' ',valve,-1,4,1,"suction on"' \
-	',valve,-1,4,0,"suction off"'; do
+	',valve,-1,4,0,"suction off"' ',perforation,-1,5,'; do
 	check "the session's events: ${ev#*\"}" grep -qF -- "$ev" "$TMP/events.csv"
 done
+check "the perforation's words" grep -qE \
+	',perforation,-1,5,[0-9.]+,"transverse torn at [0-9.]+ mmHg"' "$TMP/events.csv"
+check "the report's event table has them" eval \
+	"ctl session report $ID --out $TMP/report >/dev/null &&
+	 grep -q '<tr class=\"hand\">.*<td>hand</td><td>pressed at llq, 30 N</td>' $TMP/report/index.html &&
+	 grep -q '<td>perforation</td><td>transverse torn at' $TMP/report/index.html"
 check "session show lists them" eval \
 	"ctl session show $ID >$TMP/show.txt &&
 	 grep -q '^patient events$' $TMP/show.txt &&
