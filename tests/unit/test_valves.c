@@ -4,7 +4,8 @@
  * to pressed or not, the rule by which the force loop takes a drive's
  * valves (bus_valves()), and a bus thread (bus.h) over a scripted drive
  * backend: pressed while its exchanges succeed, released when its
- * feedback grows old, a transaction fails, the drive faults or vanishes.
+ * feedback grows old, a transaction fails (its own or the other drive's on
+ * its bus), the drive faults or vanishes.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -105,7 +106,14 @@ static void test_taking_rule(void **state)
 
 /* --- a bus over a scripted drive -------------------------------------- */
 
-enum fake_mode { FAKE_OK, FAKE_SLOW, FAKE_LATE, FAKE_FAULT, FAKE_GONE };
+enum fake_mode {
+	FAKE_OK,
+	FAKE_SLOW,       /* each exchange hangs 300 ms */
+	FAKE_LATE,       /* drive 0 does not answer */
+	FAKE_LATE_OTHER, /* drive 1 does not answer */
+	FAKE_FAULT,      /* drive 0 faults */
+	FAKE_GONE,       /* the device is unplugged */
+};
 
 struct fake {
 	struct drive d;
@@ -143,13 +151,15 @@ static int fake_exchange(struct drive *d, const double *setpoint,
 	int mode = atomic_load(&f->mode);
 
 	(void)setpoint;
-	memset(s, 0, sizeof(*s));
+	memset(s, 0, sizeof(*s) * (size_t)d->n);
 	switch (mode) {
 	case FAKE_SLOW:
 		nap_ms(300);
 		break;
 	case FAKE_LATE:
 		return drive_fail(d, 0, -ETIMEDOUT, "no reply");
+	case FAKE_LATE_OTHER:
+		return drive_fail(d, 1, -ETIMEDOUT, "no reply");
 	case FAKE_FAULT:
 		s->fault = true;
 		s->code = 0x1234;
@@ -244,11 +254,13 @@ static int bus_setup(void **state)
 
 	r->f = calloc(1, sizeof(*r->f));
 	r->f->d.ops = &fake_ops;
-	r->f->d.n = 1;
+	r->f->d.n = 2; /* drive 0 reads the valves, drive 1 none */
 	r->f->d.axis[0] = ENDOSIM_AXIS_WHEEL_UD;
+	r->f->d.axis[1] = ENDOSIM_AXIS_WHEEL_LR;
 	r->f->d.valves[0] = AIR | SUCTION;
 	strcpy(r->f->d.name, "fake");
 	strcpy(r->f->d.unit[0], "drive 1");
+	strcpy(r->f->d.unit[1], "drive 2");
 	r->b = bus_create(&r->f->d, &p);
 	assert_non_null(r->b);
 	assert_int_equal(bus_open(r->b), 0);
@@ -298,11 +310,16 @@ static void test_bus_stale(void **state)
 	WANT(r, AIR | WATER);
 }
 
-/* A failed transaction, a drive fault, a vanished drive: released until
- * the cause is gone and the loop has seen it. */
+/*
+ * A failed transaction, with the drive or with the other drive on its bus
+ * (whose failure ends the exchange before the valves' reading counts), a
+ * drive fault, a vanished drive: released until the cause is gone and
+ * the loop has seen it.
+ */
 static void test_bus_lost(void **state)
 {
-	static const int causes[] = { FAKE_LATE, FAKE_FAULT, FAKE_GONE };
+	static const int causes[] = { FAKE_LATE, FAKE_LATE_OTHER, FAKE_FAULT,
+				      FAKE_GONE };
 	struct rig_valves *r = *state;
 
 	atomic_store(&r->f->pressed, AIR);
