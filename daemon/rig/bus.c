@@ -597,9 +597,9 @@ uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
 		    const struct rig_axis_feedback *f, uint64_t now_ns,
 		    uint64_t max_age_ns)
 {
+	const uint32_t bad = ENDOSIM_DRIVE_FAULT | ENDOSIM_DRIVE_BUS_ERROR;
 	bool stale = now_ns > f->stamp_ns && now_ns - f->stamp_ns > max_age_ns;
-	bool lost = !(f->status & ENDOSIM_DRIVE_PRESENT) ||
-		    (f->status & (ENDOSIM_DRIVE_FAULT | ENDOSIM_DRIVE_BUS_ERROR));
+	bool lost = !(f->status & ENDOSIM_DRIVE_PRESENT) || (f->status & bad);
 
 	valves &= ~mapped;
 	return stale || lost ? valves : valves | (pressed & mapped);

@@ -103,7 +103,7 @@ struct drive {
 	int axis[DRIVE_MAX];         /* the rig axis of each */
 	struct drive_units units[DRIVE_MAX];
 	uint32_t valves[DRIVE_MAX];  /* the valves each reads (enum
-					endosim_valve bits, config_axis_valves) */
+					endosim_valve bits) */
 	char name[200];              /* the bus: "epos4-usb 24e7:3b01 ..." */
 	char unit[DRIVE_MAX][32];    /* each drive on it: "node 1", "slave 2" */
 	char why[256];               /* the last error, in words */
