@@ -125,19 +125,22 @@ gas_at_once() {
 		-v b="$(seen patient.gas_in_m3)" 'BEGIN { exit !(b > a) }'
 }
 
-# status_of AXIS [before.]: the drive status in the witnessed state
+# present_not_lost AXIS / lost AXIS: the drive status in the witnessed
+# state: present without a fault or bus error / not
 present_not_lost() {
 	local st
 	st=$(seen "$1.drive_status")
 	echo "drive status $st"
-	[ $((st & PRESENT)) -ne 0 ] && [ $((st & LOST_BITS)) -eq 0 ]
+	[ -n "$st" ] && [ $((st & PRESENT)) -ne 0 ] &&
+		[ $((st & LOST_BITS)) -eq 0 ]
 }
 
 lost() {
 	local st
 	st=$(seen "$1.drive_status")
 	echo "drive status $st"
-	[ $((st & PRESENT)) -eq 0 ] || [ $((st & LOST_BITS)) -ne 0 ]
+	[ -n "$st" ] &&
+		{ [ $((st & PRESENT)) -eq 0 ] || [ $((st & LOST_BITS)) -ne 0 ]; }
 }
 
 # --- the EPOS4: air on 0x60FD bit 16, suction on bit 18 ----------------------
