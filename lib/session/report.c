@@ -162,7 +162,7 @@ static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 	struct metrics_params mp;
 	char label[64];
 
-	metrics_params_default(&mp);
+	sessioninputs_file_metrics_params(f, &mp); /* the session's threshold */
 	plot_series_figure(p, f, m, "plot-force", "Insertion force",
 			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
 	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);

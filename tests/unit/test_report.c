@@ -379,6 +379,33 @@ static void test_report_loop_threshold(void **state)
 	rmdir(dir);
 }
 
+/* The force plot's threshold line is the session's [session]
+ * force_threshold_n, the one its metrics counted from. */
+static void test_report_force_threshold(void **state)
+{
+	char dir[] = "/tmp/test_report_force.XXXXXX", path[64], err[256];
+	struct session_file f;
+	struct metrics_params p;
+	struct metrics_result m;
+	const char *page;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	snprintf(path, sizeof(path), "%s/index.html", dir);
+	make_session(&f);
+	f.config = "[session]\nforce_threshold_n = 12\n";
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_near(p.force_threshold_n, 12, 1e-12);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &m, err, sizeof(err)),
+			 0);
+	assert_int_equal(report_write(&f, &m, NULL, dir), 0);
+	page = slurp(path);
+	assert_non_null(strstr(page, "threshold 12 N"));
+	assert_null(strstr(page, "threshold 15 N"));
+	unlink(path);
+	rmdir(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -387,6 +414,7 @@ int main(void)
 		cmocka_unit_test(test_report_unwritable),
 		cmocka_unit_test(test_report_reference),
 		cmocka_unit_test(test_report_loop_threshold),
+		cmocka_unit_test(test_report_force_threshold),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
