@@ -946,24 +946,35 @@ static bool same_input(const struct config *cfg, int axis, int v, int w)
 		       reg[REGSPEC_VALVE_AIR + w].address;
 }
 
+/* Valve V of axis A's drive and valve W of axis B's on one input (A and B
+ * the same) or one valve on two drives: refused naming both keys. */
+static int valve_clash(const struct config *cfg, int a, int v, int b, int w,
+		       char *err, size_t size)
+{
+	char key[80], other[80];
+
+	valve_key(cfg, a, v, key, sizeof(key));
+	valve_key(cfg, b, w, other, sizeof(other));
+	snprintf(err, size, a == b ? "%s: the input of %s (one input per "
+				     "valve)"
+				   : "%s: %s reads that valve already (one "
+				     "input per valve)", key, other);
+	return -EINVAL;
+}
+
 /* On AXIS' drive, each valve on an input of its own. */
 static int check_axis_valves(const struct config *cfg, int axis, char *err,
 			     size_t size)
 {
 	uint32_t mapped = config_axis_valves(cfg, axis);
-	char key[80], other[80];
 
 	for (int v = 0; v < CONFIG_VALVES; v++) {
 		for (int w = 0; w < v; w++) {
-			if (!(mapped & 1u << v) || !(mapped & 1u << w) ||
-			    !same_input(cfg, axis, v, w)) {
-				continue;
+			if ((mapped & 1u << v) && (mapped & 1u << w) &&
+			    same_input(cfg, axis, v, w)) {
+				return valve_clash(cfg, axis, v, axis, w, err,
+						   size);
 			}
-			valve_key(cfg, axis, v, key, sizeof(key));
-			valve_key(cfg, axis, w, other, sizeof(other));
-			snprintf(err, size, "%s: the input of %s (one input "
-				 "per valve)", key, other);
-			return -EINVAL;
 		}
 	}
 	return 0;
@@ -972,8 +983,6 @@ static int check_axis_valves(const struct config *cfg, int axis, char *err,
 /* Each valve is read from one input, of one drive, at most. */
 static int check_valves(const struct config *cfg, char *err, size_t size)
 {
-	char key[80], other[80];
-
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		if (check_axis_valves(cfg, a, err, size)) {
 			return -EINVAL;
@@ -981,16 +990,12 @@ static int check_valves(const struct config *cfg, char *err, size_t size)
 		for (int b = 0; b < a; b++) {
 			uint32_t both = config_axis_valves(cfg, a) &
 					config_axis_valves(cfg, b);
-			int v = both ? __builtin_ctz(both) : -1;
 
-			if (v < 0) {
-				continue;
+			if (both) {
+				return valve_clash(cfg, a, __builtin_ctz(both),
+						   b, __builtin_ctz(both), err,
+						   size);
 			}
-			valve_key(cfg, a, v, key, sizeof(key));
-			valve_key(cfg, b, v, other, sizeof(other));
-			snprintf(err, size, "%s: %s reads that valve already "
-				 "(one input per valve)", key, other);
-			return -EINVAL;
 		}
 	}
 	return 0;
