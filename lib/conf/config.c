@@ -1172,9 +1172,9 @@ static int check_patient(const struct config_patient *p, char *err,
 			 size_t size)
 {
 	if (p->hand_n > p->hand_max_n) {
-		snprintf(err, size, "[patient] hand_n: %g N is above hand_max_n "
-			 "(%g N): a press without a force would be refused",
-			 p->hand_n, p->hand_max_n);
+		snprintf(err, size, "[patient] hand_n: %g N is above "
+			 "hand_max_n (%g N): a press without a force would be "
+			 "refused", p->hand_n, p->hand_max_n);
 		return -EINVAL;
 	}
 	return 0;

@@ -481,7 +481,8 @@ static const struct endosim_state *enabled(struct rig_loop *r)
 	loop_post(r->loop, LOOP_CMD_ENABLE);
 	for (int k = 0; k < 5000; k++) {
 		st = rig_loop_step(r);
-		if (st->state == ENDOSIM_STATE_ENABLED && st->safety.ramp >= 1) {
+		if (st->state == ENDOSIM_STATE_ENABLED &&
+		    st->safety.ramp >= 1) {
 			return st;
 		}
 	}
