@@ -714,8 +714,8 @@ static const struct {
 	  "hand_n); a valve is spring-loaded as on a real handle: `on` "
 	  "holds it S s (default 2, at most 10), then it springs back, "
 	  "`off` lets go at once; the other valves held stay held with it "
-	  "(simulated rig only: the live hand input, the scenario's hand "
-	  "held off meanwhile)" },
+	  "(simulated rig only: a hand input of the valves alone, the "
+	  "hand's forces, a scenario's, left as they are)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -137,13 +137,15 @@ static int patient_press(struct ctl *ctl, int argc, char **argv,
 /*
  * valve NAME on [--for S] | off: the valves held now (the status'), with
  * NAME pressed or let go, all held for S s (on; off: the default) or
- * lapsing at once (none left pressed), as fingers on the handle would.
+ * lapsing at once (none left pressed), as fingers on the handle would;
+ * a hand input of the valves alone: the hand's forces (a scenario's) go
+ * on as they were.
  */
 static int patient_valve(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
-	double force[ENDOSIM_AXES] = { 0 }, hold_s = VALVE_HOLD_S;
+	double hold_s = VALVE_HOLD_S;
 	uint32_t bit = argc >= 4 ? names_valve_find(argv[2]) : 0;
 	bool on = argc >= 4 && !strcmp(argv[3], "on");
 	Endosim__Reply *rep;
@@ -170,8 +172,6 @@ static int patient_valve(struct ctl *ctl, int argc, char **argv)
 	body.valves = on ? body.valves | bit : body.valves & ~bit;
 	body.hold_ms = body.valves ? (uint32_t)lround(hold_s * 1e3)
 				   : VALVE_OFF_MS;
-	body.n_force = ENDOSIM_AXES;
-	body.force = force;
 	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
 	req.hand_input = &body;
 	r = ctl_transact(ctl, true, &req, &rep);

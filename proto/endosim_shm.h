@@ -222,7 +222,8 @@ struct endosim_fault_cause {
 enum endosim_stage {
 	ENDOSIM_STAGE_FEEDBACK = 1,   /* the rig's positions, speeds, hand */
 	ENDOSIM_STAGE_KINEMATICS = 2, /* the scope's pose */
-	ENDOSIM_STAGE_HAPTICS = 3,    /* the haptic rendering's parts */
+	ENDOSIM_STAGE_HAPTICS = 3,    /* the haptic rendering's parts, the
+					 patient's body among them */
 	ENDOSIM_STAGE_COMMAND = 4,    /* the force to render per axis */
 	ENDOSIM_STAGE_OUTPUT = 5,     /* the setpoint after the safety filter */
 };

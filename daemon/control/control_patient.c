@@ -57,7 +57,7 @@ static bool press_of(struct control *c, const Endosim__Patient *p,
 	if (site < 0) {
 		site_names(a, names, sizeof(names));
 		snprintf(c->refusal, sizeof(c->refusal), "patient: no site "
-			 "'%.63s' in case %.63s: %s", p->site,
+			 "'%.63s' in case %.63s: %.350s", p->site,
 			 colon_name(c->colon), *names ? names : "it has none");
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, c->refusal);
 		return false;

@@ -416,9 +416,10 @@ void control_on_hand_input(struct control *c, struct client *cl,
 		       "the rig is not simulated");
 		return;
 	}
-	if (hi->n_force != ENDOSIM_AXES || hold > MAX_HOLD_S) {
+	if ((hi->n_force != ENDOSIM_AXES && hi->n_force) || hold > MAX_HOLD_S) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
-		       "need 4 forces and a hold of at most 10 s");
+		       "need 4 forces (or none: the valves alone) and a hold "
+		       "of at most 10 s");
 		return;
 	}
 	if (hi->valves & ~ALL_VALVES) {
@@ -426,14 +427,15 @@ void control_on_hand_input(struct control *c, struct client *cl,
 		       "valves: 1 air, 2 water, 4 suction");
 		return;
 	}
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
+	for (size_t a = 0; a < hi->n_force; a++) {
 		if (!isfinite(hi->force[a])) {
 			refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
 			       "forces must be finite");
 			return;
 		}
 	}
-	hand_set_live(c->deps.hand, hi->force, hi->valves, hold, mono_ns());
+	hand_set_live(c->deps.hand, hi->n_force ? hi->force : NULL, hi->valves,
+		      hold, mono_ns());
 }
 
 void control_on_subscribe(struct control *c, struct client *cl,

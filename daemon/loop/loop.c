@@ -449,11 +449,14 @@ static void check_loop(struct loop *l, uint64_t now)
 	}
 }
 
-/* A non-finite value in the scope's pose or the haptic parts is a fault. */
+/* A non-finite value in the scope's pose, the haptic parts or the
+ * patient's body (the gas, the fluid, the lens: the rendering's) is a
+ * fault. */
 static void check_pipeline(struct loop *l, uint64_t now)
 {
 	const struct scope_pose *p = &l->pose;
 	const struct endosim_haptics_state *h = &l->state.haptics;
+	double body[PATIENT_WATCHED];
 	const double pose[] = {
 		p->depth_m, p->roll_rad, p->bend_rad[0], p->bend_rad[1],
 		p->base_s_m, p->tip_s_m, p->tip[0], p->tip[1], p->tip[2],
@@ -474,6 +477,9 @@ static void check_pipeline(struct loop *l, uint64_t now)
 			    -1, ENDOSIM_STAGE_KINEMATICS, now);
 	safety_check_finite(&l->safety, parts, sizeof(parts) / sizeof(parts[0]),
 			    -1, ENDOSIM_STAGE_HAPTICS, now);
+	patient_watched(haptics_patient(l->haptics), body);
+	safety_check_finite(&l->safety, body, PATIENT_WATCHED, -1,
+			    ENDOSIM_STAGE_HAPTICS, now);
 }
 
 static void cycle(struct loop *l, uint64_t now, uint64_t latency)

@@ -18,9 +18,10 @@
  * axis' [limits] max speed); the force loop's overruns (more than [loop]
  * overrun_budget periods skipped within overrun_window_s, when [loop]
  * overrun_fault makes that a fault, see safety_check_overruns); the force
- * pipeline (a non-finite value anywhere: pose, haptic parts, command,
- * output); the command held beyond the force limit for longer than
- * [limits] saturation_s while torque is on; a daemon thread that died.
+ * pipeline (a non-finite value anywhere: pose, haptic parts and the
+ * patient's body, command, output); the command held beyond the force
+ * limit for longer than [limits] saturation_s while torque is on; a
+ * daemon thread that died.
  * A cause latches its bit with where and when it was first seen and what
  * tripped it (endosim_shm.h struct endosim_fault_cause); reset is refused
  * while any cause is still present. The emergency stop latches its bit

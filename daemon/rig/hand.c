@@ -6,10 +6,13 @@
 
 #include "proto/seqlock.h"
 
+/* The live input: the forces and the valves, each with its own hold (a
+ * valves-only input leaves the forces' as they are). */
 struct live {
 	double force[ENDOSIM_AXES];
+	uint64_t until_ns;        /* the forces hold until then */
 	uint32_t valves;
-	uint64_t until_ns;
+	uint64_t valves_until_ns; /* the valves hold until then */
 };
 
 struct hand {
@@ -58,12 +61,17 @@ const struct scenario *hand_scenario(const struct hand *h)
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 		   uint32_t valves, double hold_s, uint64_t now_ns)
 {
+	uint64_t until = now_ns + (uint64_t)(hold_s * ENDOSIM_NS_PER_S);
+
 	seqlock_write_begin(&h->lock);
-	for (int a = 0; a < ENDOSIM_AXES; a++) {
+	for (int a = 0; force && a < ENDOSIM_AXES; a++) {
 		h->mailbox.force[a] = force[a];
 	}
+	if (force) {
+		h->mailbox.until_ns = until;
+	}
 	h->mailbox.valves = valves;
-	h->mailbox.until_ns = now_ns + (uint64_t)(hold_s * ENDOSIM_NS_PER_S);
+	h->mailbox.valves_until_ns = until;
 	seqlock_write_end(&h->lock);
 }
 
@@ -132,5 +140,5 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 
 uint32_t hand_valves(const struct hand *h, uint64_t now_ns)
 {
-	return now_ns < h->cached.until_ns ? h->cached.valves : 0;
+	return now_ns < h->cached.valves_until_ns ? h->cached.valves : 0;
 }

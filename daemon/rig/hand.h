@@ -3,7 +3,8 @@
  * the simulated rig, from a scenario (a spring-damper grip following timed
  * targets, or timed pushes) or from live input through the socket (the
  * viewer's keyboard or gamepad). Live input, while it holds, overrides the
- * scenario on every axis.
+ * scenario on every axis; live input of the valves alone (endoctl patient
+ * valve) holds the valves and leaves the forces as they are.
  *
  * Every force is clamped to the configured strongest push of a hand, and
  * fades along the motion to nothing at the hand's top speed, as a
@@ -31,7 +32,9 @@ const struct scenario *hand_scenario(const struct hand *h);
 /*
  * Control thread (one writer): live forces (N, N m, N m, N m) and the
  * handle's valves (enum endosim_valve bits) that hold for HOLD_S seconds
- * after NOW_NS (CLOCK_MONOTONIC). Lock-free.
+ * after NOW_NS (CLOCK_MONOTONIC). FORCE NULL: the valves alone, the
+ * forces as they were (a scenario's, or earlier live ones while they
+ * hold). Lock-free.
  */
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 		   uint32_t valves, double hold_s, uint64_t now_ns);

@@ -704,9 +704,19 @@ static const struct parse_key keys[] = {
 	   "largest tip bend left or right (160 deg)"),
 };
 
+#define KEYS (sizeof(keys) / sizeof(keys[0]))
+
+/* A section ends: the lines every key was set on in the file so far, into
+ * the reader's int[KEYS] (config_load_stream()). */
+static void remember_lines(struct parse_file *pf, const int *set_on)
+{
+	memcpy(parse_file_user(pf), set_on, KEYS * sizeof(*set_on));
+}
+
 static const struct parse_table table = {
 	.keys = keys,
-	.n = sizeof(keys) / sizeof(keys[0]),
+	.n = KEYS,
+	.end = remember_lines,
 };
 
 size_t config_key_count(void)
@@ -738,10 +748,27 @@ void config_defaults(struct config *cfg)
 	parse_defaults(&table, cfg);
 }
 
-int config_load_stream(struct config *cfg, FILE *f, const char *name,
-		       char *err, size_t errsize)
+/* The line LINES (each key's in the file) gives the key that a check's
+ * message WHY names first ("[SECTION] NAME: ..."), 0 when none. */
+static int line_of(const char *why, const int lines[KEYS])
 {
-	int n = parse_ini(&table, f, name, cfg, NULL, err, errsize);
+	char section[64], name[64];
+	const struct parse_key *k;
+
+	if (sscanf(why, "[%63[^]]] %63[^: ]:", section, name) != 2) {
+		return 0;
+	}
+	k = parse_find(&table, section, name);
+	return k ? lines[k - keys] : 0;
+}
+
+/* F read over NEW (CFG's copy); 0, or -EINVAL with one line in ERR. */
+static int load_over(struct config *new, FILE *f, const char *name,
+		     char *err, size_t errsize)
+{
+	int lines[KEYS] = { 0 };
+	int n = parse_ini(&table, f, name, new, lines, err, errsize);
+	char why[512];
 
 	if (n < 0) {
 		return n;
@@ -751,7 +778,30 @@ int config_load_stream(struct config *cfg, FILE *f, const char *name,
 			 name);
 		return -EINVAL;
 	}
-	return config_check(cfg, err, errsize);
+	if (config_check(new, why, sizeof(why))) {
+		return parse_error(err, errsize, name, line_of(why, lines),
+				   NULL, "%s", why);
+	}
+	return 0;
+}
+
+int config_load_stream(struct config *cfg, FILE *f, const char *name,
+		       char *err, size_t errsize)
+{
+	struct config *new = malloc(sizeof(*new));
+	int r;
+
+	if (!new) {
+		snprintf(err, errsize, "%s: out of memory", name);
+		return -ENOMEM;
+	}
+	*new = *cfg;
+	r = load_over(new, f, name, err, errsize);
+	if (!r) {
+		*cfg = *new;
+	}
+	free(new);
+	return r;
 }
 
 int config_load(struct config *cfg, const char *path, char *err,
@@ -881,25 +931,71 @@ static void valve_key(const struct config *cfg, int axis, int v, char *buf,
 	}
 }
 
-/* Each valve is read from one drive's input at most. */
-static int check_valves(const struct config *cfg, char *err, size_t size)
+/* Valves V and W read the same input of AXIS' drive. */
+static bool same_input(const struct config *cfg, int axis, int v, int w)
+{
+	const struct regspec *reg = cfg->modbus_drive[axis].reg;
+
+	if (config_axis_backend(cfg, axis) == CONFIG_DRIVE_EPOS4_USB) {
+		return cfg->epos4[axis].valve_bit[v] ==
+		       cfg->epos4[axis].valve_bit[w];
+	}
+	return reg[REGSPEC_VALVE_AIR + v].table ==
+		       reg[REGSPEC_VALVE_AIR + w].table &&
+	       reg[REGSPEC_VALVE_AIR + v].address ==
+		       reg[REGSPEC_VALVE_AIR + w].address;
+}
+
+/* Valve V of axis A's drive and valve W of axis B's on one input (A and B
+ * the same) or one valve on two drives: refused naming both keys. */
+static int valve_clash(const struct config *cfg, int a, int v, int b, int w,
+		       char *err, size_t size)
 {
 	char key[80], other[80];
 
+	valve_key(cfg, a, v, key, sizeof(key));
+	valve_key(cfg, b, w, other, sizeof(other));
+	snprintf(err, size, a == b ? "%s: the input of %s (one input per "
+				     "valve)"
+				   : "%s: %s reads that valve already (one "
+				     "input per valve)", key, other);
+	return -EINVAL;
+}
+
+/* On AXIS' drive, each valve on an input of its own. */
+static int check_axis_valves(const struct config *cfg, int axis, char *err,
+			     size_t size)
+{
+	uint32_t mapped = config_axis_valves(cfg, axis);
+
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		for (int w = 0; w < v; w++) {
+			if ((mapped & 1u << v) && (mapped & 1u << w) &&
+			    same_input(cfg, axis, v, w)) {
+				return valve_clash(cfg, axis, v, axis, w, err,
+						   size);
+			}
+		}
+	}
+	return 0;
+}
+
+/* Each valve is read from one input, of one drive, at most. */
+static int check_valves(const struct config *cfg, char *err, size_t size)
+{
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (check_axis_valves(cfg, a, err, size)) {
+			return -EINVAL;
+		}
 		for (int b = 0; b < a; b++) {
 			uint32_t both = config_axis_valves(cfg, a) &
 					config_axis_valves(cfg, b);
-			int v = both ? __builtin_ctz(both) : -1;
 
-			if (v < 0) {
-				continue;
+			if (both) {
+				return valve_clash(cfg, a, __builtin_ctz(both),
+						   b, __builtin_ctz(both), err,
+						   size);
 			}
-			valve_key(cfg, a, v, key, sizeof(key));
-			valve_key(cfg, b, v, other, sizeof(other));
-			snprintf(err, size, "%s: %s reads that valve already "
-				 "(one input per valve)", key, other);
-			return -EINVAL;
 		}
 	}
 	return 0;
@@ -1071,10 +1167,24 @@ bool config_case_name_ok(const char *name)
 	return n && !name[n];
 }
 
+/* The assistant's usual press within her strongest. */
+static int check_patient(const struct config_patient *p, char *err,
+			 size_t size)
+{
+	if (p->hand_n > p->hand_max_n) {
+		snprintf(err, size, "[patient] hand_n: %g N is above "
+			 "hand_max_n (%g N): a press without a force would be "
+			 "refused", p->hand_n, p->hand_max_n);
+		return -EINVAL;
+	}
+	return 0;
+}
+
 int config_check(const struct config *cfg, char *err, size_t errsize)
 {
 	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize) ||
-	    check_valves(cfg, err, errsize)) {
+	    check_valves(cfg, err, errsize) ||
+	    check_patient(&cfg->patient, err, errsize)) {
 		return -EINVAL;
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {

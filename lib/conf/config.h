@@ -277,9 +277,12 @@ enum config_flags {
 void config_defaults(struct config *cfg);
 
 /*
- * Reads the INI file PATH over CFG. Returns 0, -ENOENT (cannot open) or
- * -EINVAL (unknown key, bad value, duplicate, syntax error, empty file),
- * with one line in ERR.
+ * Reads the INI file PATH over CFG. Returns 0, -ENOENT (cannot open),
+ * -ENOMEM or -EINVAL (unknown key, bad value, duplicate, syntax error,
+ * empty file, a cross-key check of config_check()), with one line in ERR,
+ * "FILE:LINE: [SECTION] KEY: message" (a check's: the line of the key it
+ * names, "FILE: " when the file does not set it). CFG is unchanged on
+ * error.
  */
 int config_load(struct config *cfg, const char *path, char *err,
 		size_t errsize);
@@ -302,8 +305,9 @@ bool config_case_name_ok(const char *name);
 
 /*
  * Cross-key checks (travel min below max, distinct devices, a usable
- * register map for each modbus axis, a case name, ...). Returns 0 or
- * -EINVAL.
+ * register map for each modbus axis, each of the handle's valves on an
+ * input of its own, the assistant's hand_n within hand_max_n, a case
+ * name, ...). Returns 0 or -EINVAL with "[SECTION] KEY: message" in ERR.
  */
 int config_check(const struct config *cfg, char *err, size_t errsize);
 

@@ -38,6 +38,8 @@ struct reader {
 	int bend_line[ANATOMY_SEGMENTS][ANATOMY_MAX_BENDS];
 	int length_line[ANATOMY_SEGMENTS];
 	int mobile_line[ANATOMY_SEGMENTS];
+	int collapsed_line[ANATOMY_SEGMENTS], max_line[ANATOMY_SEGMENTS];
+	int fluid_line[ANATOMY_SEGMENTS];
 	bool seg_set_taenia[ANATOMY_SEGMENTS], seg_set_fold[ANATOMY_SEGMENTS];
 	int polyp_line[ANATOMY_MAX_POLYPS];
 	int site_line[ANATOMY_MAX_SITES];
@@ -407,6 +409,9 @@ static void end(struct parse_file *pf, const int *set_on)
 	}
 	r->length_line[id] = segment_line(set_on, "length_m");
 	r->mobile_line[id] = segment_line(set_on, "mobile");
+	r->collapsed_line[id] = segment_line(set_on, "wall_collapsed");
+	r->max_line[id] = segment_line(set_on, "wall_max");
+	r->fluid_line[id] = segment_line(set_on, "fluid_m3");
 	r->seg_set_taenia[id] = segment_line(set_on, "taenia_depth") != 0;
 	r->seg_set_fold[id] = segment_line(set_on, "fold_depth") != 0;
 }
@@ -420,6 +425,33 @@ static const struct parse_table table = {
 };
 
 /* ------------------------------------------------- after the file */
+
+/* The wall's law (gas.h) reaches the case's radius at its nominal
+ * pressure only from a narrower collapsed lumen towards a wider one; the
+ * fluid leaves the lumen half open at least. */
+static int check_wall(struct reader *r, int id)
+{
+	const struct anatomy_segment *seg = &r->a.seg[id];
+	double lumen = M_PI * seg->diameter_m * seg->diameter_m / 4 *
+		       seg->length_m;
+
+	if (seg->wall_collapsed >= 1) {
+		return fail(r, r->collapsed_line[id], "wall_collapsed", "%g: "
+			    "the collapsed lumen must be narrower than the "
+			    "case's (below 1)", seg->wall_collapsed);
+	}
+	if (seg->wall_max <= 1) {
+		return fail(r, r->max_line[id], "wall_max", "%g: the wall must "
+			    "stiffen towards a lumen wider than the case's "
+			    "(above 1)", seg->wall_max);
+	}
+	if (seg->fluid_m3 > lumen / 2) {
+		return fail(r, r->fluid_line[id], "fluid_m3", "%g m^3 is more "
+			    "than half the %s's lumen (%g m^3)", seg->fluid_m3,
+			    segment_names[id], lumen);
+	}
+	return 0;
+}
 
 static int check_segment(struct reader *r, int id)
 {
@@ -447,7 +479,7 @@ static int check_segment(struct reader *r, int id)
 			    "the first or last segment or beside another "
 			    "mobile segment");
 	}
-	return 0;
+	return check_wall(r, id);
 }
 
 static int check_polyp(struct reader *r, int i)
@@ -550,7 +582,9 @@ static int load_stream(struct anatomy *a, FILE *f, const char *path,
 		n = -EINVAL;
 	}
 	n = n < 0 ? n : check(r);
-	*a = r->a;
+	if (n >= 0) {
+		*a = r->a;
+	}
 	free(r);
 	return n;
 }

@@ -34,11 +34,14 @@
  *   mesentery_n_per_m = 150     stiffness of the mesentery (mobile only)
  *   mesentery_height_m = 0.06   largest bow of the segment (mobile only)
  *   wall_collapsed = 0.4        optional, the wall's pressure-volume law
- *   wall_max = 1.25             (gas.h): the radius factor collapsed and
- *   wall_nominal_pa = 2000      the one it stiffens towards, the
- *   wall_beta = 1.5             transmural pressure at the case's radius
- *                               and the law's shape (defaults below)
+ *   wall_max = 1.25             (gas.h): the radius factor collapsed
+ *   wall_nominal_pa = 2000      (0.1..1, below 1) and the one it stiffens
+ *   wall_beta = 1.5             towards (1..2, above 1), the transmural
+ *                               pressure at the case's radius (200..10000
+ *                               Pa) and the law's shape (0.3..5; defaults
+ *                               below)
  *   fluid_m3 = 0                optional: residual fluid pooled in it
+ *                               (0..0.002, at most half its lumen)
  *   bend = ANGLE_DEG RADIUS_M PLANE_DEG
  *                               repeatable, up to ANATOMY_MAX_BENDS: an arc
  *                               of ANGLE_DEG (0..180) with radius RADIUS_M;
@@ -55,10 +58,11 @@
  *                               abdomen (llq over the sigmoid, umbilical
  *                               under the transverse colon's apex, ...)
  *   position_m = X Y Z          required: the pad's centre on the
- *                               abdominal wall, m
+ *                               abdominal wall, m (each -1..1)
  *   direction = X Y Z           into the abdomen (default 0 1 0: from the
- *                               front towards the back)
- *   radius_m = 0.06             the pad's reach about its axis
+ *                               front towards the back; each -1..1, not
+ *                               all 0; made a unit vector)
+ *   radius_m = 0.06             the pad's reach about its axis (0.01..0.2)
  *
  *   [polyp]                     repeatable, up to ANATOMY_MAX_POLYPS
  *   s_m = 0.62                  required: distance from the anal verge
@@ -74,7 +78,10 @@
  * Checks beyond each value's range: every segment present and in order,
  * bends fit in their segment, no bend tighter than the lumen radius (the
  * wall would fold on the inside of the bend), mobile segments as above,
- * polyps inside the colon and smaller than the lumen.
+ * each wall's law able to reach the case's radius (wall_collapsed below 1,
+ * wall_max above 1), a segment's fluid at most half its lumen at the
+ * case's diameter, polyps inside the colon and smaller than the lumen,
+ * sites named once and with a direction.
  *
  * Errors are one line "FILE:LINE: [section] key: what", "FILE:LINE:
  * [section]: what" or, for the checks after the file, "FILE:LINE: key:
@@ -136,8 +143,8 @@ struct anatomy_segment {
 	bool mobile;
 	double mesentery_n_per_m;  /* mobile segments: N/m */
 	double mesentery_height_m; /* mobile segments: largest bow, m */
-	double wall_collapsed;     /* radius factor, 0.1..1 */
-	double wall_max;           /* radius factor, 1..2 */
+	double wall_collapsed;     /* radius factor, 0.1..1, below 1 */
+	double wall_max;           /* radius factor, 1..2, above 1 */
 	double wall_nominal_pa;    /* Pa, 200..10000 */
 	double wall_beta;          /* 0.3..5 */
 	double fluid_m3;           /* residual fluid, 0..0.002 */
@@ -177,7 +184,8 @@ int anatomy_site_find(const struct anatomy *a, const char *name);
 
 /*
  * Reads the case file PATH into A. Returns 0, -ENOENT or another negative
- * errno when it cannot be read, or -EINVAL with one line in ERR.
+ * errno when it cannot be read, or -EINVAL with one line in ERR (A then
+ * as it was).
  */
 int anatomy_load(struct anatomy *a, const char *path, char *err,
 		 size_t errsize);

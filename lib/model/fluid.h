@@ -3,7 +3,7 @@
  * its surface level with gravity, and the suction that takes it away.
  *
  * Each anatomical segment i holds a fluid volume V_i (a case's
- * fluid_ml), which stays in its segment (it does not run over into the
+ * fluid_m3), which stays in its segment (it does not run over into the
  * next). It pools in the segment's dependent part: its surface is a plane
  * of normal n (up, against gravity) at height h_i, the level at which the
  * lumen below it holds V_i:

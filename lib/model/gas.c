@@ -107,6 +107,10 @@ static double solve_pressure(const struct gas *g, double target,
 	for (int k = 0; k < NEWTON_MAX; k++) {
 		double d, f = lumen_volume(g, p, p_abd, &d) - target, next;
 
+		if (isnan(f)) {
+			return NAN; /* a law or volume gone bad: no pressure
+				       bursts a wall, the loop faults */
+		}
 		if (fabs(f) < NEWTON_TOL_M3) {
 			break;
 		}

@@ -113,6 +113,46 @@ void patient_release(struct patient *pt)
 	pt->pad_n = 0;
 }
 
+void patient_watched(const struct patient *pt, double v[PATIENT_WATCHED])
+{
+	int n = 0;
+
+	v[n++] = pt->gas.volume_m3;
+	v[n++] = pt->gas.pressure_pa;
+	for (int i = 0; i < GAS_SEGMENTS; i++) {
+		v[n++] = pt->factor[i];
+		v[n++] = pt->fluid.seg[i].volume_m3;
+		v[n++] = pt->fluid.seg[i].level_m;
+	}
+	v[n++] = pt->lens.smear;
+	v[n++] = pt->lens.murk;
+	v[n++] = pt->lens.redout;
+	v[n++] = pt->pad_n;
+}
+
+bool patient_finite(const struct patient *pt)
+{
+	double v[PATIENT_WATCHED];
+
+	patient_watched(pt, v);
+	for (int i = 0; i < PATIENT_WATCHED; i++) {
+		if (!isfinite(v[i])) {
+			return false;
+		}
+	}
+	return true;
+}
+
+/* The body anew as the case starts it, but lying where it lies. */
+static void lay_anew(struct patient *pt)
+{
+	int start = pt->p.start_position;
+
+	pt->p.start_position = pt->posture.position;
+	patient_attach(pt, pt->colon);
+	pt->p.start_position = start;
+}
+
 int patient_step(struct patient *pt, const struct patient_input *in,
 		 double dt_s)
 {
@@ -124,6 +164,9 @@ int patient_step(struct patient *pt, const struct patient_input *in,
 	pt->torn = -1;
 	if (!pt->p.enabled || !pt->colon) {
 		return -1;
+	}
+	if (!patient_finite(pt)) {
+		lay_anew(pt);
 	}
 	posture_step(&pt->posture, dt_s);
 	seg = fluid_segment_at(&pt->fluid, in->tip_s_m);

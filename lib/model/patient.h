@@ -123,9 +123,27 @@ int patient_press(struct patient *pt, int site, double force_n);
 /* She lets go. */
 void patient_release(struct patient *pt);
 
-/* One cycle of DT_S. Returns the segment torn in it, or -1. */
+/*
+ * One cycle of DT_S. Returns the segment torn in it, or -1. A state no
+ * longer finite (patient_finite(); the loop's non-finite fault latched on
+ * the cycle that broke it) is laid anew first, lying where it lies: the
+ * gas at its nominal distension, the case's fluid, the hand off, the lens
+ * clean (as the rod lays the tube anew).
+ */
 int patient_step(struct patient *pt, const struct patient_input *in,
 		 double dt_s);
+
+/*
+ * The values the force loop's non-finite check watches, into V: the
+ * gas's volume and pressure, each segment's radius factor, the fluid's
+ * volume and level in each segment, the lens' smear, murk and red-out,
+ * the pad's force. Any of them not finite is a fault.
+ */
+#define PATIENT_WATCHED (2 + 3 * GAS_SEGMENTS + 4)
+void patient_watched(const struct patient *pt, double v[PATIENT_WATCHED]);
+
+/* Every watched value finite. */
+bool patient_finite(const struct patient *pt);
 
 /* Gravity's acceleration now (m/s^2, body frame); zeros when disabled. */
 void patient_gravity(const struct patient *pt, double g[3]);

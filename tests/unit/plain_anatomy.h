@@ -1,8 +1,9 @@
 /*
  * plain_anatomy.h - a case built in code for the model's tests and fuzz
  * targets: the nine segments at the normal case's lengths (m), one lumen
- * diameter, no bends, nothing mobile, folds 3 cm apart. A test adds the
- * bends and the mobility it is about.
+ * diameter, no bends, nothing mobile, folds 3 cm apart, each wall's law
+ * a case file's default. A test adds the bends, the mobility and the
+ * sites it is about.
  */
 #ifndef ENDOSIM_PLAIN_ANATOMY_H
 #define ENDOSIM_PLAIN_ANATOMY_H
@@ -25,6 +26,10 @@ static inline void plain_anatomy(struct anatomy *a, double diameter_m)
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
 		a->seg[i].length_m = len[i];
 		a->seg[i].diameter_m = diameter_m;
+		a->seg[i].wall_collapsed = ANATOMY_DEFAULT_WALL_COLLAPSED;
+		a->seg[i].wall_max = ANATOMY_DEFAULT_WALL_MAX;
+		a->seg[i].wall_nominal_pa = ANATOMY_DEFAULT_WALL_NOMINAL_PA;
+		a->seg[i].wall_beta = ANATOMY_DEFAULT_WALL_BETA;
 	}
 }
 

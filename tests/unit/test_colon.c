@@ -167,6 +167,24 @@ struct bad_case {
 	"[segment ascending]\nlength_m = 0.2\ndiameter_m = 0.06\n" \
 	"[segment cecum]\nlength_m = 0.06\ndiameter_m = 0.09\n"
 
+/* Each of BAD refused with its line and words, the anatomy untouched. */
+static void refused_with_line(const struct bad_case *bad, size_t n)
+{
+	for (size_t i = 0; i < n; i++) {
+		char path[512], err[512];
+		struct anatomy a, before;
+
+		memset(&a, 0x5a, sizeof(a));
+		before = a;
+		scratch("bad.case", bad[i].text, path, sizeof(path));
+		assert_int_equal(anatomy_load(&a, path, err, sizeof(err)),
+				 -EINVAL);
+		assert_error_at(err, path, bad[i].line, bad[i].words);
+		assert_memory_equal(&a, &before, sizeof(a));
+		unlink(path);
+	}
+}
+
 static void test_bad_cases_refused_with_line(void **state)
 {
 	static const struct bad_case bad[] = {
@@ -205,16 +223,74 @@ static void test_bad_cases_refused_with_line(void **state)
 		{ "", 0, "missing (empty file)" },
 	};
 	(void)state;
-	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
-		char path[512], err[512];
-		struct anatomy a;
+	refused_with_line(bad, sizeof(bad) / sizeof(bad[0]));
+}
 
-		scratch("bad.case", bad[i].text, path, sizeof(path));
-		assert_int_equal(anatomy_load(&a, path, err, sizeof(err)),
-				 -EINVAL);
-		assert_error_at(err, path, bad[i].line, bad[i].words);
-		unlink(path);
-	}
+/* The patient's keys (issue 22): each wall law's, the fluid's, the
+ * assistant's sites'. */
+#define SEG_ANAL(extra) \
+	"[case]\nname = x\n[segment anal_canal]\nlength_m = 0.04\n" \
+	"diameter_m = 0.025\n" extra
+#define WHOLE(extra) SEG_ANAL(extra) SEGS_AFTER_ANAL
+#define SITE(keys) WHOLE("") "[site llq]\n" keys
+
+static void test_bad_patient_keys_refused_with_line(void **state)
+{
+	static const struct bad_case bad[] = {
+		{ SEG_ANAL("wall_collapsed = 0.05\n"), 6,
+		  "wall_collapsed: 0.05 is out of range [0.1, 1]" },
+		{ SEG_ANAL("wall_collapsed = 0.5x\n"), 6,
+		  "wall_collapsed: '0.5x' is not a number" },
+		{ WHOLE("wall_collapsed = 1\n"), 6,
+		  "wall_collapsed: 1: the collapsed lumen must be narrower" },
+		{ SEG_ANAL("wall_max = 2.5\n"), 6,
+		  "wall_max: 2.5 is out of range [1, 2]" },
+		{ WHOLE("wall_collapsed = 0.5\nwall_max = 1\n"), 7,
+		  "wall_max: 1: the wall must stiffen towards a lumen wider" },
+		{ SEG_ANAL("wall_nominal_pa = 50\n"), 6,
+		  "wall_nominal_pa: 50 is out of range [200, 10000]" },
+		{ SEG_ANAL("wall_nominal_pa = 2 kPa\n"), 6,
+		  "wall_nominal_pa: '2 kPa' is not a number" },
+		{ SEG_ANAL("wall_beta = 0\n"), 6,
+		  "wall_beta: 0 is out of range [0.3, 5]" },
+		{ SEG_ANAL("wall_beta = nan\n"), 6,
+		  "wall_beta: 'nan' is not a number" },
+		{ SEG_ANAL("fluid_m3 = -0.001\n"), 6,
+		  "fluid_m3: -0.001 is out of range [0, 0.002]" },
+		{ SEG_ANAL("fluid_m3 = inf\n"), 6,
+		  "fluid_m3: 'inf' is not a number" },
+		{ WHOLE("fluid_m3 = 0.0001\n"), 6, "fluid_m3: 0.0001 m^3 is "
+		  "more than half the anal_canal's lumen" },
+		{ SITE("position_m = 0.05 -0.2\n"), 31,
+		  "position_m: '0.05 -0.2' is not three numbers X Y Z" },
+		{ SITE("position_m = 0.05 -0.2 0.2 1\n"), 31,
+		  "not three numbers" },
+		{ SITE("position_m = 0 0 2\n"), 31,
+		  "position_m: 2 is out of range [-1, 1] m" },
+		{ SITE("position_m = 0 nan 0\n"), 31,
+		  "position_m: 'nan' is not a number" },
+		{ SITE("position_m = 0 0 0.2\ndirection = 0 0 0\n"), 30,
+		  "direction: [site llq]: no direction" },
+		{ SITE("position_m = 0 0 0.2\ndirection = 0 1.5 0\n"), 32,
+		  "direction: 1.5 is out of range [-1, 1]" },
+		{ SITE("position_m = 0 0 0.2\nradius_m = 0.5\n"), 32,
+		  "radius_m: 0.5 is out of range [0.01, 0.2]" },
+		{ SITE("radius_m = 0.05\n"), 30, "position_m is missing" },
+		{ SITE("position_m = 0 0 0.2\n[site llq]\n"), 32,
+		  "[site llq] appears twice" },
+		{ WHOLE("") "[site]\nposition_m = 0 0 0.2\n", 30,
+		  "unknown section" },
+		{ WHOLE("") "[site l/q]\nposition_m = 0 0 0.2\n", 30,
+		  "use letters, digits" },
+		{ WHOLE("") "[site a]\nposition_m = 0 0 0\n[site b]\n"
+		  "position_m = 0 0 0\n[site c]\nposition_m = 0 0 0\n"
+		  "[site d]\nposition_m = 0 0 0\n[site e]\n"
+		  "position_m = 0 0 0\n[site f]\nposition_m = 0 0 0\n"
+		  "[site g]\nposition_m = 0 0 0\n[site h]\n"
+		  "position_m = 0 0 0\n[site i]\n", 46, "more than 8 sites" },
+	};
+	(void)state;
+	refused_with_line(bad, sizeof(bad) / sizeof(bad[0]));
 }
 
 /* ---------------------------------------------------------------- centreline */
@@ -1032,6 +1108,7 @@ int main(void)
 		cmocka_unit_test(test_every_case_loads),
 		cmocka_unit_test(test_normal_matches_brief),
 		cmocka_unit_test(test_bad_cases_refused_with_line),
+		cmocka_unit_test(test_bad_patient_keys_refused_with_line),
 		cmocka_unit_test(test_length_is_sum_of_segments),
 		cmocka_unit_test(test_frames_orthonormal),
 		cmocka_unit_test(test_no_twist_on_planar_curve),

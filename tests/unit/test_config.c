@@ -2,6 +2,7 @@
  * one line naming the file, the line and the key; good input round-trips;
  * its defaults are the model's and the metrics' own. */
 #include <errno.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -202,6 +203,77 @@ static void test_cross_checks(void **state)
 	assert_non_null(strstr(err, "insertion travel"));
 	assert_int_equal(load("[shm]\nname = no-slash\n", &cfg), -EINVAL);
 	assert_non_null(strstr(err, "[shm] name"));
+}
+
+/* TEXT's load refused at LINE with WHAT, the configuration untouched. */
+static void refused_at(const char *text, int line, const char *what)
+{
+	struct config cfg, before;
+
+	config_defaults(&before);
+	write_file(text);
+	config_defaults(&cfg);
+	if (config_load(&cfg, path, err, sizeof(err)) != -EINVAL) {
+		fail_msg("'%s' was taken", text);
+	}
+	if (line) {
+		assert_error(line, what);
+	} else { /* "FILE: ": the file does not set the key named */
+		assert_int_equal(strncmp(err, path, strlen(path)), 0);
+		assert_int_equal(strncmp(err + strlen(path), ": [", 3), 0);
+		assert_non_null(strstr(err, what));
+	}
+	assert_memory_equal(&cfg, &before, sizeof(cfg));
+}
+
+/* The patient's keys (issue 22): every [patient] key and [rod]
+ * colon_mass_per_m_kg beyond either end of its range, malformed, or not
+ * one of its choices, refused with its file, line and key. */
+static void test_patient_keys(void **state)
+{
+	char text[256], what[160];
+
+	(void)state;
+	for (size_t i = 0; i < config_key_count(); i++) {
+		const struct parse_key *k = config_key_at(i);
+		double out[2] = { k->min - fabs(k->min) - 1,
+				  k->max + fabs(k->max) + 1 };
+
+		if (strcmp(k->section, "patient") &&
+		    strcmp(k->name, "colon_mass_per_m_kg")) {
+			continue;
+		}
+		if (k->type == PARSE_CHOICE) {
+			snprintf(text, sizeof(text), "[%s]\n\n%s = bogus\n",
+				 k->section, k->name);
+			snprintf(what, sizeof(what), "[%s] %s: 'bogus' is not "
+				 "a known choice", k->section, k->name);
+			refused_at(text, 3, what);
+			continue;
+		}
+		assert_int_equal(k->type, PARSE_DOUBLE);
+		for (int e = 0; e < 2; e++) {
+			snprintf(text, sizeof(text), "[%s]\n%s = %.17g\n",
+				 k->section, k->name, out[e]);
+			snprintf(what, sizeof(what), "[%s] %s: %.17g is out "
+				 "of range", k->section, k->name, out[e]);
+			refused_at(text, 2, what);
+		}
+		snprintf(text, sizeof(text), "[%s]\n%s = 1 x\n", k->section,
+			 k->name);
+		snprintf(what, sizeof(what), "[%s] %s: '1 x' is not a number",
+			 k->section, k->name);
+		refused_at(text, 2, what);
+		snprintf(text, sizeof(text), "[%s]\n%s = nan\n", k->section,
+			 k->name);
+		refused_at(text, 2, "'nan' is not a number");
+	}
+	/* across keys: the usual press within the strongest */
+	refused_at("[loop]\nrate_hz = 1000\n[patient]\nhand_max_n = 30\n"
+		   "hand_n = 40\n", 5, "[patient] hand_n: 40 N is above "
+		   "hand_max_n (30 N)");
+	refused_at("[patient]\nhand_max_n = 10\n", 0, "[patient] hand_n: "
+		   "20 N is above hand_max_n (10 N)");
 }
 
 static void test_set_live_only(void **state)
@@ -491,6 +563,7 @@ int main(void)
 		cmocka_unit_test(test_empty_file),
 		cmocka_unit_test(test_syntax_error),
 		cmocka_unit_test(test_cross_checks),
+		cmocka_unit_test(test_patient_keys),
 		cmocka_unit_test(test_set_live_only),
 		cmocka_unit_test(test_print_round_trip),
 		cmocka_unit_test(test_table_sane),

@@ -266,6 +266,63 @@ static void test_valve_keys(void **state)
 	assert_non_null(strstr(err, ":4: [modbus.wheel_ud] valve_suction: "));
 }
 
+/* Every valve key's bad values refused with the file's line and the key
+ * (issue 22); two valves on one input of a drive, or one valve on two
+ * drives, refused at the line of the key that came second. */
+static void test_valve_keys_bad_input(void **state)
+{
+	static const struct {
+		const char *text, *where;
+	} bad[] = {
+		{ "[epos4.roll]\nvalve_air_bit = 32\n",
+		  ":2: [epos4.roll] valve_air_bit: 32 is out of range" },
+		{ "[epos4.roll]\nvalve_water_bit = sixteen\n",
+		  ":2: [epos4.roll] valve_water_bit: 'sixteen' is not an" },
+		{ "[epos4.roll]\nvalve_suction_bit = 16.5\n",
+		  ":2: [epos4.roll] valve_suction_bit: '16.5' is not an" },
+		{ "[epos4.roll]\nvalve_suction_bit = 0x10\n",
+		  ":2: [epos4.roll] valve_suction_bit: '0x10' is not an" },
+		{ "[modbus.wheel_lr]\nvalve_air = discrete\n",
+		  ":2: [modbus.wheel_lr] valve_air: " },
+		{ "[modbus.wheel_lr]\nvalve_water = input 0x10000\n",
+		  ":2: [modbus.wheel_lr] valve_water: " },
+		{ "[modbus.wheel_lr]\nvalve_suction = lamp 0x10\n",
+		  ":2: [modbus.wheel_lr] valve_suction: " },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[epos4.insertion]\n"
+		  "valve_air_bit = 16\nvalve_suction_bit = 16\n",
+		  ":7: [epos4.insertion] valve_suction_bit: the input of "
+		  "[epos4.insertion] valve_air_bit (one input per valve)" },
+		{ "[rig]\nbackend = drives\n[axis.wheel_ud]\n"
+		  "backend = modbus\n[modbus.wheel_ud]\n"
+		  "torque = holding 0 i16\nposition = input 0 i32\n"
+		  "valve_water = discrete 0x10\n"
+		  "valve_suction = discrete 16\n",
+		  ":9: [modbus.wheel_ud] valve_suction: the input of "
+		  "[modbus.wheel_ud] valve_water (one input per valve)" },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[axis.roll]\nbackend = epos4-usb\n"
+		  "[epos4.insertion]\nserial = A\nvalve_air_bit = 16\n"
+		  "[epos4.roll]\nserial = B\nvalve_air_bit = 17\n",
+		  ":12: [epos4.roll] valve_air_bit: [epos4.insertion] "
+		  "valve_air_bit reads that valve already" },
+	};
+	struct config c, before;
+
+	(void)state;
+	config_defaults(&before);
+	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+		if (load_text(&c, bad[i].text) != -EINVAL ||
+		    !strstr(err, bad[i].where)) {
+			fail_msg("'%s': got '%s'", bad[i].text, err);
+		}
+		assert_memory_equal(&c, &before, sizeof(c));
+	}
+	/* the same bit on a simulated axis' drive is never read */
+	assert_int_equal(load_text(&c, "[epos4.roll]\nvalve_air_bit = 16\n"
+				   "valve_water_bit = 16\n"), 0);
+}
+
 static void test_units(void **state)
 {
 	struct drive_units u;
@@ -300,6 +357,7 @@ int main(void)
 		cmocka_unit_test(test_epos4_checks),
 		cmocka_unit_test(test_feedback_age_per_bus),
 		cmocka_unit_test(test_valve_keys),
+		cmocka_unit_test(test_valve_keys_bad_input),
 		cmocka_unit_test(test_units),
 	};
 

@@ -19,14 +19,8 @@
 
 #include <cmocka.h>
 
-#include "conf/cases.h"
-#include "conf/config.h"
-#include "loop/loop.h"
 #include "loop/mailbox.h"
-#include "rig/hand.h"
-#include "rig/rig_sim.h"
-
-#define PERIOD_NS 1000000ull
+#include "rig_loop.h"
 
 static void test_answer(void **state)
 {
@@ -68,51 +62,9 @@ static void test_box(void **state)
 	assert_true(out == 3);
 }
 
-/* The force loop in lockstep on the normal case (its sites llq and
- * umbilical), the patient ENABLED or not, turns of 0.5 s. */
-struct rig_loop {
-	struct config cfg;
-	struct hand *hand;
-	struct rig *rig;
-	struct loop *loop;
-	uint64_t now_ns;
-};
-
-static void rig_loop_create(struct rig_loop *r, bool patient)
-{
-	char err[512];
-	struct colon *c;
-
-	memset(r, 0, sizeof(*r));
-	config_defaults(&r->cfg);
-	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
-	r->cfg.patient.enabled = patient;
-	r->cfg.patient.turn_s = 0.5;
-	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
-		 "config/cases/normal.case");
-	c = cases_load(&r->cfg, NULL, err, sizeof(err));
-	if (!c) {
-		fail_msg("%s", err);
-	}
-	r->hand = hand_create(&r->cfg, NULL);
-	r->rig = r->hand ? rig_sim_create(&r->cfg, r->hand) : NULL;
-	r->loop = r->rig ? loop_create(&r->cfg, r->rig, NULL, c, 1) : NULL;
-	assert_non_null(r->loop);
-	r->now_ns = ENDOSIM_NS_PER_S;
-}
-
-static void rig_loop_destroy(struct rig_loop *r)
-{
-	loop_destroy(r->loop);
-	r->rig->ops->destroy(r->rig);
-	hand_destroy(r->hand);
-}
-
 static const struct endosim_patient_state *step(struct rig_loop *r)
 {
-	r->now_ns += PERIOD_NS;
-	loop_step(r->loop, r->now_ns);
-	return &loop_state(r->loop)->patient;
+	return &rig_loop_step(r)->patient;
 }
 
 /* C posted, one cycle: its answer, the patient after it in *P. */
@@ -133,7 +85,7 @@ static void test_patient_commands(void **state)
 	struct rig_loop r;
 
 	(void)state;
-	rig_loop_create(&r, true);
+	rig_loop_create(&r, true, HAPTICS_MODEL_PAPER);
 	p = step(&r);
 	assert_true(p->enabled);
 	assert_int_equal(p->position, ENDOSIM_POSITION_LEFT_LATERAL);
@@ -177,7 +129,7 @@ static void test_patient_disabled(void **state)
 	struct rig_loop r;
 
 	(void)state;
-	rig_loop_create(&r, false);
+	rig_loop_create(&r, false, HAPTICS_MODEL_PAPER);
 	assert_int_equal(command(&r, LOOP_PATIENT_TURN,
 				 ENDOSIM_POSITION_PRONE, 0, &p), -EINVAL);
 	assert_int_equal(command(&r, LOOP_PATIENT_PRESS, 0, 0, &p), -EINVAL);
@@ -214,7 +166,7 @@ static void test_patient_command_waits(void **state)
 	int cycles = 0;
 
 	(void)state;
-	rig_loop_create(&r, true);
+	rig_loop_create(&r, true, HAPTICS_MODEL_PAPER);
 	ps.loop = r.loop;
 	ps.result = 1;
 	assert_int_equal(pthread_create(&t, NULL, post_prone, &ps), 0);

@@ -16,7 +16,10 @@
  *  - the lens: pressed into the wall it smears in proportion to the
  *    force above contact and the time, dipped into fluid it clouds, the
  *    water jet clears either in its wash time, suction near the wall
- *    reds it out with its time constant and lets go as fast.
+ *    reds it out with its time constant and lets go as fast;
+ *  - gravity on the colon, through the force loop (rod model, in
+ *    lockstep): the mobile segments' nodes sag along gravity, supine
+ *    towards the back and prone towards the front.
  */
 #include <errno.h>
 #include <math.h>
@@ -36,6 +39,7 @@
 #include "model/lens.h"
 #include "model/posture.h"
 #include "plain_anatomy.h"
+#include "rig_loop.h"
 
 #define DT 0.001
 #define ML 1e-6
@@ -337,6 +341,54 @@ static void lens(void **state)
 	assert_true(l.redout < 0.01);
 }
 
+/* The published nodes' mean displacement from rest along DOWN, m. */
+static double sag_along(const struct endosim_state *st, const double down[3])
+{
+	double sum = 0;
+
+	for (uint32_t k = 0; k < st->rod.nodes; k++) {
+		for (int d = 0; d < 3; d++) {
+			sum += st->rod.node[k][d] * down[d];
+		}
+	}
+	return st->rod.nodes ? sum / st->rod.nodes : 0;
+}
+
+/* Turned to POSITION and settled: the nodes' mean sag along gravity. */
+static double settled_sag(struct rig_loop *r, int position, double *y)
+{
+	const struct endosim_state *st = NULL;
+	const double back[3] = { 0, 1, 0 };
+
+	loop_patient_post(r->loop, &(struct loop_patient_command){
+		LOOP_PATIENT_TURN, position, 0 });
+	for (int k = 0; k < 2500; k++) {
+		st = rig_loop_step(r);
+	}
+	assert_false(st->patient.turning);
+	assert_true(st->rod.nodes > 10);
+	*y = sag_along(st, back);
+	return sag_along(st, st->patient.down);
+}
+
+static void colon_sags(void **state)
+{
+	struct rig_loop r;
+	double supine, prone, y_supine, y_prone;
+
+	(void)state;
+	rig_loop_create(&r, true, HAPTICS_MODEL_ROD);
+	supine = settled_sag(&r, POSTURE_SUPINE, &y_supine);
+	prone = settled_sag(&r, POSTURE_PRONE, &y_prone);
+	print_message("the mobile colon's nodes sag %.2f mm supine (towards "
+		      "the back: %+.2f mm), %.2f mm prone (%+.2f mm)\n",
+		      supine * 1e3, y_supine * 1e3, prone * 1e3,
+		      y_prone * 1e3);
+	assert_true(supine > 1e-4 && prone > 1e-4);
+	assert_true(y_supine > 1e-4 && y_prone < -1e-4);
+	rig_loop_destroy(&r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -345,6 +397,7 @@ int main(void)
 		cmocka_unit_test(fluid_pools),
 		cmocka_unit_test(suction),
 		cmocka_unit_test(lens),
+		cmocka_unit_test(colon_sags),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

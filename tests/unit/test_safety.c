@@ -1,6 +1,7 @@
 /* test_safety.c - the state machine, the fault latch, the safety filter
  * (slew, enable ramp), the fault monitors (motion, overruns, saturation,
- * non-finite values) and the test commands' injections. */
+ * non-finite values: the patient's body's through the force loop, in
+ * lockstep, under either model) and the test commands' injections. */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
@@ -13,6 +14,8 @@
 #include "proto/names.h"
 #include "loop/inject.h"
 #include "loop/safety.h"
+#include "model/haptics.h"
+#include "rig_loop.h"
 
 static struct config cfg;
 
@@ -470,6 +473,111 @@ static void test_finite(void **state)
 	assert_true(isnan(safety_first(&s)->value));
 }
 
+/* Cycles until the rig is enabled with its forces in full. */
+static const struct endosim_state *enabled(struct rig_loop *r)
+{
+	const struct endosim_state *st;
+
+	loop_post(r->loop, LOOP_CMD_ENABLE);
+	for (int k = 0; k < 5000; k++) {
+		st = rig_loop_step(r);
+		if (st->state == ENDOSIM_STATE_ENABLED &&
+		    st->safety.ramp >= 1) {
+			return st;
+		}
+	}
+	fail_msg("not enabled");
+	return NULL;
+}
+
+/*
+ * A wall law gone NaN makes the gas's pressure and every radius factor
+ * NaN in the patient's step (FLUID: the fluid's surface gone NaN, its
+ * level alone, which no force reads): the cycle that computes them faults
+ * (non-finite, the haptic rendering's stage) with every axis' torque off,
+ * under either model, and nothing crashes; the next cycle lays the body
+ * anew lying where it lies, so that reset is taken.
+ */
+static void patient_goes_nonfinite(int model, bool fluid)
+{
+	const struct endosim_state *st;
+	struct rig_loop r;
+	struct patient *pt;
+
+	rig_loop_create(&r, true, model);
+	loop_patient_post(r.loop, &(struct loop_patient_command){
+		LOOP_PATIENT_TURN, POSTURE_SUPINE, 0 });
+	enabled(&r);
+	pt = loop_patient(r.loop);
+	assert_true(patient_finite(pt));
+	if (fluid) {
+		pt->fluid.up[2] = NAN;
+	} else {
+		pt->gas.seg[ANATOMY_CECUM].law.nominal_pa = NAN;
+	}
+	st = rig_loop_step(&r);
+	assert_true(fluid || isnan(st->patient.pressure_pa));
+	assert_true(fluid || isnan(st->patient.factor[ANATOMY_SIGMOID]));
+	assert_int_equal(st->patient.burst_segment, -1);
+	assert_int_equal(st->state, ENDOSIM_STATE_FAULT);
+	assert_int_equal(st->fault_bits, ENDOSIM_FAULT_NONFINITE);
+	assert_int_equal(st->fault_detail, ENDOSIM_STAGE_HAPTICS);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		assert_true(st->axis[a].limited == 0);
+	}
+	for (int k = 0; k < 100; k++) {
+		st = rig_loop_step(&r);
+	}
+	assert_true(patient_finite(pt));
+	assert_int_equal(st->patient.position, ENDOSIM_POSITION_SUPINE);
+	assert_true(st->patient.pressure_pa > 10 * GAS_PA_PER_MMHG &&
+		    st->patient.pressure_pa < 20 * GAS_PA_PER_MMHG);
+	loop_post(r.loop, LOOP_CMD_RESET);
+	st = rig_loop_step(&r);
+	assert_int_equal(st->state, ENDOSIM_STATE_IDLE);
+	enabled(&r);
+	rig_loop_destroy(&r);
+}
+
+/* Each watched part of the body (the gas, a factor, the fluid, the lens,
+ * the pad) not finite is seen, and laid anew by the next step. */
+static void patient_watches_each_part(void)
+{
+	struct rig_loop r;
+	struct patient *pt;
+	double *part[8];
+
+	rig_loop_create(&r, true, HAPTICS_MODEL_PAPER);
+	pt = loop_patient(r.loop);
+	part[0] = &pt->gas.volume_m3;
+	part[1] = &pt->gas.pressure_pa;
+	part[2] = &pt->factor[ANATOMY_TRANSVERSE];
+	part[3] = &pt->fluid.seg[ANATOMY_CECUM].volume_m3;
+	part[4] = &pt->fluid.seg[ANATOMY_SIGMOID].level_m;
+	part[5] = &pt->lens.smear;
+	part[6] = &pt->lens.redout;
+	part[7] = &pt->pad_n;
+	for (int i = 0; i < 8; i++) {
+		rig_loop_step(&r);
+		assert_true(patient_finite(pt));
+		*part[i] = i % 2 ? NAN : -INFINITY;
+		assert_false(patient_finite(pt));
+		assert_int_equal(rig_loop_step(&r)->fault_bits, 0);
+		assert_true(patient_finite(pt));
+	}
+	rig_loop_destroy(&r);
+}
+
+static void test_patient_nonfinite(void **state)
+{
+	(void)state;
+	for (int fluid = 0; fluid < 2; fluid++) {
+		patient_goes_nonfinite(HAPTICS_MODEL_PAPER, fluid);
+		patient_goes_nonfinite(HAPTICS_MODEL_ROD, fluid);
+	}
+	patient_watches_each_part();
+}
+
 /* The test commands alter the feedback and the pipeline, until cleared. */
 static void test_inject(void **state)
 {
@@ -599,6 +707,7 @@ int main(void)
 		cmocka_unit_test(test_overrun_budget),
 		cmocka_unit_test(test_overrun_fault_setting),
 		cmocka_unit_test(test_finite),
+		cmocka_unit_test(test_patient_nonfinite),
 		cmocka_unit_test(test_inject),
 	};
 

@@ -1,4 +1,6 @@
-/* test_scenario.c - the scripted hand's scenario files. */
+/* test_scenario.c - the scripted hand's scenario files, and the hand that
+ * plays one (hand.h): live input over the scenario while it holds, the
+ * valves alone held beside the scenario's forces. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,6 +11,8 @@
 
 #include <cmocka.h>
 
+#include "conf/config.h"
+#include "rig/hand.h"
 #include "rig/scenario.h"
 
 static char path[64];
@@ -130,6 +134,56 @@ static void test_shipped_demo(void **state)
 	scenario_destroy(s);
 }
 
+/*
+ * The valves alone (endoctl patient valve): held for their time while
+ * the scenario pushes on as before; live forces with valves override the
+ * scenario and hold both; valves alone then leave the live forces.
+ */
+static void test_valves_alone(void **state)
+{
+	const double pos[ENDOSIM_AXES] = { 0 }, vel[ENDOSIM_AXES] = { 0 };
+	const double live[ENDOSIM_AXES] = { 5, 0, 0, 0 };
+	const uint64_t s = ENDOSIM_NS_PER_S;
+	double f[ENDOSIM_AXES];
+	struct config cfg;
+	struct hand *h;
+
+	(void)state;
+	config_defaults(&cfg);
+	h = hand_create(&cfg, load("0.0 roll force 0.3\n"));
+	assert_non_null(h);
+	hand_forces(h, 0.5, s, pos, vel, f);
+	assert_true(f[ENDOSIM_AXIS_ROLL] == 0.3);
+	assert_int_equal(hand_valves(h, s), 0);
+
+	hand_set_live(h, NULL, ENDOSIM_VALVE_AIR, 1.0, s);
+	hand_forces(h, 1.0, s + s / 2, pos, vel, f);
+	assert_true(f[ENDOSIM_AXIS_ROLL] == 0.3);
+	assert_true(f[ENDOSIM_AXIS_INSERTION] == 0);
+	assert_int_equal(hand_valves(h, s + s / 2), ENDOSIM_VALVE_AIR);
+	hand_forces(h, 1.5, 2 * s, pos, vel, f);
+	assert_int_equal(hand_valves(h, 2 * s), 0); /* sprung back */
+	assert_true(f[ENDOSIM_AXIS_ROLL] == 0.3);
+
+	hand_set_live(h, live, ENDOSIM_VALVE_WATER, 1.0, 3 * s);
+	hand_forces(h, 3.0, 3 * s + 1, pos, vel, f);
+	assert_true(f[ENDOSIM_AXIS_INSERTION] == 5);
+	assert_true(f[ENDOSIM_AXIS_ROLL] == 0);
+	assert_int_equal(hand_valves(h, 3 * s + 1), ENDOSIM_VALVE_WATER);
+	hand_set_live(h, NULL, ENDOSIM_VALVE_SUCTION, 5.0, 3 * s + s / 2);
+	hand_forces(h, 3.5, 3 * s + s / 2 + 1, pos, vel, f);
+	assert_true(f[ENDOSIM_AXIS_INSERTION] == 5);
+	assert_int_equal(hand_valves(h, 3 * s + s / 2 + 1),
+			 ENDOSIM_VALVE_SUCTION);
+	/* the live forces lapse at their own time, the valves hold on */
+	hand_forces(h, 4.5, 4 * s + s / 2, pos, vel, f);
+	assert_true(f[ENDOSIM_AXIS_INSERTION] == 0);
+	assert_true(f[ENDOSIM_AXIS_ROLL] == 0.3);
+	assert_int_equal(hand_valves(h, 4 * s + s / 2),
+			 ENDOSIM_VALVE_SUCTION);
+	hand_destroy(h);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -138,6 +192,7 @@ int main(void)
 		cmocka_unit_test(test_without_end),
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_shipped_demo),
+		cmocka_unit_test(test_valves_alone),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
