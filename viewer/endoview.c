@@ -183,6 +183,7 @@ static int build_colon(struct app *a, const struct client_scene *s)
 		colon_free(&c);
 		return -1;
 	}
+	model_keep(c.model, c.lod->drawn); /* what the views draw */
 	colon_free(&a->colon);
 	a->colon = c;
 	a->timed_from = a->frame + WARM_UP_FRAMES;

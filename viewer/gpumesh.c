@@ -16,24 +16,10 @@ enum { POS, NRM, TEX, IDX, BUFFERS };
 struct gpumesh {
 	GLuint vao;
 	GLuint buf[BUFFERS];
-	uint32_t ring;     /* a tube's, 0: the mesh's own vertex order */
-	uint32_t vertices; /* on the GPU */
+	const struct lod *lod; /* the layout */
 	float (*pos)[3];   /* staging, as the GPU lays them out */
 	float (*nrm)[3];
 };
-
-/* The model's vertex behind GPU vertex K. */
-static uint32_t source(const struct gpumesh *g, uint32_t k)
-{
-	uint32_t i, j;
-
-	if (!g->ring) {
-		return k;
-	}
-	i = k / (g->ring + 1);
-	j = k % (g->ring + 1);
-	return i * g->ring + (j == g->ring ? 0 : j);
-}
 
 /*
  * Vertex V's normal for shading: its tilt along the colon (a fold's
@@ -59,7 +45,7 @@ static void stage(struct gpumesh *g, const struct model *m, uint32_t k0,
 		  uint32_t k1)
 {
 	for (uint32_t k = k0; k < k1; k++) {
-		uint32_t v = source(g, k);
+		uint32_t v = lod_source(g->lod, k, NULL);
 
 		for (int x = 0; x < 3; x++) {
 			g->pos[k][x] = m->mesh->pos[v][x];
@@ -74,15 +60,16 @@ static void stage(struct gpumesh *g, const struct model *m, uint32_t k0,
 static float (*texcoords(const struct gpumesh *g, const struct model *m))[2]
 {
 	const struct mesh *me = m->mesh;
-	float (*uv)[2] = malloc((size_t)g->vertices * sizeof(*uv));
+	uint32_t ring = g->lod->ring;
+	float (*uv)[2] = malloc((size_t)g->lod->vertices * sizeof(*uv));
 	double ds = centreline_step(m->cl);
 
-	for (uint32_t k = 0; uv && k < g->vertices; k++) {
-		uint32_t v = source(g, k);
+	for (uint32_t k = 0; uv && k < g->lod->vertices; k++) {
+		uint32_t j, v = lod_source(g->lod, k, &j);
 
 		uv[k][0] = (float)(me->sample[v] * ds / VESSELS_TILE_M);
-		if (g->ring) {
-			uv[k][1] = (float)(k % (g->ring + 1)) / (float)g->ring *
+		if (ring) {
+			uv[k][1] = (float)j / (float)ring *
 				   (float)VESSELS_AROUND;
 		} else {
 			uv[k][1] = (float)vessels_around(atan2(me->off[v][2],
@@ -104,13 +91,13 @@ static void attribute(GLuint buf, int attr, int size, GLsizeiptr bytes,
 static int upload_all(struct gpumesh *g, const struct model *m,
 		      const struct lod *l)
 {
-	GLsizeiptr vbytes = (GLsizeiptr)g->vertices * 3 * sizeof(float);
+	GLsizeiptr vbytes = (GLsizeiptr)l->vertices * 3 * sizeof(float);
 	float (*uv)[2] = texcoords(g, m);
 
 	if (!uv) {
 		return -1;
 	}
-	stage(g, m, 0, g->vertices);
+	stage(g, m, 0, l->vertices);
 	glGenVertexArrays(1, &g->vao);
 	glBindVertexArray(g->vao);
 	glGenBuffers(BUFFERS, g->buf);
@@ -131,20 +118,16 @@ static int upload_all(struct gpumesh *g, const struct model *m,
 
 struct gpumesh *gpumesh_create(const struct model *m, const struct lod *l)
 {
-	const struct mesh *me = m->mesh;
 	struct gpumesh *g = calloc(1, sizeof(*g));
 
 	if (!g) {
 		return NULL;
 	}
-	g->ring = l->ring;
-	g->vertices = g->ring ? lod_vertex(g->ring, (uint32_t)me->samples - 1,
-					   0) + 1 :
-				me->vertices;
-	g->pos = malloc((size_t)g->vertices * sizeof(*g->pos));
-	g->nrm = malloc((size_t)g->vertices * sizeof(*g->nrm));
+	g->lod = l;
+	g->pos = malloc((size_t)l->vertices * sizeof(*g->pos));
+	g->nrm = malloc((size_t)l->vertices * sizeof(*g->nrm));
 	if (!g->pos || !g->nrm || upload_all(g, m, l)) {
-		log_err("colon mesh: cannot upload %u vertices", g->vertices);
+		log_err("colon mesh: cannot upload %u vertices", l->vertices);
 		gpumesh_destroy(g);
 		return NULL;
 	}
@@ -163,20 +146,6 @@ void gpumesh_destroy(struct gpumesh *g)
 	free(g);
 }
 
-/* The GPU's vertices [*K0, *K1) that model vertices [FIRST, +COUNT) make. */
-static void gpu_range(const struct gpumesh *g, uint32_t first,
-		      uint32_t count, uint32_t *k0, uint32_t *k1)
-{
-	if (!g->ring) {
-		*k0 = first;
-		*k1 = first + count;
-		return;
-	}
-	*k0 = lod_vertex(g->ring, first / g->ring, 0);
-	*k1 = lod_vertex(g->ring, (first + count - 1) / g->ring + 1, 0);
-	*k1 = *k1 < g->vertices ? *k1 : g->vertices;
-}
-
 void gpumesh_update(struct gpumesh *g, const struct model *m, uint32_t first,
 		    uint32_t count)
 {
@@ -187,7 +156,10 @@ void gpumesh_update(struct gpumesh *g, const struct model *m, uint32_t first,
 	if (!count) {
 		return;
 	}
-	gpu_range(g, first, count, &k0, &k1);
+	lod_gpu_range(g->lod, first, count, &k0, &k1);
+	if (k0 == k1) {
+		return;
+	}
 	stage(g, m, k0, k1);
 	at = (GLintptr)k0 * 3 * sizeof(float);
 	bytes = (GLsizeiptr)(k1 - k0) * 3 * sizeof(float);

@@ -17,13 +17,15 @@
 
 struct gpumesh;
 
-/* Uploads M (placed as it is now) and L. NULL on failure (logged). */
+/* Uploads M (placed as it is now: the vertices L draws, lod.h) and L,
+ * which must outlive G. NULL on failure (logged). */
 struct gpumesh *gpumesh_create(const struct model *m, const struct lod *l);
 
 /* NULL is fine. */
 void gpumesh_destroy(struct gpumesh *g);
 
-/* Uploads the positions and normals of vertices [FIRST, FIRST + COUNT). */
+/* Uploads the positions and normals of M's vertices [FIRST, FIRST +
+ * COUNT) that the levels draw (the rows that hold them). */
 void gpumesh_update(struct gpumesh *g, const struct model *m, uint32_t first,
 		    uint32_t count);
 

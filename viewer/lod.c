@@ -1,6 +1,7 @@
 /* lod.c - see lod.h. */
 #include "viewer/lod.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,14 +20,33 @@ static uint32_t vertex_stride(uint32_t ring, uint32_t target)
 	return ring / 3 ? ring / 3 : 1;
 }
 
+static uint32_t gcd(uint32_t a, uint32_t b)
+{
+	while (b) {
+		uint32_t r = a % b;
+
+		a = b;
+		b = r;
+	}
+	return a;
+}
+
 static void strides(struct lod *l, const struct mesh *m, uint32_t ring)
 {
+	l->column = 0;
 	for (int k = 0; k < l->levels; k++) {
 		double step = lod_step_m[k] / m->step_m;
 
 		l->ring_stride[k] = step > 1 ? (uint32_t)lround(step) : 1;
 		l->vertex_stride[k] = vertex_stride(ring, lod_ring[k]);
+		l->column = gcd(l->vertex_stride[k], l->column);
 	}
+}
+
+/* Where the levels are first made: every ring of the tube on the GPU. */
+static uint32_t full_vertex(uint32_t ring, uint32_t i, uint32_t j)
+{
+	return i * (ring + 1) + j;
 }
 
 /* The first ring of segment K and the ring it runs to. */
@@ -54,9 +74,10 @@ static uint32_t *strip(uint32_t *out, uint32_t ring, uint32_t p, uint32_t q,
 		       uint32_t sv)
 {
 	for (uint32_t j = 0; j < ring; j += sv) {
-		uint32_t a = lod_vertex(ring, p, j), b = lod_vertex(ring, q, j);
-		uint32_t c = lod_vertex(ring, p, j + sv);
-		uint32_t d = lod_vertex(ring, q, j + sv);
+		uint32_t a = full_vertex(ring, p, j);
+		uint32_t b = full_vertex(ring, q, j);
+		uint32_t c = full_vertex(ring, p, j + sv);
+		uint32_t d = full_vertex(ring, q, j + sv);
 
 		out = put_tri(out, a, b, c);
 		out = put_tri(out, b, d, c);
@@ -69,11 +90,11 @@ static uint32_t *fan(uint32_t *out, const struct mesh *m, uint32_t ring,
 		     uint32_t sv)
 {
 	uint32_t last = (uint32_t)m->samples - 2;
-	uint32_t pole = lod_vertex(ring, last + 1, 0);
+	uint32_t pole = full_vertex(ring, last + 1, 0);
 
 	for (uint32_t j = 0; j < ring; j += sv) {
-		out = put_tri(out, lod_vertex(ring, last, j), pole,
-			      lod_vertex(ring, last, j + sv));
+		out = put_tri(out, full_vertex(ring, last, j), pole,
+			      full_vertex(ring, last, j + sv));
 	}
 	return out;
 }
@@ -134,6 +155,48 @@ static void fill_tube(struct lod *l, const struct mesh *m, uint32_t ring)
 	}
 }
 
+/* A row for each ring the indices use, in order. */
+static void assign_rows(struct lod *l, const struct mesh *m)
+{
+	for (size_t i = 0; i < m->samples; i++) {
+		l->row[i] = LOD_NO_ROW;
+	}
+	for (uint32_t k = 0; k < l->indices; k++) {
+		l->row[l->index[k] / (l->ring + 1)] = 0;
+	}
+	l->rows = 0;
+	for (size_t i = 0; i < m->samples; i++) {
+		if (l->row[i] != LOD_NO_ROW) {
+			l->row_sample[l->rows] = (uint32_t)i;
+			l->row[i] = l->rows++;
+		}
+	}
+}
+
+/* The GPU's vertices: the rows' every column-th vertex and the pole; the
+ * indices moved onto them. */
+static void lay_out(struct lod *l, const struct mesh *m)
+{
+	uint32_t ring = l->ring;
+
+	assign_rows(l, m);
+	for (uint32_t k = 0; k < l->indices; k++) {
+		uint32_t v = l->index[k];
+
+		l->index[k] = lod_vertex(l, v / (ring + 1), v % (ring + 1));
+	}
+	l->vertices = (l->rows - 1) * (ring / l->column + 1) + 1; /* the pole
+								     alone */
+	for (uint32_t r = 0; r + 1 < l->rows; r++) {
+		uint32_t first = l->row_sample[r] * ring;
+
+		for (uint32_t j = 0; j < ring; j += l->column) {
+			l->drawn[first + j] = 1;
+		}
+	}
+	l->drawn[m->vertices - 1] = 1; /* the pole */
+}
+
 static void fill_mesh(struct lod *l, const struct mesh *m)
 {
 	memcpy(l->index, m->tri, (size_t)m->triangles * sizeof(*m->tri));
@@ -141,6 +204,14 @@ static void fill_mesh(struct lod *l, const struct mesh *m)
 		l->range[g].first = 3 * m->seg[g].first;
 		l->range[g].count = 3 * m->seg[g].count;
 	}
+}
+
+static int make_layout(struct lod *l, const struct mesh *m)
+{
+	l->row = malloc(m->samples * sizeof(*l->row));
+	l->row_sample = malloc(m->samples * sizeof(*l->row_sample));
+	l->drawn = calloc(m->vertices, sizeof(*l->drawn));
+	return l->row && l->row_sample && l->drawn ? 0 : -ENOMEM;
 }
 
 struct lod *lod_create(const struct mesh *m, uint32_t ring)
@@ -164,13 +235,15 @@ struct lod *lod_create(const struct mesh *m, uint32_t ring)
 	l->indices = (uint32_t)n;
 	l->index = malloc(n * sizeof(*l->index));
 	l->range = calloc((size_t)l->levels * m->segments, sizeof(*l->range));
-	if (!l->index || !l->range) {
+	if (!l->index || !l->range || (ring && make_layout(l, m))) {
 		goto fail;
 	}
 	if (ring) {
 		fill_tube(l, m, ring);
+		lay_out(l, m);
 	} else {
 		fill_mesh(l, m);
+		l->vertices = m->vertices;
 	}
 	return l;
 
@@ -186,7 +259,55 @@ void lod_destroy(struct lod *l)
 	}
 	free(l->index);
 	free(l->range);
+	free(l->row);
+	free(l->row_sample);
+	free(l->drawn);
 	free(l);
+}
+
+uint32_t lod_source(const struct lod *l, uint32_t k, uint32_t *j)
+{
+	uint32_t per_row = l->ring / l->column + 1, around;
+
+	if (!l->ring) {
+		if (j) {
+			*j = 0;
+		}
+		return k;
+	}
+	around = k % per_row * l->column;
+	if (j) {
+		*j = around;
+	}
+	return l->row_sample[k / per_row] * l->ring +
+	       (around == l->ring ? 0 : around);
+}
+
+void lod_gpu_range(const struct lod *l, uint32_t first, uint32_t count,
+		   uint32_t *k0, uint32_t *k1)
+{
+	uint32_t per_row = l->ring / l->column + 1, i0, i1;
+
+	if (!l->ring) {
+		*k0 = first;
+		*k1 = first + count;
+		return;
+	}
+	i0 = first / l->ring;
+	i1 = (first + count - 1) / l->ring;
+	while (i0 <= i1 && l->row[i0] == LOD_NO_ROW) {
+		i0++;
+	}
+	while (i1 > i0 && l->row[i1] == LOD_NO_ROW) {
+		i1--;
+	}
+	if (i0 > i1) {
+		*k0 = *k1 = 0;
+		return;
+	}
+	*k0 = l->row[i0] * per_row;
+	*k1 = (l->row[i1] + 1) * per_row;
+	*k1 = *k1 < l->vertices ? *k1 : l->vertices;
 }
 
 struct lod_range lod_segment(const struct lod *l, int level, uint32_t k)

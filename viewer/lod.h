@@ -19,10 +19,14 @@
  * segment's first ring. The triangles wind as the mesh's
  * (counter-clockwise from the lumen).
  *
- * The indices address the vertices as gpumesh.h lays them out: for a
- * generated tube, ring i's vertex j at lod_vertex(ring, i, j), every ring
+ * The indices address the vertices as gpumesh.h lays them out, and that
+ * layout holds only what some level draws: for a generated tube, the rings
+ * some level draws, one row each (in order), and of each every column-th
+ * vertex (column: the largest stride all levels' vertex strides are
+ * multiples of), ring i's vertex j at lod_vertex(l, i, j), every row
  * carrying its first vertex again at j = ring (where the texture wraps),
- * the cecum's pole last; any other mesh (an import) as the mesh does, with
+ * the cecum's pole last, alone on its row; drawn marks those vertices of
+ * the mesh. Any other mesh (an import) is laid out as the mesh is, with
  * one level: its own triangles.
  *
  * lod_create() allocates; the rest does not. Any thread, read-only.
@@ -51,17 +55,36 @@ struct lod {
 	uint32_t *index;
 	uint32_t indices;
 	struct lod_range *range; /* [level * segments + segment] */
+	/* the GPU's vertices (a tube's; an import's are the mesh's) */
+	uint32_t vertices;
+	uint32_t column;    /* every column-th vertex round a ring */
+	uint32_t rows;
+	uint32_t *row;      /* per sample: its row, LOD_NO_ROW if not drawn */
+	uint32_t *row_sample; /* per row: its sample */
+	uint8_t *drawn;     /* per vertex of the mesh: on the GPU (non-zero) */
 };
+
+#define LOD_NO_ROW UINT32_MAX
 
 /* Ring spacing (m) and vertices per ring each level aims at. */
 extern const double lod_step_m[LOD_LEVELS];
 extern const uint32_t lod_ring[LOD_LEVELS];
 
-/* Where vertex J (0..RING) of ring I of a tube lies in the GPU's arrays. */
-static inline uint32_t lod_vertex(uint32_t ring, uint32_t i, uint32_t j)
+/* Where vertex J (0..ring, a multiple of column) of ring I of a tube
+ * (a ring some level draws) lies in the GPU's arrays. */
+static inline uint32_t lod_vertex(const struct lod *l, uint32_t i, uint32_t j)
 {
-	return i * (ring + 1) + j;
+	return l->row[i] * (l->ring / l->column + 1) + j / l->column;
 }
+
+/* The mesh's vertex that GPU vertex K shows; *J (may be NULL): a tube's
+ * vertex' place round its ring, 0..ring (ring: the seam's copy), else 0. */
+uint32_t lod_source(const struct lod *l, uint32_t k, uint32_t *j);
+
+/* The GPU's vertices [*K0, *K1) that show any of the mesh's vertices
+ * [FIRST, FIRST + COUNT) (COUNT > 0); *K0 == *K1 if none. */
+void lod_gpu_range(const struct lod *l, uint32_t first, uint32_t count,
+		   uint32_t *k0, uint32_t *k1);
 
 /* The levels of mesh M, a generated tube of RING vertices per ring (0 if it
  * is not one). NULL on ENOMEM or a mesh of more than 2^32 indices. */

@@ -321,6 +321,26 @@ void model_destroy(struct model *m)
 	free(m);
 }
 
+void model_keep(struct model *m, const uint8_t *keep)
+{
+	m->keep = keep;
+}
+
+/* Vertex J as placed now, kept or not. */
+static void vertex_at(const struct model *m, uint32_t j, double p[3])
+{
+	float f[3];
+
+	if (m->keep && !m->keep[j]) {
+		mesh_vertex_at(m->mesh, m->cl, j, f);
+	} else {
+		memcpy(f, m->mesh->pos[j], sizeof(f));
+	}
+	for (int x = 0; x < 3; x++) {
+		p[x] = f[x];
+	}
+}
+
 /* Widens [*LO, *HI) to hold [A, B). */
 static void widen(uint32_t *lo, uint32_t *hi, uint32_t a, uint32_t b)
 {
@@ -344,7 +364,7 @@ static void place_span(struct model *m, int k, uint32_t *lo, uint32_t *hi)
 	centreline_span_range(m->cl, k, &s0, &s1);
 	a = (size_t)lround(s0 / ds);
 	b = (size_t)lround(s1 / ds);
-	mesh_place(me, m->cl, a, b);
+	mesh_place_kept(me, m->cl, a, b, m->keep);
 	a = a > me->reach ? a - me->reach : 0;
 	b = b + me->reach + 1 < me->samples ? b + me->reach + 1 : me->samples;
 	widen(lo, hi, me->sample_first[a], me->sample_first[b]);
@@ -493,10 +513,11 @@ static uint32_t ring_vertex(const struct model *m, size_t i, const double d[3])
 	}
 	for (uint32_t j = me->sample_first[i]; j < me->sample_first[i + 1];
 	     j++) {
-		double x[3] = { me->pos[j][0] - c->p[0],
-				me->pos[j][1] - c->p[1],
-				me->pos[j][2] - c->p[2] };
-		double dot = vec3_dot(x, d) / fmax(vec3_norm(x), 1e-9);
+		double x[3], dot;
+
+		vertex_at(m, j, x);
+		vec3_sub(x, x, c->p);
+		dot = vec3_dot(x, d) / fmax(vec3_norm(x), 1e-9);
 
 		if (dot > best_dot) {
 			best_dot = dot;
@@ -534,8 +555,8 @@ void model_wall(const struct model *m, size_t i, double angle_rad,
 	} else {
 		j = ring_vertex(m, i, d);
 	}
+	vertex_at(m, j, p);
 	for (int x = 0; x < 3; x++) {
-		p[x] = me->pos[j][x];
 		n[x] = -d[x];
 	}
 }
@@ -579,9 +600,8 @@ double model_wall_gap(const struct model *m, size_t *i, const double p[3],
 		vec3_copy(d, c->u);
 	}
 	j = ring_vertex(m, *i, d);
-	for (int k = 0; k < 3; k++) {
-		wall[k] = m->mesh->pos[j][k] - c->p[k];
-	}
+	vertex_at(m, j, wall);
+	vec3_sub(wall, wall, c->p);
 	return vec3_dot(wall, d) - rho;
 }
 

@@ -17,6 +17,12 @@
  * publishes (struct endosim_rod_state) with centreline_displace(), as the
  * daemon's colon follows them (flex.h).
  *
+ * A view that draws only some vertices (lod.h) says which with
+ * model_keep(): from then on those two place the others only for the
+ * segments' bounding boxes (mesh_place_kept(): the boxes stay the
+ * daemon's), their pos and nrm left as they were; model_wall() and
+ * model_wall_gap() place the vertices they read as they go.
+ *
  * Main thread only. model_create() allocates; the rest does not.
  */
 #ifndef ENDOVIEW_MODEL_H
@@ -79,6 +85,7 @@ struct model {
 	   node_first[k] (node_count[k] of them; 0: the span is bowed) */
 	double node[ENDOSIM_COLON_NODES][3];
 	int node_first[CENTRELINE_MAX_SPANS], node_count[CENTRELINE_MAX_SPANS];
+	const uint8_t *keep; /* the vertices kept placed (NULL: all) */
 };
 
 /*
@@ -91,6 +98,11 @@ struct model *model_create(const struct client_scene *s, char *err,
 
 /* NULL is fine. */
 void model_destroy(struct model *m);
+
+/* From now on model_bow() and model_displace() keep only the vertices
+ * KEEP marks placed (one byte per vertex, non-zero: kept; NULL: all, as
+ * model_create() leaves it). KEEP must outlive its use. */
+void model_keep(struct model *m, const uint8_t *keep);
 
 /*
  * Bows span k (0 <= k < SPANS) to BOW_M[k] wherever it differs from the

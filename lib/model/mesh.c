@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,11 +33,14 @@ struct mesh *mesh_create(uint32_t vertices, uint32_t triangles,
 	m->sample_rho = calloc(samples, sizeof(*m->sample_rho));
 	m->near_lo = calloc(samples, sizeof(*m->near_lo));
 	m->near_hi = calloc(samples, sizeof(*m->near_hi));
+	m->sample_min = calloc(samples, sizeof(*m->sample_min));
+	m->sample_max = calloc(samples, sizeof(*m->sample_max));
 	m->sample = calloc(vertices, sizeof(*m->sample));
 	m->tri = calloc(triangles, sizeof(*m->tri));
 	m->sample_first = calloc(samples + 1, sizeof(*m->sample_first));
-	if (!m->pos || !m->nrm || !m->off || !m->noff || !m->sample_rho || !m->near_lo || !m->near_hi || !m->sample ||
-	    !m->tri || !m->sample_first) {
+	if (!m->pos || !m->nrm || !m->off || !m->noff || !m->sample_rho ||
+	    !m->near_lo || !m->near_hi || !m->sample_min || !m->sample_max ||
+	    !m->sample || !m->tri || !m->sample_first) {
 		mesh_destroy(m);
 		return NULL;
 	}
@@ -55,6 +59,8 @@ void mesh_destroy(struct mesh *m)
 	free(m->sample_rho);
 	free(m->near_lo);
 	free(m->near_hi);
+	free(m->sample_min);
+	free(m->sample_max);
 	free(m->sample);
 	free(m->tri);
 	free(m->sample_first);
@@ -68,6 +74,7 @@ size_t mesh_bytes(const struct mesh *m)
 	       (size_t)m->vertices * (4 * sizeof(*m->pos) + sizeof(uint32_t)) +
 	       (size_t)m->triangles * sizeof(*m->tri) +
 	       (4 * m->samples + 1) * sizeof(uint32_t) +
+	       m->samples * (sizeof(*m->sample_min) + sizeof(*m->sample_max)) +
 	       m->segments * sizeof(*m->seg);
 }
 
@@ -133,33 +140,134 @@ static double fold_reach(const struct mesh *m, const struct centreline *cl,
 	return rho;
 }
 
-static void place_vertex(struct mesh *m, const struct centreline *cl,
-			 size_t i, uint32_t j)
+/* Whether sample I's vertices are held between near planes. */
+static bool holds_folds(const struct mesh *m, size_t i)
 {
-	const struct centreline_point *c = centreline_sample(cl, i);
-	const float *o = m->off[j], *n = m->noff[j];
-	double b = o[1], cc = o[2], p[3], d[3];
+	return m->hold_folds && m->near_lo[i] <= m->near_hi[i];
+}
 
-	vec3_axpy(p, c->p, o[0], c->t);
-	if (m->hold_folds && m->near_lo[i] <= m->near_hi[i] &&
-	    (b != 0 || cc != 0)) {
-		double rho = sqrt(b * b + cc * cc), k;
+/* Coordinate X of the point at (A, B, CC) in C's frame (t, u, v). */
+static inline float frame_coord(const struct centreline_point *c, int x,
+				double a, double b, double cc)
+{
+	return (float)(c->p[x] + a * c->t[x] + b * c->u[x] + cc * c->v[x]);
+}
 
-		vec3_scale(d, c->u, b / rho);
-		vec3_axpy(d, d, cc / rho, c->v);
-		k = fold_reach(m, cl, i, p, d, rho) / rho;
+/* The point at (A, B, CC) in C's frame, as a float (written out: -O2
+ * leaves a loop of three rolled, and the viewer places ~350 000 points at
+ * a time). */
+static inline void frame_point(const struct centreline_point *c, double a,
+			       double b, double cc, float out[3])
+{
+	out[0] = frame_coord(c, 0, a, b, cc);
+	out[1] = frame_coord(c, 1, a, b, cc);
+	out[2] = frame_coord(c, 2, a, b, cc);
+}
+
+/* How much the near planes shorten offset O (not on the axis) of a
+ * vertex of sample I (at C). */
+static double fold_factor(const struct mesh *m, const struct centreline *cl,
+			  size_t i, const struct centreline_point *c,
+			  const float o[3])
+{
+	double b = o[1], cc = o[2], rho = sqrt(b * b + cc * cc);
+	double base[3], d[3];
+
+	vec3_axpy(base, c->p, o[0], c->t);
+	vec3_scale(d, c->u, b / rho);
+	vec3_axpy(d, d, cc / rho, c->v);
+	return fold_reach(m, cl, i, base, d, rho) / rho;
+}
+
+/* Vertex J of sample I (at C) where mesh_place() puts it; FOLDS:
+ * holds_folds(M, I). */
+static inline void vertex_position(const struct mesh *m,
+				   const struct centreline *cl, size_t i,
+				   const struct centreline_point *c,
+				   bool folds, uint32_t j, float out[3])
+{
+	const float *o = m->off[j];
+	double b = o[1], cc = o[2];
+
+	if (folds && (b != 0 || cc != 0)) {
+		double k = fold_factor(m, cl, i, c, o);
+
 		b *= k;
 		cc *= k;
 	}
-	vec3_axpy(p, p, b, c->u);
-	vec3_axpy(p, p, cc, c->v);
-	for (int x = 0; x < 3; x++) {
-		m->pos[j][x] = (float)p[x];
-		m->nrm[j][x] = (float)(n[0] * c->t[x] + n[1] * c->u[x] +
-				       n[2] * c->v[x]);
+	frame_point(c, o[0], b, cc, out);
+}
+
+static inline float least(float a, float b)
+{
+	return a < b ? a : b;
+}
+
+static inline float most(float a, float b)
+{
+	return a > b ? a : b;
+}
+
+/* Widens the box [LO, HI] to hold P; a NaN widens nothing. */
+static inline void widen_box(float lo[3], float hi[3], const float p[3])
+{
+	lo[0] = least(p[0], lo[0]);
+	lo[1] = least(p[1], lo[1]);
+	lo[2] = least(p[2], lo[2]);
+	hi[0] = most(p[0], hi[0]);
+	hi[1] = most(p[1], hi[1]);
+	hi[2] = most(p[2], hi[2]);
+}
+
+static void empty_box(float lo[3], float hi[3])
+{
+	for (int d = 0; d < 3; d++) {
+		lo[d] = INFINITY;
+		hi[d] = -INFINITY;
 	}
 }
 
+/* Places sample I's vertices that KEEP marks (all without KEEP) and bounds
+ * every one of them in the sample's box. */
+static void place_sample(struct mesh *m, const struct centreline *cl,
+			 size_t i, const uint8_t *keep)
+{
+	const struct centreline_point *c = centreline_sample(cl, i);
+	bool folds = holds_folds(m, i);
+	float lo[3], hi[3];
+
+	empty_box(lo, hi);
+	for (uint32_t j = m->sample_first[i]; j < m->sample_first[i + 1];
+	     j++) {
+		const float *n = m->noff[j];
+		float p[3];
+
+		vertex_position(m, cl, i, c, folds, j, p);
+		widen_box(lo, hi, p);
+		if (keep && !keep[j]) {
+			continue;
+		}
+		for (int x = 0; x < 3; x++) {
+			m->pos[j][x] = p[x];
+			m->nrm[j][x] = (float)(n[0] * c->t[x] + n[1] * c->u[x] +
+					       n[2] * c->v[x]);
+		}
+	}
+	memcpy(m->sample_min[i], lo, sizeof(lo));
+	memcpy(m->sample_max[i], hi, sizeof(hi));
+}
+
+/* Sample I's box from the positions as they are (an import at rest). */
+static void sample_bounds(struct mesh *m, size_t i)
+{
+	empty_box(m->sample_min[i], m->sample_max[i]);
+	for (uint32_t j = m->sample_first[i]; j < m->sample_first[i + 1];
+	     j++) {
+		widen_box(m->sample_min[i], m->sample_max[i], m->pos[j]);
+	}
+}
+
+/* Segment K's box: its samples' and those of the next tri_span. */
 static void segment_bounds(struct mesh *m, uint32_t k, double ds)
 {
 	struct mesh_segment *sg = &m->seg[k];
@@ -169,37 +277,30 @@ static void segment_bounds(struct mesh *m, uint32_t k, double ds)
 	if (last >= m->samples) {
 		last = m->samples - 1;
 	}
-	for (int d = 0; d < 3; d++) {
-		sg->min[d] = INFINITY;
-		sg->max[d] = -INFINITY;
-	}
-	for (uint32_t j = m->sample_first[first]; j < m->sample_first[last + 1];
-	     j++) {
-		for (int d = 0; d < 3; d++) {
-			float x = m->pos[j][d];
+	empty_box(sg->min, sg->max);
+	for (size_t i = first; i <= last; i++) {
+		const float *lo = m->sample_min[i], *hi = m->sample_max[i];
 
-			sg->min[d] = x < sg->min[d] ? x : sg->min[d];
-			sg->max[d] = x > sg->max[d] ? x : sg->max[d];
+		for (int d = 0; d < 3; d++) {
+			sg->min[d] = least(lo[d], sg->min[d]);
+			sg->max[d] = most(hi[d], sg->max[d]);
 		}
 	}
 }
 
 static void place_samples(struct mesh *m, const struct centreline *cl,
-			  size_t first, size_t last)
+			  size_t first, size_t last, const uint8_t *keep)
 {
 	for (size_t i = first; m->hold_folds && i <= last; i++) {
 		find_near(m, cl, i);
 	}
 	for (size_t i = first; i <= last; i++) {
-		for (uint32_t j = m->sample_first[i]; j < m->sample_first[i + 1];
-		     j++) {
-			place_vertex(m, cl, i, j);
-		}
+		place_sample(m, cl, i, keep);
 	}
 }
 
-void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
-		size_t last)
+void mesh_place_kept(struct mesh *m, const struct centreline *cl,
+		     size_t first, size_t last, const uint8_t *keep)
 {
 	double ds = centreline_step(cl);
 	uint32_t k0, k1;
@@ -209,12 +310,27 @@ void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
 	if (last >= m->samples) {
 		last = m->samples - 1;
 	}
-	place_samples(m, cl, first, last);
+	place_samples(m, cl, first, last, keep);
 	k0 = mesh_segment_at(m, ((double)first - (double)m->tri_span) * ds);
 	k1 = mesh_segment_at(m, (double)last * ds);
 	for (uint32_t k = k0; k <= k1; k++) {
 		segment_bounds(m, k, ds);
 	}
+}
+
+void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
+		size_t last)
+{
+	mesh_place_kept(m, cl, first, last, NULL);
+}
+
+void mesh_vertex_at(const struct mesh *m, const struct centreline *cl,
+		    uint32_t j, float p[3])
+{
+	size_t i = m->sample[j];
+
+	vertex_position(m, cl, i, centreline_sample(cl, i), holds_folds(m, i),
+			j, p);
 }
 
 uint32_t mesh_segment_at(const struct mesh *m, double s_m)
@@ -749,7 +865,7 @@ int mesh_finish(struct mesh *m, const struct centreline *cl,
 	}
 	set_reach(m, cl, from);
 	if (from == MESH_FROM_OFFSETS) {
-		place_samples(m, cl, 0, m->samples - 1);
+		place_samples(m, cl, 0, m->samples - 1, NULL);
 	}
 	r = normals(m, cl);
 	if (r) {
@@ -760,6 +876,9 @@ int mesh_finish(struct mesh *m, const struct centreline *cl,
 		mesh_place(m, cl, 0, m->samples - 1);
 	} else {
 		/* at rest an import keeps the file's positions to the bit */
+		for (size_t i = 0; i < m->samples; i++) {
+			sample_bounds(m, i);
+		}
 		for (uint32_t k = 0; k < m->segments; k++) {
 			segment_bounds(m, k, centreline_step(cl));
 		}

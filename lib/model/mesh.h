@@ -32,10 +32,11 @@
  * stretch of s are one contiguous index range found in O(1)
  * (mesh_range()). Each segment has an axis-aligned bounding box.
  *
- * Allocation: mesh_create() and mesh_finish() allocate. mesh_place(),
- * mesh_range() and the accessors do not, never block, and are safe in
- * the force loop (mesh_place() costs ~20-50 ns per vertex, more inside
- * bends tighter than the lumen; mesh_range() ~10-20 ns). One writer.
+ * Allocation: mesh_create() and mesh_finish() allocate. mesh_place()
+ * and its variants, mesh_range() and the accessors do not, never block,
+ * and are safe in the force loop (mesh_place() costs ~20-50 ns per
+ * vertex, more inside bends tighter than the lumen; mesh_range() ~10-20
+ * ns). One writer.
  */
 #ifndef ENDOSIM_MESH_H
 #define ENDOSIM_MESH_H
@@ -70,6 +71,8 @@ struct mesh {
 	uint32_t reach;        /* samples within the largest offset */
 	float *sample_rho;     /* per sample: its largest offset, m */
 	uint32_t *near_lo, *near_hi; /* per sample: planes that may cut in */
+	float (*sample_min)[3], (*sample_max)[3]; /* per sample: the box of
+						    its vertices as placed */
 	double segment_m;
 	double step_m;         /* the centreline's */
 	uint32_t segments;
@@ -111,6 +114,27 @@ int mesh_finish(struct mesh *m, const struct centreline *cl,
  */
 void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
 		size_t last);
+
+/*
+ * mesh_place() for a reader that uses only some vertices (endoview draws
+ * a few of a fine mesh's): of the vertices it places, only those KEEP
+ * marks (one byte per vertex, non-zero: kept; NULL: all) get pos and nrm;
+ * the others keep their old ones (mesh_vertex_at() gives where they lie).
+ * The bounding boxes are those mesh_place() makes, to the bit: every
+ * vertex is placed for them, not stored. An unkept vertex costs a little
+ * over half a kept one.
+ */
+void mesh_place_kept(struct mesh *m, const struct centreline *cl,
+		     size_t first, size_t last, const uint8_t *keep);
+
+/*
+ * Where mesh_place() puts vertex J on CL as it is now: P (m), to the bit.
+ * For a vertex mesh_place_kept() did not keep; CL must be the one the
+ * mesh was last placed on, the vertex' sample's fold limits (near_lo,
+ * near_hi) as that placement left them. Does not write the mesh.
+ */
+void mesh_vertex_at(const struct mesh *m, const struct centreline *cl,
+		    uint32_t j, float p[3]);
 
 /* The segment holding material position S_M (clamped to the mesh). */
 uint32_t mesh_segment_at(const struct mesh *m, double s_m);

@@ -2,7 +2,8 @@
  * test_lod.c - the levels of detail (viewer/lod.h): at full detail they
  * are the mesh's own triangles; every level's triangles face the lumen and
  * address real vertices; what a segment costs at a level does not depend
- * on the mesh's resolution (the default ~290 000 triangles or 2 million).
+ * on the mesh's resolution (the default ~290 000 triangles or 2 million);
+ * the GPU holds only the vertices the levels draw.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -16,14 +17,6 @@
 #include "viewer/lod.h"
 #include "base/vec3.h"
 #include "viewer_fixture.h"
-
-/* The model's vertex behind index V of a tube's levels (gpumesh.h). */
-static uint32_t vertex_of(uint32_t ring, uint32_t v)
-{
-	uint32_t i = v / (ring + 1), j = v % (ring + 1);
-
-	return i * ring + (j == ring ? 0 : j);
-}
 
 static int by_triangle(const void *a, const void *b)
 {
@@ -65,7 +58,7 @@ static void full_detail_is_the_mesh(void **state)
 	assert_non_null(b);
 	for (uint32_t k = 0; k < me->triangles; k++) {
 		for (int c = 0; c < 3; c++) {
-			a[k][c] = vertex_of(32, l->index[3 * k + c]);
+			a[k][c] = lod_source(l, l->index[3 * k + c], NULL);
 			b[k][c] = me->tri[k][c];
 		}
 		canonical(a[k]);
@@ -101,7 +94,8 @@ static void levels_face_the_lumen(void **state)
 			double p[3][3], ab[3], ac[3], n[3], in[3];
 
 			for (int c = 0; c < 3; c++) {
-				uint32_t v = vertex_of(192, l->index[k + c]);
+				uint32_t v = lod_source(l, l->index[k + c],
+							NULL);
 
 				assert_true(v < me->vertices);
 				for (int x = 0; x < 3; x++) {
@@ -112,7 +106,8 @@ static void levels_face_the_lumen(void **state)
 			vec3_sub(ac, p[2], p[0]);
 			vec3_cross(n, ab, ac);
 			vec3_sub(in, centreline_sample(f.model->cl,
-				 me->sample[vertex_of(192, l->index[k])])->p,
+				 me->sample[lod_source(l, l->index[k],
+						      NULL)])->p,
 				 p[0]);
 			assert_true(vec3_dot(n, in) > 0);
 		}
@@ -156,6 +151,79 @@ static void cost_independent_of_resolution(void **state)
 	assert_int_equal(dflt[0], 20 * 32 * 2);
 }
 
+/* The GPU's vertices [K0, K1) are those of rings I0..I1 that it holds. */
+static void range_is_rows(const struct lod *l, const struct mesh *me,
+			  uint32_t i0, uint32_t i1)
+{
+	uint32_t k0, k1, first = me->sample_first[i0];
+
+	lod_gpu_range(l, first, me->sample_first[i1 + 1] - first, &k0, &k1);
+	assert_true(k0 < k1);
+	assert_true(me->sample[lod_source(l, k0, NULL)] >= i0);
+	assert_true(me->sample[lod_source(l, k1 - 1, NULL)] <= i1);
+	if (k0 > 0) {
+		assert_true(me->sample[lod_source(l, k0 - 1, NULL)] < i0);
+	}
+	if (k1 < l->vertices) {
+		assert_true(me->sample[lod_source(l, k1, NULL)] > i1);
+	}
+}
+
+/* At 2 million triangles (672 vertices a ring, 1 mm apart) the GPU holds
+ * what the levels draw and no more than a grid of it: every row is drawn,
+ * every 21st vertex round it (the endoscopic levels' stride), a fortieth
+ * of the mesh; drawn marks just those vertices of the mesh; the vertices
+ * of any stretch of rings are one run. */
+static void holds_what_is_drawn(void **state)
+{
+	struct fixture f;
+	const struct mesh *me;
+	struct lod *l;
+	uint8_t *used, *shown;
+	uint32_t per_row;
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.001, 672);
+	me = f.model->mesh;
+	l = lod_create(me, f.model->ring);
+	assert_non_null(l);
+	assert_int_equal(l->column, 21);
+	per_row = 672 / 21 + 1;
+	assert_int_equal(l->vertices, (l->rows - 1) * per_row + 1);
+	print_message("%u of %u vertices on the GPU\n", l->vertices,
+		      me->vertices);
+	assert_true(l->vertices < me->vertices / 40);
+	used = calloc(l->rows, 1);
+	shown = calloc(me->vertices, 1);
+	assert_non_null(used);
+	assert_non_null(shown);
+	for (uint32_t k = 0; k < l->indices; k++) {
+		assert_true(l->index[k] < l->vertices);
+		used[l->index[k] / per_row] = 1;
+	}
+	for (uint32_t r = 0; r < l->rows; r++) {
+		uint32_t i = l->row_sample[r], j;
+
+		assert_true(used[r]);
+		assert_int_equal(l->row[i], r);
+		assert_int_equal(lod_source(l, lod_vertex(l, i, 0), &j),
+				 me->sample_first[i]);
+		assert_int_equal(j, 0);
+	}
+	for (uint32_t k = 0; k < l->vertices; k++) {
+		shown[lod_source(l, k, NULL)] = 1;
+	}
+	assert_memory_equal(shown, l->drawn, me->vertices);
+	range_is_rows(l, me, 0, 0);
+	range_is_rows(l, me, 301, 302);
+	range_is_rows(l, me, 300, 900);
+	range_is_rows(l, me, 1000, (uint32_t)me->samples - 1);
+	free(used);
+	free(shown);
+	lod_destroy(l);
+	fixture_teardown(&f);
+}
+
 /* An imported mesh has one level: its own triangles, segment by segment. */
 static void import_has_one_level(void **state)
 {
@@ -184,6 +252,7 @@ int main(void)
 		cmocka_unit_test(full_detail_is_the_mesh),
 		cmocka_unit_test(levels_face_the_lumen),
 		cmocka_unit_test(cost_independent_of_resolution),
+		cmocka_unit_test(holds_what_is_drawn),
 		cmocka_unit_test(import_has_one_level),
 	};
 

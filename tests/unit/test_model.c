@@ -8,12 +8,15 @@
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 
 #include <cmocka.h>
 
+#include "base/vec3.h"
+#include "viewer/lod.h"
 #include "viewer_fixture.h"
 
 #define SAME_M 1e-6
@@ -187,6 +190,107 @@ static void moves_as_daemon(void **state)
 	fixture_teardown(&f);
 }
 
+/* Whether a sample's rings are held between their neighbours' planes
+ * somewhere (the fold limits a kept-or-not vertex is placed with). */
+static bool folds_held(const struct mesh *me)
+{
+	for (size_t i = 0; i < me->samples; i++) {
+		if (me->near_lo[i] <= me->near_hi[i]) {
+			return true;
+		}
+	}
+	return false;
+}
+
+/* Segment K's box over every vertex as ME places them, vertex by vertex. */
+static void box_of(const struct mesh *me, uint32_t k, float lo[3],
+		   float hi[3])
+{
+	size_t a = (size_t)lround(me->seg[k].s0_m / me->step_m);
+	size_t b = (size_t)lround(me->seg[k].s1_m / me->step_m) + me->tri_span;
+
+	b = b < me->samples ? b : me->samples - 1;
+	for (int d = 0; d < 3; d++) {
+		lo[d] = INFINITY;
+		hi[d] = -INFINITY;
+	}
+	for (uint32_t j = me->sample_first[a]; j < me->sample_first[b + 1];
+	     j++) {
+		for (int d = 0; d < 3; d++) {
+			float x = me->pos[j][d];
+
+			lo[d] = x < lo[d] ? x : lo[d];
+			hi[d] = x > hi[d] ? x : hi[d];
+		}
+	}
+}
+
+/* Keeping only the vertices the levels draw (model_keep()): moved as the
+ * daemon moves, those are the daemon's to the bit, and so is every other
+ * vertex where model_wall() and model_wall_gap() read it, and every
+ * segment's box; the others are not stored. */
+static void keeps_what_is_drawn(void **state)
+{
+	struct fixture f, all;
+	struct endosim_rod_state rod;
+	const struct mesh *me, *dm;
+	struct lod *l;
+	uint32_t first, count, stale = 0;
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
+	fixture_setup(&all, "config/cases", "normal", 0.002, 192);
+	me = f.model->mesh;
+	dm = colon_mesh(f.colon);
+	l = lod_create(me, f.model->ring);
+	assert_non_null(l);
+	model_keep(f.model, l->drawn);
+	rod_nodes(&rod);
+	daemon_displace(f.colon, 0, (const float(*)[3])rod.node, 3);
+	daemon_displace(f.colon, 1, (const float(*)[3])rod.node[3], 2);
+	model_displace(f.model, &rod, &first, &count);
+	model_displace(all.model, &rod, &first, &count);
+	assert_true(folds_held(me));
+	for (uint32_t j = 0; j < me->vertices; j++) {
+		float p[3];
+
+		mesh_vertex_at(me, f.model->cl, j, p);
+		assert_memory_equal(p, dm->pos[j], sizeof(p));
+		if (l->drawn[j]) {
+			assert_memory_equal(me->pos[j], dm->pos[j], sizeof(p));
+			assert_memory_equal(me->nrm[j], dm->nrm[j], sizeof(p));
+		}
+		stale += memcmp(me->pos[j], dm->pos[j], sizeof(p)) != 0;
+	}
+	print_message("%u of %u vertices not placed\n", stale, me->vertices);
+	assert_true(stale > count / 2);
+	for (uint32_t k = 0; k < me->segments; k++) {
+		float lo[3], hi[3];
+
+		box_of(dm, k, lo, hi);
+		assert_memory_equal(me->seg[k].min, lo, sizeof(lo));
+		assert_memory_equal(me->seg[k].max, hi, sizeof(hi));
+		assert_memory_equal(dm->seg[k].min, lo, sizeof(lo));
+		assert_memory_equal(dm->seg[k].max, hi, sizeof(hi));
+	}
+	for (size_t i = 0; i < me->samples; i += 7) {
+		double p[3], n[3], q[3], m[3], x[3], d[3], e[3];
+		size_t a = i, b = i;
+
+		model_wall(f.model, i, 0.1 * (double)i, p, n);
+		model_wall(all.model, i, 0.1 * (double)i, q, m);
+		assert_memory_equal(p, q, sizeof(p));
+		vec3_lerp(x, centreline_sample(f.model->cl, i)->p, p, 0.7);
+		x[0] += 0.001;
+		assert_true(model_wall_gap(f.model, &a, x, d) ==
+			    model_wall_gap(all.model, &b, x, e));
+		assert_int_equal(a, b);
+	}
+	lod_destroy(l);
+	fixture_teardown(&all);
+	fixture_teardown(&f);
+}
+
 /* The rig's pipe behind the anal verge is outside; the rectum inside. */
 static void knows_outside(void **state)
 {
@@ -350,6 +454,7 @@ int main(void)
 		cmocka_unit_test(same_as_daemon),
 		cmocka_unit_test(bows_as_daemon),
 		cmocka_unit_test(moves_as_daemon),
+		cmocka_unit_test(keeps_what_is_drawn),
 		cmocka_unit_test(knows_outside),
 		cmocka_unit_test(names_regions),
 		cmocka_unit_test(keeps_inside),
