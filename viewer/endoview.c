@@ -208,7 +208,7 @@ static void load_colon(struct app *a, uint64_t now)
 /* ------------------------------------------------------------ frame */
 
 /* The colon is the one the state is about: bow it, or move it by the rod
- * model's nodes, as the state says. */
+ * model's nodes, and widen its lumen by the gas, as the state says. */
 static bool colon_current(struct app *a, const struct endosim_state *st)
 {
 	const struct endosim_scope_state *sc = st ? &st->scope : NULL;
@@ -226,6 +226,10 @@ static bool colon_current(struct app *a, const struct endosim_state *st)
 							    ENDOSIM_SPANS),
 			  &first, &count);
 	}
+	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
+	model_scale(a->colon.model, st->patient.enabled ? st->patient.factor :
+							  NULL,
+		    &first, &count);
 	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
 	return true;
 }
