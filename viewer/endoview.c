@@ -33,6 +33,7 @@
 #include "viewer/gpumesh.h"
 #include "viewer/hud.h"
 #include "viewer/input.h"
+#include "viewer/lensfx.h"
 #include "viewer/link.h"
 #include "viewer/lod.h"
 #include "base/log.h"
@@ -74,6 +75,7 @@ struct app {
 	struct font *font;
 	struct draw2d *d2d;
 	struct endo *endo;
+	struct lensfx *lensfx;
 	struct overview *overview;
 	struct hud *hud;
 	struct mapview *mapview; /* the M key's overlay */
@@ -144,13 +146,14 @@ static int make_renderers(struct app *a)
 	}
 	a->d2d = draw2d_create(a->font);
 	a->endo = endo_create();
+	a->lensfx = lensfx_create();
 	a->overview = overview_create();
 	a->hud = hud_create();
 	a->mapview = mapview_create(a->opt.socket, a->replay != NULL);
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
-	if (!a->d2d || !a->endo || !a->overview || !a->hud || !a->mapview ||
-	    !a->timing || !a->ui) {
+	if (!a->d2d || !a->endo || !a->lensfx || !a->overview || !a->hud ||
+	    !a->mapview || !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
 	}
@@ -396,7 +399,8 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 }
 
 static void draw_views(struct app *a, const struct hud_layout *lay,
-		       const struct endosim_state *st, bool current)
+		       const struct endosim_state *st, bool current,
+		       double t_s)
 {
 	const struct colon_set *c = &a->colon;
 	struct endo_camera cam;
@@ -411,6 +415,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, lay->endo,
 			  &es);
+		lensfx_draw(a->lensfx, &st->patient, lay->endo, t_s);
 		a->triangles += es.triangles;
 	}
 	if (lay->overview.w) {
@@ -426,6 +431,8 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 static void render(struct app *a, const struct endosim_state *st,
 		   bool current, uint64_t now)
 {
+	double t_s = a->replay ? replay_time(a->replay) :
+				 (double)now / ENDOSIM_NS_PER_S;
 	struct hud_layout lay;
 	struct hud_info in;
 	int w, h;
@@ -438,16 +445,14 @@ static void render(struct app *a, const struct endosim_state *st,
 		return; /* the benchmark's empty frame, or a minimised window */
 	}
 	hud_layout((enum hud_view)a->opt.view, w, h, &lay);
-	draw_views(a, &lay, st, current);
+	draw_views(a, &lay, st, current, t_s);
 	fill_info(a, st, now, &in);
 	in.compact |= lay.panel.w < COMPACT_PANEL_PX;
 	draw2d_begin(a->d2d, w, h);
 	if (lay.overview.w && a->colon.model) {
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
 	}
-	hud_draw(a->hud, a->d2d, &lay, &in, w, h,
-		 a->replay ? replay_time(a->replay)
-			   : (double)now / ENDOSIM_NS_PER_S);
+	hud_draw(a->hud, a->d2d, &lay, &in, w, h, t_s);
 	if (a->map_shown) {
 		mapview_draw(a->mapview, a->d2d, w, h,
 			     a->status == LINK_LIVE ? st : NULL);
@@ -661,6 +666,7 @@ static void cleanup(struct app *a)
 	hud_destroy(a->hud);
 	mapview_destroy(a->mapview);
 	overview_destroy(a->overview);
+	lensfx_destroy(a->lensfx);
 	endo_destroy(a->endo);
 	draw2d_destroy(a->d2d);
 	font_destroy(a->font);
