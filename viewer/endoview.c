@@ -366,6 +366,8 @@ static void fill_replay_info(const struct app *a, const struct endosim_state *st
 		.compact = a->opt.view == HUD_VIEW_BOTH,
 		.replay = &a->hr,
 	};
+	replay_patient_limits(a->replay, &in->relief_pa,
+			      &in->strength_n_per_m);
 }
 
 static void fill_info(const struct app *a, const struct endosim_state *st,
@@ -396,6 +398,7 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
 	};
+	link_patient_limits(a->link, &in->relief_pa, &in->strength_n_per_m);
 }
 
 static void draw_views(struct app *a, const struct hud_layout *lay,

@@ -235,6 +235,29 @@ static int shape_of(const char *name)
 	return strcmp(name, "flat") ? MODEL_POLYP_SESSILE : MODEL_POLYP_FLAT;
 }
 
+/* The assistant's sites; one whose vectors do not add up is named with
+ * none (the hand is still shown by its name). */
+static void copy_sites(struct model *m, const Endosim__SceneInfo *in)
+{
+	m->sites = (int)(in->n_sites < MODEL_MAX_SITES ? in->n_sites :
+							  MODEL_MAX_SITES);
+	for (int i = 0; i < m->sites; i++) {
+		const Endosim__SceneSite *x = in->sites[i];
+		struct model_site *o = &m->site[i];
+
+		memset(o, 0, sizeof(*o));
+		snprintf(o->name, sizeof(o->name), "%s", x->name);
+		if (x->n_position_m != 3 || x->n_direction != 3) {
+			continue;
+		}
+		for (int k = 0; k < 3; k++) {
+			o->position_m[k] = x->position_m[k];
+			o->direction[k] = x->direction[k];
+		}
+		o->radius_m = x->radius_m;
+	}
+}
+
 static void copy_anatomy(struct model *m, const Endosim__SceneInfo *in)
 {
 	snprintf(m->name, sizeof(m->name), "%s", in->name);
@@ -260,6 +283,7 @@ static void copy_anatomy(struct model *m, const Endosim__SceneInfo *in)
 			.diameter_m = p->diameter_m, .shape = shape_of(p->shape)
 		};
 	}
+	copy_sites(m, in);
 }
 
 /* The scope the scene is rendered with; the shipped one when it does not

@@ -16,7 +16,9 @@
  * in the rod model model_displace() moves them through the nodes it
  * publishes (struct endosim_rod_state) with centreline_displace(), as the
  * daemon's colon follows them (flex.h). model_scale() widens or narrows
- * the lumen by the gas's factors (the patient's body, gas.h).
+ * the lumen by the gas's factors (the patient's body, gas.h). The case's
+ * sites where the assistant presses (SceneSite) are kept as the scene
+ * orders them, the order of the published hand_site.
  *
  * A view that draws only some vertices (lod.h) says which with
  * model_keep(): from then on those two place the others only for the
@@ -42,6 +44,7 @@
 #define MODEL_NAME 64
 #define MODEL_MAX_REGIONS 16
 #define MODEL_MAX_POLYPS 32
+#define MODEL_MAX_SITES 8
 #define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow or a node are
 				   not placed */
 #define MODEL_SCALE_STEP 0.005  /* a lumen factor that changed by a smaller
@@ -70,6 +73,14 @@ struct model_polyp {
 	int shape;         /* enum model_polyp_shape */
 };
 
+/* A place on the abdomen where the assistant presses (SceneSite). */
+struct model_site {
+	char name[MODEL_NAME]; /* "llq", "umbilical", ... */
+	double position_m[3];  /* the pad's centre, body frame */
+	double direction[3];   /* into the abdomen (unit) */
+	double radius_m;
+};
+
 struct model {
 	uint64_t scene_id;
 	char name[MODEL_NAME];
@@ -82,6 +93,9 @@ struct model {
 	int regions;
 	struct model_polyp polyp[MODEL_MAX_POLYPS];
 	int polyps;
+	struct model_site site[MODEL_MAX_SITES]; /* the scene's order: the
+						    published hand_site */
+	int sites;
 	double placed_error_m; /* largest distance from the scene's vertices */
 	size_t last_open;  /* the last sample whose ring is wide open */
 	/* the rod model's nodes as last placed, each span's from
