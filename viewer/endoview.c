@@ -44,6 +44,7 @@
 #include "viewer/replay.h"
 #include "viewer/rigctl.h"
 #include "viewer/shot.h"
+#include "proto/names.h"
 #include "proto/state_text.h"
 #include "viewer/timing.h"
 #include "viewer/ui.h"
@@ -51,6 +52,8 @@
 #include "viewer/viewstats.h"
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
+#define VALVE_HOLD_MS 1000 /* held valves outlive a slow frame or two */
+#define LAPSE_MS 1 /* let go: the live input lapses at once */
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
 #define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
 #define HEADLESS_FRAME_S (1.0 / 60) /* a replay's step per frame with --frames */
@@ -89,6 +92,7 @@ struct app {
 	uint64_t last_swap_ns, start_ns;
 	uint64_t frame_due_ns; /* --max-fps: the next frame not before */
 	uint64_t hand_ns; /* when the hand was last moved */
+	uint32_t valves; /* the valves last sent held */
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
 	bool overview_shown;    /* the last frame drew the overview */
@@ -300,11 +304,17 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 	}
 }
 
-/* The trainee's hand, while the daemon is there to take it. */
+/*
+ * The trainee's hand, while the daemon is there to take it: its force
+ * while the grip holds, the valves while a key holds them (with the
+ * grip's force, none when it does not hold), and once more when the last
+ * valve is let go, lapsing at once, so that the gas stops with the key.
+ */
 static void drive(struct app *a, const struct input_controls *c,
 		  const struct endosim_state *st, uint64_t now)
 {
 	double force[ENDOSIM_AXES], dt;
+	bool grip;
 
 	if (!st || a->status != LINK_LIVE) {
 		a->hand.engaged = false;
@@ -312,8 +322,44 @@ static void drive(struct app *a, const struct input_controls *c,
 	}
 	dt = a->hand_ns ? (double)(now - a->hand_ns) / ENDOSIM_NS_PER_S : 0;
 	a->hand_ns = now;
-	if (input_step(&a->hand, c, st, fmin(dt, 0.1), now, force)) {
-		rigctl_hand(a->rig, force, HAND_HOLD_MS, now);
+	grip = input_step(&a->hand, c, st, fmin(dt, 0.1), now, force);
+	if (grip || c->valves || a->valves) {
+		rigctl_hand(a->rig, force, c->valves,
+			    c->valves ? VALVE_HOLD_MS :
+			    grip      ? HAND_HOLD_MS :
+					LAPSE_MS, now);
+	}
+	a->valves = c->valves;
+}
+
+/* T: the patient to the next position (after the one it lies in or
+ * turns to); N: the assistant's hand on the case's next site, off after
+ * the last. */
+static void command_patient(struct app *a, const struct ui_actions *act,
+			    const struct endosim_state *st, uint64_t now)
+{
+	const struct endosim_patient_state *p = st ? &st->patient : NULL;
+	const struct model *m = a->colon.model;
+	int next;
+
+	if (!a->rig || !p) {
+		return;
+	}
+	if (act->turn_patient) {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_TURN,
+			       names_position((p->position + 1) %
+					      (ENDOSIM_POSITION_PRONE + 1)),
+			       now);
+	}
+	if (!act->next_hand) {
+		return;
+	}
+	next = p->hand_site + 1;
+	if (m && next < m->sites) {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_PRESS,
+			       m->site[next].name, now);
+	} else {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_RELEASE, NULL, now);
 	}
 }
 
@@ -521,6 +567,7 @@ static int frame(struct app *a)
 		update_link(a, now);
 		st = link_state(a->link);
 		drive(a, &c, st, now);
+		command_patient(a, &acts, st, now);
 	}
 	mapview_update(a->mapview, a->map_shown, now);
 	current = colon_current(a, st);
