@@ -63,6 +63,23 @@ view() {
 		>"$VIEW_OUT" 2>&1
 }
 
+# live_view COLON ARGS...: endoview on this test's daemon in a window of
+# its own, in the background (its pid in $VIEWER, its output in
+# $TMP/live.out, run in $TMP, where P saves), once it has loaded COLON
+# (a check), with the keyboard's focus: xdotool's keys go to it.
+VIEWER=""
+live_view() {
+	local colon=$1 window
+	shift
+	(cd "$TMP" && endoview --socket "$SOCK" --shm-name "$SHM" "$@" \
+		>"$TMP/live.out" 2>&1) &
+	VIEWER=$!
+	WAIT_S=20 check "live viewer: the colon is loaded" \
+		wait_for grep -q "colon $colon" "$TMP/live.out"
+	window=$(xdotool search --sync --name '^endoview$' | head -n 1)
+	xdotool windowfocus --sync "$window"
+}
+
 # view_field KEY: a value of endoview's closing line ("frames", "fps", ...).
 view_field() {
 	grep '^endoview: frames=' "$VIEW_OUT" | tr ' ' '\n' | sed -n "s/^$1=//p"

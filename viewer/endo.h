@@ -23,6 +23,19 @@
  * moisture (vessels.h) so the highlights break into glints. The haustral
  * folds and the taeniae are the mesh's own relief, lit.
  *
+ * The patient's fluid (struct endosim_patient_state) pools in each
+ * segment under a plane (normal fluid_up, at its level): a wall point of
+ * a segment below its segment's surface, seen from above it, is seen
+ * through the surface where the ray meets it, each fragment's plane
+ * found analytically: the surface (a murky brown liquid, the lens's light
+ * glinting off it, a wet line where it meets the wall), the wall under it
+ * dimmed and tinted by the depth of liquid the ray crosses; with the eye
+ * under its segment's surface everything is seen through the liquid (the
+ * lens's murk, lensfx.h, blurs it). Each segment is drawn by the program
+ * it needs: dry (no surface in reach of its walls), pools, or under (the
+ * eye under its surface): llvmpipe runs both sides of a branch, so the
+ * pools' shading would otherwise cost every wall.
+ *
  * Only the segments the portal walk finds (portal.h) are drawn, each at its
  * level of detail (lod.h), nearest first; polyps of the case as small
  * spheres (sessile), heads on stalks (pedunculated) or plaques (flat).
@@ -33,6 +46,7 @@
 #define ENDOVIEW_ENDO_H
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "proto/endosim_shm.h"
@@ -45,10 +59,36 @@
 #define ENDO_WALL_MARGIN_M 0.003
 #define ENDO_LEVEL_M 0.03, 0.06, 0.12 /* where levels 1, 2, 3 begin */
 #define ENDO_MASK_RADIUS 1.06 /* image circle, in half-sides of its square */
+/* GLSL: the image circle's mask (1 inside, 0 outside, a pixel's edge) at
+ * this fragment of the viewport VP (x, y, w, h) for a circle of R
+ * half-sides; the endoscopic view's and the lens's (lensfx.h) */
+#define ENDO_MASK_GLSL \
+	"float endo_mask(vec4 vp, float r) {\n" \
+	"	vec2 hs = 0.5 * vp.zw;\n" \
+	"	vec2 q = (gl_FragCoord.xy - vp.xy - hs) / hs.y;\n" \
+	"	return 1.0 - smoothstep(r - 2.0 / vp.w, r, length(q));\n" \
+	"}\n"
 /* the widest angle from the view direction the image shows */
 #define ENDO_HALF_ANGLE_RAD (ENDO_FOV_DEG / 2 * M_PI / 180 * ENDO_MASK_RADIUS)
 #define ENDO_ALC_REF_M 0.025
 #define ENDO_ALC_MIN 0.02
+#define ENDO_DRY_M (-10.0) /* a segment without a pool: its level */
+#define ENDO_AXIS_AHEAD_M 0.03 /* the lumen's way on, taken this far on */
+#define ENDO_LUMEN_SHARE 0.85  /* its radius: of the widest ring's */
+#define ENDO_WET_M 0.001 /* a wall this far above a surface glistens */
+
+/* The pools as the camera sees them; all in the colon's frame. */
+struct endo_liquid {
+	bool on;                /* a pool anywhere */
+	double up[3];           /* the surfaces' normal (unit) */
+	double level_m[ENDOSIM_SEGMENTS]; /* each segment's surface along up
+					     (ENDO_DRY_M: none) */
+	double eye_level_m;     /* the surface of the eye's segment */
+	bool under;             /* the eye under it */
+	/* the lumen around the eye as a straight tube, which the surfaces
+	   mirror: a point on its axis, the axis (unit), its radius */
+	double axis_p[3], axis[3], lumen_m;
+};
 
 struct endo_camera {
 	double eye[3]; /* m */
@@ -58,6 +98,7 @@ struct endo_camera {
 	double pulled_in_m; /* how far it was moved to stay in the lumen */
 	double wall_m; /* how far the walls in the middle of the view are */
 	double exposure; /* the light's automatic level, 0..1 */
+	struct endo_liquid liquid;
 };
 
 struct endo_stats {
@@ -78,7 +119,8 @@ struct endo *endo_create(void);
 /* NULL is fine. */
 void endo_destroy(struct endo *e);
 
-/* The camera for state ST on model M. */
+/* The camera for state ST on model M (its pools: a patient's, on a colon
+ * of the nine segments). */
 void endo_camera(const struct model *m, const struct endosim_state *st,
 		 struct endo_camera *cam);
 

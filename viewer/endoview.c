@@ -33,6 +33,7 @@
 #include "viewer/gpumesh.h"
 #include "viewer/hud.h"
 #include "viewer/input.h"
+#include "viewer/lensfx.h"
 #include "viewer/link.h"
 #include "viewer/lod.h"
 #include "base/log.h"
@@ -43,6 +44,7 @@
 #include "viewer/replay.h"
 #include "viewer/rigctl.h"
 #include "viewer/shot.h"
+#include "proto/names.h"
 #include "proto/state_text.h"
 #include "viewer/timing.h"
 #include "viewer/ui.h"
@@ -50,6 +52,8 @@
 #include "viewer/viewstats.h"
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
+#define VALVE_HOLD_MS 1000 /* held valves outlive a slow frame or two */
+#define LAPSE_MS 1 /* let go: the live input lapses at once */
 #define WARM_UP_FRAMES 3  /* not counted after start-up or a new colon */
 #define COMPACT_PANEL_PX 320 /* a narrower panel shows the essentials */
 #define HEADLESS_FRAME_S (1.0 / 60) /* a replay's step per frame with --frames */
@@ -74,6 +78,7 @@ struct app {
 	struct font *font;
 	struct draw2d *d2d;
 	struct endo *endo;
+	struct lensfx *lensfx;
 	struct overview *overview;
 	struct hud *hud;
 	struct mapview *mapview; /* the M key's overlay */
@@ -87,6 +92,7 @@ struct app {
 	uint64_t last_swap_ns, start_ns;
 	uint64_t frame_due_ns; /* --max-fps: the next frame not before */
 	uint64_t hand_ns; /* when the hand was last moved */
+	uint32_t valves; /* the valves last sent held */
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
 	bool overview_shown;    /* the last frame drew the overview */
@@ -144,13 +150,14 @@ static int make_renderers(struct app *a)
 	}
 	a->d2d = draw2d_create(a->font);
 	a->endo = endo_create();
+	a->lensfx = lensfx_create();
 	a->overview = overview_create();
 	a->hud = hud_create();
 	a->mapview = mapview_create(a->opt.socket, a->replay != NULL);
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
-	if (!a->d2d || !a->endo || !a->overview || !a->hud || !a->mapview ||
-	    !a->timing || !a->ui) {
+	if (!a->d2d || !a->endo || !a->lensfx || !a->overview || !a->hud ||
+	    !a->mapview || !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
 	}
@@ -208,7 +215,7 @@ static void load_colon(struct app *a, uint64_t now)
 /* ------------------------------------------------------------ frame */
 
 /* The colon is the one the state is about: bow it, or move it by the rod
- * model's nodes, as the state says. */
+ * model's nodes, and widen its lumen by the gas, as the state says. */
 static bool colon_current(struct app *a, const struct endosim_state *st)
 {
 	const struct endosim_scope_state *sc = st ? &st->scope : NULL;
@@ -226,6 +233,10 @@ static bool colon_current(struct app *a, const struct endosim_state *st)
 							    ENDOSIM_SPANS),
 			  &first, &count);
 	}
+	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
+	model_scale(a->colon.model, st->patient.enabled ? st->patient.factor :
+							  NULL,
+		    &first, &count);
 	gpumesh_update(a->colon.gpu, a->colon.model, first, count);
 	return true;
 }
@@ -293,11 +304,17 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 	}
 }
 
-/* The trainee's hand, while the daemon is there to take it. */
+/*
+ * The trainee's hand, while the daemon is there to take it: its force
+ * while the grip holds, the valves while a key holds them (with the
+ * grip's force, none when it does not hold), and once more when the last
+ * valve is let go, lapsing at once, so that the gas stops with the key.
+ */
 static void drive(struct app *a, const struct input_controls *c,
 		  const struct endosim_state *st, uint64_t now)
 {
 	double force[ENDOSIM_AXES], dt;
+	bool grip;
 
 	if (!st || a->status != LINK_LIVE) {
 		a->hand.engaged = false;
@@ -305,8 +322,44 @@ static void drive(struct app *a, const struct input_controls *c,
 	}
 	dt = a->hand_ns ? (double)(now - a->hand_ns) / ENDOSIM_NS_PER_S : 0;
 	a->hand_ns = now;
-	if (input_step(&a->hand, c, st, fmin(dt, 0.1), now, force)) {
-		rigctl_hand(a->rig, force, HAND_HOLD_MS, now);
+	grip = input_step(&a->hand, c, st, fmin(dt, 0.1), now, force);
+	if (grip || c->valves || a->valves) {
+		rigctl_hand(a->rig, force, c->valves,
+			    c->valves ? VALVE_HOLD_MS :
+			    grip      ? HAND_HOLD_MS :
+					LAPSE_MS, now);
+	}
+	a->valves = c->valves;
+}
+
+/* T: the patient to the next position (after the one it lies in or
+ * turns to); N: the assistant's hand on the case's next site, off after
+ * the last. */
+static void command_patient(struct app *a, const struct ui_actions *act,
+			    const struct endosim_state *st, uint64_t now)
+{
+	const struct endosim_patient_state *p = st ? &st->patient : NULL;
+	const struct model *m = a->colon.model;
+	int next;
+
+	if (!a->rig || !p) {
+		return;
+	}
+	if (act->turn_patient) {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_TURN,
+			       names_position((p->position + 1) %
+					      (ENDOSIM_POSITION_PRONE + 1)),
+			       now);
+	}
+	if (!act->next_hand) {
+		return;
+	}
+	next = p->hand_site + 1;
+	if (m && next < m->sites) {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_PRESS,
+			       m->site[next].name, now);
+	} else {
+		rigctl_patient(a->rig, RIGCTL_PATIENT_RELEASE, NULL, now);
 	}
 }
 
@@ -359,6 +412,8 @@ static void fill_replay_info(const struct app *a, const struct endosim_state *st
 		.compact = a->opt.view == HUD_VIEW_BOTH,
 		.replay = &a->hr,
 	};
+	replay_patient_limits(a->replay, &in->relief_pa,
+			      &in->strength_n_per_m);
 }
 
 static void fill_info(const struct app *a, const struct endosim_state *st,
@@ -389,10 +444,12 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
 	};
+	link_patient_limits(a->link, &in->relief_pa, &in->strength_n_per_m);
 }
 
 static void draw_views(struct app *a, const struct hud_layout *lay,
-		       const struct endosim_state *st, bool current)
+		       const struct endosim_state *st, bool current,
+		       double t_s)
 {
 	const struct colon_set *c = &a->colon;
 	struct endo_camera cam;
@@ -407,6 +464,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, lay->endo,
 			  &es);
+		lensfx_draw(a->lensfx, &st->patient, lay->endo, t_s);
 		a->triangles += es.triangles;
 	}
 	if (lay->overview.w) {
@@ -422,6 +480,8 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 static void render(struct app *a, const struct endosim_state *st,
 		   bool current, uint64_t now)
 {
+	double t_s = a->replay ? replay_time(a->replay) :
+				 (double)now / ENDOSIM_NS_PER_S;
 	struct hud_layout lay;
 	struct hud_info in;
 	int w, h;
@@ -434,16 +494,14 @@ static void render(struct app *a, const struct endosim_state *st,
 		return; /* the benchmark's empty frame, or a minimised window */
 	}
 	hud_layout((enum hud_view)a->opt.view, w, h, &lay);
-	draw_views(a, &lay, st, current);
+	draw_views(a, &lay, st, current, t_s);
 	fill_info(a, st, now, &in);
 	in.compact |= lay.panel.w < COMPACT_PANEL_PX;
 	draw2d_begin(a->d2d, w, h);
 	if (lay.overview.w && a->colon.model) {
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
 	}
-	hud_draw(a->hud, a->d2d, &lay, &in, w, h,
-		 a->replay ? replay_time(a->replay)
-			   : (double)now / ENDOSIM_NS_PER_S);
+	hud_draw(a->hud, a->d2d, &lay, &in, w, h, t_s);
 	if (a->map_shown) {
 		mapview_draw(a->mapview, a->d2d, w, h,
 			     a->status == LINK_LIVE ? st : NULL);
@@ -509,6 +567,7 @@ static int frame(struct app *a)
 		update_link(a, now);
 		st = link_state(a->link);
 		drive(a, &c, st, now);
+		command_patient(a, &acts, st, now);
 	}
 	mapview_update(a->mapview, a->map_shown, now);
 	current = colon_current(a, st);
@@ -657,6 +716,7 @@ static void cleanup(struct app *a)
 	hud_destroy(a->hud);
 	mapview_destroy(a->mapview);
 	overview_destroy(a->overview);
+	lensfx_destroy(a->lensfx);
 	endo_destroy(a->endo);
 	draw2d_destroy(a->d2d);
 	font_destroy(a->font);

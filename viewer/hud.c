@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "proto/names.h"
+#include "viewer/burstmark.h"
+#include "viewer/patientview.h"
 
 #define CHART_SAMPLES 512
 #define CHART_DRAWN 240 /* samples across the chart */
@@ -27,6 +29,9 @@ const char *const hud_keys[] = {
 	"\tright stick steer",
 	"E  X\tenable, disable the motors",
 	"Space  R\temergency stop, reset",
+	"1  2  3\tvalves, held: air, water, suction",
+	"T  N\tturn the patient; the hand on the",
+	"\tnext site, then off",
 	"G  F  B\tguided: take over, follow again,",
 	"\tback to the path",
 	"V  O\tview, overview's orbit back",
@@ -324,14 +329,20 @@ static void draw_replay(struct pen *p, const struct hud_replay *r,
 	p->y = fmaxf(p->y, top + (float)tl.h) + p->small * 0.3f;
 }
 
+/* NAME ("left-lateral", "splenic_flexure") in words: "left lateral". */
+static void spaced(const char *name, char *buf, size_t size)
+{
+	size_t n = (size_t)snprintf(buf, size, "%s", name);
+
+	for (size_t k = 0; k < n && k < size; k++) {
+		buf[k] = buf[k] == '-' || buf[k] == '_' ? ' ' : buf[k];
+	}
+}
+
 /* Region RG's name in words ("splenic flexure"). */
 static void region_name(const struct model_region *rg, char *buf, size_t size)
 {
-	size_t n = (size_t)snprintf(buf, size, "%s", rg->name);
-
-	for (size_t k = 0; k < n && k < size; k++) {
-		buf[k] = buf[k] == '_' ? ' ' : buf[k];
-	}
+	spaced(rg->name, buf, size);
 }
 
 static void draw_where(struct pen *p, const struct hud_info *in)
@@ -422,6 +433,138 @@ static void draw_moved(struct pen *p, const struct hud_info *in)
 		sep = ",";
 	}
 	line(p, FONT_SMALL, dim, text);
+}
+
+/* The position, and the turn in progress. */
+static void draw_position(struct pen *p, const struct endosim_patient_state *pt)
+{
+	char name[32], text[96];
+
+	spaced(names_position(pt->position), name, sizeof(name));
+	if (pt->turning) {
+		snprintf(text, sizeof(text), "turning to %s, %.0f %%", name,
+			 fmin(1, fmax(0, pt->turn)) * 100);
+	} else {
+		snprintf(text, sizeof(text), "patient %s", name);
+	}
+	line(p, FONT_SMALL, pt->turning ? amber : white, text);
+}
+
+/* The gas, its relief and where the first wall would burst. */
+static void draw_gas(struct pen *p, const struct hud_info *in, double burst)
+{
+	const struct endosim_patient_state *pt = &in->st->patient;
+	double mmhg = pt->pressure_pa / BURSTMARK_PA_PER_MMHG;
+	char text[160];
+	int n;
+
+	n = snprintf(text, sizeof(text), "gas %.1f mmHg, %.2f L", mmhg,
+		     pt->gas_m3 * 1e3);
+	if (in->relief_pa > 0 && n > 0 && (size_t)n < sizeof(text)) {
+		n += snprintf(text + n, sizeof(text) - (size_t)n,
+			      ", relief %.0f",
+			      in->relief_pa / BURSTMARK_PA_PER_MMHG);
+	}
+	if (!isnan(burst) && n > 0 && (size_t)n < sizeof(text)) {
+		snprintf(text + n, sizeof(text) - (size_t)n, ", bursts ~%.0f",
+			 burst / BURSTMARK_PA_PER_MMHG);
+	}
+	line(p, FONT_SMALL, mmhg > PATIENTVIEW_HIGH_MMHG ? amber : white,
+	     text);
+}
+
+/* The assistant's hand and the handle's valves. */
+static void draw_hand_valves(struct pen *p, const struct hud_info *in)
+{
+	const struct endosim_patient_state *pt = &in->st->patient;
+	const char *site = in->m && pt->hand_site >= 0 &&
+			   pt->hand_site < in->m->sites ?
+			   in->m->site[pt->hand_site].name : "?";
+	char text[160];
+
+	if (pt->hand_site >= 0) {
+		snprintf(text, sizeof(text), "hand on %s, %.0f N; valves %s",
+			 site, pt->hand_n, names_valves(pt->valves));
+	} else {
+		snprintf(text, sizeof(text), "hand off; valves %s",
+			 names_valves(pt->valves));
+	}
+	line(p, FONT_SMALL, pt->hand_site >= 0 || pt->valves ? white : dim,
+	     text);
+}
+
+/* What covers the lens, when anything does. */
+static void draw_lens(struct pen *p, const struct endosim_patient_state *pt)
+{
+	char text[128];
+
+	if (!(pt->lens_smear > 0.01 || pt->lens_murk > 0.01 ||
+	      pt->lens_redout > 0.01)) {
+		return;
+	}
+	snprintf(text, sizeof(text), "lens: smear %.0f %%, murk %.0f %%, "
+		 "red-out %.0f %%", pt->lens_smear * 100, pt->lens_murk * 100,
+		 pt->lens_redout * 100);
+	line(p, FONT_SMALL, amber, text);
+}
+
+/* A torn wall, in red. */
+static void draw_burst(struct pen *p, const struct hud_info *in)
+{
+	int i = in->st->patient.burst_segment;
+	char name[MODEL_NAME], text[96];
+
+	if (i < 0) {
+		return;
+	}
+	if (in->m && i < in->m->regions) {
+		region_name(&in->m->region[i], name, sizeof(name));
+	} else {
+		snprintf(name, sizeof(name), "segment %d", i);
+	}
+	snprintf(text, sizeof(text), "PERFORATED: %s", name);
+	line(p, FONT_LARGE, red, text);
+}
+
+/*
+ * The patient panel: the figure and the gauge side by side, the lines
+ * beside them where the panel is wide enough, else under them; in a
+ * compact panel the lines alone.
+ */
+static void draw_patient(struct pen *p, const struct hud_info *in)
+{
+	const struct endosim_patient_state *pt = &in->st->patient;
+	double burst = burstmark_pa(pt, in->strength_n_per_m);
+	float size = p->small * 6.5f, x = p->x, w = p->w, top = p->y;
+	bool beside = p->w > size * 2.2f + p->small * 22;
+
+	if (!pt->enabled) {
+		return;
+	}
+	draw_burst(p, in);
+	if (!in->compact) {
+		top = p->y;
+		patientview_figure(p->d, x + size / 2, top + size / 2, size,
+				   pt, in->m);
+		patientview_gauge(p->d, x + size * 1.6f, top + size * 0.48f,
+				  size * 0.42f, pt->pressure_pa, in->relief_pa,
+				  burst);
+		if (beside) {
+			p->x = x + size * 2.2f;
+			p->w = w - size * 2.2f;
+		} else {
+			p->y = top + size + p->small * 0.3f;
+		}
+	}
+	draw_position(p, pt);
+	draw_gas(p, in, burst);
+	draw_hand_valves(p, in);
+	draw_lens(p, pt);
+	if (!in->compact && beside) {
+		p->x = x;
+		p->w = w;
+		p->y = fmaxf(p->y, top + size);
+	}
 }
 
 /* V, shown with DIGITS decimals: no "-0.0" for a hair below zero. */
@@ -601,6 +744,10 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 		if (!in->compact) {
 			draw_parts(p, in->st);
 			gap(p);
+		}
+		if (in->st->patient.enabled) {
+			draw_patient(p, in);
+		} else if (!in->compact) {
 			draw_chart(p, h, t_s);
 		}
 	} else if (in->help) {

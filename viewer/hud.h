@@ -14,6 +14,13 @@
  * of the force are the tube's pull at the carriage and the wall's
  * contacts along the tube, their force and friction.
  *
+ * With the patient enabled (struct endosim_patient_state) the patient
+ * panel takes the chart's place: the position as a small figure and the
+ * gas's pressure as a gauge (patientview.h), and lines for the position
+ * (and the turn in progress), the gas, the assistant's hand, the valves
+ * and the lens; PERFORATED in red once a wall tore. A compact panel has
+ * the lines without the pictures.
+ *
  * A replay (endoview --replay) shows the recorded state, fault and forces
  * the same way, with the replay's lines in place of the state's hint
  * (REPLAY, the trainee and the case; the time, the duration, the speed,
@@ -86,6 +93,9 @@ struct hud_info {
 	bool help;                 /* the keys in place of the forces */
 	bool compact;              /* no room for the force's parts, chart */
 	const struct hud_replay *replay; /* NULL: live */
+	/* the patient's gauge: [patient] relief_pa (<= 0: none) and
+	   wall_strength_n_per_m (<= 0: not known, no burst mark) */
+	double relief_pa, strength_n_per_m;
 };
 
 struct hud;

@@ -43,6 +43,9 @@ struct input_controls {
 	bool drag[ENDOSIM_AXES];     /* a drag holds this axis */
 	double drag_by[ENDOSIM_AXES]; /* the drag's offset, m or rad */
 	double step[ENDOSIM_AXES];   /* a nudge of the target, m or rad */
+	uint32_t valves;             /* the handle's valves held (enum
+					endosim_valve bits): no part of the
+					grip (input_active(), input_step()) */
 };
 
 struct input_hand {

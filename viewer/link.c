@@ -2,6 +2,7 @@
 #include "viewer/link.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,9 @@ struct link {
 	bool changed;
 	uint64_t next_open_ns;  /* earliest time to try to open again */
 	double loop_config_m;   /* [session] loop_threshold_m; 0: by model */
+	double relief_pa;       /* [patient] relief_pa; 0: none or not told */
+	double strength_n_per_m; /* [patient] wall_strength_n_per_m; 0: not
+				    told */
 };
 
 struct link *link_create(const char *socket, const char *shm_name)
@@ -149,16 +153,16 @@ bool link_scene_wanted(const struct link *l, uint64_t held_id,
 	       reconnect_due(l->scene, now_ns);
 }
 
-/* The daemon's [session] loop_threshold_m, asked on C; 0 (by the model)
- * when it does not say. */
-static double ask_loop_threshold(struct client *c)
+/* The daemon's configuration value KEY ("session.loop_threshold_m"),
+ * asked on C; 0 when it does not say. */
+static double ask_config(struct client *c, const char *key)
 {
 	Endosim__GetConfig body = ENDOSIM__GET_CONFIG__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
-	double m = 0;
+	double v = 0;
 
-	body.key = "session.loop_threshold_m";
+	body.key = (char *)key;
 	req.body_case = ENDOSIM__REQUEST__BODY_GET_CONFIG;
 	req.get_config = &body;
 	if (client_request(c, &req, &rep, LINK_SCENE_TIMEOUT_MS)) {
@@ -167,10 +171,18 @@ static double ask_loop_threshold(struct client *c)
 	if (rep->status == ENDOSIM__STATUS__STATUS_OK &&
 	    rep->body_case == ENDOSIM__REPLY__BODY_CONFIG &&
 	    rep->config->n_entries == 1) {
-		m = strtod(rep->config->entries[0]->value, NULL);
+		v = strtod(rep->config->entries[0]->value, NULL);
 	}
 	endosim__reply__free_unpacked(rep, NULL);
-	return m;
+	return isfinite(v) ? v : 0;
+}
+
+/* What the viewer takes from the daemon's configuration with a scene. */
+static void ask_configuration(struct link *l, struct client *c)
+{
+	l->loop_config_m = ask_config(c, "session.loop_threshold_m");
+	l->relief_pa = ask_config(c, "patient.relief_pa");
+	l->strength_n_per_m = ask_config(c, "patient.wall_strength_n_per_m");
 }
 
 int link_fetch_scene(struct link *l, struct client_scene **out,
@@ -190,7 +202,7 @@ int link_fetch_scene(struct link *l, struct client_scene **out,
 	r = client_get_scene(reconnect_client(l->scene), out,
 			     LINK_SCENE_TIMEOUT_MS, &status);
 	if (!r) {
-		l->loop_config_m = ask_loop_threshold(reconnect_client(l->scene));
+		ask_configuration(l, reconnect_client(l->scene));
 	}
 	reconnect_close(l->scene);
 	if (r) {
@@ -210,6 +222,13 @@ double link_loop_threshold_m(const struct link *l)
 					      l->have_state &&
 					      l->st.rod.model ==
 					      ENDOSIM_MODEL_ROD);
+}
+
+void link_patient_limits(const struct link *l, double *relief_pa,
+			 double *strength_n_per_m)
+{
+	*relief_pa = l->relief_pa;
+	*strength_n_per_m = l->strength_n_per_m;
 }
 
 bool link_daemon_changed(struct link *l)

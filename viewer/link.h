@@ -14,7 +14,10 @@
  * again.
  *
  * With the scene the link asks the daemon's [session] loop_threshold_m:
- * a loop as the daemon's metrics count one (link_loop_threshold_m()).
+ * a loop as the daemon's metrics count one (link_loop_threshold_m()),
+ * and its [patient] relief_pa and wall_strength_n_per_m, the pressure
+ * gauge's marks (link_patient_limits()); values changed live after that
+ * are seen with the next scene.
  *
  * Fetching the scene is the one call that blocks (up to
  * LINK_SCENE_TIMEOUT_MS per chunk), on a connection made for it
@@ -80,6 +83,11 @@ int link_fetch_scene(struct link *l, struct client_scene **out,
  * not told) the model's the state names (sessioninputs_loop_threshold_m()).
  */
 double link_loop_threshold_m(const struct link *l);
+
+/* The daemon's [patient] relief_pa (0: none) and wall_strength_n_per_m
+ * as fetched with the scene (0: not told). */
+void link_patient_limits(const struct link *l, double *relief_pa,
+			 double *strength_n_per_m);
 
 /* True once after the daemon was replaced (the held scene is void). */
 bool link_daemon_changed(struct link *l);

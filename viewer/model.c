@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "base/vec3.h"
+#include "model/gas.h"
 
 #define PLACE_TOLERANCE_M 1e-4 /* the viewer's mesh against the daemon's */
 #define PLANE_SEARCH 16        /* samples either side for a normal plane */
@@ -234,6 +235,29 @@ static int shape_of(const char *name)
 	return strcmp(name, "flat") ? MODEL_POLYP_SESSILE : MODEL_POLYP_FLAT;
 }
 
+/* The assistant's sites; one whose vectors do not add up is named with
+ * none (the hand is still shown by its name). */
+static void copy_sites(struct model *m, const Endosim__SceneInfo *in)
+{
+	m->sites = (int)(in->n_sites < MODEL_MAX_SITES ? in->n_sites :
+							  MODEL_MAX_SITES);
+	for (int i = 0; i < m->sites; i++) {
+		const Endosim__SceneSite *x = in->sites[i];
+		struct model_site *o = &m->site[i];
+
+		memset(o, 0, sizeof(*o));
+		snprintf(o->name, sizeof(o->name), "%s", x->name);
+		if (x->n_position_m != 3 || x->n_direction != 3) {
+			continue;
+		}
+		for (int k = 0; k < 3; k++) {
+			o->position_m[k] = x->position_m[k];
+			o->direction[k] = x->direction[k];
+		}
+		o->radius_m = x->radius_m;
+	}
+}
+
 static void copy_anatomy(struct model *m, const Endosim__SceneInfo *in)
 {
 	snprintf(m->name, sizeof(m->name), "%s", in->name);
@@ -259,6 +283,7 @@ static void copy_anatomy(struct model *m, const Endosim__SceneInfo *in)
 			.diameter_m = p->diameter_m, .shape = shape_of(p->shape)
 		};
 	}
+	copy_sites(m, in);
 }
 
 /* The scope the scene is rendered with; the shipped one when it does not
@@ -353,21 +378,27 @@ static void widen(uint32_t *lo, uint32_t *hi, uint32_t a, uint32_t b)
 	*hi = b > *hi ? b : *hi;
 }
 
-/* Places the mesh of span K as its centreline lies now, widening
- * [*LO, *HI) by the vertices that moved. */
-static void place_span(struct model *m, int k, uint32_t *lo, uint32_t *hi)
+/* Places samples A..B as the centreline lies now, widening [*LO, *HI)
+ * by the vertices that moved. */
+static void place_run(struct model *m, size_t a, size_t b, uint32_t *lo,
+		      uint32_t *hi)
 {
 	struct mesh *me = m->mesh;
-	double ds = centreline_step(m->cl), s0, s1;
-	size_t a, b;
 
-	centreline_span_range(m->cl, k, &s0, &s1);
-	a = (size_t)lround(s0 / ds);
-	b = (size_t)lround(s1 / ds);
 	mesh_place_kept(me, m->cl, a, b, m->keep);
 	a = a > me->reach ? a - me->reach : 0;
 	b = b + me->reach + 1 < me->samples ? b + me->reach + 1 : me->samples;
 	widen(lo, hi, me->sample_first[a], me->sample_first[b]);
+}
+
+/* Places the mesh of span K as its centreline lies now, widening
+ * [*LO, *HI) by the vertices that moved. */
+static void place_span(struct model *m, int k, uint32_t *lo, uint32_t *hi)
+{
+	double ds = centreline_step(m->cl), s0, s1;
+
+	centreline_span_range(m->cl, k, &s0, &s1);
+	place_run(m, (size_t)lround(s0 / ds), (size_t)lround(s1 / ds), lo, hi);
 }
 
 void model_bow(struct model *m, const double *bow_m, int spans,
@@ -435,6 +466,55 @@ void model_displace(struct model *m, const struct endosim_rod_state *rod,
 			place_span(m, k, &lo, &hi);
 		}
 		at += n;
+	}
+	*first = lo;
+	*count = hi - lo;
+}
+
+/* FACTOR's lumen factor at S_M, from region *R on (moved on to the
+ * region holding S_M). */
+static double factor_at(const struct model *m, const double *factor,
+			int *r, double s_m)
+{
+	const struct model_region *rg;
+
+	while (*r + 1 < m->regions && s_m >= m->region[*r].s1_m) {
+		(*r)++;
+	}
+	rg = &m->region[*r];
+	return gas_factor_in(factor, *r, rg->s0_m, rg->s1_m, s_m);
+}
+
+void model_scale(struct model *m, const double *factor, uint32_t *first,
+		 uint32_t *count)
+{
+	struct mesh *me = m->mesh;
+	double ds = centreline_step(m->cl), sane[GAS_SEGMENTS];
+	uint32_t lo = 0, hi = 0;
+	size_t run = SIZE_MAX; /* the first sample of a run to place */
+	int r = 0;
+
+	for (int k = 0; k < GAS_SEGMENTS; k++) {
+		double f = factor ? factor[k] : 1;
+
+		sane[k] = isfinite(f) && f > 0 ? f : 1;
+	}
+	for (size_t i = 0; m->regions == GAS_SEGMENTS && i < me->samples;
+	     i++) {
+		double f = factor_at(m, sane, &r, (double)i * ds);
+
+		if (fabs(f - me->radial[i]) >= MODEL_SCALE_STEP *
+						    me->radial[i] ||
+		    (f == 1 && me->radial[i] != 1)) {
+			me->radial[i] = (float)f;
+			run = run == SIZE_MAX ? i : run;
+		} else if (run != SIZE_MAX) {
+			place_run(m, run, i - 1, &lo, &hi);
+			run = SIZE_MAX;
+		}
+	}
+	if (run != SIZE_MAX) {
+		place_run(m, run, me->samples - 1, &lo, &hi);
 	}
 	*first = lo;
 	*count = hi - lo;

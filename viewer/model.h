@@ -15,7 +15,10 @@
  * centreline_bow() and mesh_place(), as colon_bow() does in the daemon;
  * in the rod model model_displace() moves them through the nodes it
  * publishes (struct endosim_rod_state) with centreline_displace(), as the
- * daemon's colon follows them (flex.h).
+ * daemon's colon follows them (flex.h). model_scale() widens or narrows
+ * the lumen by the gas's factors (the patient's body, gas.h). The case's
+ * sites where the assistant presses (SceneSite) are kept as the scene
+ * orders them, the order of the published hand_site.
  *
  * A view that draws only some vertices (lod.h) says which with
  * model_keep(): from then on those two place the others only for the
@@ -41,8 +44,11 @@
 #define MODEL_NAME 64
 #define MODEL_MAX_REGIONS 16
 #define MODEL_MAX_POLYPS 32
+#define MODEL_MAX_SITES 8
 #define MODEL_BOW_STEP_M 0.0005 /* smaller changes of a bow or a node are
 				   not placed */
+#define MODEL_SCALE_STEP 0.005  /* a lumen factor that changed by a smaller
+				   share is not placed again */
 #define MODEL_END_M 0.15        /* the cecum's dome: a camera stays where */
 #define MODEL_OPEN 0.6          /* the lumen is this share of its widest in
 				   the last MODEL_END_M */
@@ -67,6 +73,14 @@ struct model_polyp {
 	int shape;         /* enum model_polyp_shape */
 };
 
+/* A place on the abdomen where the assistant presses (SceneSite). */
+struct model_site {
+	char name[MODEL_NAME]; /* "llq", "umbilical", ... */
+	double position_m[3];  /* the pad's centre, body frame */
+	double direction[3];   /* into the abdomen (unit) */
+	double radius_m;
+};
+
 struct model {
 	uint64_t scene_id;
 	char name[MODEL_NAME];
@@ -79,6 +93,9 @@ struct model {
 	int regions;
 	struct model_polyp polyp[MODEL_MAX_POLYPS];
 	int polyps;
+	struct model_site site[MODEL_MAX_SITES]; /* the scene's order: the
+						    published hand_site */
+	int sites;
 	double placed_error_m; /* largest distance from the scene's vertices */
 	size_t last_open;  /* the last sample whose ring is wide open */
 	/* the rod model's nodes as last placed, each span's from
@@ -123,6 +140,22 @@ void model_bow(struct model *m, const double *bow_m, int spans,
  */
 void model_displace(struct model *m, const struct endosim_rod_state *rod,
 		    uint32_t *first, uint32_t *count);
+
+/*
+ * The gas's lumen: scales the mesh radially about the centreline by
+ * FACTOR (per anatomical segment, as published in struct
+ * endosim_patient_state; NULL: 1), blended across the segments'
+ * boundaries as the haptics blend it (gas_factor_in()): one surface for
+ * the picture and the contact. Each sample whose factor differs from the
+ * one it is placed with by MODEL_SCALE_STEP of it or more (or that
+ * comes back to 1: the case's lumen exactly) is placed again, with the
+ * bows and nodes as they are; a factor that is not
+ * finite or not positive counts as 1. A colon without the nine segments
+ * (an import) stays as it is. Returns the vertices moved as model_bow()
+ * does.
+ */
+void model_scale(struct model *m, const double *factor, uint32_t *first,
+		 uint32_t *count);
 
 /*
  * How far (m) the centreline of mobile span SPAN lies from its rest at

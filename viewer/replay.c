@@ -30,6 +30,7 @@ struct replay {
 	struct scope_pose pose;
 	struct session_shape shape; /* the rod model's, at or before st */
 	double loop_threshold_m;    /* the session's metrics' */
+	double relief_pa, strength_n_per_m; /* its [patient] */
 };
 
 static const char *read_error(int r)
@@ -58,6 +59,18 @@ static void read_scope(struct replay *r, const char *path)
 	}
 	sessioninputs_file_metrics_params(&r->f, &mp);
 	r->loop_threshold_m = mp.loop_threshold_m;
+}
+
+/* The pressure gauge's marks, from the recorded configuration (its
+ * defaults where it has none). */
+static void read_patient(struct replay *r)
+{
+	struct config cfg;
+	char err[256];
+
+	sessioninputs_config(&r->f, &cfg, err, sizeof(err));
+	r->relief_pa = cfg.patient.relief_pa;
+	r->strength_n_per_m = cfg.patient.wall_strength_n_per_m;
 }
 
 static int build_colon(struct replay *r, const char *path, char *err,
@@ -109,6 +122,7 @@ struct replay *replay_open(const char *path, char *err, size_t errsize)
 	session_text_get(r->f.header, "case", r->case_name,
 			 sizeof(r->case_name));
 	read_scope(r, path);
+	read_patient(r);
 	if (build_colon(r, path, err, errsize)) {
 		goto fail;
 	}
@@ -152,6 +166,13 @@ size_t replay_records(const struct replay *r)
 size_t replay_bytes_ignored(const struct replay *r)
 {
 	return r->f.bytes_ignored;
+}
+
+void replay_patient_limits(const struct replay *r, double *relief_pa,
+			   double *strength_n_per_m)
+{
+	*relief_pa = r->relief_pa;
+	*strength_n_per_m = r->strength_n_per_m;
 }
 
 double replay_loop_threshold_m(const struct replay *r)

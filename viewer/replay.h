@@ -73,6 +73,11 @@ size_t replay_bytes_ignored(const struct replay *r);
  * (sessioninputs_file_metrics_params()). */
 double replay_loop_threshold_m(const struct replay *r);
 
+/* The pressure gauge's marks: the session's [patient] relief_pa (0:
+ * none) and wall_strength_n_per_m, as recorded (the defaults where not). */
+void replay_patient_limits(const struct replay *r, double *relief_pa,
+			   double *strength_n_per_m);
+
 /* Seconds from the first record to the last. */
 double replay_duration(const struct replay *r);
 

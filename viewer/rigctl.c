@@ -82,7 +82,7 @@ static const char *reason(const Endosim__Reply *rep)
 }
 
 int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
-		uint32_t hold_ms, uint64_t now_ns)
+		uint32_t valves, uint32_t hold_ms, uint64_t now_ns)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
@@ -95,6 +95,7 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	body.n_force = ENDOSIM_AXES;
 	body.force = (double *)force;
 	body.hold_ms = hold_ms;
+	body.valves = valves;
 	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
 	req.hand_input = &body;
 	err = exchange(r, &req, &rep, now_ns);
@@ -159,32 +160,66 @@ static void command_body(Endosim__Request *req, enum rigctl_command cmd)
 	}
 }
 
-int rigctl_command(struct rigctl *r, enum rigctl_command cmd,
+/* Sends REQ for what WHAT names; the outcome in r->said. */
+static int command(struct rigctl *r, Endosim__Request *req, const char *what,
 		   uint64_t now_ns)
 {
-	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
 	int err;
 
-	command_body(&req, cmd);
 	reconnect_now(r->rc); /* the trainee asked: try now */
-	err = exchange(r, &req, &rep, now_ns);
+	err = exchange(r, req, &rep, now_ns);
 	if (err) {
-		snprintf(r->said, sizeof(r->said), "%s: %s", command_name[cmd],
+		snprintf(r->said, sizeof(r->said), "%s: %s", what,
 			 reconnect_problem(r->rc));
 		return err;
 	}
 	if (rep->status == ENDOSIM__STATUS__STATUS_OK) {
-		snprintf(r->said, sizeof(r->said), "%s: done",
-			 command_name[cmd]);
+		snprintf(r->said, sizeof(r->said), "%s: done", what);
 	} else {
-		snprintf(r->said, sizeof(r->said), "%s refused: %s",
-			 command_name[cmd], reason(rep));
+		snprintf(r->said, sizeof(r->said), "%s refused: %s", what,
+			 reason(rep));
 		err = -EACCES;
 	}
 	log_info("%s", r->said);
 	endosim__reply__free_unpacked(rep, NULL);
 	return err;
+}
+
+int rigctl_command(struct rigctl *r, enum rigctl_command cmd,
+		   uint64_t now_ns)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+
+	command_body(&req, cmd);
+	return command(r, &req, command_name[cmd], now_ns);
+}
+
+int rigctl_patient(struct rigctl *r, enum rigctl_patient what,
+		   const char *name, uint64_t now_ns)
+{
+	Endosim__Patient body = ENDOSIM__PATIENT__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	char words[96];
+
+	switch (what) {
+	case RIGCTL_PATIENT_TURN:
+		body.action = ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_TURN;
+		body.position = (char *)name;
+		snprintf(words, sizeof(words), "turn to %s", name);
+		break;
+	case RIGCTL_PATIENT_PRESS:
+		body.action = ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_PRESS;
+		body.site = (char *)name;
+		snprintf(words, sizeof(words), "the hand on %s", name);
+		break;
+	default:
+		body.action = ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_RELEASE;
+		snprintf(words, sizeof(words), "the hand off");
+	}
+	req.body_case = ENDOSIM__REQUEST__BODY_PATIENT;
+	req.patient = &body;
+	return command(r, &req, words, now_ns);
 }
 
 const char *rigctl_problem(const struct rigctl *r)

@@ -1,8 +1,9 @@
 /*
  * rigctl.h - endoview's commands to endosimd over the read-write socket
  * (control.sock, the endosim group): the simulated hand's forces
- * (HandInput), the state machine (enable, disable, estop, reset) and
- * guided replay's take-over, resume and reset.
+ * (HandInput) and the handle's valves with them, the state machine
+ * (enable, disable, estop, reset), guided replay's take-over, resume and
+ * reset, and the patient's (Patient: a turn, the assistant's hand).
  *
  * The connection (reconnect.h) is made when first needed and again, at
  * most every RIGCTL_RETRY_S, after it failed. What cannot be done is said
@@ -48,11 +49,23 @@ struct rigctl *rigctl_create(const char *socket);
 void rigctl_destroy(struct rigctl *r);
 
 /*
- * The hand's FORCE per axis (N, N m), holding HOLD_MS. Returns 0, or a
- * negative errno (-EACCES: refused, see rigctl_problem()).
+ * The hand's FORCE per axis (N, N m) and the VALVES it holds (enum
+ * endosim_valve bits), holding HOLD_MS. Returns 0, or a negative errno
+ * (-EACCES: refused, see rigctl_problem()).
  */
 int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
-		uint32_t hold_ms, uint64_t now_ns);
+		uint32_t valves, uint32_t hold_ms, uint64_t now_ns);
+
+enum rigctl_patient {
+	RIGCTL_PATIENT_TURN,    /* to the position NAME ("supine") */
+	RIGCTL_PATIENT_PRESS,   /* the assistant's hand at the site NAME */
+	RIGCTL_PATIENT_RELEASE, /* lets go (NAME unused) */
+};
+
+/* The patient's command WHAT with NAME. Returns 0 or a negative errno; the
+ * outcome in rigctl_said(). */
+int rigctl_patient(struct rigctl *r, enum rigctl_patient what,
+		   const char *name, uint64_t now_ns);
 
 /* Sends CMD. Returns 0 or a negative errno; the outcome in rigctl_said(). */
 int rigctl_command(struct rigctl *r, enum rigctl_command cmd,

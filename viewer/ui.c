@@ -49,6 +49,10 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->capture;
 	case GLFW_KEY_M:
 		return &a->toggle_map;
+	case GLFW_KEY_T:
+		return &a->turn_patient;
+	case GLFW_KEY_N:
+		return &a->next_hand;
 	case GLFW_KEY_Q:
 	case GLFW_KEY_ESCAPE:
 		return &a->quit;
@@ -90,7 +94,9 @@ static bool replay_key(struct ui_actions *a, int key, int action, int mods)
 	case GLFW_KEY_E:
 	case GLFW_KEY_X:
 	case GLFW_KEY_R:
-		return true; /* no rig to command */
+	case GLFW_KEY_T:
+	case GLFW_KEY_N:
+		return true; /* no rig, no patient to command */
 	default:
 		return false;
 	}
@@ -165,6 +171,16 @@ static double axis_keys(const struct ui *u, int plus, int plus2, int minus,
 	       (key(u, minus, minus2) ? 1.0 : 0.0);
 }
 
+/* The handle's valves, held on 1, 2, 3 (or the keypad's). */
+static const struct {
+	int key, keypad;
+	uint32_t bit;
+} valve_key[3] = {
+	{ GLFW_KEY_1, GLFW_KEY_KP_1, ENDOSIM_VALVE_AIR },
+	{ GLFW_KEY_2, GLFW_KEY_KP_2, ENDOSIM_VALVE_WATER },
+	{ GLFW_KEY_3, GLFW_KEY_KP_3, ENDOSIM_VALVE_SUCTION },
+};
+
 static void keyboard(const struct ui *u, struct input_controls *c)
 {
 	double fast = key(u, GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT) ?
@@ -179,6 +195,10 @@ static void keyboard(const struct ui *u, struct input_controls *c)
 						   GLFW_KEY_K, -1);
 	c->rate[ENDOSIM_AXIS_WHEEL_LR] = axis_keys(u, GLFW_KEY_L, -1,
 						   GLFW_KEY_J, -1);
+	for (int k = 0; k < 3; k++) {
+		c->valves |= key(u, valve_key[k].key, valve_key[k].keypad) ?
+				     valve_key[k].bit : 0;
+	}
 }
 
 static double stick(float v)

@@ -6,6 +6,11 @@
  *   keyboard  Up/W Down/S insert, withdraw (Shift: faster); Left/A
  *             Right/D twist; I K tip up, down; J L tip left, right;
  *             E enable, X disable, Space emergency stop, R reset;
+ *             the handle's valves while held: 1 the air/water valve
+ *             covered (air), 2 pressed (water onto the lens), 3 suction;
+ *             T turn the patient to the next position (left lateral,
+ *             supine, right lateral, prone), N the assistant's hand on
+ *             the case's next site, then off;
  *             V next view, O overview orbit back, P save a picture,
  *             M the unseen-mucosa map, H help, Q/Esc quit
  *   mouse     on the endoscopic image: drag to steer (the wheels follow
@@ -49,6 +54,8 @@ struct ui_actions {
 	bool command[RIGCTL_COMMANDS]; /* by enum rigctl_command */
 	bool next_view, toggle_help, reset_orbit, capture, quit;
 	bool toggle_map;     /* the unseen-mucosa overlay (mapview.h) */
+	bool turn_patient;   /* T: to the next position */
+	bool next_hand;      /* N: the hand on the next site, or off */
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;
 	int speed_steps;     /* +1 faster, -1 slower, per key */

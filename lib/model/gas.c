@@ -305,12 +305,27 @@ int gas_step(struct gas *g, const struct gas_input *in, double dt_s)
 	return torn;
 }
 
+double gas_factor_in(const double factor[GAS_SEGMENTS], int i, double s0_m,
+		     double s1_m, double s_m)
+{
+	double f = factor[i], w;
+
+	if (i > 0 && s_m < s0_m + GAS_BLEND_M) {
+		w = 0.5 + 0.5 * (s_m - s0_m) / GAS_BLEND_M; /* 0.5 .. 1 */
+		return factor[i - 1] + (f - factor[i - 1]) * fmax(0.5, w);
+	}
+	if (i + 1 < GAS_SEGMENTS && s_m > s1_m - GAS_BLEND_M) {
+		w = 0.5 + 0.5 * (s1_m - s_m) / GAS_BLEND_M;
+		return factor[i + 1] + (f - factor[i + 1]) * fmax(0.5, w);
+	}
+	return f;
+}
+
 double gas_factor_at(const struct colon *colon,
 		     const double factor[GAS_SEGMENTS], double s_m)
 {
 	int n = colon_anatomy(colon) ? colon_regions(colon) : 0, i = 0;
 	const struct colon_region *r;
-	double f, w;
 
 	if (n != GAS_SEGMENTS) {
 		return 1;
@@ -319,14 +334,5 @@ double gas_factor_at(const struct colon *colon,
 		i++;
 	}
 	r = colon_region(colon, i);
-	f = factor[i];
-	if (i > 0 && s_m < r->s0_m + GAS_BLEND_M) {
-		w = 0.5 + 0.5 * (s_m - r->s0_m) / GAS_BLEND_M; /* 0.5 .. 1 */
-		return factor[i - 1] + (f - factor[i - 1]) * fmax(0.5, w);
-	}
-	if (i + 1 < n && s_m > r->s1_m - GAS_BLEND_M) {
-		w = 0.5 + 0.5 * (r->s1_m - s_m) / GAS_BLEND_M;
-		return factor[i + 1] + (f - factor[i + 1]) * fmax(0.5, w);
-	}
-	return f;
+	return gas_factor_in(factor, i, r->s0_m, r->s1_m, s_m);
 }

@@ -204,4 +204,10 @@ double gas_lumen_volume(const struct gas *g, double p_pa,
 double gas_factor_at(const struct colon *colon,
 		     const double factor[GAS_SEGMENTS], double s_m);
 
+/* The same at S_M in segment I (0 .. GAS_SEGMENTS - 1), which runs from
+ * S0_M to S1_M: for a reader that knows the segments but has no colon
+ * (endoview: the scene's regions). Any thread. */
+double gas_factor_in(const double factor[GAS_SEGMENTS], int i, double s0_m,
+		     double s1_m, double s_m);
+
 #endif

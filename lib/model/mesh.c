@@ -35,14 +35,18 @@ struct mesh *mesh_create(uint32_t vertices, uint32_t triangles,
 	m->near_hi = calloc(samples, sizeof(*m->near_hi));
 	m->sample_min = calloc(samples, sizeof(*m->sample_min));
 	m->sample_max = calloc(samples, sizeof(*m->sample_max));
+	m->radial = malloc(samples * sizeof(*m->radial));
 	m->sample = calloc(vertices, sizeof(*m->sample));
 	m->tri = calloc(triangles, sizeof(*m->tri));
 	m->sample_first = calloc(samples + 1, sizeof(*m->sample_first));
 	if (!m->pos || !m->nrm || !m->off || !m->noff || !m->sample_rho ||
 	    !m->near_lo || !m->near_hi || !m->sample_min || !m->sample_max ||
-	    !m->sample || !m->tri || !m->sample_first) {
+	    !m->sample || !m->tri || !m->sample_first || !m->radial) {
 		mesh_destroy(m);
 		return NULL;
+	}
+	for (size_t i = 0; i < samples; i++) {
+		m->radial[i] = 1;
 	}
 	return m;
 }
@@ -61,6 +65,7 @@ void mesh_destroy(struct mesh *m)
 	free(m->near_hi);
 	free(m->sample_min);
 	free(m->sample_max);
+	free(m->radial);
 	free(m->sample);
 	free(m->tri);
 	free(m->sample_first);
@@ -74,7 +79,8 @@ size_t mesh_bytes(const struct mesh *m)
 	       (size_t)m->vertices * (4 * sizeof(*m->pos) + sizeof(uint32_t)) +
 	       (size_t)m->triangles * sizeof(*m->tri) +
 	       (4 * m->samples + 1) * sizeof(uint32_t) +
-	       m->samples * (sizeof(*m->sample_min) + sizeof(*m->sample_max)) +
+	       m->samples * (sizeof(*m->sample_min) + sizeof(*m->sample_max) +
+			     sizeof(*m->radial)) +
 	       m->segments * sizeof(*m->seg);
 }
 
@@ -187,15 +193,12 @@ static inline void vertex_position(const struct mesh *m,
 				   bool folds, uint32_t j, float out[3])
 {
 	const float *o = m->off[j];
-	double b = o[1], cc = o[2];
+	double b = o[1], cc = o[2], k = m->radial[i];
 
 	if (folds && (b != 0 || cc != 0)) {
-		double k = fold_factor(m, cl, i, c, o);
-
-		b *= k;
-		cc *= k;
+		k *= fold_factor(m, cl, i, c, o);
 	}
-	frame_point(c, o[0], b, cc, out);
+	frame_point(c, o[0], b * k, cc * k, out);
 }
 
 static inline float least(float a, float b)

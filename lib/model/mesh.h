@@ -11,6 +11,13 @@
  * another part of the colon (a wider lumen passing close) is bound again
  * near its triangle's other corners.
  *
+ * A reader may scale the lumen radially (endoview: the gas's lumen factor,
+ * gas.h): mesh_place() multiplies each vertex' offset across the
+ * centreline (b, c) by its sample's radial[i] (1 as created), after the
+ * folds are held as below: the haptics scale the same placed surface by
+ * the same factor (haptics.c), so the picture and the contact are one
+ * surface.
+ *
  * Folds: inside a bend tighter than the lumen the normal planes of nearby
  * samples cross within the wall, and rings placed at full radius would
  * cross too. For a generated tube, mesh_place() therefore shortens a
@@ -73,6 +80,9 @@ struct mesh {
 	uint32_t *near_lo, *near_hi; /* per sample: planes that may cut in */
 	float (*sample_min)[3], (*sample_max)[3]; /* per sample: the box of
 						    its vertices as placed */
+	float *radial;         /* per sample: the scale of its vertices'
+				  offsets across the centreline (1: as the
+				  offsets say; mesh_place() applies it) */
 	double segment_m;
 	double step_m;         /* the centreline's */
 	uint32_t segments;

@@ -7,7 +7,11 @@
 # rate and the frame time (p50, p99) of the endoscopic view and of the
 # overview next to an empty frame (clear and swap only) measured in the
 # same run, and the age of the state each frame shows (the swap's time less
-# the state's publish_ns, p50, p99).
+# the state's publish_ns, p50, p99). Then the patient's (issue 22): the
+# default case with a little fluid in the rectum, the sigmoid and the
+# descending colon, the tip under the sigmoid's surface and pressed into
+# its wall, so that every pixel of the endoscopic view goes through the
+# liquid and the lens is both smeared and murky (endo.h, lensfx.h).
 #
 #   VIEWER_FRAMES   frames per run (default 150)
 set -u
@@ -42,19 +46,21 @@ measure() {
 }
 
 # mesh NAME ARGS...: the daemon with the colon at that resolution, every
-# view at every size.
+# view ($VIEWS) at every size, once the status makes $READY true.
+VIEWS="empty endo overview"
+READY='.axes.insertion.position > 0.59'
 mesh() {
 	local name=$1
 	shift
 	start_daemon "$@" --scenario "$SCN" || return 1
 	ctl enable >/dev/null
-	wait_for status_true '.axes.insertion.position > 0.59'
+	wait_for status_true "$READY"
 	echo "colon: $name, $(ctl --json scene info 2>/dev/null |
 		jq -r '"\(.triangles) triangles"' 2>/dev/null)"
 	printf '  %-9s %-9s %7s %8s %8s %7s %9s %8s %9s\n' view size fps \
 		"p50 ms" "p99 ms" "/empty" "age p50" "age p99" triangles
 	for size in $SIZES; do
-		for view in empty endo overview; do
+		for view in $VIEWS; do
 			measure "$view" "$size"
 		done
 	done
@@ -68,5 +74,15 @@ echo "renderer: $(sed -n 's/^endoview: OpenGL //p' "$VIEW_OUT"), $(nproc) CPUs"
 mesh "default case, default resolution"
 mesh "default case at ~2 million triangles" \
 	--set case.ring_vertices=672 --set case.step_m=0.001
+mkdir -p "$TMP/cases"
+awk '{ print } /^\[segment (rectum|sigmoid|descending)\]/ {
+	print "fluid_m3 = 20e-6" }' "$CASES/normal.case" |
+	sed 's/^name = normal$/name = pool/' >"$TMP/cases/pool.case"
+VIEWS="empty endo"
+READY="$READY and .patient.tip_in_fluid and .patient.lens_smear > 0.5 and
+       .patient.lens_murk > 0.5"
+mesh "default case, default resolution, the patient: the tip in a pool, \
+the lens smeared and murky" --set patient.enabled=yes \
+	--set "case.directory=$TMP/cases" --set case.name=pool
 echo "(frame: swap to swap; age: the state's publish_ns to the swap that"
 echo " shows it; /empty: the frame's p50 over the empty frame's at that size)"

@@ -60,13 +60,7 @@ if ! start_xvfb; then
 	skip "endoview: the map on M" "no Xvfb here"
 	finish
 fi
-(cd "$TMP" && endoview --socket "$SOCK" --shm-name "$SHM" --size 960x540 \
-	--print-state --stats >"$TMP/live.out" 2>&1) &
-viewer=$!
-WAIT_S=20 check "live viewer: the colon is loaded" \
-	wait_for grep -q "colon polyps" "$TMP/live.out"
-window=$(xdotool search --sync --name '^endoview$' | head -n 1)
-xdotool windowfocus --sync "$window"
+live_view polyps --size 960x540 --print-state --stats
 # shot N: P, the picture saved as $TMP/shotN.png
 shot() {
 	local before
@@ -83,7 +77,7 @@ shot 2
 ctl session stop >/dev/null
 sleep 1.5
 xdotool key q
-wait "$viewer"
+wait "$VIEWER"
 check "Q quits the viewer cleanly" test $? = 0
 [ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 	cp "$TMP/shot2.png" "$ENDOSIM_KEEP_SHOTS/live-map.png"

@@ -8,12 +8,15 @@
  * REGION is rect:X,Y,W,H, disc:CX,CY,R or ring:CX,CY,R0,R1 (pixels, the
  * image's top-left origin). For each, one line:
  *
- *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE scope=SHARE
- *          box=X0,Y0,X1,Y1
+ *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE yellow=SHARE
+ *          scope=SHARE box=X0,Y0,X1,Y1
  *
  * LUMA is the mean Rec. 601 luma (0..255); lit the share of pixels with
  * luma above 40; red the share of saturated red (a banner, an alarm, the
  * contact point); amber the share of amber (a warning, a bowed segment);
+ * yellow the share of the dull brown-yellow of the patient's fluid (green
+ * near red, blue far below both: not the mucosa's pink, whose blue is
+ * near its green);
  * scope the share of the overview's scope green; box the bounding box of
  * the scope-green pixels (-1s when none).
  *
@@ -32,7 +35,7 @@ struct region {
 };
 
 struct tally {
-	long n, lit, red, amber, scope;
+	long n, lit, red, amber, yellow, scope;
 	double luma;
 	int box[4];
 };
@@ -79,6 +82,7 @@ static void count(struct tally *t, const unsigned char *p, int x, int y)
 	t->lit += luma > 40;
 	t->red += r > 200 && g < 100 && b < 100;
 	t->amber += r > 120 && g > 0.45 * r && g < 0.8 * r && b < 0.3 * r;
+	t->yellow += r > 30 && g > 0.62 * r && g < 1.1 * r && b < 0.5 * g;
 	t->scope += scope;
 	if (scope) {
 		t->box[0] = t->box[0] < 0 || x < t->box[0] ? x : t->box[0];
@@ -102,10 +106,10 @@ static void report(const char *name, const unsigned char *img, int w, int h,
 		}
 	}
 	n = t.n ? (double)t.n : 1;
-	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f scope=%.4f "
-	       "box=%d,%d,%d,%d\n", name, t.n, t.luma / n, t.lit / n,
-	       t.red / n, t.amber / n, t.scope / n, t.box[0], t.box[1],
-	       t.box[2], t.box[3]);
+	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f yellow=%.4f "
+	       "scope=%.4f box=%d,%d,%d,%d\n", name, t.n, t.luma / n,
+	       t.lit / n, t.red / n, t.amber / n, t.yellow / n, t.scope / n,
+	       t.box[0], t.box[1], t.box[2], t.box[3]);
 }
 
 int main(int argc, char **argv)

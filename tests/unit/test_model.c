@@ -1,7 +1,8 @@
 /*
  * test_model.c - the viewer's colon (viewer/model.h): rebuilt from what
  * GetScene serves, it is the daemon's colon vertex for vertex, also bowed
- * or moved by the rod model's nodes; it names the region of any s; it
+ * or moved by the rod model's nodes, and its lumen widened or narrowed by
+ * the gas as the haptics scale theirs; it names the region of any s; it
  * keeps a camera inside the lumen, out of the cecum's closed end too; its
  * scope is the scene's.
  */
@@ -16,6 +17,7 @@
 #include <cmocka.h>
 
 #include "base/vec3.h"
+#include "model/gas.h"
 #include "viewer/lod.h"
 #include "viewer_fixture.h"
 
@@ -89,6 +91,80 @@ static void bows_as_daemon(void **state)
 	bow[0] += MODEL_BOW_STEP_M / 2; /* too small a change to place */
 	model_bow(f.model, bow, 2, &first, &count);
 	assert_int_equal(count, 0);
+	free(before);
+	fixture_teardown(&f);
+}
+
+/*
+ * Every vertex of ME lies where the daemon's (D, unscaled) lies with its
+ * offset across the centreline scaled by gas_factor_at() on the daemon's
+ * colon C (FACTOR; NULL: 1), the surface the haptics map the tip onto,
+ * to within 10 um and the share REL of its offset.
+ */
+static void scaled_as_haptics(const struct mesh *me, const struct mesh *d,
+			      const struct colon *c, const double *factor,
+			      double rel)
+{
+	const struct centreline *cl = colon_centreline(c);
+	double ds = centreline_step(cl), worst = 0;
+
+	for (uint32_t j = 0; j < me->vertices; j++) {
+		const struct centreline_point *p =
+			centreline_sample(cl, me->sample[j]);
+		double f = factor ? gas_factor_at(c, factor,
+						  me->sample[j] * ds) : 1;
+		double a[3], b[3], e;
+
+		for (int k = 0; k < 3; k++) {
+			a[k] = me->pos[j][k] - p->p[k];
+			b[k] = d->pos[j][k] - p->p[k];
+		}
+		e = fabs(vec3_dot(a, p->t) - vec3_dot(b, p->t)) +
+		    fabs(vec3_dot(a, p->u) - f * vec3_dot(b, p->u)) +
+		    fabs(vec3_dot(a, p->v) - f * vec3_dot(b, p->v));
+		e /= 1e-5 + rel * vec3_norm(a);
+		worst = e > worst ? e : worst;
+	}
+	assert_true(worst < 1);
+}
+
+/* The gas's factors scale the lumen radially as the haptics scale it;
+ * only what changed by MODEL_SCALE_STEP or more is placed again; a
+ * factor that is not finite counts as 1; without factors the mesh is
+ * the daemon's again. */
+static void scales_as_the_gas(void **state)
+{
+	double factor[GAS_SEGMENTS] = { 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.1,
+					1.2, 1.25 };
+	double placed[GAS_SEGMENTS];
+	struct fixture f;
+	const struct mesh *me, *d;
+	float (*before)[3];
+	uint32_t first, count;
+
+	(void)state;
+	fixture_setup(&f, "config/cases", "normal", 0.004, 32);
+	me = f.model->mesh;
+	d = colon_mesh(f.colon);
+	before = positions(me);
+	model_scale(f.model, factor, &first, &count);
+	assert_true(count > 0.9 * me->vertices);
+	only_range_moved(me, (const float(*)[3])before, first, count);
+	scaled_as_haptics(me, d, f.colon, factor, 0);
+	memcpy(placed, factor, sizeof(placed));
+	for (int i = 0; i < GAS_SEGMENTS; i++) {
+		factor[i] *= 1 + MODEL_SCALE_STEP / 2; /* too small to place */
+	}
+	model_scale(f.model, factor, &first, &count);
+	assert_int_equal(count, 0);
+	factor[4] = NAN; /* the splenic flexure: as the case draws it */
+	model_scale(f.model, factor, &first, &count);
+	assert_true(count > 0 && count < me->vertices / 4);
+	placed[4] = 1; /* its neighbours' blends to within the step */
+	scaled_as_haptics(me, d, f.colon, placed, 2 * MODEL_SCALE_STEP);
+	model_scale(f.model, NULL, &first, &count);
+	assert_true(count > 0.9 * me->vertices);
+	assert_true(fixture_placed_error(&f) == 0);
 	free(before);
 	fixture_teardown(&f);
 }
@@ -454,6 +530,7 @@ int main(void)
 		cmocka_unit_test(same_as_daemon),
 		cmocka_unit_test(bows_as_daemon),
 		cmocka_unit_test(moves_as_daemon),
+		cmocka_unit_test(scales_as_the_gas),
 		cmocka_unit_test(keeps_what_is_drawn),
 		cmocka_unit_test(knows_outside),
 		cmocka_unit_test(names_regions),
