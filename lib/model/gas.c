@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/vec3.h"
+#include "model/scope.h"
 
 #define NEWTON_MAX 30        /* iterations at most; 2-4 as a rule */
 #define NEWTON_TOL_M3 1e-12  /* the volume matched within this */
@@ -138,8 +139,10 @@ static void segments_at(struct gas *g, double p,
 		struct gas_segment *s = &g->seg[i];
 
 		s->transmural_pa = p - p_abd[i];
-		s->factor = sqrt(gas_law_volume(&s->law, s->transmural_pa,
-						NULL));
+		/* the wall closes on the scope, not past it */
+		s->factor = fmax(sqrt(gas_law_volume(&s->law, s->transmural_pa,
+						     NULL)),
+				 SCOPE_RADIUS_M / s->radius_m);
 		s->tension_n_per_m = fmax(0, s->transmural_pa) * s->widest_m *
 				     s->factor;
 	}

@@ -18,7 +18,9 @@
  *   the curve's shape, and kappa set so that v(nominal_pa) = 1: the case's
  *   radius at the nominal pressure. Below zero (suction) the collapsed
  *   lumen empties further, e-fold every collapse_pa. Compliant from
- *   collapsed (the curve's steep middle), stiffening beyond.
+ *   collapsed (the curve's steep middle), stiffening beyond. The radius
+ *   the contact and the picture take never falls below the scope's
+ *   (SCOPE_RADIUS_M): the wall closes on the tube, not past it.
  *   linear (GAS_LAW_LINEAR, for analytic tests): v(p) = vc + (1 - vc) p /
  *   nominal_pa for p >= 0, vc exp(p (1 - vc) / (vc nominal_pa)) below
  *   (the same slope at 0).
@@ -143,7 +145,9 @@ struct gas_segment {
 	struct gas_law law;
 	/* the state, as of the last step */
 	double transmural_pa;   /* p */
-	double factor;          /* r / R */
+	double factor;          /* r / R, never below the scope's radius
+				   (the wall closes on the tube, not past
+				   it; the volume follows the law) */
 	double tension_n_per_m; /* p r at its widest, 0 when p <= 0 */
 	bool burst;
 };

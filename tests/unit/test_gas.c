@@ -33,6 +33,7 @@
 #include "model/anatomy.h"
 #include "model/colon.h"
 #include "model/gas.h"
+#include "model/scope.h"
 
 #define DT 0.001
 #define MMHG GAS_PA_PER_MMHG
@@ -297,6 +298,39 @@ static void blend(void **state)
 		    1e-9);
 }
 
+/*
+ * Suction with the tip in gas empties the colon towards a vacuum: each
+ * segment's radius follows its law down to the scope's and no further
+ * (the wall closes on the tube, not past it), while the volume keeps
+ * the law's own.
+ */
+static void suction_closes_on_the_scope(void **state)
+{
+	struct gas_params p = closed();
+	struct gas_input in = { .suction = true };
+	struct gas g;
+	int floored = 0;
+
+	(void)state;
+	gas_attach(&g, &p, normal, NULL, none);
+	for (int k = 0; k < (int)lround(120 / DT); k++) {
+		gas_step(&g, &in, DT);
+	}
+	printf("# suction 120 s: %.4f L at %.1f mmHg\n", g.volume_m3 / L,
+	       g.pressure_pa / MMHG);
+	assert_true(g.pressure_pa < 0);
+	for (int i = 0; i < g.segments; i++) {
+		double v = gas_law_volume(&g.seg[i].law, g.pressure_pa, NULL);
+		double floor = SCOPE_RADIUS_M / g.seg[i].radius_m;
+
+		assert_true(g.seg[i].factor >= floor - 1e-12);
+		assert_true(fabs(g.seg[i].factor - fmax(sqrt(v), floor)) <
+			    1e-12);
+		floored += sqrt(v) < floor;
+	}
+	assert_true(floored > 0); /* the vacuum reached below the scope */
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -306,6 +340,7 @@ int main(void)
 		cmocka_unit_test(distended_volume),
 		cmocka_unit_test(gravity),
 		cmocka_unit_test(blend),
+		cmocka_unit_test(suction_closes_on_the_scope),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
