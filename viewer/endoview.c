@@ -307,8 +307,9 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 /*
  * The trainee's hand, while the daemon is there to take it: its force
  * while the grip holds, the valves while a key holds them (with the
- * grip's force, none when it does not hold), and once more when the last
- * valve is let go, lapsing at once, so that the gas stops with the key.
+ * grip's force; alone when it does not hold, leaving a scenario's hand
+ * driving), and once more when the last valve is let go, lapsing at
+ * once, so that the gas stops with the key.
  */
 static void drive(struct app *a, const struct input_controls *c,
 		  const struct endosim_state *st, uint64_t now)
@@ -324,7 +325,7 @@ static void drive(struct app *a, const struct input_controls *c,
 	a->hand_ns = now;
 	grip = input_step(&a->hand, c, st, fmin(dt, 0.1), now, force);
 	if (grip || c->valves || a->valves) {
-		rigctl_hand(a->rig, force, c->valves,
+		rigctl_hand(a->rig, grip ? force : NULL, c->valves,
 			    c->valves ? VALVE_HOLD_MS :
 			    grip      ? HAND_HOLD_MS :
 					LAPSE_MS, now);

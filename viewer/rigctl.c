@@ -92,7 +92,7 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	if (r->hand_refused) {
 		return -EACCES;
 	}
-	body.n_force = ENDOSIM_AXES;
+	body.n_force = force ? ENDOSIM_AXES : 0;
 	body.force = (double *)force;
 	body.hold_ms = hold_ms;
 	body.valves = valves;

@@ -50,8 +50,9 @@ void rigctl_destroy(struct rigctl *r);
 
 /*
  * The hand's FORCE per axis (N, N m) and the VALVES it holds (enum
- * endosim_valve bits), holding HOLD_MS. Returns 0, or a negative errno
- * (-EACCES: refused, see rigctl_problem()).
+ * endosim_valve bits), holding HOLD_MS; FORCE NULL: the valves alone,
+ * leaving the forces (a scenario's) as they are. Returns 0, or a negative
+ * errno (-EACCES: refused, see rigctl_problem()).
  */
 int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 		uint32_t valves, uint32_t hold_ms, uint64_t now_ns);
