@@ -36,7 +36,7 @@ variant() {
 		"$TOP/tests/cases/straight.case" >"$TMP/cases/$1.case"
 }
 variant pool 30e-6  # a shallow pool beside the tip
-variant deep 350e-6 # over the tip
+variant deep 290e-6 # over the tip (half the lumen: the most a case may hold)
 PATIENT=(--set "case.directory=$TMP/cases" --set haptics.model=paper
 	 --set patient.enabled=yes)
 
