@@ -48,6 +48,7 @@ struct loop {
 	struct inject inject;      /* test commands' sabotage */
 	struct guide guide;        /* guided replay (guide.h) */
 	bool lockstep;             /* loop_step(): stamps on the caller's clock */
+	uint32_t patient_seq;      /* the scenario's last patient command done */
 
 	/* shared */
 	struct rig *rig;
@@ -247,6 +248,35 @@ static void take_colon(struct loop *l)
 	l->colon = in;
 	l->scene_id = l->scene_id_in;
 	haptics_reset(l->haptics, in);
+}
+
+/*
+ * The scenario's command for the assistant (the rig's feedback: the
+ * simulated hand's scenario), carried out once per new number, before the
+ * patient's step of this cycle. One the patient refuses changes nothing.
+ */
+static void scenario_patient(struct loop *l)
+{
+	const struct scenario_patient *c = &l->fb.patient;
+	struct patient *pt = haptics_patient(l->haptics);
+	const struct anatomy *a = colon_anatomy(l->colon);
+
+	if (c->seq == l->patient_seq) {
+		return;
+	}
+	l->patient_seq = c->seq;
+	switch (c->action) {
+	case SCENARIO_PATIENT_TURN:
+		(void)patient_turn(pt, c->position);
+		break;
+	case SCENARIO_PATIENT_PRESS:
+		(void)patient_press(pt, a ? anatomy_site_find(a, c->site) : -1,
+				    c->force_n);
+		break;
+	case SCENARIO_PATIENT_RELEASE:
+		patient_release(pt);
+		break;
+	}
 }
 
 /* The scope's pose: the paper's kinematics on the centreline, or the rod
@@ -455,6 +485,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
 	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
+	scenario_patient(l);
 	render(l);
 	guide(l, now);
 	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);
