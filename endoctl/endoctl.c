@@ -504,6 +504,11 @@ static void print_scene_info(const struct client_scene *s, bool json)
 		json_uint(&j, "samples", in->n_centreline / 3);
 		json_uint(&j, "segments", in->n_segments);
 		json_uint(&j, "polyps", in->n_polyps);
+		json_array_begin(&j, "sites");
+		for (size_t i = 0; i < in->n_sites; i++) {
+			json_string(&j, NULL, in->sites[i]->name);
+		}
+		json_array_end(&j);
 		json_object_end(&j);
 		return;
 	}
@@ -517,6 +522,17 @@ static void print_scene_info(const struct client_scene *s, bool json)
 
 		printf("  %-16s %6.3f .. %6.3f m%s\n", r->name, r->s0_m,
 		       r->s1_m, r->span >= 0 ? "  mobile" : "");
+	}
+	for (size_t i = 0; i < in->n_sites; i++) {
+		const Endosim__SceneSite *x = in->sites[i];
+
+		if (x->n_position_m == 3 && x->n_direction == 3) {
+			printf("  site %-11s at %.3f %.3f %.3f m, in along "
+			       "%.2f %.2f %.2f, reach %.3f m\n", x->name,
+			       x->position_m[0], x->position_m[1],
+			       x->position_m[2], x->direction[0],
+			       x->direction[1], x->direction[2], x->radius_m);
+		}
 	}
 }
 
@@ -689,6 +705,17 @@ static const struct {
 	  "start ID|FILE [--speed X] [--from S] | stop | takeover | resume | "
 	  "reset [--to S] | status: guided replay of a session through the "
 	  "motors" },
+	{ "patient", ctl_cmd_patient,
+	  "status | position left-lateral|supine|right-lateral|prone | "
+	  "press SITE [--force N] | release | valve air|water|suction on "
+	  "[--for S] | valve air|water|suction off: the patient's body "
+	  "([patient] enabled): a turn takes [patient] turn_s; SITE one of "
+	  "the case's (scene info), N up to [patient] hand_max_n (default "
+	  "hand_n); a valve is spring-loaded as on a real handle: `on` "
+	  "holds it S s (default 2, at most 10), then it springs back, "
+	  "`off` lets go at once; the other valves held stay held with it "
+	  "(simulated rig only: the live hand input, the scenario's hand "
+	  "held off meanwhile)" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions" },
 	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
 			      "tests only" },

@@ -3,7 +3,8 @@
  * endosimd, the daemon's commands, main; endoctl_print.c: printing its
  * replies; endoctl_session.c: training sessions; endoctl_map.c: the
  * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
- * course). One thread.
+ * course; endoctl_guide.c: guided replay; endoctl_patient.c: the
+ * patient). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -25,6 +26,8 @@
 #include "proto/names.h"
 #include "proto/version.h"
 #include "base/json.h"
+#include "model/anatomy.h"
+#include "model/gas.h"
 #include "model/objio.h"
 #include "session/report.h"
 #include "session/sessiondir.h"
@@ -60,6 +63,14 @@ void ctl_print_status(const Endosim__StatusReply *s);
 void ctl_json_status(const Endosim__StatusReply *s);
 void ctl_print_stats(const Endosim__StatsReply *s, bool json);
 
+/*
+ * The patient in one line, for `status` and `patient status`: where it
+ * lies (turning), the gas (L, mmHg), the hand, the valves, a
+ * perforation. Into OUT (SIZE bytes, NUL-terminated).
+ */
+void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
+			 size_t size);
+
 /* `endoctl session ...` (endoctl_session.c). */
 int ctl_cmd_session(struct ctl *ctl, int argc, char **argv);
 
@@ -72,5 +83,11 @@ int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl patient ...` (endoctl_patient.c). */
+int ctl_cmd_patient(struct ctl *ctl, int argc, char **argv);
+
+/* The patient as one JSON object, its fields in fields.h's order. */
+void ctl_json_patient(const Endosim__PatientStatus *p);
 
 #endif

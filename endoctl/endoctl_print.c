@@ -147,6 +147,14 @@ static void json_message(struct json *j, const char *key,
 	json_object_end(j);
 }
 
+void ctl_json_patient(const Endosim__PatientStatus *p)
+{
+	struct json j;
+
+	json_init(&j, stdout);
+	json_message(&j, NULL, &fields_patient, p);
+}
+
 void ctl_json_status(const Endosim__StatusReply *s)
 {
 	struct json j;
@@ -188,6 +196,39 @@ static void print_rod(const Endosim__RodStatus *r,
 	       "N; at the carriage %+.2f N, %+.3f N m\n", names_model(r->model),
 	       r->contacts, r->wall_n, r->friction_n, h->trans_rod_n,
 	       h->tube_rod_nm);
+}
+
+/* The patient's line, when there is one (ctl_patient_summary()). */
+static void print_patient(const Endosim__PatientStatus *p)
+{
+	char line[256];
+
+	if (!p || !p->enabled) {
+		return;
+	}
+	ctl_patient_summary(p, line, sizeof(line));
+	printf("patient   %s\n", line);
+}
+
+void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
+			 size_t size)
+{
+	int n = snprintf(out, size, "%s%s, gas %.2f L at %.1f mmHg, hand ",
+			 p->turning ? "turning to " : "",
+			 names_position(p->position), p->gas_m3 * 1e3,
+			 p->pressure_pa / GAS_PA_PER_MMHG);
+
+	if (n >= 0 && (size_t)n < size) {
+		n += snprintf(out + n, size - (size_t)n, *p->site ?
+			      "%s %.0f N" : "off", p->site, p->hand_n);
+	}
+	if (n >= 0 && (size_t)n < size) {
+		n += snprintf(out + n, size - (size_t)n, ", valves %s%s%s",
+			      names_valves(p->valves),
+			      p->burst_segment >= 0 ? ", PERFORATED: " : "",
+			      p->burst_segment >= 0 ?
+			      anatomy_segment_name(p->burst_segment) : "");
+	}
 }
 
 void ctl_print_status(const Endosim__StatusReply *s)
@@ -234,6 +275,7 @@ void ctl_print_status(const Endosim__StatusReply *s)
 	if (s->rod && s->haptics) {
 		print_rod(s->rod, s->haptics);
 	}
+	print_patient(s->patient);
 	printf("%-10s %16s %16s %12s %12s %12s  %s\n", "axis", "position",
 	       "velocity", "hand", "command", "limited", "drive");
 	for (size_t i = 0; i < s->n_axes; i++) {

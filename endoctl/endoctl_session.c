@@ -81,12 +81,78 @@ static void print_session_facts(const Endosim__SessionInfo *s)
 	}
 }
 
-/* The session and the metrics M (NULL: none) on stdout. */
+/* The events of the patient's kinds (a turn, the hand, a valve, a
+ * perforation). */
+static bool patient_kind(uint32_t kind)
+{
+	return kind >= SESSION_EVENT_POSITION &&
+	       kind <= SESSION_EVENT_PERFORATION;
+}
+
+static size_t patient_event_count(const struct session_file *f)
+{
+	size_t n = 0;
+
+	for (size_t i = 0; i < f->n_events; i++) {
+		n += patient_kind(f->events[i].ev.kind);
+	}
+	return n;
+}
+
+/*
+ * F's patient's events after the metrics: lines "  T s  KIND  TEXT", or
+ * the JSON array patient_events; nothing when it has none (an older
+ * file's show reads as it did).
+ */
+static void print_patient_events(const struct ctl *ctl, struct json *j,
+				 const struct session_file *f)
+{
+	uint64_t t0 = sessionview_start_ns(f);
+
+	if (!patient_event_count(f)) {
+		return;
+	}
+	if (ctl->json) {
+		json_array_begin(j, "patient_events");
+	} else {
+		printf("patient events\n");
+	}
+	for (size_t i = 0; i < f->n_events; i++) {
+		const struct session_event *ev = &f->events[i].ev;
+		double t = (double)(int64_t)(ev->stamp_ns - t0) *
+			   ENDOSIM_S_PER_NS;
+
+		if (!patient_kind(ev->kind)) {
+			continue;
+		}
+		if (!ctl->json) {
+			printf("  %8.2f s  %-11s  %s\n", t,
+			       names_event(ev->kind), f->events[i].text);
+			continue;
+		}
+		json_object_begin(j, NULL);
+		json_double(j, "t_s", t);
+		json_string(j, "kind", names_event(ev->kind));
+		json_int(j, "axis", ev->axis);
+		json_uint(j, "detail", ev->detail);
+		json_double(j, "value", ev->value);
+		json_string(j, "text", f->events[i].text);
+		json_object_end(j);
+	}
+	if (ctl->json) {
+		json_array_end(j);
+	}
+}
+
+/* The session, the metrics M (NULL: none) and the patient's events of
+ * its file F (NULL: not read) on stdout. */
 static void print_session(const struct ctl *ctl, const Endosim__SessionInfo *s,
-			  const struct metrics_result *m, const char *note)
+			  const struct metrics_result *m, const char *note,
+			  const struct session_file *f)
 {
 	struct json j;
 
+	json_init(&j, stdout);
 	if (!ctl->json) {
 		print_session_facts(s);
 		if (note) {
@@ -95,18 +161,22 @@ static void print_session(const struct ctl *ctl, const Endosim__SessionInfo *s,
 		if (m) {
 			sessionview_print(stdout, m);
 		}
-		return;
+	} else {
+		json_object_begin(&j, NULL);
+		json_session_facts(&j, s);
+		if (note) {
+			json_string(&j, "note", note);
+		}
+		if (m) {
+			sessionview_json(&j, "metrics", m);
+		}
 	}
-	json_init(&j, stdout);
-	json_object_begin(&j, NULL);
-	json_session_facts(&j, s);
-	if (note) {
-		json_string(&j, "note", note);
+	if (f) {
+		print_patient_events(ctl, &j, f);
 	}
-	if (m) {
-		sessionview_json(&j, "metrics", m);
+	if (ctl->json) {
+		json_object_end(&j);
 	}
-	json_object_end(&j);
 }
 
 static int session_start(struct ctl *ctl, int argc, char **argv)
@@ -131,7 +201,7 @@ static int session_start(struct ctl *ctl, int argc, char **argv)
 	if (r) {
 		return r;
 	}
-	print_session(ctl, rep->session->session, NULL, NULL);
+	print_session(ctl, rep->session->session, NULL, NULL, NULL);
 	endosim__reply__free_unpacked(rep, NULL);
 	return 0;
 }
@@ -163,7 +233,7 @@ static int session_current(struct ctl *ctl, bool stop)
 		if (s->metrics) {
 			sessionpb_to_metrics(s->metrics, &m);
 		}
-		print_session(ctl, s, s->metrics ? &m : NULL, NULL);
+		print_session(ctl, s, s->metrics ? &m : NULL, NULL, NULL);
 	}
 	endosim__reply__free_unpacked(rep, NULL);
 	return 0;
@@ -315,7 +385,7 @@ static int session_show(struct ctl *ctl, const char *id)
 		s.records = m.records;
 		s.drops = m.drops;
 	}
-	print_session(ctl, &s, &m, *note ? note : NULL);
+	print_session(ctl, &s, &m, *note ? note : NULL, &sh.f);
 out:
 	session_close(&sh);
 	return r;

@@ -60,6 +60,9 @@ _Static_assert(sizeof(Endosim__DaemonState) == sizeof(uint32_t),
 	       "fields: the state is a uint32_t on the wire too");
 _Static_assert(sizeof(Endosim__HapticsModel) == sizeof(uint32_t),
 	       "fields: the model is a uint32_t on the wire too");
+_Static_assert(sizeof(Endosim__PatientPosition) == sizeof(uint32_t),
+	       "fields: the position is a uint32_t on the wire too");
+_Static_assert(ENDOSIM_SEGMENTS == 9, "fields: a column per segment");
 
 /* --- one latched fault: its cause's values; the daemon says the rest -- */
 #define STRUCT struct endosim_fault_cause
@@ -221,6 +224,59 @@ const struct fields_table fields_guide =
 #undef STRUCT
 #undef MESSAGE
 
+/* --- the patient's body: recorded as the list has it --------- */
+#define STRUCT struct endosim_patient_state
+#define MESSAGE Endosim__PatientStatus
+#define SEGS(stem, unit)                                                     \
+	COLUMNS(stem "anal_canal_" unit, stem "rectum_" unit,                \
+		stem "sigmoid_" unit, stem "descending_" unit,               \
+		stem "splenic_flexure_" unit, stem "transverse_" unit,       \
+		stem "hepatic_flexure_" unit, stem "ascending_" unit,        \
+		stem "cecum_" unit)
+/* F recorded at the record's RF, its CSV column COLUMN */
+#define PAT(f, kind, rf, column, names)                                      \
+	{ #f, kind, 1, S(f), NONE, P(f), NONE, R(rf), COLUMNS(column),       \
+	  names, NULL }
+static const struct fields_field patient[] = {
+	PAT(enabled, FIELDS_BOOL, patient, "patient_enabled", NULL),
+	PAT(valves, FIELDS_NAMED, valves, "patient_valves", names_valves),
+	PAT(position, FIELDS_NAMED, patient_position, "patient_position",
+	    names_position),
+	PAT(turning, FIELDS_BOOL, patient_turning, "patient_turning", NULL),
+	PAT(turn, FIELDS_DOUBLE, patient_turn, "patient_turn_1", NULL),
+	VEC(down),
+	PAT(gas_m3, FIELDS_DOUBLE, gas_m3, "patient_gas_m3", NULL),
+	PAT(pressure_pa, FIELDS_DOUBLE, gas_pressure_pa,
+	    "patient_pressure_pa", NULL),
+	PAT(gas_in_m3, FIELDS_DOUBLE, gas_in_m3, "patient_gas_in_m3", NULL),
+	{ "factor", FIELDS_VECTOR, LEN(factor), S(factor), NONE, P(factor),
+	  P(n_factor), R(lumen_factor), SEGS("patient_factor_", "1"), NULL,
+	  NULL },
+	VEC(transmural_pa),
+	VEC(tension_n_per_m),
+	VEC_REC(fluid_m3, SEGS("patient_fluid_", "m3")),
+	VEC(fluid_level_m),
+	VEC(fluid_up),
+	PAT(hand_site, FIELDS_INT, hand_site, "patient_hand_site", NULL),
+	WIRE(site, FIELDS_STRING),
+	VAL(tip_in_fluid, FIELDS_BOOL),
+	PAT(hand_n, FIELDS_DOUBLE, hand_n, "patient_hand_n", NULL),
+	VAL(pad_n, FIELDS_DOUBLE),
+	PAT(lens_smear, FIELDS_DOUBLE, lens_smear, "patient_lens_smear_1",
+	    NULL),
+	PAT(lens_murk, FIELDS_DOUBLE, lens_murk, "patient_lens_murk_1", NULL),
+	PAT(lens_redout, FIELDS_DOUBLE, lens_redout, "patient_lens_redout_1",
+	    NULL),
+	PAT(burst_segment, FIELDS_INT, burst_segment, "patient_burst_segment",
+	    NULL),
+};
+const struct fields_table fields_patient =
+	TABLE(patient, endosim__patient_status__descriptor, patient, 1);
+#undef PAT
+#undef SEGS
+#undef STRUCT
+#undef MESSAGE
+
 /* --- the state's own fields, the safety monitors', the parts ---------- */
 #define STRUCT struct endosim_state
 #define MESSAGE Endosim__StatusReply
@@ -252,6 +308,7 @@ static const struct fields_field status[] = {
 	ONE(haptics, &fields_haptics),
 	ONE(rod, &fields_rod),
 	ONE(guide, &fields_guide),
+	ONE(patient, &fields_patient),
 	MANY(axes, FIELDS_MAP, &fields_axis),
 	/* recorded, not on the wire */
 	KEPT(latency_ns, FIELDS_UINT),
@@ -282,6 +339,7 @@ static void field_to_pb(const struct fields_field *d, unsigned char *msg,
 		break;
 	case FIELDS_UINT:
 	case FIELDS_NAMED:
+	case FIELDS_INT:
 		memcpy(dst, src, sizeof(uint32_t));
 		break;
 	case FIELDS_BOOL:
@@ -324,6 +382,8 @@ static enum fields_stored stored(enum fields_kind kind)
 	case FIELDS_DOUBLE:
 	case FIELDS_VECTOR:
 		return FIELDS_STORED_F32;
+	case FIELDS_INT:
+		return FIELDS_STORED_I32;
 	default:
 		return FIELDS_STORED_U32;
 	}
@@ -332,7 +392,9 @@ static enum fields_stored stored(enum fields_kind kind)
 /* The bytes of one element of KIND in the state and in the record. */
 static size_t state_size(enum fields_kind kind)
 {
-	return stored(kind) == FIELDS_STORED_U32 ? 4 : 8;
+	enum fields_stored how = stored(kind);
+
+	return how == FIELDS_STORED_U64 || how == FIELDS_STORED_F32 ? 8 : 4;
 }
 
 static size_t record_size(enum fields_kind kind)

@@ -17,9 +17,9 @@
  * safety monitors' that the wire carries: StatusReply), and, reached from
  * it by its sub-message rows, fields_fault (a latched fault's cause:
  * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus),
- * fields_rod (RodStatus), fields_guide (GuideStatus) and fields_axis
- * (each axis: AxisStatus). A table's rows are in the order of
- * the message's JSON.
+ * fields_rod (RodStatus), fields_guide (GuideStatus), fields_patient
+ * (PatientStatus) and fields_axis (each axis: AxisStatus). A table's
+ * rows are in the order of the message's JSON.
  *
  * Adding a field to the published state:
  *   1. the field in its struct in endosim_shm.h (bump ENDOSIM_SHM_VERSION);
@@ -57,8 +57,8 @@ enum fields_kind {
 			   enum on the wire; the JSON writes NAMES(value) */
 	FIELDS_VECTOR,  /* double[N] in the state, repeated double, N floats
 			   in the record */
+	FIELDS_INT,     /* int32_t (or, without SHM, the wire's own) */
 	/* the wire's own: never in the state, the daemon fills them */
-	FIELDS_INT,     /* int32_t */
 	FIELDS_STRING,  /* char * */
 	FIELDS_KEY,     /* char *: the message's key in its FIELDS_MAP */
 	/* sub-messages, described by SUB */
@@ -106,6 +106,7 @@ extern const struct fields_table fields_scope;
 extern const struct fields_table fields_haptics;
 extern const struct fields_table fields_rod;
 extern const struct fields_table fields_guide;
+extern const struct fields_table fields_patient;
 extern const struct fields_table fields_axis;
 
 /*
@@ -133,6 +134,7 @@ enum fields_stored {
 	FIELDS_STORED_U64,
 	FIELDS_STORED_U32,
 	FIELDS_STORED_F32,
+	FIELDS_STORED_I32,
 };
 
 /* One CSV column: a recorded value. */

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "proto/endosim_shm.h"
+#include "proto/session_file.h"
 
 static const char *const state_names[] = {
 	[ENDOSIM_STATE_IDLE] = "IDLE",
@@ -37,6 +38,35 @@ static const char *const guide_end_names[] = {
 	[ENDOSIM_GUIDE_END_DONE] = "done",
 	[ENDOSIM_GUIDE_END_NOT_ENABLED] = "not-enabled",
 	[ENDOSIM_GUIDE_END_LOST] = "lost",
+};
+
+const char *const names_positions[] = {
+	[ENDOSIM_POSITION_LEFT_LATERAL] = "left-lateral",
+	[ENDOSIM_POSITION_SUPINE] = "supine",
+	[ENDOSIM_POSITION_RIGHT_LATERAL] = "right-lateral",
+	[ENDOSIM_POSITION_PRONE] = "prone",
+	NULL,
+};
+
+_Static_assert(ENDOSIM_VALVE_AIR == 1 && ENDOSIM_VALVE_WATER == 2 &&
+	       ENDOSIM_VALVE_SUCTION == 4, "names: the valves' bits");
+
+/* every combination of the three valves' bits */
+static const char *const valves_names[] = {
+	"none", "air", "water", "air,water", "suction", "air,suction",
+	"water,suction", "air,water,suction",
+};
+
+static const char *const event_names[] = {
+	[SESSION_EVENT_STATE] = "state",
+	[SESSION_EVENT_FAULT] = "fault",
+	[SESSION_EVENT_PARAM] = "param",
+	[SESSION_EVENT_DROPS] = "drops",
+	[SESSION_EVENT_NOTE] = "note",
+	[SESSION_EVENT_POSITION] = "position",
+	[SESSION_EVENT_HAND] = "hand",
+	[SESSION_EVENT_VALVE] = "valve",
+	[SESSION_EVENT_PERFORATION] = "perforation",
 };
 
 /* endosim.proto's DebugAction, by number */
@@ -102,6 +132,43 @@ int names_axis_find(const char *name)
 const char *names_model(uint32_t model)
 {
 	return model < COUNT(model_names) ? model_names[model] : "?";
+}
+
+const char *names_position(uint32_t position)
+{
+	return position < COUNT(names_positions) - 1 ? names_positions[position]
+						     : "?";
+}
+
+int names_position_find(const char *name)
+{
+	for (int i = 0; names_positions[i]; i++) {
+		if (!strcmp(name, names_positions[i])) {
+			return i;
+		}
+	}
+	return -1;
+}
+
+const char *names_valves(uint32_t valves)
+{
+	return valves < COUNT(valves_names) ? valves_names[valves] : "?";
+}
+
+uint32_t names_valve_find(const char *name)
+{
+	for (uint32_t bit = 1; bit < COUNT(valves_names); bit <<= 1) {
+		if (!strcmp(name, valves_names[bit])) {
+			return bit;
+		}
+	}
+	return 0;
+}
+
+const char *names_event(uint32_t kind)
+{
+	return kind < COUNT(event_names) && event_names[kind] ?
+		       event_names[kind] : "unknown";
 }
 
 const char *names_drive_status(uint32_t status)

@@ -37,6 +37,34 @@ const char *names_guide_end(uint32_t end);
 const char *names_guide_axis(uint32_t axis);
 
 /*
+ * Where the patient lies (enum endosim_position): "left-lateral",
+ * "supine", "right-lateral", "prone"; NAMES_POSITIONS lists them, NULL
+ * after the last (the configuration's words for [patient] position).
+ */
+extern const char *const names_positions[];
+const char *names_position(uint32_t position);
+
+/* The position called NAME, or -1. */
+int names_position_find(const char *name);
+
+/*
+ * The handle's valves (enum endosim_valve bits), as one word: "none",
+ * "air", "water", "suction" or several joined by ',' ("air,suction");
+ * "?" for bits beyond them.
+ */
+const char *names_valves(uint32_t valves);
+
+/* The valve bit called NAME ("air", "water", "suction"), or 0. */
+uint32_t names_valve_find(const char *name);
+
+/*
+ * A session event's kind (session_file.h enum session_event_kind) as the
+ * CSV says it: "state", "fault", "param", "drops", "note", "position",
+ * "hand", "valve", "perforation"; "unknown" for another.
+ */
+const char *names_event(uint32_t kind);
+
+/*
  * One word for an axis' drive status bits (enum endosim_drive_status), the
  * worst first: "gone", "fault", "bus-error", "on" (enabled), "off".
  */

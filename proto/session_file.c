@@ -26,6 +26,16 @@ void session_record_from_state(const struct endosim_state *in,
 	fields_to_record(&fields_status, in, out);
 }
 
+/* The disabled patient's state, as the model publishes it. */
+static void no_patient(struct endosim_patient_state *p)
+{
+	p->hand_site = -1;
+	p->burst_segment = -1;
+	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
+		p->factor[i] = 1;
+	}
+}
+
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out)
 {
@@ -33,6 +43,9 @@ void session_record_to_state(const struct session_record *in,
 	fields_from_record(&fields_status, in, out);
 	out->publish_ns = in->stamp_ns;
 	out->fault_axis = -1;
+	if (!out->patient.enabled) {
+		no_patient(&out->patient);
+	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		out->axis[a].feedback_ns = in->stamp_ns;
 	}
@@ -409,19 +422,29 @@ static void record_copy(struct session_record *rec, const void *payload,
 	memcpy(rec, payload, n);
 }
 
+/* The record size HEADER says in *SAID; false when it says none. */
+static bool said_record_size(const char *header, size_t *said)
+{
+	char size[32];
+
+	if (session_text_get(header, "record_size", size, sizeof(size))) {
+		return false;
+	}
+	*said = strtoul(size, NULL, 10);
+	return true;
+}
+
 /*
  * Whether a file whose records are LENGTH bytes long (0: none) and whose
  * HEADER says their size can be read: format 1's records or longer.
  */
 static bool record_size_ok(const char *header, size_t length)
 {
-	char size[32];
-	unsigned long said;
+	size_t said;
 
-	if (session_text_get(header, "record_size", size, sizeof(size))) {
+	if (!said_record_size(header, &said)) {
 		return length == 0 || length >= SESSION_RECORD_SIZE_1;
 	}
-	said = strtoul(size, NULL, 10);
 	return said >= SESSION_RECORD_SIZE_1 && (!length || length == said);
 }
 
@@ -600,6 +623,10 @@ int session_file_read(const char *path, struct session_file *out)
 	unload(&in);
 	if (!r && !record_size_ok(out->header, t.record_length)) {
 		r = -EPROTO;
+	}
+	out->record_size = t.record_length;
+	if (!r && !t.record_length) {
+		said_record_size(out->header, &out->record_size);
 	}
 	if (r) {
 		session_file_close(out);

@@ -26,8 +26,8 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (3; 2 before guided replay, 1 before the rod
- * model), id, trainee, case,
+ * Header keys: format (4; 3 before the patient's body, 2 before guided
+ * replay, 1 before the rod model), id, trainee, case,
  * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
  * record's clock), period_ns, version (endosimd's), record_size
  * (sizeof(struct session_record)), and the case's resolution: step_m,
@@ -49,7 +49,7 @@
 #include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 3u
+#define SESSION_FILE_FORMAT 4u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -67,7 +67,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 360 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 488 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -128,13 +128,35 @@ struct session_record {
 	float guide_time_s;       /* the playhead, s of the recording */
 	float guide_reference[ENDOSIM_AXES]; /* m, rad */
 	float guide_force[ENDOSIM_AXES];     /* N, N m */
+	/* format 4: the patient's body (struct endosim_patient_state); an
+	   older record reads with patient 0: session_record_to_state() gives
+	   the disabled patient's state then (factors 1, no site, no burst) */
+	uint32_t patient;         /* 1: enabled */
+	uint32_t valves;          /* enum endosim_valve bits */
+	uint32_t patient_position; /* enum endosim_position, or turning to */
+	uint32_t patient_turning; /* 1 while being turned */
+	float patient_turn;       /* the turn's progress 0..1 */
+	float gas_m3;             /* the gas in the colon */
+	float gas_pressure_pa;    /* its pressure above the atmosphere */
+	float gas_in_m3;          /* pumped in since the case was loaded */
+	float lumen_factor[ENDOSIM_SEGMENTS]; /* each segment's radius factor */
+	float fluid_m3[ENDOSIM_SEGMENTS];     /* fluid pooled in each */
+	int32_t hand_site;        /* the site pressed (the case's), -1 none */
+	float hand_n;             /* the assistant's press, N */
+	float lens_smear;         /* 0..1 */
+	float lens_murk;
+	float lens_redout;
+	int32_t burst_segment;    /* the first segment torn, -1: none */
 };
 
-_Static_assert(sizeof(struct session_record) == 360,
+_Static_assert(sizeof(struct session_record) == 488,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
+/* Format 3's: up to guide_force. The CSV of a file of format 3 or older
+ * has format 3's columns (the later ones appear where records hold them). */
+#define SESSION_RECORD_SIZE_3 360u
 
 /* What a session's event is (struct session_event.kind). */
 enum session_event_kind {
@@ -143,6 +165,16 @@ enum session_event_kind {
 	SESSION_EVENT_PARAM = 3,   /* text: "section.key=value" */
 	SESSION_EVENT_DROPS = 4,   /* value: records dropped so far */
 	SESSION_EVENT_NOTE = 5,    /* text: anything else worth keeping */
+	/* format 4: the patient's body, from the records' changes */
+	SESSION_EVENT_POSITION = 6, /* value: the enum endosim_position;
+				      detail 1: a turn towards it started,
+				      0: settled in it */
+	SESSION_EVENT_HAND = 7,    /* axis: the site pressed (the case's),
+				      -1: released; value: the force, N */
+	SESSION_EVENT_VALVE = 8,   /* detail: the enum endosim_valve bit;
+				      value 1: on, 0: off */
+	SESSION_EVENT_PERFORATION = 9, /* detail: the segment torn; value:
+					  the gas pressure, Pa */
 };
 
 /* An event's fixed part; its text (not NUL-terminated) follows it. */
@@ -168,7 +200,9 @@ void session_record_from_state(const struct endosim_state *in,
 /*
  * The inverse, for a replay: fills the fields of OUT that a record holds
  * and zeroes the rest (the scope's tube is not recorded: rebuild it with
- * the scope's kinematics on the recorded case).
+ * the scope's kinematics on the recorded case). A record without the
+ * patient (disabled, or of format 3 or older) gives the disabled
+ * patient's state: every lumen factor 1, no site, no burst.
  */
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out);
@@ -286,6 +320,8 @@ struct session_file {
 	char *end;
 	struct session_record *records;
 	size_t n_records;
+	size_t record_size;       /* the records' length in the file (0:
+				     none): what their format holds */
 	struct session_file_event {
 		struct session_event ev;
 		char *text;           /* NUL-terminated, maybe empty */

@@ -294,6 +294,7 @@ static const struct handler handlers[] = {
 	{ ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS, false,
 	  control_on_trainee_sessions },
 	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
+	{ ENDOSIM__REQUEST__BODY_PATIENT, true, control_on_patient },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)

@@ -10,10 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/log.h"
-#include "base/mono.h"
 #include "control/control_private.h"
 #include "rig/guide.h"
 #include "session/sessiondir.h"
@@ -93,27 +91,6 @@ static struct guide_path *load_path(struct control *c,
 	return p;
 }
 
-/*
- * After the loop's answer, the state of the cycle that answered: it is
- * published at that cycle's end, after the answer (at most a period;
- * gives up after 100 ms and answers with what there is).
- */
-static void await_next_state(struct control *c)
-{
-	struct endosim_state st;
-	uint64_t seen, deadline = mono_ns() + 100000000ull;
-	struct timespec nap = { .tv_nsec = 100000 };
-
-	if (publish_read(c->deps.pub, &st)) {
-		return;
-	}
-	seen = st.cycle;
-	while (mono_ns() < deadline && !publish_read(c->deps.pub, &st) &&
-	       st.cycle <= seen) {
-		nanosleep(&nap, NULL);
-	}
-}
-
 /* Hands CMD to the loop; a start's PATH becomes the one kept on 0. */
 static void hand_over(struct control *c, const struct guide_command *cmd,
 		      struct guide_path *path, Endosim__Reply *rep)
@@ -142,7 +119,7 @@ static void hand_over(struct control *c, const struct guide_command *cmd,
 		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
 		       "the force loop did not take the command");
 	} else {
-		await_next_state(c);
+		control_await_state(c);
 		control_build_status(c, rep);
 	}
 }

@@ -7,8 +7,9 @@
  * hand, subscriptions and test commands; control_case.c the scene and the
  * cases; control_session.c training sessions and their live map;
  * control_trainee.c a trainee's sessions through the session directory's
- * index; control_guide.c guided replay. Control thread only, as all of
- * control.h's work.
+ * index; control_guide.c guided replay; control_patient.c the patient's
+ * commands (their refusals' words in struct control's refusal). Control
+ * thread only, as all of control.h's work.
  */
 #ifndef ENDOSIM_CONTROL_PRIVATE_H
 #define ENDOSIM_CONTROL_PRIVATE_H
@@ -74,6 +75,7 @@ struct control {
 	_Atomic bool alive;
 	_Atomic bool stop;
 	bool end;                /* a test command: the thread ends */
+	char refusal[512];       /* a refusal put in words, for its reply */
 };
 
 typedef void handler_fn(struct control *c, struct client *cl,
@@ -126,10 +128,18 @@ handler_fn control_on_session_show;
 handler_fn control_on_session_map;
 handler_fn control_on_trainee_sessions;
 handler_fn control_on_guide;
+handler_fn control_on_patient;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */
 void control_build_status(struct control *c, Endosim__Reply *rep);
+
+/*
+ * After the loop answered a command: waits for the state of the cycle
+ * that answered, published at that cycle's end (at most a period; gives
+ * up after 100 ms), so that the reply built next shows the command done.
+ */
+void control_await_state(struct control *c);
 
 /* Loads case NAME (IDLE only, never during a session). 0, or -1 refused
  * (REP says why). */

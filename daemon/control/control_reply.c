@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "base/log.h"
 #include "base/mono.h"
@@ -19,6 +20,8 @@
 
 #define MAX_PUSH_HZ 1000.0
 #define MAX_HOLD_S 10.0
+#define ALL_VALVES                                                           \
+	(ENDOSIM_VALVE_AIR | ENDOSIM_VALVE_WATER | ENDOSIM_VALVE_SUCTION)
 
 /* Storage for the reply being built: no allocation per reply. */
 struct control_replies {
@@ -32,6 +35,7 @@ struct control_replies {
 	Endosim__HapticsStatus haptics;
 	Endosim__RodStatus rod;
 	Endosim__GuideStatus guide;
+	Endosim__PatientStatus patient;
 	struct endosim_state state; /* what the status reply points into */
 	Endosim__StatsReply stats;
 	Endosim__Histogram latency, compute;
@@ -132,6 +136,19 @@ static void fill_axes(struct control_replies *rb, Endosim__StatusReply *s)
 	s->axes = rb->axes_p;
 }
 
+/* The patient's values (fields.h) with the name of the site pressed. */
+static void fill_patient(struct control *c, Endosim__StatusReply *s)
+{
+	struct control_replies *rb = c->replies;
+	const struct anatomy *a = colon_anatomy(c->colon);
+	int site = rb->state.patient.hand_site;
+
+	fields_to_pb(&fields_patient, &rb->patient, &rb->state.patient);
+	rb->patient.site = a && site >= 0 && site < a->sites ?
+				   (char *)a->site[site].name : "";
+	s->patient = &rb->patient;
+}
+
 /* The state's values by fields.h's tables; the rest is the daemon's. */
 void control_build_status(struct control *c, Endosim__Reply *rep)
 {
@@ -165,9 +182,26 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	s->rod = &rb->rod;
 	fields_to_pb(&fields_guide, &rb->guide, &st->guide);
 	s->guide = &rb->guide;
+	fill_patient(c, s);
 	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;
+}
+
+void control_await_state(struct control *c)
+{
+	struct endosim_state st;
+	uint64_t seen, deadline = mono_ns() + 100000000ull;
+	struct timespec nap = { .tv_nsec = 100000 };
+
+	if (publish_read(c->deps.pub, &st)) {
+		return;
+	}
+	seen = st.cycle;
+	while (mono_ns() < deadline && !publish_read(c->deps.pub, &st) &&
+	       st.cycle <= seen) {
+		nanosleep(&nap, NULL);
+	}
 }
 
 static void fill_histogram(Endosim__Histogram *h,
@@ -387,6 +421,11 @@ void control_on_hand_input(struct control *c, struct client *cl,
 		       "need 4 forces and a hold of at most 10 s");
 		return;
 	}
+	if (hi->valves & ~ALL_VALVES) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "valves: 1 air, 2 water, 4 suction");
+		return;
+	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		if (!isfinite(hi->force[a])) {
 			refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
@@ -394,7 +433,7 @@ void control_on_hand_input(struct control *c, struct client *cl,
 			return;
 		}
 	}
-	hand_set_live(c->deps.hand, hi->force, 0, hold, mono_ns());
+	hand_set_live(c->deps.hand, hi->force, hi->valves, hold, mono_ns());
 }
 
 void control_on_subscribe(struct control *c, struct client *cl,

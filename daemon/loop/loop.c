@@ -29,6 +29,12 @@ struct guide_post {
 	uint32_t seq;
 };
 
+/* A patient command and its request's number, in their box. */
+struct patient_post {
+	struct loop_patient_command c;
+	uint32_t seq;
+};
+
 struct loop {
 	/* owned by the loop thread */
 	struct config cfg;
@@ -76,6 +82,9 @@ struct loop {
 	struct mailbox_box guide_box; /* a guidance command */
 	struct guide_post guide_mailbox;
 	struct mailbox_answer guide_answer;
+	struct mailbox_box patient_box; /* a patient command */
+	struct patient_post patient_mailbox;
+	struct mailbox_answer patient_answer;
 	_Atomic uint32_t fail_bits; /* main -> loop: a thread died */
 	_Atomic uint32_t fail_detail;
 };
@@ -121,6 +130,8 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 			 sizeof(l->debug_mailbox));
 	mailbox_box_init(&l->guide_box, &l->guide_mailbox,
 			 sizeof(l->guide_mailbox));
+	mailbox_box_init(&l->patient_box, &l->patient_mailbox,
+			 sizeof(l->patient_mailbox));
 	l->rig = rig;
 	l->pub = pub;
 	l->colon = colon;
@@ -377,6 +388,34 @@ static void take_guide(struct loop *l)
 	mailbox_answer_set(&l->guide_answer, g.seq, r);
 }
 
+/* Takes a patient command, if any, applies it and answers it. */
+static void take_patient(struct loop *l)
+{
+	struct patient *pt = haptics_patient(l->haptics);
+	struct patient_post p;
+	int r;
+
+	if (!mailbox_box_take(&l->patient_box, &p)) {
+		return;
+	}
+	switch (p.c.op) {
+	case LOOP_PATIENT_TURN:
+		r = patient_turn(pt, p.c.arg);
+		break;
+	case LOOP_PATIENT_PRESS:
+		r = patient_press(pt, p.c.arg, p.c.force_n);
+		break;
+	case LOOP_PATIENT_RELEASE:
+		patient_release(pt);
+		r = 0;
+		break;
+	default:
+		r = -EINVAL;
+		break;
+	}
+	mailbox_answer_set(&l->patient_answer, p.seq, r);
+}
+
 /*
  * The guidance's force, added to the rendered command: only while
  * ENABLED with the enable ramp done (last cycle's), the sum then filtered
@@ -478,6 +517,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	take_debug(l, now);
 	take_guide(l);
 	take_colon(l);
+	take_patient(l);
 	safety_begin_cycle(&l->safety);
 	check_loop(l, now);
 	rig_read(l->rig, now, &l->fb);
@@ -738,6 +778,23 @@ int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms)
 				   timeout_ms);
 }
 
+/* Leaves C in the patient's box; returns its sequence number. */
+static uint32_t post_patient(struct loop *l,
+			     const struct loop_patient_command *c)
+{
+	struct patient_post p = { *c, mailbox_answer_next(&l->patient_answer) };
+
+	mailbox_box_put(&l->patient_box, &p);
+	return p.seq;
+}
+
+int loop_patient_command(struct loop *l, const struct loop_patient_command *c,
+			 int timeout_ms)
+{
+	return mailbox_answer_wait(&l->patient_answer, post_patient(l, c),
+				   timeout_ms);
+}
+
 void loop_fail(struct loop *l, uint32_t bit, uint32_t detail)
 {
 	atomic_store(&l->fail_detail, detail);
@@ -792,6 +849,16 @@ void loop_guide_post(struct loop *l, const struct guide_command *c)
 int loop_guide_answer(const struct loop *l)
 {
 	return mailbox_answer_last(&l->guide_answer);
+}
+
+void loop_patient_post(struct loop *l, const struct loop_patient_command *c)
+{
+	(void)post_patient(l, c);
+}
+
+int loop_patient_answer(const struct loop *l)
+{
+	return mailbox_answer_last(&l->patient_answer);
 }
 
 const struct endosim_state *loop_state(const struct loop *l)

@@ -24,6 +24,8 @@
  *  - a fault from outside (a daemon thread died): loop_fail(), the main
  *    thread;
  *  - test commands (inject.h): loop_debug(), the control thread only;
+ *  - the patient's commands (patient.h: a turn, the hand):
+ *    loop_patient_command(), the control thread only;
  *  - records out to the recorder (recorder.h) while a session records:
  *    loop_set_tap() before the loop starts;
  *  - a scenario's commands for the assistant (scenario.h: turn, press,
@@ -90,6 +92,19 @@ struct loop_debug {
 	int action;        /* enum inject_action */
 	int axis;          /* -1: every axis */
 	double value;
+};
+
+/* What the patient's mailbox carries (patient.h). */
+enum loop_patient_op {
+	LOOP_PATIENT_TURN = 1,    /* to position ARG (enum endosim_position) */
+	LOOP_PATIENT_PRESS = 2,   /* at site ARG (the case's) with FORCE_N */
+	LOOP_PATIENT_RELEASE = 3, /* the hand lets go */
+};
+
+struct loop_patient_command {
+	int op;            /* enum loop_patient_op */
+	int arg;
+	double force_n;    /* PRESS: N, <= 0: [patient] hand_n */
 };
 
 struct loop_info {
@@ -179,6 +194,16 @@ int loop_debug(struct loop *l, int action, int axis, double value,
 int loop_guide(struct loop *l, const struct guide_command *c, int timeout_ms);
 
 /*
+ * Control thread: hands the loop a patient command and waits up to
+ * TIMEOUT_MS for its answer: 0, -EINVAL (patient_turn() or
+ * patient_press() refused it: no such position or site, a force above
+ * hand_max_n, the patient disabled; nothing changed) or -ETIMEDOUT (no
+ * answer yet: the loop may still take it).
+ */
+int loop_patient_command(struct loop *l, const struct loop_patient_command *c,
+			 int timeout_ms);
+
+/*
  * Main thread: latches fault BIT (ENDOSIM_FAULT_INTERNAL: a daemon thread
  * died) with DETAIL from the next cycle on, for good: torque off.
  */
@@ -226,6 +251,11 @@ void loop_post(struct loop *l, enum loop_cmd cmd);
  * loop_guide_answer()'s after that cycle (-EINPROGRESS before). */
 void loop_guide_post(struct loop *l, const struct guide_command *c);
 int loop_guide_answer(const struct loop *l);
+/* In lockstep: a patient command for the next cycle, through the
+ * mailbox the daemon uses; its answer is loop_patient_answer()'s after
+ * that cycle (-EINPROGRESS before). */
+void loop_patient_post(struct loop *l, const struct loop_patient_command *c);
+int loop_patient_answer(const struct loop *l);
 const struct endosim_state *loop_state(const struct loop *l);
 
 #endif

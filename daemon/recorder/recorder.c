@@ -13,6 +13,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "model/anatomy.h"
+#include "model/gas.h"
 #include "proto/names.h"
 #include "proto/version.h"
 #include "loop/faults.h"
@@ -64,6 +66,7 @@ struct recorder {
 
 	/* the recorder thread's while recording (set up by start) */
 	int fd;
+	const struct colon *colon;   /* the session's: its sites' names */
 	struct metrics *metrics;
 	unsigned char *buf;
 	size_t used;
@@ -241,7 +244,121 @@ static void guide_event(struct recorder *r, const struct session_record *rec)
 	put_event(r, &ev, text);
 }
 
-/* STATE, FAULT and guidance events from the change between records. */
+/* The patient before a session's first record: none, nothing held. */
+static const struct session_record no_patient = {
+	.hand_site = -1, .burst_segment = -1,
+};
+
+static void patient_event(struct recorder *r, const struct session_record *rec,
+			  struct session_event ev, const char *text)
+{
+	ev.stamp_ns = rec->stamp_ns;
+	put_event(r, &ev, text);
+}
+
+/* A turn started, or the patient settled (or first seen settled). */
+static void position_event(struct recorder *r,
+			   const struct session_record *rec,
+			   const struct session_record *was)
+{
+	bool moved = rec->patient_position != was->patient_position;
+	bool started = rec->patient_turning &&
+		       (!was->patient_turning || moved);
+	bool settled = !rec->patient_turning &&
+		       (was->patient_turning || moved || !was->patient);
+	char text[EVENT_TEXT];
+
+	if (!rec->patient || (!started && !settled)) {
+		return;
+	}
+	snprintf(text, sizeof(text), "%s %s", started ? "turning to" :
+		 "settled", names_position(rec->patient_position));
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_POSITION, .axis = -1,
+		.detail = started, .value = rec->patient_position }, text);
+}
+
+/* The assistant pressed (at another site, with another force) or let go. */
+static void hand_event(struct recorder *r, const struct session_record *rec,
+		       const struct session_record *was)
+{
+	const struct anatomy *a = r->colon ? colon_anatomy(r->colon) : NULL;
+	int site = rec->hand_site;
+	char text[EVENT_TEXT];
+
+	if (site == was->hand_site &&
+	    (site < 0 || rec->hand_n == was->hand_n)) {
+		return;
+	}
+	if (site < 0) {
+		snprintf(text, sizeof(text), "released");
+	} else if (a && site < a->sites) {
+		snprintf(text, sizeof(text), "pressed at %s, %.0f N",
+			 a->site[site].name, (double)rec->hand_n);
+	} else {
+		snprintf(text, sizeof(text), "pressed at site %d, %.0f N", site,
+			 (double)rec->hand_n);
+	}
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_HAND, .axis = site < 0 ? -1 : site,
+		.detail = site >= 0, .value = site < 0 ? 0 : rec->hand_n },
+		text);
+}
+
+/* Each valve pressed or let go. */
+static void valve_events(struct recorder *r, const struct session_record *rec,
+			 const struct session_record *was)
+{
+	uint32_t changed = rec->valves ^ was->valves;
+	char text[EVENT_TEXT];
+
+	for (uint32_t bit = 1; changed; bit <<= 1) {
+		bool on = rec->valves & bit;
+
+		if (!(changed & bit)) {
+			continue;
+		}
+		changed &= ~bit;
+		snprintf(text, sizeof(text), "%s %s", names_valves(bit),
+			 on ? "on" : "off");
+		patient_event(r, rec, (struct session_event){
+			.kind = SESSION_EVENT_VALVE, .axis = -1, .detail = bit,
+			.value = on }, text);
+	}
+}
+
+/* A segment torn: the perforation, with the pressure that tore it. */
+static void burst_event(struct recorder *r, const struct session_record *rec,
+			const struct session_record *was)
+{
+	char text[EVENT_TEXT];
+
+	if (rec->burst_segment < 0 || rec->burst_segment == was->burst_segment) {
+		return;
+	}
+	snprintf(text, sizeof(text), "%s torn at %.1f mmHg",
+		 anatomy_segment_name(rec->burst_segment),
+		 rec->gas_pressure_pa / GAS_PA_PER_MMHG);
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_PERFORATION, .axis = -1,
+		.detail = (uint32_t)rec->burst_segment,
+		.value = rec->gas_pressure_pa }, text);
+}
+
+/* The patient's events from the change since the last record. */
+static void patient_events(struct recorder *r, const struct session_record *rec)
+{
+	const struct session_record *was = r->seen_record ? &r->last
+							  : &no_patient;
+
+	position_event(r, rec, was);
+	hand_event(r, rec, was);
+	valve_events(r, rec, was);
+	burst_event(r, rec, was);
+}
+
+/* STATE, FAULT, guidance and the patient's events from the change between
+ * records. */
 static void derive_events(struct recorder *r, const struct session_record *rec)
 {
 	uint32_t added = rec->fault_bits & ~r->last_faults;
@@ -258,6 +375,7 @@ static void derive_events(struct recorder *r, const struct session_record *rec)
 	if (r->seen_record && rec->guide_phase != r->last_guide) {
 		guide_event(r, rec);
 	}
+	patient_events(r, rec);
 	r->seen_record = true;
 	r->last_guide = rec->guide_phase;
 	r->last_state = rec->state;
@@ -347,14 +465,20 @@ static bool map_due(const struct recorder *r, uint64_t now)
 		       (uint64_t)(RECORDER_MAP_S * ENDOSIM_NS_PER_S);
 }
 
-/* Everything in the ring now, into the buffer; written when due. */
+/*
+ * What the ring holds, into the buffer; written when due. At most a
+ * ring's worth a call: on a disk slower than the loop the ring fills
+ * again while a full buffer is written, and the live status (snapshot())
+ * must not wait for a drain that never ends.
+ */
 static void drain(struct recorder *r)
 {
+	size_t left = r->tap.ring.mask + 1;
 	struct session_record rec;
 	uint64_t now;
 
 	param_events(r);
-	while (spsc_pop(&r->tap.ring, &rec)) {
+	while (left-- && spsc_pop(&r->tap.ring, &rec)) {
 		if (!r->seen_record) {
 			r->first_stamp_ns = rec.stamp_ns;
 		}
@@ -551,6 +675,7 @@ static int arm(struct recorder *r, int fd, const struct recorder_session *s,
 		return -ENOMEM;
 	}
 	r->fd = fd;
+	r->colon = s->colon;
 	r->used = 0;
 	r->records = 0;
 	r->bytes = head_bytes - 8; /* info.bytes adds the magic back */

@@ -22,7 +22,10 @@
  * SHAPE frames' cycles).
  *
  * The recorder derives STATE and FAULT events from the records' state and
- * fault bits, takes PARAM events from the control thread
+ * fault bits, the guidance's NOTE events from its phase, the patient's
+ * POSITION, HAND, VALVE and PERFORATION events from its fields (the
+ * site's name from the session's colon), takes PARAM events from the
+ * control thread
  * (recorder_param()), and at stop writes the END frame (the final
  * metrics), fsyncs and closes. One session at a time.
  *

@@ -33,6 +33,7 @@ struct bus_cmd {
 /* Bus to loop: the newest feedback. */
 struct bus_fb {
 	struct rig_axis_feedback drive[DRIVE_MAX]; /* by drive index */
+	uint32_t valves[DRIVE_MAX]; /* pressed, read at drive[i].stamp_ns */
 	uint32_t fault_seq;                        /* latched faults so far */
 };
 
@@ -469,6 +470,8 @@ static void publish(struct bus *b)
 		f->stamp_ns = b->stamp_ns;
 		f->status = status_of(b, i);
 		f->fault_detail = detail_of(b, i, f->status);
+		/* what a failed exchange did not read is not pressed */
+		fb.valves[i] = b->sample_ok ? dr->sample.valves : 0;
 	}
 	fb.fault_seq = b->fault_seq;
 	seqlock_write_begin(&b->fb_lock);
@@ -590,10 +593,24 @@ void bus_stop(struct bus *b)
 
 /* --- the force loop ------------------------------------------------- */
 
-void bus_fetch(struct bus *b, struct rig_feedback *fb)
+uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
+		    const struct rig_axis_feedback *f, uint64_t now_ns,
+		    uint64_t max_age_ns)
+{
+	const uint32_t bad = ENDOSIM_DRIVE_FAULT | ENDOSIM_DRIVE_BUS_ERROR;
+	bool stale = now_ns > f->stamp_ns && now_ns - f->stamp_ns > max_age_ns;
+	bool lost = !(f->status & ENDOSIM_DRIVE_PRESENT) || (f->status & bad);
+
+	valves &= ~mapped;
+	return stale || lost ? valves : valves | (pressed & mapped);
+}
+
+void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb)
 {
 	uint64_t seq = seqlock_read_begin(&b->fb_lock);
 	struct bus_fb copy = b->fb_box;
+	uint64_t max_age =
+		(uint64_t)(b->p.feedback_max_age_s * ENDOSIM_NS_PER_S);
 
 	if (!seqlock_read_retry(&b->fb_lock, seq)) {
 		b->loop_fb = copy;
@@ -601,6 +618,9 @@ void bus_fetch(struct bus *b, struct rig_feedback *fb)
 	}
 	for (int i = 0; i < b->d->n; i++) {
 		fb->axis[b->d->axis[i]] = b->loop_fb.drive[i];
+		fb->valves = bus_valves(fb->valves, b->d->valves[i],
+					b->loop_fb.valves[i],
+					&b->loop_fb.drive[i], now_ns, max_age);
 	}
 }
 

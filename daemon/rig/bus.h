@@ -10,6 +10,11 @@
  * bus: a torn read keeps the previous copy, and a bus that stops answering
  * shows as feedback growing old.
  *
+ * The handle's valves on the drives' inputs (drive.h, struct drive's
+ * valves) travel with the feedback: each drive's as its last exchange
+ * read them, with that exchange's time; released when the exchange
+ * failed. The loop takes them by bus_valves() below.
+ *
  * Faults. A failed transaction (ENDOSIM_DRIVE_BUS_ERROR), a drive fault
  * (ENDOSIM_DRIVE_FAULT), a vanished device (ENDOSIM_DRIVE_PRESENT cleared) or
  * a drive that leaves torque mode by itself is latched in the feedback of
@@ -64,8 +69,24 @@ int bus_start(struct bus *b);
 /* Main thread: drives brought down, thread joined, device closed. */
 void bus_stop(struct bus *b);
 
-/* Force loop: the newest feedback of the bus' axes into FB. Never blocks. */
-void bus_fetch(struct bus *b, struct rig_feedback *fb);
+/*
+ * Force loop, its cycle at NOW_NS: the newest feedback of the bus' axes
+ * into FB, and the valves its drives read into FB's valves (bus_valves(),
+ * with the bus' feedback_max_age_s). Never blocks.
+ */
+void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb);
+
+/*
+ * Any thread (pure): the handle's VALVES (enum endosim_valve bits) with
+ * those a drive reads (MAPPED) replaced by what it read (PRESSED) in the
+ * exchange that gave its feedback F: as read while F is at most
+ * MAX_AGE_NS old at NOW_NS and its drive present, without a fault or a
+ * bus error; released otherwise (no gas flows on a dead wire). The
+ * valves not MAPPED stay as they are (the simulated hand's).
+ */
+uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
+		    const struct rig_axis_feedback *f, uint64_t now_ns,
+		    uint64_t max_age_ns);
 
 /*
  * Force loop: the newest command of its cycle at NOW_NS: SETPOINT per rig

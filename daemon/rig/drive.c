@@ -22,6 +22,19 @@ void drive_units_init(struct drive_units *u, const struct config *cfg,
 	u->motor_nm_per_si = sign * radius / ax->gear_ratio;
 }
 
+uint32_t drive_valves_of_inputs(uint32_t inputs,
+				const int bit[CONFIG_VALVES])
+{
+	uint32_t valves = 0;
+
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		if (bit[v] >= 0 && ((inputs >> bit[v]) & 1u)) {
+			valves |= 1u << v;
+		}
+	}
+	return valves;
+}
+
 int drive_fail(struct drive *d, int i, int err, const char *fmt, ...)
 {
 	va_list ap;

@@ -57,6 +57,8 @@ struct drive_sample {
 	bool enabled;     /* power stage on, following the setpoint */
 	bool fault;       /* the drive reports a fault of its own */
 	uint32_t code;    /* its fault code when FAULT */
+	uint32_t valves;  /* enum endosim_valve bits: those of the drive's
+			     valves (struct drive's) read pressed */
 };
 
 struct drive;
@@ -77,8 +79,8 @@ struct drive_ops {
 	int (*bring_up)(struct drive *d, int i);
 	/*
 	 * One cycle: sends SETPOINT[i] (N or N m at the axis) to every
-	 * enabled drive, reads every drive's position, velocity and status
-	 * into SAMPLE[i].
+	 * enabled drive, reads every drive's position, velocity, status and
+	 * the valves on its inputs into SAMPLE[i].
 	 */
 	int (*exchange)(struct drive *d, const double *setpoint,
 			struct drive_sample *sample);
@@ -100,6 +102,8 @@ struct drive {
 	int n;                       /* drives on this bus */
 	int axis[DRIVE_MAX];         /* the rig axis of each */
 	struct drive_units units[DRIVE_MAX];
+	uint32_t valves[DRIVE_MAX];  /* the valves each reads (enum
+					endosim_valve bits) */
 	char name[200];              /* the bus: "epos4-usb 24e7:3b01 ..." */
 	char unit[DRIVE_MAX][32];    /* each drive on it: "node 1", "slave 2" */
 	char why[256];               /* the last error, in words */
@@ -116,6 +120,14 @@ struct drive {
  */
 struct drive *drive_epos4_create(const struct config *cfg, int axis);
 struct drive *drive_modbus_create(const struct config *cfg);
+
+/*
+ * The valves (enum endosim_valve bits) pressed in a word of digital inputs
+ * INPUTS (an EPOS4's 0x60FD) whose bit BIT[V] is set while valve V is
+ * pressed (-1: valve V is not on these inputs). Pure.
+ */
+uint32_t drive_valves_of_inputs(uint32_t inputs,
+				const int bit[CONFIG_VALVES]);
 
 /*
  * Records D's error text (printf-style) concerning drive I (-1: the whole

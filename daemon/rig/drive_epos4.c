@@ -7,8 +7,12 @@
  * One exchange is four request/reply pairs (the device takes one request
  * at a time): WriteObject target torque 0x6071 (when enabled), ReadObject
  * position 0x6064, velocity 0x606C and statusword 0x6041; the error code
- * 0x603F is read once when a fault appears. Bringing a drive up sets its
- * heartbeat consumer 0x1016:01 to [epos4.NAME] watchdog_s.
+ * 0x603F is read once when a fault appears. A drive that reads some of the
+ * handle's valves ([epos4.NAME] valve_*_bit) adds a fifth, ReadObject
+ * digital inputs 0x60FD: the frame protocol reads one object per request
+ * (no PDOs over USB), so the valves cost one more round trip per exchange.
+ * Bringing a drive up sets its heartbeat consumer 0x1016:01 to
+ * [epos4.NAME] watchdog_s.
  */
 #include <errno.h>
 #include <libusb.h>
@@ -362,7 +366,7 @@ static int epos4_exchange(struct drive *d, const double *setpoint,
 			  struct drive_sample *s)
 {
 	struct epos4 *e = to_epos4(d);
-	uint32_t pos, vel, sw;
+	uint32_t pos, vel, sw, inputs = 0;
 	int r = 0;
 
 	if (e->enabled) {
@@ -372,12 +376,16 @@ static int epos4_exchange(struct drive *d, const double *setpoint,
 	r = r ? r : read_object(e, CANOPEN_POSITION_ACTUAL, &pos);
 	r = r ? r : read_object(e, CANOPEN_VELOCITY_ACTUAL, &vel);
 	r = r ? r : read_object(e, CANOPEN_STATUSWORD, &sw);
+	if (!r && d->valves[0]) {
+		r = read_object(e, CANOPEN_DIGITAL_INPUTS, &inputs);
+	}
 	if (r) {
 		return r;
 	}
 	e->statusword = (uint16_t)sw;
 	e->state = canopen_state(e->statusword);
 	to_si(e, (int32_t)pos, (int32_t)vel, s);
+	s->valves = drive_valves_of_inputs(inputs, e->cfg.valve_bit);
 	s->enabled = e->state == CANOPEN_OPERATION_ENABLED;
 	return read_fault(e, s);
 }
@@ -508,6 +516,7 @@ struct drive *drive_epos4_create(const struct config *cfg, int axis)
 	e->d.n = 1;
 	e->d.axis[0] = axis;
 	drive_units_init(&e->d.units[0], cfg, axis);
+	e->d.valves[0] = config_axis_valves(cfg, axis);
 	e->cfg = *c;
 	e->counts_per_rev = cfg->axis[axis].counts_per_rev;
 	e->timeout_ms = (unsigned int)lround(fmax(c->timeout_s * 1e3, 1.0));

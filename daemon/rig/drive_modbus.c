@@ -6,7 +6,11 @@
  * One exchange, per drive: the torque setpoint written (when enabled), then
  * the feedback registers read, grouped per table into as few reads as fit
  * (125 registers or bits each); with combined_0x17 both in one
- * write-and-read transaction (function 0x17).
+ * write-and-read transaction (function 0x17). The handle's valves
+ * ([modbus.NAME] valve_*) are feedback like the rest: a valve in a table
+ * the feedback already reads, within its span, costs nothing more; valves
+ * on discrete inputs (function 0x02) add one read per drive, whatever
+ * their number, when within 125 bits of each other.
  *
  * libmodbus' failure modes (measured; see the notes): timeouts are set short
  * and a late reply is flushed; its link recovery (which retries for seconds)
@@ -27,11 +31,12 @@
 #include "base/mono.h"
 
 #define READ_MAX 125 /* registers or bits one read may take */
-#define PLAN_MAX 3 /* position, velocity, fault: at most one read each */
-
+/* The signals read each exchange; position first: with 0x17, read[0]. */
 static const int feedback[] = { REGSPEC_POSITION, REGSPEC_VELOCITY,
-				REGSPEC_FAULT };
+				REGSPEC_FAULT, REGSPEC_VALVE_AIR,
+				REGSPEC_VALVE_WATER, REGSPEC_VALVE_SUCTION };
 #define FEEDBACK (sizeof(feedback) / sizeof(feedback[0]))
+#define PLAN_MAX FEEDBACK /* at most one read each */
 
 /* One read of a span of one table. */
 struct mb_read {
@@ -230,6 +235,15 @@ static void to_si(const struct mb *m, int i, struct drive_sample *s)
 	s->enabled = dr->enabled;
 	s->fault = code != 0.0;
 	s->code = (uint32_t)(int64_t)code;
+	s->valves = 0;
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		int sig = REGSPEC_VALVE_AIR + v;
+
+		if (dr->cfg->reg[sig].table != REGSPEC_NONE &&
+		    feedback_value(dr, sig) != 0.0) {
+			s->valves |= 1u << v;
+		}
+	}
 }
 
 static int exchange_one(struct mb *m, int i, double setpoint,
@@ -238,18 +252,17 @@ static int exchange_one(struct mb *m, int i, double setpoint,
 	struct mb_drive *dr = &m->dr[i];
 	double torque = dr->enabled ? setpoint * m->d.units[i].motor_nm_per_si
 				    : 0.0;
-	int r = 0;
+	int r = 0, k = 0;
 
 	modbus_set_slave(m->ctx, dr->cfg->slave);
 	if (dr->cfg->combined_0x17) {
 		r = write_read(m, i, torque);
-	} else {
-		if (dr->enabled) {
-			r = write_signal(m, i, REGSPEC_TORQUE, torque);
-		}
-		for (int k = 0; !r && k < dr->reads; k++) {
-			r = read_span(m, i, &dr->read[k]);
-		}
+		k = 1; /* read[0] came with it: the rest, valves elsewhere */
+	} else if (dr->enabled) {
+		r = write_signal(m, i, REGSPEC_TORQUE, torque);
+	}
+	for (; !r && k < dr->reads; k++) {
+		r = read_span(m, i, &dr->read[k]);
 	}
 	if (!r) {
 		to_si(m, i, s);
@@ -477,6 +490,7 @@ struct drive *drive_modbus_create(const struct config *cfg)
 		plan(&m->dr[i]);
 		m->d.axis[i] = a;
 		drive_units_init(&m->d.units[i], cfg, a);
+		m->d.valves[i] = config_axis_valves(cfg, a);
 		snprintf(m->d.unit[i], sizeof(m->d.unit[i]), "slave %d",
 			 m->drives[i].slave);
 		m->d.n++;

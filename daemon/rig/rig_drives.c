@@ -3,6 +3,9 @@
  * [axis.NAME] section names. Real axes belong to a bus (one per EPOS4, one
  * for all Modbus drives), each with its own thread (bus.h); simulated axes
  * stay with the simulated rig (rig_sim.c), which this rig runs alongside.
+ * The handle's valves likewise: those mapped to a drive's inputs come
+ * from its bus (released when stale or lost), the rest from the simulated
+ * hand.
  *
  * The force loop's read and write touch only the buses' mailboxes and the
  * simulated rig: nothing here waits on a device.
@@ -50,7 +53,7 @@ static void drives_read(struct rig *rig, uint64_t now_ns,
 
 	rig_read(r->sim, now_ns, fb);
 	for (int b = 0; b < r->buses; b++) {
-		bus_fetch(r->bus[b], fb);
+		bus_fetch(r->bus[b], now_ns, fb);
 	}
 }
 

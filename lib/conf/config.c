@@ -19,9 +19,6 @@ static const char *const parity_names[] = { "none", "even", "odd", NULL };
 static const char *const yes_no[] = { "no", "yes", NULL };
 static const char *const model_names[] = { "paper", "rod", NULL };
 static const char *const gas_names[] = { "air", "co2", NULL };
-static const char *const position_names[] = { "left-lateral", "supine",
-					      "right-lateral", "prone",
-					      NULL };
 static const char *const overrun_fault_names[] = { "no", "yes", "auto",
 						   NULL };
 
@@ -155,7 +152,16 @@ static const struct parse_ops register_ops = { register_parse,
 	   "what one unit of the rated torque 0x6076 is (EPOS4: 1 uN m)"),   \
 	KD(sec, "watchdog_s", epos4[i].watchdog_s, 0.1, 0, 65.535, "s", 0,   \
 	   "heartbeat consumer time 0x1016:01 written at enable: the drive " \
-	   "faults when the daemon falls silent this long; 0: off")
+	   "faults when the daemon falls silent this long; 0: off"),         \
+	KI(sec, "valve_air_bit", epos4[i].valve_bit[0], -1, -1, 31, "", 0,  \
+	   "the bit of digital inputs 0x60FD set while the air/water valve " \
+	   "is covered (air); -1: not on this drive"),                        \
+	KI(sec, "valve_water_bit", epos4[i].valve_bit[1], -1, -1, 31, "", 0, \
+	   "the bit of 0x60FD set while the air/water valve is pressed "      \
+	   "(water); -1: not on this drive"),                                 \
+	KI(sec, "valve_suction_bit", epos4[i].valve_bit[2], -1, -1, 31, "",  \
+	   0, "the bit of 0x60FD set while the suction valve is pressed; "   \
+	   "-1: not on this drive")
 
 /* [modbus.NAME]: the Modbus wheel drive of axis I and its register map. */
 #define MODBUS_DRIVE_KEYS(sec, i)                                            \
@@ -178,7 +184,14 @@ static const struct parse_ops register_ops = { register_parse,
 	KR(sec, "fault_reset", modbus_drive[i].reg[REGSPEC_FAULT_RESET],      \
 	   "written 1 then 0 to clear a fault"),                             \
 	KR(sec, "watchdog", modbus_drive[i].reg[REGSPEC_WATCHDOG],            \
-	   "communication watchdog, s (gets watchdog_s)")
+	   "communication watchdog, s (gets watchdog_s)"),                   \
+	KR(sec, "valve_air", modbus_drive[i].reg[REGSPEC_VALVE_AIR],          \
+	   "not 0 while the air/water valve is covered (air): an input, "    \
+	   "e.g. discrete 0x0010"),                                          \
+	KR(sec, "valve_water", modbus_drive[i].reg[REGSPEC_VALVE_WATER],      \
+	   "not 0 while the air/water valve is pressed (water)"),            \
+	KR(sec, "valve_suction", modbus_drive[i].reg[REGSPEC_VALVE_SUCTION],  \
+	   "not 0 while the suction valve is pressed")
 
 static const struct parse_key keys[] = {
 	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
@@ -499,7 +512,7 @@ static const struct parse_key keys[] = {
 	KE("patient", "gas", patient.gas, GAS_AIR, gas_names, LIVE,
 	   "what the pump blows in: air, or co2 (absorbed far faster)"),
 	KE("patient", "position", patient.position, POSTURE_LEFT_LATERAL,
-	   position_names, 0, "where the patient lies at the start: "
+	   names_positions, 0, "where the patient lies at the start: "
 	   "left-lateral, supine, right-lateral or prone"),
 	KD("patient", "turn_s", patient.turn_s, PATIENT_DEFAULT_TURN_S, 0, 60,
 	   "s", LIVE, "a change of position takes this long"),
@@ -828,6 +841,70 @@ double config_feedback_max_age_s(const struct config *cfg, int axis)
 	}
 }
 
+uint32_t config_axis_valves(const struct config *cfg, int axis)
+{
+	uint32_t valves = 0;
+
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		switch (config_axis_backend(cfg, axis)) {
+		case CONFIG_DRIVE_EPOS4_USB:
+			valves |= cfg->epos4[axis].valve_bit[v] >= 0 ? 1u << v
+								     : 0;
+			break;
+		case CONFIG_DRIVE_MODBUS:
+			valves |= cfg->modbus_drive[axis]
+						  .reg[REGSPEC_VALVE_AIR + v]
+						  .table != REGSPEC_NONE
+					  ? 1u << v : 0;
+			break;
+		default:
+			break;
+		}
+	}
+	return valves;
+}
+
+/* The section and key that map valve V on AXIS' drive, into BUF. */
+static void valve_key(const struct config *cfg, int axis, int v, char *buf,
+		      size_t size)
+{
+	static const char *const valve_names[CONFIG_VALVES] = {
+		"air", "water", "suction",
+	};
+
+	if (config_axis_backend(cfg, axis) == CONFIG_DRIVE_EPOS4_USB) {
+		snprintf(buf, size, "[epos4.%s] valve_%s_bit", names_axis(axis),
+			 valve_names[v]);
+	} else {
+		snprintf(buf, size, "[modbus.%s] valve_%s", names_axis(axis),
+			 valve_names[v]);
+	}
+}
+
+/* Each valve is read from one drive's input at most. */
+static int check_valves(const struct config *cfg, char *err, size_t size)
+{
+	char key[80], other[80];
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		for (int b = 0; b < a; b++) {
+			uint32_t both = config_axis_valves(cfg, a) &
+					config_axis_valves(cfg, b);
+			int v = both ? __builtin_ctz(both) : -1;
+
+			if (v < 0) {
+				continue;
+			}
+			valve_key(cfg, a, v, key, sizeof(key));
+			valve_key(cfg, b, v, other, sizeof(other));
+			snprintf(err, size, "%s: %s reads that valve already "
+				 "(one input per valve)", key, other);
+			return -EINVAL;
+		}
+	}
+	return 0;
+}
+
 /* Two EPOS4 axes must not be able to find the same drive. */
 static int check_epos4(const struct config *cfg, char *err, size_t size)
 {
@@ -996,7 +1073,8 @@ bool config_case_name_ok(const char *name)
 
 int config_check(const struct config *cfg, char *err, size_t errsize)
 {
-	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize)) {
+	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize) ||
+	    check_valves(cfg, err, errsize)) {
 		return -EINVAL;
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {

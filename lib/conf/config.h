@@ -69,6 +69,13 @@ struct config_axis {
 	int reversed;         /* 1: motor positive is axis negative */
 };
 
+/*
+ * The handle's valves a real rig reads from its drives' digital inputs, in
+ * enum endosim_valve's order (valve V is bit 1 << V): the air/water valve
+ * covered (air), pressed (water), the suction valve.
+ */
+#define CONFIG_VALVES 3
+
 /* One maxon EPOS4 on USB ([epos4.NAME]). */
 struct config_epos4 {
 	int vid, pid;                 /* USB vendor and product id */
@@ -79,6 +86,9 @@ struct config_epos4 {
 	double max_rate_hz;           /* the bus thread's exchange rate cap */
 	double rated_torque_unit_n_m; /* SI value of one unit of 0x6076 */
 	double watchdog_s;            /* heartbeat consumer time 0x1016 */
+	int valve_bit[CONFIG_VALVES]; /* the bit of digital inputs 0x60FD
+					 that is set while the valve is
+					 pressed; -1: not on this drive */
 };
 
 /* The Modbus line or connection all modbus axes share ([modbus]). */
@@ -315,6 +325,14 @@ bool config_overrun_faults(const struct config *cfg);
  * thread, the force loop included.
  */
 bool config_saturation_faults(const struct config *cfg, int axis);
+
+/*
+ * The valves (enum endosim_valve bits) read from the drive of AXIS: those
+ * its [epos4.NAME] valve_*_bit or [modbus.NAME] valve_* keys map, when
+ * AXIS is on that backend; 0 for a simulated axis (whose valves, like
+ * every unmapped one, come from the simulated hand). Any thread.
+ */
+uint32_t config_axis_valves(const struct config *cfg, int axis);
 
 /* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
 double config_feedback_max_age_s(const struct config *cfg, int axis);

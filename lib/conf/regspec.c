@@ -11,7 +11,7 @@
 
 static const char *const signal_names[REGSPEC_SIGNALS] = {
 	"torque", "enable", "position", "velocity", "fault", "fault_reset",
-	"watchdog",
+	"watchdog", "valve_air", "valve_water", "valve_suction",
 };
 
 static const char *const table_names[] = {

@@ -31,6 +31,11 @@
  *   fault_reset  written 1, then 0, to clear a fault
  *   watchdog  written at enable with [modbus.AXIS] watchdog_s: the drive
  *             stops by itself when it hears nothing for that long
+ *   valve_air, valve_water, valve_suction
+ *             the handle's valves on the drive's digital inputs (a
+ *             discrete input, function 0x02, is the usual place): pressed
+ *             while the value is not 0 (scale=-1 offset=1 reads an input
+ *             that opens when pressed); read with the feedback
  *
  * Pure computation: safe in any thread.
  */
@@ -67,6 +72,9 @@ enum regspec_signal {
 	REGSPEC_FAULT,
 	REGSPEC_FAULT_RESET,
 	REGSPEC_WATCHDOG,
+	REGSPEC_VALVE_AIR,     /* in enum endosim_valve's order: air, */
+	REGSPEC_VALVE_WATER,   /* water, */
+	REGSPEC_VALVE_SUCTION, /* suction */
 	REGSPEC_SIGNALS,
 };
 

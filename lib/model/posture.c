@@ -5,9 +5,16 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const names[POSTURE_POSITIONS] = {
-	"left-lateral", "supine", "right-lateral", "prone",
-};
+#include "proto/endosim_shm.h"
+#include "proto/names.h"
+
+_Static_assert((int)POSTURE_LEFT_LATERAL ==
+		       (int)ENDOSIM_POSITION_LEFT_LATERAL &&
+	       (int)POSTURE_SUPINE == (int)ENDOSIM_POSITION_SUPINE &&
+	       (int)POSTURE_RIGHT_LATERAL ==
+		       (int)ENDOSIM_POSITION_RIGHT_LATERAL &&
+	       (int)POSTURE_PRONE == (int)ENDOSIM_POSITION_PRONE,
+	       "posture: the positions are the published ones");
 
 /* Gravity's angle about z from +x: left lateral 0, supine pi/2 (+y),
  * right lateral pi, prone -pi/2 (3 pi/2). */
@@ -84,16 +91,10 @@ bool posture_turning(const struct posture *p)
 
 const char *posture_name(int position)
 {
-	return position >= 0 && position < POSTURE_POSITIONS ? names[position]
-							      : "?";
+	return position >= 0 ? names_position((uint32_t)position) : "?";
 }
 
 int posture_find(const char *name)
 {
-	for (int i = 0; i < POSTURE_POSITIONS; i++) {
-		if (!strcmp(name, names[i])) {
-			return i;
-		}
-	}
-	return -1;
+	return names_position_find(name);
 }

@@ -18,6 +18,8 @@ struct scene {
 	Endosim__SceneRegion *region_p[COLON_MAX_REGIONS];
 	Endosim__ScenePolyp polyp[ANATOMY_MAX_POLYPS];
 	Endosim__ScenePolyp *polyp_p[ANATOMY_MAX_POLYPS];
+	Endosim__SceneSite site[ANATOMY_MAX_SITES];
+	Endosim__SceneSite *site_p[ANATOMY_MAX_SITES];
 	Endosim__SceneSegment *segment;
 	Endosim__SceneSegment **segment_p;
 	Endosim__SceneScope scope;
@@ -59,6 +61,25 @@ static void fill_polyps(struct scene *s, const struct anatomy *a)
 	}
 	s->info.n_polyps = a ? (size_t)a->polyps : 0;
 	s->info.polyps = s->polyp_p;
+}
+
+/* The assistant's sites: their vectors point into the colon's anatomy. */
+static void fill_sites(struct scene *s, const struct anatomy *a)
+{
+	for (int i = 0; a && i < a->sites; i++) {
+		const struct anatomy_site *in = &a->site[i];
+		Endosim__SceneSite *x = &s->site[i];
+
+		endosim__scene_site__init(x);
+		x->name = (char *)in->name;
+		x->n_position_m = x->n_direction = 3;
+		x->position_m = (double *)in->position_m;
+		x->direction = (double *)in->direction;
+		x->radius_m = in->radius_m;
+		s->site_p[i] = x;
+	}
+	s->info.n_sites = a ? (size_t)a->sites : 0;
+	s->info.sites = s->site_p;
 }
 
 static void fill_segments(struct scene *s, const struct mesh *m)
@@ -119,6 +140,7 @@ static void fill_info(struct scene *s)
 	fill_centreline(s, colon_centreline(c));
 	fill_regions(s);
 	fill_polyps(s, a);
+	fill_sites(s, a);
 	fill_segments(s, m);
 }
 

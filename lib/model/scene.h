@@ -6,11 +6,12 @@
  * few MiB whatever the resolution.
  *
  * Chunk 0 also says which scope the colon is rendered with (the scope's
- * parameters, scene_set_scope()). The replies point into the colon's
- * undeformed centreline and mesh,
- * which nobody writes once built (the force loop bows the centreline's
- * current samples only), so the control thread may serve them while the
- * loop runs. Any one thread that is not the force loop (endosimd's control
+ * parameters, scene_set_scope()) and where the assistant may press on
+ * the abdomen (the case's sites, by name). The replies point into the
+ * colon's anatomy (the sites), its undeformed centreline and mesh, which
+ * nobody writes once built (the force loop bows the centreline's current
+ * samples only), so the control thread may serve them while the loop
+ * runs. Any one thread that is not the force loop (endosimd's control
  * thread, the viewer's replay); a scene is not shared between threads;
  * scene_create() allocates.
  */

@@ -423,12 +423,10 @@ static void episode_table(FILE *o, const char *title,
 	}
 }
 
+/* The CSV's word for an event's kind (names.h), a parameter's in full. */
 static const char *event_kind(uint32_t kind)
 {
-	static const char *const k[] = { "?", "state", "fault", "parameter",
-					 "drops", "note" };
-
-	return kind < 6 ? k[kind] : "?";
+	return kind == SESSION_EVENT_PARAM ? "parameter" : names_event(kind);
 }
 
 static void event_table(FILE *o, const struct session_file *f, uint64_t t0)

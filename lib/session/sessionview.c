@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "proto/fields.h"
+#include "proto/names.h"
 #include "session/metricstext.h"
 #include "session/sessioninputs.h"
 #include "session/sessionmetrics.h"
@@ -183,6 +184,7 @@ static void put_value(FILE *out, const struct session_record *r,
 	const unsigned char *p = (const unsigned char *)r + c->record;
 	uint64_t u64;
 	uint32_t u32;
+	int32_t i32;
 	float f;
 
 	switch (c->stored) {
@@ -198,11 +200,14 @@ static void put_value(FILE *out, const struct session_record *r,
 		memcpy(&f, p, sizeof(f));
 		fprintf(out, ",%.7g", (double)f);
 		break;
+	case FIELDS_STORED_I32:
+		memcpy(&i32, p, sizeof(i32));
+		fprintf(out, ",%" PRId32, i32);
+		break;
 	}
 }
 
-/* The session's start: the header's start_ns, else its first record. */
-static uint64_t start_ns(const struct session_file *f)
+uint64_t sessionview_start_ns(const struct session_file *f)
 {
 	char v[32];
 
@@ -217,15 +222,32 @@ static double since(uint64_t t0, uint64_t stamp_ns)
 	return (double)(int64_t)(stamp_ns - t0) / ENDOSIM_NS_PER_S;
 }
 
+/*
+ * How many of the N columns COLS (in the record's order) F's records
+ * hold: format 3's at least, as its CSV always had them.
+ */
+static size_t held_columns(const struct session_file *f,
+			   const struct fields_column *cols, size_t n)
+{
+	size_t end = f->record_size > SESSION_RECORD_SIZE_3 ?
+			     f->record_size : SESSION_RECORD_SIZE_3;
+
+	while (n && cols[n - 1].record >= end) {
+		n--;
+	}
+	return n;
+}
+
 int sessionview_csv(FILE *out, const struct session_file *f)
 {
 	/* every column is at least a float of the record */
 	struct fields_column cols[sizeof(struct session_record) /
 				  sizeof(float)];
 	size_t n = fields_columns(cols, sizeof(cols) / sizeof(cols[0]));
-	uint64_t t0 = start_ns(f);
+	uint64_t t0 = sessionview_start_ns(f);
 
 	assert(n <= sizeof(cols) / sizeof(cols[0]));
+	n = held_columns(f, cols, n);
 	fprintf(out, "t_s");
 	for (size_t c = 0; c < n; c++) {
 		fprintf(out, ",%s", cols[c].name);
@@ -243,18 +265,6 @@ int sessionview_csv(FILE *out, const struct session_file *f)
 	return ferror(out) ? -EIO : 0;
 }
 
-static const char *event_kind(uint32_t kind)
-{
-	static const char *const names[] = {
-		[SESSION_EVENT_STATE] = "state", [SESSION_EVENT_FAULT] = "fault",
-		[SESSION_EVENT_PARAM] = "param", [SESSION_EVENT_DROPS] = "drops",
-		[SESSION_EVENT_NOTE] = "note",
-	};
-
-	return kind < sizeof(names) / sizeof(names[0]) && names[kind] ?
-		       names[kind] : "unknown";
-}
-
 /* TEXT as a CSV field: quoted, its quotes doubled. */
 static void put_quoted(FILE *out, const char *text)
 {
@@ -270,14 +280,14 @@ static void put_quoted(FILE *out, const char *text)
 
 int sessionview_events_csv(FILE *out, const struct session_file *f)
 {
-	uint64_t t0 = start_ns(f);
+	uint64_t t0 = sessionview_start_ns(f);
 
 	fprintf(out, "t_s,kind,axis,detail,value,text\n");
 	for (size_t i = 0; i < f->n_events; i++) {
 		const struct session_event *ev = &f->events[i].ev;
 
 		fprintf(out, "%.6f,%s,%d,%u,%.9g,", since(t0, ev->stamp_ns),
-			event_kind(ev->kind), ev->axis, ev->detail, ev->value);
+			names_event(ev->kind), ev->axis, ev->detail, ev->value);
 		put_quoted(out, f->events[i].text);
 		fputc('\n', out);
 	}

@@ -34,6 +34,11 @@ void sessionview_print(FILE *out, const struct metrics_result *m);
 void sessionview_json(struct json *j, const char *key,
 		      const struct metrics_result *m);
 
+/* The session's start (CLOCK_MONOTONIC ns), which its CSV's t_s and its
+ * events' times count from: the header's start_ns, else its first
+ * record's. */
+uint64_t sessionview_start_ns(const struct session_file *f);
+
 /*
  * The records of F as CSV: a header row naming every field with its unit
  * (t_s, cycle, state, ..., insertion_m, ...), one row per record, t_s in s
@@ -43,8 +48,8 @@ int sessionview_csv(FILE *out, const struct session_file *f);
 
 /*
  * The events of F as CSV: t_s (from the session's start), kind (state,
- * fault, param, drops, note), axis, detail, value, text (quoted). 0 or
- * -EIO.
+ * fault, param, drops, note, position, hand, valve, perforation: names.h),
+ * axis, detail, value, text (quoted). 0 or -EIO.
  */
 int sessionview_events_csv(FILE *out, const struct session_file *f);
 

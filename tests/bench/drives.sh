@@ -3,7 +3,8 @@
 # latency, against the device emulators: one EPOS4 on emulated USB
 # (umockdev), two wheel drives on a Modbus RTU pty (as fast as the pty goes,
 # and delayed like a 115200 Bd and a 1 Mbd line, with and without the
-# combined function 0x17), and on Modbus TCP over loopback.
+# combined function 0x17), and on Modbus TCP over loopback; and what reading
+# the handle's valves on the drives' inputs adds to an exchange.
 #
 #   BUILD=build tests/bench/drives.sh [SECONDS]     (after make emulators)
 #
@@ -53,6 +54,10 @@ printf '%-46s %9s %7s %7s    %7s %7s\n' "bus (emulated; transactions per exchang
 UMOCKDEV_DIR=$(cat "$T/usb.ready") LD_PRELOAD=libumockdev-preload.so.0 \
 	"$BENCH" -c "$T/usb.conf" --seconds "$SECONDS_EACH" \
 	--label "epos4-usb, umockdev (4)"
+UMOCKDEV_DIR=$(cat "$T/usb.ready") LD_PRELOAD=libumockdev-preload.so.0 \
+	"$BENCH" -c "$T/usb.conf" --seconds "$SECONDS_EACH" \
+	--label "epos4-usb, umockdev, valves on 0x60FD (5)" \
+	--set epos4.insertion.valve_air_bit=16
 kill "${PIDS[0]}"
 
 # --- two wheel drives on Modbus ----------------------------------------------
@@ -84,17 +89,27 @@ velocity = holding 0x0022 i32
 fault = holding 0x0024
 EOF
 
-# modbus LABEL EMULATOR-ARGS -- BENCH-ARGS
+# the same drives with the handle's valves: on discrete inputs (one more
+# read a drive), or in holding registers beside the feedback (none)
+sed 's/^fault = holding 0x0024$/&\nvalve_air = discrete 0x0000/' "$T/mb.conf" \
+	>"$T/mb-discrete.conf"
+sed 's/^fault = holding 0x0024$/&\nvalve_air = holding 0x0025/' "$T/mb.conf" \
+	>"$T/mb-span.conf"
+sed -i '0,/^valve_air/s//valve_suction/' "$T/mb-discrete.conf" \
+	"$T/mb-span.conf"
+
+# modbus LABEL EMULATOR-ARGS -- BENCH-ARGS (the drives of $MB_CONF)
+MB_CONF=$T/mb.conf
 modbus() {
 	local label=$1 emu=() pid
 	shift
 	while [ "$1" != -- ]; do emu+=("$1"); shift; done
 	shift
-	"$BUILD/emulators/modbus-emu" --config "$T/mb.conf" "${emu[@]}" \
+	"$BUILD/emulators/modbus-emu" --config "$MB_CONF" "${emu[@]}" \
 		>"$T/mb.out" 2>&1 &
 	pid=$!
 	for _ in $(seq 200); do grep -qs ready "$T/mb.out" && break; sleep 0.05; done
-	"$BENCH" -c "$T/mb.conf" --seconds "$SECONDS_EACH" --label "$label" "$@"
+	"$BENCH" -c "$MB_CONF" --seconds "$SECONDS_EACH" --label "$label" "$@"
 	kill "$pid"
 	wait "$pid" 2>/dev/null
 }
@@ -114,6 +129,12 @@ modbus "modbus rtu 1 MBd wire, 2 drives, 0x17 (2)" --pty "$T/tty" \
 	--baud 1000000 -- --set modbus.baud=1000000 "${C17[@]}"
 modbus "modbus tcp loopback, 2 drives (4)" --listen 15020 -- \
 	--set modbus.transport=tcp --set modbus.port=15020
+MB_CONF=$T/mb-discrete.conf
+modbus "115200 Bd, valves on discrete inputs (6)" --pty "$T/tty" \
+	--baud 115200 --
+MB_CONF=$T/mb-span.conf
+modbus "115200 Bd, valves beside the feedback (4)" --pty "$T/tty" \
+	--baud 115200 --
 
 cat <<'EOF'
 

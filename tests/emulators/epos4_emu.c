@@ -36,11 +36,15 @@
  *                                 sine of that amplitude at HZ)
  *   move SERIAL RPM               the hand turns the motor at RPM exactly
  *   place SERIAL COUNTS           the motor is put at COUNTS
+ *   input SERIAL BIT on|off       bit BIT (0..31) of the digital inputs
+ *                                 0x60FD is set / cleared: a switch wired
+ *                                 to the drive (the handle's valves), as
+ *                                 it stays through an unplug
  *   quit
  * The state file (--state) has one line per device: serial, present, CiA
  * 402 state, statusword, mode, target torque (per mille), torque applied
  * (N m), position (counts), velocity (rpm), requests served, the error
- * code 0x603F and the heartbeat consumer time (ms).
+ * code 0x603F, the heartbeat consumer time (ms) and the digital inputs.
  *
  * Communication watchdog: with a heartbeat consumer time set in 0x1016:01
  * (low 16 bits, ms), a drive in operation enabled that receives no request
@@ -105,6 +109,7 @@ struct dev {
 	uint16_t error;
 	bool sticky;
 	uint32_t heartbeat;  /* 0x1016:01, low 16 bits: ms; 0: off */
+	uint32_t inputs;     /* digital inputs 0x60FD */
 	double last_request_s;
 	uint32_t inject_abort;
 	bool inject_crc;
@@ -242,6 +247,7 @@ static uint32_t od_read(struct emu *e, struct dev *d, uint16_t index,
 						   (d->rated * 1e-9));
 		return 0;
 	case CANOPEN_SI_UNIT_VELOCITY: *value = CANOPEN_SI_UNIT_RPM; return 0;
+	case CANOPEN_DIGITAL_INPUTS: *value = d->inputs; return 0;
 	default: return 0x06020000;
 	}
 }
@@ -278,6 +284,7 @@ static uint32_t od_write(struct dev *d, uint16_t index, uint8_t sub,
 	case CANOPEN_STATUSWORD: case CANOPEN_MODE_DISPLAY:
 	case CANOPEN_POSITION_ACTUAL: case CANOPEN_VELOCITY_ACTUAL:
 	case CANOPEN_TORQUE_ACTUAL: case CANOPEN_SI_UNIT_VELOCITY:
+	case CANOPEN_DIGITAL_INPUTS:
 		return 0x06010002;
 	default: return 0x06020000;
 	}
@@ -772,6 +779,11 @@ static void inject_fault(struct dev *d, int argc, char **argv)
 	d->state = CANOPEN_FAULT;
 }
 
+static void set_input(struct dev *d, int bit, bool on)
+{
+	d->inputs = on ? d->inputs | 1u << bit : d->inputs & ~(1u << bit);
+}
+
 /* A command that changes a device's drive or motor; under the lock. */
 static void change(struct emu *e, struct dev *d, int n, char **w,
 		   const char *args)
@@ -793,6 +805,9 @@ static void change(struct emu *e, struct dev *d, int n, char **w,
 		d->motor.plant.v = d->motor.move_rad_s; /* from now on */
 	} else if (!strcmp(w[0], "place") && n >= 3) {
 		d->motor.plant.x = atof(w[2]) * 2.0 * M_PI / e->cpr;
+	} else if (!strcmp(w[0], "input") && n >= 4 && atoi(w[2]) >= 0 &&
+		   atoi(w[2]) < 32) {
+		set_input(d, atoi(w[2]), !strcmp(w[3], "on"));
 	} else {
 		fprintf(stderr, "epos4-emu: '%s': unknown command\n", w[0]);
 	}
@@ -840,10 +855,12 @@ static void write_state(struct emu *e)
 		g_string_append_printf(
 			s, "serial=%s present=%d state=%s sw=0x%04x mode=%d "
 			"target_permille=%d torque_nm=%.9g counts=%d rpm=%d "
-			"requests=%llu error=0x%04x heartbeat_ms=%u\n",
+			"requests=%llu error=0x%04x heartbeat_ms=%u "
+			"inputs=0x%08x\n",
 			d->serial, d->present, state, statusword(d), d->mode,
 			d->target, drive_torque_nm(d), counts(e, d), rpm(d),
-			d->requests, d->error, d->heartbeat & 0xFFFF);
+			d->requests, d->error, d->heartbeat & 0xFFFF,
+			d->inputs);
 		g_free(state);
 	}
 	emu_state_write(e->state_path, s->str);

@@ -31,9 +31,15 @@
  *   hand SLAVE TORQUE [HZ]       the hand's torque on the motor, N m
  *   move SLAVE RPM               the hand turns the motor at RPM exactly
  *   place SLAVE COUNTS           the motor is put at COUNTS
+ *   valve SLAVE air|water|suction on|off
+ *                                the drive's input that the configuration
+ *                                maps to that valve (valve_air, ...) reads
+ *                                pressed / released, by its description
+ *                                (an inverted input reads 0 when pressed)
  *   quit
  * --state FILE: one line per drive (slave, axis, enabled, torque applied in
- * N m, position in counts, velocity in counts/s, fault, requests served);
+ * N m, position in counts, velocity in counts/s, fault, requests served,
+ * the valves its inputs read pressed);
  * --trace FILE: every request in hex with what it asked, and the answer.
  */
 #include <errno.h>
@@ -75,6 +81,7 @@ struct slave {
 	bool reset_was_set;
 	bool mute;
 	bool nan;
+	uint32_t valves;           /* enum endosim_valve bits pressed */
 	int exception_next;
 	unsigned long requests;
 };
@@ -413,6 +420,29 @@ static bool receive(struct mbemu *e)
 
 /* --- control and state -------------------------------------------------- */
 
+/* The input of valve NAME (air, water, suction) reads pressed when ON. */
+static bool valve(struct slave *s, const char *name, const char *on)
+{
+	static const char *const names[CONFIG_VALVES] = { "air", "water",
+							  "suction" };
+
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		if (strcmp(name, names[v])) {
+			continue;
+		}
+		if (s->cfg->reg[REGSPEC_VALVE_AIR + v].table == REGSPEC_NONE) {
+			fprintf(stderr, "modbus-emu: slave %d: no valve_%s in "
+				"its map\n", s->cfg->slave, name);
+			return true;
+		}
+		s->valves = !strcmp(on, "on") ? s->valves | 1u << v
+					      : s->valves & ~(1u << v);
+		put(s, REGSPEC_VALVE_AIR + v, s->valves >> v & 1u);
+		return true;
+	}
+	return false;
+}
+
 static void change(struct mbemu *e, struct slave *s, int n, char **w,
 		   const char *args)
 {
@@ -436,6 +466,8 @@ static void change(struct mbemu *e, struct slave *s, int n, char **w,
 		s->motor.plant.v = s->motor.move_rad_s; /* from now on */
 	} else if (!strcmp(w[0], "place") && n > 2) {
 		s->motor.plant.x = atof(w[2]) * 2.0 * M_PI / s->cpr;
+	} else if (!strcmp(w[0], "valve") && n > 3 && valve(s, w[2], w[3])) {
+		/* done */
 	} else {
 		fprintf(stderr, "modbus-emu: '%s': unknown command\n", w[0]);
 	}
@@ -476,10 +508,11 @@ static void write_state(struct mbemu *e)
 			text + len, sizeof(text) - len,
 			"slave=%d axis=%s enabled=%d torque_nm=%.9g counts=%.0f "
 			"velocity_counts_s=%.6g fault=0x%04x requests=%lu "
-			"mute=%d\n", s->cfg->slave, names_axis(s->axis),
-			s->enabled && !s->fault, s->torque_nm, counts(s),
+			"mute=%d valves=%u\n", s->cfg->slave,
+			names_axis(s->axis), s->enabled && !s->fault,
+			s->torque_nm, counts(s),
 			s->motor.plant.v * s->cpr / (2.0 * M_PI), s->fault,
-			s->requests, s->mute);
+			s->requests, s->mute, s->valves);
 	}
 	emu_state_write(e->state_path, text);
 }
@@ -627,6 +660,9 @@ static int load(struct mbemu *e, const char *path,
 		emu_motor_init(&s->motor, motor);
 		if (!s->map) {
 			return -1;
+		}
+		for (int v = 0; v < CONFIG_VALVES; v++) {
+			put(s, REGSPEC_VALVE_AIR + v, 0); /* released */
 		}
 		e->n++;
 	}

@@ -151,7 +151,7 @@ check "both views: the scope's green in the overview" float_test \
 # --- (c) a file cut short ------------------------------------------------
 size=$(stat -c %s "$FILE")
 cp "$FILE" "$TMP/cut.endoses"
-# the END frame and part of the last record (372 bytes a frame) go
+# the END frame and part of the last record (500 bytes a frame) go
 truncate -s $((size - 200)) "$TMP/cut.endoses"
 check_status "a file cut mid-record replays" 0 \
 	replay "$TMP/cut.endoses" --seek 1000 --paused --frames 3 --print-state

@@ -1,6 +1,6 @@
 #!/bin/bash
 # A session on a disk too slow for it (the test-only [session]
-# write_limit_bytes_per_s at 100 kB/s, under a third of the 372 kB/s a session
+# write_limit_bytes_per_s at 100 kB/s, a fifth of the 500 kB/s a session
 # writes, with a ring of 0.5 s): records are dropped and counted, not
 # waited for. The force loop is not disturbed (no fault, overruns no more
 # than without a session), the drops are reported (session status, the

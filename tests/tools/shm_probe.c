@@ -5,10 +5,19 @@
  *
  *   shm_probe NAME [COUNT [INTERVAL_US]]   read COUNT states (default 200)
  *   shm_probe NAME --once                  print one state as key=value
+ *   shm_probe NAME --valves MASK VALUE TIMEOUT_S
+ *                                          read every state (every 50 us)
+ *                                          until the patient's valves & MASK
+ *                                          are VALUE; print that first state
+ *                                          as --once does, and the state
+ *                                          before it as before.KEY=VALUE
+ *                                          (they must not be so at first)
  *
- * Exit 0 when every read was consistent and the cycle advanced, 1 otherwise.
+ * Exit 0 when every read was consistent and the cycle advanced (--valves:
+ * when the valves came to VALUE in time), 1 otherwise.
  */
 #include <errno.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,11 +26,27 @@
 #include "proto/names.h"
 #include "proto/shm_reader.h"
 
+/* The patient's valves and gas, the axes' drives: what --valves waits on. */
+static void print_valves(const char *pre, const struct endosim_state *st)
+{
+	const struct endosim_patient_state *p = &st->patient;
+
+	printf("%sstamp_ns=%llu\n%spatient.valves=%u\n%spatient.gas_m3=%.9g\n"
+	       "%spatient.gas_in_m3=%.9g\n%spatient.pressure_pa=%.9g\n", pre,
+	       (unsigned long long)st->stamp_ns, pre, p->valves, pre,
+	       p->gas_m3, pre, p->gas_in_m3, pre, p->pressure_pa);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		printf("%s%s.drive_status=%u\n", pre, names_axis(a),
+		       st->axis[a].drive_status);
+	}
+}
+
 static void print_once(const struct endosim_state *st)
 {
 	printf("cycle=%llu\nstate=%s\nfault_bits=%u\n",
 	       (unsigned long long)st->cycle, names_state(st->state),
 	       st->fault_bits);
+	print_valves("", st);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		printf("%s.position=%.9g\n%s.limited=%.9g\n", names_axis(a),
 		       st->axis[a].position, names_axis(a),
@@ -60,6 +85,44 @@ static const char *check(const struct endosim_state *st,
 	return NULL;
 }
 
+/* --valves: the first state whose valves & MASK are VALUE, and the one
+ * before it. */
+static int watch_valves(struct shm_reader *r, char **arg)
+{
+	uint32_t mask = (uint32_t)strtoul(arg[0], NULL, 0);
+	uint32_t value = (uint32_t)strtoul(arg[1], NULL, 0);
+	struct timespec nap = { .tv_nsec = 50000 }, now;
+	struct endosim_state st, prev = { 0 };
+	bool have_prev = false;
+	double end_s;
+
+	clock_gettime(CLOCK_MONOTONIC, &now);
+	end_s = (double)now.tv_sec + now.tv_nsec * 1e-9 + atof(arg[2]);
+	do {
+		if (!shm_reader_read(r, &st, 1000)) {
+			bool there = (st.patient.valves & mask) == value;
+
+			if (there && !have_prev) {
+				fprintf(stderr, "shm_probe: the valves were so "
+					"before the watch began\n");
+				return 1;
+			}
+			if (there) {
+				print_once(&st);
+				print_valves("before.", &prev);
+				return 0;
+			}
+			prev = st;
+			have_prev = true;
+		}
+		nanosleep(&nap, NULL);
+		clock_gettime(CLOCK_MONOTONIC, &now);
+	} while ((double)now.tv_sec + now.tv_nsec * 1e-9 < end_s);
+	fprintf(stderr, "shm_probe: valves & 0x%x still 0x%x, not 0x%x\n", mask,
+		prev.patient.valves & mask, value);
+	return 1;
+}
+
 int main(int argc, char **argv)
 {
 	struct endosim_state st, prev;
@@ -69,13 +132,19 @@ int main(int argc, char **argv)
 
 	if (argc < 2) {
 		fprintf(stderr, "usage: shm_probe NAME [COUNT [INTERVAL_US]] | "
-			"NAME --once\n");
+			"NAME --once | NAME --valves MASK VALUE TIMEOUT_S\n");
 		return 2;
 	}
 	r = shm_reader_open(argv[1]);
 	if (!r) {
 		fprintf(stderr, "shm_probe: %s: %s\n", argv[1], strerror(errno));
 		return 1;
+	}
+	if (argc > 5 && !strcmp(argv[2], "--valves")) {
+		int rc = watch_valves(r, argv + 3);
+
+		shm_reader_close(r);
+		return rc;
 	}
 	if (argc > 2 && !strcmp(argv[2], "--once")) {
 		int err = shm_reader_read(r, &st, 1000);

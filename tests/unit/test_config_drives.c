@@ -2,7 +2,7 @@
  * test_config_drives.c - the drive sections of the configuration: keys in
  * dotted sections, hexadecimal ids, register keys, the cross-key checks
  * that refuse an unusable drive setup, the feedback age per bus, and the
- * unit conversion derived from an axis' mechanics.
+ * unit conversion derived from an axis' mechanics, the valves' inputs.
  */
 #include <errno.h>
 #include <math.h>
@@ -197,6 +197,75 @@ static void test_feedback_age_per_bus(void **state)
 		    0.01);
 }
 
+/* Loads TEXT as a file: config_load()'s result, its message in ERR. */
+static int load_text(struct config *c, const char *text)
+{
+	char path[] = "/tmp/test_config_drives.XXXXXX";
+	int fd = mkstemp(path);
+	FILE *f = fdopen(fd, "w");
+	int r;
+
+	fputs(text, f);
+	fclose(f);
+	config_defaults(c);
+	r = config_load(c, path, err, sizeof(err));
+	unlink(path);
+	return r;
+}
+
+/*
+ * The valves: a bit of 0x60FD on an EPOS4, a register on a Modbus drive;
+ * what each drive reads; a bad bit or register refused with its line; a
+ * valve on two inputs refused naming both.
+ */
+static void test_valve_keys(void **state)
+{
+	struct config c;
+
+	(void)state;
+	modbus_wheels(&c);
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		assert_int_equal(config_axis_valves(&c, a), 0);
+	}
+	set(&c, "axis.insertion.backend", "epos4-usb");
+	set(&c, "epos4.insertion.valve_air_bit", "16");
+	set(&c, "epos4.insertion.valve_suction_bit", "18");
+	set(&c, "modbus.wheel_lr.valve_water", "discrete 0x0010");
+	assert_int_equal(c.epos4[ENDOSIM_AXIS_INSERTION].valve_bit[0], 16);
+	assert_int_equal(c.epos4[ENDOSIM_AXIS_INSERTION].valve_bit[1], -1);
+	assert_int_equal(config_axis_valves(&c, ENDOSIM_AXIS_INSERTION),
+			 ENDOSIM_VALVE_AIR | ENDOSIM_VALVE_SUCTION);
+	assert_int_equal(config_axis_valves(&c, LR), ENDOSIM_VALVE_WATER);
+	assert_int_equal(config_axis_valves(&c, UD), 0);
+
+	/* a simulated axis' drive section reads nothing */
+	set(&c, "epos4.roll.valve_water_bit", "3");
+	assert_int_equal(config_axis_valves(&c, ENDOSIM_AXIS_ROLL), 0);
+
+	/* one input per valve */
+	assert_int_equal(config_set(&c, "modbus.wheel_ud.valve_air",
+				    "input 0x0008 u16", false, err,
+				    sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[modbus.wheel_ud] valve_air: "
+				    "[epos4.insertion] valve_air_bit reads"));
+	assert_int_equal(config_set(&c, "epos4.insertion.valve_water_bit", "17",
+				    false, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[modbus.wheel_lr] valve_water: "
+				    "[epos4.insertion] valve_water_bit"));
+	set(&c, "modbus.wheel_ud.valve_air", "none");
+	assert_int_equal(config_check(&c, err, sizeof(err)), 0);
+
+	assert_int_equal(config_set(&c, "epos4.insertion.valve_air_bit", "32",
+				    false, err, sizeof(err)), -EINVAL);
+	assert_int_equal(load_text(&c, "[epos4.roll]\nnode_id = 2\n"
+				   "valve_water_bit = -2\n"), -EINVAL);
+	assert_non_null(strstr(err, ":3: [epos4.roll] valve_water_bit: "));
+	assert_int_equal(load_text(&c, "[modbus.wheel_ud]\nslave = 3\n\n"
+				   "valve_suction = discrete 0x10 q16\n"),
+			 -EINVAL);
+	assert_non_null(strstr(err, ":4: [modbus.wheel_ud] valve_suction: "));
+}
+
 static void test_units(void **state)
 {
 	struct drive_units u;
@@ -230,6 +299,7 @@ int main(void)
 		cmocka_unit_test(test_modbus_checks),
 		cmocka_unit_test(test_epos4_checks),
 		cmocka_unit_test(test_feedback_age_per_bus),
+		cmocka_unit_test(test_valve_keys),
 		cmocka_unit_test(test_units),
 	};
 

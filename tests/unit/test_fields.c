@@ -47,6 +47,8 @@ static const struct {
 #define AXIS(f, why) NOT(fields_axis, struct endosim_axis_state, f, why)
 #define SCOPE(f, why) NOT(fields_scope, struct endosim_scope_state, f, why)
 #define ROD(f, why) NOT(fields_rod, struct endosim_rod_state, f, why)
+#define PATIENT(f, why)                                                      \
+	NOT(fields_patient, struct endosim_patient_state, f, why)
 	STATE(publish_ns, "the publisher's own clock, for shm readers"),
 	STATE(fault_axis, "the first fault's: faults[0] says it"),
 	STATE(fault_detail, "the first fault's: faults[0] says it"),
@@ -66,12 +68,14 @@ static const struct {
 	ROD(roll, "the shape's roll: the shm's, sessions' SHAPE frames"),
 	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
 	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
+	PATIENT(reserved, "padding"),
 #undef NOT
 #undef STATE
 #undef CAUSE
 #undef AXIS
 #undef SCOPE
 #undef ROD
+#undef PATIENT
 };
 
 /* Every table, from the root, each once. */
@@ -105,6 +109,7 @@ static size_t state_bytes(const struct fields_field *d)
 	case FIELDS_UINT:
 	case FIELDS_BOOL:
 	case FIELDS_NAMED:
+	case FIELDS_INT:
 		return sizeof(uint32_t);
 	case FIELDS_UINT64:
 		return sizeof(uint64_t);
@@ -149,7 +154,7 @@ static void test_state_covered(void **state)
 	size_t n = all_tables(t, COUNT(t)), bad = 0;
 
 	(void)state;
-	assert_int_equal(n, 7);
+	assert_int_equal(n, 8);
 	for (size_t k = 0; k < n; k++) {
 		for (size_t i = 0; i < t[k]->n_fields; i++) {
 			const struct fields_field *d = &t[k]->fields[i];
@@ -305,8 +310,7 @@ static void check_row(const struct fields_table *t,
 {
 	bool sub = d->kind == FIELDS_MESSAGE || d->kind == FIELDS_LIST ||
 		   d->kind == FIELDS_MAP;
-	bool own = d->kind == FIELDS_INT || d->kind == FIELDS_STRING ||
-		   d->kind == FIELDS_KEY;
+	bool own = d->kind == FIELDS_STRING || d->kind == FIELDS_KEY;
 
 	assert_true(d->name && *d->name);
 	assert_true(d->pb != NONE || d->record != NONE);
@@ -390,7 +394,7 @@ static void test_record_covered(void **state)
 	}
 }
 
-/* The CSV's columns, as docs/SESSION_FORMAT.md's format 2 has them. */
+/* The CSV's columns, as docs/SESSION_FORMAT.md's format 4 has them. */
 static const char csv_columns[] =
 	"cycle,state,fault_bits,insertion_position_m,roll_position_rad,"
 	"wheel_ud_position_rad,wheel_lr_position_rad,"
@@ -413,11 +417,38 @@ static const char csv_columns[] =
 	"guide_phase,guide_time_s,guide_reference_insertion_m,"
 	"guide_reference_roll_rad,guide_reference_wheel_ud_rad,"
 	"guide_reference_wheel_lr_rad,guide_force_insertion_n,"
-	"guide_force_roll_nm,guide_force_wheel_ud_nm,guide_force_wheel_lr_nm";
+	"guide_force_roll_nm,guide_force_wheel_ud_nm,guide_force_wheel_lr_nm,"
+	/* format 4: the patient */
+	"patient_enabled,patient_valves,patient_position,patient_turning,"
+	"patient_turn_1,patient_gas_m3,patient_pressure_pa,patient_gas_in_m3,"
+	"patient_factor_anal_canal_1,patient_factor_rectum_1,"
+	"patient_factor_sigmoid_1,patient_factor_descending_1,"
+	"patient_factor_splenic_flexure_1,patient_factor_transverse_1,"
+	"patient_factor_hepatic_flexure_1,patient_factor_ascending_1,"
+	"patient_factor_cecum_1,patient_fluid_anal_canal_m3,"
+	"patient_fluid_rectum_m3,patient_fluid_sigmoid_m3,"
+	"patient_fluid_descending_m3,patient_fluid_splenic_flexure_m3,"
+	"patient_fluid_transverse_m3,patient_fluid_hepatic_flexure_m3,"
+	"patient_fluid_ascending_m3,patient_fluid_cecum_m3,"
+	"patient_hand_site,patient_hand_n,patient_lens_smear_1,"
+	"patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment";
+
+/* The column called NAME among C's N. */
+static const struct fields_column *column(const struct fields_column *c,
+					  size_t n, const char *name)
+{
+	for (size_t i = 0; i < n; i++) {
+		if (!strcmp(c[i].name, name)) {
+			return &c[i];
+		}
+	}
+	fail_msg("no column %s", name);
+	return NULL;
+}
 
 static void test_columns(void **state)
 {
-	struct fields_column c[128], few[3];
+	struct fields_column c[160], few[3];
 	size_t n = fields_columns(c, COUNT(c)), len = 0;
 	char line[4096];
 
@@ -434,12 +465,24 @@ static void test_columns(void **state)
 	assert_int_equal(c[0].record, offsetof(struct session_record, cycle));
 	assert_int_equal(c[0].stored, FIELDS_STORED_U64);
 	assert_int_equal(c[1].stored, FIELDS_STORED_U32);
-	assert_int_equal(c[n - 13].stored, FIELDS_STORED_U32); /* rod_model */
-	assert_int_equal(c[n - 10].stored, FIELDS_STORED_U32); /* guide_phase */
-	assert_int_equal(c[n - 1].stored, FIELDS_STORED_F32);
-	assert_int_equal(c[n - 1].record,
+	assert_int_equal(column(c, n, "rod_model")->stored, FIELDS_STORED_U32);
+	assert_int_equal(column(c, n, "guide_phase")->stored,
+			 FIELDS_STORED_U32);
+	assert_int_equal(column(c, n, "guide_force_wheel_lr_nm")->stored,
+			 FIELDS_STORED_F32);
+	assert_int_equal(column(c, n, "guide_force_wheel_lr_nm")->record,
 			 offsetof(struct session_record, guide_force) +
 			 3 * sizeof(float));
+	assert_int_equal(column(c, n, "patient_valves")->stored,
+			 FIELDS_STORED_U32);
+	assert_int_equal(column(c, n, "patient_fluid_cecum_m3")->record,
+			 offsetof(struct session_record, fluid_m3) +
+			 8 * sizeof(float));
+	assert_int_equal(column(c, n, "patient_hand_site")->stored,
+			 FIELDS_STORED_I32);
+	assert_int_equal(c[n - 1].stored, FIELDS_STORED_I32);
+	assert_int_equal(c[n - 1].record,
+			 offsetof(struct session_record, burst_segment));
 }
 
 /* A state whose every double and word differs. */
@@ -471,6 +514,21 @@ static void distinct(struct endosim_state *st)
 	st->rod.friction_n = 0.375;
 	st->rod.points = 161;
 	st->rod.nodes = 40;
+	st->patient.enabled = 1;
+	st->patient.valves = ENDOSIM_VALVE_AIR | ENDOSIM_VALVE_SUCTION;
+	st->patient.position = ENDOSIM_POSITION_SUPINE;
+	st->patient.turning = 1;
+	st->patient.turn = 0.25;
+	st->patient.gas_m3 = 0.0015;
+	st->patient.pressure_pa = 1250;
+	st->patient.factor[8] = 1.125;
+	st->patient.fluid_m3[2] = 5e-5;
+	st->patient.fluid_up[1] = -1;
+	st->patient.hand_site = 1;
+	st->patient.hand_n = 30;
+	st->patient.pad_n = 4.5;
+	st->patient.lens_murk = 0.5;
+	st->patient.burst_segment = -1;
 }
 
 static void test_to_pb(void **state)
@@ -481,6 +539,7 @@ static void test_to_pb(void **state)
 	Endosim__HapticsStatus h;
 	Endosim__AxisStatus ax;
 	Endosim__RodStatus rod;
+	Endosim__PatientStatus pat;
 	Endosim__Fault f;
 
 	(void)state;
@@ -524,6 +583,24 @@ static void test_to_pb(void **state)
 	assert_int_equal(rod.points, 161);
 	assert_int_equal(rod.nodes, 40);
 	assert_true(protobuf_c_message_check(&rod.base));
+	assert_null(s.patient);
+	fields_to_pb(&fields_patient, &pat, &st.patient);
+	assert_true(pat.enabled && pat.turning);
+	assert_int_equal(pat.valves, 5);
+	assert_string_equal(names_valves(pat.valves), "air,suction");
+	assert_int_equal(pat.position,
+			 ENDOSIM__PATIENT_POSITION__PATIENT_POSITION_SUPINE);
+	assert_string_equal(names_position(pat.position), "supine");
+	assert_true(pat.turn == 0.25 && pat.pressure_pa == 1250);
+	assert_int_equal(pat.n_factor, ENDOSIM_SEGMENTS);
+	assert_true(pat.factor[8] == 1.125);
+	assert_true(pat.fluid_up[1] == -1);
+	assert_int_equal(pat.hand_site, 1);
+	assert_int_equal(pat.burst_segment, -1);
+	assert_true(pat.pad_n == 4.5 && pat.lens_murk == 0.5);
+	assert_string_equal(pat.site, ""); /* the daemon's own */
+	pat.site = "llq";
+	assert_true(protobuf_c_message_check(&pat.base));
 }
 
 /* The record keeps what the tables say, as floats, and gives it back. */
@@ -560,6 +637,44 @@ static void test_record(void **state)
 	assert_true(back.haptics.trans_rod_n == -1.5);
 	assert_true(back.haptics.tube_rod_nm == 0.125);
 	assert_int_equal(back.rod.points, 0); /* a SHAPE frame's */
+	assert_int_equal(r.patient, 1);
+	assert_int_equal(r.valves, 5);
+	assert_int_equal(r.patient_position, ENDOSIM_POSITION_SUPINE);
+	assert_true(r.gas_m3 == 0.0015f && r.lumen_factor[8] == 1.125f);
+	assert_int_equal(r.hand_site, 1);
+	assert_int_equal(r.burst_segment, -1);
+	assert_int_equal(back.patient.enabled, 1);
+	assert_int_equal(back.patient.turning, 1);
+	assert_true(back.patient.turn == 0.25);
+	assert_true(back.patient.pressure_pa == 1250);
+	assert_true(back.patient.fluid_m3[2] == (double)5e-5f);
+	assert_int_equal(back.patient.hand_site, 1);
+	assert_true(back.patient.hand_n == 30);
+	assert_true(back.patient.lens_murk == 0.5);
+	assert_int_equal(back.patient.burst_segment, -1);
+	assert_true(back.patient.pad_n == 0); /* not recorded */
+	assert_true(back.patient.fluid_up[1] == 0);
+}
+
+/* A record without the patient (disabled, or an older format's, whose
+ * fields read zero) gives the disabled patient's state, not a colon
+ * collapsed with the hand at site 0 and the anal canal torn. */
+static void test_record_no_patient(void **state)
+{
+	struct session_record r;
+	struct endosim_state back;
+
+	(void)state;
+	memset(&r, 0, sizeof(r));
+	r.valves = ENDOSIM_VALVE_WATER;
+	session_record_to_state(&r, &back);
+	assert_int_equal(back.patient.enabled, 0);
+	assert_int_equal(back.patient.hand_site, -1);
+	assert_int_equal(back.patient.burst_segment, -1);
+	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
+		assert_true(back.patient.factor[i] == 1);
+	}
+	assert_int_equal(back.patient.valves, ENDOSIM_VALVE_WATER);
 }
 
 int main(void)
@@ -572,6 +687,7 @@ int main(void)
 		cmocka_unit_test(test_columns),
 		cmocka_unit_test(test_to_pb),
 		cmocka_unit_test(test_record),
+		cmocka_unit_test(test_record_no_patient),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "proto/session_file.h"
+#include "session/sessionview.h"
 
 #define RECORDS 20
 
@@ -201,7 +202,7 @@ static int read_sized(const char *head, size_t length, size_t fields,
 		      struct session_file *f)
 {
 	int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
-	unsigned char raw[512] = { 0 };
+	unsigned char raw[640] = { 0 };
 
 	assert_true(fd >= 0 && length <= sizeof(raw));
 	assert_true(fields <= length && fields <= sizeof(struct session_record));
@@ -213,6 +214,8 @@ static int read_sized(const char *head, size_t length, size_t fields,
 			.cycle = (uint64_t)i, .compute_ns = 7u + (uint32_t)i,
 			.trans_rod_n = 2.5f, .friction_n = 0.5f,
 			.guide_phase = 3, .guide_force = { 0, 0, 0, 1.5f },
+			.patient = 1, .gas_m3 = 0.002f, .hand_site = 1,
+			.burst_segment = -1, .lumen_factor = { [8] = 1.2f },
 		};
 
 		memcpy(raw, &r, fields);
@@ -224,18 +227,34 @@ static int read_sized(const char *head, size_t length, size_t fields,
 	return session_file_read(path, f);
 }
 
+/* The header row of F's CSV (sessionview.h) in OUT. */
+static void csv_header(const struct session_file *f, char *out, size_t size)
+{
+	FILE *m = fmemopen(out, size, "w");
+
+	assert_non_null(m);
+	assert_int_equal(sessionview_csv(m, f), 0);
+	fclose(m);
+	out[strcspn(out, "\n")] = '\0';
+}
+
 /*
  * A file in format 1's layout (304-byte records, its last two words the
- * zero reserved ones) or 2's (320 bytes) reads with the fields added
- * since zero; a later
+ * zero reserved ones), 2's (320 bytes) or 3's (360) reads with the fields
+ * added since zero (and a replay's state has no patient then); a later
  * format's longer records by the fields this one knows; records shorter
- * than format 1's, or not the size the header says, are refused.
+ * than format 1's, or not the size the header says, are refused. The CSV
+ * of a file of format 3 or older has format 3's columns, a format-4
+ * file's the patient's too.
  */
 static void test_old_layout(void **state)
 {
 	const size_t v1 = offsetof(struct session_record, trans_rod_n);
 	const size_t v2 = offsetof(struct session_record, guide_phase);
+	const size_t v3 = offsetof(struct session_record, patient);
 	const size_t all = sizeof(struct session_record);
+	static char csv[8192];
+	struct endosim_state st;
 	struct session_file f;
 
 	(void)state;
@@ -259,13 +278,46 @@ static void test_old_layout(void **state)
 	assert_int_equal(f.records[1].guide_phase, 0);
 	assert_true(f.records[1].guide_force[3] == 0);
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=4\nrecord_size=400\n", 400, all,
+	/* format 3's (guided replay, no patient): the patient's fields zero,
+	   the replay's state the disabled patient's; format 3's columns */
+	assert_int_equal(SESSION_RECORD_SIZE_3, v3);
+	assert_int_equal(read_sized("format=3\nrecord_size=360\n", 360, v3,
+				    &f), 0);
+	assert_int_equal(f.record_size, 360);
+	assert_int_equal(f.records[1].guide_phase, 3);
+	assert_int_equal(f.records[1].patient, 0);
+	assert_int_equal(f.records[1].hand_site, 0);
+	assert_true(f.records[1].gas_m3 == 0);
+	session_record_to_state(&f.records[1], &st);
+	assert_int_equal(st.patient.hand_site, -1);
+	assert_int_equal(st.patient.burst_segment, -1);
+	assert_true(st.patient.factor[8] == 1);
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",guide_force_wheel_lr_nm"));
+	assert_null(strstr(csv, "patient"));
+	session_file_close(&f);
+	/* this format's: the patient's columns */
+	assert_int_equal(read_sized("format=4\nrecord_size=488\n", 488, all,
+				    &f), 0);
+	session_record_to_state(&f.records[1], &st);
+	assert_int_equal(st.patient.enabled, 1);
+	assert_int_equal(st.patient.hand_site, 1);
+	assert_true(st.patient.factor[8] == (double)1.2f);
+	assert_true(st.patient.factor[0] == 0); /* as recorded */
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",guide_force_wheel_lr_nm,patient_enabled,"));
+	assert_non_null(strstr(csv, ",patient_burst_segment"));
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=5\nrecord_size=520\n", 520, all,
 				    &f), 0);
 	assert_int_equal(f.records[2].compute_ns, 9);
 	assert_true(f.records[2].trans_rod_n == 2.5f);
 	assert_true(f.records[2].friction_n == 0.5f);
 	assert_int_equal(f.records[2].guide_phase, 3);
 	assert_true(f.records[2].guide_force[3] == 1.5f);
+	assert_int_equal(f.records[2].hand_site, 1);
+	assert_int_equal(f.records[2].burst_segment, -1);
+	assert_true(f.records[2].gas_m3 == 0.002f);
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);

@@ -1,0 +1,299 @@
+#!/usr/bin/env bash
+# 65-valves.sh - the handle's valves on a real rig, through each backend's
+# real code: the carriage's EPOS4 under umockdev (a bit of its digital
+# inputs 0x60FD), then the wheels' Modbus drives on a pty (discrete
+# inputs, function 0x02; one wired to open when pressed). The patient on:
+#
+#  - pressed on the emulated drive, the valve shows in the published state
+#    within one exchange (the first input read after the press carries it;
+#    the loop shows it before the emulator serves the third), and the gas
+#    flows in that very cycle and on while it is held; released, it stops;
+#  - every exchange reads the inputs (as many input reads as position
+#    reads);
+#  - the drive's feedback stale (the EPOS4 emulator stopped, a Modbus drive
+#    silent for longer than the feedback may age), the valve reads released
+#    while the drive still shows present, and the gas stops; fresh again,
+#    pressed again;
+#  - the drive lost (unplugged, the Modbus line gone), the valve reads
+#    released and the gas stops, though the switch is still pressed.
+#
+# The published valves and gas are read from shared memory
+# (tests/tools/shm_probe.c). Nothing here checks a duration but "within
+# one exchange", counted in the emulators' own traces.
+. "$(dirname "$0")/drives_lib.sh"
+
+AIR=1
+WATER=2
+SUCTION=4
+PRESENT=1
+LOST_BITS=12 # fault, bus error
+ARGS=(--set patient.enabled=yes --set haptics.model=paper)
+WATCH_PID=""
+
+shm_field() {
+	"$TOOLS/shm_probe" "$SHM" --once | sed -n "s/^$1=//p"
+}
+
+# watch_valves MASK VALUE: a witness reading every state from now until
+# the valves & MASK are VALUE (started before the action that makes it so)
+watch_valves() {
+	"$TOOLS/shm_probe" "$SHM" --valves "$1" "$2" 10 >"$TMP/valves.out" \
+		2>&1 &
+	WATCH_PID=$!
+	sleep 0.2 # it refuses a state that is so already
+}
+
+# seen KEY: in the first state the witness saw so (before.KEY: the one
+# before it)
+seen() {
+	sed -n "s/^$1=//p" "$TMP/valves.out"
+}
+
+witnessed() {
+	wait "$WATCH_PID"
+}
+
+# gas_flows / gas_still: the gas pumped in over half a second
+gas_in_over() {
+	local g1 g2
+	g1=$(shm_field patient.gas_in_m3)
+	sleep 0.5
+	g2=$(shm_field patient.gas_in_m3)
+	awk -v a="$g1" -v b="$g2" 'BEGIN { print b - a }'
+}
+
+# gas_flows: at least half the pump's 2 L/min over the half second
+gas_flows() {
+	local d
+	d=$(gas_in_over)
+	echo "pumped $d m3 in 0.5 s"
+	awk -v d="$d" 'BEGIN { exit !(d > 0.5 * 2e-3 / 60 * 0.5) }'
+}
+
+gas_still() {
+	local d
+	d=$(gas_in_over)
+	echo "pumped $d m3 in 0.5 s"
+	awk -v d="$d" 'BEGIN { exit !(d == 0) }'
+}
+
+valves_are() {
+	[ "$(shm_field patient.valves)" = "$1" ]
+}
+
+# read_after TRACE COMMAND PATTERN N: the time of the Nth line with PATTERN
+# after the control line COMMAND
+read_after() {
+	awk -v cmd="control  ; $2" -v pat="$3" -v n="$4" '
+		!on && index($0, cmd) { on = 1; next }
+		on && index($0, pat) { if (++k == n) { print $1; exit } }' "$1"
+}
+
+# within_one_exchange TRACE COMMAND PATTERN: the witness' first state
+# showing the press was published before the third input read after it
+within_one_exchange() {
+	local r1 r3 t
+	r1=$(read_after "$1" "$2" "$3" 1)
+	r3=$(read_after "$1" "$2" "$3" 3)
+	t=$(seen stamp_ns)
+	echo "the press read at $r1 s, the third read at $r3 s; shown by" \
+		"the cycle of $(awk -v t="$t" 'BEGIN { printf "%.6f", t / 1e9 }') s"
+	[ -n "$r1" ] && [ -n "$r3" ] &&
+		awk -v t="$t" -v r="$r3" 'BEGIN { exit !(t / 1e9 <= r) }'
+}
+
+# said: what the last check's command said, as a comment
+said() {
+	sed 's/^/# /' "$TMP/check.out"
+}
+
+# reads_every_exchange TRACE INPUT POSITION: as many input reads as
+# position reads (one exchange may be under way), counted in one copy of
+# the trace (the emulator goes on writing it)
+reads_every_exchange() {
+	local i p
+	cp "$1" "$TMP/trace.copy"
+	i=$(grep -c -- "$2" "$TMP/trace.copy")
+	p=$(grep -c -- "$3" "$TMP/trace.copy")
+	echo "$i input reads, $p position reads"
+	[ "$i" -gt 100 ] && [ $((i - p)) -le 1 ] && [ $((p - i)) -le 1 ]
+}
+
+# gas_at_once: the first state with the valve had gas pumped in its cycle
+gas_at_once() {
+	awk -v a="$(seen before.patient.gas_in_m3)" \
+		-v b="$(seen patient.gas_in_m3)" 'BEGIN { exit !(b > a) }'
+}
+
+# present_not_lost AXIS / lost AXIS: the drive status in the witnessed
+# state: present without a fault or bus error / not
+present_not_lost() {
+	local st
+	st=$(seen "$1.drive_status")
+	echo "drive status $st"
+	[ -n "$st" ] && [ $((st & PRESENT)) -ne 0 ] &&
+		[ $((st & LOST_BITS)) -eq 0 ]
+}
+
+lost() {
+	local st
+	st=$(seen "$1.drive_status")
+	echo "drive status $st"
+	[ -n "$st" ] &&
+		{ [ $((st & PRESENT)) -eq 0 ] || [ $((st & LOST_BITS)) -ne 0 ]; }
+}
+
+# --- the EPOS4: air on 0x60FD bit 16, suction on bit 18 ----------------------
+
+cat >"$TMP/usb.conf" <<EOF
+[rig]
+backend = drives
+[axis.insertion]
+backend = epos4-usb
+[epos4.insertion]
+serial = EMU-INS
+timeout_s = 0.5
+feedback_max_age_s = 0.5
+valve_air_bit = 16
+valve_suction_bit = 18
+EOF
+
+check "USB emulator up" start_epos4 EMU-INS
+check "endosimd up on it, the patient on" start_on "$TMP/usb.conf" "${ARGS[@]}"
+check "EPOS4: released at first, no gas flowing" valves_are 0
+check "EPOS4: ... the gas still" gas_still
+
+watch_valves $AIR $AIR
+usb "input EMU-INS 16 on"
+check "EPOS4 air pressed (0x60FD bit 16): shown" witnessed
+check "EPOS4 air: within one exchange" within_one_exchange "$TMP/usb.trace" \
+	"input EMU-INS 16 on" "ReadObject node 1 0x60fd/00"
+said
+check "EPOS4 air: the gas flows in that very cycle" gas_at_once
+check "EPOS4 air: the gas flows while it is held" gas_flows
+check "EPOS4: the inputs read in every exchange" reads_every_exchange \
+	"$TMP/usb.trace" "ReadObject node 1 0x60fd/00" \
+	"ReadObject node 1 0x6064/00"
+
+watch_valves $SUCTION $SUCTION
+usb "input EMU-INS 18 on"
+check "EPOS4 suction pressed (bit 18): shown beside air" witnessed
+check "EPOS4 suction: both valves" [ "$(seen patient.valves)" = $((AIR | SUCTION)) ]
+watch_valves $((AIR | SUCTION)) 0
+usb "input EMU-INS 16 off"
+usb "input EMU-INS 18 off"
+check "EPOS4 released: shown" witnessed
+check "EPOS4 released: the gas stops" gas_still
+
+# stale: the emulator stopped, the bus thread waits in its transfer
+usb "input EMU-INS 16 on"
+check "EPOS4 air pressed again" wait_for valves_are $AIR
+watch_valves $AIR 0
+kill -STOP "$EPOS4_PID"
+check "EPOS4 stale (emulator stopped): released" witnessed
+check "EPOS4 stale: released while the drive still shows present" \
+	present_not_lost insertion
+check "EPOS4 stale: the gas stops" gas_still
+kill -CONT "$EPOS4_PID"
+check "EPOS4 fresh again: pressed again" wait_for valves_are $AIR
+
+# lost: unplugged with the switch still pressed
+watch_valves $AIR 0
+usb "unplug EMU-INS"
+check "EPOS4 unplugged: released" witnessed
+check "EPOS4 unplugged: the state shows the drive lost" lost insertion
+check "EPOS4 unplugged: the gas stops" gas_still
+check "EPOS4 unplugged: stays released" valves_are 0
+usb "plug EMU-INS"
+check "EPOS4 back: pressed again" wait_for valves_are $AIR
+check "EPOS4 back: the gas flows" gas_flows
+check "endosimd stops cleanly" stop_daemon
+kill "$EPOS4_PID" 2>/dev/null
+wait "$EPOS4_PID" 2>/dev/null
+EPOS4_PID=""
+ENDOSIMD="$BUILD/endosimd"
+
+# --- Modbus: air and suction on slave 1's discrete inputs 0x10, 0x11;
+# water on slave 2's, an input that opens when pressed ------------------------
+
+cat >"$TMP/mb.conf" <<EOF
+[rig]
+backend = drives
+[axis.wheel_ud]
+backend = modbus
+[axis.wheel_lr]
+backend = modbus
+[modbus]
+device = $TMP/tty
+; a silent drive's transaction waits 2 s; feedback may be 0.3 s old
+response_timeout_s = 2
+feedback_max_age_s = 0.3
+[modbus.wheel_ud]
+slave = 1
+torque = holding 0x0000 i16 scale=1e-5
+enable = coil 0x0000
+position = input 0x0000 i32 cdab
+velocity = input 0x0002 f32 cdab
+fault = input 0x0004 u16
+valve_air = discrete 0x0010
+valve_suction = discrete 0x0011
+[modbus.wheel_lr]
+slave = 2
+combined_0x17 = yes
+torque = holding 0x0010 i32 scale=1e-6
+enable = holding 0x0012 u16
+position = holding 0x0020 i32
+velocity = holding 0x0022 i32
+fault = holding 0x0024 u16
+valve_water = discrete 0x0000 u16 scale=-1 offset=1
+EOF
+
+check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
+check "endosimd up on it, the patient on" start_on "$TMP/mb.conf" "${ARGS[@]}"
+check "Modbus: released at first (the inverted input reads 1)" valves_are 0
+
+watch_valves $AIR $AIR
+mb "valve 1 air on"
+check "Modbus air pressed (discrete 0x10): shown" witnessed
+check "Modbus air: within one exchange" within_one_exchange "$TMP/mb.trace" \
+	"valve 1 air on" "function 0x02 at 0x0010"
+said
+check "Modbus air: the gas flows in that very cycle" gas_at_once
+check "Modbus air: the gas flows while it is held" gas_flows
+check "Modbus: slave 1's inputs read in every exchange" reads_every_exchange \
+	"$TMP/mb.trace" "function 0x02 at 0x0010" "function 0x04 at 0x0000"
+check "Modbus: slave 2's, after its write-and-read (0x17)" \
+	reads_every_exchange "$TMP/mb.trace" "function 0x02 at 0x0000" \
+	"function 0x17 at 0x0020"
+
+watch_valves $WATER $WATER
+mb "valve 2 water on"
+check "Modbus water pressed (slave 2, input open when pressed): shown" witnessed
+watch_valves $((AIR | WATER)) 0
+mb "valve 1 air off"
+mb "valve 2 water off"
+check "Modbus released: shown" witnessed
+check "Modbus released: the gas stops" gas_still
+
+# stale: slave 1 silent; its transaction fails only after 2 s
+mb "valve 1 air on"
+check "Modbus air pressed again" wait_for valves_are $AIR
+watch_valves $AIR 0
+mb "mute 1 on"
+check "Modbus stale (slave 1 silent): released" witnessed
+check "Modbus stale: released while the drive still shows present" \
+	present_not_lost wheel_ud
+check "Modbus stale: the gas stops" gas_still
+mb "mute 1 off"
+check "Modbus fresh again: pressed again" wait_for valves_are $AIR
+
+# lost: the emulator killed, the pty gone
+watch_valves $AIR 0
+kill_modbus
+check "Modbus line gone: released" witnessed
+check "Modbus line gone: the state shows the drive lost" lost wheel_ud
+check "Modbus line gone: the gas stops" gas_still
+check "Modbus line gone: stays released" valves_are 0
+check "endosimd stops cleanly" stop_daemon
+
+finish

@@ -1,0 +1,352 @@
+/*
+ * test_valves.c - the handle's valves on a real rig, without emulators:
+ * an EPOS4's digital inputs word to valves, a Modbus input's description
+ * to pressed or not, the rule by which the force loop takes a drive's
+ * valves (bus_valves()), and a bus thread (bus.h) over a scripted drive
+ * backend: pressed while its exchanges succeed, released when its
+ * feedback grows old, a transaction fails (its own or the other drive's on
+ * its bus), the drive faults or vanishes.
+ */
+#include <errno.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdatomic.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <cmocka.h>
+
+#include "base/mono.h"
+#include "conf/regspec.h"
+#include "rig/bus.h"
+#include "rig/drive.h"
+#include "rig/regmap.h"
+
+#define AIR ENDOSIM_VALVE_AIR
+#define WATER ENDOSIM_VALVE_WATER
+#define SUCTION ENDOSIM_VALVE_SUCTION
+#define PRESENT ENDOSIM_DRIVE_PRESENT
+#define MS 1000000ull
+
+static void test_inputs_word(void **state)
+{
+	const int bit[CONFIG_VALVES] = { 16, -1, 31 };
+	const int none[CONFIG_VALVES] = { -1, -1, -1 };
+
+	(void)state;
+	assert_int_equal(drive_valves_of_inputs(0, bit), 0);
+	assert_int_equal(drive_valves_of_inputs(1u << 16, bit), AIR);
+	assert_int_equal(drive_valves_of_inputs(1u << 31, bit), SUCTION);
+	/* the limit switches and the other inputs are no valve */
+	assert_int_equal(drive_valves_of_inputs(0x7FFEFFFFu, bit), 0);
+	assert_int_equal(drive_valves_of_inputs(0xFFFFFFFFu, bit),
+			 AIR | SUCTION);
+	assert_int_equal(drive_valves_of_inputs(0xFFFFFFFFu, none), 0);
+}
+
+/* A Modbus valve: a discrete input, or one that opens when pressed. */
+static void test_modbus_input(void **state)
+{
+	struct regspec plain, inverted;
+	uint16_t raw;
+	char why[128];
+
+	(void)state;
+	assert_int_equal(regspec_parse("discrete 0x0010", &plain, why,
+				       sizeof(why)), 0);
+	assert_int_equal(regspec_parse("discrete 0x0010 u16 scale=-1 offset=1",
+				       &inverted, why, sizeof(why)), 0);
+	assert_true(regspec_bit(&plain));
+	raw = 1;
+	assert_true(regmap_decode(&plain, &raw) != 0.0);
+	assert_true(regmap_decode(&inverted, &raw) == 0.0);
+	raw = 0;
+	assert_true(regmap_decode(&plain, &raw) == 0.0);
+	assert_true(regmap_decode(&inverted, &raw) != 0.0);
+}
+
+/* The loop's rule, case by case. */
+static void test_taking_rule(void **state)
+{
+	const uint64_t now = 10000 * MS, age = 50 * MS;
+	struct rig_axis_feedback f = { .stamp_ns = now - 10 * MS,
+				       .status = PRESENT };
+
+	(void)state;
+	/* fresh: the drive's valves as read, the hand's others kept, the
+	 * hand's press of a mapped valve not */
+	assert_int_equal(bus_valves(0, AIR, AIR, &f, now, age), AIR);
+	assert_int_equal(bus_valves(WATER | SUCTION, AIR | SUCTION, AIR, &f,
+				    now, age), WATER | AIR);
+	assert_int_equal(bus_valves(WATER, AIR, SUCTION, &f, now, age),
+			 WATER);
+	/* stamped after the cycle began (the bus thread's clock): fresh */
+	f.stamp_ns = now + 2 * MS;
+	assert_int_equal(bus_valves(0, AIR, AIR, &f, now, age), AIR);
+	/* exactly as old as allowed, then older */
+	f.stamp_ns = now - age;
+	assert_int_equal(bus_valves(0, AIR, AIR, &f, now, age), AIR);
+	f.stamp_ns = now - age - 1;
+	assert_int_equal(bus_valves(WATER, AIR, AIR, &f, now, age), WATER);
+	/* lost: gone, faulted, a failed transaction */
+	f.stamp_ns = now;
+	f.status = 0;
+	assert_int_equal(bus_valves(WATER, AIR, AIR, &f, now, age), WATER);
+	f.status = PRESENT | ENDOSIM_DRIVE_FAULT;
+	assert_int_equal(bus_valves(0, AIR, AIR, &f, now, age), 0);
+	f.status = PRESENT | ENDOSIM_DRIVE_BUS_ERROR;
+	assert_int_equal(bus_valves(0, AIR, AIR, &f, now, age), 0);
+	/* nothing mapped: the hand's alone, whatever the drive */
+	assert_int_equal(bus_valves(AIR | WATER, 0, AIR, &f, now, age),
+			 AIR | WATER);
+}
+
+/* --- a bus over a scripted drive -------------------------------------- */
+
+enum fake_mode {
+	FAKE_OK,
+	FAKE_SLOW,       /* each exchange hangs 300 ms */
+	FAKE_LATE,       /* drive 0 does not answer */
+	FAKE_LATE_OTHER, /* drive 1 does not answer */
+	FAKE_FAULT,      /* drive 0 faults */
+	FAKE_GONE,       /* the device is unplugged */
+};
+
+struct fake {
+	struct drive d;
+	_Atomic int mode;
+	_Atomic uint32_t pressed; /* what its inputs read */
+};
+
+static void nap_ms(long ms)
+{
+	struct timespec ts = { .tv_sec = ms / 1000,
+			       .tv_nsec = (ms % 1000) * 1000000 };
+
+	nanosleep(&ts, NULL);
+}
+
+static int fake_open(struct drive *d)
+{
+	struct fake *f = (struct fake *)d;
+
+	return atomic_load(&f->mode) == FAKE_GONE
+		       ? drive_fail(d, -1, -ENODEV, "not there") : 0;
+}
+
+static int fake_step(struct drive *d, int i)
+{
+	(void)d;
+	(void)i;
+	return 0;
+}
+
+static int fake_exchange(struct drive *d, const double *setpoint,
+			 struct drive_sample *s)
+{
+	struct fake *f = (struct fake *)d;
+	int mode = atomic_load(&f->mode);
+
+	(void)setpoint;
+	memset(s, 0, sizeof(*s) * (size_t)d->n);
+	switch (mode) {
+	case FAKE_SLOW:
+		nap_ms(300);
+		break;
+	case FAKE_LATE:
+		return drive_fail(d, 0, -ETIMEDOUT, "no reply");
+	case FAKE_LATE_OTHER:
+		return drive_fail(d, 1, -ETIMEDOUT, "no reply");
+	case FAKE_FAULT:
+		s->fault = true;
+		s->code = 0x1234;
+		break;
+	case FAKE_GONE:
+		return drive_fail(d, -1, -ENODEV, "unplugged");
+	default:
+		break;
+	}
+	s->valves = atomic_load(&f->pressed) & d->valves[0];
+	return 0;
+}
+
+static void fake_close(struct drive *d)
+{
+	(void)d;
+}
+
+static void fake_destroy(struct drive *d)
+{
+	free(d);
+}
+
+static const char *fake_describe(uint32_t code)
+{
+	(void)code;
+	return "scripted";
+}
+
+static const struct drive_ops fake_ops = {
+	.kind = "fake",
+	.open = fake_open,
+	.bring_up = fake_step,
+	.exchange = fake_exchange,
+	.bring_down = fake_step,
+	.clear_fault = fake_step,
+	.close = fake_close,
+	.destroy = fake_destroy,
+	.describe_fault = fake_describe,
+};
+
+struct rig_valves {
+	struct bus *b;
+	struct fake *f;
+	struct rig_feedback fb;
+};
+
+/* The loop's cycle now, the hand pressing WATER and SUCTION. */
+static uint32_t fetch(struct rig_valves *r)
+{
+	r->fb.valves = WATER | SUCTION;
+	bus_fetch(r->b, mono_ns(), &r->fb);
+	return r->fb.valves;
+}
+
+/* Polls (as the loop does) until the valves read WANT, up to 3 s. */
+static bool reads(struct rig_valves *r, uint32_t want)
+{
+	uint64_t end = mono_ns() + 3000 * MS;
+
+	while (mono_ns() < end) {
+		if (fetch(r) == want) {
+			return true;
+		}
+		nap_ms(1);
+	}
+	return false;
+}
+
+/* The loop acknowledges the faults it saw, torque off, until clear. */
+static bool acknowledged(struct rig_valves *r, uint32_t want)
+{
+	const double zero[ENDOSIM_AXES] = { 0 };
+	uint64_t end = mono_ns() + 3000 * MS;
+
+	while (mono_ns() < end) {
+		bus_post(r->b, mono_ns(), zero, false);
+		if (fetch(r) == want) {
+			return true;
+		}
+		nap_ms(1);
+	}
+	return false;
+}
+
+static int bus_setup(void **state)
+{
+	const struct bus_params p = { .max_rate_hz = 1000,
+				      .feedback_max_age_s = 0.05,
+				      .priority = 1 };
+	struct rig_valves *r = calloc(1, sizeof(*r));
+
+	r->f = calloc(1, sizeof(*r->f));
+	r->f->d.ops = &fake_ops;
+	r->f->d.n = 2; /* drive 0 reads the valves, drive 1 none */
+	r->f->d.axis[0] = ENDOSIM_AXIS_WHEEL_UD;
+	r->f->d.axis[1] = ENDOSIM_AXIS_WHEEL_LR;
+	r->f->d.valves[0] = AIR | SUCTION;
+	strcpy(r->f->d.name, "fake");
+	strcpy(r->f->d.unit[0], "drive 1");
+	strcpy(r->f->d.unit[1], "drive 2");
+	r->b = bus_create(&r->f->d, &p);
+	assert_non_null(r->b);
+	assert_int_equal(bus_open(r->b), 0);
+	assert_int_equal(bus_start(r->b), 0);
+	*state = r;
+	return 0;
+}
+
+static int bus_teardown(void **state)
+{
+	struct rig_valves *r = *state;
+
+	bus_destroy(r->b);
+	free(r);
+	return 0;
+}
+
+#define WANT(r, v) assert_true(reads(r, v))
+
+/*
+ * What the drive reads replaces the hand's mapped valves (SUCTION, not
+ * pressed on the drive, reads released), the hand keeps WATER.
+ */
+static void test_bus_pressed(void **state)
+{
+	struct rig_valves *r = *state;
+
+	atomic_store(&r->f->pressed, AIR | WATER);
+	WANT(r, AIR | WATER);
+	atomic_store(&r->f->pressed, SUCTION);
+	WANT(r, WATER | SUCTION);
+	atomic_store(&r->f->pressed, 0);
+	WANT(r, WATER);
+}
+
+/* An exchange that hangs: released once the feedback is too old. */
+static void test_bus_stale(void **state)
+{
+	struct rig_valves *r = *state;
+
+	atomic_store(&r->f->pressed, AIR);
+	WANT(r, AIR | WATER);
+	atomic_store(&r->f->mode, FAKE_SLOW);
+	WANT(r, WATER);
+	assert_true(r->fb.axis[ENDOSIM_AXIS_WHEEL_UD].status & PRESENT);
+	atomic_store(&r->f->mode, FAKE_OK);
+	WANT(r, AIR | WATER);
+}
+
+/*
+ * A failed transaction, with the drive or with the other drive on its bus
+ * (whose failure ends the exchange before the valves' reading counts), a
+ * drive fault, a vanished drive: released until the cause is gone and
+ * the loop has seen it.
+ */
+static void test_bus_lost(void **state)
+{
+	static const int causes[] = { FAKE_LATE, FAKE_LATE_OTHER, FAKE_FAULT,
+				      FAKE_GONE };
+	struct rig_valves *r = *state;
+
+	atomic_store(&r->f->pressed, AIR);
+	for (size_t i = 0; i < sizeof(causes) / sizeof(causes[0]); i++) {
+		WANT(r, AIR | WATER);
+		atomic_store(&r->f->mode, causes[i]);
+		WANT(r, WATER);
+		nap_ms(100); /* and stays so */
+		assert_int_equal(fetch(r), WATER);
+		atomic_store(&r->f->mode, FAKE_OK);
+		assert_true(acknowledged(r, AIR | WATER));
+	}
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_inputs_word),
+		cmocka_unit_test(test_modbus_input),
+		cmocka_unit_test(test_taking_rule),
+		cmocka_unit_test_setup_teardown(test_bus_pressed, bus_setup,
+						bus_teardown),
+		cmocka_unit_test_setup_teardown(test_bus_stale, bus_setup,
+						bus_teardown),
+		cmocka_unit_test_setup_teardown(test_bus_lost, bus_setup,
+						bus_teardown),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
