@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "base/parse.h"
-#include "model/posture.h"
 #include "proto/names.h"
 
 /* Each kind of line's record; each starts with its time (struct list). */
@@ -62,9 +61,6 @@ struct line {
 	bool repeat;         /* LINE_END: repeat rather than end */
 	union record r;
 };
-
-/* The valves' words, their enum endosim_valve bits in order. */
-static const char *const valve_names[] = { "air", "water", "suction" };
 
 static void *list_at(const struct list *l, size_t i)
 {
@@ -149,23 +145,19 @@ static int parse_mode(struct step *st, char **tok, int ntok, char *why,
 static int parse_valve(struct valve_step *v, char **tok, int ntok, char *why,
 		       size_t size)
 {
-	size_t n = sizeof(valve_names) / sizeof(valve_names[0]);
-
 	if (ntok != 4 || (strcmp(tok[3], "on") && strcmp(tok[3], "off"))) {
 		snprintf(why, size, "expected 'valve air|water|suction "
 			 "on|off'");
 		return -EINVAL;
 	}
-	for (size_t i = 0; i < n; i++) {
-		if (!strcmp(tok[2], valve_names[i])) {
-			v->valve = 1u << i;
-			v->on = !strcmp(tok[3], "on");
-			return 0;
-		}
+	v->valve = names_valve_find(tok[2]);
+	v->on = !strcmp(tok[3], "on");
+	if (!v->valve) {
+		snprintf(why, size, "unknown valve '%s' (air, water or "
+			 "suction)", tok[2]);
+		return -EINVAL;
 	}
-	snprintf(why, size, "unknown valve '%s' (air, water or suction)",
-		 tok[2]);
-	return -EINVAL;
+	return 0;
 }
 
 /* "press SITE [N]" */
@@ -194,7 +186,7 @@ static int parse_patient(struct scenario_patient *c, char **tok, int ntok,
 
 	if (!strcmp(act, "position") && ntok == 4) {
 		c->action = SCENARIO_PATIENT_TURN;
-		c->position = posture_find(tok[3]);
+		c->position = names_position_find(tok[3]);
 		if (c->position < 0) {
 			snprintf(why, size, "unknown position '%s' "
 				 "(left-lateral, supine, right-lateral or "

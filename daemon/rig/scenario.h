@@ -19,7 +19,7 @@
  *                                  suction
  *   TIME patient position POSITION the assistant turns the patient to
  *                                  left-lateral, supine, right-lateral or
- *                                  prone (posture.h; the turn takes
+ *                                  prone (names.h; the turn takes
  *                                  [patient] turn_s)
  *   TIME patient press SITE [N]    the assistant presses the abdomen at the
  *                                  case's site SITE ([site NAME]) with N
@@ -76,7 +76,7 @@ struct scenario_patient {
 	uint32_t seq;              /* its number, 1, 2, ... as played (a
 				      repeat goes on counting); 0: none */
 	int action;                /* enum scenario_patient_action */
-	int position;              /* TURN: enum posture_position */
+	int position;              /* TURN: enum endosim_position */
 	char site[ANATOMY_NAME];   /* PRESS: the case's site's name */
 	double force_n;            /* PRESS: N; 0: [patient] hand_n */
 };
