@@ -11,8 +11,12 @@
  * slip speed, the couplings, node spacing), then up to 60 steps, each the
  * rig's four axes (position and speed, anywhere in and beyond their
  * travel) and the tip's contact (on or off, a force up to 200 N, a
- * spring up to 1e5 N/m and a damper). The colon: a case built in code
- * once (a bent, mobile sigmoid and transverse colon).
+ * spring up to 1e5 N/m and a damper); from step 10 on the patient
+ * around it: gravity up to 20 m/s^2 and the assistant's pad anywhere
+ * near the colon, pressing any way with up to 60 N over a reach up to
+ * 20 cm (the pad never holds the colon with more than its force: abort
+ * if it does). The colon: a case built in code once (a bent, mobile
+ * sigmoid and transverse colon).
  */
 #include <math.h>
 #include <stdint.h>
@@ -24,6 +28,7 @@
 #include "model/colon.h"
 #include "plain_anatomy.h"
 #include "model/rodscope.h"
+#include "base/vec3.h"
 
 struct bytes {
 	const uint8_t *p;
@@ -105,6 +110,23 @@ static void axes(struct bytes *b, struct rodscope_axes *a)
 	}
 }
 
+/* Gravity and the assistant's pad, anywhere about the colon. */
+static void patient(struct bytes *b, double g[3], struct flex_pad *pad)
+{
+	memset(pad, 0, sizeof(*pad));
+	for (int i = 0; i < 3; i++) {
+		g[i] = take(b, -20, 20);
+		pad->point[i] = take(b, -0.3, 0.6);
+		pad->in[i] = take(b, -1, 1);
+	}
+	pad->on = vec3_norm(pad->in) > 1e-3;
+	if (pad->on) {
+		vec3_scale(pad->in, pad->in, 1 / vec3_norm(pad->in));
+	}
+	pad->radius_m = take(b, 0, 0.2);
+	pad->force_n = take(b, 0, 60);
+}
+
 static void tip(struct bytes *b, struct rodscope_tip *t)
 {
 	memset(t, 0, sizeof(*t));
@@ -126,7 +148,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	struct rodscope_out out;
 	struct scope_pose pose;
 	struct endosim_rod_state pub;
-	double tip_v[3], bows[ENDOSIM_SPANS];
+	double tip_v[3], bows[ENDOSIM_SPANS], g[3];
+	struct flex_pad pad = { .on = false };
 	struct rodscope *rs;
 
 	if (!colon && !(colon = test_colon())) {
@@ -142,6 +165,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	for (int step = 0; step < 60 && b.n; step++) {
 		axes(&b, &a);
 		tip(&b, &t);
+		if (step == 10) {
+			patient(&b, g, &pad);
+			rodscope_set_patient(rs, NULL, g, &pad);
+		}
 		if (step == 20) {
 			rodscope_hold_tip(rs, take(&b, 0, 1e4));
 		}
@@ -149,6 +176,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		rodscope_step(rs, &a, &t, take(&b, 1e-4, 2e-3), &out);
 		if (!rodscope_finite(rs)) {
 			break; /* the loop's non-finite fault would latch */
+		}
+		if (!(rodscope_pad_force(rs) <= pad.force_n * (1 + 1e-9))) {
+			abort(); /* the hand holds more than it presses with */
 		}
 	}
 	memset(&pub, 0, sizeof(pub));
