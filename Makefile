@@ -260,9 +260,10 @@ $(BUILD)/tests/png_stats: tests/tools/png_stats.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
-# benchmarks: programs that print figures (tests/bench/)
+# benchmarks: programs that print figures (tests/bench/), and the demo
+# course's test, whose figures of the patient the bench shows
 bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
-	png_stats)
+	png_stats test_rodcourse)
 
 # the emulators, and the benchmark that runs the drive code against them
 emulators: $(addprefix $(BUILD)/,$(EMULATORS) bench/drives-bench)
