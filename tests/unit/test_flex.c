@@ -300,6 +300,30 @@ static struct flex_pad pad_at_middle(const struct colon *c, int count,
 	return pad;
 }
 
+/* The pad's tests' colon: its sigmoid's mesentery (N/m) and height (m). */
+#define PAD_K 600
+#define PAD_H 0.06
+
+/* A flex of independent nodes on C, the pad pressed at its middle with
+ * FORCE_N, its face FACE_M off the course (pad_at_middle()), each node
+ * pushed with PUSH (NULL: none) for 3 s; its mesentery per node into
+ * *KM, how many nodes it has into *COUNT. */
+static struct flex *pressed(struct colon *c, double force_n, double face_m,
+			    const double push[3], double *km, int *count)
+{
+	struct flex *f = flex_create(&lone);
+	struct flex_pad pad;
+
+	assert_non_null(f);
+	flex_attach(f, c);
+	*count = flex_span_nodes(f, 0);
+	*km = PAD_K / (double)*count;
+	pad = pad_at_middle(c, *count, force_n, face_m);
+	flex_set_pad(f, &pad);
+	push_nodes(f, c, push, 3.0);
+	return f;
+}
+
 /* Whether node I lies within the pad's reach (the course runs along z,
  * across the press). */
 static bool in_reach(const struct colon *c, int i, int count)
@@ -322,22 +346,14 @@ static double mesentery_n(double km, double h, double y)
  */
 static void test_pad_grip(void **state)
 {
-	const double k = 600, h = 0.06, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
+	const double h = PAD_H, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
 	const double push[3] = { 0.5, 0, 0 };
-	struct colon *c = straight_colon(k, h);
-	struct flex *f = flex_create(&lone);
-	struct flex_pad pad;
+	struct colon *c = straight_colon(PAD_K, h);
 	double km, sum = 0, y;
 	int count, held = 0;
+	struct flex *f = pressed(c, fn, -0.01, push, &km, &count);
 
 	(void)state;
-	assert_non_null(f);
-	flex_attach(f, c);
-	count = flex_span_nodes(f, 0);
-	km = k / count;
-	pad = pad_at_middle(c, count, fn, -0.01);
-	flex_set_pad(f, &pad);
-	push_nodes(f, c, push, 3.0);
 	for (int i = 0; i < count; i++) {
 		y = flex_node(f, i)[0];
 		if (in_reach(c, i, count)) {
@@ -356,8 +372,7 @@ static void test_pad_grip(void **state)
 		      flex_node(f, 0)[0] * 100, flex_pad_force(f));
 	assert_int_equal(held, 5);
 	assert_near(flex_pad_force(f), sum, 1e-3 * sum);
-	pad.on = false;
-	flex_set_pad(f, &pad);
+	flex_set_pad(f, &(struct flex_pad){ .on = false });
 	push_nodes(f, c, push, 3.0);
 	assert_near(mesentery_n(km, h, flex_node(f, count / 2)[0]), push[0],
 		    1e-2 * push[0]);
@@ -375,22 +390,14 @@ static void test_pad_grip(void **state)
  */
 static void test_pad_face(void **state)
 {
-	const double k = 600, h = 0.06, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
+	const double h = PAD_H, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
 	const double push[3] = { 0, -2, 0 }, face = 0.01;
-	struct colon *c = straight_colon(k, h);
-	struct flex *f = flex_create(&lone);
-	struct flex_pad pad;
+	struct colon *c = straight_colon(PAD_K, h);
 	double km, sum = 0;
 	int count;
+	struct flex *f = pressed(c, fn, face, NULL, &km, &count);
 
 	(void)state;
-	assert_non_null(f);
-	flex_attach(f, c);
-	count = flex_span_nodes(f, 0);
-	km = k / count;
-	pad = pad_at_middle(c, count, fn, face);
-	flex_set_pad(f, &pad);
-	push_nodes(f, c, NULL, 3.0);
 	assert_near(flex_node(f, count / 2)[1], face * kp / (kp + km),
 		    1e-3 * face);
 	push_nodes(f, c, push, 3.0);
@@ -422,22 +429,13 @@ static void test_pad_face(void **state)
  */
 static void test_pad_bound(void **state)
 {
-	const double k = 600, h = 0.06, fn = 2;
-	const double push[3] = { 0, -2, 0 };
-	struct colon *c = straight_colon(k, h);
-	struct flex *f = flex_create(&lone);
-	struct flex_pad pad;
+	const double fn = 2, push[3] = { 0, -2, 0 };
+	struct colon *c = straight_colon(PAD_K, PAD_H);
 	double km;
 	int count, held = 0;
+	struct flex *f = pressed(c, fn, -0.01, push, &km, &count);
 
 	(void)state;
-	assert_non_null(f);
-	flex_attach(f, c);
-	count = flex_span_nodes(f, 0);
-	km = k / count;
-	pad = pad_at_middle(c, count, fn, -0.01);
-	flex_set_pad(f, &pad);
-	push_nodes(f, c, push, 3.0);
 	for (int i = 0; i < count; i++) {
 		held += in_reach(c, i, count);
 	}
@@ -447,7 +445,7 @@ static void test_pad_bound(void **state)
 	assert_near(flex_pad_force(f), fn, 1e-9);
 	for (int i = 0; i < count; i++) {
 		if (in_reach(c, i, count)) {
-			assert_near(mesentery_n(km, h, -flex_node(f, i)[1]),
+			assert_near(mesentery_n(km, PAD_H, -flex_node(f, i)[1]),
 				    -push[1] - fn / held, 1e-3 * -push[1]);
 		}
 	}
