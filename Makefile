@@ -190,7 +190,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_flex test_lumen test_clinic test_rodcourse test_guide \
 	     test_livemap test_separation test_coursefile test_sessionindex \
 	     test_parse test_gas test_patient test_mailbox test_valves \
-	     test_burstmark
+	     test_burstmark test_hand
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes
@@ -260,9 +260,10 @@ $(BUILD)/tests/png_stats: tests/tools/png_stats.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
-# benchmarks: programs that print figures (tests/bench/)
+# benchmarks: programs that print figures (tests/bench/), and the demo
+# course's test, whose figures of the patient the bench shows
 bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
-	png_stats)
+	png_stats test_rodcourse)
 
 # the emulators, and the benchmark that runs the drive code against them
 emulators: $(addprefix $(BUILD)/,$(EMULATORS) bench/drives-bench)

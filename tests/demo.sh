@@ -83,8 +83,11 @@ LENGTH=$(awk '$2 == "end" || $2 == "repeat" { print $1 }' "$SCENARIO")
 
 echo "endosim demo: endosimd on the simulated rig, scenario $(basename "$SCENARIO") (${LENGTH} s)"
 SESSIONS="$BUILD/demo-sessions"
+# the demo is the trainee's course with the patient (scenario_gen's):
+# played so, it goes as she played it
 start_daemon --scenario "$SCENARIO" --session-dir "$SESSIONS" \
-	--set rig.backend=sim --set loop.overrun_fault=no || exit 1
+	--set rig.backend=sim --set loop.overrun_fault=no \
+	--set patient.enabled=yes || exit 1
 echo "daemon pid $DAEMON_PID, sockets in $SOCK, shared memory $SHM"
 echo "  in another terminal: $ENDOCTL --socket $SOCK status"
 ctl enable

@@ -54,6 +54,7 @@ struct loop {
 	struct inject inject;      /* test commands' sabotage */
 	struct guide guide;        /* guided replay (guide.h) */
 	bool lockstep;             /* loop_step(): stamps on the caller's clock */
+	uint32_t patient_seq;      /* the scenario's last patient command done */
 
 	/* shared */
 	struct rig *rig;
@@ -260,6 +261,53 @@ static void take_colon(struct loop *l)
 	haptics_reset(l->haptics, in);
 }
 
+/* Carries out C on the patient: 0, or -EINVAL (patient_turn() or
+ * patient_press() refused it; nothing changed). */
+static int patient_do(struct loop *l, const struct loop_patient_command *c)
+{
+	struct patient *pt = haptics_patient(l->haptics);
+
+	switch (c->op) {
+	case LOOP_PATIENT_TURN:
+		return patient_turn(pt, c->arg);
+	case LOOP_PATIENT_PRESS:
+		return patient_press(pt, c->arg, c->force_n);
+	case LOOP_PATIENT_RELEASE:
+		patient_release(pt);
+		return 0;
+	default:
+		return -EINVAL;
+	}
+}
+
+/*
+ * The scenario's command for the assistant (the rig's feedback: the
+ * simulated hand's scenario), carried out once per new number, before the
+ * patient's step of this cycle, as the control thread's would be (its
+ * site by name in the case). One the patient refuses changes nothing.
+ */
+static void scenario_patient(struct loop *l)
+{
+	const struct scenario_patient *c = &l->fb.patient;
+	const struct anatomy *a = colon_anatomy(l->colon);
+	struct loop_patient_command cmd = { LOOP_PATIENT_RELEASE, 0, 0 };
+
+	if (c->seq == l->patient_seq) {
+		return;
+	}
+	l->patient_seq = c->seq;
+	if (c->action == SCENARIO_PATIENT_TURN) {
+		cmd = (struct loop_patient_command){ LOOP_PATIENT_TURN,
+						     c->position, 0 };
+	} else if (c->action == SCENARIO_PATIENT_PRESS) {
+		cmd = (struct loop_patient_command){ LOOP_PATIENT_PRESS,
+			a ? anatomy_site_find(a, c->site) : -1, c->force_n };
+	} else if (c->action != SCENARIO_PATIENT_RELEASE) {
+		return;
+	}
+	(void)patient_do(l, &cmd);
+}
+
 /* The scope's pose: the paper's kinematics on the centreline, or the rod
  * model's tube as its last step left it. */
 static void kinematics(struct loop *l)
@@ -361,29 +409,12 @@ static void take_guide(struct loop *l)
 /* Takes a patient command, if any, applies it and answers it. */
 static void take_patient(struct loop *l)
 {
-	struct patient *pt = haptics_patient(l->haptics);
 	struct patient_post p;
-	int r;
 
-	if (!mailbox_box_take(&l->patient_box, &p)) {
-		return;
+	if (mailbox_box_take(&l->patient_box, &p)) {
+		mailbox_answer_set(&l->patient_answer, p.seq,
+				   patient_do(l, &p.c));
 	}
-	switch (p.c.op) {
-	case LOOP_PATIENT_TURN:
-		r = patient_turn(pt, p.c.arg);
-		break;
-	case LOOP_PATIENT_PRESS:
-		r = patient_press(pt, p.c.arg, p.c.force_n);
-		break;
-	case LOOP_PATIENT_RELEASE:
-		patient_release(pt);
-		r = 0;
-		break;
-	default:
-		r = -EINVAL;
-		break;
-	}
-	mailbox_answer_set(&l->patient_answer, p.seq, r);
 }
 
 /*
@@ -501,6 +532,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	safety_check_feedback(&l->safety, &l->cfg, &l->fb, now);
 	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
+	scenario_patient(l);
 	render(l);
 	guide(l, now);
 	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);

@@ -28,6 +28,13 @@
  *    loop_patient_command(), the control thread only;
  *  - records out to the recorder (recorder.h) while a session records:
  *    loop_set_tap() before the loop starts;
+ *  - a scenario's commands for the assistant (scenario.h: turn, press,
+ *    release) come with the rig's feedback (rig.h, .patient: the simulated
+ *    hand hands out one new number a cycle at most), and the loop carries
+ *    each number out once, before the patient's step of that cycle
+ *    (patient_turn(), patient_press() at the case's site of that name,
+ *    patient_release()); the scenario's valves come as the handle's
+ *    (.valves). The daemon and the lockstep tools take the same path;
  *  - statistics and heartbeat: any thread.
  */
 #ifndef ENDOSIM_LOOP_H

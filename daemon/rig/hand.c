@@ -24,6 +24,7 @@ struct hand {
 	seqlock_t lock;       /* guards mailbox */
 	struct live mailbox;  /* written by the control thread */
 	struct live cached;   /* the force loop's last good copy */
+	struct scenario_patient patient; /* the last handed out */
 };
 
 struct hand *hand_create(const struct config *cfg, struct scenario *scn)
@@ -138,7 +139,20 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 	}
 }
 
-uint32_t hand_valves(const struct hand *h, uint64_t now_ns)
+uint32_t hand_valves(const struct hand *h, double t_s, uint64_t now_ns)
 {
-	return now_ns < h->cached.valves_until_ns ? h->cached.valves : 0;
+	if (now_ns < h->cached.valves_until_ns) {
+		return h->cached.valves;
+	}
+	return h->scenario ? scenario_valves(h->scenario, t_s) : 0;
+}
+
+void hand_patient(struct hand *h, double t_s, struct scenario_patient *out)
+{
+	if (h->scenario &&
+	    scenario_patient_due(h->scenario, t_s) > h->patient.seq) {
+		scenario_patient_get(h->scenario, h->patient.seq + 1,
+				     &h->patient);
+	}
+	*out = h->patient;
 }

@@ -48,10 +48,20 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		 double force[ENDOSIM_AXES]);
 
 /*
- * Force loop, after hand_forces() of the same cycle: the valves the hand
- * holds (enum endosim_valve bits): the live input's while it holds, else
- * none (released). Never blocks.
+ * Force loop, after hand_forces() of a cycle: the valves the hand holds
+ * (enum endosim_valve bits) at scenario time T_S: the live input's while
+ * it holds, else the scenario's (none without one). Never blocks.
  */
-uint32_t hand_valves(const struct hand *h, uint64_t now_ns);
+uint32_t hand_valves(const struct hand *h, double t_s, uint64_t now_ns);
+
+/*
+ * Force loop, once a cycle: the scenario's commands for the assistant
+ * (scenario.h), handed out one a cycle in order: the next one due at
+ * scenario time T_S that was not handed out yet, else the last one again
+ * (OUT->seq 0: none yet, or no scenario). The loop carries out each number
+ * once; live input does not hold them back (they are the assistant's, not
+ * the trainee's hand). Never blocks or allocates.
+ */
+void hand_patient(struct hand *h, double t_s, struct scenario_patient *out);
 
 #endif

@@ -49,6 +49,10 @@ struct rig_feedback {
 	uint32_t valves;       /* the handle's (enum endosim_valve): pressed
 				  or covered; a stale or lost input reads
 				  released (0) */
+	struct scenario_patient patient; /* simulated hand: the scenario's
+				  latest command for the assistant, a new
+				  number at most once a cycle (hand_patient());
+				  seq 0: none */
 };
 
 /* What one bus thread achieves (bus.h). */

@@ -62,7 +62,10 @@
  *   direction = X Y Z           into the abdomen (default 0 1 0: from the
  *                               front towards the back; each -1..1, not
  *                               all 0; made a unit vector)
- *   radius_m = 0.06             the pad's reach about its axis (0.01..0.2)
+ *   radius_m = 0.08             the pad's reach about its axis (the
+ *                               flat of a hand, 16 cm across; 0.01..0.2):
+ *                               the mobile colon within it, at any depth,
+ *                               is held (flex.h)
  *
  *   [polyp]                     repeatable, up to ANATOMY_MAX_POLYPS
  *   s_m = 0.62                  required: distance from the anal verge
@@ -107,7 +110,7 @@
 #define ANATOMY_DEFAULT_WALL_MAX 1.25
 #define ANATOMY_DEFAULT_WALL_NOMINAL_PA 2000.0
 #define ANATOMY_DEFAULT_WALL_BETA 1.5
-#define ANATOMY_DEFAULT_SITE_RADIUS_M 0.06
+#define ANATOMY_DEFAULT_SITE_RADIUS_M 0.08
 #define ANATOMY_NAME 64
 #define ANATOMY_TEXT 160
 

@@ -32,6 +32,10 @@ struct flex {
 	double g[3];                       /* gravity, m/s^2 */
 	struct flex_pad pad;
 	double pad_n;                      /* what the pad held, N */
+	bool held[FLEX_MAX_NODES];         /* under the pad: in its grip */
+	double anchor[FLEX_MAX_NODES][3];  /* where it holds it, m */
+	double grip[FLEX_MAX_NODES][3];    /* the pad's force on it, N */
+	double z[FLEX_MAX_NODES][3];       /* the step's new displacement */
 };
 
 static bool params_ok(const struct flex_params *p)
@@ -110,6 +114,57 @@ void flex_destroy(struct flex *f)
 	free(f);
 }
 
+static bool pad_on(const struct flex *f)
+{
+	return f->pad.on && f->pad.force_n > 0;
+}
+
+/* Whether node N's place at rest lies within the pad's reach (within its
+ * radius of its axis, at any depth); its depth beyond the pad's face into
+ * DEPTH (m, < 0 on the abdominal wall's side). */
+static bool pad_reach(const struct flex *f, int n, double *depth)
+{
+	const struct flex_pad *p = &f->pad;
+	double r[3];
+
+	vec3_sub(r, f->rest[n], p->point);
+	*depth = vec3_dot(r, p->in);
+	vec3_axpy(r, r, -*depth, p->in);         /* off the pad's axis */
+	return vec3_norm(r) <= p->radius_m;
+}
+
+/* Node N's displacement Y, DEPTH in front of the pad's face, put back onto
+ * it across the course (as the mesentery lets it move); left where the
+ * course runs along the press (it cannot be). */
+static void pad_onto_face(const struct flex *f, int n, double y[3],
+			  double depth)
+{
+	double across[3], a;
+
+	vec3_axpy(across, f->pad.in, -vec3_dot(f->pad.in, f->along[n]),
+		  f->along[n]);
+	a = vec3_dot(across, f->pad.in);         /* 1 - (in . t)^2 */
+	if (a >= 0.1) {
+		vec3_axpy(y, y, -depth / a, across);
+	}
+}
+
+/* The nodes the pad holds: those whose course at rest lies within its
+ * reach, each towards its place at rest, put back onto the pad's face
+ * where that lies in front of it. */
+static void pad_place(struct flex *f)
+{
+	double depth;
+
+	for (int n = 0; n < f->nodes; n++) {
+		f->held[n] = pad_on(f) && pad_reach(f, n, &depth);
+		vec3_set(f->anchor[n], 0, 0, 0);
+		if (f->held[n] && depth < 0) {
+			pad_onto_face(f, n, f->anchor[n], depth);
+		}
+	}
+}
+
 static void lay(struct flex *f, const struct chain *c)
 {
 	centreline_displace(colon_centreline(f->colon), c->span,
@@ -124,6 +179,8 @@ void flex_reset(struct flex *f)
 	memset(f->v, 0, sizeof(f->v));
 	memset(f->force, 0, sizeof(f->force));
 	memset(f->stiff, 0, sizeof(f->stiff));
+	pad_place(f);
+	f->pad_n = 0;
 	for (int i = 0; i < f->chains; i++) {
 		lay(f, &f->chain[i]);
 	}
@@ -150,12 +207,23 @@ void flex_set_gravity(struct flex *f, const double g[3])
 	vec3_copy(f->g, g);
 }
 
+/* Whether two pads press alike: where, which way, how wide, how hard. */
+static bool same_pad(const struct flex_pad *a, const struct flex_pad *b)
+{
+	return a->on == b->on && a->radius_m == b->radius_m &&
+	       a->force_n == b->force_n &&
+	       !memcmp(a->point, b->point, sizeof(a->point)) &&
+	       !memcmp(a->in, b->in, sizeof(a->in));
+}
+
 void flex_set_pad(struct flex *f, const struct flex_pad *pad)
 {
-	f->pad = *pad;
-	if (!pad->on) {
-		f->pad_n = 0;
+	if (same_pad(&f->pad, pad)) {
+		return;
 	}
+	f->pad = *pad;
+	pad_place(f);
+	f->pad_n = 0;
 }
 
 double flex_pad_force(const struct flex *f)
@@ -209,51 +277,39 @@ void flex_push(struct flex *f, double s_m, const double force[3],
 	}
 }
 
-/* Node N displaced by Y: put back onto the pad's plane when it lies within
- * the pad's reach on the wall's side, moving across its course only.
- * Returns how far it was moved, m. */
-static double pad_hold(const struct flex *f, int n, double y[3])
+/* The grip's stiffness on each node held, N/m. */
+static double pad_stiffness(const struct flex *f)
 {
-	const struct flex_pad *p = &f->pad;
-	double x[3], r[3], across[3], depth, a;
-
-	vec3_add(x, f->rest[n], y);
-	vec3_sub(r, x, p->point);
-	depth = vec3_dot(r, p->in);              /* < 0: on the wall's side */
-	vec3_axpy(r, r, -depth, p->in);          /* off the pad's axis */
-	if (depth >= 0 || vec3_norm(r) > p->radius_m) {
-		return 0;
-	}
-	vec3_axpy(across, p->in, -vec3_dot(p->in, f->along[n]), f->along[n]);
-	a = vec3_dot(across, p->in);             /* 1 - (in . t)^2 */
-	if (a < 0.1) {
-		return 0; /* the course runs along the press: it cannot */
-	}
-	vec3_axpy(y, y, -depth / a, across);
-	return -depth / a * sqrt(a);
+	return f->pad.force_n / FLEX_PAD_GIVE_M;
 }
 
 /*
- * One implicit step of chain C, per coordinate:
- *   (b/h + k_t + k_m) y' - k_c D2 y' + k_b D4 y' = (b/h + k_t) y + F
+ * One implicit step of chain C into f->z, per coordinate:
+ *   (b/h + k_t + k_m + k_p) y' - k_c D2 y' + k_b D4 y'
+ *       = (b/h + k_t) y + F + m g + k_p a + G
  * D2 and D4 the second and fourth differences along the chain with the
  * fixed colon beyond both ends (zero displacement and slope there), the
  * mesentery's stiffening taken at the step's start, k_t the pushes'
- * stiffness (the push F - k_t (y' - y) as the wall yields): a symmetric
- * pentadiagonal system, solved by its banded LDL^T.
+ * stiffness (the push F - k_t (y' - y) as the wall yields), and on a node
+ * the pad holds either its grip's spring k_p towards the anchor a
+ * (SPRING) or the force G it holds with (f->grip): a symmetric
+ * pentadiagonal system, solved by its banded LDL^T. Each node's result is
+ * put across the course (the mesentery keeps the colon on it).
  */
-static void step_chain(struct flex *f, const struct chain *c, double h)
+static void step_chain(struct flex *f, const struct chain *c, double h,
+		       bool spring)
 {
 	double bh = f->par.damping_n_s_per_m / h, kc = f->par.chain_n_per_m;
-	double kb = f->par.bending_n_per_m;
+	double kb = f->par.bending_n_per_m, kp = pad_stiffness(f);
 	double l1[FLEX_MAX_NODES], l2[FLEX_MAX_NODES], dd[FLEX_MAX_NODES];
-	double z[FLEX_MAX_NODES][3];
+	double (*z)[3] = &f->z[c->first];
 	int m = c->count;
 
 	for (int i = 0; i < m; i++) {
 		int n = c->first + i;
 		double q = vec3_norm(f->y[n]) / c->h, kt = f->stiff[n];
-		double a0 = bh + kt + c->k * (1 + q * q) + 2 * kc + 6 * kb;
+		double k = f->held[n] && spring ? kp : 0;
+		double a0 = bh + kt + c->k * (1 + q * q) + 2 * kc + 6 * kb + k;
 		double a1 = -kc - 4 * kb, a2 = kb;
 
 		l2[i] = i >= 2 ? a2 / dd[i - 2] : 0;
@@ -263,8 +319,11 @@ static void step_chain(struct flex *f, const struct chain *c, double h)
 		dd[i] = a0 - (i >= 1 ? l1[i] * l1[i] * dd[i - 1] : 0) -
 			(i >= 2 ? l2[i] * l2[i] * dd[i - 2] : 0);
 		for (int d = 0; d < 3; d++) {
+			double pad = !f->held[n] ? 0 : spring ?
+				     k * f->anchor[n][d] : f->grip[n][d];
+
 			z[i][d] = (bh + kt) * f->y[n][d] + f->force[n][d] +
-				  c->mass * f->g[d] -
+				  c->mass * f->g[d] + pad -
 				  (i >= 1 ? l1[i] * z[i - 1][d] : 0) -
 				  (i >= 2 ? l2[i] * z[i - 2][d] : 0);
 		}
@@ -277,35 +336,121 @@ static void step_chain(struct flex *f, const struct chain *c, double h)
 		}
 	}
 	for (int i = 0; i < m; i++) {
-		int n = c->first + i;
+		const double *t = f->along[c->first + i];
 
-		/* the mesentery keeps the colon on its course: it moves
-		 * across it, never along */
-		vec3_axpy(z[i], z[i], -vec3_dot(z[i], f->along[n]),
-			  f->along[n]);
-		if (f->pad.on) {
-			double q = vec3_norm(z[i]) / c->h;
+		vec3_axpy(z[i], z[i], -vec3_dot(z[i], t), t);
+	}
+}
 
-			f->pad_n += (bh + c->k * (1 + q * q) + 2 * kc + 6 * kb) *
-				    pad_hold(f, n, z[i]);
-		}
-		for (int d = 0; d < 3; d++) {
-			f->v[n][d] = (z[i][d] - f->y[n][d]) / h;
-			f->y[n][d] = z[i][d];
+/* The held nodes' grip forces added up into NET; returns how many. */
+static int pad_net(const struct flex *f, double net[3])
+{
+	int held = 0;
+
+	vec3_set(net, 0, 0, 0);
+	for (int n = 0; n < f->nodes; n++) {
+		if (f->held[n]) {
+			vec3_add(net, net, f->grip[n]);
+			held++;
 		}
 	}
+	return held;
+}
+
+/*
+ * The grip's forces bounded by the hand's, F: beyond it in all, the
+ * excess taken off every node held alike (the pressed mass shifts as a
+ * whole; the forces that press the colon's parts against each other and
+ * cancel in the sum stay); then no node above F, and the sum again within
+ * F (scaled down). Returns whether it changed any.
+ */
+static bool pad_bound(struct flex *f)
+{
+	double net[3], most = f->pad.force_n, sum;
+	int held = pad_net(f, net);
+	bool changed = false;
+
+	sum = vec3_norm(net);
+	if (sum > most) {
+		vec3_scale(net, net, (1 - most / sum) / held);
+		for (int n = 0; n < f->nodes; n++) {
+			if (f->held[n]) {
+				vec3_sub(f->grip[n], f->grip[n], net);
+			}
+		}
+		changed = true;
+	}
+	for (int n = 0; n < f->nodes; n++) {
+		double g = vec3_norm(f->grip[n]);
+
+		if (f->held[n] && g > most) {
+			vec3_scale(f->grip[n], f->grip[n], most / g);
+			changed = true;
+		}
+	}
+	pad_net(f, net);
+	sum = vec3_norm(net);
+	if (sum > most) {
+		for (int n = 0; n < f->nodes; n++) {
+			vec3_scale(f->grip[n], f->grip[n], most / sum);
+		}
+		changed = true;
+	}
+	return changed;
+}
+
+/*
+ * After the chains' step with the grip's springs: each held node's force
+ * from the pad; bounded (pad_bound()), the chains with a node held stepped
+ * again under the forces as bounded. The pad's force: their sum.
+ */
+static void pad_grip(struct flex *f, double h)
+{
+	double kp = pad_stiffness(f), net[3];
+
+	for (int n = 0; n < f->nodes; n++) {
+		if (f->held[n]) {
+			vec3_sub(f->grip[n], f->anchor[n], f->z[n]);
+			vec3_scale(f->grip[n], f->grip[n], kp);
+		}
+	}
+	if (pad_bound(f)) {
+		for (int i = 0; i < f->chains; i++) {
+			const struct chain *c = &f->chain[i];
+			bool held = false;
+
+			for (int n = c->first; n < c->first + c->count; n++) {
+				held = held || f->held[n];
+			}
+			if (held) {
+				step_chain(f, c, h, false);
+			}
+		}
+	}
+	pad_net(f, net);
+	f->pad_n = vec3_norm(net);
 }
 
 void flex_step(struct flex *f, double dt_s)
 {
+	for (int i = 0; i < f->chains; i++) {
+		step_chain(f, &f->chain[i], dt_s, true);
+	}
 	f->pad_n = 0;
+	if (pad_on(f)) {
+		pad_grip(f, dt_s);
+	}
 	for (int i = 0; i < f->chains; i++) {
 		const struct chain *c = &f->chain[i];
 		bool moved = false;
 
-		step_chain(f, c, dt_s);
-		for (int k = c->first; k < c->first + c->count && !moved; k++) {
-			moved = vec3_dist(f->y[k], f->applied[k]) > FLEX_APPLY_M;
+		for (int n = c->first; n < c->first + c->count; n++) {
+			for (int d = 0; d < 3; d++) {
+				f->v[n][d] = (f->z[n][d] - f->y[n][d]) / dt_s;
+				f->y[n][d] = f->z[n][d];
+			}
+			moved = moved ||
+				vec3_dist(f->y[n], f->applied[n]) > FLEX_APPLY_M;
 		}
 		if (moved) {
 			lay(f, c);

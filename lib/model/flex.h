@@ -35,13 +35,30 @@
  * step's start, the tube's push easing as the wall yields with the
  * contacts' stiffness): stable at any step.
  *
- * A pad pressed into the abdomen (the assistant's hand, flex_set_pad())
- * bars the nodes within its reach from bulging past it: after each step a
- * node within radius_m of the pad's axis that lies on the abdominal
- * wall's side of the pad's plane is put back onto the plane, moving
- * across its course as the mesentery lets it (a one-sided constraint);
- * the force the pad holds is the nodes' overshoot times their step
- * stiffness (b / dt + their elastic diagonal).
+ * The assistant's hand (flex_set_pad()): a pad pressed into the abdomen
+ * compresses the abdominal wall and what lies under it onto the colon,
+ * and the colon onto the retroperitoneum behind, so that within the
+ * pad's reach (within radius_m of its axis, at any depth: the column of
+ * the abdomen the hand squeezes) the mobile colon is held between the
+ * hand and the back and cannot bulge in any direction as freely as
+ * elsewhere: the assistant splints it on its course, pressing a loop's
+ * apex back. So each node whose course at rest lies within the reach is
+ * held towards its place at rest (the one its mesentery holds it to as
+ * well), put back onto the pad's face along the press where that place
+ * lies in front of it (the pad pushes the colon in), by a spring of
+ * k_p = F / FLEX_PAD_GIVE_M (F the hand's force: soft tissue stiffens in
+ * proportion to the stress it bears, Fung's exponential law, so the
+ * harder the hand presses the stiffer the squeezed column), taken in the
+ * step's implicit system like the mesentery (stable at any step). A loop
+ * dragging a node out from under the hand leaves it held; a node whose
+ * course lies elsewhere is not, wherever it goes. The grip's forces are
+ * bounded by the hand's: their sum (the force the pad holds the colon
+ * with: what the hand feels back, flex_pad_force()) is at most F, the
+ * excess taken off every node held alike (the squeezed column shifts
+ * under the hand as a whole; the forces that press the colon's parts
+ * against each other cancel in the sum and stay), no node takes more
+ * than F, and the chains holding a node are stepped again under the
+ * forces so bounded: one more solve at most, fixed work.
  *
  * The centreline follows (centreline_displace()) whenever a node has moved
  * by more than FLEX_APPLY_M since it last did; the mesh follows where a
@@ -110,21 +127,28 @@ void flex_set_params(struct flex *f, const struct flex_params *p);
 /* Gravity's acceleration G (m/s^2, world); zeros: none (the default). */
 void flex_set_gravity(struct flex *f, const double g[3]);
 
-/* The assistant's pad: a disc of radius RADIUS_M about AXIS_POINT (m,
- * world) whose plane has the normal IN (unit, from the abdominal wall
- * into the abdomen) through AXIS_POINT. */
+/* The assistant's pad: a disc of radius RADIUS_M (its reach) about
+ * POINT (m, world: the pad's face, pressed in) facing IN (unit, from the
+ * abdominal wall into the abdomen), pressed with FORCE_N (N, > 0; 0: no
+ * grip). */
 struct flex_pad {
 	bool on;
 	double point[3];
 	double in[3];
 	double radius_m;
+	double force_n;
 };
 
-/* The pad from the next step on (PAD->on false: none). */
+/* How far a node held gives under the hand's whole force, m: a guess
+ * (the grip's stiffness on each node held is force_n / FLEX_PAD_GIVE_M). */
+#define FLEX_PAD_GIVE_M 0.005
+
+/* The pad from the next step on (PAD->on false: none). Fixed work (the
+ * nodes under it found when it changes); no allocation. */
 void flex_set_pad(struct flex *f, const struct flex_pad *pad);
 
-/* The force the pad held on the colon in the last step, N (along its
- * normal's direction, into the abdomen). */
+/* The force the pad held the colon with in the last step, N: the grip's
+ * forces on the nodes added up (their magnitude), at most its force_n. */
 double flex_pad_force(const struct flex *f);
 
 /* Forgets the forces pushed since the last step. */

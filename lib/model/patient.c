@@ -214,6 +214,7 @@ void patient_pad(const struct patient *pt, struct flex_pad *out)
 	vec3_copy(out->in, s->direction);
 	vec3_axpy(out->point, s->position_m, in, s->direction);
 	out->radius_m = s->radius_m;
+	out->force_n = pt->hand_n;
 }
 
 double patient_factor_at(const struct patient *pt, double s_m)

@@ -13,8 +13,9 @@
  * The hand: the assistant presses at site I with F newtons (the default
  * hand_n, at most hand_max_n): the pad sits on the abdominal wall at the
  * site's position, pushed in along its direction by F / abdomen_n_per_m
- * (the belly gives way), and bars the mobile colon within the site's
- * radius from bulging past it (flex_set_pad()).
+ * (the belly gives way), and holds the mobile colon within the site's
+ * radius of its axis between the hand and the back, with at most F in
+ * all (flex_set_pad(): the pad's grip); pad_n is what it holds.
  *
  * Gravity (gravity_m_s2 along posture's direction) acts on the mobile
  * colon's nodes, the rod and the fluid; the abdomen's hydrostatic

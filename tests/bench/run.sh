@@ -20,10 +20,14 @@
 #    rod model at 80, 160 and 320 segments, the paper's model on its own
 #    demo, and the rod at about 2 million triangles; the forces the hand
 #    feels next to Appleyard's; the tip's contact force's change per cycle
-#    while it slides (bench_haptics). Not at SCHED_FIFO: a process that
-#    never sleeps is throttled there by the kernel's real-time bandwidth
-#    limit (50 ms of every second, sched_rt_runtime_us), which is not the
-#    daemon's case (it sleeps between cycles).
+#    while it slides (bench_haptics). The patient on the demo course (the
+#    scripted trainee's, test_rodcourse: its line of figures): the gas
+#    used a minute next to Bretthauer's 0.25 L/min, the pressure's range
+#    with the tip free next to Kozarek's 9-57 mmHg. Not at SCHED_FIFO: a
+#    process that never sleeps is throttled there by the kernel's
+#    real-time bandwidth limit (50 ms of every second,
+#    sched_rt_runtime_us), which is not the daemon's case (it sleeps
+#    between cycles).
 # 4. The drives: exchange rates and transaction latency against the
 #    emulators (drives.sh).
 # 5. The viewer's frame times and the age of the state it shows
@@ -107,6 +111,9 @@ for segments in 80 160 320; do
 	"$BUILD/tests/bench_haptics" --segments $segments "$CASE" \
 		"$TOP/config/scenarios/demo.scn"
 done
+echo
+echo "=== the patient on the demo course: the gas used, the pressure (test_rodcourse) ==="
+ENDOSIM_TOP=$TOP "$BUILD/tests/test_rodcourse" 2>&1 | grep '^the patient: '
 echo
 echo "=== the loop's cycle on the paper model's demo, force shading on and off ==="
 "$BUILD/tests/bench_haptics" --model paper "$CASE" \

@@ -24,7 +24,8 @@
  * any site with any force (refused ones included) or a release, then the
  * patient's step from the tip as the rod lies, its gravity, radius
  * factors and pad on the rod and the colon. The body must stay finite
- * while the rod does (its parameters within their keys' ranges).
+ * while the rod does (its parameters within their keys' ranges), and the
+ * pad never holds the colon with more than the hand's force.
  */
 #include <math.h>
 #include <stdint.h>
@@ -37,6 +38,7 @@
 #include "model/patient.h"
 #include "plain_anatomy.h"
 #include "model/rodscope.h"
+#include "base/vec3.h"
 
 struct bytes {
 	const uint8_t *p;
@@ -219,6 +221,23 @@ static void axes(struct bytes *b, struct rodscope_axes *a)
 	}
 }
 
+/* Gravity and the assistant's pad, anywhere about the colon. */
+static void patient(struct bytes *b, double g[3], struct flex_pad *pad)
+{
+	memset(pad, 0, sizeof(*pad));
+	for (int i = 0; i < 3; i++) {
+		g[i] = take(b, -20, 20);
+		pad->point[i] = take(b, -0.3, 0.6);
+		pad->in[i] = take(b, -1, 1);
+	}
+	pad->on = vec3_norm(pad->in) > 1e-3;
+	if (pad->on) {
+		vec3_scale(pad->in, pad->in, 1 / vec3_norm(pad->in));
+	}
+	pad->radius_m = take(b, 0, 0.2);
+	pad->force_n = take(b, 0, 60);
+}
+
 static void tip(struct bytes *b, struct rodscope_tip *t)
 {
 	memset(t, 0, sizeof(*t));
@@ -278,6 +297,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		}
 		if (!patient_finite(&pt)) {
 			abort(); /* within its keys' ranges the body is */
+		}
+		if (!(pt.pad_n <= pt.hand_n * (1 + 1e-9))) {
+			abort(); /* the hand holds more than it presses with */
 		}
 	}
 	patient_publish(&pt, &ppub);

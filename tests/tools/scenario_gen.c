@@ -9,10 +9,14 @@
  *   scenario_gen [--model rod|paper] CASE_FILE [SPEED_M_PER_S] > FILE.scn
  *
  * The rod model (the default, as endosimd's): the course is played as it
- * is written, on endosimd's own force loop in lockstep with the default
- * configuration (tests/tools/trainee.h: she steers by what the tip sees,
- * waits when the scope is stuck, reduces a loop when it stops her); the
- * daemon on the same case plays it back exactly so.
+ * is written, on endosimd's own force loop in lockstep with the demo's
+ * configuration (trainee_demo_config(): the defaults, the rod model and
+ * the patient; tests/tools/trainee.h: she steers by what the tip sees,
+ * insufflates when the lumen ahead closes, washes a smeared lens, waits
+ * when the scope is stuck, reduces a loop when it stops her with the
+ * assistant's hand or a turn of the patient, and turns the segment she
+ * examines uppermost on the way out); the daemon on the same case and
+ * configuration plays it back exactly so.
  *
  * The paper model: written ahead, on the centreline (the tube follows it),
  * with a quarter twist in the transverse colon:
@@ -168,21 +172,28 @@ static int rod_course(const char *case_path, const struct anatomy *a,
 	char err[256];
 	bool there;
 
-	config_defaults(&cfg);
-	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	trainee_demo_config(&cfg);
 	printf("# endosim scenario for case '%s', written by scenario_gen "
-	       "(the rod model):\n"
-	       "# a trainee inserting at %.0f mm/s, steering into the lumen "
-	       "ahead of the tip;\n"
-	       "# at the sigmoid's end pushing on 10 cm with a straight tip "
-	       "(a loop forms),\n"
-	       "# withdrawing 15 cm with a clockwise twist to reduce it, on "
-	       "to the cecum\n"
-	       "# (reducing again whenever the scope is stuck), and "
-	       "withdrawing. Played on\n"
-	       "# endosimd's force loop as it was written (tests/tools/"
-	       "trainee.h).\n"
-	       "# TIME AXIS target VALUE RAMP (daemon/rig/scenario.h)\n",
+	       "(the rod model,\n"
+	       "# the patient enabled: endosimd --set patient.enabled=yes "
+	       "plays it as it\n"
+	       "# was written): a trainee inserting at %.0f mm/s, steering "
+	       "into the lumen\n"
+	       "# ahead of the tip, insufflating when it closes and washing "
+	       "the lens when it\n"
+	       "# smears; at the sigmoid's end pushing on 15 cm with a "
+	       "straight tip (a loop\n"
+	       "# forms: she asks for the assistant's hand over it), "
+	       "withdrawing 15 cm with a\n"
+	       "# clockwise twist to reduce it, on to the cecum (reducing "
+	       "again whenever the\n"
+	       "# scope is stuck, the hand on, then the patient turned), and "
+	       "withdrawing with\n"
+	       "# the segment examined turned uppermost. Played on endosimd's "
+	       "force loop as it\n"
+	       "# was written (tests/tools/trainee.h).\n"
+	       "# TIME AXIS target VALUE RAMP, TIME valve ..., TIME patient "
+	       "... (scenario.h)\n",
 	       a->name, speed * 1000);
 	t = trainee_create(&cfg, case_path, stdout, err, sizeof(err));
 	if (!t) {

@@ -2,10 +2,13 @@
 #include "trainee.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "conf/cases.h"
+#include "model/gas.h"
+#include "model/posture.h"
 #include "rig/scenario.h"
 #include "base/vec3.h"
 
@@ -14,6 +17,15 @@
 #define WHEEL_EASE_NM 0.06   /* a wheel this hard on her thumb: ease it */
 #define WHEEL_EASE 0.8       /* ... by this much a waypoint */
 #define PUSH_MAX_N 16        /* she does not push harder to go on */
+/* The patient's care (trainee.h) */
+#define VIEW_AHEAD_M STEER_AHEAD_M /* she judges the lumen where she steers */
+#define VIEW_CLOSED 0.6      /* the lumen's radius factor there: closed */
+#define VIEW_OPEN 0.8        /* open enough: she stops insufflating */
+#define PRESSURE_MAX_PA (25 * GAS_PA_PER_MMHG) /* she never goes beyond */
+#define LENS_DIRTY 0.3       /* smear or murk: she washes the lens ... */
+#define LENS_CLEAN 0.05      /* ... until it is clear */
+#define LOOP_HELP_M 0.03     /* a mobile span bowed this far ... */
+#define LOOP_HELP_N 10       /* ... and her push this hard: a loop, help */
 
 struct trainee {
 	struct offline *off;
@@ -26,9 +38,21 @@ struct trainee {
 	double gain[2];           /* tip rad per wheel rad */
 	double wheel_max;         /* rad */
 	double bend_max[2];
+	uint32_t valves;          /* the valves she holds */
+	int pressing;             /* the site the assistant presses, -1 */
+	bool turned;              /* she had the patient turned for a loop */
+	bool examining;           /* withdrawing: the segment seen uppermost */
+	struct trainee_actions did;
 	void (*watch)(const struct endosim_state *s, void *arg);
 	void *watch_arg;
 };
+
+void trainee_demo_config(struct config *cfg)
+{
+	config_defaults(cfg);
+	cfg->haptics.model = HAPTICS_MODEL_ROD;
+	cfg->patient.enabled = true;
+}
 
 struct trainee *trainee_create(const struct config *cfg, const char *case_path,
 			       FILE *script, char *err, size_t errsize)
@@ -58,6 +82,7 @@ struct trainee *trainee_create(const struct config *cfg, const char *case_path,
 		return NULL;
 	}
 	t->script = script;
+	t->pressing = -1;
 	for (int w = 0; w < 2; w++) {
 		t->gain[w] = cfg->scope.gain[w];
 		t->bend_max[w] = cfg->scope.limit_rad[w];
@@ -89,6 +114,11 @@ const struct colon *trainee_colon(const struct trainee *t)
 	return offline_colon(t->off);
 }
 
+const struct trainee_actions *trainee_did(const struct trainee *t)
+{
+	return &t->did;
+}
+
 double trainee_time(const struct trainee *t)
 {
 	return t->s->scenario_time_s;
@@ -102,13 +132,20 @@ void trainee_watch(struct trainee *t,
 	t->watch_arg = arg;
 }
 
-/* One line of the script, played as written. */
-static void say(struct trainee *t, const char *axis, double value)
+/* One line of the script at the next waypoint's time (FMT: what follows
+ * the time), played as written. */
+static void say(struct trainee *t, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+static void say(struct trainee *t, const char *fmt, ...)
 {
 	char line[128], err[256];
+	va_list ap;
+	int n = snprintf(line, sizeof(line), "%7.2f ", t->t);
 
-	snprintf(line, sizeof(line), "%7.2f %-9s target %.4f %.2f", t->t, axis,
-		 value, TRAINEE_STEP_S);
+	va_start(ap, fmt);
+	vsnprintf(line + n, sizeof(line) - (size_t)n, fmt, ap);
+	va_end(ap);
 	if (scenario_append(t->scn, line, err, sizeof(err))) {
 		fprintf(stderr, "trainee: %s\n", err); /* a bug of hers */
 		abort();
@@ -118,17 +155,147 @@ static void say(struct trainee *t, const char *axis, double value)
 	}
 }
 
+/*
+ * Whether the next waypoint's time is still to be played: not before her
+ * first waypoint (trainee_create() played cycle 0, at time 0, before she
+ * said anything). A target said then changes nothing (it ramps from where
+ * the axis is), a valve or the assistant would: the file would hold a
+ * line at a time the loop played without it.
+ */
+static bool to_play(const struct trainee *t)
+{
+	return t->t > t->s->scenario_time_s;
+}
+
+/* A line for the valves or the assistant, from the next waypoint on. */
+static void say_patient(struct trainee *t, const char *what)
+{
+	if (!to_play(t)) {
+		fprintf(stderr, "trainee: '%s' before her first waypoint\n",
+			what); /* a bug of the caller's */
+		abort();
+	}
+	say(t, "%s", what);
+}
+
+/* The hand's target on AXIS, reached over a waypoint's time. */
+static void say_target(struct trainee *t, const char *axis, double value)
+{
+	say(t, "%-9s target %.4f %.2f", axis, value, TRAINEE_STEP_S);
+}
+
+/* Holds the valves WANT from the next waypoint on, a line for each that
+ * changes. */
+static void valves(struct trainee *t, uint32_t want)
+{
+	static const char *const name[] = { "air", "water", "suction" };
+
+	for (int v = 0; v < 3; v++) {
+		uint32_t bit = 1u << v;
+
+		if ((want ^ t->valves) & bit) {
+			char line[32];
+
+			snprintf(line, sizeof(line), "valve %s %s", name[v],
+				 want & bit ? "on" : "off");
+			say_patient(t, line);
+		}
+	}
+	t->did.insufflations += (want & ~t->valves & ENDOSIM_VALVE_AIR) != 0;
+	t->did.washes += (want & ~t->valves & ENDOSIM_VALVE_WATER) != 0;
+	t->valves = want;
+}
+
+/* The lumen's radius factor where she looks ahead of the tip. */
+static double view_ahead(const struct trainee *t)
+{
+	const struct colon *c = trainee_colon(t);
+
+	return gas_factor_at(c, t->s->patient.factor,
+			     fmin(t->s->scope.tip_s_m + VIEW_AHEAD_M,
+				  centreline_length(colon_centreline(c))));
+}
+
+/*
+ * What she does for the view, each waypoint, from what the screen shows:
+ * the lens smeared or murky, she presses the air/water valve (the jet)
+ * until it is clear; else the lumen ahead closed, she covers it
+ * (insufflates) until it is open, never beyond PRESSURE_MAX_PA.
+ */
+static void care(struct trainee *t)
+{
+	const struct endosim_patient_state *p = &t->s->patient;
+	double dirt = fmax(p->lens_smear, p->lens_murk), view;
+	bool air = t->valves & ENDOSIM_VALVE_AIR;
+
+	if (!p->enabled || !to_play(t)) {
+		return;
+	}
+	if (dirt > LENS_DIRTY ||
+	    (t->valves & ENDOSIM_VALVE_WATER && dirt > LENS_CLEAN)) {
+		valves(t, ENDOSIM_VALVE_WATER);
+		return;
+	}
+	view = view_ahead(t);
+	if (p->pressure_pa >= PRESSURE_MAX_PA || view >= VIEW_OPEN) {
+		air = false;
+	} else if (view < VIEW_CLOSED) {
+		air = true;
+	}
+	valves(t, air ? ENDOSIM_VALVE_AIR : 0);
+}
+
+/*
+ * The position that lays the segment at material S_M uppermost, where the
+ * gas opens it most (East et al.'s positions for the withdrawal): left
+ * lateral for the right colon (the cecum to the hepatic flexure), supine
+ * for the transverse, right lateral for the left colon (the splenic
+ * flexure to the sigmoid); -1 below (the rectum: as it is).
+ */
+static int uppermost(const struct anatomy *a, double s_m)
+{
+	if (s_m >= anatomy_segment_start(a, ANATOMY_HEPATIC_FLEXURE)) {
+		return POSTURE_LEFT_LATERAL;
+	}
+	if (s_m >= anatomy_segment_start(a, ANATOMY_TRANSVERSE)) {
+		return POSTURE_SUPINE;
+	}
+	if (s_m >= anatomy_segment_start(a, ANATOMY_SIGMOID)) {
+		return POSTURE_RIGHT_LATERAL;
+	}
+	return -1;
+}
+
+/* Examining on the way out: the segment the tip is in turned uppermost. */
+static void examine(struct trainee *t)
+{
+	const struct anatomy *a = colon_anatomy(trainee_colon(t));
+	int want;
+
+	if (!t->examining || !t->s->patient.enabled || !a || !to_play(t)) {
+		return;
+	}
+	want = uppermost(a, t->s->scope.tip_s_m);
+	if (want >= 0 && want != (int)t->s->patient.position) {
+		trainee_turn(t, want);
+	}
+}
+
 /* The waypoint of now, then the cycles up to the next. */
 static void waypoint(struct trainee *t)
 {
 	static const char *const wheel[2] = { "wheel_ud", "wheel_lr" };
 
-	say(t, "insertion", t->depth);
-	say(t, "roll", t->roll);
+	care(t);
+	examine(t);
+
+	say_target(t, "insertion", t->depth);
+	say_target(t, "roll", t->roll);
 	for (int w = 0; w < 2; w++) {
 		double v = t->gain[w] > 0 ? t->bend[w] / t->gain[w] : 0;
 
-		say(t, wheel[w], fmax(-t->wheel_max, fmin(t->wheel_max, v)));
+		say_target(t, wheel[w],
+			   fmax(-t->wheel_max, fmin(t->wheel_max, v)));
 	}
 	t->t += TRAINEE_STEP_S;
 	/* up to the cycle before the next waypoint's: hers are in the
@@ -171,17 +338,25 @@ static void steer(struct trainee *t)
 	}
 }
 
+static void ask_help(struct trainee *t);
+
 bool trainee_insert(struct trainee *t, double tip_s_m, double speed,
 		    double stuck_s)
 {
 	double best = t->s->scope.tip_s_m, since = trainee_time(t);
 
 	while (t->s->scope.tip_s_m < tip_s_m) {
-		if (t->s->axis[ENDOSIM_AXIS_INSERTION].hand < PUSH_MAX_N) {
+		if (t->s->patient.turning) { /* she waits, easing off */
+			t->depth = t->s->axis[ENDOSIM_AXIS_INSERTION].position;
+			since = trainee_time(t);
+		} else if (t->s->axis[ENDOSIM_AXIS_INSERTION].hand < PUSH_MAX_N) {
 			t->depth += speed * TRAINEE_STEP_S;
 		}
 		steer(t);
 		waypoint(t);
+		if (t->s->axis[ENDOSIM_AXIS_INSERTION].hand > LOOP_HELP_N) {
+			ask_help(t);
+		}
 		if (t->s->scope.tip_s_m > best + 0.005) {
 			best = t->s->scope.tip_s_m;
 			since = trainee_time(t);
@@ -248,9 +423,112 @@ void trainee_relax(struct trainee *t, double seconds)
 	trainee_hold(t, seconds);
 }
 
+void trainee_press(struct trainee *t, const char *site, double force_n)
+{
+	char line[96];
+
+	if (force_n > 0) {
+		snprintf(line, sizeof(line), "patient press %s %.0f", site,
+			 force_n);
+	} else {
+		snprintf(line, sizeof(line), "patient press %s", site);
+	}
+	say_patient(t, line);
+	t->did.hands++;
+}
+
+void trainee_release(struct trainee *t)
+{
+	say_patient(t, "patient release");
+}
+
+void trainee_turn(struct trainee *t, int position)
+{
+	char line[64];
+
+	snprintf(line, sizeof(line), "patient position %s",
+		 posture_name(position));
+	say_patient(t, line);
+	t->did.turns++;
+}
+
 void trainee_hold_tip(struct trainee *t, double hold_n_per_m)
 {
 	offline_hold_tip(t->off, hold_n_per_m);
+}
+
+/* The case's site nearest to where mobile span SPAN has moved furthest
+ * from its rest: over the loop. -1: the case has none. */
+static int site_over(const struct trainee *t, int span)
+{
+	const struct colon *c = trainee_colon(t);
+	const struct anatomy *a = colon_anatomy(c);
+	const struct centreline *cl = colon_centreline(c);
+	double ds = centreline_step(cl), s0, s1, most = -1, best = INFINITY;
+	size_t at = 0;
+	int site = -1;
+
+	centreline_span_range(cl, span, &s0, &s1);
+	for (size_t i = (size_t)ceil(s0 / ds); i * ds <= s1; i++) {
+		double d = vec3_dist(centreline_sample(cl, i)->p,
+				     centreline_base(cl, i)->p);
+
+		if (d > most) {
+			most = d;
+			at = i;
+		}
+	}
+	for (int k = 0; a && k < a->sites; k++) {
+		double d = vec3_dist(a->site[k].position_m,
+				     centreline_sample(cl, at)->p);
+
+		if (d < best) {
+			best = d;
+			site = k;
+		}
+	}
+	return site;
+}
+
+/*
+ * Stuck with a loop (a mobile span bowed LOOP_HELP_M or more), she asks
+ * for help, once each: the assistant's hand over the loop; the hand
+ * there already, a turn of the patient.
+ */
+static void ask_help(struct trainee *t)
+{
+	const struct endosim_scope_state *sc = &t->s->scope;
+	const struct anatomy *a = colon_anatomy(trainee_colon(t));
+	int span = 0, site;
+
+	if (!t->s->patient.enabled || !sc->spans) {
+		return;
+	}
+	for (int k = 1; k < (int)sc->spans; k++) {
+		span = sc->bow_m[k] > sc->bow_m[span] ? k : span;
+	}
+	if (sc->bow_m[span] < LOOP_HELP_M) {
+		return;
+	}
+	site = site_over(t, span);
+	if (site >= 0 && site != t->pressing) {
+		trainee_press(t, a->site[site].name, 0);
+		t->pressing = site;
+	} else if (!t->turned) {
+		trainee_turn(t, t->s->patient.position == POSTURE_SUPINE
+					? POSTURE_LEFT_LATERAL : POSTURE_SUPINE);
+		t->turned = true;
+	}
+}
+
+/* Past the loop: the assistant lets go, ready to help again. */
+static void help_done(struct trainee *t)
+{
+	if (t->pressing >= 0) {
+		trainee_release(t);
+		t->pressing = -1;
+	}
+	t->turned = false;
 }
 
 bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
@@ -258,14 +536,17 @@ bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
 {
 	for (int tries = 0; tries < 6; tries++) {
 		if (trainee_insert(t, tip_s_m, speed, 4)) {
+			help_done(t);
 			return true;
 		}
 		if (push_m > 0) {
 			trainee_push(t, push_m, speed);
 		}
+		ask_help(t);
 		trainee_withdraw(t, 0.10, speed, 0.5);
 		trainee_relax(t, 0.5);
 		if (t->s->scope.tip_s_m >= tip_s_m) {
+			help_done(t);
 			return true;
 		}
 	}
@@ -281,10 +562,13 @@ bool trainee_course(struct trainee *t, const struct anatomy *a, double speed)
 	trainee_hold(t, 1.0);
 	trainee_insert(t, junction - 0.01, speed, 6);
 	trainee_push(t, 0.15, speed);
+	ask_help(t);
 	trainee_withdraw(t, 0.15, speed, 0.5);
 	trainee_relax(t, 1.0);
 	there = trainee_reach(t, cecum, speed, 0);
-	trainee_hold(t, 2.0);
+	t->examining = true;
+	trainee_relax(t, 2.0);
 	trainee_withdraw(t, t->s->scope.depth_m - 0.10, 2 * speed, 0);
+	t->examining = false;
 	return there;
 }

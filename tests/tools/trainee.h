@@ -19,6 +19,34 @@
  *  - pushing on (the classic mistake), withdrawing with a twist (the
  *    classic reduction), holding still.
  *
+ * With the patient enabled ([patient] enabled, struct endosim_state
+ * .patient) she also looks after the view and the patient, each action a
+ * line of her script (a valve, or the assistant: scenario.h), said from
+ * her second waypoint on (the first one's time was played before she
+ * could act):
+ *  - the view closes: the lumen's radius factor 4 cm ahead of the tip
+ *    (where she steers; gas_factor_at() on the published factors) below
+ *    0.6 (the folds nearly meeting; collapsed is 0.4 in the cases), she
+ *    covers the air/water valve, and lets go once it is 0.8 or more, or
+ *    the gas reaches 25 mmHg: she never insufflates beyond (Kozarek et
+ *    al. measured 9-57 mmHg with the tip free);
+ *  - the lens smears: smear or murk above 0.3, she presses the valve
+ *    (the jet; no air meanwhile) until both are under 0.05;
+ *  - a loop: a mobile span bowed 3 cm or more while she pushes harder
+ *    than 10 N, or stops her (trainee_reach()), or after her mistake in
+ *    the course: she asks for the assistant's hand on the case's site
+ *    nearest where that span has moved furthest (llq over the sigmoid,
+ *    umbilical over the transverse colon); if the hand is there
+ *    already, she has the patient turned (supine from a lateral
+ *    position, left lateral from supine or prone; once), and while the
+ *    patient is turned she waits, easing off; once she has got where she
+ *    was going the assistant lets go (and she may ask again);
+ *  - on the way out (trainee_course()): the segment the tip is in turned
+ *    uppermost (East et al.): left lateral for the right colon, supine
+ *    for the transverse, right lateral for the left colon.
+ * With the patient disabled she says none of these lines and does as
+ * before the patient.
+ *
  * Not for the force loop (allocates, writes the script). One thread.
  */
 #ifndef ENDOSIM_TRAINEE_H
@@ -35,7 +63,22 @@
 
 #define TRAINEE_STEP_S 0.25 /* a waypoint this often */
 
+/* What she asked for so far: each a line of her script. */
+struct trainee_actions {
+	int insufflations;  /* the air/water valve covered */
+	int washes;         /* ... pressed: the jet */
+	int hands;          /* the assistant's press */
+	int turns;          /* the patient turned */
+};
+
 struct trainee;
+
+/*
+ * The demo's configuration (scenario_gen's, config/scenarios/demo.scn's):
+ * the defaults with the rod model and the patient (tests/demo.sh runs
+ * the daemon so).
+ */
+void trainee_demo_config(struct config *cfg);
 
 /*
  * The trainee on CASE (a case file) with CFG, writing her script to
@@ -51,6 +94,7 @@ void trainee_destroy(struct trainee *t);
 const struct endosim_state *trainee_state(const struct trainee *t);
 const struct colon *trainee_colon(const struct trainee *t);
 double trainee_time(const struct trainee *t); /* s, the scenario's clock */
+const struct trainee_actions *trainee_did(const struct trainee *t);
 
 /* Called after every cycle while she acts (may be NULL): a test's eyes. */
 void trainee_watch(struct trainee *t,
@@ -86,6 +130,17 @@ void trainee_withdraw_looking(struct trainee *t, double distance,
  * SECONDS. */
 void trainee_relax(struct trainee *t, double seconds);
 
+/*
+ * The assistant, from the next waypoint on (a line of the script each):
+ * presses the abdomen at SITE (the case's [site NAME]) with FORCE_N (0:
+ * [patient] hand_n), lets go, or turns the patient to POSITION (enum
+ * posture_position; the turn takes [patient] turn_s). With the patient
+ * disabled they change nothing.
+ */
+void trainee_press(struct trainee *t, const char *site, double force_n);
+void trainee_release(struct trainee *t);
+void trainee_turn(struct trainee *t, int position);
+
 /* The tip held where it is (a spring of HOLD_N_PER_M), or let go (0). */
 void trainee_hold_tip(struct trainee *t, double hold_n_per_m);
 
@@ -95,9 +150,11 @@ void trainee_hold(struct trainee *t, double seconds);
 /*
  * On to material TIP_S_M (m) at SPEED, steering; each time the scope is
  * stuck (4 s without the tip advancing) she pushes on PUSH_M (m; 0: not
- * at all, the novice's mistake otherwise), then reduces the loop:
- * withdraws 10 cm turning the tube clockwise (0.5 rad) and lets it
- * settle for 0.5 s; up to 6 tries. Returns true when the tip got there.
+ * at all, the novice's mistake otherwise), then (with the patient) asks
+ * for help with the loop, then reduces the loop: withdraws 10 cm turning
+ * the tube clockwise (0.5 rad) and lets it settle for 0.5 s; up to 6
+ * tries. There, the assistant lets go. Returns true when the tip got
+ * there.
  */
 bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
 		   double push_m);
@@ -106,14 +163,16 @@ bool trainee_reach(struct trainee *t, double tip_s_m, double speed,
  * The demo's course on case A (the trainee's, on the case she was made
  * with): inserting at SPEED (m/s; 3 cm/s is a trainee's pace) steering
  * into the lumen up to the sigmoid's
- * end; there the mistake, pushing on 10 cm with a straight tip (the tip
- * held by the junction, a loop forms behind it); the reduction,
+ * end; there the mistake, pushing on 15 cm with a straight tip (the tip
+ * held by the junction, a loop forms behind it: with the patient she
+ * asks for the assistant's hand over it); the reduction,
  * withdrawing 15 cm turning the tube clockwise, then letting the tube
- * settle; on, steering, to the cecum, and each time the scope is stuck
- * (the tube runs out or the tip stops while she pushes) the same
- * reduction with 10 cm; two seconds at the cecum; the withdrawal at
- * 6 cm/s with a straight tip. Returns true when the tip reached the
- * cecum.
+ * settle; on, steering, to the cecum (trainee_reach(), no push on), and
+ * each time the scope is stuck (the tube runs out or the tip stops while
+ * she pushes) the same reduction with 10 cm; two seconds at the cecum,
+ * easing off; the withdrawal at 6 cm/s with a straight tip (with the
+ * patient, the segment examined turned uppermost). Returns true when the
+ * tip reached the cecum.
  */
 bool trainee_course(struct trainee *t, const struct anatomy *a, double speed);
 

@@ -7,8 +7,9 @@
  * course at 3 cm/s, tests/system/70-session.sh checks that it still is)
  * with [haptics] model = paper, for the haptics,
  * the safety filter's clamp, the hand's top speed, a session's metrics,
- * and that a run repeats bit for bit. (The rod model's course:
- * test_rodcourse.c.)
+ * and that a run repeats bit for bit; and a scenario's valves and
+ * commands for the assistant carried out by the loop's cycle. (The rod
+ * model's course, with the patient: test_rodcourse.c.)
  *
  * The course, from scenario_gen (all times on the scenario's clock, which
  * is the loop's: one period a cycle):
@@ -38,6 +39,7 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdbool.h>
 
 #include "conf/cases.h"
 #include "session/metrics.h"
@@ -254,6 +256,95 @@ static void test_hand_top_speed(void **unused)
 	assert_true(hand_max > 0.9 * cfg.sim.hand_max[0]);
 }
 
+/* The loop on the normal case with the patient ENABLED or not, its hand
+ * playing the scenario of LINES (the paper's model rendering). */
+static struct offline *patient_course(bool enabled, const char *const *lines)
+{
+	struct scenario *scn = scenario_create();
+	struct config cfg;
+	struct offline *o;
+	char err[512];
+
+	assert_non_null(scn);
+	for (; *lines; lines++) {
+		assert_int_equal(scenario_append(scn, *lines, err,
+						 sizeof(err)), 0);
+	}
+	config_defaults(&cfg);
+	cfg.patient.enabled = enabled;
+	o = offline_create_with(&cfg, normal_colon(&cfg), scn, err,
+				sizeof(err));
+	if (!o) {
+		fail_msg("%s", err);
+	}
+	return o;
+}
+
+/* The state of the first cycle played at scenario time T_S or after. */
+static const struct endosim_state *play_until(struct offline *o, double t_s)
+{
+	const struct endosim_state *st;
+
+	do {
+		st = offline_step(o);
+	} while (st->scenario_time_s < t_s - 1e-9);
+	return st;
+}
+
+/*
+ * A scenario's valves and commands for the assistant reach the patient
+ * through the loop's own cycle (what the daemon plays): the valves as the
+ * scenario holds them, each command once, in order, one a cycle (two at
+ * the same time both carried out), one the patient refuses (a site the
+ * case does not have) changing nothing; with the patient disabled, only
+ * the valves are published, nothing moves.
+ */
+static void test_scenario_patient(void **unused)
+{
+	static const char *const lines[] = {
+		"0.10 valve air on", "0.20 patient press llq 30",
+		"0.30 patient press nowhere", "0.40 valve air off",
+		"0.40 patient release", "0.40 patient position supine",
+		"0.50 valve water on", "1 end", NULL,
+	};
+	const struct endosim_state *st;
+	struct offline *o = patient_course(true, lines);
+	double gas_in;
+
+	(void)unused;
+	st = play_until(o, 0.09);
+	assert_int_equal(st->patient.valves, 0);
+	assert_true(st->patient.gas_in_m3 == 0);
+	st = play_until(o, 0.15);
+	assert_int_equal(st->patient.valves, ENDOSIM_VALVE_AIR);
+	assert_true(st->patient.gas_in_m3 > 0);
+	st = play_until(o, 0.25);
+	assert_int_equal(st->patient.hand_site, 0); /* llq, the first */
+	assert_float_equal(st->patient.hand_n, 30, 1e-12);
+	st = play_until(o, 0.35);
+	assert_int_equal(st->patient.hand_site, 0);
+	st = play_until(o, 0.45);
+	gas_in = st->patient.gas_in_m3;
+	assert_int_equal(st->patient.valves, 0);
+	assert_int_equal(st->patient.hand_site, -1);
+	assert_int_equal(st->patient.position, ENDOSIM_POSITION_SUPINE);
+	assert_int_equal(st->patient.turning, 1);
+	st = play_until(o, 0.55);
+	assert_int_equal(st->patient.valves, ENDOSIM_VALVE_WATER);
+	assert_true(st->patient.gas_in_m3 == gas_in);
+	offline_destroy(o);
+
+	o = patient_course(false, lines);
+	st = play_until(o, 0.45);
+	assert_int_equal(st->patient.enabled, 0);
+	assert_int_equal(st->patient.hand_site, -1);
+	assert_int_equal(st->patient.turning, 0);
+	assert_true(st->patient.gas_in_m3 == 0);
+	st = play_until(o, 0.55);
+	assert_int_equal(st->patient.valves, ENDOSIM_VALVE_WATER);
+	offline_destroy(o);
+}
+
 /* SCEN's value at session time T: the record at or after it. */
 static double scen_at(const float *scen, long n, double t)
 {
@@ -370,6 +461,7 @@ int main(void)
 		cmocka_unit_test(test_demo_haptics),
 		cmocka_unit_test(test_clamp),
 		cmocka_unit_test(test_hand_top_speed),
+		cmocka_unit_test(test_scenario_patient),
 		cmocka_unit_test(test_session_metrics),
 		cmocka_unit_test(test_repeats_exactly),
 	};

@@ -15,9 +15,15 @@
  *  - its weight: a span across gravity sags in its middle by the
  *    mesentery law's answer, m g / k in the linear regime, within 2 %;
  *    along its course gravity moves nothing;
- *  - the assistant's pad: nodes pushed towards the wall stop at the
- *    pad's plane within its reach and not beyond it; the pad holds the
- *    push; lifted, nothing holds them.
+ *  - the assistant's pad (its grip, flex.h), on nodes free of each
+ *    other: within its reach a node pushed sideways is held by the
+ *    grip's spring towards its rest besides its mesentery
+ *    (F = (k_m (1 + (y/h)^2) + k_p) y), one outside it by its mesentery
+ *    alone; a pad pressed beyond the course puts the colon under it back
+ *    onto its face and holds it there; the pad's force is what its
+ *    springs hold, and no more than the hand's force: a weak hand's pad
+ *    holds its force, shared by its nodes, which go on past the face as
+ *    far as the rest of the push takes them; lifted, nothing holds them.
  */
 #include <errno.h>
 #include <math.h>
@@ -276,58 +282,173 @@ static void test_gravity_sag(void **state)
 	colon_destroy(c);
 }
 
-/* The pad bars the nodes within its reach from passing its plane. */
-static void test_pad(void **state)
-{
-	const struct flex_params p = FLEX_PARAMS_DEFAULT;
-	struct colon *c = straight_colon(600, 0.06);
-	struct flex *f = flex_create(&p);
-	const double push[3] = { 0, -2, 0 }; /* towards -y, the wall */
-	struct flex_pad pad = { .on = true, .in = { 0, 1, 0 },
-				.radius_m = 0.05 };
-	double s0, s1, mid_s, free_y, held_n = 0;
-	int count, mid, far;
+/* Independent nodes (no chain, no wall, no weight): each obeys its own
+ * forces, as the analytic checks want. */
+static const struct flex_params lone = { .node_spacing_m = 0.02,
+					 .damping_n_s_per_m = 2 };
 
-	(void)state;
+/* The pad pressed with FORCE_N towards +y, reach 5 cm, its face FACE_M
+ * from the course at the span's middle along y (< 0: in front of it). */
+static struct flex_pad pad_at_middle(const struct colon *c, int count,
+				     double force_n, double face_m)
+{
+	struct flex_pad pad = { .on = true, .in = { 0, 1, 0 },
+				.radius_m = 0.05, .force_n = force_n };
+
+	vec3_copy(pad.point, base_at(c, node_s(c, count / 2, count)));
+	pad.point[1] += face_m;
+	return pad;
+}
+
+/* The pad's tests' colon: its sigmoid's mesentery (N/m) and height (m). */
+#define PAD_K 600
+#define PAD_H 0.06
+
+/* A flex of independent nodes on C, the pad pressed at its middle with
+ * FORCE_N, its face FACE_M off the course (pad_at_middle()), each node
+ * pushed with PUSH (NULL: none) for 3 s; its mesentery per node into
+ * *KM, how many nodes it has into *COUNT. */
+static struct flex *pressed(struct colon *c, double force_n, double face_m,
+			    const double push[3], double *km, int *count)
+{
+	struct flex *f = flex_create(&lone);
+	struct flex_pad pad;
+
 	assert_non_null(f);
 	flex_attach(f, c);
-	count = flex_span_nodes(f, 0);
-	mid = count / 2;
-	far = 1;
-	centreline_span_range(colon_centreline(c), 0, &s0, &s1);
-	mid_s = node_s(c, mid, count);
-	push_nodes(f, c, push, 3.0);
-	free_y = flex_node(f, mid)[1];
-	assert_true(free_y < -0.02);
-	/* the pad 1 cm in front of the course at the span's middle */
-	vec3_copy(pad.point, base_at(c, mid_s));
-	pad.point[1] -= 0.01;
-	flex_reset(f);
+	*count = flex_span_nodes(f, 0);
+	*km = PAD_K / (double)*count;
+	pad = pad_at_middle(c, *count, force_n, face_m);
 	flex_set_pad(f, &pad);
 	push_nodes(f, c, push, 3.0);
-	held_n = flex_pad_force(f);
-	print_message("pad 1 cm off the course: the middle %.2f cm (free "
-		      "%.2f cm), a node %.1f cm away %.2f cm; the pad holds "
-		      "%.2f N\n", flex_node(f, mid)[1] * 100, free_y * 100,
-		      fabs(node_s(c, far, count) - mid_s) * 100,
-		      flex_node(f, far)[1] * 100, held_n);
-	for (int i = 0; i < count; i++) {
-		double off = fabs(node_s(c, i, count) - mid_s);
+	return f;
+}
 
-		if (off < pad.radius_m) {
-			assert_true(flex_node(f, i)[1] >= -0.01 - 1e-9);
+/* Whether node I lies within the pad's reach (the course runs along z,
+ * across the press). */
+static bool in_reach(const struct colon *c, int i, int count)
+{
+	return fabs(node_s(c, i, count) - node_s(c, count / 2, count)) <= 0.05;
+}
+
+/* The mesentery's force on a node displaced by Y (along one axis). */
+static double mesentery_n(double km, double h, double y)
+{
+	return km * y * (1 + (y / h) * (y / h));
+}
+
+/*
+ * The grip across the press: each node within the pad's reach, pushed
+ * sideways with P, is held at y with P = k_m y (1 + (y/h)^2) + k_p y
+ * (k_p = F / FLEX_PAD_GIVE_M), one outside it as by its mesentery alone;
+ * the pad's force is the held nodes' k_p y added up; lifted, nothing
+ * holds them.
+ */
+static void test_pad_grip(void **state)
+{
+	const double h = PAD_H, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
+	const double push[3] = { 0.5, 0, 0 };
+	struct colon *c = straight_colon(PAD_K, h);
+	double km, sum = 0, y;
+	int count, held = 0;
+	struct flex *f = pressed(c, fn, -0.01, push, &km, &count);
+
+	(void)state;
+	for (int i = 0; i < count; i++) {
+		y = flex_node(f, i)[0];
+		if (in_reach(c, i, count)) {
+			assert_near(mesentery_n(km, h, y) + kp * y, push[0],
+				    1e-3 * push[0]);
+			sum += kp * y;
+			held++;
+		} else {
+			assert_near(mesentery_n(km, h, y), push[0],
+				    1e-2 * push[0]);
 		}
 	}
-	assert_near(flex_node(f, mid)[1], -0.01, 1e-6);
-	assert_true(fabs(node_s(c, far, count) - mid_s) > pad.radius_m);
-	assert_true(flex_node(f, far)[1] < -0.01 - 0.002);
-	assert_true(held_n > 2 && held_n < 2 * count);
-	/* lifted */
-	pad.on = false;
-	flex_set_pad(f, &pad);
+	print_message("grip: %d nodes held at %.3f mm (free %.2f cm); the "
+		      "pad holds %.3f N\n", held,
+		      flex_node(f, count / 2)[0] * 1e3,
+		      flex_node(f, 0)[0] * 100, flex_pad_force(f));
+	assert_int_equal(held, 5);
+	assert_near(flex_pad_force(f), sum, 1e-3 * sum);
+	flex_set_pad(f, &(struct flex_pad){ .on = false });
 	push_nodes(f, c, push, 3.0);
-	assert_near(flex_node(f, mid)[1], free_y, 1e-4);
+	assert_near(mesentery_n(km, h, flex_node(f, count / 2)[0]), push[0],
+		    1e-2 * push[0]);
 	assert_near(flex_pad_force(f), 0, 1e-12);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
+/*
+ * The pad's face: pressed 1 cm beyond the course (y_f = +1 cm), it puts
+ * the colon under it back onto its face and holds it there: pushed with P
+ * towards the wall, a node within the reach sits at y with
+ * P = k_p (y_f - y) - k_m y (1 + (y/h)^2); one outside it as by its
+ * mesentery alone.
+ */
+static void test_pad_face(void **state)
+{
+	const double h = PAD_H, fn = 20, kp = fn / FLEX_PAD_GIVE_M;
+	const double push[3] = { 0, -2, 0 }, face = 0.01;
+	struct colon *c = straight_colon(PAD_K, h);
+	double km, sum = 0;
+	int count;
+	struct flex *f = pressed(c, fn, face, NULL, &km, &count);
+
+	(void)state;
+	assert_near(flex_node(f, count / 2)[1], face * kp / (kp + km),
+		    1e-3 * face);
+	push_nodes(f, c, push, 3.0);
+	for (int i = 0; i < count; i++) {
+		double y = flex_node(f, i)[1];
+
+		if (in_reach(c, i, count)) {
+			assert_near(kp * (face - y) - mesentery_n(km, h, y),
+				    -push[1], 1e-3 * -push[1]);
+			sum += kp * (face - y);
+		} else {
+			assert_near(mesentery_n(km, h, -y), -push[1],
+				    1e-2 * -push[1]);
+		}
+	}
+	print_message("face: the middle %.2f cm (the face %.0f cm); the pad "
+		      "holds %.2f N\n", flex_node(f, count / 2)[1] * 100,
+		      face * 100, flex_pad_force(f));
+	assert_near(flex_pad_force(f), sum, 1e-3 * sum);
+	assert_true(flex_pad_force(f) < fn);
+	flex_destroy(f);
+	colon_destroy(c);
+}
+
+/*
+ * A hand weaker than the push: the pad holds with the hand's force F, no
+ * more, shared by the nodes it holds (alike here: n of them), which go
+ * on past its face until P - F / n = k_m |y| (1 + (y/h)^2).
+ */
+static void test_pad_bound(void **state)
+{
+	const double fn = 2, push[3] = { 0, -2, 0 };
+	struct colon *c = straight_colon(PAD_K, PAD_H);
+	double km;
+	int count, held = 0;
+	struct flex *f = pressed(c, fn, -0.01, push, &km, &count);
+
+	(void)state;
+	for (int i = 0; i < count; i++) {
+		held += in_reach(c, i, count);
+	}
+	print_message("bound: a %.0f N hand holds %.4f N over %d nodes, the "
+		      "middle at %.2f cm\n", fn, flex_pad_force(f), held,
+		      flex_node(f, count / 2)[1] * 100);
+	assert_near(flex_pad_force(f), fn, 1e-9);
+	for (int i = 0; i < count; i++) {
+		if (in_reach(c, i, count)) {
+			assert_near(mesentery_n(km, PAD_H, -flex_node(f, i)[1]),
+				    -push[1] - fn / held, 1e-3 * -push[1]);
+		}
+	}
 	flex_destroy(f);
 	colon_destroy(c);
 }
@@ -339,7 +460,9 @@ int main(void)
 		cmocka_unit_test(test_mesentery_law),
 		cmocka_unit_test(test_pushes),
 		cmocka_unit_test(test_gravity_sag),
-		cmocka_unit_test(test_pad),
+		cmocka_unit_test(test_pad_grip),
+		cmocka_unit_test(test_pad_face),
+		cmocka_unit_test(test_pad_bound),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -2,8 +2,14 @@
  * test_rodcourse.c - the rod model's demo course (config/scenarios/
  * demo.scn) in lockstep on simulated time: it is the trainee's course
  * (tests/tools/trainee.h, scenario_gen's: the file holds what she wrote
- * while she played it, byte for byte), and played on the normal case:
+ * while she played it, byte for byte), and played on the normal case with
+ * the demo's configuration (trainee_demo_config(): the patient enabled):
  *  - the tip reaches the cecum;
+ *  - the patient: she insufflates, washes the lens, has the assistant
+ *    press and the patient turned, each at least once and each to its
+ *    effect, never insufflating beyond her 25 mmHg, the gas's pressure
+ *    within Kozarek et al.'s 9-57 mmHg (the tip free); the gas used a
+ *    minute printed beside Bretthauer et al.'s 0.25 L/min;
  *  - a loop forms on the way (the sigmoid pushed more than 2.5 cm off its
  *    course while the hand pushes on at the sigmoid's end) and is reduced
  *    (back under 2.5 cm after the withdrawal that follows);
@@ -14,7 +20,7 @@
  *    within 1 N m), nothing faults;
  *  - played again from the file she wrote, as endosimd plays it
  *    (offline.h), it repeats her run bit for bit (the first 30 s
- *    compared);
+ *    compared: her valves and the assistant's first press among them);
  *  - last, the shipped demo is her course, step for step: a change of
  *    the physics fails here after the checks above have judged it (and
  *    the demo is then written anew, README.md says how).
@@ -23,6 +29,7 @@
  * ENDOSIM_TOP naming it.
  */
 #include <math.h>
+#include <stdbool.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -36,6 +43,7 @@
 
 #include "model/anatomy.h"
 #include "conf/cases.h"
+#include "model/gas.h"
 #include "offline.h"
 #include "trainee.h"
 
@@ -53,7 +61,25 @@ struct seen {
 	uint32_t faults;
 	double sum_err;       /* each axis' command less its parts' sum */
 	uint64_t hash;        /* of the first REPEAT_CYCLES states */
+	/* the patient's care */
+	struct trainee_actions did; /* what she asked for */
+	double length_s;      /* the course's */
+	double gas_in_m3;     /* pumped in over it */
+	double p_min_pa, p_max_pa; /* the gas's pressure */
+	double p_air_max_pa;  /* ... while the air valve was covered */
+	bool washing;         /* the jet on a dirty lens ... */
+	int cleared;          /* ... that left it clear */
+	double pad_n_s;       /* what the assistant's hand held, N s ... */
+	double pressed_s;     /* ... over the time she pressed */
+	uint32_t positions;   /* the positions the patient lay in (bits) */
 };
+
+/* The bound she keeps the pressure under while insufflating (trainee.c),
+ * and Kozarek et al.'s range with the tip free (mmHg). */
+#define PRESSURE_MAX_MMHG 25.0
+#define KOZAREK_MIN_MMHG 9.0
+#define KOZAREK_MAX_MMHG 57.0
+#define MMHG (1 / GAS_PA_PER_MMHG)
 
 #define REPEAT_CYCLES 30000
 
@@ -74,6 +100,32 @@ static double parts_error(const struct endosim_state *s)
 				 h->wheel_elastic_nm[w] - h->damping[2 + w]));
 	}
 	return e;
+}
+
+/* The patient as the course leaves it: the gas, the lens, the hand. */
+static void watch_patient(struct seen *w, const struct endosim_patient_state *p)
+{
+	double dirt = fmax(p->lens_smear, p->lens_murk);
+
+	w->p_min_pa = fmin(w->p_min_pa, p->pressure_pa);
+	w->p_max_pa = fmax(w->p_max_pa, p->pressure_pa);
+	if (p->valves & ENDOSIM_VALVE_AIR) {
+		w->p_air_max_pa = fmax(w->p_air_max_pa, p->pressure_pa);
+	}
+	w->washing = (p->valves & ENDOSIM_VALVE_WATER) &&
+		     (w->washing || dirt > 0.3);
+	if (w->washing && dirt < 0.05) {
+		w->cleared++;
+		w->washing = false;
+	}
+	if (p->hand_site >= 0) {
+		w->pad_n_s += p->pad_n * OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS;
+		w->pressed_s += OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS;
+	}
+	if (!p->turning) {
+		w->positions |= 1u << p->position;
+	}
+	w->gas_in_m3 = p->gas_in_m3;
 }
 
 static void watch(const struct endosim_state *s, void *arg)
@@ -102,6 +154,8 @@ static void watch(const struct endosim_state *s, void *arg)
 	if (w->cycles <= REPEAT_CYCLES) {
 		w->hash = offline_hash(w->hash, s);
 	}
+	watch_patient(w, &s->patient);
+	w->length_s = s->scenario_time_s;
 }
 
 /* Plays the trainee's course, her script into SCRIPT (may be NULL). */
@@ -114,9 +168,9 @@ static void play(struct seen *w, FILE *script)
 
 	memset(w, 0, sizeof(*w));
 	w->cecum_at_s = -1;
+	w->p_min_pa = INFINITY;
 	w->hash = OFFLINE_HASH_START;
-	config_defaults(&cfg);
-	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	trainee_demo_config(&cfg);
 	assert_int_equal(anatomy_load(&a, CASE, err, sizeof(err)), 0);
 	w->cecum = anatomy_segment_start(&a, ANATOMY_CECUM) + 0.02;
 	w->junction = anatomy_segment_start(&a, ANATOMY_DESCENDING);
@@ -126,6 +180,7 @@ static void play(struct seen *w, FILE *script)
 	}
 	trainee_watch(t, watch, w);
 	assert_true(trainee_course(t, &a, 0.03));
+	w->did = *trainee_did(t);
 	trainee_destroy(t);
 }
 
@@ -199,6 +254,46 @@ static void test_course(void **unused)
 }
 
 /*
+ * The patient in the course: she used each of her means at least once and
+ * each did what it is for (the gas pumped in, a wash that left the lens
+ * clear, the assistant's hand holding the colon, the patient lying in
+ * another position), never insufflated beyond her bound, and the gas's
+ * pressure (the free tip's: the model has one) stayed within what Kozarek
+ * et al. measured with the tip free. The gas used a minute is printed
+ * against Bretthauer et al.'s (a short course: the first filling weighs
+ * more than in a half-hour colonoscopy).
+ */
+static void test_patient_care(void **unused)
+{
+	const struct seen w = course;
+	const struct trainee_actions *d = &w.did;
+
+	(void)unused;
+	print_message("the patient: %d insufflations, %.2f L in %.0f s: %.2f "
+		      "L/min (Bretthauer et al.: about 0.25); the gas at "
+		      "%.1f-%.1f mmHg (Kozarek et al., tip free: %.0f-%.0f), "
+		      "at most %.1f while she insufflated; %d washes, %d "
+		      "leaving the lens clear; the hand %d time(s), %.0f s, "
+		      "holding %.1f N on average; %d turns, positions seen "
+		      "0x%x\n",
+		      d->insufflations, w.gas_in_m3 * 1e3, w.length_s,
+		      w.gas_in_m3 * 1e3 / (w.length_s / 60), w.p_min_pa * MMHG,
+		      w.p_max_pa * MMHG, KOZAREK_MIN_MMHG, KOZAREK_MAX_MMHG,
+		      w.p_air_max_pa * MMHG, d->washes, w.cleared, d->hands,
+		      w.pressed_s, w.pad_n_s / fmax(w.pressed_s, 1e-9),
+		      d->turns, w.positions);
+	assert_true(w.cecum_at_s > 0);
+	assert_int_equal(w.faults, 0);
+	assert_true(d->insufflations >= 1 && w.gas_in_m3 > 0);
+	assert_true(d->washes >= 1 && w.cleared >= 1);
+	assert_true(d->hands >= 1 && w.pad_n_s > 0);
+	assert_true(d->turns >= 1 && (w.positions & (w.positions - 1)));
+	assert_true(w.p_air_max_pa * MMHG < PRESSURE_MAX_MMHG + 0.5);
+	assert_true(w.p_min_pa * MMHG >= KOZAREK_MIN_MMHG);
+	assert_true(w.p_max_pa * MMHG <= KOZAREK_MAX_MMHG);
+}
+
+/*
  * Same inputs, same outputs, bit for bit: the file she wrote, played as
  * the daemon plays a scenario, repeats her run (its states from the first
  * cycle she acted in).
@@ -212,8 +307,7 @@ static void test_repeats_exactly(void **unused)
 	uint64_t h = OFFLINE_HASH_START;
 
 	(void)unused;
-	config_defaults(&cfg);
-	cfg.haptics.model = HAPTICS_MODEL_ROD;
+	trainee_demo_config(&cfg);
 	snprintf(cfg.colon.file, sizeof(cfg.colon.file), CASE);
 	colon = cases_load(&cfg, NULL, err, sizeof(err));
 	assert_non_null(colon);
@@ -273,6 +367,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_course),
+		cmocka_unit_test(test_patient_care),
 		cmocka_unit_test(test_repeats_exactly),
 		cmocka_unit_test(test_demo_is_her_course),
 	};

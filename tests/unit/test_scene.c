@@ -109,10 +109,10 @@ static void test_chunks_cover_default_mesh(void **state)
 	assert_string_equal(r->info->sites[0]->name, "llq");
 	assert_string_equal(r->info->sites[1]->name, "umbilical");
 	assert_int_equal(r->info->sites[1]->n_position_m, 3);
-	assert_true(r->info->sites[1]->position_m[1] == -0.23);
+	assert_true(r->info->sites[1]->position_m[1] == -0.199);
 	assert_int_equal(r->info->sites[0]->n_direction, 3);
 	assert_true(r->info->sites[0]->direction[1] == 1);
-	assert_true(r->info->sites[0]->radius_m == 0.06);
+	assert_true(r->info->sites[0]->radius_m == 0.08);
 	assert_true(protobuf_c_message_check(&r->base));
 	scene_destroy(s);
 	check_chunks(c);
