@@ -137,12 +137,13 @@ static void segments_at(struct gas *g, double p,
 {
 	for (int i = 0; i < g->segments; i++) {
 		struct gas_segment *s = &g->seg[i];
+		double least = SCOPE_RADIUS_M / s->radius_m, f;
 
 		s->transmural_pa = p - p_abd[i];
-		/* the wall closes on the scope, not past it */
-		s->factor = fmax(sqrt(gas_law_volume(&s->law, s->transmural_pa,
-						     NULL)),
-				 SCOPE_RADIUS_M / s->radius_m);
+		/* the wall closes on the scope, not past it (a NaN stays one:
+		   the loop's non-finite check must see it) */
+		f = sqrt(gas_law_volume(&s->law, s->transmural_pa, NULL));
+		s->factor = f < least ? least : f;
 		s->tension_n_per_m = fmax(0, s->transmural_pa) * s->widest_m *
 				     s->factor;
 	}
