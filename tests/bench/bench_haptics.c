@@ -5,7 +5,11 @@
  * along the wall. For `make bench`.
  *
  *   bench_haptics [--model rod|paper] [--segments N] [--no-shading]
- *                 [--ring VERTICES --step M] CASE_FILE SCENARIO
+ *                 [--patient] [--ring VERTICES --step M] CASE_FILE SCENARIO
+ *
+ * --patient: the patient's body around the colon ([patient] enabled:
+ * the gas, gravity, the fluid, the lens, the assistant's pad), played as
+ * the scenario's valves and commands ask.
  *
  * The force loop's own parts run as in the daemon, off line
  * (tests/tools/offline.h): the simulated rig (plants and the scripted
@@ -138,8 +142,8 @@ static void simulate(const struct config *cfg, struct colon *colon,
 static void usage(void)
 {
 	fprintf(stderr, "usage: bench_haptics [--model rod|paper] "
-		"[--segments N] [--no-shading] [--ring VERTICES --step M] "
-		"CASE_FILE SCENARIO\n");
+		"[--segments N] [--no-shading] [--patient] "
+		"[--ring VERTICES --step M] CASE_FILE SCENARIO\n");
 	exit(2);
 }
 
@@ -159,6 +163,10 @@ int main(int argc, char **argv)
 
 		if (!strcmp(opt, "--no-shading")) {
 			cfg.haptics.force_shading = 0;
+			continue;
+		}
+		if (!strcmp(opt, "--patient")) {
+			cfg.patient.enabled = 1;
 			continue;
 		}
 		if (++i >= argc) {
@@ -193,8 +201,9 @@ int main(int argc, char **argv)
 	if (cfg.haptics.model == HAPTICS_MODEL_ROD) {
 		printf(" (%d segments)", cfg.rod.segments);
 	}
-	printf(", force shading %s:\n", cfg.haptics.force_shading ? "on"
-								   : "off");
+	printf(", force shading %s%s:\n",
+	       cfg.haptics.force_shading ? "on" : "off",
+	       cfg.patient.enabled ? ", the patient's body" : "");
 	memset(&r, 0, sizeof(r));
 	simulate(&cfg, colon, argv[i + 1], &r);
 	printf("  one force-loop cycle (safety, kinematics, haptics): p50 "
