@@ -221,23 +221,6 @@ static void axes(struct bytes *b, struct rodscope_axes *a)
 	}
 }
 
-/* Gravity and the assistant's pad, anywhere about the colon. */
-static void patient(struct bytes *b, double g[3], struct flex_pad *pad)
-{
-	memset(pad, 0, sizeof(*pad));
-	for (int i = 0; i < 3; i++) {
-		g[i] = take(b, -20, 20);
-		pad->point[i] = take(b, -0.3, 0.6);
-		pad->in[i] = take(b, -1, 1);
-	}
-	pad->on = vec3_norm(pad->in) > 1e-3;
-	if (pad->on) {
-		vec3_scale(pad->in, pad->in, 1 / vec3_norm(pad->in));
-	}
-	pad->radius_m = take(b, 0, 0.2);
-	pad->force_n = take(b, 0, 60);
-}
-
 static void tip(struct bytes *b, struct rodscope_tip *t)
 {
 	memset(t, 0, sizeof(*t));
