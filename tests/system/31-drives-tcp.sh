@@ -20,6 +20,11 @@ saturation_s = 3600
 ; forces in full a tenth of a second after enable, not a second: the
 ; ramp itself is 63-enable-ramp's
 enable_ramp_s = 0.1
+[haptics]
+; the paper's model: with the tip off the wall, only the damping renders,
+; a steady torque to find in the drive's register (the rod's tip bent
+; against the wall would add a contact torque only_damping leaves on)
+model = paper
 [axis.wheel_ud]
 backend = modbus
 [axis.wheel_lr]
@@ -76,7 +81,7 @@ mb "move 1 30"
 mb "hand 2 0.002 1"
 check "only the damping renders" only_damping
 ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.01 >/dev/null
-ctl enable >/dev/null
+ctl enable >/dev/null; for i in $(seq 8); do echo "# $(ctl --json status | jq -c "[.axes.wheel_ud.limited, .axes.wheel_ud.position, .haptics.wheel_contact_nm, .haptics.wheel_tension_nm, .haptics.wheel_elastic_nm, .haptics.damping, .haptics.passivity_damping, .axes.wheel_ud.commanded]")"; done
 check "enabled: both drives" wait_for wheels_enabled
 check "forces in full once the enable ramp is over" wait_for status_true '.ramp == 1'
 # torque_rendered: the damping's torque on wheel_ud, turned at pi rad/s

@@ -106,14 +106,18 @@ start_on() {
 	start_daemon --config "$conf" "$@"
 }
 
-# only_damping: the colon's forces off, so that each axis renders only its
-# light damping, -b v: a steady force at a steady speed, to compare what
-# endosimd sends with what the emulated motors get
+# only_damping: the colon's forces and the knobs' end stops off, so that
+# each axis renders only its light damping, -b v: a steady force at a
+# steady speed, to compare what endosimd sends with what the emulated
+# motors get (a wheel turned on past its stop would otherwise feel a
+# torque that grows between reading the status and reading the drive)
 only_damping() {
 	local k
 	for k in friction_n_s_per_m_rad torsion_n_m_s_per_rad2 \
 		wall_stiffness_n_per_m wall_damping_n_s_per_m \
-		wire_tension_n_m_per_m bending_stiffness_n_m_per_rad; do
+		wire_tension_n_m_per_m bending_stiffness_n_m_per_rad \
+		wheel_stop_stiffness_n_m_per_rad \
+		wheel_stop_damping_n_m_s_per_rad; do
 		ctl set "haptics.$k" 0 >/dev/null || return 1
 	done
 }
