@@ -14,36 +14,59 @@ set -u
 SINCE=b34ccd01ec9208a352d8b319649f7fd58fbd4f3c
 SUBJECT_MAX=72
 
-# message_ok TEXT MERGE: 0 when TEXT has the form; the fault on stdout.
-message_ok() {
-	local text=$1 merge=$2 subject second body
-	subject=$(printf '%s\n' "$text" | sed -n 1p)
-	second=$(printf '%s\n' "$text" | sed -n 2p)
-	body=$(printf '%s\n' "$text" | sed -n '3,$p' | grep -v '^[[:space:]]*$')
-	if [ -z "$subject" ]; then
-		echo "no subject"
-	elif [ "${#subject}" -gt "$SUBJECT_MAX" ]; then
-		echo "subject of ${#subject} characters (at most $SUBJECT_MAX)"
-	elif [ -n "$second" ]; then
-		echo "no blank line after the subject"
-	elif [ "$merge" = no ] && [ -z "$body" ]; then
-		echo "no body: say why"
-	else
-		return 0
-	fi
-	return 1
+# check_messages [hook]: reads records separated by NUL, each a line "ID
+# PARENT..." (a merge has two parents or more) and the message below it;
+# prints "not ok - ID SUBJECT: WHY" for each message out of form and the
+# tally "N passed, N failed" (the hook: the why alone, on stderr); exits
+# non-zero when any failed.
+check_messages() {
+	awk -v max="$SUBJECT_MAX" -v hook="${1:-}" 'BEGIN { RS = "\0" }
+	NF == 0 { next }
+	{
+		n = split($0, line, "\n")
+		merge = split(line[1], head, " ") > 2
+		subject = line[2]
+		body = 0
+		for (i = 4; i <= n; i++) {
+			body = body || line[i] ~ /[^[:space:]]/
+		}
+		why = ""
+		if (subject == "") {
+			why = "no subject"
+		} else if (length(subject) > max) {
+			why = "subject of " length(subject) " characters (at most " max ")"
+		} else if (line[3] != "") {
+			why = "no blank line after the subject"
+		} else if (!merge && !body) {
+			why = "no body: say why"
+		}
+		if (why == "") {
+			passed++
+		} else if (hook) {
+			failed++
+			printf "commit message: %s (see README, Contributing)\n", why > "/dev/stderr"
+		} else {
+			failed++
+			printf "not ok - %s %s: %s\n", head[1], substr(subject, 1, 50), why
+		}
+	}
+	END {
+		if (!hook) {
+			printf "%d passed, %d failed\n", passed, failed
+		}
+		exit failed > 0
+	}'
 }
 
 if [ "${1:-}" = --message ]; then
 	# the hook: comments and everything below the scissors line are git's
-	text=$(sed -e '/^# -\{8,\} >8 -\{8,\}/,$d' -e '/^#/d' "$2")
-	merge=no
-	git rev-parse -q --verify MERGE_HEAD >/dev/null 2>&1 && merge=yes
-	if ! why=$(message_ok "$text" "$merge"); then
-		echo "commit message: $why (see README, Contributing)" >&2
-		exit 1
-	fi
-	exit 0
+	parents=one
+	git rev-parse -q --verify MERGE_HEAD >/dev/null 2>&1 && parents="one two"
+	{
+		echo "message $parents"
+		sed -e '/^# -\{8,\} >8 -\{8,\}/,$d' -e '/^#/d' "$2"
+	} | check_messages hook
+	exit
 fi
 
 TOP=$(cd "$(dirname "$0")/.." && pwd)
@@ -54,17 +77,4 @@ if ! command -v git >/dev/null 2>&1 ||
 	echo "0 passed, 0 failed, 1 skipped"
 	exit 0
 fi
-passed=0
-failed=0
-for c in $(git rev-list --reverse "$SINCE..HEAD"); do
-	merge=no
-	[ "$(git rev-list --parents -n 1 "$c" | wc -w)" -gt 2 ] && merge=yes
-	if why=$(message_ok "$(git log -1 --format=%B "$c")" "$merge"); then
-		passed=$((passed + 1))
-	else
-		echo "not ok - $(git log -1 --format='%h %s' "$c" | cut -c1-60): $why"
-		failed=$((failed + 1))
-	fi
-done
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+git log --reverse -z --format='%h %p%n%B' "$SINCE..HEAD" | check_messages
