@@ -4,7 +4,7 @@
 # held in the sigmoid, nobody's thumb on the wheels, torque on. The wire
 # tension and the bending section's spring move each wheel; where they
 # would carry it past the tip's angulation limit, the knob's stop (haptics.h)
-# holds it. 30 s of the course: no fault (no runaway, no saturation), and
+# holds it. 20 s of the course: no fault (no runaway, no saturation), and
 # each wheel at rest (to its encoder's counts) within its limit (bend limit
 # / gain), give or take what the stop yields under the wheel's whole torque
 # limit. The wall's stiffness on a wheel is limited to what the drive's lag
@@ -57,9 +57,10 @@ limit_rad() {
 		'BEGIN { print (g > 0 ? l / g : 1e9) }'
 }
 
-# 30 s of the course; under the sanitizers (SANITIZED=1, a pass for memory
-# errors: the plain pass has checked the 30 s) the first 15
-if [ -n "${SANITIZED:-}" ]; then course_s=15; else course_s=30; fi
+# 20 s of the course (the tube stops in the sigmoid within 10, the wheels
+# come to rest after it); under the sanitizers (SANITIZED=1, a run for
+# memory errors: the plain pass has checked the 20 s) the first 15
+if [ -n "${SANITIZED:-}" ]; then course_s=15; else course_s=20; fi
 # course_over_or_fault: the course has run its time, or a fault ended it
 course_over_or_fault() {
 	state_is FAULT || status_true ".scenario_time_s >= $course_s"
