@@ -15,6 +15,10 @@
  * moves the colon from its rest before the push: that is not the loop);
  * the tip's advance is how far its point moved.
  *
+ * Under AddressSanitizer (three times slower) each push is two steps,
+ * with the assistant over the sigmoid and without: a run for memory
+ * errors; the plain build checks the hand's effect.
+ *
  * Run from the top of the source tree (tests/run.sh does), or with
  * ENDOSIM_TOP naming it.
  */
@@ -41,6 +45,11 @@
 #define PUSH_MOST_M 0.30
 #define LOOP_M 0.05        /* the clinic's loop */
 #define SAMPLES 4096       /* the centreline's, at most */
+#if defined(__SANITIZE_ADDRESS__)
+#define SANITIZED 1
+#else
+#define SANITIZED 0
+#endif
 
 struct push {
 	double loop_m;     /* the sigmoid's growth under the push */
@@ -130,6 +139,14 @@ static void test_hand_over_the_loop(void **unused)
 	struct push none, near, far;
 
 	(void)unused;
+	if (SANITIZED) {
+		none = held_push(NULL, 2);
+		near = held_push("llq", 2);
+		assert_true(near.steps == 2 && none.steps == 2);
+		print_message("sanitized build: two steps each; the hand's "
+			      "effect is checked in the plain build\n");
+		return;
+	}
 	none = held_push(NULL, 0);
 	near = held_push("llq", none.steps);
 	far = held_push("umbilical", none.steps);
