@@ -40,7 +40,9 @@ watch_valves() {
 	"$TOOLS/shm_probe" "$SHM" --valves "$1" "$2" 10 >"$TMP/valves.out" \
 		2>&1 &
 	WATCH_PID=$!
-	sleep 0.2 # it refuses a state that is so already
+	# it refuses a state that is so already: the action waits until it
+	# has read the state before it
+	wait_for grep -q '^watching$' "$TMP/valves.out"
 }
 
 # seen KEY: in the first state the witness saw so (before.KEY: the one

@@ -11,7 +11,9 @@
  *                                          are VALUE; print that first state
  *                                          as --once does, and the state
  *                                          before it as before.KEY=VALUE
- *                                          (they must not be so at first)
+ *                                          (they must not be so at first:
+ *                                          "watching" once it has read
+ *                                          the first state, to wait for)
  *
  * Exit 0 when every read was consistent and the cycle advanced (--valves:
  * when the valves came to VALUE in time), 1 otherwise.
@@ -111,6 +113,10 @@ static int watch_valves(struct shm_reader *r, char **arg)
 				print_once(&st);
 				print_valves("before.", &prev);
 				return 0;
+			}
+			if (!have_prev) {
+				printf("watching\n");
+				fflush(stdout);
 			}
 			prev = st;
 			have_prev = true;
