@@ -239,7 +239,6 @@ void lensfx_destroy(struct lensfx *fx)
 
 bool lensfx_visible(const struct endosim_patient_state *p)
 {
-	if (getenv("NOLENS")) return false;
 	return p->enabled &&
 	       (p->lens_smear > LENSFX_CLEAN || p->lens_murk > LENSFX_CLEAN ||
 		p->lens_redout > LENSFX_CLEAN ||
