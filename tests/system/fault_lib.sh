@@ -42,8 +42,7 @@ FAULT_ARGS=(--set limits.enable_ramp_s=0.1)
 # the paper's), on a 2-CPU machine beside the emulators and the witness.
 # The fault path does not depend on the model: the plain pass runs these
 # tests with the rod (the default), the ASan pass runs the rod's code in
-# its unit tests (test_rod, test_rodcourse, test_clinic) and in 01, 14,
-# 40 and 74.
+# its unit tests (test_rod, test_rodcourse, test_clinic) and in 01.
 [ -z "${SANITIZED:-}" ] || FAULT_ARGS+=(--set haptics.model=paper)
 
 # start_sim [ARGS...]: the simulated rig, the hand moving every axis,
