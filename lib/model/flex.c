@@ -553,10 +553,13 @@ void flex_span_forces(const struct flex *f, int span, double pushed[3],
 	}
 }
 
-double flex_span_displacement(const struct flex *f, int span)
+/* Span SPAN's largest node displacement (*MOST, m) and its mesentery's
+ * pulls summed (*TENSION, N). */
+static void span_stretch(const struct flex *f, int span, double *most,
+			 double *tension)
 {
-	double most = 0;
-
+	*most = 0;
+	*tension = 0;
 	for (int i = 0; i < f->chains; i++) {
 		const struct chain *c = &f->chain[i];
 
@@ -564,8 +567,26 @@ double flex_span_displacement(const struct flex *f, int span)
 			continue;
 		}
 		for (int k = c->first; k < c->first + c->count; k++) {
-			most = fmax(most, vec3_norm(f->y[k]));
+			double y = vec3_norm(f->y[k]), q = y / c->h;
+
+			*most = fmax(*most, y);
+			*tension += c->k * (1 + q * q) * y;
 		}
 	}
+}
+
+double flex_span_tension(const struct flex *f, int span)
+{
+	double most, tension;
+
+	span_stretch(f, span, &most, &tension);
+	return tension;
+}
+
+double flex_span_displacement(const struct flex *f, int span)
+{
+	double most, tension;
+
+	span_stretch(f, span, &most, &tension);
 	return most;
 }

@@ -190,4 +190,12 @@ void flex_span_forces(const struct flex *f, int span, double pushed[3],
 /* Span SPAN's largest node displacement from rest (m): the loop's size. */
 double flex_span_displacement(const struct flex *f, int span);
 
+/*
+ * Span SPAN's mesentery tension (N): the sum over its nodes of the pull
+ * of each one's mesentery, k_m (1 + (|y| / h)^2) |y|, what stretches it
+ * where the colon is pushed off its course (pain.h). A span pushed
+ * evenly, F on each of its nodes, holds its nodes' count times F at rest.
+ */
+double flex_span_tension(const struct flex *f, int span);
+
 #endif

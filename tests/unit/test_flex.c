@@ -185,6 +185,9 @@ static void test_mesentery_law(void **state)
 			      y * 100, want);
 		assert_near(want, fn[trial], 0.01 * fn[trial]);
 		assert_near(flex_span_displacement(f, 0), y, 1e-9);
+		/* its tension: every node's push, held */
+		assert_near(flex_span_tension(f, 0), count * fn[trial],
+			    0.01 * count * fn[trial]);
 		/* at rest the mesentery holds what was pushed, at every node */
 		for (int i = 0; i < count; i++) {
 			assert_near(flex_node(f, i)[1], y, 1e-6);

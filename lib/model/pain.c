@@ -1,0 +1,114 @@
+/* pain.c - the patient's pain from the mechanics (pain.h). */
+#include "model/pain.h"
+
+#include <math.h>
+#include <stddef.h>
+
+static const char *const cause_names[PAIN_CAUSES] = {
+	"none", "looping", "straightening", "insufflation", "tip",
+};
+
+static const char *const sedation_names[PAIN_SEDATIONS] = {
+	"none", "minimal", "moderate", "deep",
+};
+
+/* gain and threshold factors, in enum pain_sedation's order */
+static const double sedation_gain[PAIN_SEDATIONS] = { 1, 0.8, 0.6, 0.25 };
+static const double sedation_threshold[PAIN_SEDATIONS] = { 1, 1.1, 1.25, 2 };
+
+void pain_sedation_factors(int s, double *gain, double *threshold)
+{
+	if (s < 0 || s >= PAIN_SEDATIONS) {
+		s = PAIN_DEFAULT_SEDATION;
+	}
+	*gain = sedation_gain[s];
+	*threshold = sedation_threshold[s];
+}
+
+void pain_reset(struct pain *p)
+{
+	*p = (struct pain){ .cause = PAIN_CAUSE_NONE, .place = -1 };
+}
+
+/* gain (x - threshold) above the threshold; 0 below, and for NaN */
+static double term(double x, double threshold, double gain)
+{
+	return x > threshold ? gain * (x - threshold) : 0;
+}
+
+/* The largest of N values (non-finite ones none) and its index (-1). */
+static double largest(int n, const double *x, int *at)
+{
+	double most = 0;
+
+	*at = -1;
+	for (int i = 0; x && i < n; i++) {
+		if (isfinite(x[i]) && x[i] > most) {
+			most = x[i];
+			*at = i;
+		}
+	}
+	return most;
+}
+
+/* Stretch is looping while the tube goes in or stays, straightening
+ * while it comes out or turns. */
+static int stretch_cause(const struct pain_params *par,
+			 const struct pain_input *in)
+{
+	if (in->insertion_m_s < -par->moving_m_s ||
+	    fabs(in->roll_rad_s) > par->turning_rad_s) {
+		return PAIN_CAUSE_STRAIGHTENING;
+	}
+	return PAIN_CAUSE_LOOPING;
+}
+
+void pain_step(struct pain *p, const struct pain_params *par,
+	       const struct pain_input *in, double dt_s)
+{
+	double g, t, tau, stretch, wall;
+	int span, seg;
+
+	pain_sedation_factors(par->sedation, &g, &t);
+	stretch = largest(in->spans, in->span_tension_n, &span);
+	wall = largest(in->segments, in->wall_n_per_m, &seg);
+	p->stretch = term(stretch, t * par->stretch_threshold_n,
+			  g * par->stretch_gain_per_n);
+	p->distension = term(wall, t * par->wall_threshold_n_per_m,
+			     g * par->wall_gain_per_n_per_m);
+	p->tip = term(in->tip_force_n, t * par->tip_threshold_n,
+		      g * par->tip_gain_per_n);
+	p->stimulus = fmin(PAIN_MAX, p->stretch + p->distension + p->tip);
+	p->cause = PAIN_CAUSE_NONE;
+	p->place = -1;
+	if (p->stimulus > 0) {
+		if (p->tip >= p->stretch && p->tip >= p->distension) {
+			p->cause = PAIN_CAUSE_TIP;
+			p->place = in->tip_segment;
+		} else if (p->distension >= p->stretch) {
+			p->cause = PAIN_CAUSE_INSUFFLATION;
+			p->place = seg;
+		} else {
+			p->cause = stretch_cause(par, in);
+			p->place = span >= 0 && in->span_segment ?
+					   in->span_segment[span] : -1;
+		}
+	}
+	tau = p->stimulus > p->level ? par->rise_s : par->fade_s;
+	if (dt_s > 0 && tau > 0) {
+		p->level += (p->stimulus - p->level) * -expm1(-dt_s / tau);
+	} else if (dt_s > 0) {
+		p->level = p->stimulus;
+	}
+}
+
+const char *pain_cause_name(int cause)
+{
+	return cause >= 0 && cause < PAIN_CAUSES ? cause_names[cause] : NULL;
+}
+
+const char *pain_sedation_name(int sedation)
+{
+	return sedation >= 0 && sedation < PAIN_SEDATIONS ?
+		       sedation_names[sedation] : NULL;
+}
