@@ -151,6 +151,14 @@ else
 fi
 system_tests "$BUILD" "" ""
 if [ -d "$BUILD/asan/tests" ]; then
+	# a name that names no test (renamed, mistyped) fails, not skips
+	for name in $ASAN_SYSTEM; do
+		if [ ! -e "tests/system/$name.sh" ]; then
+			echo "not ok - ASAN_SYSTEM names $name: no such test" \
+				>"$work/system.out"
+			record "asan/system/$name" "$work/system.out" 1 0
+		fi
+	done
 	# a system test may shorten what only checks timing there
 	# shellcheck disable=SC2086 # the list's words are the names
 	system_tests "$BUILD/asan" "asan/" 1 $ASAN_SYSTEM
