@@ -32,6 +32,7 @@
 #include "viewer/gfx.h"
 #include "viewer/gpumesh.h"
 #include "viewer/hud.h"
+#include "viewer/imagescale.h"
 #include "viewer/input.h"
 #include "viewer/lensfx.h"
 #include "viewer/link.h"
@@ -79,6 +80,8 @@ struct app {
 	struct draw2d *d2d;
 	struct endo *endo;
 	struct lensfx *lensfx;
+	struct imagescale *scale; /* the image drawn smaller, scaled up */
+	double image_scale;       /* of each side: 1 full size */
 	struct overview *overview;
 	struct hud *hud;
 	struct mapview *mapview; /* the M key's overlay */
@@ -151,12 +154,22 @@ static int make_renderers(struct app *a)
 	a->d2d = draw2d_create(a->font);
 	a->endo = endo_create();
 	a->lensfx = lensfx_create();
+	a->scale = imagescale_create();
+	a->image_scale = a->opt.image_scale > 0 ?
+		a->opt.image_scale :
+		imagescale_for((const char *)glGetString(GL_RENDERER));
+	if (a->image_scale < 1) {
+		log_info("the endoscopic image drawn at %.0f %% of its size "
+			 "and scaled up (--image-scale 1: full)",
+			 100 * a->image_scale);
+	}
 	a->overview = overview_create();
 	a->hud = hud_create();
 	a->mapview = mapview_create(a->opt.socket, a->replay != NULL);
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
-	if (!a->d2d || !a->endo || !a->lensfx || !a->overview || !a->hud ||
+	if (!a->d2d || !a->endo || !a->lensfx || !a->scale || !a->overview ||
+	    !a->hud ||
 	    !a->mapview || !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
@@ -462,10 +475,13 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 		return;
 	}
 	if (lay->endo.w && current) {
+		struct endo_rect in = imagescale_begin(a->scale, lay->endo,
+						       a->image_scale);
+
 		endo_camera(c->model, st, &cam);
-		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, lay->endo,
-			  &es);
-		lensfx_draw(a->lensfx, &st->patient, lay->endo, t_s);
+		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, in, &es);
+		lensfx_draw(a->lensfx, &st->patient, in, t_s);
+		imagescale_end(a->scale, lay->endo);
 		a->triangles += es.triangles;
 	}
 	if (lay->overview.w) {
@@ -718,6 +734,7 @@ static void cleanup(struct app *a)
 	mapview_destroy(a->mapview);
 	overview_destroy(a->overview);
 	lensfx_destroy(a->lensfx);
+	imagescale_destroy(a->scale);
 	endo_destroy(a->endo);
 	draw2d_destroy(a->d2d);
 	font_destroy(a->font);

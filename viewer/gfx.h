@@ -31,8 +31,9 @@ GLuint gfx_program(const char *name, const char *vertex_src,
 
 /*
  * An RGBA8 (CHANNELS 4) or R8 (CHANNELS 1) texture of W x H from PIXELS,
- * rows top first; REPEAT wraps, else clamps; MIPMAP builds the chain and
- * filters with it. Returns 0 on failure.
+ * rows top first (NULL: undefined, one to draw into); REPEAT wraps, else
+ * clamps; MIPMAP builds the chain and filters with it. Returns 0 on
+ * failure.
  */
 GLuint gfx_texture(int w, int h, int channels, const uint8_t *pixels,
 		   bool repeat, bool mipmap);

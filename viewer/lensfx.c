@@ -253,14 +253,7 @@ static void size_target(struct target *t, int w, int h, bool fbo)
 		return;
 	}
 	drop_target(t);
-	glGenTextures(1, &t->texture);
-	glBindTexture(GL_TEXTURE_2D, t->texture);
-	glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA,
-		     GL_UNSIGNED_BYTE, NULL);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	t->texture = gfx_texture(w, h, 4, NULL, false, false);
 	if (fbo) {
 		glGenFramebuffers(1, &t->fbo);
 		glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
@@ -272,10 +265,14 @@ static void size_target(struct target *t, int w, int h, bool fbo)
 	t->h = h;
 }
 
-/* The image in R into its texture, and its blurred copies. */
+/* The image in R of the framebuffer bound into its texture, and its
+ * blurred copies; that framebuffer bound again. */
 static void copy_image(struct lensfx *fx, struct endo_rect r)
 {
 	const struct target *from = &fx->image;
+	GLint bound = 0;
+
+	glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
 
 	glActiveTexture(GL_TEXTURE0);
 	size_target(&fx->image, r.w, r.h, false);
@@ -295,7 +292,7 @@ static void copy_image(struct lensfx *fx, struct endo_rect r)
 		glDrawArrays(GL_TRIANGLES, 0, 3);
 		from = to;
 	}
-	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)bound);
 }
 
 static float amount(double v)

@@ -46,7 +46,8 @@ bool lensfx_visible(const struct endosim_patient_state *p);
 
 /*
  * Draws P's lens over the endoscopic image in R (drawn by endo_draw() in
- * this frame, in the back buffer), at time T_S (s; the jet's ripples).
+ * this frame, in the framebuffer bound: the back buffer, or
+ * imagescale.h's target), at time T_S (s; the jet's ripples).
  */
 void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
 		 struct endo_rect r, double t_s);

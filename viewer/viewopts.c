@@ -11,6 +11,7 @@
 #include "proto/endosim_shm.h"
 #include "proto/version.h"
 #include "viewer/font.h"
+#include "viewer/imagescale.h"
 
 void viewopts_usage(FILE *f)
 {
@@ -18,7 +19,8 @@ void viewopts_usage(FILE *f)
 		"usage: endoview [--socket PATH] [--shm-name NAME]\n"
 		"                [--view endo|overview|both] [--size WxH]\n"
 		"                [--screenshot FILE.png] [--frames N]\n"
-		"                [--no-vsync] [--max-fps N] [--font FILE.ttf]\n"
+		"                [--no-vsync] [--max-fps N] [--image-scale S]\n"
+		"                [--font FILE.ttf]\n"
 		"                [--stats] [--print-state]\n"
 		"                [--replay FILE [--seek S] [--speed X] "
 		"[--paused]]\n"
@@ -34,6 +36,10 @@ void viewopts_usage(FILE *f)
 		"  --max-fps N       draw N frames a second at most (1 to 1000:\n"
 		"                    leaves CPU to the force loop where the\n"
 		"                    drawing is done in software)\n"
+		"  --image-scale S   draw the endoscopic image at S (0.25 to 1)\n"
+		"                    of its size, scaled up (default: 0.5\n"
+		"                    where the drawing is done in software,\n"
+		"                    else 1)\n"
 		"  --font F          a TrueType font for the HUD\n"
 		"  --stats           print the frame figures at exit\n"
 		"  --print-state     print the last frame's state at exit,\n"
@@ -87,6 +93,7 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 		{ "frames", required_argument, NULL, 'n' },
 		{ "no-vsync", no_argument, NULL, 'V' },
 		{ "max-fps", required_argument, NULL, 'F' },
+		{ "image-scale", required_argument, NULL, 'I' },
 		{ "font", required_argument, NULL, 'f' },
 		{ "stats", no_argument, NULL, 'S' },
 		{ "print-state", no_argument, NULL, 'P' },
@@ -133,6 +140,13 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 			break;
 		case 'V':
 			o->vsync = false;
+			break;
+		case 'I':
+			if (parse_number(optarg, &o->image_scale) ||
+			    o->image_scale < IMAGESCALE_MIN ||
+			    o->image_scale > 1) {
+				return -EINVAL;
+			}
 			break;
 		case 'F':
 			if (parse_number(optarg, &o->max_fps) ||

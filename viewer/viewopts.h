@@ -3,7 +3,8 @@
  *
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
- *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
+ *            [--no-vsync] [--max-fps N] [--image-scale S]
+ *            [--font FILE.ttf] [--stats]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * The main thread, at start-up; no allocation (the strings point into
@@ -27,6 +28,7 @@ struct viewopts {
 	long frames;            /* -1: until closed */
 	double seek_s, speed;
 	double max_fps;         /* 0: as fast as vsync lets it */
+	double image_scale;     /* 0: by the renderer (imagescale.h) */
 	bool vsync, stats, print_state, paused;
 };
 

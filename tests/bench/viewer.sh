@@ -4,8 +4,10 @@
 # unless a GPU is there), with vsync off, the daemon on the simulated rig
 # holding the scope 60 cm in the default case: for each window size and
 # each mesh (the default resolution, and ~2 million triangles), the frame
-# rate and the frame time (p50, p99) of the endoscopic view and of the
-# overview next to an empty frame (clear and swap only) measured in the
+# rate and the frame time (p50, p99) of the endoscopic view (endo: its
+# image drawn at the scale endoview takes on this renderer and scaled up,
+# viewer/imagescale.h; endo-full: at its size) and of the overview next
+# to an empty frame (clear and swap only) measured in the
 # same run, and the age of the state each frame shows (the swap's time less
 # the state's publish_ns, p50, p99). Then the patient's (issue 22): the
 # default case with a little fluid in the rectum, the sigmoid and the
@@ -25,8 +27,10 @@ printf '%s\n' '0 insertion target 0.60 2' >"$SCN"
 
 # measure VIEW SIZE: one run; prints its row.
 measure() {
-	local view=$1 size=$2 fps p50 p99 a50 a99 tris ratio
-	if ! view --view "$view" --size "$size" --frames "$FRAMES"; then
+	local view=$1 size=$2 fps p50 p99 a50 a99 tris ratio args
+	args=(--view "$view")
+	[ "$view" = endo-full ] && args=(--view endo --image-scale 1)
+	if ! view "${args[@]}" --size "$size" --frames "$FRAMES"; then
 		echo "  $view $size: endoview failed:"
 		sed 's/^/    /' "$VIEW_OUT"
 		return 1
@@ -47,7 +51,7 @@ measure() {
 
 # mesh NAME ARGS...: the daemon with the colon at that resolution, every
 # view ($VIEWS) at every size, once the status makes $READY true.
-VIEWS="empty endo overview"
+VIEWS="empty endo endo-full overview"
 READY='.axes.insertion.position > 0.59'
 mesh() {
 	local name=$1
@@ -71,6 +75,10 @@ echo "=== endoview: frame times, ${FRAMES} frames a run, vsync off ==="
 start_xvfb 1920x1080 || exit 1
 view --view empty --size 320x240 --frames 1 >/dev/null 2>&1
 echo "renderer: $(sed -n 's/^endoview: OpenGL //p' "$VIEW_OUT"), $(nproc) CPUs"
+view --view endo --size 320x240 --frames 1 >/dev/null 2>&1
+echo "endo: the image at $(sed -n 's/^endoview: the endoscopic image drawn at \([0-9]*\) %.*/\1 %/p' \
+	"$VIEW_OUT" | grep . || echo "100 %") of its size, scaled up;" \
+	"endo-full: at its size (--image-scale 1)"
 mesh "default case, default resolution"
 mesh "default case at ~2 million triangles" \
 	--set case.ring_vertices=672 --set case.step_m=0.001
@@ -78,7 +86,7 @@ mkdir -p "$TMP/cases"
 awk '{ print } /^\[segment (rectum|sigmoid|descending)\]/ {
 	print "fluid_m3 = 20e-6" }' "$CASES/normal.case" |
 	sed 's/^name = normal$/name = pool/' >"$TMP/cases/pool.case"
-VIEWS="empty endo"
+VIEWS="empty endo endo-full"
 READY="$READY and .patient.tip_in_fluid and .patient.lens_smear > 0.5 and
        .patient.lens_murk > 0.5"
 mesh "default case, default resolution, the patient: the tip in a pool, \
