@@ -44,7 +44,8 @@ double imagescale_for(const char *renderer)
 	static const char *const software[] = { "llvmpipe", "softpipe",
 						"swrast" };
 
-	for (size_t k = 0; renderer && k < 3; k++) {
+	for (size_t k = 0;
+	     renderer && k < sizeof(software) / sizeof(software[0]); k++) {
 		if (strstr(renderer, software[k])) {
 			return IMAGESCALE_SOFTWARE;
 		}

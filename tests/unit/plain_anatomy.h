@@ -33,4 +33,14 @@ static inline void plain_anatomy(struct anatomy *a, double diameter_m)
 	}
 }
 
+/* The sigmoid (segment 2) mobile on a mesentery of K_N_PER_M (N/m), H_M
+ * (m) high. */
+static inline void plain_mobile_sigmoid(struct anatomy *a, double k_n_per_m,
+					double h_m)
+{
+	a->seg[2].mobile = true;
+	a->seg[2].mesentery_n_per_m = k_n_per_m;
+	a->seg[2].mesentery_height_m = h_m;
+}
+
 #endif

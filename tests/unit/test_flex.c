@@ -56,9 +56,7 @@ static struct colon *straight_colon(double k, double h)
 	char err[256];
 
 	plain_anatomy(&a, 0.05);
-	a.seg[2].mobile = true;
-	a.seg[2].mesentery_n_per_m = k;
-	a.seg[2].mesentery_height_m = h;
+	plain_mobile_sigmoid(&a, k, h);
 	p.ring_vertices = 32;
 	c = colon_create(&a, &p, err, sizeof(err));
 	assert_non_null(c);

@@ -49,9 +49,8 @@ static struct colon *smooth_colon(double width, double bend_deg, bool mobile)
 		};
 		a.seg[2].bends = 1;
 	}
+	plain_mobile_sigmoid(&a, 600, 0.06);
 	a.seg[2].mobile = mobile;
-	a.seg[2].mesentery_n_per_m = 600;
-	a.seg[2].mesentery_height_m = 0.06;
 	p.ring_vertices = 64;
 	c = colon_create(&a, &p, err, sizeof(err));
 	assert_non_null(c);

@@ -63,9 +63,7 @@ static double held_loop_tension(double force_n, int *nodes)
 	double s0, s1, push[3] = { 0, force_n, 0 }, tension;
 
 	plain_anatomy(&a, 0.05);
-	a.seg[2].mobile = true;
-	a.seg[2].mesentery_n_per_m = 600;
-	a.seg[2].mesentery_height_m = 0.06;
+	plain_mobile_sigmoid(&a, 600, 0.06);
 	cp.ring_vertices = 32;
 	c = colon_create(&a, &cp, err, sizeof(err));
 	assert_non_null(c);
