@@ -169,8 +169,7 @@ static int make_renderers(struct app *a)
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
 	if (!a->d2d || !a->endo || !a->lensfx || !a->scale || !a->overview ||
-	    !a->hud ||
-	    !a->mapview || !a->timing || !a->ui) {
+	    !a->hud || !a->mapview || !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
 	}
