@@ -24,14 +24,16 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 7u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 8u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
 				  5: the rod model: the tube's shape, the
 				     colon's nodes, the wall's contacts;
 				  6: guided replay;
-				  7: the patient's body */
+				  7: the patient's body;
+				  8: the patient's pain, sedation, vital
+				     signs and a perforation by the tip */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -301,6 +303,25 @@ enum endosim_valve {
 	ENDOSIM_VALVE_SUCTION = 1u << 2, /* the suction valve pressed */
 };
 
+/* What hurts most now (lib/model/pain.h). */
+enum endosim_pain_cause {
+	ENDOSIM_PAIN_NONE = 0,
+	ENDOSIM_PAIN_LOOPING = 1,       /* stretch while pushed in or held */
+	ENDOSIM_PAIN_STRAIGHTENING = 2, /* stretch while withdrawn or turned */
+	ENDOSIM_PAIN_INSUFFLATION = 3,  /* the wall distended */
+	ENDOSIM_PAIN_TIP = 4,           /* the tip pressed into the wall */
+	ENDOSIM_PAIN_CAUSES
+};
+
+/* The patient's sedation, the instructor's choice per session. */
+enum endosim_sedation {
+	ENDOSIM_SEDATION_NONE = 0,
+	ENDOSIM_SEDATION_MINIMAL = 1,
+	ENDOSIM_SEDATION_MODERATE = 2,
+	ENDOSIM_SEDATION_DEEP = 3,
+	ENDOSIM_SEDATIONS
+};
+
 /*
  * The gas that holds the colon open, the patient's position and gravity,
  * the fluid, the assistant's hand and the lens. Body frame (x to the
@@ -333,6 +354,15 @@ struct endosim_patient_state {
 	double lens_murk;        /* 0..1: the fluid's */
 	double lens_redout;      /* 0..1: the mucosa sucked onto it */
 	int32_t burst_segment;   /* the first segment torn, -1: none */
+	uint32_t sedation;       /* enum endosim_sedation */
+	/* 8: the patient responds (pain.h, vitals.h, perforation.h) */
+	double pain;             /* 0..10, the clinical rating scale */
+	double pain_stimulus;    /* what the level follows now, 0..10 */
+	uint32_t pain_cause;     /* enum endosim_pain_cause */
+	int32_t pain_place;      /* the cause's segment, -1: none */
+	double heart_rate_bpm;   /* beats a minute */
+	double spo2;             /* oxygen saturation, 0..1 */
+	int32_t torn_segment;    /* where the tip tore the wall, -1: none */
 	uint32_t reserved;
 };
 

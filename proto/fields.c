@@ -269,6 +269,19 @@ static const struct fields_field patient[] = {
 	    NULL),
 	PAT(burst_segment, FIELDS_INT, burst_segment, "patient_burst_segment",
 	    NULL),
+	PAT(sedation, FIELDS_NAMED, sedation, "patient_sedation",
+	    names_sedation),
+	PAT(pain, FIELDS_DOUBLE, pain, "patient_pain", NULL),
+	PAT(pain_stimulus, FIELDS_DOUBLE, pain_stimulus,
+	    "patient_pain_stimulus", NULL),
+	PAT(pain_cause, FIELDS_NAMED, pain_cause, "patient_pain_cause",
+	    names_pain_cause),
+	PAT(pain_place, FIELDS_INT, pain_place, "patient_pain_place", NULL),
+	PAT(heart_rate_bpm, FIELDS_DOUBLE, heart_rate_bpm,
+	    "patient_heart_rate_bpm", NULL),
+	PAT(spo2, FIELDS_DOUBLE, spo2, "patient_spo2_1", NULL),
+	PAT(torn_segment, FIELDS_INT, torn_segment, "patient_torn_segment",
+	    NULL),
 };
 const struct fields_table fields_patient =
 	TABLE(patient, endosim__patient_status__descriptor, patient, 1);

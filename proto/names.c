@@ -48,6 +48,22 @@ const char *const names_positions[] = {
 	NULL,
 };
 
+static const char *const pain_cause_names[] = {
+	[ENDOSIM_PAIN_NONE] = "none",
+	[ENDOSIM_PAIN_LOOPING] = "looping",
+	[ENDOSIM_PAIN_STRAIGHTENING] = "straightening",
+	[ENDOSIM_PAIN_INSUFFLATION] = "insufflation",
+	[ENDOSIM_PAIN_TIP] = "tip",
+};
+
+const char *const names_sedations[] = {
+	[ENDOSIM_SEDATION_NONE] = "none",
+	[ENDOSIM_SEDATION_MINIMAL] = "minimal",
+	[ENDOSIM_SEDATION_MODERATE] = "moderate",
+	[ENDOSIM_SEDATION_DEEP] = "deep",
+	NULL,
+};
+
 _Static_assert(ENDOSIM_VALVE_AIR == 1 && ENDOSIM_VALVE_WATER == 2 &&
 	       ENDOSIM_VALVE_SUCTION == 4, "names: the valves' bits");
 
@@ -67,6 +83,8 @@ static const char *const event_names[] = {
 	[SESSION_EVENT_HAND] = "hand",
 	[SESSION_EVENT_VALVE] = "valve",
 	[SESSION_EVENT_PERFORATION] = "perforation",
+	[SESSION_EVENT_TEAR] = "tear",
+	[SESSION_EVENT_SEDATION] = "sedation",
 };
 
 /* endosim.proto's DebugAction, by number */
@@ -140,14 +158,36 @@ const char *names_position(uint32_t position)
 						     : "?";
 }
 
-int names_position_find(const char *name)
+/* NAME's index in LIST (NULL after its last), or -1. */
+static int find_in(const char *const *list, const char *name)
 {
-	for (int i = 0; names_positions[i]; i++) {
-		if (!strcmp(name, names_positions[i])) {
+	for (int i = 0; list[i]; i++) {
+		if (!strcmp(name, list[i])) {
 			return i;
 		}
 	}
 	return -1;
+}
+
+int names_position_find(const char *name)
+{
+	return find_in(names_positions, name);
+}
+
+const char *names_pain_cause(uint32_t cause)
+{
+	return cause < COUNT(pain_cause_names) ? pain_cause_names[cause] : "?";
+}
+
+const char *names_sedation(uint32_t sedation)
+{
+	return sedation < COUNT(names_sedations) - 1 ? names_sedations[sedation]
+						     : "?";
+}
+
+int names_sedation_find(const char *name)
+{
+	return find_in(names_sedations, name);
 }
 
 const char *names_valves(uint32_t valves)

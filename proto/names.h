@@ -57,10 +57,25 @@ const char *names_valves(uint32_t valves);
 /* The valve bit called NAME ("air", "water", "suction"), or 0. */
 uint32_t names_valve_find(const char *name);
 
+/* What hurts (enum endosim_pain_cause): "none", "looping",
+ * "straightening", "insufflation", "tip". */
+const char *names_pain_cause(uint32_t cause);
+
+/*
+ * The patient's sedation (enum endosim_sedation): "none", "minimal",
+ * "moderate", "deep"; NAMES_SEDATIONS lists them, NULL after the last.
+ */
+extern const char *const names_sedations[];
+const char *names_sedation(uint32_t sedation);
+
+/* The sedation called NAME, or -1. */
+int names_sedation_find(const char *name);
+
 /*
  * A session event's kind (session_file.h enum session_event_kind) as the
  * CSV says it: "state", "fault", "param", "drops", "note", "position",
- * "hand", "valve", "perforation"; "unknown" for another.
+ * "hand", "valve", "perforation", "tear", "sedation"; "unknown" for
+ * another.
  */
 const char *names_event(uint32_t kind);
 

@@ -31,6 +31,8 @@ static void no_patient(struct endosim_patient_state *p)
 {
 	p->hand_site = -1;
 	p->burst_segment = -1;
+	p->pain_place = -1;
+	p->torn_segment = -1;
 	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
 		p->factor[i] = 1;
 	}
@@ -420,6 +422,10 @@ static void record_copy(struct session_record *rec, const void *payload,
 
 	memset(rec, 0, sizeof(*rec));
 	memcpy(rec, payload, n);
+	if (n < sizeof(*rec)) { /* format 4 or older: nothing torn, no pain */
+		rec->pain_place = -1;
+		rec->torn_segment = -1;
+	}
 }
 
 /* The record size HEADER says in *SAID; false when it says none. */

@@ -26,8 +26,9 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (4; 3 before the patient's body, 2 before guided
- * replay, 1 before the rod model), id, trainee, case,
+ * Header keys: format (5; 4 before the patient's pain, 3 before the
+ * patient's body, 2 before guided replay, 1 before the rod model), id,
+ * trainee, case,
  * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
  * record's clock), period_ns, version (endosimd's), record_size
  * (sizeof(struct session_record)), and the case's resolution: step_m,
@@ -49,7 +50,7 @@
 #include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 4u
+#define SESSION_FILE_FORMAT 5u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -67,7 +68,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 488 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 520 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -147,13 +148,26 @@ struct session_record {
 	float lens_murk;
 	float lens_redout;
 	int32_t burst_segment;    /* the first segment torn, -1: none */
+	/* format 5: the patient responds; an older record reads with
+	   sedation none, no pain, torn_segment -1 (as for burst_segment) */
+	uint32_t sedation;        /* enum endosim_sedation */
+	float pain;               /* 0..10 */
+	float pain_stimulus;      /* 0..10 */
+	uint32_t pain_cause;      /* enum endosim_pain_cause */
+	int32_t pain_place;       /* the cause's segment, -1: none */
+	float heart_rate_bpm;
+	float spo2;               /* 0..1 */
+	int32_t torn_segment;     /* where the tip tore the wall, -1: none */
 };
 
-_Static_assert(sizeof(struct session_record) == 488,
+_Static_assert(sizeof(struct session_record) == 520,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
+/* Format 4's: up to burst_segment. A shorter record reads with
+ * torn_segment and pain_place -1 (none), as no_patient() gives. */
+#define SESSION_RECORD_SIZE_4 488u
 /* Format 3's: up to guide_force. The CSV of a file of format 3 or older
  * has format 3's columns (the later ones appear where records hold them). */
 #define SESSION_RECORD_SIZE_3 360u
@@ -175,6 +189,11 @@ enum session_event_kind {
 				      value 1: on, 0: off */
 	SESSION_EVENT_PERFORATION = 9, /* detail: the segment torn; value:
 					  the gas pressure, Pa */
+	/* format 5: the patient responds */
+	SESSION_EVENT_TEAR = 10,   /* the tip tore the wall: a perforation;
+				      detail: the segment; value: the tip's
+				      force on the wall, N */
+	SESSION_EVENT_SEDATION = 11, /* value: the enum endosim_sedation */
 };
 
 /* An event's fixed part; its text (not NUL-terminated) follows it. */

@@ -79,6 +79,13 @@ void cases_patient_params(const struct config *cfg,
 		.hand_n = c->hand_n,
 		.hand_max_n = c->hand_max_n,
 		.abdomen_n_per_m = c->abdomen_n_per_m,
+		.pain = cfg->pain,
+		.perforation = {
+			.straight_n = c->perforation_straight_n,
+			.bent_n = c->perforation_bent_n,
+			.hold_s = c->perforation_hold_s,
+		},
+		.vitals = VITALS_PARAMS_DEFAULT,
 	};
 }
 

@@ -251,7 +251,13 @@ struct config {
 		double lens_wash_s;
 		double lens_redout_gap_m;
 		double lens_redout_s;
+		double perforation_straight_n;
+		double perforation_bent_n;
+		double perforation_hold_s;
 	} patient;
+	struct pain_params pain; /* [pain]: the patient's pain (pain.h);
+				    its sedation a session's unless it
+				    says */
 	struct config_guide {    /* [guide]: guided replay (guide.h); per
 				    axis in enum endosim_axis order, N or
 				    N m, m or rad */

@@ -76,6 +76,7 @@ void haptics_reset(struct haptics *h, struct colon *colon)
 	patient_attach(&h->patient, colon);
 	h->tip_force_n = 0;
 	h->tip_gap_m = INFINITY;
+	memset(h->span_tension_n, 0, sizeof(h->span_tension_n));
 }
 
 struct patient *haptics_patient(struct haptics *h)
@@ -83,7 +84,8 @@ struct patient *haptics_patient(struct haptics *h)
 	return &h->patient;
 }
 
-/* The patient's cycle, from the tip as it is and its contact's last. */
+/* The patient's cycle, from the tip as it is and its contact's and the
+ * mesentery's last. */
 static void step_patient(struct haptics *h, const struct haptics_input *in)
 {
 	struct patient_input pi = {
@@ -91,6 +93,11 @@ static void step_patient(struct haptics *h, const struct haptics_input *in)
 		.tip_s_m = in->pose->tip_s_m,
 		.tip_force_n = h->tip_force_n,
 		.wall_gap_m = h->tip_gap_m,
+		.tip_bend_rad = hypot(in->pose->bend_rad[0],
+				      in->pose->bend_rad[1]),
+		.insertion_m_s = in->velocity[ENDOSIM_AXIS_INSERTION],
+		.roll_rad_s = in->velocity[ENDOSIM_AXIS_ROLL],
+		.span_tension_n = h->span_tension_n,
 	};
 
 	patient_set_params(&h->patient, &in->params->patient);

@@ -106,6 +106,11 @@ static double update_loops(struct haptics *h, const struct haptics_input *in,
 			carried = fmax(carried, fmin(f_tip,
 				       mesentery_force(sp, sp->amplitude)));
 		}
+		if (sp->index < ENDOSIM_SPANS) { /* the pain's: as flex's node */
+			double q = a / sp->h;
+
+			h->span_tension_n[sp->index] = sp->k * (1 + q * q) * a;
+		}
 	}
 	return -carried;
 }

@@ -29,6 +29,8 @@ struct haptics {
 	struct patient patient;      /* the body around the colon */
 	double tip_force_n;          /* the wall's on the tip last cycle */
 	double tip_gap_m;            /* its clearance to the wall then */
+	double span_tension_n[ENDOSIM_SPANS]; /* each mobile span's
+						 mesentery then, N */
 };
 
 /* The contact this cycle, in the colon's coordinates now. */

@@ -161,6 +161,9 @@ void haptics_rod_render(struct haptics *h, const struct haptics_input *in,
 	rod_patient(h);
 	rodscope_step(h->rod.rs, &a, &tip, in->dt_s, &ro);
 	h->patient.pad_n = rodscope_pad_force(h->rod.rs);
+	for (int sp = 0; sp < ENDOSIM_SPANS; sp++) {
+		h->span_tension_n[sp] = rodscope_span_tension(h->rod.rs, sp);
+	}
 	for (int w = 0; w < 2; w++) {
 		contact[ENDOSIM_AXIS_WHEEL_UD + w] = ro.wheel_nm[w] *
 						     rod_wheel_scale(in, w);

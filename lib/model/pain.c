@@ -4,21 +4,17 @@
 #include <math.h>
 #include <stddef.h>
 
-static const char *const cause_names[PAIN_CAUSES] = {
-	"none", "looping", "straightening", "insufflation", "tip",
+/* gain and threshold factors, in enum endosim_sedation's order */
+static const double sedation_gain[ENDOSIM_SEDATIONS] = {
+	1, 0.8, 0.6, 0.25,
 };
-
-static const char *const sedation_names[PAIN_SEDATIONS] = {
-	"none", "minimal", "moderate", "deep",
+static const double sedation_threshold[ENDOSIM_SEDATIONS] = {
+	1, 1.1, 1.25, 2,
 };
-
-/* gain and threshold factors, in enum pain_sedation's order */
-static const double sedation_gain[PAIN_SEDATIONS] = { 1, 0.8, 0.6, 0.25 };
-static const double sedation_threshold[PAIN_SEDATIONS] = { 1, 1.1, 1.25, 2 };
 
 void pain_sedation_factors(int s, double *gain, double *threshold)
 {
-	if (s < 0 || s >= PAIN_SEDATIONS) {
+	if (s < 0 || s >= ENDOSIM_SEDATIONS) {
 		s = PAIN_DEFAULT_SEDATION;
 	}
 	*gain = sedation_gain[s];
@@ -27,7 +23,7 @@ void pain_sedation_factors(int s, double *gain, double *threshold)
 
 void pain_reset(struct pain *p)
 {
-	*p = (struct pain){ .cause = PAIN_CAUSE_NONE, .place = -1 };
+	*p = (struct pain){ .cause = ENDOSIM_PAIN_NONE, .place = -1 };
 }
 
 /* gain (x - threshold) above the threshold; 0 below, and for NaN */
@@ -58,9 +54,9 @@ static int stretch_cause(const struct pain_params *par,
 {
 	if (in->insertion_m_s < -par->moving_m_s ||
 	    fabs(in->roll_rad_s) > par->turning_rad_s) {
-		return PAIN_CAUSE_STRAIGHTENING;
+		return ENDOSIM_PAIN_STRAIGHTENING;
 	}
-	return PAIN_CAUSE_LOOPING;
+	return ENDOSIM_PAIN_LOOPING;
 }
 
 void pain_step(struct pain *p, const struct pain_params *par,
@@ -79,14 +75,14 @@ void pain_step(struct pain *p, const struct pain_params *par,
 	p->tip = term(in->tip_force_n, t * par->tip_threshold_n,
 		      g * par->tip_gain_per_n);
 	p->stimulus = fmin(PAIN_MAX, p->stretch + p->distension + p->tip);
-	p->cause = PAIN_CAUSE_NONE;
+	p->cause = ENDOSIM_PAIN_NONE;
 	p->place = -1;
 	if (p->stimulus > 0) {
 		if (p->tip >= p->stretch && p->tip >= p->distension) {
-			p->cause = PAIN_CAUSE_TIP;
+			p->cause = ENDOSIM_PAIN_TIP;
 			p->place = in->tip_segment;
 		} else if (p->distension >= p->stretch) {
-			p->cause = PAIN_CAUSE_INSUFFLATION;
+			p->cause = ENDOSIM_PAIN_INSUFFLATION;
 			p->place = seg;
 		} else {
 			p->cause = stretch_cause(par, in);
@@ -100,15 +96,4 @@ void pain_step(struct pain *p, const struct pain_params *par,
 	} else if (dt_s > 0) {
 		p->level = p->stimulus;
 	}
-}
-
-const char *pain_cause_name(int cause)
-{
-	return cause >= 0 && cause < PAIN_CAUSES ? cause_names[cause] : NULL;
-}
-
-const char *pain_sedation_name(int sedation)
-{
-	return sedation >= 0 && sedation < PAIN_SEDATIONS ?
-		       sedation_names[sedation] : NULL;
 }

@@ -50,24 +50,9 @@
 
 #include <stdbool.h>
 
+#include "proto/endosim_shm.h"
+
 #define PAIN_MAX 10.0
-
-enum pain_cause {
-	PAIN_CAUSE_NONE,
-	PAIN_CAUSE_LOOPING,
-	PAIN_CAUSE_STRAIGHTENING,
-	PAIN_CAUSE_INSUFFLATION,
-	PAIN_CAUSE_TIP,
-	PAIN_CAUSES
-};
-
-enum pain_sedation {
-	PAIN_SEDATION_NONE,
-	PAIN_SEDATION_MINIMAL,
-	PAIN_SEDATION_MODERATE,
-	PAIN_SEDATION_DEEP,
-	PAIN_SEDATIONS
-};
 
 struct pain_params {
 	double stretch_threshold_n;
@@ -80,7 +65,7 @@ struct pain_params {
 	double fade_s;
 	double moving_m_s;    /* the tube pushed or withdrawn faster */
 	double turning_rad_s; /* the tube turned faster */
-	int sedation;         /* enum pain_sedation */
+	int sedation;         /* enum endosim_sedation */
 };
 
 #define PAIN_DEFAULT_STRETCH_THRESHOLD_N 10.0
@@ -93,7 +78,7 @@ struct pain_params {
 #define PAIN_DEFAULT_FADE_S 5.0
 #define PAIN_DEFAULT_MOVING_M_S 0.002
 #define PAIN_DEFAULT_TURNING_RAD_S 0.2
-#define PAIN_DEFAULT_SEDATION PAIN_SEDATION_MODERATE
+#define PAIN_DEFAULT_SEDATION ENDOSIM_SEDATION_MODERATE
 
 #define PAIN_PARAMS_DEFAULT { \
 		.stretch_threshold_n = PAIN_DEFAULT_STRETCH_THRESHOLD_N, \
@@ -126,7 +111,7 @@ struct pain {
 	double stretch;     /* each term's part of the stimulus */
 	double distension;
 	double tip;
-	int cause;          /* enum pain_cause: the largest part's */
+	int cause;          /* enum endosim_pain_cause: the largest part's */
 	int place;          /* its segment; -1 with no cause */
 };
 
@@ -139,9 +124,5 @@ void pain_reset(struct pain *p);
 /* One step of DT_S seconds. Non-finite inputs count as none. */
 void pain_step(struct pain *p, const struct pain_params *par,
 	       const struct pain_input *in, double dt_s);
-
-/* "none", "looping", ...; "minimal", ...: NULL for an unknown one. */
-const char *pain_cause_name(int cause);
-const char *pain_sedation_name(int sedation);
 
 #endif

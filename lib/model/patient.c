@@ -26,6 +26,25 @@ void patient_init(struct patient *pt, const struct patient_params *p)
 	posture_reset(&pt->posture, keep.start_position);
 	lens_reset(&pt->lens);
 	factors_one(pt);
+	pt->sedation = keep.pain.sedation;
+	pain_reset(&pt->pain);
+	perforation_reset(&pt->perforation);
+	vitals_reset(&pt->vitals, &keep.vitals, pt->sedation);
+}
+
+/* Which segment each of COLON's mobile spans lies in (a region of a
+ * case is its segment; an imported colon's span has none, -1). */
+static void map_spans(struct patient *pt, const struct colon *colon)
+{
+	pt->spans = 0;
+	for (int i = 0; i < colon_regions(colon); i++) {
+		int span = colon_region(colon, i)->span;
+
+		if (span >= 0 && span < ENDOSIM_SPANS) {
+			pt->span_segment[span] = colon_anatomy(colon) ? i : -1;
+			pt->spans = span + 1 > pt->spans ? span + 1 : pt->spans;
+		}
+	}
 }
 
 /* The gas's inputs this cycle. */
@@ -51,12 +70,16 @@ void patient_attach(struct patient *pt, const struct colon *colon)
 	const struct anatomy *a = colon_anatomy(colon);
 	double fluid[FLUID_SEGMENTS] = { 0 };
 	struct gas_input in;
+	int sedation = pt->sedation;
 
 	patient_init(pt, &pt->p);
+	pt->sedation = sedation;
+	vitals_reset(&pt->vitals, &pt->p.vitals, sedation);
 	pt->colon = colon;
 	if (!pt->p.enabled) {
 		return;
 	}
+	map_spans(pt, colon);
 	for (int i = 0; a && i < FLUID_SEGMENTS; i++) {
 		fluid[i] = a->seg[i].fluid_m3;
 	}
@@ -113,6 +136,15 @@ void patient_release(struct patient *pt)
 	pt->pad_n = 0;
 }
 
+int patient_sedate(struct patient *pt, int sedation)
+{
+	if (!pt->p.enabled || sedation < 0 || sedation >= ENDOSIM_SEDATIONS) {
+		return -EINVAL;
+	}
+	pt->sedation = sedation;
+	return 0;
+}
+
 void patient_watched(const struct patient *pt, double v[PATIENT_WATCHED])
 {
 	int n = 0;
@@ -128,6 +160,9 @@ void patient_watched(const struct patient *pt, double v[PATIENT_WATCHED])
 	v[n++] = pt->lens.murk;
 	v[n++] = pt->lens.redout;
 	v[n++] = pt->pad_n;
+	v[n++] = pt->pain.level;
+	v[n++] = pt->vitals.heart_rate_bpm;
+	v[n++] = pt->vitals.spo2;
 }
 
 bool patient_finite(const struct patient *pt)
@@ -151,6 +186,39 @@ static void lay_anew(struct patient *pt)
 	pt->p.start_position = pt->posture.position;
 	patient_attach(pt, pt->colon);
 	pt->p.start_position = start;
+}
+
+/* The patient's response this cycle: pain, vital signs, a tear by the
+ * tip in segment TIP_SEGMENT. */
+static void respond(struct patient *pt, const struct patient_input *in,
+		    int tip_segment, double dt_s)
+{
+	double wall[GAS_SEGMENTS];
+	struct pain_params par = pt->p.pain;
+	struct pain_input pi = {
+		.spans = in->span_tension_n ? pt->spans : 0,
+		.span_tension_n = in->span_tension_n,
+		.span_segment = pt->span_segment,
+		.segments = pt->gas.segments,
+		.wall_n_per_m = wall,
+		.tip_force_n = in->tip_force_n,
+		.tip_segment = tip_segment,
+		.insertion_m_s = in->insertion_m_s,
+		.roll_rad_s = in->roll_rad_s,
+	};
+
+	for (int i = 0; i < pt->gas.segments; i++) {
+		wall[i] = pt->gas.seg[i].tension_n_per_m;
+	}
+	par.sedation = pt->sedation;
+	pain_step(&pt->pain, &par, &pi, dt_s);
+	vitals_step(&pt->vitals, &pt->p.vitals, pt->pain.level, pt->sedation,
+		    dt_s);
+	if (perforation_step(&pt->perforation, &pt->p.perforation,
+			     in->tip_force_n, in->tip_bend_rad, tip_segment,
+			     dt_s) && pt->torn < 0) {
+		pt->torn = tip_segment;
+	}
 }
 
 int patient_step(struct patient *pt, const struct patient_input *in,
@@ -185,6 +253,7 @@ int patient_step(struct patient *pt, const struct patient_input *in,
 		.wall_gap_m = in->wall_gap_m,
 	};
 	lens_step(&pt->lens, &pt->p.lens, &li, dt_s);
+	respond(pt, in, seg, dt_s);
 	return pt->torn;
 }
 
@@ -231,6 +300,8 @@ void patient_publish(const struct patient *pt,
 	memset(out, 0, sizeof(*out));
 	out->hand_site = -1;
 	out->burst_segment = -1;
+	out->pain_place = -1;
+	out->torn_segment = -1;
 	out->valves = pt->valves;
 	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
 		out->factor[i] = 1;
@@ -267,4 +338,12 @@ void patient_publish(const struct patient *pt,
 	out->lens_murk = pt->lens.murk;
 	out->lens_redout = pt->lens.redout;
 	out->burst_segment = pt->gas.burst_segment;
+	out->sedation = (uint32_t)pt->sedation;
+	out->pain = pt->pain.level;
+	out->pain_stimulus = pt->pain.stimulus;
+	out->pain_cause = (uint32_t)pt->pain.cause;
+	out->pain_place = pt->pain.place;
+	out->heart_rate_bpm = pt->vitals.heart_rate_bpm;
+	out->spo2 = pt->vitals.spo2;
+	out->torn_segment = pt->perforation.torn ? pt->perforation.segment : -1;
 }

@@ -17,6 +17,13 @@
  * radius of its axis between the hand and the back, with at most F in
  * all (flex_set_pad(): the pad's grip); pad_n is what it holds.
  *
+ * The patient responds (pain.h, vitals.h, perforation.h): the pain from
+ * the mesentery's stretch (the haptics give each mobile span's tension),
+ * the wall's distension (the gas's Laplace tension per segment) and the
+ * tip's force; the heart rate and saturation; the tip's force tearing the
+ * wall. Sedation is the patient's own (patient_sedate(): the session's),
+ * not a live parameter; pain.sedation is where it starts.
+ *
  * Gravity (gravity_m_s2 along posture's direction) acts on the mobile
  * colon's nodes, the rod and the fluid; the abdomen's hydrostatic
  * pressure on the gas (gas.h).
@@ -40,7 +47,10 @@
 #include "model/fluid.h"
 #include "model/gas.h"
 #include "model/lens.h"
+#include "model/pain.h"
+#include "model/perforation.h"
 #include "model/posture.h"
+#include "model/vitals.h"
 #include "proto/endosim_shm.h"
 
 #define PATIENT_GRAVITY_M_S2 9.81
@@ -50,6 +60,9 @@ struct patient_params {
 	struct gas_params gas;
 	struct fluid_params fluid;
 	struct lens_params lens;
+	struct pain_params pain;
+	struct perforation_params perforation;
+	struct vitals_params vitals;
 	int start_position;         /* enum posture_position */
 	double turn_s;              /* a change of position takes */
 	double gravity_m_s2;
@@ -68,7 +81,9 @@ struct patient_params {
 
 #define PATIENT_PARAMS_DEFAULT { .enabled = PATIENT_DEFAULT_ENABLED, \
 		.gas = GAS_PARAMS_DEFAULT, .fluid = FLUID_PARAMS_DEFAULT, \
-		.lens = LENS_PARAMS_DEFAULT, \
+		.lens = LENS_PARAMS_DEFAULT, .pain = PAIN_PARAMS_DEFAULT, \
+		.perforation = PERFORATION_PARAMS_DEFAULT, \
+		.vitals = VITALS_PARAMS_DEFAULT, \
 		.start_position = POSTURE_LEFT_LATERAL, \
 		.turn_s = PATIENT_DEFAULT_TURN_S, \
 		.gravity_m_s2 = PATIENT_GRAVITY_M_S2, \
@@ -83,6 +98,12 @@ struct patient_input {
 	double tip_s_m;          /* its material s */
 	double tip_force_n;      /* the wall's force on the tip */
 	double wall_gap_m;       /* the tip's clearance to the wall */
+	double tip_bend_rad;     /* the bending section's angle, either way */
+	double insertion_m_s;    /* the tube pushed in (> 0) */
+	double roll_rad_s;       /* and turned */
+	const double *span_tension_n; /* each mobile span's mesentery
+					 (flex_span_tension()), N; NULL:
+					 none */
 };
 
 struct patient {
@@ -99,6 +120,12 @@ struct patient {
 	double hand_n;
 	double pad_n;            /* what the pad held (flex_pad_force()) */
 	int torn;                /* a segment torn in the last step, -1 */
+	int sedation;            /* enum endosim_sedation */
+	struct pain pain;
+	struct perforation perforation; /* by the tip */
+	struct vitals vitals;
+	int span_segment[ENDOSIM_SPANS]; /* each mobile span's segment */
+	int spans;
 };
 
 /* Plain data, nothing attached, disabled parameters P kept. */
@@ -124,8 +151,14 @@ int patient_press(struct patient *pt, int site, double force_n);
 /* She lets go. */
 void patient_release(struct patient *pt);
 
+/* The patient sedated as SEDATION says (enum endosim_sedation), from now
+ * until told again (a new case keeps it). 0, or -EINVAL (no such level;
+ * nothing changed). Not for a disabled patient either. */
+int patient_sedate(struct patient *pt, int sedation);
+
 /*
- * One cycle of DT_S. Returns the segment torn in it, or -1. A state no
+ * One cycle of DT_S. Returns the segment torn in it (by the gas's
+ * pressure or the tip's force), or -1. A state no
  * longer finite (patient_finite(); the loop's non-finite fault latched on
  * the cycle that broke it) is laid anew first, lying where it lies: the
  * gas at its nominal distension, the case's fluid, the hand off, the lens
@@ -138,9 +171,10 @@ int patient_step(struct patient *pt, const struct patient_input *in,
  * The values the force loop's non-finite check watches, into V: the
  * gas's volume and pressure, each segment's radius factor, the fluid's
  * volume and level in each segment, the lens' smear, murk and red-out,
- * the pad's force. Any of them not finite is a fault.
+ * the pad's force, the pain, the heart rate and the saturation. Any of
+ * them not finite is a fault.
  */
-#define PATIENT_WATCHED (2 + 3 * GAS_SEGMENTS + 4)
+#define PATIENT_WATCHED (2 + 3 * GAS_SEGMENTS + 4 + 3)
 void patient_watched(const struct patient *pt, double v[PATIENT_WATCHED]);
 
 /* Every watched value finite. */

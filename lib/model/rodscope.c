@@ -354,6 +354,11 @@ double rodscope_pad_force(const struct rodscope *rs)
 	return flex_pad_force(rs->flex);
 }
 
+double rodscope_span_tension(const struct rodscope *rs, int span)
+{
+	return flex_span_tension(rs->flex, span);
+}
+
 void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,
 		   const struct rodscope_tip *tip, double dt_s,
 		   struct rodscope_out *out)

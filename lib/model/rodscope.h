@@ -165,6 +165,10 @@ void rodscope_set_patient(struct rodscope *rs, const double *factor,
 /* The force the pad held on the colon in the last step, N. */
 double rodscope_pad_force(const struct rodscope *rs);
 
+/* Mobile span SPAN's mesentery tension after the last step, N
+ * (flex_span_tension()). */
+double rodscope_span_tension(const struct rodscope *rs, int span);
+
 void rodscope_step(struct rodscope *rs, const struct rodscope_axes *a,
 		   const struct rodscope_tip *tip, double dt_s,
 		   struct rodscope_out *out);

@@ -430,6 +430,20 @@ static void same_patient(const struct patient_params *c)
 	SAME(*c, m, hand_n);
 	SAME(*c, m, hand_max_n);
 	SAME(*c, m, abdomen_n_per_m);
+	SAME(*c, m, pain.stretch_threshold_n);
+	SAME(*c, m, pain.stretch_gain_per_n);
+	SAME(*c, m, pain.wall_threshold_n_per_m);
+	SAME(*c, m, pain.wall_gain_per_n_per_m);
+	SAME(*c, m, pain.tip_threshold_n);
+	SAME(*c, m, pain.tip_gain_per_n);
+	SAME(*c, m, pain.rise_s);
+	SAME(*c, m, pain.fade_s);
+	SAME(*c, m, pain.moving_m_s);
+	SAME(*c, m, pain.turning_rad_s);
+	SAME(*c, m, pain.sedation);
+	SAME(*c, m, perforation.straight_n);
+	SAME(*c, m, perforation.bent_n);
+	SAME(*c, m, perforation.hold_s);
 }
 
 static void same_haptics(const struct haptics_params *c)

@@ -394,7 +394,7 @@ static void test_record_covered(void **state)
 	}
 }
 
-/* The CSV's columns, as docs/SESSION_FORMAT.md's format 4 has them. */
+/* The CSV's columns, as docs/SESSION_FORMAT.md's format 5 has them. */
 static const char csv_columns[] =
 	"cycle,state,fault_bits,insertion_position_m,roll_position_rad,"
 	"wheel_ud_position_rad,wheel_lr_position_rad,"
@@ -431,7 +431,11 @@ static const char csv_columns[] =
 	"patient_fluid_transverse_m3,patient_fluid_hepatic_flexure_m3,"
 	"patient_fluid_ascending_m3,patient_fluid_cecum_m3,"
 	"patient_hand_site,patient_hand_n,patient_lens_smear_1,"
-	"patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment";
+	"patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment,"
+	/* format 5: the patient responds */
+	"patient_sedation,patient_pain,patient_pain_stimulus,"
+	"patient_pain_cause,patient_pain_place,patient_heart_rate_bpm,"
+	"patient_spo2_1,patient_torn_segment";
 
 /* The column called NAME among C's N. */
 static const struct fields_column *column(const struct fields_column *c,
@@ -482,7 +486,7 @@ static void test_columns(void **state)
 			 FIELDS_STORED_I32);
 	assert_int_equal(c[n - 1].stored, FIELDS_STORED_I32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, burst_segment));
+			 offsetof(struct session_record, torn_segment));
 }
 
 /* A state whose every double and word differs. */

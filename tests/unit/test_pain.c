@@ -28,9 +28,10 @@
 #include "model/gas.h"
 #include "model/pain.h"
 #include "plain_anatomy.h"
+#include "proto/names.h"
 
 #define DT 0.001
-#define NONE_SEDATED(par) ((par).sedation = PAIN_SEDATION_NONE)
+#define NONE_SEDATED(par) ((par).sedation = ENDOSIM_SEDATION_NONE)
 
 static int near(double got, double want, double rel)
 {
@@ -109,7 +110,7 @@ static void test_stretch(void **unused)
 		assert_true(want > 0);
 		assert_true(near(p.stimulus, want, 0.02));
 		assert_true(near(p.stretch, p.stimulus, 1e-12));
-		assert_int_equal(p.cause, PAIN_CAUSE_LOOPING);
+		assert_int_equal(p.cause, ENDOSIM_PAIN_LOOPING);
 		assert_int_equal(p.place, seg);
 	}
 	/* below the threshold: nothing */
@@ -120,7 +121,7 @@ static void test_stretch(void **unused)
 		struct pain p = one_step(&par, &in);
 
 		assert_true(p.stimulus == 0 && p.level == 0);
-		assert_int_equal(p.cause, PAIN_CAUSE_NONE);
+		assert_int_equal(p.cause, ENDOSIM_PAIN_NONE);
 		assert_int_equal(p.place, -1);
 	}
 }
@@ -144,7 +145,7 @@ static void test_distension(void **unused)
 		      "%.2f (documented %.2f)\n", wall[1], p.stimulus, want);
 	assert_true(near(p.stimulus, want, 0.02));
 	assert_true(near(p.distension, p.stimulus, 1e-12));
-	assert_int_equal(p.cause, PAIN_CAUSE_INSUFFLATION);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_INSUFFLATION);
 	assert_int_equal(p.place, 1);
 	/* 30 mmHg in a 3 cm lumen is the threshold itself */
 	wall[1] = 30 * mmhg * 0.03 * 0.99;
@@ -165,7 +166,7 @@ static void test_tip(void **unused)
 	print_message("tip: 14.1 N on the wall: pain %.2f (documented %.2f)\n",
 		      p.stimulus, want);
 	assert_true(near(p.stimulus, want, 0.02));
-	assert_int_equal(p.cause, PAIN_CAUSE_TIP);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_TIP);
 	assert_int_equal(p.place, 4);
 	/* the scale ends at 10 */
 	in.tip_force_n = 100;
@@ -223,7 +224,7 @@ static void test_sedation(void **unused)
 	double last = INFINITY;
 
 	(void)unused;
-	for (int s = 0; s < PAIN_SEDATIONS; s++) {
+	for (int s = 0; s < ENDOSIM_SEDATIONS; s++) {
 		struct pain_params par = PAIN_PARAMS_DEFAULT;
 		struct pain_input in = { .tip_force_n = 12 };
 		double g, t, want;
@@ -235,7 +236,7 @@ static void test_sedation(void **unused)
 		p = one_step(&par, &in);
 		want = g * par.tip_gain_per_n * (12 - t * par.tip_threshold_n);
 		print_message("sedation %-8s: 12 N on the wall, pain %.2f\n",
-			      pain_sedation_name(s), p.stimulus);
+			      names_sedation((uint32_t)s), p.stimulus);
 		assert_true(near(p.stimulus, want, 1e-12));
 		assert_true(p.stimulus < last); /* the deeper, the less */
 		last = p.stimulus;
@@ -243,7 +244,7 @@ static void test_sedation(void **unused)
 	{
 		const struct pain_params d = PAIN_PARAMS_DEFAULT;
 
-		assert_int_equal(d.sedation, PAIN_SEDATION_MODERATE);
+		assert_int_equal(d.sedation, ENDOSIM_SEDATION_MODERATE);
 	}
 }
 
@@ -262,26 +263,26 @@ static void test_causes(void **unused)
 	NONE_SEDATED(par);
 	in.insertion_m_s = 0.02;
 	p = one_step(&par, &in);
-	assert_int_equal(p.cause, PAIN_CAUSE_LOOPING);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_LOOPING);
 	assert_int_equal(p.place, 5); /* the transverse: the larger */
 	assert_true(near(p.stimulus, p.stretch + p.distension + p.tip, 1e-12));
 	in.insertion_m_s = 0; /* held still against the loop */
-	assert_int_equal(one_step(&par, &in).cause, PAIN_CAUSE_LOOPING);
+	assert_int_equal(one_step(&par, &in).cause, ENDOSIM_PAIN_LOOPING);
 	in.insertion_m_s = -0.02;
-	assert_int_equal(one_step(&par, &in).cause, PAIN_CAUSE_STRAIGHTENING);
+	assert_int_equal(one_step(&par, &in).cause, ENDOSIM_PAIN_STRAIGHTENING);
 	in.insertion_m_s = 0;
 	in.roll_rad_s = -1;
-	assert_int_equal(one_step(&par, &in).cause, PAIN_CAUSE_STRAIGHTENING);
+	assert_int_equal(one_step(&par, &in).cause, ENDOSIM_PAIN_STRAIGHTENING);
 	wall = 500;
 	p = one_step(&par, &in);
-	assert_int_equal(p.cause, PAIN_CAUSE_INSUFFLATION);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_INSUFFLATION);
 	assert_int_equal(p.place, 0);
 	in.tip_force_n = 30;
 	p = one_step(&par, &in);
-	assert_int_equal(p.cause, PAIN_CAUSE_TIP);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_TIP);
 	assert_int_equal(p.place, 3);
-	assert_string_equal(pain_cause_name(p.cause), "tip");
-	assert_null(pain_cause_name(PAIN_CAUSES));
+	assert_string_equal(names_pain_cause((uint32_t)p.cause), "tip");
+	assert_string_equal(names_pain_cause(ENDOSIM_PAIN_CAUSES), "?");
 }
 
 static void test_not_finite(void **unused)
@@ -296,7 +297,7 @@ static void test_not_finite(void **unused)
 
 	(void)unused;
 	assert_true(p.stimulus == 0 && p.level == 0);
-	assert_int_equal(p.cause, PAIN_CAUSE_NONE);
+	assert_int_equal(p.cause, ENDOSIM_PAIN_NONE);
 }
 
 int main(void)

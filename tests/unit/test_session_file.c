@@ -216,6 +216,7 @@ static int read_sized(const char *head, size_t length, size_t fields,
 			.guide_phase = 3, .guide_force = { 0, 0, 0, 1.5f },
 			.patient = 1, .gas_m3 = 0.002f, .hand_site = 1,
 			.burst_segment = -1, .lumen_factor = { [8] = 1.2f },
+			.pain = 4.5f, .torn_segment = 2,
 		};
 
 		memcpy(raw, &r, fields);
@@ -245,7 +246,8 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * format's longer records by the fields this one knows; records shorter
  * than format 1's, or not the size the header says, are refused. The CSV
  * of a file of format 3 or older has format 3's columns, a format-4
- * file's the patient's too.
+ * file's the patient's body's too (and nothing torn by the tip), a
+ * format-5 file's its pain as well.
  */
 static void test_old_layout(void **state)
 {
@@ -296,9 +298,14 @@ static void test_old_layout(void **state)
 	assert_non_null(strstr(csv, ",guide_force_wheel_lr_nm"));
 	assert_null(strstr(csv, "patient"));
 	session_file_close(&f);
-	/* this format's: the patient's columns */
-	assert_int_equal(read_sized("format=4\nrecord_size=488\n", 488, all,
-				    &f), 0);
+	/* format 4's: the patient's columns; nothing torn by the tip, no
+	   pain's place */
+	assert_int_equal(SESSION_RECORD_SIZE_4,
+			 offsetof(struct session_record, sedation));
+	assert_int_equal(read_sized("format=4\nrecord_size=488\n", 488,
+				    SESSION_RECORD_SIZE_4, &f), 0);
+	assert_int_equal(f.records[1].torn_segment, -1);
+	assert_int_equal(f.records[1].pain_place, -1);
 	session_record_to_state(&f.records[1], &st);
 	assert_int_equal(st.patient.enabled, 1);
 	assert_int_equal(st.patient.hand_site, 1);
@@ -307,6 +314,7 @@ static void test_old_layout(void **state)
 	csv_header(&f, csv, sizeof(csv));
 	assert_non_null(strstr(csv, ",guide_force_wheel_lr_nm,patient_enabled,"));
 	assert_non_null(strstr(csv, ",patient_burst_segment"));
+	assert_null(strstr(csv, "patient_pain"));
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=5\nrecord_size=520\n", 520, all,
 				    &f), 0);
@@ -318,6 +326,11 @@ static void test_old_layout(void **state)
 	assert_int_equal(f.records[2].hand_site, 1);
 	assert_int_equal(f.records[2].burst_segment, -1);
 	assert_true(f.records[2].gas_m3 == 0.002f);
+	assert_int_equal(f.records[2].torn_segment, 2);
+	assert_true(f.records[2].pain == 4.5f);
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",patient_pain,"));
+	assert_non_null(strstr(csv, ",patient_torn_segment"));
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);

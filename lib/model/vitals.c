@@ -1,0 +1,36 @@
+/* vitals.c - the patient's heart rate and saturation (vitals.h). */
+#include "model/vitals.h"
+
+#include <math.h>
+
+static double spo2_of(const struct vitals_params *p, int sedation)
+{
+	if (sedation < 0 || sedation >= ENDOSIM_SEDATIONS) {
+		sedation = ENDOSIM_SEDATION_NONE;
+	}
+	return p->spo2[sedation];
+}
+
+void vitals_reset(struct vitals *v, const struct vitals_params *p,
+		  int sedation)
+{
+	v->heart_rate_bpm = p->rest_bpm;
+	v->spo2 = spo2_of(p, sedation);
+}
+
+/* X towards TARGET over DT_S with time constant TAU_S (0: at once). */
+static void follow(double *x, double target, double tau_s, double dt_s)
+{
+	if (!isfinite(target) || !(dt_s > 0)) {
+		return;
+	}
+	*x = tau_s > 0 ? *x + (target - *x) * -expm1(-dt_s / tau_s) : target;
+}
+
+void vitals_step(struct vitals *v, const struct vitals_params *p,
+		 double pain, int sedation, double dt_s)
+{
+	follow(&v->heart_rate_bpm, p->rest_bpm + p->bpm_per_pain * pain,
+	       p->heart_s, dt_s);
+	follow(&v->spo2, spo2_of(p, sedation), p->spo2_s, dt_s);
+}
