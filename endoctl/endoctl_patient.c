@@ -12,7 +12,8 @@
 static const char usage_text[] =
 	"endoctl: patient status | position left-lateral|supine|"
 	"right-lateral|prone | press SITE [--force N] | release | valve "
-	"air|water|suction on [--for S] | valve air|water|suction off\n";
+	"air|water|suction on [--for S] | valve air|water|suction off | "
+	"sedation none|minimal|moderate|deep\n";
 
 /* The newest status; 0 with *REP its reply, or the exit status. */
 static int get_status(struct ctl *ctl, Endosim__Reply **rep)
@@ -65,6 +66,19 @@ static void print_patient(const Endosim__PatientStatus *p)
 	       p->tip_in_fluid ? "under" : "not in");
 	printf("burst     %s\n", p->burst_segment >= 0 ?
 	       anatomy_segment_name(p->burst_segment) : "none");
+	printf("torn      %s\n", p->torn_segment >= 0 ?
+	       anatomy_segment_name(p->torn_segment) : "none");
+	printf("sedation  %s\n", names_sedation(p->sedation));
+	printf("pain      %.1f of 10 (following %.1f)", p->pain,
+	       p->pain_stimulus);
+	if (p->pain_cause) {
+		printf(": %s", names_pain_cause(p->pain_cause));
+		if (p->pain_place >= 0) {
+			printf(" in the %s", anatomy_segment_name(p->pain_place));
+		}
+	}
+	printf("\nvitals    heart %.0f /min, SpO2 %.1f %%\n",
+	       p->heart_rate_bpm, p->spo2 * 100);
 	print_segments(p);
 }
 
@@ -219,6 +233,11 @@ int ctl_cmd_patient(struct ctl *ctl, int argc, char **argv)
 	}
 	if (argc >= 4 && !strcmp(sub, "valve")) {
 		return patient_valve(ctl, argc, argv);
+	}
+	if (argc == 3 && !strcmp(sub, "sedation")) {
+		body.action = ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_SEDATE;
+		body.sedation = argv[2];
+		return patient_request(ctl, &body);
 	}
 	fputs(usage_text, stderr);
 	return EXIT_USAGE;

@@ -213,6 +213,7 @@ static void print_patient(const Endosim__PatientStatus *p)
 void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
 			 size_t size)
 {
+	int torn = p->burst_segment >= 0 ? p->burst_segment : p->torn_segment;
 	int n = snprintf(out, size, "%s%s, gas %.2f L at %.1f mmHg, hand ",
 			 p->turning ? "turning to " : "",
 			 names_position(p->position), p->gas_m3 * 1e3,
@@ -223,11 +224,15 @@ void ctl_patient_summary(const Endosim__PatientStatus *p, char *out,
 			      "%s %.0f N" : "off", p->site, p->hand_n);
 	}
 	if (n >= 0 && (size_t)n < size) {
-		n += snprintf(out + n, size - (size_t)n, ", valves %s%s%s",
-			      names_valves(p->valves),
-			      p->burst_segment >= 0 ? ", PERFORATED: " : "",
-			      p->burst_segment >= 0 ?
-			      anatomy_segment_name(p->burst_segment) : "");
+		n += snprintf(out + n, size - (size_t)n, ", valves %s, pain "
+			      "%.1f%s%s, %s sedation%s%s",
+			      names_valves(p->valves), p->pain,
+			      p->pain_cause ? " " : "",
+			      p->pain_cause ? names_pain_cause(p->pain_cause)
+					    : "",
+			      names_sedation(p->sedation),
+			      torn >= 0 ? ", PERFORATED: " : "",
+			      torn >= 0 ? anatomy_segment_name(torn) : "");
 	}
 }
 

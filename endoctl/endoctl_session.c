@@ -82,11 +82,11 @@ static void print_session_facts(const Endosim__SessionInfo *s)
 }
 
 /* The events of the patient's kinds (a turn, the hand, a valve, a
- * perforation). */
+ * perforation, a tear, the sedation). */
 static bool patient_kind(uint32_t kind)
 {
 	return kind >= SESSION_EVENT_POSITION &&
-	       kind <= SESSION_EVENT_PERFORATION;
+	       kind <= SESSION_EVENT_SEDATION;
 }
 
 static size_t patient_event_count(const struct session_file *f)
@@ -190,9 +190,12 @@ static int session_start(struct ctl *ctl, int argc, char **argv)
 			body.trainee = argv[i + 1];
 		} else if (i + 1 < argc && !strcmp(argv[i], "--case")) {
 			body.case_name = argv[i + 1];
+		} else if (i + 1 < argc && !strcmp(argv[i], "--sedation")) {
+			body.sedation = argv[i + 1];
 		} else {
 			fprintf(stderr, "endoctl: session start [--trainee "
-				"NAME] [--case NAME]\n");
+				"NAME] [--case NAME] [--sedation none|minimal|"
+				"moderate|deep]\n");
 			return EXIT_USAGE;
 		}
 	}
@@ -540,7 +543,7 @@ int ctl_cmd_session(struct ctl *ctl, int argc, char **argv)
 		return session_report(ctl, argv[2], argv[4], argv[6]);
 	}
 	fprintf(stderr, "endoctl: session start [--trainee NAME] [--case NAME]"
-		" | stop | status | map | list | show ID | export ID --csv [--events] "
+		" [--sedation LEVEL] | stop | status | map | list | show ID | export ID --csv [--events] "
 		"| export ID... --summary "
 		"[--out FILE] | report ID --out DIR [--reference REF_ID] (ID: or "
 		"a session file's "

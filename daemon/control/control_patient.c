@@ -75,6 +75,21 @@ static bool press_of(struct control *c, const Endosim__Patient *p,
 	return true;
 }
 
+/* The sedation NAME, or -1 with REP refused (the levels listed). */
+static int sedation_of(struct control *c, const char *name,
+		       Endosim__Reply *rep)
+{
+	int s = names_sedation_find(name);
+
+	if (s < 0) {
+		snprintf(c->refusal, sizeof(c->refusal), "patient: no "
+			 "sedation '%.63s': none, minimal, moderate or deep",
+			 name);
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE, c->refusal);
+	}
+	return s;
+}
+
 /* Whether the published state has the patient enabled. */
 static bool patient_on(struct control *c)
 {
@@ -83,21 +98,54 @@ static bool patient_on(struct control *c)
 	return !publish_read(c->deps.pub, &st) && st.patient.enabled;
 }
 
-/* CMD to the loop; on its 0 the reply is the status after it. */
-static void hand_over(struct control *c, struct client *cl,
-		      const struct loop_patient_command *cmd,
-		      const Endosim__Patient *p, Endosim__Reply *rep)
+/* CMD to the loop: 0, or -1 with REP refused. */
+static int to_loop(struct control *c, const struct loop_patient_command *cmd,
+		   Endosim__Reply *rep)
 {
 	int r = loop_patient_command(c->deps.loop, cmd, COMMAND_TIMEOUT_MS);
 
 	if (r == -EINVAL) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
 		       "patient: refused by the force loop");
-		return;
-	}
-	if (r) {
+	} else if (r) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_TIMEOUT,
 		       "the force loop did not take the command");
+	}
+	return r ? -1 : 0;
+}
+
+int control_sedate(struct control *c, struct client *cl, const char *name,
+		   Endosim__Reply *rep)
+{
+	struct loop_patient_command cmd = { LOOP_PATIENT_SEDATE,
+					    c->cfg.pain.sedation, 0 };
+
+	if (!patient_on(c)) {
+		if (!*name) {
+			return 0;
+		}
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "sedation: there is no patient ([patient] enabled = "
+		       "no)");
+		return -1;
+	}
+	if (*name && (cmd.arg = sedation_of(c, name, rep)) < 0) {
+		return -1;
+	}
+	if (to_loop(c, &cmd, rep)) {
+		return -1;
+	}
+	log_notice("patient: sedation %s by uid %d", names_sedation(
+			   (uint32_t)cmd.arg), (int)cl->uid);
+	return 0;
+}
+
+/* CMD to the loop; on its 0 the reply is the status after it. */
+static void hand_over(struct control *c, struct client *cl,
+		      const struct loop_patient_command *cmd,
+		      const Endosim__Patient *p, Endosim__Reply *rep)
+{
+	if (to_loop(c, cmd, rep)) {
 		return;
 	}
 	if (cmd->op == LOOP_PATIENT_TURN) {
@@ -138,6 +186,12 @@ void control_on_patient(struct control *c, struct client *cl,
 		break;
 	case ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_RELEASE:
 		break;
+	case ENDOSIM__PATIENT_ACTION__PATIENT_ACTION_SEDATE:
+		if (control_sedate(c, cl, p->sedation, rep) == 0) {
+			control_await_state(c);
+			control_build_status(c, rep);
+		}
+		return;
 	default:
 		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
 		       "patient: no such action");

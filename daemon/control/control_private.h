@@ -141,6 +141,15 @@ void control_build_status(struct control *c, Endosim__Reply *rep);
  */
 void control_await_state(struct control *c);
 
+/*
+ * A session's sedation NAME ("": [pain] sedation) to the patient, before
+ * the session starts. 0 (done, or no patient and NAME ""), or -1 refused
+ * (REP says why: no such level, no patient to sedate, the loop did not
+ * take it).
+ */
+int control_sedate(struct control *c, struct client *cl, const char *name,
+		   Endosim__Reply *rep);
+
 /* Loads case NAME (IDLE only, never during a session). 0, or -1 refused
  * (REP says why). */
 int control_load_case(struct control *c, struct client *cl,

@@ -214,6 +214,10 @@ void control_on_session_start(struct control *c, struct client *cl,
 	if (*ss->case_name && control_load_case(c, cl, ss->case_name, rep)) {
 		return;
 	}
+	if (control_sedate(c, cl, ss->sedation, rep)) {
+		return;
+	}
+	control_await_state(c); /* the first record has it */
 	r = start_session(c, ss->trainee, &info);
 	if (r) {
 		snprintf(why, size, "cannot record in %s: %s",

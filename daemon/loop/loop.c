@@ -275,6 +275,8 @@ static int patient_do(struct loop *l, const struct loop_patient_command *c)
 	case LOOP_PATIENT_RELEASE:
 		patient_release(pt);
 		return 0;
+	case LOOP_PATIENT_SEDATE:
+		return patient_sedate(pt, c->arg);
 	default:
 		return -EINVAL;
 	}

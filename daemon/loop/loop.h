@@ -99,6 +99,7 @@ enum loop_patient_op {
 	LOOP_PATIENT_TURN = 1,    /* to position ARG (enum endosim_position) */
 	LOOP_PATIENT_PRESS = 2,   /* at site ARG (the case's) with FORCE_N */
 	LOOP_PATIENT_RELEASE = 3, /* the hand lets go */
+	LOOP_PATIENT_SEDATE = 4,  /* to ARG (enum endosim_sedation) */
 };
 
 struct loop_patient_command {

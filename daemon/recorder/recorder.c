@@ -246,7 +246,8 @@ static void guide_event(struct recorder *r, const struct session_record *rec)
 
 /* The patient before a session's first record: none, nothing held. */
 static const struct session_record no_patient = {
-	.hand_site = -1, .burst_segment = -1,
+	.hand_site = -1, .burst_segment = -1, .torn_segment = -1,
+	.sedation = UINT32_MAX,
 };
 
 static void patient_event(struct recorder *r, const struct session_record *rec,
@@ -345,6 +346,41 @@ static void burst_event(struct recorder *r, const struct session_record *rec,
 		.value = rec->gas_pressure_pa }, text);
 }
 
+/* The tip tore the wall, pressing as hard as the wall's contact says. */
+static void tear_event(struct recorder *r, const struct session_record *rec,
+		       const struct session_record *was)
+{
+	double f = hypot(hypot(rec->f_static[0], rec->f_static[1]),
+			 rec->f_static[2]);
+	char text[EVENT_TEXT];
+
+	if (rec->torn_segment < 0 || rec->torn_segment == was->torn_segment) {
+		return;
+	}
+	snprintf(text, sizeof(text), "%s torn by the tip at %.1f N",
+		 anatomy_segment_name(rec->torn_segment), f);
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_TEAR, .axis = -1,
+		.detail = (uint32_t)rec->torn_segment, .value = f }, text);
+}
+
+/* The patient sedated anew (or first seen). */
+static void sedation_event(struct recorder *r,
+			   const struct session_record *rec,
+			   const struct session_record *was)
+{
+	char text[EVENT_TEXT];
+
+	if (!rec->patient || rec->sedation == was->sedation) {
+		return;
+	}
+	snprintf(text, sizeof(text), "sedation %s",
+		 names_sedation(rec->sedation));
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_SEDATION, .axis = -1,
+		.value = rec->sedation }, text);
+}
+
 /* The patient's events from the change since the last record. */
 static void patient_events(struct recorder *r, const struct session_record *rec)
 {
@@ -355,6 +391,8 @@ static void patient_events(struct recorder *r, const struct session_record *rec)
 	hand_event(r, rec, was);
 	valve_events(r, rec, was);
 	burst_event(r, rec, was);
+	tear_event(r, rec, was);
+	sedation_event(r, rec, was);
 }
 
 /* STATE, FAULT, guidance and the patient's events from the change between

@@ -28,7 +28,7 @@ p_true() {
 
 check "status --json: the patient's keys, in their order" \
 	test "$(ctl --json status | jq -c '.patient | keys_unsorted')" = \
-	'["enabled","valves","position","turning","turn","down","gas_m3","pressure_pa","gas_in_m3","factor","transmural_pa","tension_n_per_m","fluid_m3","fluid_level_m","fluid_up","hand_site","site","tip_in_fluid","hand_n","pad_n","lens_smear","lens_murk","lens_redout","burst_segment"]'
+	'["enabled","valves","position","turning","turn","down","gas_m3","pressure_pa","gas_in_m3","factor","transmural_pa","tension_n_per_m","fluid_m3","fluid_level_m","fluid_up","hand_site","site","tip_in_fluid","hand_n","pad_n","lens_smear","lens_murk","lens_redout","burst_segment","sedation","pain","pain_stimulus","pain_cause","pain_place","heart_rate_bpm","spo2","torn_segment"]'
 check "at the start: left lateral, settled, the gas at 15 mmHg, no hand, no valve, whole" \
 	p_true '.enabled and .position == "left-lateral" and (.turning | not)
 		and (.pressure_pa / 133.322 | . > 14 and . < 16)
@@ -36,7 +36,7 @@ check "at the start: left lateral, settled, the gas at 15 mmHg, no hand, no valv
 		and .hand_site == -1 and .site == "" and .valves == "none"
 		and .burst_segment == -1'
 check "status: the patient's line" eval \
-	"ctl status | grep -qE '^patient   left-lateral, gas [0-9.]+ L at [0-9.]+ mmHg, hand off, valves none$'"
+	"ctl status | grep -qE '^patient   left-lateral, gas [0-9.]+ L at [0-9.]+ mmHg, hand off, valves none, pain [0-9.]+( [a-z]+)?, moderate sedation$'"
 check "scene info: the case's sites" eval \
 	"ctl scene info >$TMP/scene.txt && grep -q '^  site llq  ' $TMP/scene.txt &&
 	 grep -q '^  site umbilical ' $TMP/scene.txt"
@@ -145,7 +145,7 @@ col() {
 		{ print $(c[k]) }' "$TMP/s.csv" | sort -u | tr '\n' ' '
 }
 check "the CSV: the patient's columns" eval \
-	"head -n 1 $TMP/s.csv | grep -q ',patient_enabled,patient_valves,patient_position,patient_turning,patient_turn_1,patient_gas_m3,patient_pressure_pa,patient_gas_in_m3,patient_factor_anal_canal_1,.*,patient_fluid_cecum_m3,patient_hand_site,patient_hand_n,patient_lens_smear_1,patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment$'"
+	"head -n 1 $TMP/s.csv | grep -q ',patient_enabled,patient_valves,patient_position,patient_turning,patient_turn_1,patient_gas_m3,patient_pressure_pa,patient_gas_in_m3,patient_factor_anal_canal_1,.*,patient_fluid_cecum_m3,patient_hand_site,patient_hand_n,patient_lens_smear_1,patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment,patient_sedation,patient_pain,.*,patient_torn_segment$'"
 check "... enabled throughout, left lateral then supine" \
 	test "$(col patient_enabled)$(col patient_position)" = "1 0 1 "
 check "... the hand at llq and none" test "$(col patient_hand_site)" = "-1 0 "
