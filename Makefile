@@ -48,12 +48,12 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
-	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev \
-	     fonts-dejavu-core
+	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev libopenal-dev \
+	     fonts-dejavu-core espeak-ng
 # libFuzzer's runtime is only a recommendation of clang: named here
 DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq \
 	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
-	    $(DEPS_SCREEN) xdotool chromium
+	    $(DEPS_SCREEN) xdotool chromium sox
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
 	     libglib2.0-dev clang libclang-rt-14-dev $(DEPS_SCREEN)
 # a screen for the viewer where there is none (tests, bench, headless demo)
@@ -158,10 +158,21 @@ endoctl_LDLIBS = $(CLIENT_LDLIBS)
 endoview_SRCS = viewer/endoview.c
 endoview_WINGS = viewer session conf model base proto
 endoview_LDLIBS = $(VIEWER_LDLIBS)
-VIEWER_PKGS = glfw3 epoxy cglm stb inih
+VIEWER_PKGS = glfw3 epoxy cglm stb inih openal
 VIEWER_CFLAGS = $(shell pkg-config --cflags $(VIEWER_PKGS) 2>/dev/null)
 VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
 		  2>/dev/null) -lm
+# the patient's voice (viewer/voice.h, sound.h): clips spoken by espeak-ng
+# into $(BUILD)/voice/NAME.wav, endoview's beside it (installed in
+# $(VOICEDIR)); each clip's espeak-ng options and text
+VOICEDIR = $(DATADIR)/voice
+VOICE_CLIPS = groan ow hurts stop cry
+VOICE_groan = -v en+m3 -s 60 -p 15 -a 140 "hhhh, ohhhh"
+VOICE_ow = -v en+m3 -s 130 -p 60 -a 160 "ow!"
+VOICE_hurts = -v en+m3 -s 140 -p 55 -a 160 "ah, that hurts!"
+VOICE_stop = -v en+m3 -s 150 -p 70 -a 180 "please stop! please!"
+VOICE_cry = -v en+m3 -s 100 -p 95 -a 200 "aaaaaah!"
+VOICE_WAVS = $(patsubst %,$(BUILD)/voice/%.wav,$(VOICE_CLIPS))
 
 # --- device emulators (tests/emulators/): what the system tests and the
 # drive benchmark run the real drive backends against; the drive benchmark:
@@ -206,7 +217,7 @@ FUZZ_WINGS = session rig conf model base proto
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
 	emulators
 
-all: $(addprefix $(BUILD)/,$(PROGRAMS))
+all: $(addprefix $(BUILD)/,$(PROGRAMS)) $(VOICE_WAVS)
 
 $(PROTO_GEN) &: proto/endosim.proto
 	@mkdir -p $(BUILD)/gen
@@ -220,7 +231,12 @@ $(BUILD)/obj/%.o: %.c $(PROTO_GEN)
 $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
-$(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS)
+$(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS) \
+	-DENDOVIEW_VOICE_DIR='"$(VOICEDIR)"'
+# a clip whose line changed is spoken again
+$(BUILD)/voice/%.wav: Makefile
+	@mkdir -p $(dir $@)
+	espeak-ng $(VOICE_$*) -w $@
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 # the rod's solver runs in the force loop: -O3 vectorises its 3x3 and 6x6
 # blocks (a third fewer instructions than -O2; rod_algebra.h's, inline in
@@ -341,7 +357,7 @@ install: all
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(SBINDIR) \
 		$(DESTDIR)$(SYSCONFDIR)/endosim $(DESTDIR)$(DATADIR)/scenarios \
 		$(DESTDIR)$(CASEDIR) $(DESTDIR)$(DATADIR)/courses \
-		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) \
+		$(DESTDIR)$(DOCDIR) $(DESTDIR)$(UDEVDIR) $(DESTDIR)$(VOICEDIR) \
 		$(DESTDIR)$(SYSTEMDDIR) $(DESTDIR)$(SYSUSERSDIR) \
 		$(DESTDIR)$(TMPFILESDIR)
 	install -m 0755 $(BUILD)/endosimd $(DESTDIR)$(SBINDIR)/endosimd
@@ -353,6 +369,7 @@ install: all
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
 	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
 	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
+	install -m 0644 $(VOICE_WAVS) $(DESTDIR)$(VOICEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \

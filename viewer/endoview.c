@@ -6,22 +6,30 @@
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
  *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
+ *            [--mute] [--voice DIR]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * A separate process: it only reads the daemon's shared memory and asks
  * the sockets, so whatever happens to it, the force loop goes on. With
  * --replay it plays a recorded session instead (replay.h), with no daemon
- * and no socket.
+ * and no socket. The patient's voice (voice.h) sounds through the audio
+ * device (sound.h); without one, endoview says so once and goes on
+ * silent. Each clip said is logged ("voice: ow, pain 5.6, at 9.683 s,
+ * 10.012 s of sound": the live or the replay's clock, and the time since
+ * the audio device opened, a wave file's under test).
  *
  * Exit status: 0 done; 1 no window, an OpenGL error, the screenshot could
  * not be written, or a session file that cannot be replayed; 2 usage.
  */
 #include <errno.h>
+#include <libgen.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
@@ -45,12 +53,14 @@
 #include "viewer/replay.h"
 #include "viewer/rigctl.h"
 #include "viewer/shot.h"
+#include "viewer/sound.h"
 #include "proto/names.h"
 #include "proto/state_text.h"
 #include "viewer/timing.h"
 #include "viewer/ui.h"
 #include "viewer/viewopts.h"
 #include "viewer/viewstats.h"
+#include "viewer/voice.h"
 
 #define HAND_HOLD_MS 250 /* a hand input outlives a few lost frames */
 #define VALVE_HOLD_MS 1000 /* held valves outlive a slow frame or two */
@@ -85,6 +95,9 @@ struct app {
 	struct overview *overview;
 	struct hud *hud;
 	struct mapview *mapview; /* the M key's overlay */
+	struct voice voice;      /* what the patient says */
+	struct sound *sound;     /* NULL: silent */
+	char voice_line[160];    /* the panel's line about it */
 	struct timing *timing;
 	struct colon_set colon;
 	struct input_hand hand;
@@ -311,6 +324,11 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 	if (act->toggle_map) {
 		a->map_shown = !a->map_shown;
 	}
+	if (act->toggle_mute) {
+		a->opt.mute = !a->opt.mute;
+		voice_set_muted(&a->voice, a->opt.mute);
+		log_info("voice %s", a->opt.mute ? "muted" : "on");
+	}
 	if (act->reset_orbit) {
 		a->orbit = (struct overview_orbit){ .zoom = 1 };
 	}
@@ -374,6 +392,25 @@ static void command_patient(struct app *a, const struct ui_actions *act,
 	} else {
 		rigctl_patient(a->rig, RIGCTL_PATIENT_RELEASE, NULL, now);
 	}
+}
+
+/* The patient's voice at T_S (the live or the replay's clock): the clip
+ * due now, played and logged. */
+static void speak(struct app *a, const struct endosim_state *st, double t_s)
+{
+	enum voice_clip c;
+
+	if (!st) {
+		return;
+	}
+	c = voice_step(&a->voice, &st->patient, t_s);
+	if (c == VOICE_NONE) {
+		return;
+	}
+	sound_play(a->sound, c);
+	log_info("voice: %s, pain %.1f, at %.3f s, %.3f s of sound",
+		 voice_clip_name(c), st->patient.pain, t_s,
+		 sound_time_s(a->sound));
 }
 
 /* The replay's state at its clock, run on since the last frame (by a
@@ -460,6 +497,16 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 	link_patient_limits(a->link, &in->relief_pa, &in->strength_n_per_m);
 }
 
+/* The panel's line about the voice. */
+static const char *voice_line(struct app *a)
+{
+	if (a->sound) {
+		snprintf(a->voice_line, sizeof(a->voice_line), "voice %s",
+			 a->opt.mute ? "muted (U: on)" : "on (U: mute)");
+	}
+	return a->voice_line;
+}
+
 static void draw_views(struct app *a, const struct hud_layout *lay,
 		       const struct endosim_state *st, bool current,
 		       double t_s)
@@ -513,6 +560,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	draw_views(a, &lay, st, current, t_s);
 	fill_info(a, st, now, &in);
 	in.compact |= lay.panel.w < COMPACT_PANEL_PX;
+	in.voice = voice_line(a);
 	draw2d_begin(a->d2d, w, h);
 	if (lay.overview.w && a->colon.model) {
 		overview_labels(a->overview, a->colon.model, a->d2d, h);
@@ -586,6 +634,8 @@ static int frame(struct app *a)
 		command_patient(a, &acts, st, now);
 	}
 	mapview_update(a->mapview, a->map_shown, now);
+	speak(a, st, a->replay ? replay_time(a->replay) :
+				 (double)now / ENDOSIM_NS_PER_S);
 	current = colon_current(a, st);
 	if (st && a->status == LINK_LIVE && !a->replay) {
 		hud_record(a->hud, st, (double)now / ENDOSIM_NS_PER_S);
@@ -726,6 +776,7 @@ static int run(struct app *a)
 
 static void cleanup(struct app *a)
 {
+	sound_destroy(a->sound);
 	colon_free(&a->colon);
 	ui_destroy(a->ui);
 	timing_destroy(a->timing);
@@ -744,6 +795,48 @@ static void cleanup(struct app *a)
 	rigctl_destroy(a->rig);
 	link_destroy(a->link);
 	replay_destroy(a->replay);
+}
+
+/* The clips' folder: --voice, else voice/ beside the program (the
+ * build's), else the installed one. */
+static void voice_dir(const struct viewopts *o, char *buf, size_t size)
+{
+	char exe[PATH_MAX];
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+
+	if (o->voice) {
+		snprintf(buf, size, "%s", o->voice);
+		return;
+	}
+	if (n > 0) {
+		exe[n] = '\0';
+		snprintf(buf, size, "%s/voice", dirname(exe));
+		if (access(buf, R_OK) == 0) {
+			return;
+		}
+	}
+	snprintf(buf, size, "%s", ENDOVIEW_VOICE_DIR);
+}
+
+/* The voice, and the audio device it sounds through: without one, one
+ * line says why and the patient is silent. */
+static void open_voice(struct app *a)
+{
+	const char *names[VOICE_CLIPS];
+	char dir[PATH_MAX], err[512];
+
+	voice_init(&a->voice);
+	voice_set_muted(&a->voice, a->opt.mute);
+	for (int k = 0; k < VOICE_CLIPS; k++) {
+		names[k] = voice_clip_name((enum voice_clip)k);
+	}
+	voice_dir(&a->opt, dir, sizeof(dir));
+	a->sound = sound_create(dir, names, VOICE_CLIPS, err, sizeof(err));
+	if (!a->sound) {
+		log_warn("no sound (%s): the patient is silent", err);
+		snprintf(a->voice_line, sizeof(a->voice_line), "no sound: %.*s",
+			 (int)sizeof(a->voice_line) - 12, err);
+	}
 }
 
 static int open_replay(struct app *a)
@@ -793,6 +886,7 @@ int main(int argc, char **argv)
 	if (a.replay) {
 		ui_set_replay(a.ui);
 	}
+	open_voice(&a);
 	r = run(&a) ? 1 : 0;
 out:
 	cleanup(&a);

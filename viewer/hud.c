@@ -7,8 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "model/anatomy.h"
 #include "proto/names.h"
 #include "viewer/burstmark.h"
+#include "viewer/painview.h"
 #include "viewer/patientview.h"
 
 #define CHART_SAMPLES 512
@@ -36,6 +38,7 @@ const char *const hud_keys[] = {
 	"\tback to the path",
 	"V  O\tview, overview's orbit back",
 	"M\tthe unseen-mucosa map (recording)",
+	"U\tthe patient's voice off, on",
 	"P\tsave a picture (PNG, here)",
 	"H  Q\tthis help, quit",
 	NULL,
@@ -49,6 +52,7 @@ const char *const hud_replay_keys[] = {
 	"mouse\tclick the timeline to seek;",
 	"\tdrag the overview to turn it",
 	"V  O\tview, overview's orbit back",
+	"U\tthe patient's voice off, on",
 	"P\tsave a picture (PNG, here)",
 	"H  Q\tthis help, quit",
 	NULL,
@@ -61,6 +65,7 @@ static const float amber[4] = { 1.00f, 0.70f, 0.15f, 1 };
 static const float red[4] = { 1.00f, 0.27f, 0.22f, 1 };
 static const float track[4] = { 1, 1, 1, 0.09f };
 static const float shade[4] = { 0, 0, 0, 0.72f };
+static const float perforated_rgb[4] = { 0.85f, 0.07f, 0.07f, 1 };
 static const float axis_rgb[ENDOSIM_AXES][4] = {
 	{ 0.35f, 0.75f, 1.00f, 1 }, { 0.85f, 0.55f, 1.00f, 1 },
 	{ 1.00f, 0.80f, 0.30f, 1 }, { 0.40f, 1.00f, 0.70f, 1 },
@@ -508,35 +513,94 @@ static void draw_lens(struct pen *p, const struct endosim_patient_state *pt)
 	line(p, FONT_SMALL, amber, text);
 }
 
+/* Segment I in words: the colon's region, else the anatomy's name. */
+static void segment_name(const struct model *m, int i, char *buf,
+			 size_t size)
+{
+	if (m && i < m->regions) {
+		region_name(&m->region[i], buf, size);
+	} else {
+		spaced(anatomy_segment_name(i), buf, size);
+	}
+}
+
+/* The segment perforated (the gas's burst first, else the tip's tear)
+ * in words into BUF and what did it into HOW; false: none. */
+static bool perforation(const struct hud_info *in, char *buf, size_t size,
+			const char **how)
+{
+	const struct endosim_patient_state *pt = &in->st->patient;
+	int i = pt->burst_segment >= 0 ? pt->burst_segment : pt->torn_segment;
+
+	if (!pt->enabled || i < 0) {
+		return false;
+	}
+	segment_name(in->m, i, buf, size);
+	*how = pt->burst_segment >= 0 ? "the gas's pressure burst the wall" :
+					"the tip tore the wall";
+	return true;
+}
+
 /* A torn wall, in red. */
 static void draw_burst(struct pen *p, const struct hud_info *in)
 {
-	int i = in->st->patient.burst_segment;
 	char name[MODEL_NAME], text[96];
+	const char *how;
 
-	if (i < 0) {
+	if (!perforation(in, name, sizeof(name), &how)) {
 		return;
-	}
-	if (in->m && i < in->m->regions) {
-		region_name(&in->m->region[i], name, sizeof(name));
-	} else {
-		snprintf(name, sizeof(name), "segment %d", i);
 	}
 	snprintf(text, sizeof(text), "PERFORATED: %s", name);
 	line(p, FONT_LARGE, red, text);
 }
 
+/* The level's words: "pain 6.3 grimace: looping, sigmoid". */
+static void draw_pain_words(struct pen *p, const struct endosim_patient_state *pt,
+			    const struct model *m)
+{
+	char place[MODEL_NAME] = "", text[160];
+
+	if (pt->pain_place >= 0) {
+		segment_name(m, pt->pain_place, place, sizeof(place));
+	}
+	snprintf(text, sizeof(text), "pain %.1f %s%s%s%s%s", pt->pain,
+		 painview_mood_name(painview_mood(pt->pain)),
+		 pt->pain_cause ? ": " : "",
+		 pt->pain_cause ? names_pain_cause(pt->pain_cause) : "",
+		 pt->pain_cause && *place ? ", " : "",
+		 pt->pain_cause ? place : "");
+	line(p, FONT_SMALL, painview_rgb(pt->pain), text);
+}
+
+/* The vital signs: heart rate, oxygen saturation, sedation; amber or
+ * red past the simple alarms' limits (a bedside monitor's defaults). */
+static void draw_vitals(struct pen *p, const struct endosim_patient_state *pt)
+{
+	const float *rgb = white;
+	char text[128];
+
+	if (pt->heart_rate_bpm > 120 || pt->spo2 < 0.90) {
+		rgb = red;
+	} else if (pt->heart_rate_bpm > 100 || pt->spo2 < 0.94) {
+		rgb = amber;
+	}
+	snprintf(text, sizeof(text), "HR %.0f/min  SpO2 %.0f %%  %s sedation",
+		 pt->heart_rate_bpm, pt->spo2 * 100,
+		 names_sedation(pt->sedation));
+	line(p, FONT_SMALL, rgb, text);
+}
+
 /*
- * The patient panel: the figure and the gauge side by side, the lines
- * beside them where the panel is wide enough, else under them; in a
- * compact panel the lines alone.
+ * The patient panel: the figure, the gauge and the face side by side, the
+ * pain's bar under them, then the lines: the level's words, the vital
+ * signs, the position, the gas, the hand and the valves, the lens, the
+ * voice; in a compact panel the lines alone.
  */
 static void draw_patient(struct pen *p, const struct hud_info *in)
 {
 	const struct endosim_patient_state *pt = &in->st->patient;
 	double burst = burstmark_pa(pt, in->strength_n_per_m);
-	float size = p->small * 6.5f, x = p->x, w = p->w, top = p->y;
-	bool beside = p->w > size * 2.2f + p->small * 22;
+	float size = p->small * 6.5f, x = p->x, top;
 
 	if (!pt->enabled) {
 		return;
@@ -549,21 +613,20 @@ static void draw_patient(struct pen *p, const struct hud_info *in)
 		patientview_gauge(p->d, x + size * 1.6f, top + size * 0.48f,
 				  size * 0.42f, pt->pressure_pa, in->relief_pa,
 				  burst);
-		if (beside) {
-			p->x = x + size * 2.2f;
-			p->w = w - size * 2.2f;
-		} else {
-			p->y = top + size + p->small * 0.3f;
-		}
+		painview_face(p->d, x + size * 2.7f, top + size * 0.46f,
+			      size * 0.4f, pt->pain);
+		p->y = top + size + p->small * 0.2f;
+		painview_bar(p->d, x, p->y, p->w, p->small * 0.7f, pt->pain);
+		p->y += p->small * 1.2f;
 	}
+	draw_pain_words(p, pt, in->m);
+	draw_vitals(p, pt);
 	draw_position(p, pt);
 	draw_gas(p, in, burst);
 	draw_hand_valves(p, in);
 	draw_lens(p, pt);
-	if (!in->compact && beside) {
-		p->x = x;
-		p->w = w;
-		p->y = fmaxf(p->y, top + size);
+	if (in->voice) {
+		line(p, FONT_SMALL, dim, in->voice);
 	}
 }
 
@@ -741,7 +804,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 		for (int a = 0; a < ENDOSIM_AXES; a++) {
 			draw_bar(p, &in->st->axis[a], a);
 		}
-		if (!in->compact) {
+		if (!in->compact && !in->st->patient.enabled) {
 			draw_parts(p, in->st);
 			gap(p);
 		}
@@ -774,12 +837,37 @@ static void banner(struct draw2d *d, struct endo_rect r, int fb_h,
 		    top + large * 1.5f + small * 1.2f, white, text);
 }
 
+/* A perforation, plainly: a red banner across the top of R. */
+static void perforation_banner(struct draw2d *d, struct endo_rect r,
+			       int fb_h, const struct hud_info *in)
+{
+	char name[MODEL_NAME], title[96];
+	const char *how;
+	float large = draw2d_px(d, FONT_LARGE), small = draw2d_px(d, FONT_SMALL);
+	float top = (float)(fb_h - r.y - r.h), bh = large * 1.5f + small * 1.6f;
+	float tw, sw;
+
+	if (in->link == LINK_NO_DAEMON || !in->st ||
+	    !perforation(in, name, sizeof(name), &how)) {
+		return;
+	}
+	snprintf(title, sizeof(title), "PERFORATION: %s", name);
+	tw = draw2d_text_width(d, FONT_LARGE, title);
+	sw = draw2d_text_width(d, FONT_SMALL, how);
+	draw2d_rect(d, (float)r.x, top, (float)r.w, bh, perforated_rgb);
+	draw2d_text(d, FONT_LARGE, (float)r.x + ((float)r.w - tw) / 2,
+		    top + large * 1.2f, white, title);
+	draw2d_text(d, FONT_SMALL, (float)r.x + ((float)r.w - sw) / 2,
+		    top + large * 1.3f + small * 1.1f, white, how);
+}
+
 static void banners(struct draw2d *d, const struct hud_layout *lay,
 		    const struct hud_info *in, int fb_h)
 {
 	struct endo_rect r = lay->endo.w ? lay->endo : lay->overview;
 	char text[192];
 
+	perforation_banner(d, r, fb_h, in);
 	if (in->link == LINK_NO_DAEMON) {
 		banner(d, r, fb_h, "NO DAEMON", *in->link_problem ?
 			in->link_problem : "waiting for endosimd", red);

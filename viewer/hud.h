@@ -15,10 +15,17 @@
  * contacts along the tube, their force and friction.
  *
  * With the patient enabled (struct endosim_patient_state) the patient
- * panel takes the chart's place: the position as a small figure and the
- * gas's pressure as a gauge (patientview.h), and lines for the position
- * (and the turn in progress), the gas, the assistant's hand, the valves
- * and the lens; PERFORATED in red once a wall tore. A compact panel has
+ * panel takes the place of the force's parts and the chart: the position
+ * as a small figure, the gas's pressure as a gauge (patientview.h) and
+ * the patient's face, whose expression follows the pain level (issue
+ * 23), side by side, under them the level as a bar from 0 to 10 with the
+ * threshold of pain (4) marked (painview.h), and lines for the level
+ * (the mood, the cause, the place), the vital signs (heart rate, oxygen
+ * saturation, sedation), the position (and the turn in progress), the
+ * gas, the assistant's hand, the valves, the lens and the voice's state
+ * (hud_info voice); PERFORATED in red once a wall tore. A
+ * perforation (by the gas or by the tip) is also a red banner across
+ * the top of the image, "PERFORATION: sigmoid". A compact panel has
  * the lines without the pictures.
  *
  * A replay (endoview --replay) shows the recorded state, fault and forces
@@ -96,6 +103,8 @@ struct hud_info {
 	/* the patient's gauge: [patient] relief_pa (<= 0: none) and
 	   wall_strength_n_per_m (<= 0: not known, no burst mark) */
 	double relief_pa, strength_n_per_m;
+	const char *voice;         /* the patient's voice: on, muted, or why
+				      there is none (NULL: not said) */
 };
 
 struct hud;

@@ -51,6 +51,8 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->toggle_map;
 	case GLFW_KEY_T:
 		return &a->turn_patient;
+	case GLFW_KEY_U:
+		return &a->toggle_mute;
 	case GLFW_KEY_N:
 		return &a->next_hand;
 	case GLFW_KEY_Q:

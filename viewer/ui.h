@@ -10,7 +10,8 @@
  *             covered (air), 2 pressed (water onto the lens), 3 suction;
  *             T turn the patient to the next position (left lateral,
  *             supine, right lateral, prone), N the assistant's hand on
- *             the case's next site, then off;
+ *             the case's next site, then off; U the patient's voice
+ *             off and on again (voice.h);
  *             V next view, O overview orbit back, P save a picture,
  *             M the unseen-mucosa map, H help, Q/Esc quit
  *   mouse     on the endoscopic image: drag to steer (the wheels follow
@@ -22,7 +23,7 @@
  * In a replay (ui_set_replay()) the keys drive the replay's clock instead
  * of the rig: Space pause, + - (or ] [) speed, Left Right seek 5 s back
  * or on (Shift: 30 s), Home the start, End the end; a click or a drag on
- * the timeline (struct hud_layout timeline) seeks there. V, O, P, M, H, Q and
+ * the timeline (struct hud_layout timeline) seeks there. V, O, P, M, U, H, Q and
  * the overview's mouse stay; the hand's controls are still made but a
  * replay does not use them.
  *
@@ -56,6 +57,7 @@ struct ui_actions {
 	bool toggle_map;     /* the unseen-mucosa overlay (mapview.h) */
 	bool turn_patient;   /* T: to the next position */
 	bool next_hand;      /* N: the hand on the next site, or off */
+	bool toggle_mute;    /* U: the patient's voice off, on */
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;
 	int speed_steps;     /* +1 faster, -1 slower, per key */

@@ -20,7 +20,7 @@ void viewopts_usage(FILE *f)
 		"                [--view endo|overview|both] [--size WxH]\n"
 		"                [--screenshot FILE.png] [--frames N]\n"
 		"                [--no-vsync] [--max-fps N] [--image-scale S]\n"
-		"                [--font FILE.ttf]\n"
+		"                [--font FILE.ttf] [--mute] [--voice DIR]\n"
 		"                [--stats] [--print-state]\n"
 		"                [--replay FILE [--seek S] [--speed X] "
 		"[--paused]]\n"
@@ -41,6 +41,10 @@ void viewopts_usage(FILE *f)
 		"                    where the drawing is done in software,\n"
 		"                    else 1)\n"
 		"  --font F          a TrueType font for the HUD\n"
+		"  --mute            the patient's voice off (the key U\n"
+		"                    turns it on and off)\n"
+		"  --voice DIR       the voice's clips (default: voice/\n"
+		"                    beside endoview, else %s)\n"
 		"  --stats           print the frame figures at exit\n"
 		"  --print-state     print the last frame's state at exit,\n"
 		"                    what its panel said and where its\n"
@@ -49,7 +53,8 @@ void viewopts_usage(FILE *f)
 		"  --seek S          start S seconds into it\n"
 		"  --speed X         at X times real time (0.25 to 8)\n"
 		"  --paused          start paused\n",
-		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME);
+		CLIENT_ENV, CLIENT_DEFAULT_DIR, ENDOSIM_SHM_DEFAULT_NAME,
+		ENDOVIEW_VOICE_DIR);
 }
 
 static int parse_view(const char *s)
@@ -101,6 +106,8 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 		{ "seek", required_argument, NULL, 'k' },
 		{ "speed", required_argument, NULL, 'x' },
 		{ "paused", no_argument, NULL, 'p' },
+		{ "mute", no_argument, NULL, 'u' },
+		{ "voice", required_argument, NULL, 'C' },
 		{ "help", no_argument, NULL, 'h' },
 		{ "version", no_argument, NULL, 'R' },
 		{ 0 },
@@ -175,6 +182,12 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 			break;
 		case 'p':
 			o->paused = true;
+			break;
+		case 'u':
+			o->mute = true;
+			break;
+		case 'C':
+			o->voice = optarg;
 			break;
 		case 'h':
 			viewopts_usage(stdout);

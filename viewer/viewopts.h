@@ -4,7 +4,7 @@
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
  *            [--no-vsync] [--max-fps N] [--image-scale S]
- *            [--font FILE.ttf] [--stats]
+ *            [--font FILE.ttf] [--stats] [--mute] [--voice DIR]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * The main thread, at start-up; no allocation (the strings point into
@@ -18,11 +18,17 @@
 
 #include "viewer/hud.h"
 
+/* where the installed voice's clips are (the Makefile's VOICEDIR) */
+#ifndef ENDOVIEW_VOICE_DIR
+#define ENDOVIEW_VOICE_DIR "/usr/local/share/endosim/voice"
+#endif
+
 /* --view empty: clear and swap only, the benchmark's */
 enum { VIEWOPTS_VIEW_EMPTY = HUD_VIEWS };
 
 struct viewopts {
 	const char *socket, *shm_name, *screenshot, *font, *replay;
+	const char *voice;      /* the clips' folder; NULL: the default */
 	int view, width, height; /* enum hud_view or VIEWOPTS_VIEW_EMPTY;
 				    px */
 	long frames;            /* -1: until closed */
@@ -30,6 +36,7 @@ struct viewopts {
 	double max_fps;         /* 0: as fast as vsync lets it */
 	double image_scale;     /* 0: by the renderer (imagescale.h) */
 	bool vsync, stats, print_state, paused;
+	bool mute;              /* the patient's voice off at start */
 };
 
 /* The usage and every option's line of help into F. */

@@ -7,12 +7,19 @@
  * them, for the replay's and the metrics' tests.
  *
  *   session_synth [--at T]... [--trainee NAME] [--set SECTION.KEY=VALUE]...
+ *                 [--pain T:LEVEL]... [--tear T:SEGMENT] [--sedation NAME]
  *                 CASE SCENARIO OUT [SECONDS]
  *
  * CASE: a case file (the colon at the default resolution); SCENARIO: the
  * simulated hand's script; OUT: the file written; SECONDS: how much of the
  * scenario (default: all of it); --set: a configuration key, as endosimd's
- * (haptics.model=rod). The file holds HEADER (every key of the format),
+ * (haptics.model=rod). --pain (repeatable, in increasing T): the
+ * patient's pain level recorded instead of the model's, LEVEL at T
+ * seconds after the first record, linear between two, held before the
+ * first and after the last; the patient then shows as enabled (sedation
+ * NAME, default moderate), the cause looping, in the sigmoid (segment
+ * 2), the heart at 70 + 4 LEVEL beats a minute, SpO2 0.97; --tear: the wall torn by the tip in SEGMENT from T seconds on (the
+ * viewer's voice and panel tests). The file holds HEADER (every key of the format),
  * CONFIG (the defaults with [case] file = CASE and the keys set, as
  * endosimd --print-config prints them), CASE (the file's text), a STATE
  * event (ENABLED) at the first record, the RECORDs (and SHAPEs), and END
@@ -39,11 +46,13 @@
 
 #include "conf/cases.h"
 #include "offline.h"
+#include "proto/names.h"
 #include "proto/session_file.h"
 #include "proto/state_text.h"
 #include "proto/version.h"
 
 #define MAX_AT 32
+#define MAX_PAIN 32
 #define BATCH (64u << 10)
 #define SCENE_ID 1
 
@@ -52,6 +61,11 @@ struct synth {
 	double seconds;
 	double at[MAX_AT];
 	int n_at;
+	double pain_s[MAX_PAIN], pain[MAX_PAIN]; /* --pain */
+	int n_pain;
+	double tear_s;      /* --tear, or INFINITY */
+	int tear_segment;
+	int sedation;
 	struct config cfg;
 	struct colon *colon;
 	int fd;
@@ -64,7 +78,10 @@ struct synth {
 static void usage(void)
 {
 	fprintf(stderr, "usage: session_synth [--at T]... [--trainee NAME] "
-		"[--set SECTION.KEY=VALUE]... CASE SCENARIO OUT [SECONDS]\n");
+		"[--set SECTION.KEY=VALUE]...\n"
+		"                     [--pain T:LEVEL]... [--tear T:SEGMENT] "
+		"[--sedation NAME]\n"
+		"                     CASE SCENARIO OUT [SECONDS]\n");
 	exit(2);
 }
 
@@ -84,6 +101,33 @@ static void set_key(struct synth *s, char *arg)
 	}
 }
 
+/* --pain T:LEVEL, --tear T:SEGMENT and --sedation NAME into S, or
+ * usage. */
+static void patient_option(struct synth *s, int c, const char *arg)
+{
+	double t, v;
+
+	if (c == 'S') {
+		s->sedation = names_sedation_find(arg);
+		if (s->sedation < 0) {
+			usage();
+		}
+		return;
+	}
+	if (sscanf(arg, "%lf:%lf", &t, &v) != 2 ||
+	    (c == 'p' && (s->n_pain == MAX_PAIN ||
+			  (s->n_pain && t < s->pain_s[s->n_pain - 1])))) {
+		usage();
+	}
+	if (c == 'p') {
+		s->pain_s[s->n_pain] = t;
+		s->pain[s->n_pain++] = v;
+	} else {
+		s->tear_s = t;
+		s->tear_segment = (int)v;
+	}
+}
+
 /* The options into S, whose configuration has its defaults. */
 static void parse(int argc, char **argv, struct synth *s)
 {
@@ -91,15 +135,22 @@ static void parse(int argc, char **argv, struct synth *s)
 		{ "at", required_argument, NULL, 'a' },
 		{ "trainee", required_argument, NULL, 't' },
 		{ "set", required_argument, NULL, 's' },
+		{ "pain", required_argument, NULL, 'p' },
+		{ "tear", required_argument, NULL, 'T' },
+		{ "sedation", required_argument, NULL, 'S' },
 		{ 0 },
 	};
 	int c;
 
 	s->trainee = "synth";
 	s->seconds = -1;
+	s->tear_s = INFINITY;
+	s->sedation = ENDOSIM_SEDATION_MODERATE;
 	while ((c = getopt_long(argc, argv, "", longs, NULL)) != -1) {
 		if (c == 'a' && s->n_at < MAX_AT) {
 			s->at[s->n_at++] = atof(optarg);
+		} else if (c == 'p' || c == 'T' || c == 'S') {
+			patient_option(s, c, optarg);
 		} else if (c == 't') {
 			s->trainee = optarg;
 		} else if (c == 's') {
@@ -207,6 +258,43 @@ static int put_event(struct synth *s, uint64_t stamp_ns, uint32_t kind,
 	return put(s, SESSION_FRAME_EVENT, &ev, sizeof(ev));
 }
 
+/* --pain's level at T_S. */
+static double pain_at(const struct synth *s, double t_s)
+{
+	int i = 0;
+
+	while (i < s->n_pain && s->pain_s[i] <= t_s) {
+		i++;
+	}
+	if (i == 0 || i == s->n_pain) {
+		return s->pain[i ? i - 1 : 0];
+	}
+	return s->pain[i - 1] + (s->pain[i] - s->pain[i - 1]) *
+		(t_s - s->pain_s[i - 1]) / (s->pain_s[i] - s->pain_s[i - 1]);
+}
+
+/* --pain and --tear at cycle K into ST (nothing without --pain). */
+static void patient_schedule(const struct synth *s, long k,
+			     struct endosim_state *st)
+{
+	struct endosim_patient_state *p = &st->patient;
+	double t_s = (double)k * OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS;
+
+	if (!s->n_pain) {
+		return;
+	}
+	p->enabled = 1;
+	p->sedation = (uint32_t)s->sedation;
+	p->pain = pain_at(s, t_s);
+	p->pain_stimulus = p->pain;
+	p->pain_cause = p->pain > 0 ? ENDOSIM_PAIN_LOOPING :
+				      ENDOSIM_PAIN_NONE;
+	p->pain_place = p->pain > 0 ? 2 : -1;
+	p->heart_rate_bpm = 70 + 4 * p->pain; /* a stand-in, not vitals.h */
+	p->spo2 = 0.97;
+	p->torn_segment = t_s >= s->tear_s ? s->tear_segment : -1;
+}
+
 /* The truth at cycle K (from 0), if one was asked for then. */
 static void truth(const struct synth *s, long k, const struct endosim_state *st)
 {
@@ -240,6 +328,7 @@ static int run(struct synth *s, struct offline *o, long cycles)
 
 	for (long k = 0; !r && k < cycles; k++) {
 		st = *offline_step(o);
+		patient_schedule(s, k, &st);
 		if (k == 0) {
 			r = put_event(s, st.stamp_ns, SESSION_EVENT_STATE,
 				      ENDOSIM_STATE_ENABLED);

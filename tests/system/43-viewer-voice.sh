@@ -1,0 +1,186 @@
+#!/bin/bash
+# The patient reacts in endoview (issue 23), headless: the voice heard
+# through OpenAL Soft's wave-file backend (ALSOFT_DRIVERS=wave, its file
+# named in an ALSOFT_CONF of the test's) and measured with sox, and the
+# panel's face, level and perforation seen in screenshots, on a virtual
+# screen (Xvfb, Mesa's llvmpipe). The level is a replayed session file
+# (session_synth --pain, --tear: the record's pain as chosen), so that it
+# crosses its steps at known times of the replay's clock, which a
+# headless replay runs by a fixed step per frame:
+#
+#    0-3 s  0; 3-4 s up to 6, held: a groan at 3.67 s (4 crossed); ow
+#    (5.5, crossed at 3.92 s) when the interval of 4 s is over, at 7.67 s;
+#    8.5-9 s up to 9, held: please stop (8.5, crossed at 8.83 s) at
+#    11.67 s; 12.5 s the tip tears the sigmoid: the cry at once.
+#
+# The build's clips sound (RMS above silence); the viewer logs each clip
+# with its time on the replay's clock and in the wave file; the file is
+# silent before the groan, sounds in each clip, and is silent again
+# between ow and please stop (a held level says nothing more). With
+# --mute, and with the key U pressed at the start, nothing is said and
+# the file is silent throughout; without an audio device one line says
+# so and the replay goes on. ENDOSIM_KEEP_SHOTS=DIR keeps the pictures.
+. "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
+
+start_xvfb || finish
+FILE="$TMP/pain.endoses"
+SILENT=0.001 # RMS: the wave backend writes zeros while nothing plays
+SOUND=0.02   # RMS of a clip speaking (the clips' own are 0.1 to 0.4)
+TOL_S=0.05   # the replay's clock: a frame's step and the records' 1 ms
+
+# hear NAME ARGS...: endoview replaying $FILE headless into the wave
+# file $TMP/NAME.wav; its output in $TMP/NAME.out
+hear() {
+	local name=$1
+	shift
+	printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' \
+		"$TMP/$name.wav" >"$TMP/$name.conf"
+	ALSOFT_CONF="$TMP/$name.conf" ALSOFT_DRIVERS=wave \
+		endoview --no-vsync --max-fps 60 --size 640x480 \
+		--replay "$FILE" "$@" >"$TMP/$name.out" 2>&1
+}
+
+# rms NAME START LEN: the RMS amplitude of $TMP/NAME.wav from START s,
+# LEN s long
+rms() {
+	sox "$TMP/$1.wav" -n trim "$2" "$3" stat 2>&1 |
+		sed -n 's/^RMS  *amplitude: *//p'
+}
+
+# said NAME: the clips NAME's run logged, a line each: "CLIP T SOUND_T"
+said() {
+	sed -n 's/^endoview: voice: \([a-z]*\), pain [0-9.]*, at \([0-9.]*\) s, \([0-9.]*\) s of sound$/\1 \2 \3/p' \
+		"$TMP/$1.out"
+}
+
+# clip_at NAME CLIP T: NAME's run said CLIP once, at T s of the replay
+clip_at() {
+	said "$1" | awk -v c="$2" -v t="$3" -v tol="$TOL_S" '
+		$1 == c { n++; d = $2 - t; ok = d < tol && d > -tol }
+		END { exit !(n == 1 && ok) }'
+}
+
+# sound_t NAME CLIP: when NAME's wave file began CLIP (s)
+sound_t() {
+	said "$1" | awk -v c="$2" '$1 == c { print $3 }'
+}
+
+# quiet NAME START LEN / loud NAME START LEN: the wave file there
+quiet() {
+	local v
+	v=$(rms "$@")
+	echo "# $1.wav $2+$3 s: RMS $v" >&2
+	float_test "$v < $SILENT"
+}
+loud() {
+	local v
+	v=$(rms "$@")
+	echo "# $1.wav $2+$3 s: RMS $v" >&2
+	float_test "$v > $SOUND"
+}
+
+# --- the clips -------------------------------------------------------------
+for clip in groan ow hurts stop cry; do
+	wav="$BUILD/voice/$clip.wav"
+	check "the build spoke $clip.wav (sox: RMS above $SOUND, under 5 s)" \
+		eval "float_test \"\$(sox '$wav' -n stat 2>&1 |
+			sed -n 's/^RMS  *amplitude: *//p') > $SOUND &&
+			\$(soxi -D '$wav') < 5\""
+done
+
+# --- the session: the level as chosen ----------------------------------------
+printf '%s\n' '0 insertion target 0.30 1.5' '60 end' >"$TMP/hold.scn"
+check_status "session_synth: 14.5 s, the pain and the tear as chosen" 0 \
+	"$TOOLS/session_synth" --set haptics.model=paper --pain 0:0 \
+	--pain 3:0 --pain 4:6 --pain 8.5:6 --pain 9:9 --tear 12.5:2 \
+	"$TOP/tests/cases/straight.case" "$TMP/hold.scn" "$FILE" 14.5
+
+# --- heard -------------------------------------------------------------------
+check_status "the replay, heard through the wave backend" 0 \
+	hear voice --frames 870
+check "... each clip once, at its time: groan 3.67 s" clip_at voice groan 3.67
+check "... ow when the interval is over, 7.67 s" clip_at voice ow 7.67
+check "... please stop, 11.67 s" clip_at voice stop 11.67
+check "... the cry at the tear, 12.5 s" clip_at voice cry 12.5
+check "... nothing else (that hurts: crossed within the interval)" \
+	eval '[ "$(said voice | wc -l)" = 4 ]'
+groan=$(sound_t voice groan)
+ow=$(sound_t voice ow)
+stop=$(sound_t voice stop)
+cry=$(sound_t voice cry)
+check "the wave file: silent before the groan" \
+	quiet voice 0 "$(awk -v t="$groan" 'BEGIN { print t - 0.1 }')"
+check "... the groan sounds" loud voice "$groan" 0.6
+check "... ow sounds" loud voice "$ow" 0.5
+check "... silent while the level is held, until please stop" \
+	quiet voice "$(awk -v t="$ow" 'BEGIN { print t + 1.0 }')" \
+	"$(awk -v a="$ow" -v b="$stop" 'BEGIN { print b - a - 1.1 }')"
+check "... please stop sounds" loud voice "$stop" 0.5
+check "... the cry sounds" loud voice "$cry" 0.5
+
+# --- muted -------------------------------------------------------------------
+check_status "--mute: the replay to the cry's end" 0 hear mute --mute \
+	--frames 870 --print-state
+check "... nothing said" eval '[ -z "$(said mute)" ]'
+check "... the wave file silent throughout (14 s)" quiet mute 0 14
+check "... the panel says so" grep -q '^hud: voice muted (U: on)$' \
+	"$TMP/mute.out"
+
+# the key U, pressed as the window opens (before the first frame's
+# events are read): muted from the replay's start
+printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' "$TMP/key.wav" \
+	>"$TMP/key.conf"
+(ALSOFT_CONF="$TMP/key.conf" ALSOFT_DRIVERS=wave endoview --no-vsync \
+	--max-fps 60 --size 640x480 --replay "$FILE" --frames 500 \
+	>"$TMP/key.out" 2>&1) &
+VIEWER=$!
+window=$(xdotool search --sync --name '^endoview$' | head -n 1)
+xdotool key --window "$window" u
+wait "$VIEWER"
+check "the key U: muted" grep -q '^endoview: voice muted$' "$TMP/key.out"
+check "... nothing said to 8.3 s (groan and ow due)" \
+	eval '[ -z "$(said key)" ]'
+check "... the wave file silent" quiet key 0 8
+
+# --- no audio device ---------------------------------------------------------
+check_status "no audio device: the replay runs" 0 env ALSOFT_DRIVERS=none \
+	"$ENDOVIEW" --no-vsync --size 640x480 --replay "$FILE" --seek 3 \
+	--frames 60 --print-state
+check "... one line says so" eval \
+	'[ "$(grep -c "no sound (no audio device): the patient is silent" \
+		"$OUT")" = 1 ]'
+check "... the panel too" grep -q '^hud: no sound: no audio device$' "$OUT"
+
+# --- the panel: pain high, then the perforation ------------------------------
+# look NAME SEEK: a screenshot of the paused replay at SEEK s into
+# $TMP/NAME.png; the image's top strip (a banner's) as $TOP_STRIP
+look() {
+	local x y w h
+	endoview --no-vsync --size 1280x720 --replay "$FILE" --paused \
+		--seek "$2" --frames 8 --screenshot "$TMP/$1.png" \
+		--print-state >"$VIEW_OUT" 2>&1 || return 1
+	read -r x y w h < <(view_rect endo)
+	TOP_STRIP="rect:$x,$y,$w,$((h / 12))"
+	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
+		cp "$TMP/$1.png" "$ENDOSIM_KEEP_SHOTS/voice-$1.png"
+}
+check "pain high (11 s): screenshot" look pain 11
+check "... the panel: the level, crying out, the cause and place" \
+	grep -q '^hud: pain 9\.0 crying out: looping, sigmoid$' "$VIEW_OUT"
+check "... the vital signs" \
+	grep -q '^hud: HR 106/min  SpO2 97 %  moderate sedation$' "$VIEW_OUT"
+pain_red=$(png_value "$TMP/pain.png" "$TOP_STRIP" red)
+check "... no perforation: no line, no banner (red $pain_red)" eval \
+	'! grep -q PERFORAT "$VIEW_OUT" && float_test "$pain_red < 0.05"'
+check "perforated (14 s): screenshot" look torn 14
+check "... the panel says it" grep -q '^hud: PERFORATED: sigmoid$' \
+	"$VIEW_OUT"
+torn_red=$(png_value "$TMP/torn.png" "$TOP_STRIP" red)
+check "... the red banner across the image's top (red $torn_red)" \
+	float_test "$torn_red > 0.5"
+check "no run had an OpenGL error" eval \
+	'! grep -h "^endoview: frames=" "$TMP"/*.out "$VIEW_OUT" |
+		grep -qv " gl_errors=0 "'
+
+finish

@@ -1,0 +1,238 @@
+/* sound.c - see sound.h. */
+#include "viewer/sound.h"
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <AL/al.h>
+#include <AL/alc.h>
+
+#include "base/mono.h"
+
+#define MAX_CLIPS 16
+#define MAX_WAV_BYTES (8u << 20)
+
+struct sound {
+	ALCdevice *device;
+	ALCcontext *context;
+	ALuint source;
+	ALuint buffer[MAX_CLIPS];
+	int clips;
+	uint64_t open_ns;
+};
+
+static uint32_t le32(const unsigned char *p)
+{
+	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+	       (uint32_t)p[3] << 24;
+}
+
+static uint16_t le16(const unsigned char *p)
+{
+	return (uint16_t)(p[0] | p[1] << 8);
+}
+
+/* The fmt chunk of SIZE bytes at P into OUT; 0 or -EINVAL. */
+static int wav_format(const unsigned char *p, uint32_t size,
+		      struct sound_pcm *out)
+{
+	if (size < 16 || le16(p) != 1) {
+		return -EINVAL; /* not PCM */
+	}
+	out->channels = le16(p + 2);
+	out->rate_hz = le32(p + 4);
+	out->bits = le16(p + 14);
+	if ((out->channels != 1 && out->channels != 2) ||
+	    (out->bits != 8 && out->bits != 16) || out->rate_hz == 0) {
+		return -EINVAL;
+	}
+	return 0;
+}
+
+int sound_wav_parse(const unsigned char *buf, size_t n,
+		    struct sound_pcm *out)
+{
+	size_t at = 12, frame;
+	bool format = false;
+
+	memset(out, 0, sizeof(*out));
+	if (n < 12 || memcmp(buf, "RIFF", 4) || memcmp(buf + 8, "WAVE", 4)) {
+		return -EINVAL;
+	}
+	while (at + 8 <= n) {
+		const unsigned char *id = buf + at;
+		size_t size = le32(buf + at + 4), left = n - at - 8;
+
+		if (!memcmp(id, "fmt ", 4)) {
+			if (size > left || wav_format(id + 8, (uint32_t)size,
+						      out)) {
+				return -EINVAL;
+			}
+			format = true;
+		} else if (!memcmp(id, "data", 4) && format) {
+			frame = out->channels * out->bits / 8;
+			out->data = id + 8;
+			out->bytes = (size < left ? size : left) / frame *
+				     frame;
+			return out->bytes ? 0 : -EINVAL;
+		}
+		at += 8 + size + (size & 1);
+	}
+	return -EINVAL;
+}
+
+/* The whole of PATH into a new buffer (free() it), its size in N. */
+static unsigned char *slurp(const char *path, size_t *n)
+{
+	FILE *f = fopen(path, "rb");
+	unsigned char *buf = NULL;
+	long size;
+
+	if (!f) {
+		return NULL;
+	}
+	if (fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 0 &&
+	    (size_t)size <= MAX_WAV_BYTES && fseek(f, 0, SEEK_SET) == 0) {
+		buf = malloc((size_t)size);
+		*n = (size_t)size;
+	}
+	if (buf && fread(buf, 1, *n, f) != *n) {
+		free(buf);
+		buf = NULL;
+	}
+	fclose(f);
+	return buf;
+}
+
+static ALenum al_format(const struct sound_pcm *pcm)
+{
+	if (pcm->channels == 1) {
+		return pcm->bits == 8 ? AL_FORMAT_MONO8 : AL_FORMAT_MONO16;
+	}
+	return pcm->bits == 8 ? AL_FORMAT_STEREO8 : AL_FORMAT_STEREO16;
+}
+
+/* DIR/NAME.wav into buffer B; 0 or -1 with ERR said. */
+static int load_clip(ALuint b, const char *dir, const char *name, char *err,
+		     size_t size)
+{
+	char path[4096];
+	struct sound_pcm pcm;
+	unsigned char *buf;
+	size_t n = 0;
+	int r;
+
+	snprintf(path, sizeof(path), "%s/%s.wav", dir, name);
+	errno = 0;
+	buf = slurp(path, &n);
+	if (!buf) {
+		snprintf(err, size, "%s: %s", path,
+			 errno ? strerror(errno) : "too large");
+		return -1;
+	}
+	r = sound_wav_parse(buf, n, &pcm);
+	if (r) {
+		snprintf(err, size, "%s: not a WAV file of PCM", path);
+	} else {
+		alBufferData(b, al_format(&pcm), pcm.data, (ALsizei)pcm.bytes,
+			     (ALsizei)pcm.rate_hz);
+		r = alGetError() == AL_NO_ERROR ? 0 : -1;
+		if (r) {
+			snprintf(err, size, "%s: OpenAL took no buffer", path);
+		}
+	}
+	free(buf);
+	return r ? -1 : 0;
+}
+
+/* The device, its context and the source into S; 0 or -1. */
+static int open_device(struct sound *s, char *err, size_t size)
+{
+	s->device = alcOpenDevice(NULL);
+	if (!s->device) {
+		snprintf(err, size, "no audio device");
+		return -1;
+	}
+	s->open_ns = mono_ns();
+	s->context = alcCreateContext(s->device, NULL);
+	if (!s->context || !alcMakeContextCurrent(s->context)) {
+		snprintf(err, size, "no OpenAL context on the audio device");
+		return -1;
+	}
+	alGetError();
+	alGenSources(1, &s->source);
+	alGenBuffers(s->clips, s->buffer);
+	if (alGetError() != AL_NO_ERROR) {
+		snprintf(err, size, "no OpenAL source or buffers");
+		s->clips = 0;
+		return -1;
+	}
+	return 0;
+}
+
+struct sound *sound_create(const char *dir, const char *const names[], int n,
+			   char *err, size_t size)
+{
+	struct sound *s = calloc(1, sizeof(*s));
+
+	if (!s || n < 0 || n > MAX_CLIPS) {
+		snprintf(err, size, "%s", s ? "too many clips" :
+					      strerror(ENOMEM));
+		free(s);
+		return NULL;
+	}
+	s->clips = n;
+	if (open_device(s, err, size)) {
+		goto fail;
+	}
+	for (int k = 0; k < n; k++) {
+		if (load_clip(s->buffer[k], dir, names[k], err, size)) {
+			goto fail;
+		}
+	}
+	return s;
+fail:
+	sound_destroy(s);
+	return NULL;
+}
+
+void sound_destroy(struct sound *s)
+{
+	if (!s) {
+		return;
+	}
+	if (s->context) {
+		if (s->source) {
+			alSourceStop(s->source);
+			alSourcei(s->source, AL_BUFFER, 0);
+			alDeleteSources(1, &s->source);
+		}
+		if (s->clips) {
+			alDeleteBuffers(s->clips, s->buffer);
+		}
+		alcMakeContextCurrent(NULL);
+		alcDestroyContext(s->context);
+	}
+	if (s->device) {
+		alcCloseDevice(s->device);
+	}
+	free(s);
+}
+
+void sound_play(struct sound *s, int k)
+{
+	if (!s || k < 0 || k >= s->clips) {
+		return;
+	}
+	alSourceStop(s->source);
+	alSourcei(s->source, AL_BUFFER, (ALint)s->buffer[k]);
+	alSourcePlay(s->source);
+}
+
+double sound_time_s(const struct sound *s)
+{
+	return s ? (double)(mono_ns() - s->open_ns) / 1e9 : 0;
+}
