@@ -7,7 +7,9 @@
 # lumen's dark middle larger; held air, the viewer's key 1, opens it
 # again), a fluid pool seen from above (its dull yellow in the image) and
 # from under its surface (the image murky yellow), the lens smeared red by
-# the tip pressed into the wall and clear after the water jet. The patient
+# the tip pressed into the wall and clear after the water jet (measured
+# below the red banner of the perforation that the tip, held there,
+# may make). The patient
 # panel says the position, the gas, the hand and the valves, and the keys
 # T and N turn the patient and put the assistant's hand on the case's
 # first site. No run has an OpenGL error. States are waited for as the
@@ -69,12 +71,14 @@ p_true() {
 
 # shot NAME: a screenshot of this slot's daemon into $TMP/NAME.png, the
 # state and the panel's lines printed (--print-state); the image's view
-# and its middle (a disc of a quarter of its side) as $ENDO and $MIDDLE
+# and its middle (a disc of a quarter of its side) as $ENDO and $MIDDLE,
+# the view below a perforation's banner (its top eighth) as $BELOW
 shot() {
 	local x y w h
 	view "${SMALL[@]}" --frames 12 --screenshot "$TMP/$1.png" --print-state
 	read -r x y w h < <(view_rect endo)
 	ENDO="rect:$x,$y,$w,$h"
+	BELOW="rect:$x,$((y + h / 8)),$w,$((h - h / 8))"
 	MIDDLE="disc:$((x + w / 2)),$((y + h / 2)),$((w / 4))"
 	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 		cp "$TMP/$1.png" "$ENDOSIM_KEEP_SHOTS/patient-$1.png"
@@ -201,8 +205,8 @@ check "... the lens clears" wait_for p_true '.lens_smear < 0.01'
 check_status "... and the jet stops" 0 ctl patient valve water off
 check "the valve released" wait_for p_true '.valves == "none"'
 take washed "washed"
-smeared=$(value smeared "$ENDO" red)
-washed=$(value washed "$ENDO" red)
+smeared=$(value smeared "$BELOW" red)
+washed=$(value washed "$BELOW" red)
 check "the smear is red over the image (10 % of it), gone once washed" \
 	float_test "$smeared > 0.1 && $washed < 0.01"
 smeared=$(value smeared "$MIDDLE" lit)
