@@ -2,10 +2,14 @@
 #include "viewer/sound.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <AL/al.h>
 #include <AL/alc.h>
@@ -84,27 +88,25 @@ int sound_wav_parse(const unsigned char *buf, size_t n,
 	return -EINVAL;
 }
 
-/* The whole of PATH into a new buffer (free() it), its size in N. */
-static unsigned char *slurp(const char *path, size_t *n)
+/* PATH mapped read-only, its size in N; NULL with errno. */
+static unsigned char *map_file(const char *path, size_t *n)
 {
-	FILE *f = fopen(path, "rb");
-	unsigned char *buf = NULL;
-	long size;
+	int fd = open(path, O_RDONLY | O_CLOEXEC);
+	struct stat sb;
+	void *p = MAP_FAILED;
 
-	if (!f) {
+	if (fd < 0) {
 		return NULL;
 	}
-	if (fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 0 &&
-	    (size_t)size <= MAX_WAV_BYTES && fseek(f, 0, SEEK_SET) == 0) {
-		buf = malloc((size_t)size);
-		*n = (size_t)size;
+	if (fstat(fd, &sb) == 0 && sb.st_size > 0 &&
+	    (size_t)sb.st_size <= MAX_WAV_BYTES) {
+		*n = (size_t)sb.st_size;
+		p = mmap(NULL, *n, PROT_READ, MAP_PRIVATE, fd, 0);
+	} else {
+		errno = EFBIG;
 	}
-	if (buf && fread(buf, 1, *n, f) != *n) {
-		free(buf);
-		buf = NULL;
-	}
-	fclose(f);
-	return buf;
+	close(fd);
+	return p == MAP_FAILED ? NULL : p;
 }
 
 static ALenum al_format(const struct sound_pcm *pcm)
@@ -126,11 +128,9 @@ static int load_clip(ALuint b, const char *dir, const char *name, char *err,
 	int r;
 
 	snprintf(path, sizeof(path), "%s/%s.wav", dir, name);
-	errno = 0;
-	buf = slurp(path, &n);
+	buf = map_file(path, &n);
 	if (!buf) {
-		snprintf(err, size, "%s: %s", path,
-			 errno ? strerror(errno) : "too large");
+		snprintf(err, size, "%s: %s", path, strerror(errno));
 		return -1;
 	}
 	r = sound_wav_parse(buf, n, &pcm);
@@ -144,7 +144,7 @@ static int load_clip(ALuint b, const char *dir, const char *name, char *err,
 			snprintf(err, size, "%s: OpenAL took no buffer", path);
 		}
 	}
-	free(buf);
+	munmap(buf, n);
 	return r ? -1 : 0;
 }
 

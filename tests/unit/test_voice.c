@@ -26,24 +26,41 @@ struct said {
 	int n;
 };
 
-static struct endosim_patient_state patient(void)
+/* A test's patient, its voice and what it said. */
+struct fixture {
+	struct endosim_patient_state p;
+	struct voice v;
+	struct said s;
+};
+
+/* A fresh fixture: the patient enabled, moderately sedated, nothing
+ * torn; the voice new. */
+static int fresh(void **state)
 {
-	return (struct endosim_patient_state){
-		.enabled = 1, .sedation = ENDOSIM_SEDATION_MODERATE,
-		.burst_segment = -1, .torn_segment = -1, .pain_place = -1,
+	static struct fixture f;
+
+	f = (struct fixture){
+		.p = { .enabled = 1, .sedation = ENDOSIM_SEDATION_MODERATE,
+		       .burst_segment = -1, .torn_segment = -1,
+		       .pain_place = -1 },
 	};
+	voice_init(&f.v);
+	*state = &f;
+	return 0;
 }
 
 /* Frames from T0 to T1 s with the level going linearly from L0 to L1;
- * what V said into S. */
-static void run(struct voice *v, struct endosim_patient_state *p, double t0,
-		double t1, double l0, double l1, struct said *s)
+ * what the voice said into F's. */
+static void run(struct fixture *f, double t0, double t1, double l0,
+		double l1)
 {
+	struct said *s = &f->s;
+
 	for (double t = t0; t < t1 - 1e-9; t += FRAME_S) {
 		enum voice_clip c;
 
-		p->pain = l0 + (l1 - l0) * (t - t0) / (t1 - t0);
-		c = voice_step(v, p, t);
+		f->p.pain = l0 + (l1 - l0) * (t - t0) / (t1 - t0);
+		c = voice_step(&f->v, &f->p, t);
 		if (c != VOICE_NONE && s->n < MAX_SAID) {
 			s->clip[s->n] = c;
 			s->at_s[s->n++] = t;
@@ -64,186 +81,153 @@ static void said_at(const struct said *s, int i, enum voice_clip clip,
  * level crosses it. */
 static void each_step_at_its_crossing(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	run(&v, &p, 0, 40, 0, 10, &s);
-	assert_int_equal(s.n, 4);
-	said_at(&s, 0, VOICE_GROAN, VOICE_GROAN_AT / 0.25);
-	said_at(&s, 1, VOICE_OW, VOICE_OW_AT / 0.25);
-	said_at(&s, 2, VOICE_HURTS, VOICE_HURTS_AT / 0.25);
-	said_at(&s, 3, VOICE_STOP, VOICE_STOP_AT / 0.25);
+	run(f, 0, 40, 0, 10);
+	assert_int_equal(f->s.n, 4);
+	said_at(&f->s, 0, VOICE_GROAN, VOICE_GROAN_AT / 0.25);
+	said_at(&f->s, 1, VOICE_OW, VOICE_OW_AT / 0.25);
+	said_at(&f->s, 2, VOICE_HURTS, VOICE_HURTS_AT / 0.25);
+	said_at(&f->s, 3, VOICE_STOP, VOICE_STOP_AT / 0.25);
 }
 
 /* A jump across three steps says the highest only; held, or wavering
  * about a step, nothing more for a minute. */
 static void held_level_does_not_repeat(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	run(&v, &p, 0, 1, 0, 0, &s);
-	run(&v, &p, 1, 61, 7.5, 7.5, &s);
-	assert_int_equal(s.n, 1);
-	said_at(&s, 0, VOICE_HURTS, 1);
+	run(f, 0, 1, 0, 0);
+	run(f, 1, 61, 7.5, 7.5);
+	assert_int_equal(f->s.n, 1);
+	said_at(&f->s, 0, VOICE_HURTS, 1);
 	for (int k = 0; k < 30; k++) { /* 6.9 to 7.1 and back, each 2 s */
-		run(&v, &p, 61 + 2 * k, 62 + 2 * k, 7.1, 6.9, &s);
-		run(&v, &p, 62 + 2 * k, 63 + 2 * k, 6.9, 7.1, &s);
+		run(f, 61 + 2 * k, 62 + 2 * k, 7.1, 6.9);
+		run(f, 62 + 2 * k, 63 + 2 * k, 6.9, 7.1);
 	}
-	assert_int_equal(s.n, 1);
+	assert_int_equal(f->s.n, 1);
 }
 
 /* Said again only once the level fell VOICE_REARM_DROP below the step. */
 static void rearmed_only_well_below(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	run(&v, &p, 0, 1, 0, 0, &s);
-	run(&v, &p, 1, 10, 6, 6, &s); /* ow */
-	run(&v, &p, 10, 20, VOICE_OW_AT - VOICE_REARM_DROP + 0.1,
-	    VOICE_OW_AT - VOICE_REARM_DROP + 0.1, &s);
-	run(&v, &p, 20, 30, 6, 6, &s); /* not well below: nothing */
-	assert_int_equal(s.n, 1);
-	run(&v, &p, 30, 40, VOICE_OW_AT - VOICE_REARM_DROP - 0.1,
-	    VOICE_OW_AT - VOICE_REARM_DROP - 0.1, &s);
-	run(&v, &p, 40, 50, 6, 6, &s); /* ow again */
-	assert_int_equal(s.n, 2);
-	said_at(&s, 0, VOICE_OW, 1);
-	said_at(&s, 1, VOICE_OW, 40);
+	run(f, 0, 1, 0, 0);
+	run(f, 1, 10, 6, 6); /* ow */
+	run(f, 10, 20, VOICE_OW_AT - VOICE_REARM_DROP + 0.1,
+	    VOICE_OW_AT - VOICE_REARM_DROP + 0.1);
+	run(f, 20, 30, 6, 6); /* not well below: nothing */
+	assert_int_equal(f->s.n, 1);
+	run(f, 30, 40, VOICE_OW_AT - VOICE_REARM_DROP - 0.1,
+	    VOICE_OW_AT - VOICE_REARM_DROP - 0.1);
+	run(f, 40, 50, 6, 6); /* ow again */
+	assert_int_equal(f->s.n, 2);
+	said_at(&f->s, 0, VOICE_OW, 1);
+	said_at(&f->s, 1, VOICE_OW, 40);
 }
 
 /* A step crossed within the interval waits for its end; one the level
  * left meanwhile is not said. */
 static void interval_between_clips(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	run(&v, &p, 0, 1, 0, 0, &s);
-	run(&v, &p, 1, 2, 4.5, 4.5, &s);  /* groan */
-	run(&v, &p, 2, 10, 9, 9, &s);     /* please stop, at 1 + 4 s */
-	assert_int_equal(s.n, 2);
-	said_at(&s, 0, VOICE_GROAN, 1);
-	said_at(&s, 1, VOICE_STOP, 1 + VOICE_MIN_INTERVAL_S);
-	run(&v, &p, 10, 20, 0, 0, &s);
-	run(&v, &p, 20, 21, 6, 6, &s);    /* ow */
-	run(&v, &p, 21, 22, 0, 0, &s);    /* gone before the interval ends */
-	run(&v, &p, 22, 23, 0, 0, &s);
-	run(&v, &p, 23, 30, 4.8, 4.8, &s); /* 4.8: groan re-armed at 2.0,
+	run(f, 0, 1, 0, 0);
+	run(f, 1, 2, 4.5, 4.5);  /* groan */
+	run(f, 2, 10, 9, 9);     /* please stop, at 1 + 4 s */
+	assert_int_equal(f->s.n, 2);
+	said_at(&f->s, 0, VOICE_GROAN, 1);
+	said_at(&f->s, 1, VOICE_STOP, 1 + VOICE_MIN_INTERVAL_S);
+	run(f, 10, 20, 0, 0);
+	run(f, 20, 21, 6, 6);    /* ow */
+	run(f, 21, 22, 0, 0);    /* gone before the interval ends */
+	run(f, 22, 23, 0, 0);
+	run(f, 23, 30, 4.8, 4.8); /* 4.8: groan re-armed at 2.0,
 					      said at 24 s */
-	assert_int_equal(s.n, 4);
-	said_at(&s, 2, VOICE_OW, 20);
-	said_at(&s, 3, VOICE_GROAN, 20 + VOICE_MIN_INTERVAL_S);
+	assert_int_equal(f->s.n, 4);
+	said_at(&f->s, 2, VOICE_OW, 20);
+	said_at(&f->s, 3, VOICE_GROAN, 20 + VOICE_MIN_INTERVAL_S);
 }
 
 /* The cry at once (within the interval), once; by the tip's tear too. */
 static void cry_at_perforation(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	run(&v, &p, 0, 1, 0, 0, &s);
-	run(&v, &p, 1, 2, 6, 6, &s);      /* ow */
-	p.burst_segment = 2;
-	run(&v, &p, 2, 20, 10, 10, &s);   /* the cry, and no please-stop */
-	assert_int_equal(s.n, 2);
-	said_at(&s, 0, VOICE_OW, 1);
-	said_at(&s, 1, VOICE_CRY, 2);
-	voice_init(&v);
-	s.n = 0;
-	p.burst_segment = -1;
-	run(&v, &p, 0, 1, 1, 1, &s);
-	p.torn_segment = 1;
-	run(&v, &p, 1, 5, 1, 1, &s);
-	assert_int_equal(s.n, 1);
-	said_at(&s, 0, VOICE_CRY, 1);
+	run(f, 0, 1, 0, 0);
+	run(f, 1, 2, 6, 6);      /* ow */
+	f->p.burst_segment = 2;
+	run(f, 2, 20, 10, 10);   /* the cry, and no please-stop */
+	assert_int_equal(f->s.n, 2);
+	said_at(&f->s, 0, VOICE_OW, 1);
+	said_at(&f->s, 1, VOICE_CRY, 2);
+	fresh(state); /* a new patient */
+	f = *state;
+	run(f, 0, 1, 1, 1);
+	f->p.torn_segment = 1;
+	run(f, 1, 5, 1, 1);
+	assert_int_equal(f->s.n, 1);
+	said_at(&f->s, 0, VOICE_CRY, 1);
 }
 
 /* Deep sedation: the rise says a groan at the highest step only; the
  * perforation a groan. */
 static void quiet_when_deeply_sedated(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	p.sedation = ENDOSIM_SEDATION_DEEP;
-	voice_init(&v);
-	run(&v, &p, 0, 40, 0, 10, &s);
-	assert_int_equal(s.n, 1);
-	said_at(&s, 0, VOICE_GROAN, VOICE_STOP_AT / 0.25);
-	p.torn_segment = 3;
-	run(&v, &p, 40, 50, 10, 10, &s);
-	assert_int_equal(s.n, 2);
-	said_at(&s, 1, VOICE_GROAN, 40);
+	f->p.sedation = ENDOSIM_SEDATION_DEEP;
+	run(f, 0, 40, 0, 10);
+	assert_int_equal(f->s.n, 1);
+	said_at(&f->s, 0, VOICE_GROAN, VOICE_STOP_AT / 0.25);
+	f->p.torn_segment = 3;
+	run(f, 40, 50, 10, 10);
+	assert_int_equal(f->s.n, 2);
+	said_at(&f->s, 1, VOICE_GROAN, 40);
 }
 
 /* Muted: nothing, the perforation's cry neither; unmuted at the level
  * held, nothing kept back is said; the next crossing is. */
 static void mute_mutes(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	voice_set_muted(&v, true);
-	run(&v, &p, 0, 40, 0, 10, &s);
-	p.burst_segment = 1;
-	run(&v, &p, 40, 45, 10, 10, &s);
-	assert_int_equal(s.n, 0);
-	voice_set_muted(&v, false);
-	p.burst_segment = -1;
-	run(&v, &p, 45, 60, 4.5, 4.5, &s); /* above the groan's step */
-	assert_int_equal(s.n, 0);
-	run(&v, &p, 60, 70, 7.5, 7.5, &s);
-	assert_int_equal(s.n, 1);
-	said_at(&s, 0, VOICE_HURTS, 60);
+	voice_set_muted(&f->v, true);
+	run(f, 0, 40, 0, 10);
+	f->p.burst_segment = 1;
+	run(f, 40, 45, 10, 10);
+	assert_int_equal(f->s.n, 0);
+	voice_set_muted(&f->v, false);
+	f->p.burst_segment = -1;
+	run(f, 45, 60, 4.5, 4.5); /* above the groan's step */
+	assert_int_equal(f->s.n, 0);
+	run(f, 60, 70, 7.5, 7.5);
+	assert_int_equal(f->s.n, 1);
+	said_at(&f->s, 0, VOICE_HURTS, 60);
 }
 
 /* The first state, a jump back or on in time (a replay's seek) and a
  * patient coming back are taken silently; without the patient, nothing. */
 static void taken_as_is(void **state)
 {
-	struct endosim_patient_state p = patient();
-	struct voice v;
-	struct said s = { 0 };
+	struct fixture *f = *state;
 
-	(void)state;
-	voice_init(&v);
-	p.burst_segment = 1;
-	run(&v, &p, 0, 5, 9, 9, &s);      /* started in pain, perforated */
-	p.burst_segment = -1;
-	run(&v, &p, 5, 6, 0, 0, &s);
-	run(&v, &p, 2, 3, 9, 9, &s);      /* back in time */
-	run(&v, &p, 3, 4, 0, 0, &s);
-	run(&v, &p, 10, 11, 9, 9, &s);    /* on by 6 s */
-	p.enabled = 0;
-	run(&v, &p, 11, 12, 0, 0, &s);
-	p.enabled = 1;
-	run(&v, &p, 12, 13, 9, 9, &s);
-	assert_int_equal(s.n, 0);
-	p.enabled = 0;
-	run(&v, &p, 13, 30, 0, 10, &s);
-	assert_int_equal(s.n, 0);
+	f->p.burst_segment = 1;
+	run(f, 0, 5, 9, 9);      /* started in pain, perforated */
+	f->p.burst_segment = -1;
+	run(f, 5, 6, 0, 0);
+	run(f, 2, 3, 9, 9);      /* back in time */
+	run(f, 3, 4, 0, 0);
+	run(f, 10, 11, 9, 9);    /* on by 6 s */
+	f->p.enabled = 0;
+	run(f, 11, 12, 0, 0);
+	f->p.enabled = 1;
+	run(f, 12, 13, 9, 9);
+	assert_int_equal(f->s.n, 0);
+	f->p.enabled = 0;
+	run(f, 13, 30, 0, 10);
+	assert_int_equal(f->s.n, 0);
 }
 
 static void clip_names(void **state)
@@ -261,14 +245,14 @@ static void clip_names(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(each_step_at_its_crossing),
-		cmocka_unit_test(held_level_does_not_repeat),
-		cmocka_unit_test(rearmed_only_well_below),
-		cmocka_unit_test(interval_between_clips),
-		cmocka_unit_test(cry_at_perforation),
-		cmocka_unit_test(quiet_when_deeply_sedated),
-		cmocka_unit_test(mute_mutes),
-		cmocka_unit_test(taken_as_is),
+		cmocka_unit_test_setup(each_step_at_its_crossing, fresh),
+		cmocka_unit_test_setup(held_level_does_not_repeat, fresh),
+		cmocka_unit_test_setup(rearmed_only_well_below, fresh),
+		cmocka_unit_test_setup(interval_between_clips, fresh),
+		cmocka_unit_test_setup(cry_at_perforation, fresh),
+		cmocka_unit_test_setup(quiet_when_deeply_sedated, fresh),
+		cmocka_unit_test_setup(mute_mutes, fresh),
+		cmocka_unit_test_setup(taken_as_is, fresh),
 		cmocka_unit_test(clip_names),
 	};
 
