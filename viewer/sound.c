@@ -15,6 +15,7 @@
 #include <AL/alc.h>
 
 #include "base/mono.h"
+#include "viewer/wav.h"
 
 #define MAX_CLIPS 16
 #define MAX_WAV_BYTES (8u << 20)
@@ -27,66 +28,6 @@ struct sound {
 	int clips;
 	uint64_t open_ns;
 };
-
-static uint32_t le32(const unsigned char *p)
-{
-	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-	       (uint32_t)p[3] << 24;
-}
-
-static uint16_t le16(const unsigned char *p)
-{
-	return (uint16_t)(p[0] | p[1] << 8);
-}
-
-/* The fmt chunk of SIZE bytes at P into OUT; 0 or -EINVAL. */
-static int wav_format(const unsigned char *p, uint32_t size,
-		      struct sound_pcm *out)
-{
-	if (size < 16 || le16(p) != 1) {
-		return -EINVAL; /* not PCM */
-	}
-	out->channels = le16(p + 2);
-	out->rate_hz = le32(p + 4);
-	out->bits = le16(p + 14);
-	if ((out->channels != 1 && out->channels != 2) ||
-	    (out->bits != 8 && out->bits != 16) || out->rate_hz == 0) {
-		return -EINVAL;
-	}
-	return 0;
-}
-
-int sound_wav_parse(const unsigned char *buf, size_t n,
-		    struct sound_pcm *out)
-{
-	size_t at = 12, frame;
-	bool format = false;
-
-	memset(out, 0, sizeof(*out));
-	if (n < 12 || memcmp(buf, "RIFF", 4) || memcmp(buf + 8, "WAVE", 4)) {
-		return -EINVAL;
-	}
-	while (at + 8 <= n) {
-		const unsigned char *id = buf + at;
-		size_t size = le32(buf + at + 4), left = n - at - 8;
-
-		if (!memcmp(id, "fmt ", 4)) {
-			if (size > left || wav_format(id + 8, (uint32_t)size,
-						      out)) {
-				return -EINVAL;
-			}
-			format = true;
-		} else if (!memcmp(id, "data", 4) && format) {
-			frame = out->channels * out->bits / 8;
-			out->data = id + 8;
-			out->bytes = (size < left ? size : left) / frame *
-				     frame;
-			return out->bytes ? 0 : -EINVAL;
-		}
-		at += 8 + size + (size & 1);
-	}
-	return -EINVAL;
-}
 
 /* PATH mapped read-only, its size in N; NULL with errno. */
 static unsigned char *map_file(const char *path, size_t *n)
@@ -109,7 +50,7 @@ static unsigned char *map_file(const char *path, size_t *n)
 	return p == MAP_FAILED ? NULL : p;
 }
 
-static ALenum al_format(const struct sound_pcm *pcm)
+static ALenum al_format(const struct wav_pcm *pcm)
 {
 	if (pcm->channels == 1) {
 		return pcm->bits == 8 ? AL_FORMAT_MONO8 : AL_FORMAT_MONO16;
@@ -122,7 +63,7 @@ static int load_clip(ALuint b, const char *dir, const char *name, char *err,
 		     size_t size)
 {
 	char path[4096];
-	struct sound_pcm pcm;
+	struct wav_pcm pcm;
 	unsigned char *buf;
 	size_t n = 0;
 	int r;
@@ -133,7 +74,7 @@ static int load_clip(ALuint b, const char *dir, const char *name, char *err,
 		snprintf(err, size, "%s: %s", path, strerror(errno));
 		return -1;
 	}
-	r = sound_wav_parse(buf, n, &pcm);
+	r = wav_parse(buf, n, &pcm);
 	if (r) {
 		snprintf(err, size, "%s: not a WAV file of PCM", path);
 	} else {

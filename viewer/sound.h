@@ -4,8 +4,8 @@
  * one at a time.
  *
  * The clips are the build's (the Makefile's voice rule: espeak-ng
- * speaking a line of text into DIR/NAME.wav, PCM 8 or 16 bits, mono or
- * stereo). A new clip cuts the one playing short. OpenAL Soft mixes in a
+ * speaking a line of text into DIR/NAME.wav), read by wav.h. A new
+ * clip cuts the one playing short. OpenAL Soft mixes in a
  * thread of its own: playing never blocks the frame.
  *
  * Where there is no audio device (a headless machine, a container)
@@ -20,14 +20,6 @@
 #define ENDOVIEW_SOUND_H
 
 #include <stddef.h>
-#include <stdint.h>
-
-/* A WAV file's samples, pointing into its bytes. */
-struct sound_pcm {
-	const unsigned char *data;
-	size_t bytes;        /* whole frames */
-	unsigned int channels, bits, rate_hz;
-};
 
 struct sound;
 
@@ -49,14 +41,5 @@ void sound_play(struct sound *s, int k);
 
 /* Seconds since the device opened (the wave file's time); 0 for NULL. */
 double sound_time_s(const struct sound *s);
-
-/*
- * The samples of a WAV file of N bytes at BUF (RIFF, WAVE, PCM of 8 or
- * 16 bits, 1 or 2 channels; a data chunk's size beyond the end, as a
- * writer that never finished gives it, is cut to what is there) into
- * OUT. 0, or -EINVAL.
- */
-int sound_wav_parse(const unsigned char *buf, size_t n,
-		    struct sound_pcm *out);
 
 #endif
