@@ -167,7 +167,7 @@ VIEWER_LDLIBS = $(shell pkg-config --libs $(VIEWER_PKGS) $(CLIENT_PKGS) \
 # $(VOICEDIR)); each clip's espeak-ng options and text
 VOICEDIR = $(DATADIR)/voice
 VOICE_CLIPS = groan ow hurts stop cry
-VOICE_groan = -v en+m3 -s 60 -p 15 -a 140 "hhhh, ohhhh"
+VOICE_groan = -v en+m3 -s 70 -p 20 -a 150 "haah... ohhh"
 VOICE_ow = -v en+m3 -s 130 -p 60 -a 160 "ow!"
 VOICE_hurts = -v en+m3 -s 140 -p 55 -a 160 "ah, that hurts!"
 VOICE_stop = -v en+m3 -s 150 -p 70 -a 180 "please stop! please!"
@@ -236,7 +236,7 @@ $(BUILD)/obj/viewer/%.o: ALL_CFLAGS += $(VIEWER_CFLAGS) \
 # a clip whose line changed is spoken again
 $(BUILD)/voice/%.wav: Makefile
 	@mkdir -p $(dir $@)
-	espeak-ng $(VOICE_$*) -w $@
+	espeak-ng -w $@ $(VOICE_$*)
 $(BUILD)/obj/tests/emulators/%.o: ALL_CFLAGS += $(EMU_CFLAGS)
 # the rod's solver runs in the force loop: -O3 vectorises its 3x3 and 6x6
 # blocks (a third fewer instructions than -O2; rod_algebra.h's, inline in
