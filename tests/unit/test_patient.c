@@ -19,7 +19,13 @@
  *    reds it out with its time constant and lets go as fast;
  *  - gravity on the colon, through the force loop (rod model, in
  *    lockstep): the mobile segments' nodes sag along gravity, supine
- *    towards the back and prone towards the front.
+ *    towards the back and prone towards the front;
+ *  - the patient responds through its step: a held loop in the sigmoid
+ *    hurts as pain.h defines it under the patient's own sedation (deep:
+ *    less), looping in the sigmoid; the heart rate follows the pain and
+ *    the saturation the sedation; the tip held into the wall above 14.1
+ *    N tears it after 0.5 s, published; a sedation that does not exist
+ *    is refused.
  */
 #include <errno.h>
 #include <math.h>
@@ -37,6 +43,7 @@
 #include "model/colon.h"
 #include "model/fluid.h"
 #include "model/lens.h"
+#include "model/patient.h"
 #include "model/posture.h"
 #include "plain_anatomy.h"
 #include "rig_loop.h"
@@ -371,6 +378,89 @@ static double settled_sag(struct rig_loop *r, int position, double *y)
 	return sag_along(st, st->patient.down);
 }
 
+/* The patient on the normal colon, enabled, sedated SEDATION, after
+ * SECONDS of the sigmoid's mesentery holding TENSION_N and the tip
+ * pressing TIP_N straight into the sigmoid's wall. */
+static void respond(struct patient *pt, int sedation, double tension_n,
+		    double tip_n, double seconds)
+{
+	struct patient_params p = PATIENT_PARAMS_DEFAULT;
+	double spans[ENDOSIM_SPANS] = { tension_n };
+	struct patient_input in = {
+		.tip_s_m = anatomy_segment_start(colon_anatomy(normal),
+						 ANATOMY_SIGMOID) + 0.05,
+		.tip_force_n = tip_n,
+		.wall_gap_m = 0.01,
+		.insertion_m_s = 0.01,
+		.span_tension_n = spans,
+	};
+
+	p.enabled = true;
+	patient_init(pt, &p);
+	assert_int_equal(patient_sedate(pt, sedation), 0);
+	patient_attach(pt, normal); /* a new case keeps the sedation */
+	assert_int_equal(pt->sedation, sedation);
+	for (int k = 0; k < (int)lround(seconds / DT); k++) {
+		int torn = patient_step(pt, &in, DT);
+
+		if (torn >= 0) {
+			assert_int_equal(torn, ANATOMY_SIGMOID);
+			assert_int_equal(pt->torn, ANATOMY_SIGMOID);
+		}
+	}
+}
+
+static void responds(void **state)
+{
+	const struct pain_params d = PAIN_PARAMS_DEFAULT;
+	const struct vitals_params v = VITALS_PARAMS_DEFAULT;
+	struct endosim_patient_state out;
+	static struct patient pt;
+	double g, t, want, none, deep;
+
+	(void)state;
+	respond(&pt, ENDOSIM_SEDATION_NONE, 30, 0, 2);
+	want = d.stretch_gain_per_n * (30 - d.stretch_threshold_n) *
+	       (1 - exp(-2 / d.rise_s));
+	none = pt.pain.level;
+	print_message("a 30 N loop held 2 s, unsedated: pain %.3f (%.3f), "
+		      "heart %.1f bpm\n", none, want, pt.vitals.heart_rate_bpm);
+	assert_true(fabs(none - want) <= 0.02 * want);
+	assert_int_equal(pt.pain.cause, ENDOSIM_PAIN_LOOPING);
+	assert_int_equal(pt.pain.place, ANATOMY_SIGMOID);
+	want = v.rest_bpm + v.bpm_per_pain * none; /* where it goes */
+	assert_true(pt.vitals.heart_rate_bpm > v.rest_bpm &&
+		    pt.vitals.heart_rate_bpm < want);
+	patient_publish(&pt, &out);
+	assert_true(out.pain == pt.pain.level && out.pain_cause ==
+		    ENDOSIM_PAIN_LOOPING && out.sedation == ENDOSIM_SEDATION_NONE);
+	assert_int_equal(out.torn_segment, -1);
+
+	respond(&pt, ENDOSIM_SEDATION_DEEP, 30, 0, 2);
+	pain_sedation_factors(ENDOSIM_SEDATION_DEEP, &g, &t);
+	want = g * d.stretch_gain_per_n * (30 - t * d.stretch_threshold_n) *
+	       (1 - exp(-2 / d.rise_s));
+	deep = pt.pain.level;
+	print_message("... deeply sedated: pain %.3f (%.3f), SpO2 %.4f\n",
+		      deep, want, pt.vitals.spo2);
+	assert_true(fabs(deep - want) <= 0.02 * want && deep < none);
+	assert_true(pt.vitals.spo2 < v.spo2[ENDOSIM_SEDATION_NONE] &&
+		    pt.vitals.spo2 >= v.spo2[ENDOSIM_SEDATION_DEEP]);
+
+	/* the tip held into the wall at 20 N: torn after the hold */
+	respond(&pt, ENDOSIM_SEDATION_MODERATE, 0, 20, 0.45);
+	assert_false(pt.perforation.torn);
+	respond(&pt, ENDOSIM_SEDATION_MODERATE, 0, 20, 0.6);
+	assert_true(pt.perforation.torn);
+	patient_publish(&pt, &out);
+	assert_int_equal(out.torn_segment, ANATOMY_SIGMOID);
+	assert_int_equal(out.pain_cause, ENDOSIM_PAIN_TIP);
+
+	assert_int_equal(patient_sedate(&pt, ENDOSIM_SEDATIONS), -EINVAL);
+	assert_int_equal(patient_sedate(&pt, -1), -EINVAL);
+	assert_int_equal(pt.sedation, ENDOSIM_SEDATION_MODERATE);
+}
+
 static void colon_sags(void **state)
 {
 	struct rig_loop r;
@@ -398,6 +488,7 @@ int main(void)
 		cmocka_unit_test(suction),
 		cmocka_unit_test(lens),
 		cmocka_unit_test(colon_sags),
+		cmocka_unit_test(responds),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
