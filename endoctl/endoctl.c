@@ -390,7 +390,11 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 	Endosim__Reply *rep;
 	int r, n = 0;
 
-	for (int i = 1; i < argc; i++) {
+	if (argc == 2 && !strcmp(argv[1], "off")) {
+		body.hands_off = true; /* the grip lets go */
+		n = ENDOSIM_AXES;
+	}
+	for (int i = 1; !body.hands_off && i < argc; i++) {
 		char *end;
 
 		if (!strcmp(argv[i], "--hold-ms") && i + 1 < argc) {
@@ -409,11 +413,13 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 	}
 	if (n != ENDOSIM_AXES) {
 		fprintf(stderr, "endoctl: hand F_INSERTION_N F_ROLL_NM F_UD_NM "
-			"F_LR_NM [--hold-ms MS]\n");
+			"F_LR_NM [--hold-ms MS] | hand off\n");
 		return EXIT_USAGE;
 	}
-	body.n_force = ENDOSIM_AXES;
-	body.force = force;
+	if (!body.hands_off) {
+		body.n_force = ENDOSIM_AXES;
+		body.force = force;
+	}
 	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
 	req.hand_input = &body;
 	r = ctl_transact(ctl, true, &req, &rep);
@@ -707,10 +713,12 @@ static const struct command {
 	  "set SECTION.KEY VALUE",
 	  "endoctl set haptics.wall_stiffness_n_per_m 800",
 	  "the keys endosimd --print-config marks live" },
-	{ "hand", cmd_hand, "push the simulated hand (N, N m)",
-	  "hand F_INS F_ROLL F_UD F_LR [--hold-ms MS]",
+	{ "hand", cmd_hand, "push the simulated hand (N, N m), or let go",
+	  "hand F_INS F_ROLL F_UD F_LR [--hold-ms MS] | off",
 	  "endoctl hand 5 0 0 0 --hold-ms 500",
-	  "the four axes' forces for MS ms (simulated rig)" },
+	  "the four axes' forces for MS ms (simulated rig); then the hand "
+	  "holds each axis where it left it ([sim] grip_*_max: it slips "
+	  "beyond) until `hand off`" },
 	{ "case", cmd_case, "the anatomy cases", "case list | load NAME",
 	  "endoctl case load tight-flexures",
 	  "load: IDLE only, never in a session" },
