@@ -5,7 +5,9 @@
 # has the assistant press at a site with the default force and with
 # --force, and let go; works the simulated handle's valves (air held
 # raises the gas volume; the valves held stay held; off lets go at once);
-# a wall made weak tears the uppermost segment (a perforation).
+# a wall made weak tears the uppermost segment (a perforation); the
+# tip's thresholds set low, the hand's push tears a wall (a tear), no
+# fault.
 # Refused, with nothing changed: on the read-only socket, an unknown
 # position or site (the valid ones listed), a press above hand_max_n,
 # and every command when the patient is disabled. The status (JSON and
@@ -113,6 +115,18 @@ check "the transverse colon tears: burst_segment 5" \
 check "status: PERFORATED" eval \
 	"ctl status | grep -q '^patient   .*, PERFORATED: transverse$'"
 
+# --- a tear by the tip: its thresholds set low, the hand pushes the tube
+# in until the tip holds a wall (the real ones, end to end in lockstep:
+# test_patient) ----------------------------------------------------------------
+check_status "a wall weak to the tip (set live)" 0 eval \
+	"ctl set patient.perforation_straight_n 1 &&
+	 ctl set patient.perforation_bent_n 1"
+check_status "the hand pushes the tube in" 0 ctl hand 30 0 0 0 --hold-ms 4000
+check "the tip tears a wall: torn_segment set" \
+	wait_for p_true '.torn_segment >= 0'
+check "... no fault, the state as it was (IDLE)" \
+	status_true '.fault_bits == 0 and .state == "IDLE"'
+
 # --- the session ------------------------------------------------------------
 check_status "session stop" 0 ctl session stop
 ctl session export "$ID" --csv --events --out "$TMP/events.csv" >/dev/null
@@ -128,6 +142,8 @@ for ev in ',position,-1,0,0,"settled left-lateral"' \
 done
 check "the perforation's words" grep -qE \
 	',perforation,-1,5,[0-9.]+,"transverse torn at [0-9.]+ mmHg"' "$TMP/events.csv"
+check "the tip's tear: its event and words" grep -qE \
+	',tear,-1,[0-8],[0-9.]+,"[a-z_]+ torn by the tip at [0-9.]+ N"' "$TMP/events.csv"
 check "the report's event table has them" eval \
 	"ctl session report $ID --out $TMP/report >/dev/null &&
 	 grep -q '<tr class=\"hand\">.*<td>hand</td><td>pressed at llq, 30 N</td>' $TMP/report/index.html &&
