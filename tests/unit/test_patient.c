@@ -400,20 +400,22 @@ static void colon_sags(void **state)
 }
 
 /* The force loop in lockstep on the normal case with the patient and CFG
- * (its colon read here), the hand playing the scenario of LINES. */
+ * (its colon read here), the hand playing the scenario TEXT (its lines). */
 static struct offline *patient_course(const struct config *cfg,
-				      const char *const *lines)
+				      const char *text)
 {
-	struct scenario *scn = scenario_create();
+	FILE *f = fmemopen((void *)text, strlen(text), "r");
+	struct scenario *scn;
 	struct config c = *cfg;
 	struct colon *colon;
 	struct offline *o;
 	char err[512];
 
-	assert_non_null(scn);
-	for (; *lines; lines++) {
-		assert_int_equal(scenario_append(scn, *lines, err,
-						 sizeof(err)), 0);
+	assert_non_null(f);
+	scn = scenario_load_stream(f, "test", err, sizeof(err));
+	fclose(f);
+	if (!scn) {
+		fail_msg("%s", err);
 	}
 	c.patient.enabled = true;
 	snprintf(c.colon.file, sizeof(c.colon.file),
@@ -479,10 +481,9 @@ static void play_tear(struct offline *o, struct tear *t)
 
 /* The hand inserts 8 cm with the wheels held straight, then pushes at
  * its strongest; the rod model. */
-static const char *const push_lines[] = {
-	"0 insertion target 0.08 2", "0 wheel_ud target 0",
-	"0 wheel_lr target 0", "2.5 insertion force 40", "6 end", NULL,
-};
+static const char push_lines[] =
+	"0 insertion target 0.08 2\n0 wheel_ud target 0\n"
+	"0 wheel_lr target 0\n2.5 insertion force 40\n6 end\n";
 
 static void tip_tears(void **state)
 {
@@ -510,9 +511,7 @@ static void tip_tears(void **state)
 
 static void gas_bursts(void **state)
 {
-	static const char *const lines[] = {
-		"0 valve air on", "100 end", NULL,
-	};
+	static const char lines[] = "0 valve air on\n100 end\n";
 	struct config cfg;
 	struct tear t;
 
