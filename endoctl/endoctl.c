@@ -12,6 +12,9 @@
  */
 #include "endoctl/endoctl.h"
 
+#include <ctype.h>
+#include <sys/param.h>
+
 /* ------------------------------------------------------------ plumbing */
 
 static int connect_daemon(struct ctl *ctl, bool write)
@@ -387,7 +390,11 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 	Endosim__Reply *rep;
 	int r, n = 0;
 
-	for (int i = 1; i < argc; i++) {
+	if (argc == 2 && !strcmp(argv[1], "off")) {
+		body.hands_off = true; /* the grip lets go */
+		n = ENDOSIM_AXES;
+	}
+	for (int i = 1; !body.hands_off && i < argc; i++) {
 		char *end;
 
 		if (!strcmp(argv[i], "--hold-ms") && i + 1 < argc) {
@@ -406,11 +413,13 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 	}
 	if (n != ENDOSIM_AXES) {
 		fprintf(stderr, "endoctl: hand F_INSERTION_N F_ROLL_NM F_UD_NM "
-			"F_LR_NM [--hold-ms MS]\n");
+			"F_LR_NM [--hold-ms MS] | hand off\n");
 		return EXIT_USAGE;
 	}
-	body.n_force = ENDOSIM_AXES;
-	body.force = force;
+	if (!body.hands_off) {
+		body.n_force = ENDOSIM_AXES;
+		body.force = force;
+	}
 	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
 	req.hand_input = &body;
 	r = ctl_transact(ctl, true, &req, &rep);
@@ -671,55 +680,86 @@ static int cmd_version(struct ctl *ctl, int argc, char **argv)
 
 /* ------------------------------------------------------------ main */
 
-static const struct {
+/* Each command: its one line, its usage (its forms, " | " between
+ * them), notes and an example. */
+static const struct command {
 	const char *name;
 	command_fn *fn;
-	const char *help;
+	const char *line;
+	const char *usage;
+	const char *example;
+	const char *notes;
 } commands[] = {
-	{ "status", cmd_status, "state, faults, loop and axes" },
-	{ "stats", cmd_stats, "force-loop latency and compute time [--reset]" },
-	{ "watch", cmd_watch, "live status line [--rate HZ] [--duration S]" },
-	{ "enable", cmd_enable, "IDLE -> ENABLED: render forces" },
-	{ "disable", cmd_disable, "ENABLED -> IDLE: torque off" },
-	{ "estop", cmd_estop, "emergency stop (latched)" },
-	{ "reset", cmd_reset, "clear ESTOP or a FAULT whose cause is gone" },
-	{ "get", cmd_get, "[SECTION.KEY]: configuration" },
-	{ "set", cmd_set, "SECTION.KEY VALUE: change a live key" },
-	{ "hand", cmd_hand, "F_INS F_ROLL F_UD F_LR [--hold-ms MS]: push the "
-			    "simulated hand (N, N m)" },
-	{ "case", cmd_case, "list | load NAME: the anatomy cases (load: IDLE "
-			    "only)" },
-	{ "scene", cmd_scene, "info | export FILE.obj: the colon the daemon "
-			      "renders" },
-	{ "session", ctl_cmd_session,
-	  "start [--trainee NAME] [--case NAME] | stop | status | map | list | "
-	  "show ID | export ID --csv [--events] [--out FILE] | export ID... "
-	  "--summary [--out FILE] | report ID --out DIR "
-	  "[--reference REF_ID]: "
-	  "training sessions (ID: or ./N.endoses, without endosimd)" },
-	{ "trainee", ctl_cmd_trainee,
-	  "list [--course FILE] [--dir DIR] | report NAME --out DIR "
-	  "[--course FILE] [--dir DIR]: trainees, their sessions and course "
-	  "(--dir: a session directory, without endosimd)" },
-	{ "guide", ctl_cmd_guide,
-	  "start ID|FILE [--speed X] [--from S] | stop | takeover | resume | "
-	  "reset [--to S] | status: guided replay of a session through the "
-	  "motors" },
-	{ "patient", ctl_cmd_patient,
-	  "status | position left-lateral|supine|right-lateral|prone | "
-	  "press SITE [--force N] | release | valve air|water|suction on "
-	  "[--for S] | valve air|water|suction off: the patient's body "
-	  "([patient] enabled): a turn takes [patient] turn_s; SITE one of "
-	  "the case's (scene info), N up to [patient] hand_max_n (default "
-	  "hand_n); a valve is spring-loaded as on a real handle: `on` "
-	  "holds it S s (default 2, at most 10), then it springs back, "
-	  "`off` lets go at once; the other valves held stay held with it "
-	  "(simulated rig only: a hand input of the valves alone, the "
-	  "hand's forces, a scenario's, left as they are)" },
-	{ "version", cmd_version, "endoctl's and endosimd's versions" },
-	{ "debug", cmd_debug, "ACTION [AXIS] [VALUE]: fault injection, for "
-			      "tests only" },
+	{ "status", cmd_status, "state, faults, loop, axes, scope, patient",
+	  "status", "endoctl --json status | jq .patient.pain", NULL },
+	{ "stats", cmd_stats, "force-loop latency and compute time",
+	  "stats [--reset]", "endoctl stats", "percentiles since the start "
+	  "(or the last reset); --reset starts them anew" },
+	{ "watch", cmd_watch, "a live status line",
+	  "watch [--rate HZ] [--duration S]",
+	  "endoctl watch --rate 5 --duration 10", "one line a 1/HZ s "
+	  "(default 10), for S s (default: until interrupted)" },
+	{ "enable", cmd_enable, "IDLE -> ENABLED: render forces", "enable",
+	  "endoctl enable", NULL },
+	{ "disable", cmd_disable, "ENABLED -> IDLE: torque off", "disable",
+	  "endoctl disable", NULL },
+	{ "estop", cmd_estop, "emergency stop (latched)", "estop",
+	  "endoctl estop", NULL },
+	{ "reset", cmd_reset, "clear ESTOP or a FAULT whose cause is gone",
+	  "reset", "endoctl reset", NULL },
+	{ "get", cmd_get, "the configuration", "get [SECTION.KEY]",
+	  "endoctl get pain.sedation", "every key, or one" },
+	{ "set", cmd_set, "change a live configuration key",
+	  "set SECTION.KEY VALUE",
+	  "endoctl set haptics.wall_stiffness_n_per_m 800",
+	  "the keys endosimd --print-config marks live" },
+	{ "hand", cmd_hand, "push the simulated hand (N, N m), or let go",
+	  "hand F_INS F_ROLL F_UD F_LR [--hold-ms MS] | off",
+	  "endoctl hand 5 0 0 0 --hold-ms 500",
+	  "the four axes' forces for MS ms (simulated rig); then the hand "
+	  "holds each axis where it left it ([sim] grip_*_max: it slips "
+	  "beyond) until `hand off`" },
+	{ "case", cmd_case, "the anatomy cases", "case list | load NAME",
+	  "endoctl case load tight-flexures",
+	  "load: IDLE only, never in a session" },
+	{ "scene", cmd_scene, "the colon the daemon renders",
+	  "scene info | export FILE.obj", "endoctl scene info", NULL },
+	{ "session", ctl_cmd_session, "training sessions",
+	  "session start [--trainee NAME] [--case NAME] [--sedation "
+	  "none|minimal|moderate|deep] | stop | status | map | list | show ID "
+	  "| export ID --csv [--events] [--out FILE] | export ID... --summary "
+	  "[--out FILE] | report ID --out DIR [--reference REF_ID]",
+	  "endoctl session start --trainee ana --sedation moderate",
+	  "ID: a session's number, or a file (./N.endoses) read without "
+	  "endosimd" },
+	{ "trainee", ctl_cmd_trainee, "trainees, their sessions and course",
+	  "trainee list [--course FILE] [--dir DIR] | report NAME --out DIR "
+	  "[--course FILE] [--dir DIR]",
+	  "endoctl trainee report ana --out /tmp/ana",
+	  "--dir: a session directory, read without endosimd" },
+	{ "guide", ctl_cmd_guide, "guided replay of a session through the "
+	  "motors",
+	  "guide start ID|FILE [--speed X] [--from S] | stop | takeover | "
+	  "resume | reset [--to S] | status", "endoctl guide start 12", NULL },
+	{ "patient", ctl_cmd_patient, "the patient ([patient] enabled)",
+	  "patient status | position left-lateral|supine|right-lateral|prone "
+	  "| press SITE [--force N] | release | valve air|water|suction on "
+	  "[--for S] | valve air|water|suction off | sedation "
+	  "none|minimal|moderate|deep", "endoctl patient press llq --force 30",
+	  "a turn takes [patient] turn_s; SITE is one of the case's (scene "
+	  "info), N up to [patient] hand_max_n (default hand_n); a valve is "
+	  "spring-loaded as on a real handle: `on` holds it S s (default 2, "
+	  "at most 10), then it springs back, `off` lets go at once; the "
+	  "other valves held stay held with it (simulated rig only)" },
+	{ "version", cmd_version, "endoctl's and endosimd's versions",
+	  "version", "endoctl version", NULL },
+	{ "debug", cmd_debug, "fault injection, for tests only",
+	  "debug ACTION [AXIS] [VALUE]", "endoctl debug stall-loop", NULL },
+	{ "help", NULL, "this list, or one command's options and an example",
+	  "help [COMMAND]", "endoctl help session", NULL },
 };
+
+#define COMMANDS (sizeof(commands) / sizeof(commands[0]))
 
 static void usage(FILE *out)
 {
@@ -727,11 +767,140 @@ static void usage(FILE *out)
 		"COMMAND [ARGS]\n\nPATH is a socket or the directory holding "
 		"both (default $%s or %s).\n\ncommands:\n", CLIENT_ENV,
 		CLIENT_DEFAULT_DIR);
-	for (size_t i = 0; i < sizeof(commands) / sizeof(commands[0]); i++) {
-		fprintf(out, "  %-8s %s\n", commands[i].name, commands[i].help);
+	for (size_t i = 0; i < COMMANDS; i++) {
+		fprintf(out, "  %-8s %s\n", commands[i].name, commands[i].line);
 	}
-	fprintf(out, "\nexit status: 0 ok, 1 refused by endosimd, 2 usage, "
+	fprintf(out, "\n'endoctl help COMMAND' gives its options and an "
+		"example.\nexit status: 0 ok, 1 refused by endosimd, 2 usage, "
 		"3 endosimd not running, 4 communication error\n");
+}
+
+static const struct command *command_named(const char *name)
+{
+	for (size_t i = 0; i < COMMANDS; i++) {
+		if (!strcmp(name, commands[i].name)) {
+			return &commands[i];
+		}
+	}
+	return NULL;
+}
+
+/* The edit distance between A and B (insertions, deletions, changes and
+ * two neighbours swapped), at most 32 characters of each counted. */
+static int distance(const char *a, const char *b)
+{
+	int d[33][33];
+	int n = (int)strnlen(a, 32), m = (int)strnlen(b, 32);
+
+	for (int i = 0; i <= n; i++) {
+		for (int j = 0; j <= m; j++) {
+			int best = i + j;
+
+			if (i && j) {
+				best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+				best = MIN(best, d[i - 1][j] + 1);
+				best = MIN(best, d[i][j - 1] + 1);
+				if (i > 1 && j > 1 && a[i - 1] == b[j - 2] &&
+				    a[i - 2] == b[j - 1]) {
+					best = MIN(best, d[i - 2][j - 2] + 1);
+				}
+			}
+			d[i][j] = best;
+		}
+	}
+	return d[n][m];
+}
+
+/* The command nearest NAME, when near enough to be a slip (at most two
+ * edits, fewer than half its letters), else NULL. */
+static const char *nearest(const char *name)
+{
+	const char *best = NULL;
+	int most = 3;
+
+	for (size_t i = 0; i < COMMANDS; i++) {
+		int d = distance(name, commands[i].name);
+
+		if (d < most && 2 * d < (int)strlen(commands[i].name)) {
+			most = d;
+			best = commands[i].name;
+		}
+	}
+	return best;
+}
+
+static int unknown(const char *name)
+{
+	const char *near = nearest(name);
+
+	fprintf(stderr, "endoctl: unknown command '%s'", name);
+	if (near) {
+		fprintf(stderr, "; did you mean '%s'?\n", near);
+	} else {
+		fprintf(stderr, "; 'endoctl help' lists them\n");
+	}
+	return EXIT_USAGE;
+}
+
+/* TEXT as a sentence (its first letter upper case, a full stop), in
+ * lines of at most 72 columns broken between words. */
+static void print_wrapped(const char *text)
+{
+	size_t col = 0;
+
+	for (const char *w = text; *w;) {
+		size_t n = strcspn(w, " ");
+
+		if (col && col + 1 + n > 72) {
+			putchar('\n');
+			col = 0;
+		} else if (col) {
+			putchar(' ');
+			col++;
+		}
+		printf("%c%.*s", w == text ? toupper((unsigned char)*w) : *w,
+		       (int)n - 1, w + 1);
+		col += n;
+		w += n;
+		w += *w == ' ';
+	}
+	puts(".");
+}
+
+/* help [COMMAND] */
+static int help(int argc, char **argv)
+{
+	const struct command *c;
+
+	if (argc == 1) {
+		usage(stdout);
+		return 0;
+	}
+	if (argc != 2) {
+		fputs("endoctl: help [COMMAND]\n", stderr);
+		return EXIT_USAGE;
+	}
+	c = command_named(argv[1]);
+	if (!c) {
+		return unknown(argv[1]);
+	}
+	printf("endoctl %s: %s\n\nusage:\n", c->name, c->line);
+	if (!strcmp(c->usage, c->name)) {
+		printf("  endoctl %s\n", c->name);
+	}
+	for (const char *u = c->usage + strlen(c->name), *bar; *u;
+	     u = bar ? bar + 3 : u + strlen(u)) {
+		u += *u == ' ';
+		bar = strstr(u, " | ");
+		printf("  endoctl %s %.*s\n", c->name,
+		       bar ? (int)(bar - u) : (int)strlen(u), u);
+	}
+	if (c->notes) {
+		putchar('\n');
+		print_wrapped(c->notes);
+	}
+	printf("\nexample:\n  %s\n", c->example);
+	return 0;
 }
 
 int main(int argc, char **argv)
@@ -744,6 +913,7 @@ int main(int argc, char **argv)
 		{ NULL, 0, NULL, 0 },
 	};
 	struct ctl ctl = { .timeout_ms = 2000 };
+	const struct command *cmd;
 	int c, r;
 
 	while ((c = getopt_long(argc, argv, "+s:jt:h", opts, NULL)) != -1) {
@@ -769,14 +939,14 @@ int main(int argc, char **argv)
 		usage(stderr);
 		return EXIT_USAGE;
 	}
-	for (size_t i = 0; i < sizeof(commands) / sizeof(commands[0]); i++) {
-		if (!strcmp(argv[optind], commands[i].name)) {
-			r = commands[i].fn(&ctl, argc - optind, argv + optind);
-			client_close(ctl.client);
-			return r;
-		}
+	if (!strcmp(argv[optind], "help")) {
+		return help(argc - optind, argv + optind);
 	}
-	fprintf(stderr, "endoctl: unknown command '%s'\n", argv[optind]);
-	usage(stderr);
-	return EXIT_USAGE;
+	cmd = command_named(argv[optind]);
+	if (!cmd) {
+		return unknown(argv[optind]);
+	}
+	r = cmd->fn(&ctl, argc - optind, argv + optind);
+	client_close(ctl.client);
+	return r;
 }

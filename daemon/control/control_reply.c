@@ -434,6 +434,12 @@ void control_on_hand_input(struct control *c, struct client *cl,
 			return;
 		}
 	}
+	if (hi->hands_off) {
+		hand_release(c->deps.hand);
+		if (!hi->n_force && !hi->valves) {
+			return; /* the valves held stay held */
+		}
+	}
 	hand_set_live(c->deps.hand, hi->n_force ? hi->force : NULL, hi->valves,
 		      hold, mono_ns());
 }

@@ -55,6 +55,9 @@ struct loop {
 	struct guide guide;        /* guided replay (guide.h) */
 	bool lockstep;             /* loop_step(): stamps on the caller's clock */
 	uint32_t patient_seq;      /* the scenario's last patient command done */
+	bool guide_playing;        /* the recording's patient plays along */
+	struct guide_patient guide_was; /* what it last asked of the patient */
+	uint32_t guide_valves;     /* the recording's, pressed this cycle */
 
 	/* shared */
 	struct rig *rig;
@@ -310,6 +313,53 @@ static void scenario_patient(struct loop *l)
 	(void)patient_do(l, &cmd);
 }
 
+/* The patient as it lies now, in the recording's terms. */
+static void patient_now(struct loop *l, struct guide_patient *out)
+{
+	const struct patient *pt = haptics_patient(l->haptics);
+
+	*out = (struct guide_patient){
+		.position = pt->posture.position, .hand_site = pt->site,
+		.hand_n = pt->site >= 0 ? (float)pt->hand_n : 0,
+	};
+}
+
+/*
+ * Guided replay's patient (guide.h): while the guidance plays, the
+ * recording's valves join the handle's this cycle, and each change of
+ * its patient (a turn, the assistant's press or release) is carried out
+ * as the scenario's are; at the start of play, whatever differs from the
+ * patient as it lies. One the patient refuses changes nothing.
+ */
+static void guide_patient(struct loop *l)
+{
+	struct guide_patient now, *was = &l->guide_was;
+	struct loop_patient_command cmd = { LOOP_PATIENT_RELEASE, 0, 0 };
+
+	l->guide_valves = 0;
+	if (!guide_patient_now(&l->guide, &now)) {
+		l->guide_playing = false;
+		return;
+	}
+	if (!l->guide_playing) {
+		patient_now(l, was);
+		l->guide_playing = true;
+	}
+	l->guide_valves = now.valves;
+	if (now.position != was->position) {
+		(void)patient_do(l, &(struct loop_patient_command){
+			LOOP_PATIENT_TURN, now.position, 0 });
+	}
+	if (now.hand_site != was->hand_site || now.hand_n != was->hand_n) {
+		if (now.hand_site >= 0) {
+			cmd = (struct loop_patient_command){
+				LOOP_PATIENT_PRESS, now.hand_site, now.hand_n };
+		}
+		(void)patient_do(l, &cmd);
+	}
+	*was = now;
+}
+
 /* The scope's pose: the paper's kinematics on the centreline, or the rod
  * model's tube as its last step left it. */
 static void kinematics(struct loop *l)
@@ -352,7 +402,7 @@ static void render(struct loop *l)
 		.dt_s = l->info.period_ns * ENDOSIM_S_PER_NS,
 		.torque_on = safety_torque_on(&l->safety),
 		.applied = l->limited, /* last cycle's, not yet filtered */
-		.valves = l->fb.valves,
+		.valves = l->fb.valves | l->guide_valves,
 	};
 
 	cases_haptics_params(&l->cfg, &par);
@@ -535,6 +585,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	safety_check_motion(&l->safety, &l->cfg, &l->fb, now);
 	kinematics(l);
 	scenario_patient(l);
+	guide_patient(l);
 	render(l);
 	guide(l, now);
 	inject_pipeline(&l->inject, &l->pose, &l->state.haptics, l->command);

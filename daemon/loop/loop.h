@@ -35,6 +35,10 @@
  *    (patient_turn(), patient_press() at the case's site of that name,
  *    patient_release()); the scenario's valves come as the handle's
  *    (.valves). The daemon and the lockstep tools take the same path;
+ *  - guided replay's patient (guide.h): while the guidance plays, the
+ *    recording's valves are pressed with the handle's (an OR), and each
+ *    change of its patient (a turn, the hand's press or release) carried
+ *    out the same way, before the patient's step;
  *  - statistics and heartbeat: any thread.
  */
 #ifndef ENDOSIM_LOOP_H

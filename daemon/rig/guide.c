@@ -28,7 +28,8 @@ static struct guide_path *path_alloc(size_t n)
 	p->n = n;
 	p->q = calloc(n, sizeof(*p->q));
 	p->tip_s_m = calloc(n, sizeof(*p->tip_s_m));
-	if (!p->q || !p->tip_s_m) {
+	p->patient = calloc(n, sizeof(*p->patient));
+	if (!p->q || !p->tip_s_m || !p->patient) {
 		guide_path_free(p);
 		return NULL;
 	}
@@ -97,6 +98,8 @@ static struct guide_path *scenario_path(const char *file, char *err,
 		}
 	}
 	scenario_destroy(scn);
+	free(p->patient); /* a scenario's commands stay its own */
+	p->patient = NULL;
 	if (!any) {
 		snprintf(err, errsize, "%s: a scenario without a target: "
 			 "nothing to guide along", file);
@@ -104,6 +107,17 @@ static struct guide_path *scenario_path(const char *file, char *err,
 		return NULL;
 	}
 	return p;
+}
+
+/* Record R's patient as a path's sample holds it; whether it had one. */
+static bool patient_of(const struct session_record *r,
+		       struct guide_patient *out)
+{
+	*out = (struct guide_patient){
+		.valves = r->valves, .position = (int32_t)r->patient_position,
+		.hand_site = r->hand_site, .hand_n = r->hand_n,
+	};
+	return r->patient;
 }
 
 /* A session file begins with its magic; anything else may be a
@@ -129,6 +143,7 @@ struct guide_path *guide_path_load(const char *file, char *err,
 	char id[32] = "";
 	size_t first = 0, last = 0, n, r;
 	uint64_t t0, span, step = (uint64_t)(ENDOSIM_NS_PER_S / GUIDE_PATH_HZ);
+	bool patient = false;
 	int e;
 
 	if (!is_session(file) && access(file, R_OK) == 0) {
@@ -169,6 +184,11 @@ struct guide_path *guide_path_load(const char *file, char *err,
 		}
 		memcpy(p->q[k], f.records[r].position, sizeof(p->q[k]));
 		p->tip_s_m[k] = f.records[r].tip_s_m;
+		patient |= patient_of(&f.records[r], &p->patient[k]);
+	}
+	if (!patient) {
+		free(p->patient);
+		p->patient = NULL;
 	}
 	session_text_get(f.header, "id", id, sizeof(id));
 	p->source_id = strtoull(id, NULL, 10);
@@ -186,6 +206,7 @@ void guide_path_free(struct guide_path *p)
 	}
 	free(p->q);
 	free(p->tip_s_m);
+	free(p->patient);
 	free(p);
 }
 
@@ -496,6 +517,20 @@ void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
 	if (g->phase != ENDOSIM_GUIDE_FADING) {
 		watch(g, p, q, dt_s);
 	}
+}
+
+bool guide_patient_now(const struct guide *g, struct guide_patient *out)
+{
+	double x;
+	size_t i;
+
+	if (g->phase != ENDOSIM_GUIDE_GUIDING || !g->path->patient) {
+		return false;
+	}
+	x = g->t_s * GUIDE_PATH_HZ + 0.5;
+	i = x > 0 ? (size_t)x : 0;
+	*out = g->path->patient[i < g->path->n ? i : g->path->n - 1];
+	return true;
 }
 
 void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],

@@ -31,6 +31,15 @@
  * stop, and the rig leaving ENABLED (at once: no fade; the safety filter
  * zeroes the torque anyway).
  *
+ * The patient plays along: a session recorded with the patient keeps, per
+ * sample of its path, the handle's valves, the position the patient lay
+ * in (or was being turned to) and the assistant's hand (site and force).
+ * While GUIDING, guide_patient_now() gives them at the playhead, so that
+ * the force loop presses the recording's valves with the trainee's (an OR:
+ * the trainee's own presses still work, and neither can release the
+ * other's) and has the patient turned and the abdomen pressed or let go
+ * as the recording's changed, at their times on the path's clock (loop.h).
+ *
  * Threads: guide_path_*() allocate (the control thread); the rest is the
  * force loop's: no allocation, fixed work a cycle.
  */
@@ -46,6 +55,14 @@
 
 #define GUIDE_PATH_HZ 100.0 /* samples a second of a path */
 
+/* What the recording's patient was doing at one sample of its path. */
+struct guide_patient {
+	uint32_t valves;         /* enum endosim_valve bits */
+	int32_t position;        /* enum endosim_position, or turning to */
+	int32_t hand_site;       /* the case's site pressed, -1: none */
+	float hand_n;            /* the assistant's press, N */
+};
+
 /* A recorded session's axis positions, GUIDE_PATH_HZ samples a second. */
 struct guide_path {
 	uint64_t source_id;      /* the session's id */
@@ -54,12 +71,16 @@ struct guide_path {
 	size_t n;                /* samples, >= 2 */
 	float (*q)[ENDOSIM_AXES]; /* m, rad */
 	float *tip_s_m;          /* where the tip was along the colon */
+	struct guide_patient *patient; /* each sample's; NULL: none (a
+					  scenario's path, a session
+					  recorded without the patient) */
 };
 
 /*
- * The path of the session file FILE: every record's axis positions from
+ * The path of the session file FILE: every record's axis positions (and
+ * its patient's, if it had one) from
  * the first record with torque on (the session's enabled part) to the
- * last, resampled. Or, for a file that is not a session, of a scenario
+ * last, resampled: each sample the last record at or before its time. Or, for a file that is not a session, of a scenario
  * (scenario.h): its hand's targets (an axis pushed or let go keeps its
  * last target), of no case (case_name empty, source_id 0). NULL with one
  * line in ERR (cannot read, neither a session nor a scenario, too short,
@@ -149,6 +170,14 @@ void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
 		const double q[ENDOSIM_AXES], const double v[ENDOSIM_AXES],
 		const double applied[ENDOSIM_AXES], double dt_s,
 		double force[ENDOSIM_AXES]);
+
+/*
+ * The recording's patient at the playhead (its sample nearest it)
+ * into OUT while GUIDING: true; false in any other phase (moving to the
+ * path, holding, taken over, off) or on a path without the patient.
+ * Force loop.
+ */
+bool guide_patient_now(const struct guide *g, struct guide_patient *out);
 
 /* What the guidance does, for the published state. */
 void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],

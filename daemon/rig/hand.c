@@ -2,6 +2,7 @@
 #include "rig/hand.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 #include "proto/seqlock.h"
@@ -13,6 +14,7 @@ struct live {
 	uint64_t until_ns;        /* the forces hold until then */
 	uint32_t valves;
 	uint64_t valves_until_ns; /* the valves hold until then */
+	uint32_t released;        /* hand_release()s so far */
 };
 
 struct hand {
@@ -20,11 +22,16 @@ struct hand {
 	double damping[ENDOSIM_AXES];
 	double max[ENDOSIM_AXES];
 	double max_speed[ENDOSIM_AXES];
+	double grip_max[ENDOSIM_AXES];
 	struct scenario *scenario;
 	seqlock_t lock;       /* guards mailbox */
 	struct live mailbox;  /* written by the control thread */
 	struct live cached;   /* the force loop's last good copy */
 	struct scenario_patient patient; /* the last handed out */
+	/* the grip, the force loop's */
+	bool held[ENDOSIM_AXES];
+	double hold_at[ENDOSIM_AXES]; /* m or rad: where it holds */
+	uint32_t released;            /* the last release taken */
 };
 
 struct hand *hand_create(const struct config *cfg, struct scenario *scn)
@@ -39,6 +46,7 @@ struct hand *hand_create(const struct config *cfg, struct scenario *scn)
 		h->damping[a] = cfg->sim.hand_damping[a];
 		h->max[a] = cfg->sim.hand_max[a];
 		h->max_speed[a] = cfg->sim.hand_max_speed[a];
+		h->grip_max[a] = cfg->sim.grip_max[a];
 	}
 	h->scenario = scn;
 	seqlock_init(&h->lock);
@@ -76,6 +84,13 @@ void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 	seqlock_write_end(&h->lock);
 }
 
+void hand_release(struct hand *h)
+{
+	seqlock_write_begin(&h->lock);
+	h->mailbox.released++;
+	seqlock_write_end(&h->lock);
+}
+
 /* One try: a writer caught mid-update leaves the previous copy in use. */
 static void fetch_live(struct hand *h)
 {
@@ -106,6 +121,20 @@ static double muscle(double f, double v, double lim, double vmax)
 	return f;
 }
 
+/* Axis A held where the hand left it: the spring to there, the place
+ * slipping with the axis beyond the grip's strength. */
+static double grip(struct hand *h, int a, double pos, double vel)
+{
+	double k = h->stiffness[a], reach = k > 0 ? h->grip_max[a] / k : 0;
+	double off = h->hold_at[a] - pos;
+
+	if (fabs(off) > reach) {
+		h->hold_at[a] = pos + copysign(reach, off);
+		off = h->hold_at[a] - pos;
+	}
+	return clamp(k * off - h->damping[a] * vel, h->grip_max[a]);
+}
+
 void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 		 const double pos[ENDOSIM_AXES], const double vel[ENDOSIM_AXES],
 		 double force[ENDOSIM_AXES])
@@ -113,12 +142,33 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
 	struct scenario_cmd cmd[ENDOSIM_AXES];
 
 	fetch_live(h);
+	if (h->cached.released != h->released) {
+		h->released = h->cached.released;
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			h->held[a] = false;
+		}
+	}
 	if (now_ns < h->cached.until_ns) {
 		for (int a = 0; a < ENDOSIM_AXES; a++) {
 			force[a] = muscle(h->cached.force[a], vel[a], h->max[a],
 					  h->max_speed[a]);
+			h->held[a] = true; /* where the input leaves it */
+			h->hold_at[a] = pos[a];
 		}
 		return;
+	}
+	if (!h->scenario || scenario_done(h->scenario, t_s)) {
+		bool holds = false;
+
+		for (int a = 0; a < ENDOSIM_AXES; a++) {
+			holds |= h->held[a];
+		}
+		for (int a = 0; holds && a < ENDOSIM_AXES; a++) {
+			force[a] = h->held[a] ? grip(h, a, pos[a], vel[a]) : 0;
+		}
+		if (holds) {
+			return;
+		}
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		cmd[a].mode = SCENARIO_FREE;

@@ -9,6 +9,16 @@
  * Every force is clamped to the configured strongest push of a hand, and
  * fades along the motion to nothing at the hand's top speed, as a
  * muscle's does: a hand alone never moves an axis faster than that.
+ *
+ * The grip: a trainee's right hand holds the shaft and the left the
+ * wheels between moves. Once live input has pushed an axis, the hand holds
+ * it where the input left it when the input lapses (no scenario playing,
+ * or the scenario done): a spring of the hand's stiffness and damping
+ * ([sim] hand_*_stiffness, hand_*_damping) to that place, up to the
+ * grip's strength ([sim] grip_*_max); a load beyond it makes the axis slip
+ * (the place follows the axis, so that the spring holds the strength), as
+ * a shaft slides through fingers. hand_release() ("hands off") lets every
+ * axis go until live input takes hold again.
  */
 #ifndef ENDOSIM_HAND_H
 #define ENDOSIM_HAND_H
@@ -38,6 +48,9 @@ const struct scenario *hand_scenario(const struct hand *h);
  */
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 		   uint32_t valves, double hold_s, uint64_t now_ns);
+
+/* Control thread: hands off, every axis let go (lock-free). */
+void hand_release(struct hand *h);
 
 /*
  * Force loop: the hand's force on each axis at scenario time T_S given the

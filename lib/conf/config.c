@@ -298,6 +298,15 @@ static const struct parse_key keys[] = {
 	   "speed, left/right wheel"),
 	KD("sim", "hand_hold_s", sim.hand_hold_s, 0.25, 0.01, 10, "s", 0,
 	   "live hand input holds this long unless refreshed"),
+	KD("sim", "grip_insertion_max_n", sim.grip_max[I_INS], 20, 0, 200, "N",
+	   0, "the hand holds the shaft where the trainee left it (the "
+	   "hand's stiffness) up to this force, then it slips"),
+	KD("sim", "grip_roll_max_n_m", sim.grip_max[I_ROLL], 0.5, 0, 10, "N m",
+	   0, "the same for the shaft's roll"),
+	KD("sim", "grip_wheel_ud_max_n_m", sim.grip_max[I_UD], 0.3, 0, 10,
+	   "N m", 0, "the thumb's hold on the up/down wheel"),
+	KD("sim", "grip_wheel_lr_max_n_m", sim.grip_max[I_LR], 0.3, 0, 10,
+	   "N m", 0, "the thumb's hold on the left/right wheel"),
 
 	KS("socket", "directory", socket.directory, "/run/endosim", 0,
 	   "where status.sock (read-only) and control.sock live"),

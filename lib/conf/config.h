@@ -140,6 +140,8 @@ struct config {
 		double hand_max[ENDOSIM_AXES]; /* N or N m */
 		double hand_max_speed[ENDOSIM_AXES]; /* m/s or rad/s */
 		double hand_hold_s;            /* default hold of live input */
+		double grip_max[ENDOSIM_AXES]; /* N or N m: the hand's hold
+						  before the axis slips */
 	} sim;
 	struct {
 		char directory[CONFIG_STR];

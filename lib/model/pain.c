@@ -6,10 +6,10 @@
 
 /* gain and threshold factors, in enum endosim_sedation's order */
 static const double sedation_gain[ENDOSIM_SEDATIONS] = {
-	1, 0.8, 0.6, 0.25,
+	1, 0.9, 0.75, 0.3,
 };
 static const double sedation_threshold[ENDOSIM_SEDATIONS] = {
-	1, 1.1, 1.25, 2,
+	1, 1.05, 1.15, 2,
 };
 
 void pain_sedation_factors(int s, double *gain, double *threshold)

@@ -25,22 +25,27 @@
  * moving_m_s, turning_rad_s). And a place: the segment (anatomy.h's
  * index) of the largest stretch, the largest wall tension, or the tip.
  *
- * The defaults and why (docs/PATIENT.md, "Pain"):
- *  - stretch from 10 N, 0.1 a newton: the normal case's sigmoid (600 N/m,
- *    a 6 cm mesentery) pulled 2 cm off its course holds ~13 N: a twinge;
- *    a 6 cm loop ~70 N: 6, the pain that makes patients ask for more
- *    analgesia (Shah et al. 2002: 79 % of the requests during looping);
+ * The defaults and why (docs/PATIENT.md, "Pain"), calibrated on the
+ * scripted trainee's demo course on the normal case (tests/tools/
+ * trainee.h), whose sigmoid (600 N/m, a 6 cm mesentery) holds 10 N
+ * pulled 2 cm off its course, 20 N at 4 cm and 40 N at 6 cm:
+ *  - stretch from 8 N, 0.2 a newton: a 2 cm bow is painless, a 4 cm loop
+ *    an ache (2.4), the 6 cm loop of the course's mistake 6.4, the pain
+ *    that makes patients ask for more analgesia (Shah et al. 2002: 79 %
+ *    of the requests during looping);
  *  - distension from 120 N/m, 0.04 per N/m: 30 mmHg in a 3 cm lumen,
  *    where barostat studies find the first discomfort in the colon;
  *    60 mmHg in a 3.5 cm lumen (280 N/m) gives 6.4;
- *  - the tip from 4 N, 0.6 a newton: 14 N, where a straight tip perforates
- *    porcine colon, gives 6;
+ *  - the tip from 5 N, 0.5 a newton: the few newtons of steering past a
+ *    fold do not hurt; 14 N, where a straight tip perforates porcine
+ *    colon, gives 4.5 (with the loop that such a push makes, more);
  *  - rising in 0.3 s (a reflex), fading in 5 s (the ache that lingers).
  *
  * Sedation (the instructor's choice per session), gain and threshold
- * factors: none 1 and 1; minimal 0.8 and 1.1; moderate (the default) 0.6
- * and 1.25; deep 0.25 and 2. Simple scalings, documented as such: no
- * pharmacology.
+ * factors: none 1 and 1; minimal 0.9 and 1.05; moderate (the default)
+ * 0.75 and 1.15; deep 0.3 and 2. Simple scalings, documented as such:
+ * no pharmacology. Moderate ("conscious") sedation leaves a loop's pain
+ * felt, as Shah's sedated patients did; deep sedation leaves little.
  *
  * Units SI. Plain data, no allocation; fixed work per cycle (one pass
  * over the spans and segments given). One writer.
@@ -68,12 +73,12 @@ struct pain_params {
 	int sedation;         /* enum endosim_sedation */
 };
 
-#define PAIN_DEFAULT_STRETCH_THRESHOLD_N 10.0
-#define PAIN_DEFAULT_STRETCH_GAIN_PER_N 0.1
+#define PAIN_DEFAULT_STRETCH_THRESHOLD_N 8.0
+#define PAIN_DEFAULT_STRETCH_GAIN_PER_N 0.2
 #define PAIN_DEFAULT_WALL_THRESHOLD_N_PER_M 120.0
 #define PAIN_DEFAULT_WALL_GAIN_PER_N_PER_M 0.04
-#define PAIN_DEFAULT_TIP_THRESHOLD_N 4.0
-#define PAIN_DEFAULT_TIP_GAIN_PER_N 0.6
+#define PAIN_DEFAULT_TIP_THRESHOLD_N 5.0
+#define PAIN_DEFAULT_TIP_GAIN_PER_N 0.5
 #define PAIN_DEFAULT_RISE_S 0.3
 #define PAIN_DEFAULT_FADE_S 5.0
 #define PAIN_DEFAULT_MOVING_M_S 0.002

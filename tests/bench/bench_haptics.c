@@ -9,7 +9,18 @@
  *
  * --patient: the patient's body around the colon ([patient] enabled:
  * the gas, gravity, the fluid, the lens, the assistant's pad), played as
- * the scenario's valves and commands ask.
+ * the scenario's valves and commands ask. Then also the patient's
+ * response alone, per cycle, over the run's own mechanics: pain_step()
+ * (4 mobile spans, 9 segments), and with it vitals_step() and
+ * perforation_step() as patient.c's respond() calls them, each call timed
+ * on CLOCK_MONOTONIC (the clock's own ~20 ns included): p50, p99 and the
+ * largest next to the 5 us the issue allows (issue 23).
+ * The inputs each cycle: the wall's Laplace tension per segment, the
+ * tip's force F_static, its bend, the tube's insertion and roll speed,
+ * as the run published them; each span's mesentery tension, which the
+ * state does not publish, from its published displacement bow_m as the
+ * normal case's sigmoid holds it (600 N/m, stiffening as
+ * 1 + (bow / 6 cm)^2: 2 cm ~13 N, 6 cm ~70 N, pain.h's figures).
  *
  * The force loop's own parts run as in the daemon, off line
  * (tests/tools/offline.h): the simulated rig (plants and the scripted
@@ -29,9 +40,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "model/anatomy.h"
 #include "model/colon.h"
+#include "model/pain.h"
+#include "model/perforation.h"
+#include "model/vitals.h"
 #include "conf/config.h"
 #include "offline.h"
 #include "base/vec3.h"
@@ -42,8 +57,19 @@ struct series {
 	long n;
 };
 
+/* what the patient's response takes in, one cycle's */
+struct respond_in {
+	double span_n[ENDOSIM_SPANS];
+	double wall_n_per_m[ENDOSIM_SEGMENTS];
+	double tip_n;
+	double bend_rad;
+	double insertion_m_s;
+	double roll_rad_s;
+};
+
 struct run {
 	struct series step_us;   /* the cycle's compute time */
+	struct respond_in *in;   /* each cycle's, with --patient */
 	struct series df_n;      /* |dF_static| per cycle while sliding */
 	struct series push_n;    /* |insertion force| every cycle */
 	double roll_peak_nm;
@@ -62,6 +88,31 @@ static int by_value(const void *a, const void *b)
 	double x = *(const double *)a, y = *(const double *)b;
 
 	return (x > y) - (x < y);
+}
+
+/* mesentery stiffness and the stretch at which it doubles (the normal
+ * case's sigmoid) */
+#define BENCH_MESENTERY_N_PER_M 600.0
+#define BENCH_MESENTERY_M 0.06
+
+/* What the patient's response takes in from the state ST. */
+static void respond_input(const struct endosim_state *st,
+			  struct respond_in *in)
+{
+	const struct endosim_scope_state *sc = &st->scope;
+
+	for (int i = 0; i < ENDOSIM_SPANS; i++) {
+		double q = sc->bow_m[i] / BENCH_MESENTERY_M;
+
+		in->span_n[i] = BENCH_MESENTERY_N_PER_M * (1 + q * q) *
+				fabs(sc->bow_m[i]);
+	}
+	memcpy(in->wall_n_per_m, st->patient.tension_n_per_m,
+	       sizeof(in->wall_n_per_m));
+	in->tip_n = vec3_norm(st->haptics.f_static);
+	in->bend_rad = hypot(sc->bend_rad[0], sc->bend_rad[1]);
+	in->insertion_m_s = st->axis[ENDOSIM_AXIS_INSERTION].velocity;
+	in->roll_rad_s = st->axis[ENDOSIM_AXIS_ROLL].velocity;
 }
 
 /* The Q quantile of S (sorted here), nearest rank; 0 when empty. */
@@ -106,7 +157,8 @@ static void simulate(const struct config *cfg, struct colon *colon,
 	r->step_us.v = calloc((size_t)cycles + 1, sizeof(double));
 	r->df_n.v = calloc((size_t)cycles + 1, sizeof(double));
 	r->push_n.v = calloc((size_t)cycles + 1, sizeof(double));
-	if (!r->step_us.v || !r->df_n.v || !r->push_n.v) {
+	r->in = calloc((size_t)cycles + 1, sizeof(*r->in));
+	if (!r->step_us.v || !r->df_n.v || !r->push_n.v || !r->in) {
 		fprintf(stderr, "bench_haptics: out of memory\n");
 		exit(1);
 	}
@@ -115,6 +167,7 @@ static void simulate(const struct config *cfg, struct colon *colon,
 		const struct endosim_haptics_state *out = &st->haptics;
 
 		add(&r->step_us, st->compute_ns / 1e3);
+		respond_input(st, &r->in[i]);
 		add(&r->push_n,
 		    fabs(st->axis[ENDOSIM_AXIS_INSERTION].limited));
 		r->roll_peak_nm = fmax(r->roll_peak_nm,
@@ -137,6 +190,74 @@ static void simulate(const struct config *cfg, struct colon *colon,
 		prev = *out;
 	}
 	offline_destroy(o);
+}
+
+static double now_us(void)
+{
+	struct timespec t;
+
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (double)t.tv_sec * 1e6 + (double)t.tv_nsec / 1e3;
+}
+
+/* One cycle of the patient's response on IN; with WHOLE, the vital signs
+ * and the tear after the pain, as respond() (patient.c) steps them. */
+static void respond_once(struct pain *p, struct vitals *v,
+			 struct perforation *perf, const struct respond_in *in,
+			 bool whole)
+{
+	static const int span_segment[ENDOSIM_SPANS] = { 2, 3, 5, 7 };
+	static const struct pain_params par = PAIN_PARAMS_DEFAULT;
+	static const struct vitals_params vp = VITALS_PARAMS_DEFAULT;
+	static const struct perforation_params pp =
+		PERFORATION_PARAMS_DEFAULT;
+	struct pain_input pi = {
+		.spans = ENDOSIM_SPANS, .span_tension_n = in->span_n,
+		.span_segment = span_segment, .segments = ENDOSIM_SEGMENTS,
+		.wall_n_per_m = in->wall_n_per_m, .tip_force_n = in->tip_n,
+		.tip_segment = 2, .insertion_m_s = in->insertion_m_s,
+		.roll_rad_s = in->roll_rad_s,
+	};
+	double dt_s = OFFLINE_PERIOD_NS / 1e9;
+
+	pain_step(p, &par, &pi, dt_s);
+	if (whole) {
+		vitals_step(v, &vp, p->level, par.sedation, dt_s);
+		perforation_step(perf, &pp, in->tip_n, in->bend_rad, 2, dt_s);
+	}
+}
+
+/* Times the patient's response over the run's N cycles of inputs IN. */
+static void time_response(const struct respond_in *in, long n, bool whole)
+{
+	static const struct vitals_params vp = VITALS_PARAMS_DEFAULT;
+	struct series us = { calloc((size_t)n + 1, sizeof(double)), 0 };
+	struct pain p;
+	struct vitals v;
+	struct perforation perf;
+	double peak = 0;
+
+	if (!us.v) {
+		fprintf(stderr, "bench_haptics: out of memory\n");
+		exit(1);
+	}
+	memset(us.v, 0, ((size_t)n + 1) * sizeof(double)); /* prefaulted */
+	pain_reset(&p);
+	vitals_reset(&v, &vp, PAIN_DEFAULT_SEDATION);
+	perforation_reset(&perf);
+	for (long i = 0; i < n; i++) {
+		double t0 = now_us();
+
+		respond_once(&p, &v, &perf, &in[i], whole);
+		add(&us, now_us() - t0);
+		peak = fmax(peak, p.level);
+	}
+	printf("  %s per cycle: p50 %.3f us, p99 %.3f us, max %.2f us over "
+	       "%ld cycles (limit: p99 <= 5 us); peak pain %.1f\n",
+	       whole ? "the response (pain, vitals, tear)" : "pain_step()",
+	       quantile(&us, 0.5), quantile(&us, 0.99), quantile(&us, 1), n,
+	       peak);
+	free(us.v);
 }
 
 static void usage(void)
@@ -222,6 +343,11 @@ int main(int argc, char **argv)
 	       "%.2f N; largest F_static %.1f N\n", r.df_n.n, r.contact,
 	       quantile(&r.df_n, 0.5), quantile(&r.df_n, 0.99),
 	       quantile(&r.df_n, 1), r.max_f);
+	if (cfg.patient.enabled) {
+		time_response(r.in, r.step_us.n, false);
+		time_response(r.in, r.step_us.n, true);
+	}
+	free(r.in);
 	free(r.step_us.v);
 	free(r.df_n.v);
 	free(r.push_n.v);

@@ -80,6 +80,19 @@ check_status "an unknown key is refused" 1 ctl set loop.nonsense 1
 check_status "an out-of-range value is refused" 1 ctl set limits.roll_max_torque_n_m 50
 check "a refused value changes nothing" test "$(ctl get limits.roll_max_torque_n_m)" = 1
 check_status "unknown command: usage error" 2 ctl frobnicate
+check "a slip names the command meant" eval \
+	"\"\$ENDOCTL\" sesion list 2>&1 | grep -qx \"endoctl: unknown command 'sesion'; did you mean 'session'?\""
+check "help lists every command, one line each" eval \
+	"\"\$ENDOCTL\" help >$TMP/help.txt &&
+	 for c in status stats watch enable disable estop reset get set hand case scene session trainee guide patient version debug help; do
+		grep -qE \"^  \$c +[a-zA-Z(]\" $TMP/help.txt || exit 1
+	 done"
+check "help CMD: its forms, notes and an example" eval \
+	"\"\$ENDOCTL\" help session >$TMP/help.txt &&
+	 grep -qx '  endoctl session start \[--trainee NAME\] \[--case NAME\] \[--sedation none|minimal|moderate|deep\]' $TMP/help.txt &&
+	 grep -qx '  endoctl session stop' $TMP/help.txt &&
+	 grep -qx 'example:' $TMP/help.txt"
+check_status "help of no such command: usage error" 2 "$ENDOCTL" help frobnicate
 check_status "no daemon: exit 3" 3 "$ENDOCTL" --socket "$TMP/nowhere" status
 check "ENDOSIM_SOCKET names the socket" env ENDOSIM_SOCKET="$SOCK" "$ENDOCTL" status
 finish

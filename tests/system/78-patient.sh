@@ -5,7 +5,13 @@
 # has the assistant press at a site with the default force and with
 # --force, and let go; works the simulated handle's valves (air held
 # raises the gas volume; the valves held stay held; off lets go at once);
-# a wall made weak tears the uppermost segment (a perforation).
+# a wall made weak tears the uppermost segment (a perforation); the
+# tip's thresholds set low, the hand's push tears a wall (a tear), no
+# fault. Sedation: the session started with --sedation none has the
+# patient unsedated from its first record (a sedation event, the CSV's
+# patient_sedation column), `patient sedation deep` shows in `patient
+# status`, an unknown level is refused with the levels listed; the pain
+# is a number on the 0-10 scale.
 # Refused, with nothing changed: on the read-only socket, an unknown
 # position or site (the valid ones listed), a press above hand_max_n,
 # and every command when the patient is disabled. The status (JSON and
@@ -43,7 +49,10 @@ check "scene info: the case's sites" eval \
 check "scene info --json: their names" \
 	test "$(ctl --json scene info | jq -c .sites)" = '["llq","umbilical"]'
 
-ID=$(ctl --json session start --trainee patient | jq -r .id)
+# the session with the patient unsedated: the instructor's choice
+ID=$(ctl --json session start --trainee patient --sedation none | jq -r .id)
+check "session start --sedation none: the patient unsedated" \
+	p_true '.sedation == "none"'
 
 # --- refused, and nothing changes -----------------------------------------
 for cmd in "position supine" "press llq" release "valve air on"; do
@@ -60,10 +69,22 @@ check "... the case's sites listed" grep -q \
 	"no site 'rlq' in case normal: llq, umbilical" "$OUT"
 check_status "a press of 70 N: refused (1)" 1 ctl patient press llq --force 70
 check "... the strongest said" grep -q "to 60 N (\[patient\] hand_max_n)" "$OUT"
+check_status "an unknown sedation: refused (1)" 1 ctl patient sedation drunk
+check "... the levels listed" grep -q \
+	"no sedation 'drunk': none, minimal, moderate or deep" "$OUT"
 check_status "no such valve: usage (2)" 2 ctl patient valve oxygen on
 check_status "a valve held 11 s: usage (2)" 2 ctl patient valve air on --for 11
 check "nothing changed" p_true '.position == "left-lateral" and
-	(.turning | not) and .hand_site == -1 and .valves == "none"'
+	(.turning | not) and .hand_site == -1 and .valves == "none" and
+	.sedation == "none"'
+
+# --- sedation and pain ---------------------------------------------------------
+check "status --json: the pain a number on the 0-10 scale" \
+	p_true '.pain | type == "number" and . >= 0 and . <= 10'
+check_status "patient sedation deep" 0 ctl patient sedation deep
+check "patient status: sedation deep" eval \
+	"ctl patient status | grep -q '^sedation  deep$'"
+check "status --json: deep" p_true '.sedation == "deep"'
 
 # --- the position ------------------------------------------------------------
 check_status "patient position supine" 0 ctl patient position supine
@@ -113,6 +134,18 @@ check "the transverse colon tears: burst_segment 5" \
 check "status: PERFORATED" eval \
 	"ctl status | grep -q '^patient   .*, PERFORATED: transverse$'"
 
+# --- a tear by the tip: its thresholds set low, the hand pushes the tube
+# in until the tip holds a wall (the real ones, end to end in lockstep:
+# test_patient) ----------------------------------------------------------------
+check_status "a wall weak to the tip (set live)" 0 eval \
+	"ctl set patient.perforation_straight_n 1 &&
+	 ctl set patient.perforation_bent_n 1"
+check_status "the hand pushes the tube in" 0 ctl hand 30 0 0 0 --hold-ms 4000
+check "the tip tears a wall: torn_segment set" \
+	wait_for p_true '.torn_segment >= 0'
+check "... no fault, the state as it was (IDLE)" \
+	status_true '.fault_bits == 0 and .state == "IDLE"'
+
 # --- the session ------------------------------------------------------------
 check_status "session stop" 0 ctl session stop
 ctl session export "$ID" --csv --events --out "$TMP/events.csv" >/dev/null
@@ -123,11 +156,14 @@ for ev in ',position,-1,0,0,"settled left-lateral"' \
 	',hand,0,1,30,"pressed at llq, 30 N"' ',hand,-1,0,0,"released"' \
 	',valve,-1,1,1,"air on"' ',valve,-1,2,1,"water on"' \
 	',valve,-1,1,0,"air off"' ',valve,-1,4,1,"suction on"' \
-	',valve,-1,4,0,"suction off"' ',perforation,-1,5,'; do
+	',valve,-1,4,0,"suction off"' ',perforation,-1,5,' \
+	',sedation,-1,0,0,"sedation none"' ',sedation,-1,0,3,"sedation deep"'; do
 	check "the session's events: ${ev#*\"}" grep -qF -- "$ev" "$TMP/events.csv"
 done
 check "the perforation's words" grep -qE \
 	',perforation,-1,5,[0-9.]+,"transverse torn at [0-9.]+ mmHg"' "$TMP/events.csv"
+check "the tip's tear: its event and words" grep -qE \
+	',tear,-1,[0-8],[0-9.]+,"[a-z_]+ torn by the tip at [0-9.]+ N"' "$TMP/events.csv"
 check "the report's event table has them" eval \
 	"ctl session report $ID --out $TMP/report >/dev/null &&
 	 grep -q '<tr class=\"hand\">.*<td>hand</td><td>pressed at llq, 30 N</td>' $TMP/report/index.html &&
@@ -151,6 +187,8 @@ check "... enabled throughout, left lateral then supine" \
 check "... the hand at llq and none" test "$(col patient_hand_site)" = "-1 0 "
 check "... the valves' bits: none, air, air and water, suction" \
 	test "$(col patient_valves)" = "0 1 3 4 "
+check "... the sedation: none (0) from the first record, then deep (3)" \
+	test "$(col patient_sedation)" = "0 3 "
 
 # --- no patient --------------------------------------------------------------
 use_slot off

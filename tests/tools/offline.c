@@ -90,6 +90,11 @@ void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 	hand_set_live(o->hand, force, 0, hold_s, o->stamp_ns);
 }
 
+void offline_hands_off(struct offline *o)
+{
+	hand_release(o->hand);
+}
+
 uint64_t offline_hash(uint64_t h, const struct endosim_state *st)
 {
 	struct endosim_state s = *st;

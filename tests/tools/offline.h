@@ -85,6 +85,9 @@ void offline_hold_tip(struct offline *o, double hold_n_per_m);
 void offline_hand(struct offline *o, const double force[ENDOSIM_AXES],
 		  double hold_s);
 
+/* Hands off: the hand lets go of every axis (hand_release()). */
+void offline_hands_off(struct offline *o);
+
 /* A safety command (enable, disable, ...) for the next cycle. */
 void offline_command(struct offline *o, int cmd);
 

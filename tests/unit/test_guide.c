@@ -16,6 +16,11 @@
  * 3.3 mm, so the RMS error stays under 5 mm; the roll's 2 N m/rad holds
  * its friction torque (under 0.05 N m) at 1.4 degrees, under 3.
  *
+ * The patient plays along: a short session recorded with the patient (a
+ * valve held, the assistant's press and release, a turn) replayed on a
+ * rig with its own: each change at its recorded time, the trainee's own
+ * valve joining the recording's.
+ *
  * Run from the top of the source tree (tests/run.sh does).
  */
 #include <setjmp.h>
@@ -68,42 +73,37 @@ static struct offline *on_normal(struct config *cfg, struct scenario *scn)
 	return o;
 }
 
-/* The demo course, recorded into FILE as endosimd records a session. */
-static int record_course(void **unused)
+/*
+ * SCN played on the normal case with CFG, every cycle written to NAME as
+ * endosimd's recorder writes a session (its id SOURCE_ID); EACH sees each
+ * state with its time from the first enabled one (-1 before). -1 when
+ * NAME cannot be written.
+ */
+static int record(const char *name, struct config *cfg, struct scenario *scn,
+		  void (*each)(const struct endosim_state *st, double t_s))
 {
-	struct config cfg;
 	struct session_header h = {
 		.id = SOURCE_ID, .trainee = "expert", .case_name = "normal",
 		.started = "2026-11-25T00:00:00Z", .start_ns = OFFLINE_START_NS,
 		.period_ns = OFFLINE_PERIOD_NS, .version = "test",
 		.step_m = 0.002, .ring_vertices = 24, .segment_m = 0.05,
 	};
-	char text[1024], err[512];
-	struct scenario *scn;
+	char text[1024];
 	struct offline *o;
 	long cycles;
 	double t0 = -1;
-	int fd;
+	int fd = open(name, O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
-	(void)unused;
-	if (!mkdtemp(dir)) {
+	if (fd < 0) {
+		scenario_destroy(scn);
 		return -1;
 	}
-	snprintf(file, sizeof(file), "%s/7.endoses", dir);
-	fd = open(file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-	config_defaults(&cfg);
-	scn = scenario_load("config/scenarios/demo-paper.scn", err,
-			    sizeof(err));
-	if (fd < 0 || !scn) {
-		return -1;
-	}
-	o = on_normal(&cfg, scn);
+	o = on_normal(cfg, scn);
 	cycles = (long)(offline_length_s(o) / PERIOD_S);
 	session_header_text(&h, text, sizeof(text));
 	session_file_write_magic(fd);
 	session_file_write_frame(fd, SESSION_FRAME_HEADER, text,
 				 (uint32_t)strlen(text));
-	rec_cecum_s = -1;
 	for (long k = 0; k < cycles; k++) {
 		const struct endosim_state *st = offline_step(o);
 		struct session_record r;
@@ -112,15 +112,42 @@ static int record_course(void **unused)
 		if (st->state == ENDOSIM_STATE_ENABLED && t0 < 0) {
 			t0 = t;
 		}
-		if (rec_cecum_s < 0 && st->scope.tip_s_m >= CECUM_S_M) {
-			rec_cecum_s = t - t0;
-		}
+		each(st, t0 < 0 ? -1 : t - t0);
 		session_record_from_state(st, &r);
 		session_file_write_frame(fd, SESSION_FRAME_RECORD, &r,
 					 sizeof(r));
 	}
 	offline_destroy(o);
 	close(fd);
+	return 0;
+}
+
+static void cecum_seen(const struct endosim_state *st, double t_s)
+{
+	if (rec_cecum_s < 0 && t_s >= 0 && st->scope.tip_s_m >= CECUM_S_M) {
+		rec_cecum_s = t_s;
+	}
+}
+
+/* The demo course, recorded into FILE as endosimd records a session. */
+static int record_course(void **unused)
+{
+	struct config cfg;
+	char err[512];
+	struct scenario *scn;
+
+	(void)unused;
+	if (!mkdtemp(dir)) {
+		return -1;
+	}
+	snprintf(file, sizeof(file), "%s/7.endoses", dir);
+	config_defaults(&cfg);
+	scn = scenario_load("config/scenarios/demo-paper.scn", err,
+			    sizeof(err));
+	rec_cecum_s = -1;
+	if (!scn || record(file, &cfg, scn, cecum_seen)) {
+		return -1;
+	}
 	path = guide_path_load(file, err, sizeof(err));
 	if (!path) {
 		fprintf(stderr, "%s\n", err);
@@ -634,6 +661,145 @@ static void test_ends(void **unused)
 	offline_destroy(o);
 }
 
+/* --- the patient plays along ------------------------------------------ */
+
+/* The moments the patient changed (s of the path; -1: not yet). */
+struct patient_times {
+	double air_on, air_off, press, turn, release, both;
+};
+
+static struct patient_times seen;
+
+/* Notes the first time of each change in ST at T_S into SEEN. */
+static void note(struct patient_times *pt, const struct endosim_state *st,
+		 double t_s)
+{
+	const struct endosim_patient_state *p = &st->patient;
+
+	if (t_s < 0) {
+		return;
+	}
+	if (pt->air_on < 0 && (p->valves & ENDOSIM_VALVE_AIR)) {
+		pt->air_on = t_s;
+	}
+	if (pt->air_on >= 0 && pt->air_off < 0 &&
+	    !(p->valves & ENDOSIM_VALVE_AIR)) {
+		pt->air_off = t_s;
+	}
+	if (pt->both < 0 && p->valves == (ENDOSIM_VALVE_AIR |
+					  ENDOSIM_VALVE_SUCTION)) {
+		pt->both = t_s;
+	}
+	if (pt->press < 0 && p->hand_site == 0 && p->hand_n == 30) {
+		pt->press = t_s;
+	}
+	if (pt->turn < 0 && p->position == ENDOSIM_POSITION_SUPINE) {
+		pt->turn = t_s;
+	}
+	if (pt->press >= 0 && pt->release < 0 && p->hand_site == -1) {
+		pt->release = t_s;
+	}
+}
+
+static void patient_seen(const struct endosim_state *st, double t_s)
+{
+	note(&seen, st, t_s);
+}
+
+#define NOT_SEEN { -1, -1, -1, -1, -1, -1 }
+
+/* The trainee's hand on the suction valve at T_S of her scenario S. */
+static void suction(struct scenario *s, double t_s, const char *how)
+{
+	char line[64], err[256];
+
+	snprintf(line, sizeof(line), "%.3f valve suction %s", t_s, how);
+	assert_int_equal(scenario_append(s, line, err, sizeof(err)), 0);
+}
+
+/*
+ * An expert's session with the patient: the insertion moving on (so that
+ * there is a path), the air valve held from 0.5 to 1.0 s, the assistant
+ * pressing llq with 30 N at 1.5 s, the patient turned supine at 2.0 s,
+ * the hand let go at 2.5 s. Guided replay of it on a passive rig with
+ * the patient: each change at its recorded time on the path's clock
+ * (within 20 ms: two of the path's samples), the trainee's own suction
+ * pressed meanwhile joining the recording's air; in the end the
+ * trainee's patient lies as the expert's did. Without the patient in
+ * the recording, its path has none.
+ */
+static void test_patient_plays(void **unused)
+{
+	static const char *const lines[] = {
+		"0 insertion target 0.05 3", "0.5 valve air on",
+		"1.0 valve air off", "1.5 patient press llq 30",
+		"2.0 patient position supine", "2.5 patient release",
+		"3.5 end", NULL,
+	};
+	struct patient_times rec = NOT_SEEN, got = NOT_SEEN;
+	struct config cfg;
+	struct scenario *scn = scenario_create(), *trainee;
+	struct guide_path *p;
+	struct offline *o;
+	char name[300], err[512];
+	const struct endosim_state *st;
+	double t0 = -1;
+
+	(void)unused;
+	for (const char *const *l = lines; *l; l++) {
+		assert_int_equal(scenario_append(scn, *l, err, sizeof(err)), 0);
+	}
+	snprintf(name, sizeof(name), "%s/patient.endoses", dir);
+	config_defaults(&cfg);
+	cfg.patient.enabled = true;
+	seen = rec;
+	assert_int_equal(record(name, &cfg, scn, patient_seen), 0);
+	rec = seen;
+	p = guide_path_load(name, err, sizeof(err));
+	unlink(name);
+	assert_non_null(p);
+	assert_non_null(p->patient);
+	assert_null(path->patient); /* the demo's: recorded without one */
+
+	/* the trainee's rig: nobody's hand on the scope, her suction
+	 * pressed from 0.65 to 0.75 s of the path */
+	config_defaults(&cfg);
+	cfg.patient.enabled = true;
+	trainee = scenario_create();
+	o = on_normal(&cfg, trainee);
+	offline_guide(o, &(struct guide_command){
+		.action = GUIDE_START, .path = p, .speed = 1 });
+	do {
+		st = offline_step(o);
+		if (t0 < 0 && st->guide.phase == ENDOSIM_GUIDE_GUIDING) {
+			t0 = st->scenario_time_s - st->guide.time_s;
+			suction(trainee, t0 + 0.65, "on");
+			suction(trainee, t0 + 0.75, "off");
+		}
+		note(&got, st, t0 < 0 ? -1 : st->guide.time_s);
+	} while (st->guide.phase != ENDOSIM_GUIDE_OFF &&
+		 st->scenario_time_s < 10);
+	printf("# the expert's patient (s of the path): air %.3f-%.3f, "
+	       "pressed %.3f, supine %.3f, let go %.3f; replayed: air "
+	       "%.3f-%.3f, pressed %.3f, supine %.3f, let go %.3f; the "
+	       "trainee's suction with the air at %.3f\n", rec.air_on,
+	       rec.air_off, rec.press, rec.turn, rec.release, got.air_on,
+	       got.air_off, got.press, got.turn, got.release, got.both);
+	assert_int_equal(st->guide.ended, ENDOSIM_GUIDE_END_DONE);
+	assert_true(rec.air_on > 0.4 && rec.release > 2.4);
+	assert_true(fabs(got.air_on - rec.air_on) <= 0.02);
+	assert_true(fabs(got.air_off - rec.air_off) <= 0.02);
+	assert_true(fabs(got.press - rec.press) <= 0.02);
+	assert_true(fabs(got.turn - rec.turn) <= 0.02);
+	assert_true(fabs(got.release - rec.release) <= 0.02);
+	assert_true(got.both > got.air_on && got.both < got.air_off);
+	assert_int_equal(st->patient.position, ENDOSIM_POSITION_SUPINE);
+	assert_int_equal(st->patient.hand_site, -1);
+	assert_int_equal(st->fault_bits, 0);
+	offline_destroy(o);
+	guide_path_free(p);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -647,6 +813,7 @@ int main(void)
 		cmocka_unit_test(test_takeover),
 		cmocka_unit_test(test_reset),
 		cmocka_unit_test(test_ends),
+		cmocka_unit_test(test_patient_plays),
 	};
 
 	return cmocka_run_group_tests(tests, record_course, remove_course);

@@ -19,7 +19,22 @@
  *    reds it out with its time constant and lets go as fast;
  *  - gravity on the colon, through the force loop (rod model, in
  *    lockstep): the mobile segments' nodes sag along gravity, supine
- *    towards the back and prone towards the front.
+ *    towards the back and prone towards the front;
+ *  - the patient responds through its step: a held loop in the sigmoid
+ *    hurts as pain.h defines it under the patient's own sedation (deep:
+ *    less), looping in the sigmoid; the heart rate follows the pain and
+ *    the saturation the sedation; the tip held into the wall above 14.1
+ *    N tears it after 0.5 s, published; a sedation that does not exist
+ *    is refused;
+ *  - a perforation end to end, through the force loop's own cycle in
+ *    lockstep (offline.h), the rig kept safe: the hand pushing a
+ *    straight tip at its strongest (40 N) until the tip, held into the
+ *    wall above 14.1 N, tears it (torn_segment; with the thresholds out of
+ *    reach, the same push tears nothing); the air valve held, the anus
+ *    shut around the tube, until the gas bursts the widest segment, the
+ *    cecum (burst_segment, as Kozarek found); either way the loop stays
+ *    enabled without a fault bit and every force stays finite. (Their
+ *    events in a recorded session: tests/system/78-patient.sh.)
  */
 #include <errno.h>
 #include <math.h>
@@ -37,7 +52,9 @@
 #include "model/colon.h"
 #include "model/fluid.h"
 #include "model/lens.h"
+#include "model/patient.h"
 #include "model/posture.h"
+#include "offline.h"
 #include "plain_anatomy.h"
 #include "rig_loop.h"
 
@@ -371,6 +388,89 @@ static double settled_sag(struct rig_loop *r, int position, double *y)
 	return sag_along(st, st->patient.down);
 }
 
+/* The patient on the normal colon, enabled, sedated SEDATION, after
+ * SECONDS of the sigmoid's mesentery holding TENSION_N and the tip
+ * pressing TIP_N straight into the sigmoid's wall. */
+static void respond(struct patient *pt, int sedation, double tension_n,
+		    double tip_n, double seconds)
+{
+	struct patient_params p = PATIENT_PARAMS_DEFAULT;
+	double spans[ENDOSIM_SPANS] = { tension_n };
+	struct patient_input in = {
+		.tip_s_m = anatomy_segment_start(colon_anatomy(normal),
+						 ANATOMY_SIGMOID) + 0.05,
+		.tip_force_n = tip_n,
+		.wall_gap_m = 0.01,
+		.insertion_m_s = 0.01,
+		.span_tension_n = spans,
+	};
+
+	p.enabled = true;
+	patient_init(pt, &p);
+	assert_int_equal(patient_sedate(pt, sedation), 0);
+	patient_attach(pt, normal); /* a new case keeps the sedation */
+	assert_int_equal(pt->sedation, sedation);
+	for (int k = 0; k < (int)lround(seconds / DT); k++) {
+		int torn = patient_step(pt, &in, DT);
+
+		if (torn >= 0) {
+			assert_int_equal(torn, ANATOMY_SIGMOID);
+			assert_int_equal(pt->torn, ANATOMY_SIGMOID);
+		}
+	}
+}
+
+static void responds(void **state)
+{
+	const struct pain_params d = PAIN_PARAMS_DEFAULT;
+	const struct vitals_params v = VITALS_PARAMS_DEFAULT;
+	struct endosim_patient_state out;
+	static struct patient pt;
+	double g, t, want, none, deep;
+
+	(void)state;
+	respond(&pt, ENDOSIM_SEDATION_NONE, 30, 0, 2);
+	want = d.stretch_gain_per_n * (30 - d.stretch_threshold_n) *
+	       (1 - exp(-2 / d.rise_s));
+	none = pt.pain.level;
+	print_message("a 30 N loop held 2 s, unsedated: pain %.3f (%.3f), "
+		      "heart %.1f bpm\n", none, want, pt.vitals.heart_rate_bpm);
+	assert_true(fabs(none - want) <= 0.02 * want);
+	assert_int_equal(pt.pain.cause, ENDOSIM_PAIN_LOOPING);
+	assert_int_equal(pt.pain.place, ANATOMY_SIGMOID);
+	want = v.rest_bpm + v.bpm_per_pain * none; /* where it goes */
+	assert_true(pt.vitals.heart_rate_bpm > v.rest_bpm &&
+		    pt.vitals.heart_rate_bpm < want);
+	patient_publish(&pt, &out);
+	assert_true(out.pain == pt.pain.level && out.pain_cause ==
+		    ENDOSIM_PAIN_LOOPING && out.sedation == ENDOSIM_SEDATION_NONE);
+	assert_int_equal(out.torn_segment, -1);
+
+	respond(&pt, ENDOSIM_SEDATION_DEEP, 30, 0, 2);
+	pain_sedation_factors(ENDOSIM_SEDATION_DEEP, &g, &t);
+	want = g * d.stretch_gain_per_n * (30 - t * d.stretch_threshold_n) *
+	       (1 - exp(-2 / d.rise_s));
+	deep = pt.pain.level;
+	print_message("... deeply sedated: pain %.3f (%.3f), SpO2 %.4f\n",
+		      deep, want, pt.vitals.spo2);
+	assert_true(fabs(deep - want) <= 0.02 * want && deep < none);
+	assert_true(pt.vitals.spo2 < v.spo2[ENDOSIM_SEDATION_NONE] &&
+		    pt.vitals.spo2 >= v.spo2[ENDOSIM_SEDATION_DEEP]);
+
+	/* the tip held into the wall at 20 N: torn after the hold */
+	respond(&pt, ENDOSIM_SEDATION_MODERATE, 0, 20, 0.45);
+	assert_false(pt.perforation.torn);
+	respond(&pt, ENDOSIM_SEDATION_MODERATE, 0, 20, 0.6);
+	assert_true(pt.perforation.torn);
+	patient_publish(&pt, &out);
+	assert_int_equal(out.torn_segment, ANATOMY_SIGMOID);
+	assert_int_equal(out.pain_cause, ENDOSIM_PAIN_TIP);
+
+	assert_int_equal(patient_sedate(&pt, ENDOSIM_SEDATIONS), -EINVAL);
+	assert_int_equal(patient_sedate(&pt, -1), -EINVAL);
+	assert_int_equal(pt.sedation, ENDOSIM_SEDATION_MODERATE);
+}
+
 static void colon_sags(void **state)
 {
 	struct rig_loop r;
@@ -389,6 +489,138 @@ static void colon_sags(void **state)
 	rig_loop_destroy(&r);
 }
 
+/* The force loop in lockstep on the normal case with the patient and CFG
+ * (its colon read here), the hand playing the scenario TEXT (its lines). */
+static struct offline *patient_course(const struct config *cfg,
+				      const char *text)
+{
+	FILE *f = fmemopen((void *)text, strlen(text), "r");
+	struct scenario *scn;
+	struct config c = *cfg;
+	struct colon *colon;
+	struct offline *o;
+	char err[512];
+
+	assert_non_null(f);
+	scn = scenario_load_stream(f, "test", err, sizeof(err));
+	fclose(f);
+	if (!scn) {
+		fail_msg("%s", err);
+	}
+	c.patient.enabled = true;
+	snprintf(c.colon.file, sizeof(c.colon.file),
+		 "config/cases/normal.case");
+	colon = cases_load(&c, NULL, err, sizeof(err));
+	if (!colon) {
+		fail_msg("%s", err);
+	}
+	o = offline_create_with(&c, colon, scn, err, sizeof(err));
+	if (!o) {
+		fail_msg("%s", err);
+	}
+	return o;
+}
+
+/* The rig safe: enabled, no fault, every force finite. */
+static bool safe(const struct endosim_state *st)
+{
+	bool finite = isfinite(st->haptics.f_static[0]) &&
+		      isfinite(st->haptics.f_static[1]) &&
+		      isfinite(st->haptics.f_static[2]);
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		finite = finite && isfinite(st->axis[a].command) &&
+			 isfinite(st->axis[a].limited);
+	}
+	return finite && st->state == ENDOSIM_STATE_ENABLED &&
+	       !st->fault_bits;
+}
+
+struct tear {
+	double t_s;      /* scenario time of the first torn cycle; -1 */
+	double force_n;  /* the tip's force then */
+	int torn, burst; /* as the last cycle published */
+	double peak_pa;  /* the gas's highest pressure */
+	double end_pa;   /* and its last */
+	long unsafe;     /* cycles not safe() */
+};
+
+/* Plays O to its end (or 1 s after a tear), what tore into T. */
+static void play_tear(struct offline *o, struct tear *t)
+{
+	long cycles = (long)(offline_length_s(o) * 1000), after = -1;
+
+	*t = (struct tear){ .t_s = -1 };
+	for (long k = 0; k < cycles && after != 0; k++, after -= after > 0) {
+		const struct endosim_state *st = offline_step(o);
+		const struct endosim_patient_state *p = &st->patient;
+
+		t->unsafe += !safe(st);
+		t->peak_pa = fmax(t->peak_pa, p->pressure_pa);
+		t->end_pa = p->pressure_pa;
+		t->torn = p->torn_segment;
+		t->burst = p->burst_segment;
+		if (t->t_s < 0 && (t->torn >= 0 || t->burst >= 0)) {
+			t->t_s = st->scenario_time_s;
+			t->force_n = vec3_norm(st->haptics.f_static);
+			after = 1000;
+		}
+	}
+	offline_destroy(o);
+}
+
+/* The hand inserts 8 cm with the wheels held straight, then pushes at
+ * its strongest; the rod model. */
+static const char push_lines[] =
+	"0 insertion target 0.08 2\n0 wheel_ud target 0\n"
+	"0 wheel_lr target 0\n2.5 insertion force 40\n6 end\n";
+
+static void tip_tears(void **state)
+{
+	struct config cfg;
+	struct tear t, strong;
+
+	(void)state;
+	config_defaults(&cfg);
+	play_tear(patient_course(&cfg, push_lines), &t);
+	print_message("pushed at 40 N: segment %d torn by the tip at %.2f s, "
+		      "its force %.1f N; %ld unsafe cycles\n", t.torn, t.t_s,
+		      t.force_n, t.unsafe);
+	assert_true(t.torn >= 0 && t.torn < ENDOSIM_SEGMENTS);
+	assert_int_equal(t.burst, -1);
+	assert_true(t.t_s > 2.5 + cfg.patient.perforation_hold_s);
+	assert_true(t.force_n > cfg.patient.perforation_straight_n);
+	assert_int_equal(t.unsafe, 0);
+	/* the tip's force is what tore it: out of reach, nothing tears */
+	cfg.patient.perforation_straight_n = 500;
+	cfg.patient.perforation_bent_n = 500;
+	play_tear(patient_course(&cfg, push_lines), &strong);
+	assert_int_equal(strong.torn, -1);
+	assert_int_equal(strong.unsafe, 0);
+}
+
+static void gas_bursts(void **state)
+{
+	static const char lines[] = "0 valve air on\n100 end\n";
+	struct config cfg;
+	struct tear t;
+
+	(void)state;
+	config_defaults(&cfg);
+	cfg.haptics.model = HAPTICS_MODEL_PAPER; /* the gas's alone: quick */
+	cfg.patient.leak_m3_per_s_pa = 0;        /* the anus shut */
+	play_tear(patient_course(&cfg, lines), &t);
+	print_message("the air valve held: segment %d burst at %.2f s, at "
+		      "%.1f mmHg, 1 s later %.1f mmHg; %ld unsafe cycles\n",
+		      t.burst, t.t_s, t.peak_pa / GAS_PA_PER_MMHG,
+		      t.end_pa / GAS_PA_PER_MMHG, t.unsafe);
+	assert_int_equal(t.burst, ANATOMY_CECUM);
+	assert_int_equal(t.torn, -1);
+	assert_true(t.t_s > 0);
+	assert_true(t.end_pa < 0.5 * t.peak_pa); /* its gas escaped */
+	assert_int_equal(t.unsafe, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -398,6 +630,9 @@ int main(void)
 		cmocka_unit_test(suction),
 		cmocka_unit_test(lens),
 		cmocka_unit_test(colon_sags),
+		cmocka_unit_test(responds),
+		cmocka_unit_test(tip_tears),
+		cmocka_unit_test(gas_bursts),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
