@@ -19,7 +19,9 @@
 # between ow and please stop (a held level says nothing more). With
 # --mute, and with the key U pressed at the start, nothing is said and
 # the file is silent throughout; without an audio device one line says
-# so and the replay goes on. ENDOSIM_KEEP_SHOTS=DIR keeps the pictures.
+# so and the replay goes on. Live, on the daemon's own pain (the tip held
+# into the wall until it tears), the patient groans, then cries out.
+# ENDOSIM_KEEP_SHOTS=DIR keeps the pictures.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -179,6 +181,36 @@ check "... the panel says it" grep -q '^hud: PERFORATED: sigmoid$' \
 torn_red=$(png_value "$TMP/torn.png" "$TOP_STRIP" red)
 check "... the red banner across the image's top (red $torn_red)" \
 	float_test "$torn_red > 0.5"
+# --- live: the daemon's own pain ----------------------------------------------
+# the daemon on the simulated rig with the patient, the scope 30 cm in,
+# the tip steered up into the sigmoid's wall from 8 s (the viewer is up
+# long before) and held there: the pain rises past 4 and the tip tears
+# the wall. The viewer, live, groans first and cries out at the tear.
+printf '%s\n' '0 insertion target 0.30 1.5' '8 wheel_ud target 0.6 1.0' \
+	'60 end' >"$TMP/wall.scn"
+start_daemon --set patient.enabled=yes --set haptics.model=paper \
+	--set "case.directory=$TOP/tests/cases" --set case.name=straight \
+	--scenario "$TMP/wall.scn" || finish
+ctl enable >/dev/null
+printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' "$TMP/live.wav" \
+	>"$TMP/live.conf"
+(ALSOFT_CONF="$TMP/live.conf" ALSOFT_DRIVERS=wave endoview --socket "$SOCK" \
+	--shm-name "$SHM" --no-vsync --max-fps 30 --size 640x480 \
+	--frames 450 >"$TMP/live.out" 2>&1) & # 15 s at least
+VIEWER=$!
+WAIT_S=40 check "live: the tip tears the sigmoid (the daemon's perforation)" \
+	wait_for status_true '.patient.torn_segment == 2'
+wait "$VIEWER"
+check "... endoview groaned first" eval \
+	'[ "$(said live | head -n 1 | cut -d" " -f1)" = groan ]'
+check "... and cried out at the tear" eval '[ -n "$(sound_t live cry)" ]'
+groan=$(sound_t live groan)
+cry=$(sound_t live cry)
+check "... the wave file: silent before the groan" \
+	quiet live 0 "$(awk -v t="$groan" 'BEGIN { print t - 0.1 }')"
+check "... the groan sounds" loud live "$groan" 0.3
+check "... the cry sounds" loud live "$cry" 0.5
+
 check "no run had an OpenGL error" eval \
 	'! grep -h "^endoview: frames=" "$TMP"/*.out "$VIEW_OUT" |
 		grep -qv " gl_errors=0 "'
