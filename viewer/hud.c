@@ -555,7 +555,8 @@ static void draw_burst(struct pen *p, const struct hud_info *in)
 }
 
 /* The level's words: "pain 6.3 grimace: looping, sigmoid". */
-static void draw_pain_words(struct pen *p, const struct endosim_patient_state *pt,
+static void draw_pain_words(struct pen *p,
+			    const struct endosim_patient_state *pt,
 			    const struct model *m)
 {
 	char place[MODEL_NAME] = "", text[160];
@@ -843,7 +844,8 @@ static void perforation_banner(struct draw2d *d, struct endo_rect r,
 {
 	char name[MODEL_NAME], title[96];
 	const char *how;
-	float large = draw2d_px(d, FONT_LARGE), small = draw2d_px(d, FONT_SMALL);
+	float large = draw2d_px(d, FONT_LARGE);
+	float small = draw2d_px(d, FONT_SMALL);
 	float top = (float)(fb_h - r.y - r.h), bh = large * 1.5f + small * 1.6f;
 	float tw, sw;
 

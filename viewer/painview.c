@@ -33,7 +33,8 @@ const char *painview_mood_name(enum painview_mood m)
 {
 	static const char *const name[] = {
 		[PAINVIEW_CALM] = "calm", [PAINVIEW_UNEASY] = "uneasy",
-		[PAINVIEW_GRIMACE] = "grimace", [PAINVIEW_CRYING] = "crying out",
+		[PAINVIEW_GRIMACE] = "grimace",
+		[PAINVIEW_CRYING] = "crying out",
 	};
 
 	return m >= PAINVIEW_CALM && m <= PAINVIEW_CRYING ? name[m] : "?";

@@ -23,8 +23,8 @@
  * In a replay (ui_set_replay()) the keys drive the replay's clock instead
  * of the rig: Space pause, + - (or ] [) speed, Left Right seek 5 s back
  * or on (Shift: 30 s), Home the start, End the end; a click or a drag on
- * the timeline (struct hud_layout timeline) seeks there. V, O, P, M, U, H, Q and
- * the overview's mouse stay; the hand's controls are still made but a
+ * the timeline (struct hud_layout timeline) seeks there. V, O, P, M, U,
+ * H, Q and the overview's mouse stay; the hand's controls are still made but a
  * replay does not use them.
  *
  * Main thread; GLFW's callbacks of the window are ui's.

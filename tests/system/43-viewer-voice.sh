@@ -52,8 +52,10 @@ rms() {
 
 # said NAME: the clips NAME's run logged, a line each: "CLIP T SOUND_T"
 said() {
-	sed -n 's/^endoview: voice: \([a-z]*\), pain [0-9.]*, at \([0-9.]*\) s, \([0-9.]*\) s of sound$/\1 \2 \3/p' \
-		"$TMP/$1.out"
+	local n='\([0-9.]*\)' re
+	re="^endoview: voice: \([a-z]*\), pain [0-9.]*,"
+	re+=" at $n s, $n s of sound\$"
+	sed -n "s/$re/\1 \2 \3/p" "$TMP/$1.out"
 }
 
 # clip_at NAME CLIP T: NAME's run said CLIP once, at T s of the replay

@@ -18,9 +18,10 @@
  * seconds after the first record, linear between two, held before the
  * first and after the last; the patient then shows as enabled (sedation
  * NAME, default moderate), the cause looping, in the sigmoid (segment
- * 2), the heart at 70 + 4 LEVEL beats a minute, SpO2 0.97; --tear: the wall torn by the tip in SEGMENT from T seconds on (the
- * viewer's voice and panel tests). The file holds HEADER (every key of the format),
- * CONFIG (the defaults with [case] file = CASE and the keys set, as
+ * 2), the heart at 70 + 4 LEVEL beats a minute, SpO2 0.97; --tear:
+ * the wall torn by the tip in SEGMENT from T seconds on (the viewer's
+ * voice and panel tests). The file holds HEADER (every key of the
+ * format), CONFIG (the defaults with [case] file = CASE and the keys set, as
  * endosimd --print-config prints them), CASE (the file's text), a STATE
  * event (ENABLED) at the first record, the RECORDs (and SHAPEs), and END
  * (cycles, duration_s).
