@@ -332,6 +332,11 @@ static void act(struct app *a, const struct ui_actions *act, uint64_t now)
 	if (act->reset_orbit) {
 		a->orbit = (struct overview_orbit){ .zoom = 1 };
 	}
+	if (act->hands_off && a->rig) {
+		a->hand.engaged = false;
+		rigctl_hands_off(a->rig, now);
+		log_info("hands off");
+	}
 }
 
 /*

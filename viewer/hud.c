@@ -29,6 +29,7 @@ const char *const hud_keys[] = {
 	"\tto twist, scroll to insert",
 	"gamepad\tleft stick insert, twist;",
 	"\tright stick steer",
+	"Z\thands off: the hand lets go of all",
 	"E  X\tenable, disable the motors",
 	"Space  R\temergency stop, reset",
 	"1  2  3\tvalves, held: air, water, suction",

@@ -17,8 +17,9 @@
  * blocked scope.
  *
  * The grip takes hold at the axes' current positions on the first
- * control and lets go INPUT_RELEASE_S after the last (the scope then
- * rests where it is, or follows a scenario). Pure computation.
+ * control and lets go INPUT_RELEASE_S after the last: endosimd's hand
+ * then holds each axis where it was left (rig/hand.h) until hands off
+ * (the key Z), or a scenario takes it. Pure computation.
  */
 #ifndef ENDOVIEW_INPUT_H
 #define ENDOVIEW_INPUT_H

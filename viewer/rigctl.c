@@ -81,10 +81,10 @@ static const char *reason(const Endosim__Reply *rep)
 					   client_status_text(rep->status);
 }
 
-int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
-		uint32_t valves, uint32_t hold_ms, uint64_t now_ns)
+/* BODY to endosimd: 0, or a negative errno (-EACCES: refused). */
+static int send_hand(struct rigctl *r, Endosim__HandInput *body,
+		     uint64_t now_ns)
 {
-	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	Endosim__Reply *rep;
 	int err;
@@ -92,12 +92,8 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	if (r->hand_refused) {
 		return -EACCES;
 	}
-	body.n_force = force ? ENDOSIM_AXES : 0;
-	body.force = (double *)force;
-	body.hold_ms = hold_ms;
-	body.valves = valves;
 	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
-	req.hand_input = &body;
+	req.hand_input = body;
 	err = exchange(r, &req, &rep, now_ns);
 	if (err) {
 		return err;
@@ -109,6 +105,26 @@ int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 	}
 	endosim__reply__free_unpacked(rep, NULL);
 	return r->driving ? 0 : -EACCES;
+}
+
+int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
+		uint32_t valves, uint32_t hold_ms, uint64_t now_ns)
+{
+	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
+
+	body.n_force = force ? ENDOSIM_AXES : 0;
+	body.force = (double *)force;
+	body.hold_ms = hold_ms;
+	body.valves = valves;
+	return send_hand(r, &body, now_ns);
+}
+
+int rigctl_hands_off(struct rigctl *r, uint64_t now_ns)
+{
+	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
+
+	body.hands_off = true;
+	return send_hand(r, &body, now_ns);
 }
 
 static const char *const command_name[] = {

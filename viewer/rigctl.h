@@ -57,6 +57,10 @@ void rigctl_destroy(struct rigctl *r);
 int rigctl_hand(struct rigctl *r, const double force[ENDOSIM_AXES],
 		uint32_t valves, uint32_t hold_ms, uint64_t now_ns);
 
+/* Hands off: endosimd's hand lets go of every axis it holds where the
+ * input left it (hand.h). 0, or as rigctl_hand(). */
+int rigctl_hands_off(struct rigctl *r, uint64_t now_ns);
+
 enum rigctl_patient {
 	RIGCTL_PATIENT_TURN,    /* to the position NAME ("supine") */
 	RIGCTL_PATIENT_PRESS,   /* the assistant's hand at the site NAME */

@@ -53,6 +53,8 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->turn_patient;
 	case GLFW_KEY_U:
 		return &a->toggle_mute;
+	case GLFW_KEY_Z:
+		return &a->hands_off;
 	case GLFW_KEY_N:
 		return &a->next_hand;
 	case GLFW_KEY_Q:

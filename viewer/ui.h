@@ -58,6 +58,7 @@ struct ui_actions {
 	bool turn_patient;   /* T: to the next position */
 	bool next_hand;      /* N: the hand on the next site, or off */
 	bool toggle_mute;    /* U: the patient's voice off, on */
+	bool hands_off;      /* Z: the hand lets go of every axis */
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;
 	int speed_steps;     /* +1 faster, -1 slower, per key */

@@ -303,6 +303,10 @@ xdotool mouseup 1
 echo "# dragging up: wheel U/D $before -> $after rad"
 check "a drag up the image steers the tip up" \
 	float_test "$after > $before + 0.3"
+# Z: hands off (endosimd's hand lets go of what it holds: test_grip)
+xdotool key z
+check "Z: hands off, sent to endosimd" \
+	wait_for grep -q "hands off" "$TMP/live.out"
 stop_daemon
 check "the viewer sees the daemon gone" \
 	wait_for grep -qE "is gone|no endosimd" "$TMP/live.out"
