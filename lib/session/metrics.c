@@ -545,6 +545,13 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	out->polyps_total = (uint32_t)metricsview_polyps(m->view);
 }
 
+bool metrics_has_patient(const struct metrics_result *r)
+{
+	return r->gloucester || r->peak_pain > 0 || r->gas_used_l > 0 ||
+	       r->peak_gas_pressure_pa > 0 || r->position_changes ||
+	       r->hand_uses || r->perforations;
+}
+
 double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,
 			      double s1_m, double a0_rad, double a1_rad)
 {

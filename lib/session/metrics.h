@@ -43,6 +43,7 @@
 #ifndef ENDOSIM_METRICS_H
 #define ENDOSIM_METRICS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -209,6 +210,11 @@ void metrics_event(struct metrics *m, const struct session_event *ev,
 
 /* The metrics so far (at the end: the session's). */
 void metrics_result(const struct metrics *m, struct metrics_result *out);
+
+/* Whether R has any of the patient's measures: a responding patient, or
+ * the body's gas, turns, presses or perforations (a file of format 4);
+ * false for a session without the patient or older. */
+bool metrics_has_patient(const struct metrics_result *r);
 
 /* The share 0..1 of the mesh's area between material S0_M and S1_M (by
  * each vertex' centreline sample) seen so far; 0 without a colon. */

@@ -382,6 +382,12 @@ static void metrics_rows_patient(FILE *o, const struct session_file *f,
 	struct metrics_params mp;
 	char note[96];
 
+	if (!metrics_has_patient(m)) {
+		row_begin(o, "Patient", "");
+		fputs("none", o);
+		row_end(o, "the session ran without the patient's model");
+		return;
+	}
 	sessioninputs_file_metrics_params(f, &mp);
 	row_begin(o, "Time in pain", m->pain_episodes ? "warn" : "good");
 	fprintf(o, "%.1f %%, peak %.1f, %u episode%s", 100 * m->pain_share,
@@ -630,7 +636,9 @@ static void page_metrics(FILE *o, const struct session_file *f,
 		      m->force_episodes, "N", 1);
 	episode_table(o, "Loops", m->loop, m->n_loop, m->loop_episodes, "cm",
 		      100);
-	pain_table(o, m);
+	if (metrics_has_patient(m)) {
+		pain_table(o, m);
+	}
 	event_table(o, f, p.t0_ns);
 	fputs("</section>\n<footer>endosim ", o);
 	put_header(o, f, "version");

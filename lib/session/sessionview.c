@@ -68,6 +68,10 @@ static void print_pain_episodes(FILE *out, const struct metrics_result *m)
 
 static void print_patient(FILE *out, const struct metrics_result *m)
 {
+	if (!metrics_has_patient(m)) {
+		fprintf(out, "patient           none\n");
+		return;
+	}
 	fprintf(out, "time in pain      %.1f %% (pain >= the level), peak "
 		"%.1f, %u episodes\n", 100 * m->pain_share, m->peak_pain,
 		m->pain_episodes);

@@ -576,6 +576,7 @@ static void test_gloucester(void **state)
 	metrics_record(m, &r);
 	metrics_result(m, &res);
 	assert_int_equal(res.gloucester, 0);
+	assert_false(metrics_has_patient(&res)); /* shown as none */
 	r.patient = 1;  /* enabled, but no vitals: format 4 */
 	metrics_record(m, &r);
 	metrics_result(m, &res);
@@ -708,6 +709,7 @@ static void test_format_4_file(void **state)
 	assert_true(res.peak_pain == 0 && res.pain_share == 0);
 	assert_int_equal(res.pain_episodes, 0);
 	assert_int_equal(res.gloucester, 0);
+	assert_true(metrics_has_patient(&res)); /* the body's measures */
 	assert_int_equal(res.perforations, 1);
 	assert_near(res.gas_used_l, 19 * 0.1, 1e-4);
 	assert_near(res.peak_gas_pressure_pa, 2000, 1e-3);
