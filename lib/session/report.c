@@ -153,6 +153,19 @@ static void plot_series_figure(struct htmlpage_plot *p,
 
 /* ----------------------------------------------------------- the plots */
 
+/* One series S up to at least HI with a line at LEVEL, LABEL. */
+static void plot_level_figure(struct htmlpage_plot *p,
+			      const struct session_file *f,
+			      const struct metrics_result *m, const char *id,
+			      const char *title, const char *ylabel,
+			      const struct reportplot_series *s, double hi,
+			      double level, const char *label)
+{
+	plot_series_figure(p, f, m, id, title, ylabel, s, 1, 0, hi);
+	htmlpage_plot_hline(p, level, label);
+	htmlpage_plot_end(p);
+}
+
 static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 		       const struct metrics_result *m)
 {
@@ -163,11 +176,10 @@ static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 	char label[64];
 
 	sessioninputs_file_metrics_params(f, &mp); /* the session's threshold */
-	plot_series_figure(p, f, m, "plot-force", "Insertion force",
-			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
 	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);
-	htmlpage_plot_hline(p, mp.force_threshold_n, label);
-	htmlpage_plot_end(p);
+	plot_level_figure(p, f, m, "plot-force", "Insertion force",
+			  "force (N)", s, mp.force_threshold_n * 1.1,
+			  mp.force_threshold_n, label);
 }
 
 static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
@@ -201,11 +213,9 @@ static void plot_pain(struct htmlpage_plot *p, const struct session_file *f,
 	char label[64];
 
 	sessioninputs_file_metrics_params(f, &mp);
-	plot_series_figure(p, f, m, "plot-pain", "The patient's pain",
-			   "pain (0-10)", s, 1, 0, 10);
 	snprintf(label, sizeof(label), "in pain from %g", mp.pain_level);
-	htmlpage_plot_hline(p, mp.pain_level, label);
-	htmlpage_plot_end(p);
+	plot_level_figure(p, f, m, "plot-pain", "The patient's pain",
+			  "pain (0-10)", s, 10, mp.pain_level, label);
 }
 
 /* The segments as horizontal bands, named. */

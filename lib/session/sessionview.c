@@ -83,8 +83,8 @@ static void print_patient(FILE *out, const struct metrics_result *m)
 		m->pain_cause_s[ENDOSIM_PAIN_INSUFFLATION],
 		m->pain_cause_s[ENDOSIM_PAIN_TIP]);
 	if (m->gloucester) {
-		fprintf(out, "comfort           Gloucester %u (an estimate from "
-			"the pain)\n", m->gloucester);
+		fprintf(out, "comfort           Gloucester %u (an estimate "
+			"from the pain)\n", m->gloucester);
 	} else {
 		fprintf(out, "comfort           not assessed (no responding "
 			"patient)\n");
