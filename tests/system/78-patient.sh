@@ -149,6 +149,9 @@ check "... in session show" grep -qE \
 check "... and the report: the perforation marked, the pain's table" eval \
 	"grep -q '<tr class=\"bad\"><th>Perforations</th><td>1</td>' $TMP/report/index.html &&
 	 grep -q '<h3>Pain</h3>' $TMP/report/index.html"
+check "... its pain plotted when the patient felt any" eval \
+	"ctl --json session show $ID | jq -e '.metrics.peak_pain == 0' >/dev/null ||
+	 grep -q '<figure id=\"plot-pain\">' $TMP/report/index.html"
 ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
 col() {
 	awk -F, -v k="$1" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
