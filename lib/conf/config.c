@@ -736,6 +736,9 @@ static const struct parse_key keys[] = {
 	   "metrics: the camera's full field of view"),
 	KD("session", "view_rate_hz", session.view_rate_hz, 10, 0.1, 1000, "Hz",
 	   0, "metrics: how often the mucosa and polyps seen are evaluated"),
+	KD("session", "pain_level", session.pain_level, 4, 0.1, 10, "", 0,
+	   "metrics: the patient is in pain at this pain (0-10) or above: "
+	   "the time in pain, the pain episodes"),
 	KS("session", "course", session.course, "", 0,
 	   "the course file (config/courses/NAME.course) that endoctl trainee "
 	   "judges the sessions by; empty: none"),

@@ -195,6 +195,7 @@ struct config {
 		double view_distance_m;
 		double fov_deg;
 		double view_rate_hz;
+		double pain_level;             /* 0..10 */
 		char course[CONFIG_STR];       /* coursefile.h: endoctl trainee */
 	} session;
 	struct {

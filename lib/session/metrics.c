@@ -16,11 +16,39 @@
  *                    first record after it with x < METRICS_HYSTERESIS x
  *                    threshold; kept when end - start >= min_episode_s;
  *                    peak: the largest x in between. Force: x = F, loops:
- *                    x = max over the spans of |bow_m[k]|
- *   discomfort       sum over records of dt (b / discomfort_bow_m +
- *                    |f_static| contact / discomfort_force_n), dt the time
- *                    to the next record (b as for loops; f_static only
- *                    while contact): "discomfort-seconds"
+ *                    x = max over the spans of |bow_m[k]|; pain: x = pain,
+ *                    starting at x >= pain_level (at or above), with the
+ *                    cause and place of the first record at the peak
+ *   pain_share       time with pain >= pain_level over duration_s (a
+ *                    record's pain holds until the next record)
+ *   pain_cause_s[c]  that time by the record's cause c; a record without a
+ *                    cause (the stimulus gone, the pain fading) counts for
+ *                    the last cause before it: the ache it left
+ *   gloucester       0 without a responding patient (no record with the
+ *                    patient enabled and a heart rate); else, from the
+ *                    pain episodes (n), those peaking at or above
+ *                    METRICS_GLOUCESTER_SEVERE_PAIN (n7, among the kept)
+ *                    and pain_share (p):
+ *                      5  p >= METRICS_GLOUCESTER_PROLONGED_SHARE
+ *                      4  p >= METRICS_GLOUCESTER_FREQUENT_SHARE or n7 >= 2
+ *                      3  n > 2 or n7 == 1
+ *                      2  n = 1 or 2
+ *                      1  n = 0
+ *                    (the scale: 1 comfortable, 2 minimal: 1-2 episodes of
+ *                    mild discomfort, 3 mild: more than 2, 4 moderate:
+ *                    significant discomfort several times, 5 severe:
+ *                    frequent and prolonged). An estimate from the model's
+ *                    pain, not a nurse's observation.
+ *   gas_used_l       the sum of gas_in_m3's rises from record to record
+ *                    (it restarts at 0 when a case is loaded), x 1000
+ *   position_changes records whose patient_position differs from the
+ *                    previous record's (a turn towards it started)
+ *   hand_uses        records with a hand_site >= 0 other than the
+ *                    previous record's
+ *   perforations     records whose burst_segment or torn_segment became
+ *                    >= 0 (or another segment) since the previous record
+ *   (the patient's measures count records with the patient enabled only;
+ *   the first such record's hand, burst and tear count against none)
  *   lumen lost, mucosa seen, polyps seen: the view's (metricsview.c)
  */
 #include <math.h>
@@ -33,9 +61,12 @@
 
 struct episodes {
 	double on, off, min_s;
+	bool at_on;               /* starts at x >= on, not x > on */
 	bool active;              /* above the threshold now */
 	bool counted;             /* ... and for at least min_s */
 	double start_s, peak;
+	uint32_t cause;           /* at the peak: pain episodes */
+	int32_t place;
 	uint32_t count, kept;
 	double total_s, longest_s, largest;
 	struct metrics_episode ep[METRICS_MAX_EPISODES];
@@ -53,12 +84,19 @@ struct metrics {
 	double cecum_s, out_s;    /* < 0: not yet */
 	double max_tip_s_m;
 	double peak_n, sum_n;
-	double discomfort;
 	double lumen_lost_s;
 	bool lost;                /* the previous record's */
 	bool prev_in;             /* the previous record was inserted */
-	double prev_load;         /* the previous record's discomfort rate */
-	struct episodes force, loop;
+	struct episodes force, loop, pain;
+	/* the patient: the previous record's, the sums */
+	struct session_record prev; /* valid when records > 0 */
+	bool responding;          /* a record with the patient's vitals */
+	uint32_t cause;           /* the last cause seen, and its place */
+	int32_t place;
+	double pain_s[ENDOSIM_PAIN_CAUSES];
+	double pain_time_s;
+	double peak_pain, gas_in_m3, peak_pa;
+	uint32_t positions, hands, perforations;
 	double inserted_s;        /* time with the tube in */
 	uint32_t lost_views;
 	/* the handling: the last sample, the sums */
@@ -78,8 +116,7 @@ void metrics_params_default(struct metrics_params *p)
 		.view_rate_hz = METRICS_DEFAULT_VIEW_RATE_HZ,
 		.min_episode_s = 0.2,
 		.lumen_angle_rad = 70 * M_PI / 180,
-		.discomfort_bow_m = 0.03,
-		.discomfort_force_n = 5,
+		.pain_level = METRICS_DEFAULT_PAIN_LEVEL,
 		.seen_dwell_s = 0.5,
 		.polyp_dwell_s = 2.5,
 	};
@@ -102,6 +139,7 @@ static void episodes_confirm(struct episodes *e)
 	if (e->kept < METRICS_MAX_EPISODES) {
 		e->ep[e->kept++] = (struct metrics_episode){
 			.start_s = e->start_s, .end_s = -1, .peak = e->peak,
+			.cause = e->cause, .place = e->place,
 		};
 	}
 }
@@ -129,6 +167,8 @@ static void episodes_close(struct episodes *e, double t)
 		if (cur) {
 			cur->end_s = t;
 			cur->peak = e->peak;
+			cur->cause = e->cause;
+			cur->place = e->place;
 		}
 		e->total_s += d;
 		e->longest_s = fmax(e->longest_s, d);
@@ -138,16 +178,31 @@ static void episodes_close(struct episodes *e, double t)
 	e->counted = false;
 }
 
-static void episodes_update(struct episodes *e, double t, double x)
+/* The peak so far: X at T, with CAUSE and PLACE when it is a new one. */
+static void episodes_peak(struct episodes *e, double x, uint32_t cause,
+			  int32_t place)
+{
+	if (x > e->peak) {
+		e->peak = x;
+		e->cause = cause;
+		e->place = place;
+	}
+}
+
+/* X at T; CAUSE and PLACE: the pain's (0 and -1 for the others). */
+static void episodes_update(struct episodes *e, double t, double x,
+			    uint32_t cause, int32_t place)
 {
 	struct metrics_episode *cur;
 
 	if (!e->active) {
-		if (x > e->on) {
+		if (x > e->on || (e->at_on && x == e->on)) {
 			e->active = true;
 			e->counted = false;
 			e->start_s = t;
 			e->peak = x;
+			e->cause = cause;
+			e->place = place;
 		}
 		return;
 	}
@@ -155,13 +210,15 @@ static void episodes_update(struct episodes *e, double t, double x)
 		episodes_close(e, t);
 		return;
 	}
-	e->peak = fmax(e->peak, x);
+	episodes_peak(e, x, cause, place);
 	if (!e->counted && t - e->start_s >= e->min_s) {
 		episodes_confirm(e);
 	}
 	cur = episodes_current(e);
 	if (cur) {
 		cur->peak = e->peak;
+		cur->cause = e->cause;
+		cur->place = e->place;
 	}
 }
 
@@ -203,6 +260,9 @@ struct metrics *metrics_create(const struct colon *colon,
 	m->exit_s_m = METRICS_EXIT_S_M;
 	episodes_init(&m->force, p->force_threshold_n, p->min_episode_s);
 	episodes_init(&m->loop, p->loop_threshold_m, p->min_episode_s);
+	episodes_init(&m->pain, p->pain_level, p->min_episode_s);
+	m->pain.at_on = true;
+	m->place = -1;
 	if (!colon) {
 		return m;
 	}
@@ -238,20 +298,6 @@ static double record_bow(const struct session_record *r)
 		}
 	}
 	return b;
-}
-
-/* The discomfort index' rate (1/s) at R. */
-static double record_load(const struct metrics *m,
-			  const struct session_record *r)
-{
-	double f = 0;
-
-	if (r->contact) {
-		f = hypot(hypot(r->f_static[0], r->f_static[1]),
-			  r->f_static[2]);
-	}
-	return record_bow(r) / m->p.discomfort_bow_m +
-	       (isfinite(f) ? f : 0) / m->p.discomfort_force_n;
 }
 
 /* The cecum, then the way out. */
@@ -308,6 +354,48 @@ static void record_shape(struct metrics *m, const struct session_record *r,
 	m->shape_tip = r->tip_s_m;
 }
 
+/* SITE taken now, other than BEFORE (-1: none). */
+static bool taken(int32_t site, int32_t before)
+{
+	return site >= 0 && site != before;
+}
+
+/* The patient's measures at R (T), the previous record's state held for
+ * DT; Q: the previous record with the patient, or NULL. */
+static void record_patient(struct metrics *m, const struct session_record *r,
+			   const struct session_record *q, double t,
+			   double dt)
+{
+	double pain = isfinite(r->pain) ? r->pain : 0;
+
+	if (q && q->pain >= m->p.pain_level) {
+		m->pain_time_s += dt;
+		m->pain_s[m->cause] += dt;
+	}
+	if (!r->patient) {
+		episodes_update(&m->pain, t, 0, 0, -1);
+		return;
+	}
+	if (r->pain_cause != ENDOSIM_PAIN_NONE &&
+	    r->pain_cause < ENDOSIM_PAIN_CAUSES) {
+		m->cause = r->pain_cause;
+		m->place = r->pain_place;
+	}
+	m->responding |= r->heart_rate_bpm > 0;
+	m->peak_pain = fmax(m->peak_pain, pain);
+	episodes_update(&m->pain, t, pain, m->cause, m->place);
+	if (q && r->gas_in_m3 > q->gas_in_m3 && isfinite(r->gas_in_m3)) {
+		m->gas_in_m3 += r->gas_in_m3 - q->gas_in_m3;
+	}
+	if (isfinite(r->gas_pressure_pa)) {
+		m->peak_pa = fmax(m->peak_pa, r->gas_pressure_pa);
+	}
+	m->positions += q && r->patient_position != q->patient_position;
+	m->hands += taken(r->hand_site, q ? q->hand_site : -1);
+	m->perforations += taken(r->burst_segment, q ? q->burst_segment : -1);
+	m->perforations += taken(r->torn_segment, q ? q->torn_segment : -1);
+}
+
 void metrics_record(struct metrics *m, const struct session_record *r)
 {
 	double t, dt, f = fabs(r->limited[0]);
@@ -319,7 +407,8 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 	t = (double)(int64_t)(r->stamp_ns - m->first_ns) * ENDOSIM_S_PER_NS;
 	dt = m->records ? t - m->last_s : 0;
 	/* the previous record's state holds until this one */
-	m->discomfort += m->prev_load * dt;
+	record_patient(m, r, m->records && m->prev.patient ? &m->prev : NULL,
+		       t, dt);
 	m->lumen_lost_s += m->lost ? dt : 0;
 	m->inserted_s += m->records && m->prev_in ? dt : 0;
 	m->records++;
@@ -333,9 +422,9 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 	}
 	record_progress(m, r, t);
 	record_shape(m, r, t);
-	episodes_update(&m->force, t, f);
-	episodes_update(&m->loop, t, record_bow(r));
-	m->prev_load = record_load(m, r);
+	episodes_update(&m->force, t, f, 0, -1);
+	episodes_update(&m->loop, t, record_bow(r), 0, -1);
+	m->prev = *r;
 	was_lost = m->lost;
 	m->lost = m->view && inserted && metricsview_lumen_lost(m->view, r);
 	m->lost_views += m->lost && !was_lost;
@@ -362,6 +451,45 @@ static uint32_t popcount32(uint32_t x)
 		n++;
 	}
 	return n;
+}
+
+/* The estimated Gloucester comfort score of OUT's pain (metrics.c's
+ * head: the mapping). */
+static uint32_t gloucester(const struct metrics_result *out)
+{
+	uint32_t severe = 0;
+
+	for (uint32_t i = 0; i < out->n_pain; i++) {
+		severe += out->pain[i].peak >= METRICS_GLOUCESTER_SEVERE_PAIN;
+	}
+	if (out->pain_share >= METRICS_GLOUCESTER_PROLONGED_SHARE) {
+		return 5;
+	}
+	if (out->pain_share >= METRICS_GLOUCESTER_FREQUENT_SHARE ||
+	    severe >= 2) {
+		return 4;
+	}
+	if (out->pain_episodes > 2 || severe == 1) {
+		return 3;
+	}
+	return out->pain_episodes ? 2 : 1;
+}
+
+static void patient_result(const struct metrics *m, double now,
+			   struct metrics_result *out)
+{
+	episodes_result(&m->pain, now, &out->pain_episodes, &(double){ 0 },
+			&(double){ 0 }, &(double){ 0 }, &out->n_pain,
+			out->pain);
+	out->pain_share = now > 0 ? m->pain_time_s / now : 0;
+	out->peak_pain = m->peak_pain;
+	memcpy(out->pain_cause_s, m->pain_s, sizeof(out->pain_cause_s));
+	out->gloucester = m->responding ? gloucester(out) : 0;
+	out->gas_used_l = m->gas_in_m3 * 1000;
+	out->peak_gas_pressure_pa = m->peak_pa;
+	out->position_changes = m->positions;
+	out->hand_uses = m->hands;
+	out->perforations = m->perforations;
 }
 
 void metrics_result(const struct metrics *m, struct metrics_result *out)
@@ -399,7 +527,7 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	out->clear_view = m->inserted_s > 0 ?
 			  fmax(0, 1 - m->lumen_lost_s / m->inserted_s) : 0;
 	out->lost_views = m->lost_views;
-	out->discomfort = m->discomfort;
+	patient_result(m, now, out);
 	out->lumen_lost_s = m->lumen_lost_s;
 	out->mucosa_seen = metricsview_seen(m->view);
 	out->mucosa_per_min = now > 0 ? out->mucosa_seen * 100 / (now / 60)
@@ -415,6 +543,13 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	out->polyps_seen_mask = metricsview_found(m->view);
 	out->polyps_seen = popcount32(out->polyps_seen_mask);
 	out->polyps_total = (uint32_t)metricsview_polyps(m->view);
+}
+
+bool metrics_has_patient(const struct metrics_result *r)
+{
+	return r->gloucester || r->peak_pain > 0 || r->gas_used_l > 0 ||
+	       r->peak_gas_pressure_pa > 0 || r->position_changes ||
+	       r->hand_uses || r->perforations;
 }
 
 double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,

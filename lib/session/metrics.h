@@ -17,8 +17,12 @@
  *     end and peak;
  *   - loop episodes: a mobile segment bowed more than loop_threshold_m;
  *     count, longest, largest amplitude, each with start, end, peak;
- *   - the patient-discomfort index: the time integral of loop stretch and
- *     wall-contact force (see metrics.c for the formula);
+ *   - the patient (the records' pain, lib/model/pain.h): the share of the
+ *     time in pain (at or above pain_level), the peak, pain episodes each
+ *     with its cause and place, the time in pain by cause, an estimated
+ *     Gloucester comfort score; the gas pumped in and its largest
+ *     pressure; the patient's turns, the assistant's presses and the
+ *     perforations (bursts and tears);
  *   - time with the lumen lost from view: the tip facing a wall; how
  *     often it was lost; the share of the time with it in view;
  *   - the scope's handling (3D-CoPS, CoRS): the shaft pushed in and the
@@ -39,6 +43,7 @@
 #ifndef ENDOSIM_METRICS_H
 #define ENDOSIM_METRICS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -59,10 +64,9 @@ struct metrics_params {
 	/* the lumen is lost when its direction 3 cm ahead is further than
 	 * this from the view direction (default: half the field of view) */
 	double lumen_angle_rad;
-	/* the discomfort index' scales: a bow of discomfort_bow_m, or a
-	 * wall-contact force of discomfort_force_n, held for 1 s adds 1 */
-	double discomfort_bow_m;
-	double discomfort_force_n;
+	/* the patient is in pain at a pain (0..10) at or above this; a
+	 * pain episode starts there (and ends as the others do) */
+	double pain_level;
 	/* in view so long in all before a wall point counts as seen, a
 	 * polyp as found (the virtual-withdrawal study, BMC Med Educ 2017) */
 	double seen_dwell_s;
@@ -74,6 +78,7 @@ struct metrics_params {
 #define METRICS_SHAPE_STEP_S 0.1  /* the handling's sampling: 10 Hz */
 #define METRICS_IDLE_SHARE 0.2    /* the tip advancing less than this share
 				     of the shaft's push: an idle push */
+#define METRICS_PA_PER_MMHG 133.322387 /* the gas pressure shown in mmHg */
 #define METRICS_EXIT_S_M 0.04       /* out: the tip below this s (an imported
 				       colon; a case: the rectum's start) */
 
@@ -85,14 +90,30 @@ struct metrics_params {
 #define METRICS_DEFAULT_VIEW_DISTANCE_M 0.06
 #define METRICS_DEFAULT_FOV_DEG 140
 #define METRICS_DEFAULT_VIEW_RATE_HZ 10
+#define METRICS_DEFAULT_PAIN_LEVEL 4 /* the numeric rating scale's
+					moderate pain: 4..6 */
 
-/* Defaults: the above, and 0.2 s, 70 deg, 0.03 m, 5 N, 0.5 s, 2.5 s. */
+/* The estimated Gloucester comfort score (metrics.c has the mapping): a
+ * pain episode peaking at or above this is severe (the rating scale's
+ * 7..10); in pain this share of the time or more is frequent (4), this
+ * share or more prolonged (5). */
+#define METRICS_GLOUCESTER_SEVERE_PAIN 7.0
+#define METRICS_GLOUCESTER_FREQUENT_SHARE 0.10
+#define METRICS_GLOUCESTER_PROLONGED_SHARE 0.25
+
+/* Defaults: the above, and 0.2 s, 70 deg, 0.5 s, 2.5 s. */
 void metrics_params_default(struct metrics_params *p);
 
 struct metrics_episode {
 	double start_s;            /* since the session's first record */
 	double end_s;              /* < 0: still going */
-	double peak;               /* N for force, m for loops */
+	double peak;               /* N for force, m for loops, pain 0..10 */
+	/* pain episodes only (0 and -1 for the others): the cause (enum
+	 * endosim_pain_cause) and the place (anatomy segment, -1: none) at
+	 * the episode's peak, the first record at its peak; a record with
+	 * no cause (the pain fading) takes the last cause before it */
+	uint32_t cause;
+	int32_t place;
 };
 
 struct metrics_result {
@@ -110,7 +131,6 @@ struct metrics_result {
 	uint32_t loop_episodes;
 	double longest_loop_s;
 	double largest_loop_m;
-	double discomfort;         /* the index, see metrics.c */
 	double lumen_lost_s;
 	double mucosa_seen;        /* share 0..1 of the mesh's area */
 	uint32_t polyps_seen;
@@ -140,10 +160,29 @@ struct metrics_result {
 	double mucosa_segment[ANATOMY_SEGMENTS]; /* seen, each segment's
 					   share (anal canal .. cecum); 0
 					   without a case */
+	/* the patient (records with it enabled; 0 without) */
+	double pain_share;         /* 0..1 of duration_s with pain at or
+				      above pain_level */
+	double peak_pain;          /* 0..10 */
+	uint32_t pain_episodes;    /* at or above pain_level */
+	double pain_cause_s[ENDOSIM_PAIN_CAUSES]; /* s in pain by cause (enum
+					   endosim_pain_cause; none: the
+					   pain before any cause) */
+	uint32_t gloucester;       /* estimated comfort score 1..5; 0: no
+				      responding patient (disabled, or a
+				      file of format 4 or older) */
+	double gas_used_l;         /* gas pumped in (gas_in_m3's rises), L */
+	double peak_gas_pressure_pa; /* the largest gas pressure, Pa */
+	uint32_t position_changes; /* the patient turned (a turn started) */
+	uint32_t hand_uses;        /* the assistant pressed (a site taken) */
+	uint32_t perforations;     /* bursts by pressure and tears by the
+				      tip (each segment torn, each time) */
 	uint32_t n_force;          /* episodes kept below */
 	uint32_t n_loop;
+	uint32_t n_pain;
 	struct metrics_episode force[METRICS_MAX_EPISODES];
 	struct metrics_episode loop[METRICS_MAX_EPISODES];
+	struct metrics_episode pain[METRICS_MAX_EPISODES];
 };
 
 struct metrics;
@@ -171,6 +210,11 @@ void metrics_event(struct metrics *m, const struct session_event *ev,
 
 /* The metrics so far (at the end: the session's). */
 void metrics_result(const struct metrics *m, struct metrics_result *out);
+
+/* Whether R has any of the patient's measures: a responding patient, or
+ * the body's gas, turns, presses or perforations (a file of format 4);
+ * false for a session without the patient or older. */
+bool metrics_has_patient(const struct metrics_result *r);
 
 /* The share 0..1 of the mesh's area between material S0_M and S1_M (by
  * each vertex' centreline sample) seen so far; 0 without a colon. */

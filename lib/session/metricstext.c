@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +19,20 @@ static const struct metricstext_field fields[] = {
 	FIELD_D(max_tip_s_m), FIELD_D(peak_insertion_n),
 	FIELD_D(mean_insertion_n), FIELD_U(force_episodes),
 	FIELD_D(force_episode_s), FIELD_U(loop_episodes),
-	FIELD_D(longest_loop_s), FIELD_D(largest_loop_m), FIELD_D(discomfort),
+	FIELD_D(longest_loop_s), FIELD_D(largest_loop_m),
+	/* the patient, in place of format 4's discomfort index */
+	FIELD_D(pain_share), FIELD_D(peak_pain), FIELD_U(pain_episodes),
+#define FIELD_CAUSE(i, name)                                                 \
+	{ "pain_s_" name,                                                    \
+	  offsetof(struct metrics_result, pain_cause_s) +                    \
+		  (i) * sizeof(double), FIELDS_DOUBLE }
+	FIELD_CAUSE(ENDOSIM_PAIN_LOOPING, "looping"),
+	FIELD_CAUSE(ENDOSIM_PAIN_STRAIGHTENING, "straightening"),
+	FIELD_CAUSE(ENDOSIM_PAIN_INSUFFLATION, "insufflation"),
+	FIELD_CAUSE(ENDOSIM_PAIN_TIP, "tip"),
+#undef FIELD_CAUSE
+	FIELD_U(gloucester), FIELD_D(gas_used_l), FIELD_D(peak_gas_pressure_pa),
+	FIELD_U(position_changes), FIELD_U(hand_uses), FIELD_U(perforations),
 	FIELD_D(lumen_lost_s), FIELD_D(mucosa_seen), FIELD_U(polyps_seen),
 	FIELD_U(polyps_total), FIELD_U(polyps_seen_mask),
 	FIELD_D(shaft_in_m), FIELD_D(tip_in_m), FIELD_D(chase_efficiency),
@@ -37,6 +51,7 @@ static const struct metricstext_field fields[] = {
 #undef FIELD_SEGMENT
 };
 _Static_assert(ANATOMY_SEGMENTS == 9, "metrics: a mucosa field a segment");
+_Static_assert(ENDOSIM_PAIN_CAUSES == 5, "metrics: a field a pain cause");
 
 #define NFIELDS (sizeof(fields) / sizeof(fields[0]))
 
@@ -107,9 +122,14 @@ static int put_field(const struct metrics_result *r,
 static int put_episodes(const char *kind, const struct metrics_episode *ep,
 			uint32_t n, char *buf, size_t size, size_t *used)
 {
+	bool pain = !strcmp(kind, "pain");
+
 	for (uint32_t i = 0; i < n; i++) {
-		if (put(buf, size, used, "%s_episode.%u=%.9g,%.9g,%.9g\n", kind,
-			i, ep[i].start_s, ep[i].end_s, ep[i].peak)) {
+		if (put(buf, size, used, "%s_episode.%u=%.9g,%.9g,%.9g", kind,
+			i, ep[i].start_s, ep[i].end_s, ep[i].peak) ||
+		    (pain && put(buf, size, used, ",%u,%d", ep[i].cause,
+				 ep[i].place)) ||
+		    put(buf, size, used, "\n")) {
 			return -ENOSPC;
 		}
 	}
@@ -132,6 +152,8 @@ int metricstext_format(const struct metrics_result *result, char *buf,
 	if (put_episodes("force", result->force, result->n_force, buf, size,
 			 &used) ||
 	    put_episodes("loop", result->loop, result->n_loop, buf, size,
+			 &used) ||
+	    put_episodes("pain", result->pain, result->n_pain, buf, size,
 			 &used)) {
 		return -ENOSPC;
 	}
@@ -160,18 +182,28 @@ static int parse_number(const char *v, enum fields_kind kind, void *at)
 	return errno || end == v || *end ? -EINVAL : 0;
 }
 
-/* "KIND_episode.N=start,end,peak" into LIST (N < METRICS_MAX_EPISODES). */
-static int parse_episode(const char *index, const char *v,
+/* "KIND_episode.N=start,end,peak" (a pain episode's: ",cause,place"
+ * after it, PAIN) into LIST (N < METRICS_MAX_EPISODES). */
+static int parse_episode(const char *index, const char *v, bool pain,
 			 struct metrics_episode *list, uint32_t *n)
 {
-	struct metrics_episode e;
+	struct metrics_episode e = { .place = -1 };
 	char *end;
 	unsigned long i = strtoul(index, &end, 10);
 	int used = 0;
 
 	if (end == index || *end || i >= METRICS_MAX_EPISODES ||
 	    sscanf(v, "%lf,%lf,%lf%n", &e.start_s, &e.end_s, &e.peak,
-		   &used) != 3 || v[used]) {
+		   &used) != 3) {
+		return -EINVAL;
+	}
+	v += used;
+	used = 0;
+	if (pain && (sscanf(v, ",%u,%d%n", &e.cause, &e.place, &used) != 2 ||
+		     e.cause >= ENDOSIM_PAIN_CAUSES)) {
+		return -EINVAL;
+	}
+	if (v[used]) {
 		return -EINVAL;
 	}
 	list[i] = e;
@@ -188,10 +220,16 @@ static int parse_line(char *line, struct metrics_result *out)
 	}
 	*v++ = '\0';
 	if (!strncmp(line, "force_episode.", 14)) {
-		return parse_episode(line + 14, v, out->force, &out->n_force);
+		return parse_episode(line + 14, v, false, out->force,
+				     &out->n_force);
 	}
 	if (!strncmp(line, "loop_episode.", 13)) {
-		return parse_episode(line + 13, v, out->loop, &out->n_loop);
+		return parse_episode(line + 13, v, false, out->loop,
+				     &out->n_loop);
+	}
+	if (!strncmp(line, "pain_episode.", 13)) {
+		return parse_episode(line + 13, v, true, out->pain,
+				     &out->n_pain);
 	}
 	for (size_t i = 0; i < NFIELDS; i++) {
 		if (!strcmp(line, fields[i].key)) {

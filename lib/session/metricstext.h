@@ -5,7 +5,9 @@
  * the summary CSV, the trainee's page and the courses' conditions name
  * them by; and the END frame's text, "key=value\n" lines: the scalars in
  * the table's order, then each kept episode as
- * "force_episode.N=start,end,peak" or "loop_episode.N=...".
+ * "force_episode.N=start,end,peak" or "loop_episode.N=...", and
+ * "pain_episode.N=start,end,peak,cause,place" (cause: enum
+ * endosim_pain_cause, place: the segment, -1 none).
  *
  * Pure: any thread, no allocation, no shared state.
  */

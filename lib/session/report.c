@@ -153,6 +153,19 @@ static void plot_series_figure(struct htmlpage_plot *p,
 
 /* ----------------------------------------------------------- the plots */
 
+/* One series S up to at least HI with a line at LEVEL, LABEL. */
+static void plot_level_figure(struct htmlpage_plot *p,
+			      const struct session_file *f,
+			      const struct metrics_result *m, const char *id,
+			      const char *title, const char *ylabel,
+			      const struct reportplot_series *s, double hi,
+			      double level, const char *label)
+{
+	plot_series_figure(p, f, m, id, title, ylabel, s, 1, 0, hi);
+	htmlpage_plot_hline(p, level, label);
+	htmlpage_plot_end(p);
+}
+
 static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 		       const struct metrics_result *m)
 {
@@ -163,11 +176,10 @@ static void plot_force(struct htmlpage_plot *p, const struct session_file *f,
 	char label[64];
 
 	sessioninputs_file_metrics_params(f, &mp); /* the session's threshold */
-	plot_series_figure(p, f, m, "plot-force", "Insertion force",
-			   "force (N)", s, 1, 0, mp.force_threshold_n * 1.1);
 	snprintf(label, sizeof(label), "threshold %g N", mp.force_threshold_n);
-	htmlpage_plot_hline(p, mp.force_threshold_n, label);
-	htmlpage_plot_end(p);
+	plot_level_figure(p, f, m, "plot-force", "Insertion force",
+			  "force (N)", s, mp.force_threshold_n * 1.1,
+			  mp.force_threshold_n, label);
 }
 
 static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
@@ -182,6 +194,28 @@ static void plot_torques(struct htmlpage_plot *p, const struct session_file *f,
 	plot_series_figure(p, f, m, "plot-torque", "Roll and wheel torques",
 			   "torque (N m)", s, 3, 0, 0);
 	htmlpage_plot_end(p);
+}
+
+static double get_pain(const struct session_record *r, int arg)
+{
+	(void)arg;
+	return r->patient ? r->pain : NAN;
+}
+
+/* The patient's pain over time, the level of "in pain" marked. */
+static void plot_pain(struct htmlpage_plot *p, const struct session_file *f,
+		      const struct metrics_result *m)
+{
+	const struct reportplot_series s[] = {
+		{ "pain", get_pain, 0 },
+	};
+	struct metrics_params mp;
+	char label[64];
+
+	sessioninputs_file_metrics_params(f, &mp);
+	snprintf(label, sizeof(label), "in pain from %g", mp.pain_level);
+	plot_level_figure(p, f, m, "plot-pain", "The patient's pain",
+			  "pain (0-10)", s, 10, mp.pain_level, label);
 }
 
 /* The segments as horizontal bands, named. */
@@ -337,12 +371,64 @@ static void metrics_rows_forces(FILE *o, const struct session_file *f,
 	snprintf(note, sizeof(note), "a mobile segment bowed more than %g cm",
 		 loop_threshold_m(f) * 100);
 	row_end(o, note);
-	row_begin(o, "Patient discomfort", "");
-	fprintf(o, "%.1f", m->discomfort);
-	snprintf(note, sizeof(note), "discomfort-seconds: 1 = a %g cm loop or "
-		 "%g N on the wall for 1 s", mp.discomfort_bow_m * 100,
-		 mp.discomfort_force_n);
+}
+
+/* The Gloucester score's words (docs/METRICS.md). */
+static const char *gloucester_words(uint32_t score)
+{
+	static const char *const words[] = {
+		"not assessed (no responding patient)",
+		"1, comfortable", "2, minimal discomfort",
+		"3, mild discomfort", "4, moderate discomfort",
+		"5, severe discomfort",
+	};
+
+	return score < 6 ? words[score] : "?";
+}
+
+static void metrics_rows_patient(FILE *o, const struct session_file *f,
+				 const struct metrics_result *m)
+{
+	struct metrics_params mp;
+	char note[96];
+
+	if (!metrics_has_patient(m)) {
+		row_begin(o, "Patient", "");
+		fputs("none", o);
+		row_end(o, "the session ran without the patient's model");
+		return;
+	}
+	sessioninputs_file_metrics_params(f, &mp);
+	row_begin(o, "Time in pain", m->pain_episodes ? "warn" : "good");
+	fprintf(o, "%.1f %%, peak %.1f, %u episode%s", 100 * m->pain_share,
+		m->peak_pain, m->pain_episodes,
+		m->pain_episodes == 1 ? "" : "s");
+	snprintf(note, sizeof(note), "pain (0-10) at %g or above; episodes of "
+		 "at least %g s", mp.pain_level, mp.min_episode_s);
 	row_end(o, note);
+	row_begin(o, "Time in pain by cause", "");
+	for (int c = ENDOSIM_PAIN_LOOPING; c < ENDOSIM_PAIN_CAUSES; c++) {
+		fprintf(o, "%s%s %.1f s", c > ENDOSIM_PAIN_LOOPING ? ", " : "",
+			names_pain_cause((uint32_t)c), m->pain_cause_s[c]);
+	}
+	row_end(o, "what hurt most while in pain");
+	row_begin(o, "Comfort (Gloucester)", m->gloucester > 3 ? "bad" :
+		  m->gloucester > 2 ? "warn" : "");
+	fputs(gloucester_words(m->gloucester), o);
+	row_end(o, "an estimate from the pain episodes and the time in pain");
+	row_begin(o, "Insufflation", "");
+	fprintf(o, "%.2f L in, peak %.0f mmHg (%.0f Pa)", m->gas_used_l,
+		m->peak_gas_pressure_pa / METRICS_PA_PER_MMHG,
+		m->peak_gas_pressure_pa);
+	row_end(o, "the gas pumped in and its largest pressure");
+	row_begin(o, "Patient turned, assistant's hand", "");
+	fprintf(o, "%u position change%s, %u press%s", m->position_changes,
+		m->position_changes == 1 ? "" : "s", m->hand_uses,
+		m->hand_uses == 1 ? "" : "es");
+	row_end(o, "the patient's turns and the assistant's presses");
+	row_begin(o, "Perforations", m->perforations ? "bad" : "good");
+	fprintf(o, "%u", m->perforations);
+	row_end(o, "bursts by pressure and tears by the tip");
 }
 
 static void metrics_rows_view(FILE *o, const struct metrics_result *m)
@@ -423,6 +509,40 @@ static void episode_table(FILE *o, const char *title,
 	}
 }
 
+/* The pain episodes: when, how long, how bad, why and where. */
+static void pain_table(FILE *o, const struct metrics_result *m)
+{
+	fputs("<h3>Pain</h3>\n", o);
+	if (!m->n_pain) {
+		fputs("<p class=\"none\">none</p>\n", o);
+		return;
+	}
+	fputs("<table class=\"episodes\" id=\"pain-episodes\"><tr><th>#</th>"
+	      "<th>start</th><th>duration</th><th>peak (0-10)</th>"
+	      "<th>cause</th><th>place</th></tr>\n", o);
+	for (uint32_t i = 0; i < m->n_pain; i++) {
+		const struct metrics_episode *e = &m->pain[i];
+
+		fprintf(o, "<tr><td>%u</td><td>", i + 1);
+		htmlpage_duration(o, e->start_s);
+		fputs("</td><td>", o);
+		if (e->end_s >= 0) {
+			htmlpage_duration(o, e->end_s - e->start_s);
+		} else {
+			fputs("still going", o);
+		}
+		fprintf(o, "</td><td>%.1f</td><td>%s</td><td>%s</td></tr>\n",
+			e->peak, names_pain_cause(e->cause),
+			e->place >= 0 ? anatomy_segment_name(e->place)
+				      : "&ndash;");
+	}
+	fputs("</table>\n", o);
+	if (m->pain_episodes > m->n_pain) {
+		fprintf(o, "<p class=\"none\">and %u more</p>\n",
+			m->pain_episodes - m->n_pain);
+	}
+}
+
 /* The CSV's word for an event's kind (names.h), a parameter's in full. */
 static const char *event_kind(uint32_t kind)
 {
@@ -500,6 +620,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	fputs("<section><h2>Metrics</h2><table class=\"metrics\">\n", o);
 	metrics_rows_times(o, m);
 	metrics_rows_forces(o, f, m);
+	metrics_rows_patient(o, f, m);
 	metrics_rows_view(o, m);
 	fputs("</table></section>\n<section><h2>Over time</h2>\n", o);
 	if (f->n_records) {
@@ -511,6 +632,9 @@ static void page_metrics(FILE *o, const struct session_file *f,
 		plot_torques(&p, f, m);
 		plot_tip(&p, f, m, a);
 		plot_bows(&p, f, m, a);
+		if (m->peak_pain > 0) {
+			plot_pain(&p, f, m);
+		}
 		if (map && map->length_m > 0) {
 			page_map(o, map, a, m->polyps_seen_mask);
 		}
@@ -522,6 +646,9 @@ static void page_metrics(FILE *o, const struct session_file *f,
 		      m->force_episodes, "N", 1);
 	episode_table(o, "Loops", m->loop, m->n_loop, m->loop_episodes, "cm",
 		      100);
+	if (metrics_has_patient(m)) {
+		pain_table(o, m);
+	}
 	event_table(o, f, p.t0_ns);
 	fputs("</section>\n<footer>endosim ", o);
 	put_header(o, f, "version");

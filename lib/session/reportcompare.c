@@ -183,8 +183,16 @@ static void compare_table(FILE *o, const struct metrics_result *m,
 		    r->loop_episodes);
 	compare_row(o, "largest loop (cm)", "%.1f", m->largest_loop_m * 100,
 		    r->largest_loop_m * 100);
-	compare_row(o, "discomfort index", "%.2f", m->discomfort,
-		    r->discomfort);
+	compare_row(o, "time in pain (%)", "%.1f", m->pain_share * 100,
+		    r->pain_share * 100);
+	compare_row(o, "peak pain (0-10)", "%.1f", m->peak_pain,
+		    r->peak_pain);
+	compare_row(o, "pain episodes", "%.0f", m->pain_episodes,
+		    r->pain_episodes);
+	compare_row(o, "Gloucester comfort (estimate)", "%.0f",
+		    m->gloucester, r->gloucester);
+	compare_row(o, "perforations", "%.0f", m->perforations,
+		    r->perforations);
 	compare_row(o, "lumen lost (s)", "%.1f", m->lumen_lost_s,
 		    r->lumen_lost_s);
 	compare_row(o, "mucosa seen (%)", "%.1f", m->mucosa_seen * 100,

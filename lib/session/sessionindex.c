@@ -201,7 +201,7 @@ static void read_file(const char *path, struct item *it)
 	it->bad = r != 0;
 	it->x.has_metrics = !r && e->ended && !sessiondir_end_text(path, &end) &&
 			    !metricstext_parse(end, &it->x.m);
-	it->x.m.n_force = it->x.m.n_loop = 0;
+	it->x.m.n_force = it->x.m.n_loop = it->x.m.n_pain = 0;
 	free(end);
 }
 

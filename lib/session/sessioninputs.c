@@ -53,6 +53,7 @@ void sessioninputs_metrics_params(const struct config *cfg,
 	p->view_distance_m = cfg->session.view_distance_m;
 	p->fov_rad = cfg->session.fov_deg * M_PI / 180;
 	p->view_rate_hz = cfg->session.view_rate_hz;
+	p->pain_level = cfg->session.pain_level;
 }
 
 void sessioninputs_file_metrics_params(const struct session_file *f,

@@ -14,6 +14,8 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 		ep[i].start_s = in[i].start_s;
 		ep[i].end_s = in[i].end_s;
 		ep[i].peak = in[i].peak;
+		ep[i].cause = in[i].cause;
+		ep[i].place = in[i].place;
 		p[i] = &ep[i];
 	}
 	return k;
@@ -28,7 +30,7 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	X(mean_insertion_n, mean_insertion_n)                                \
 	X(force_episodes, force_episodes) X(force_time_s, force_episode_s)   \
 	X(loop_episodes, loop_episodes) X(longest_loop_s, longest_loop_s)    \
-	X(largest_loop_m, largest_loop_m) X(discomfort, discomfort)          \
+	X(largest_loop_m, largest_loop_m)                                    \
 	X(lumen_lost_s, lumen_lost_s) X(mucosa_seen, mucosa_seen)            \
 	X(polyps_seen, polyps_seen) X(polyps_total, polyps_total)            \
 	X(shaft_in_m, shaft_in_m) X(tip_in_m, tip_in_m)                      \
@@ -37,11 +39,18 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	X(tip_retraction_m, tip_retraction_m)                                \
 	X(retraction_efficiency, retraction_efficiency)                      \
 	X(clear_view, clear_view) X(lost_views, lost_views)                  \
-	X(mucosa_per_min, mucosa_per_min)
+	X(mucosa_per_min, mucosa_per_min)                                    \
+	X(pain_share, pain_share) X(peak_pain, peak_pain)                    \
+	X(pain_episodes, pain_episodes) X(gloucester, gloucester)            \
+	X(gas_used_l, gas_used_l)                                            \
+	X(peak_gas_pressure_pa, peak_gas_pressure_pa)                        \
+	X(position_changes, position_changes) X(hand_uses, hand_uses)        \
+	X(perforations, perforations)
 
-/* R's measures into M, its segments' into SEGMENT; no episodes. */
+/* R's measures into M, its segments' into SEGMENT, its time in pain by
+ * cause into CAUSE; no episodes. */
 static void scalars_out(Endosim__SessionMetrics *m, double *segment,
-			const struct metrics_result *r)
+			double *cause, const struct metrics_result *r)
 {
 	endosim__session_metrics__init(m);
 #define TO_PB(pb, c) m->pb = r->c;
@@ -50,6 +59,9 @@ static void scalars_out(Endosim__SessionMetrics *m, double *segment,
 	memcpy(segment, r->mucosa_segment, ANATOMY_SEGMENTS * sizeof(double));
 	m->n_mucosa_segment = ANATOMY_SEGMENTS;
 	m->mucosa_segment = segment;
+	memcpy(cause, r->pain_cause_s, ENDOSIM_PAIN_CAUSES * sizeof(double));
+	m->n_pain_cause_s = ENDOSIM_PAIN_CAUSES;
+	m->pain_cause_s = cause;
 }
 
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
@@ -57,18 +69,20 @@ void sessionpb_from_metrics(struct sessionpb_metrics *out,
 {
 	Endosim__SessionMetrics *m = &out->msg;
 
-	scalars_out(m, out->segment, r);
+	scalars_out(m, out->segment, out->cause, r);
 	m->n_force = episodes_out(out->force, out->force_p, r->force,
 				  r->n_force);
 	m->force = out->force_p;
 	m->n_loops = episodes_out(out->loop, out->loop_p, r->loop, r->n_loop);
 	m->loops = out->loop_p;
+	m->n_pain = episodes_out(out->pain, out->pain_p, r->pain, r->n_pain);
+	m->pain = out->pain_p;
 }
 
 void sessionpb_from_scalars(struct sessionpb_scalars *out,
 			    const struct metrics_result *r)
 {
-	scalars_out(&out->msg, out->segment, r);
+	scalars_out(&out->msg, out->segment, out->cause, r);
 }
 
 static uint32_t episodes_in(struct metrics_episode *out,
@@ -80,6 +94,8 @@ static uint32_t episodes_in(struct metrics_episode *out,
 		out[i].start_s = in[i]->start_s;
 		out[i].end_s = in[i]->end_s;
 		out[i].peak = in[i]->peak;
+		out[i].cause = in[i]->cause;
+		out[i].place = in[i]->place;
 	}
 	return (uint32_t)k;
 }
@@ -93,6 +109,11 @@ void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 #undef FROM_PB
 	out->n_force = episodes_in(out->force, in->force, in->n_force);
 	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
+	out->n_pain = episodes_in(out->pain, in->pain, in->n_pain);
+	for (size_t i = 0; i < in->n_pain_cause_s && i < ENDOSIM_PAIN_CAUSES;
+	     i++) {
+		out->pain_cause_s[i] = in->pain_cause_s[i];
+	}
 	for (size_t i = 0; i < in->n_mucosa_segment && i < ANATOMY_SEGMENTS;
 	     i++) {
 		out->mucosa_segment[i] = in->mucosa_segment[i];

@@ -21,9 +21,12 @@ struct sessionpb_metrics {
 	Endosim__SessionMetrics msg;
 	Endosim__MetricsEpisode force[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode loop[METRICS_MAX_EPISODES];
+	Endosim__MetricsEpisode pain[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *force_p[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *loop_p[METRICS_MAX_EPISODES];
+	Endosim__MetricsEpisode *pain_p[METRICS_MAX_EPISODES];
 	double segment[ANATOMY_SEGMENTS];
+	double cause[ENDOSIM_PAIN_CAUSES];
 };
 
 /* OUT->msg becomes R on the wire; it points into OUT. */
@@ -35,6 +38,7 @@ void sessionpb_from_metrics(struct sessionpb_metrics *out,
 struct sessionpb_scalars {
 	Endosim__SessionMetrics msg;
 	double segment[ANATOMY_SEGMENTS];
+	double cause[ENDOSIM_PAIN_CAUSES];
 };
 
 /* OUT->msg becomes R on the wire without its episodes; it points into

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "proto/fields.h"
+#include "model/anatomy.h"
 #include "proto/names.h"
 #include "session/metricstext.h"
 #include "session/sessioninputs.h"
@@ -47,6 +48,55 @@ static void print_episodes(FILE *out, const char *what,
 	}
 }
 
+/* The pain episodes, each with its cause and place. */
+static void print_pain_episodes(FILE *out, const struct metrics_result *m)
+{
+	for (uint32_t i = 0; i < m->n_pain; i++) {
+		const struct metrics_episode *e = &m->pain[i];
+
+		fprintf(out, "  pain %u: %.2f .. ", i + 1, e->start_s);
+		if (e->end_s < 0) {
+			fprintf(out, "(going)");
+		} else {
+			fprintf(out, "%.2f s", e->end_s);
+		}
+		fprintf(out, ", peak %.1f, %s in the %s\n", e->peak,
+			names_pain_cause(e->cause),
+			e->place >= 0 ? anatomy_segment_name(e->place) : "-");
+	}
+}
+
+static void print_patient(FILE *out, const struct metrics_result *m)
+{
+	if (!metrics_has_patient(m)) {
+		fprintf(out, "patient           none\n");
+		return;
+	}
+	fprintf(out, "time in pain      %.1f %% (pain >= the level), peak "
+		"%.1f, %u episodes\n", 100 * m->pain_share, m->peak_pain,
+		m->pain_episodes);
+	print_pain_episodes(out, m);
+	fprintf(out, "pain by cause     looping %.1f s, straightening %.1f s, "
+		"insufflation %.1f s, tip %.1f s\n",
+		m->pain_cause_s[ENDOSIM_PAIN_LOOPING],
+		m->pain_cause_s[ENDOSIM_PAIN_STRAIGHTENING],
+		m->pain_cause_s[ENDOSIM_PAIN_INSUFFLATION],
+		m->pain_cause_s[ENDOSIM_PAIN_TIP]);
+	if (m->gloucester) {
+		fprintf(out, "comfort           Gloucester %u (an estimate "
+			"from the pain)\n", m->gloucester);
+	} else {
+		fprintf(out, "comfort           not assessed (no responding "
+			"patient)\n");
+	}
+	fprintf(out, "gas               %.2f L in, peak %.1f mmHg (%.0f Pa)\n",
+		m->gas_used_l, m->peak_gas_pressure_pa / METRICS_PA_PER_MMHG,
+		m->peak_gas_pressure_pa);
+	fprintf(out, "patient           %u position changes, %u hand presses, "
+		"%u perforations\n", m->position_changes, m->hand_uses,
+		m->perforations);
+}
+
 void sessionview_print(FILE *out, const struct metrics_result *m)
 {
 	fprintf(out, "duration          %.2f s, %" PRIu64 " records, %" PRIu64
@@ -67,8 +117,8 @@ void sessionview_print(FILE *out, const struct metrics_result *m)
 	fprintf(out, "loops             %u, longest %.2f s, largest %.3f m\n",
 		m->loop_episodes, m->longest_loop_s, m->largest_loop_m);
 	print_episodes(out, "loop", m->loop, m->n_loop, "m");
-	fprintf(out, "discomfort index  %.3g\nlumen lost        %.2f s\n",
-		m->discomfort, m->lumen_lost_s);
+	print_patient(out, m);
+	fprintf(out, "lumen lost        %.2f s\n", m->lumen_lost_s);
 	fprintf(out, "mucosa seen       %.1f %%\npolyps seen       %u of %u\n",
 		100 * m->mucosa_seen, m->polyps_seen, m->polyps_total);
 	fprintf(out, "lumen in view     %.1f %% of the time in, lost %u times; "
@@ -86,12 +136,19 @@ void sessionview_print(FILE *out, const struct metrics_result *m)
 static void json_episodes(struct json *j, const char *key,
 			  const struct metrics_episode *ep, uint32_t n)
 {
+	bool pain = !strcmp(key, "pain");
+
 	json_array_begin(j, key);
 	for (uint32_t i = 0; i < n; i++) {
 		json_object_begin(j, NULL);
 		json_double(j, "start_s", ep[i].start_s);
 		json_double(j, "end_s", ep[i].end_s);
 		json_double(j, "peak", ep[i].peak);
+		if (pain) {
+			json_string(j, "cause", names_pain_cause(ep[i].cause));
+			json_string(j, "place", ep[i].place >= 0 ?
+				    anatomy_segment_name(ep[i].place) : "");
+		}
 		json_object_end(j);
 	}
 	json_array_end(j);
@@ -115,6 +172,7 @@ void sessionview_json(struct json *j, const char *key,
 	}
 	json_episodes(j, "force", m->force, m->n_force);
 	json_episodes(j, "loops", m->loop, m->n_loop);
+	json_episodes(j, "pain", m->pain, m->n_pain);
 	json_object_end(j);
 }
 

@@ -33,7 +33,8 @@ static const struct measure measures[] = {
 	{ "loop_episodes", "Loop episodes", "Loops", "", 1, true },
 	{ "peak_insertion_n", "Peak insertion force", "Peak force", "N", 1,
 	  false },
-	{ "discomfort", "Discomfort index", "Discomfort", "", 1, false },
+	{ "pain_share", "Time in pain", "Pain", "%", 100, false },
+	{ "perforations", "Perforations", "Perf.", "", 1, true },
 	{ "polyps_seen", "Polyps found", "Polyps", "", 1, true },
 };
 

@@ -7,7 +7,8 @@
  *     (coursefile.h);
  *   - the sessions table: id, date, case, duration, the main measures
  *     (time to the cecum, withdrawal time, mucosa seen, excessive-force
- *     and loop episodes, peak insertion force, discomfort, polyps found)
+ *     and loop episodes, peak insertion force, time in pain,
+ *     perforations, polyps found)
  *     and each of its case's requirements met or not;
  *   - the learning curves: per case, one plot per main measure across the
  *     trainee's sessions on it (the session's number on that case along

@@ -17,7 +17,8 @@
 # and every command when the patient is disabled. The status (JSON and
 # text) and `scene info` have the patient's fields and the case's sites;
 # a session recorded across it all has each change as an event (export
-# --events, show, the report) and the patient's CSV columns. (The
+# --events, show, the report), its measures (a turn, a press, the gas, a
+# perforation) and the patient's CSV columns. (The
 # mailbox and the refusals in the loop, cycle for cycle: test_mailbox;
 # the records and their columns: test_fields, test_session_file.)
 . "$(dirname "$0")/../common.sh"
@@ -175,6 +176,18 @@ check "session show lists them" eval \
 check "... and its JSON" eval \
 	"ctl --json session show $ID | jq -e '[.patient_events[].kind] |
 		index(\"position\") and index(\"valve\")'"
+check "the session's measures: a turn, a press (stronger, same site), gas in, a perforation" eval \
+	"ctl --json session show $ID | jq -e '.metrics | .position_changes == 1 and
+		.hand_uses == 1 and .gas_used_l > 0.01 and .perforations == 1 and
+		.peak_gas_pressure_pa > 1000 and .gloucester >= 1'"
+check "... in session show" grep -qE \
+	'^patient +1 position changes, 1 hand presses, 1 perforations$' "$TMP/show.txt"
+check "... and the report: the perforation marked, the pain's table" eval \
+	"grep -q '<tr class=\"bad\"><th>Perforations</th><td>1</td>' $TMP/report/index.html &&
+	 grep -q '<h3>Pain</h3>' $TMP/report/index.html"
+check "... its pain plotted when the patient felt any" eval \
+	"ctl --json session show $ID | jq -e '.metrics.peak_pain == 0' >/dev/null ||
+	 grep -q '<figure id=\"plot-pain\">' $TMP/report/index.html"
 ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
 col() {
 	awk -F, -v k="$1" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }

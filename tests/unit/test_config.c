@@ -497,6 +497,7 @@ static void same_metrics(const struct config *cfg)
 	SAME(c, m, view_distance_m);
 	SAME(c, m, fov_rad);
 	SAME(c, m, view_rate_hz);
+	SAME(c, m, pain_level);
 }
 
 /* CFG's model parameters (cases.h) field by field against the owners'. */

@@ -3,7 +3,9 @@
  * parses; each mistake is named with its file and line; a session's
  * metrics meet a requirement or not (at its bound, a cecum never
  * reached); a case is complete after `consecutive` passing sessions in a
- * row and a failing one starts the count again.
+ * row and a failing one starts the count again; the shipped course fails
+ * a session that perforated (counted from its records) or was in pain
+ * more than 10 % of the time.
  *
  * Reads config/courses/basic.course: run from the source tree.
  */
@@ -122,6 +124,61 @@ static void test_met(void **state)
 				       &m));
 }
 
+/*
+ * The shipped course fails a session that perforated, by a burst or by
+ * the tip's tear, counted from its records, though it met every other
+ * requirement; and one in pain more than 10 % of the time.
+ */
+static void test_perforation_fails(void **state)
+{
+	const struct coursefile_case *k;
+	struct metrics_result good_m = { .cecum_s = 300, .withdrawal_s = 400,
+					 .mucosa_seen = 0.95,
+					 .pain_share = 0.10,
+					 .polyps_seen = 5 }, m;
+	struct metrics_params p;
+
+	(void)state;
+	assert_int_equal(coursefile_load(&course,
+					 "config/courses/basic.course", err,
+					 sizeof(err)), 0);
+	k = coursefile_case(&course, "normal");
+	assert_non_null(k);
+	assert_true(coursefile_passed(k, &good_m));
+	assert_true(coursefile_passed(coursefile_case(&course, "polyps"),
+				      &good_m));
+	metrics_params_default(&p);
+	for (int torn = 0; torn < 2; torn++) {
+		struct metrics *mt = metrics_create(NULL, &p);
+
+		assert_non_null(mt);
+		for (uint64_t i = 0; i < 10; i++) {
+			struct session_record r = {
+				.stamp_ns = i * 100000000ull, .patient = 1,
+				.hand_site = -1, .burst_segment = -1,
+				.torn_segment = -1, .pain_place = -1,
+			};
+
+			if (i >= 5) {
+				*(torn ? &r.torn_segment : &r.burst_segment) =
+					2;
+			}
+			metrics_record(mt, &r);
+		}
+		metrics_result(mt, &m);
+		metrics_destroy(mt);
+		assert_int_equal(m.perforations, 1);
+		good_m.perforations = m.perforations;
+		assert_false(coursefile_passed(k, &good_m));
+		assert_false(coursefile_passed(coursefile_case(&course,
+							       "polyps"),
+					       &good_m));
+		good_m.perforations = 0;
+	}
+	good_m.pain_share = 0.1001;
+	assert_false(coursefile_passed(k, &good_m));
+}
+
 static void test_progress(void **state)
 {
 	struct metrics_result pass = { .cecum_s = 300, .withdrawal_s = 400,
@@ -162,6 +219,7 @@ int main(void)
 		cmocka_unit_test(test_parse),
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_met),
+		cmocka_unit_test(test_perforation_fails),
 		cmocka_unit_test(test_progress),
 	};
 

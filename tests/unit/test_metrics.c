@@ -8,7 +8,13 @@
  *     end, peak; a dip within the hysteresis does not split one, a spike
  *     shorter than min_episode_s is no episode;
  *   - a bow ramp: loop count, longest, largest;
- *   - the discomfort of a constant bow and wall force: rate x time;
+ *   - the patient: a pain trace of known steps gives its time in pain,
+ *     peak, episodes (a dip within the hysteresis does not split one, a
+ *     drop below it does; a pulse shorter than min_episode_s is none)
+ *     with the cause and place at each one's peak, the time in pain by
+ *     cause (a fade counts for the cause before it); the Gloucester
+ *     estimate's every step; the gas, turns, presses and perforations of
+ *     known changes; a file of format 4 (no pain) still computes;
  *   - the lumen on a straight colon: lost when dir points at the wall or
  *     presses head-on into it, kept down the lumen or 30 deg off it;
  *   - the mucosa seen on a straight colon (geometry in each test);
@@ -29,6 +35,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -39,6 +46,7 @@
 #include "session/metrics.h"
 #include "session/metricstext.h"
 #include "session/sessioninputs.h"
+#include "session/sessionmetrics.h"
 #include "base/vec3.h"
 
 #define RATE_HZ 1000
@@ -409,34 +417,308 @@ static void test_episodes_beyond_the_list(void **state)
 	metrics_destroy(m);
 }
 
-/* -------------------------------------------------------- discomfort */
+/* ------------------------------------------------------------ the pain */
 
-static void test_discomfort_constant(void **state)
+/* A stretch of a pain trace: from FROM_S on, PAIN with CAUSE at PLACE. */
+struct pain_step {
+	double from_s;
+	float pain;
+	uint32_t cause;
+	int32_t place;
+};
+
+/* Records at RATE_HZ for DURATION_S with the patient enabled (a heart
+ * rate: it responds) and the pain of the N steps S (in time order). */
+static void pain_trace(struct metrics_result *res, const struct pain_step *s,
+		       size_t n, double duration_s, double rate_hz)
+{
+	struct metrics_params p;
+	struct metrics *m;
+	uint64_t records = (uint64_t)llround(duration_s * rate_hz);
+	size_t j = 0;
+
+	metrics_params_default(&p);
+	m = metrics_create(NULL, &p);
+	assert_non_null(m);
+	for (uint64_t k = 0; k < records; k++) {
+		struct session_record r = rec(0);
+		double t = (double)k / rate_hz;
+
+		r.stamp_ns += (uint64_t)llround(t * ENDOSIM_NS_PER_S);
+		while (j + 1 < n && t >= s[j + 1].from_s - 1e-9) {
+			j++;
+		}
+		r.patient = 1;
+		r.heart_rate_bpm = 70;
+		r.hand_site = r.burst_segment = r.torn_segment = -1;
+		r.pain = t >= s[j].from_s - 1e-9 ? s[j].pain : 0;
+		r.pain_cause = s[j].cause;
+		r.pain_place = s[j].place;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, res);
+	metrics_destroy(m);
+}
+
+#define LOOP ENDOSIM_PAIN_LOOPING
+#define STRAIGHT ENDOSIM_PAIN_STRAIGHTENING
+#define GAS ENDOSIM_PAIN_INSUFFLATION
+#define TIP ENDOSIM_PAIN_TIP
+#define NONE ENDOSIM_PAIN_NONE
+
+/*
+ * 12 s at 1 kHz, the level 4 (off below 3.6), episodes of 0.2 s or more:
+ *   0-2 s    1, looping in the sigmoid                     not in pain
+ *   2-5 s    5 looping (sigmoid), 8 straightening at 2.5-3.5 s (the
+ *            transverse), 5 looping, a dip to 3.8 at 4-4.05 s (not in pain
+ *            but within the hysteresis), 5 insufflation (splenic flexure):
+ *            one episode, 2-5 s, peak 8, straightening in the transverse
+ *   5-6 s    2, no cause (fading)
+ *   6-6.1 s  9, the tip in the cecum: in pain, too short for an episode
+ *   6.1-7 s  1, no cause
+ *   7-8 s    4.0 exactly, no cause: an episode (at the level counts), its
+ *            cause the last one seen: the tip's, in the cecum
+ *   8-9 s    3, no cause
+ *   9-10 s   6 looping (sigmoid) with a drop to 3 at 9.5-9.6 s: two
+ *            episodes, 9-9.5 and 9.6-10
+ *   10-12 s  0
+ * In pain 2.95 + 0.1 + 1 + 0.9 = 4.95 s: looping 0.5 + 0.5 + 0.9 = 1.9,
+ * straightening 1, insufflation 0.95, the tip 0.1 + 1 (the fade after it).
+ */
+static const struct pain_step trace[] = {
+	{ 0, 1, LOOP, 2 },     { 2, 5, LOOP, 2 },
+	{ 2.5, 8, STRAIGHT, 5 }, { 3.5, 5, LOOP, 2 },
+	{ 4, 3.8f, LOOP, 2 },  { 4.05, 5, GAS, 4 },
+	{ 5, 2, NONE, -1 },    { 6, 9, TIP, 8 },
+	{ 6.1, 1, NONE, -1 },  { 7, 4, NONE, -1 },
+	{ 8, 3, NONE, -1 },    { 9, 6, LOOP, 2 },
+	{ 9.5, 3, LOOP, 2 },   { 9.6, 6, LOOP, 2 },
+	{ 10, 0, NONE, -1 },
+};
+
+static void assert_pain_episode(const struct metrics_episode *e,
+				double start_s, double end_s, double peak,
+				uint32_t cause, int32_t place)
+{
+	assert_near(e->start_s, start_s, REC_TOL);
+	assert_near(e->end_s, end_s, REC_TOL);
+	assert_near(e->peak, peak, 1e-6);
+	assert_int_equal(e->cause, cause);
+	assert_int_equal(e->place, place);
+}
+
+static void test_pain_trace(void **state)
+{
+	struct metrics_result res;
+
+	(void)state;
+	pain_trace(&res, trace, sizeof(trace) / sizeof(trace[0]), 12,
+		   RATE_HZ);
+	assert_near(res.duration_s, 12 - 1.0 / RATE_HZ, 1e-9);
+	assert_near(res.peak_pain, 9, 1e-6);
+	assert_int_equal(res.pain_episodes, 4);
+	assert_int_equal(res.n_pain, 4);
+	assert_pain_episode(&res.pain[0], 2, 5, 8, STRAIGHT, 5);
+	assert_pain_episode(&res.pain[1], 7, 8, 4, TIP, 8);
+	assert_pain_episode(&res.pain[2], 9, 9.5, 6, LOOP, 2);
+	assert_pain_episode(&res.pain[3], 9.6, 10, 6, LOOP, 2);
+	assert_near(res.pain_share * res.duration_s, 4.95, 4 * REC_TOL);
+	assert_near(res.pain_cause_s[LOOP], 1.9, 3 * REC_TOL);
+	assert_near(res.pain_cause_s[STRAIGHT], 1.0, 2 * REC_TOL);
+	assert_near(res.pain_cause_s[GAS], 0.95, 2 * REC_TOL);
+	assert_near(res.pain_cause_s[TIP], 1.1, 2 * REC_TOL);
+	assert_near(res.pain_cause_s[NONE], 0, 1e-12);
+	/* in pain 41 % of the time: "severe, frequent and prolonged" */
+	assert_int_equal(res.gloucester, 5);
+}
+
+/* PULSES pulses of PAIN for HOLD_S each, 5 s apart, in 100 s: the
+ * Gloucester estimate. */
+static uint32_t gloucester_of(int pulses, float pain, double hold_s)
+{
+	struct pain_step s[2 * 8 + 1];
+	struct metrics_result res;
+	size_t n = 0;
+
+	s[n++] = (struct pain_step){ 0, 0, NONE, -1 };
+	for (int i = 0; i < pulses; i++) {
+		double t0 = 1 + i * (hold_s + 5);
+
+		s[n++] = (struct pain_step){ t0, pain, LOOP, 2 };
+		s[n++] = (struct pain_step){ t0 + hold_s, 0, NONE, -1 };
+	}
+	pain_trace(&res, s, n, 100, 100);
+	assert_int_equal(res.pain_episodes, pulses);
+	return res.gloucester;
+}
+
+/* The mapping (metrics.c): none 1, 1-2 mild episodes 2, more 3 (or one
+ * severe), two severe or 10 % of the time 4, 25 % 5; the patient
+ * disabled (or not responding: a format-4 file) 0. */
+static void test_gloucester(void **state)
 {
 	struct metrics_params p;
 	struct metrics *m;
 	struct metrics_result res;
-	double rate;
+	struct session_record r = rec(0);
+
+	(void)state;
+	assert_int_equal(gloucester_of(0, 0, 1), 1);
+	assert_int_equal(gloucester_of(1, 5, 1), 2);
+	assert_int_equal(gloucester_of(2, 5, 1), 2);
+	assert_int_equal(gloucester_of(3, 5, 1), 3);
+	assert_int_equal(gloucester_of(1, 8, 1), 3);
+	assert_int_equal(gloucester_of(2, 8, 1), 4);
+	assert_int_equal(gloucester_of(1, 5, 11), 4);   /* 11 % */
+	assert_int_equal(gloucester_of(2, 5, 13), 5);   /* 26 % */
+	metrics_params_default(&p);
+	m = metrics_create(NULL, &p);
+	metrics_record(m, &r);
+	metrics_result(m, &res);
+	assert_int_equal(res.gloucester, 0);
+	assert_false(metrics_has_patient(&res)); /* shown as none */
+	r.patient = 1;  /* enabled, but no vitals: format 4 */
+	metrics_record(m, &r);
+	metrics_result(m, &res);
+	assert_int_equal(res.gloucester, 0);
+	metrics_destroy(m);
+}
+
+/* [session] pain_level: a level of 6 sees only the stronger pain. */
+static void test_pain_level(void **state)
+{
+	struct metrics_params p;
+	struct metrics *m;
+	struct metrics_result res;
+
+	(void)state;
+	metrics_params_default(&p);
+	assert_true(p.pain_level == 4);
+	p.pain_level = 6;
+	m = metrics_create(NULL, &p);
+	for (uint64_t k = 0; k < 10 * RATE_HZ; k++) {
+		struct session_record r = rec(k);
+
+		r.patient = 1;
+		r.pain = t_of(k) < 5 ? 5.0f : 7.0f;
+		r.pain_cause = TIP;
+		metrics_record(m, &r);
+	}
+	metrics_result(m, &res);
+	assert_int_equal(res.pain_episodes, 1);
+	assert_near(res.pain[0].start_s, 5, REC_TOL);
+	assert_near(res.pain_share * res.duration_s, 5 - 1.0 / RATE_HZ,
+		    REC_TOL);
+	metrics_destroy(m);
+}
+
+/* The patient's other measures, from records at 10 Hz over 10 s: the gas
+ * in rises 0.5 L, drops to 0 (a case loaded) and rises 0.2 L; the
+ * pressure peaks at 4000 Pa; turned twice; pressed by the hand twice
+ * (once held over 1 s); a burst and a tear; records with the patient
+ * disabled count nothing. */
+static void test_patient_counts(void **state)
+{
+	struct metrics_params p;
+	struct metrics *m;
+	struct metrics_result res;
 
 	(void)state;
 	metrics_params_default(&p);
 	m = metrics_create(NULL, &p);
-	/* 2 s: a 1.5 cm bow and 5 N on the wall; 1 s more without contact */
-	for (uint64_t k = 0; k <= 3 * RATE_HZ; k++) {
-		struct session_record r = rec(k);
+	for (uint64_t k = 0; k < 100; k++) {
+		struct session_record r = rec(k * (RATE_HZ / 10));
+		double t = k / 10.0;
 
-		r.bow_m[1] = -0.015f; /* either way */
-		r.contact = t_of(k) < 2.0;
-		r.f_static[0] = 3;
-		r.f_static[1] = 4;
+		r.patient = t < 9;  /* then disabled: a zeroed record's */
+		r.gas_in_m3 = (float)(t < 1 ? 0.5e-3 * t : t < 2 ? 0.5e-3 :
+				      t < 3 ? 0 : t < 4 ? 0.2e-3 * (t - 3)
+						    : 0.2e-3);
+		r.gas_pressure_pa = t >= 5 && t < 5.1 ? 4000 : 1000;
+		r.patient_position = t < 2 ? 0 : t < 3 ? 1 : 2;
+		r.hand_site = (t >= 1 && t < 2) || (t >= 4 && t < 4.5) ? 3 :
+			      -1;
+		r.burst_segment = t >= 5 ? 2 : -1;
+		r.torn_segment = t >= 6 ? 3 : -1;
+		if (!r.patient) {
+			r.hand_site = r.burst_segment = r.torn_segment = 0;
+			r.patient_position = 0;
+			r.gas_in_m3 = 1;
+		}
 		metrics_record(m, &r);
 	}
 	metrics_result(m, &res);
-	rate = 0.015 / p.discomfort_bow_m + 5 / p.discomfort_force_n;
-	assert_near(res.discomfort,
-		    rate * 2.0 + 0.015 / p.discomfort_bow_m * 1.0, 1e-5);
-	assert_near(res.discomfort, 3.5, 1e-5); /* the defaults' numbers */
+	assert_near(res.gas_used_l, 0.5 + 0.2, 1e-5);
+	assert_near(res.peak_gas_pressure_pa, 4000, 1e-3);
+	assert_int_equal(res.position_changes, 2);
+	assert_int_equal(res.hand_uses, 2);
+	assert_int_equal(res.perforations, 2);
+	assert_true(res.peak_pain == 0);
+	assert_int_equal(res.pain_episodes, 0);
 	metrics_destroy(m);
+}
+
+/*
+ * A session file of format 4 (488-byte records: the patient's body, no
+ * pain): the pain reads as none (0, not assessed), the body's measures
+ * count; an END frame of format 4 with its discomfort index reads, the
+ * index ignored.
+ */
+static void test_format_4_file(void **state)
+{
+	static const char head[] = "format=4\nrecord_size=488\n";
+	static const char end[] = "duration_s=2\ndiscomfort=12.5\n"
+				  "force_episodes=1\n";
+	char path[] = "/tmp/test_metrics_XXXXXX";
+	struct metrics_params p;
+	struct metrics_result res;
+	struct session_file f;
+	char err[256];
+	int fd = mkstemp(path);
+
+	(void)state;
+	assert_true(fd >= 0);
+	assert_int_equal(session_file_write_magic(fd), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_HEADER,
+						  head, strlen(head)), 0);
+	for (uint64_t k = 0; k < 20; k++) {
+		struct session_record r = rec(k * (RATE_HZ / 10));
+
+		r.patient = 1;
+		r.hand_site = -1;
+		r.burst_segment = k >= 10 ? 1 : -1;
+		r.gas_in_m3 = (float)(k * 1e-4);
+		r.gas_pressure_pa = 2000;
+		/* format 5's: not in a format-4 record */
+		r.pain = 8;
+		r.pain_cause = TIP;
+		r.heart_rate_bpm = 90;
+		r.torn_segment = 2;
+		assert_int_equal(session_file_write_frame(
+					 fd, SESSION_FRAME_RECORD, &r,
+					 SESSION_RECORD_SIZE_4), 0);
+	}
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_END, end,
+						  strlen(end)), 0);
+	close(fd);
+	assert_int_equal(session_file_read(path, &f), 0);
+	unlink(path);
+	metrics_params_default(&p);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &res, err,
+						sizeof(err)), 0);
+	assert_true(res.peak_pain == 0 && res.pain_share == 0);
+	assert_int_equal(res.pain_episodes, 0);
+	assert_int_equal(res.gloucester, 0);
+	assert_true(metrics_has_patient(&res)); /* the body's measures */
+	assert_int_equal(res.perforations, 1);
+	assert_near(res.gas_used_l, 19 * 0.1, 1e-4);
+	assert_near(res.peak_gas_pressure_pa, 2000, 1e-3);
+	assert_near(res.duration_s, 1.9, 1e-9);
+	assert_int_equal(metricstext_parse(f.end, &res), 0);
+	assert_near(res.duration_s, 2, 1e-12);
+	assert_int_equal(res.force_episodes, 1);
+	assert_int_equal(res.gloucester, 0);
+	session_file_close(&f);
 }
 
 /* ------------------------------------------------------------- lumen */
@@ -1044,10 +1326,16 @@ static void test_format_parse(void **state)
 		.peak_insertion_n = 23.75, .mean_insertion_n = 4.321,
 		.force_episodes = 70, .force_episode_s = 12.5,
 		.loop_episodes = 2, .longest_loop_s = 6.1,
-		.largest_loop_m = 0.0412, .discomfort = 321.09876,
+		.largest_loop_m = 0.0412, .pain_share = 0.123456789,
+		.peak_pain = 8.5, .pain_episodes = 3, .gloucester = 4,
+		.pain_cause_s = { 0, 1.5, 2.25, 3.125, 4.0625 },
+		.gas_used_l = 3.75, .peak_gas_pressure_pa = 5432.1,
+		.position_changes = 2, .hand_uses = 5, .perforations = 1,
 		.lumen_lost_s = 77.7, .mucosa_seen = 0.873456789,
 		.polyps_seen = 3, .polyps_total = 5, .polyps_seen_mask = 0x15,
-		.n_force = METRICS_MAX_EPISODES, .n_loop = 2,
+		.n_force = METRICS_MAX_EPISODES, .n_loop = 2, .n_pain = 2,
+		.pain = { { 1.5, 3.25, 7.5, TIP, 8 },
+			  { 10, -1, 4.5, LOOP, -1 } },
 	}, out;
 	static char buf[16384];
 	int n;
@@ -1056,10 +1344,11 @@ static void test_format_parse(void **state)
 	for (uint32_t i = 0; i < in.n_force; i++) {
 		in.force[i] = (struct metrics_episode){ 10.0 * i + 0.125,
 							10.0 * i + 1.5,
-							15.5 + i / 3.0 };
+							15.5 + i / 3.0, 0,
+							-1 };
 	}
-	in.loop[0] = (struct metrics_episode){ 1.001, 7.1, 0.04 };
-	in.loop[1] = (struct metrics_episode){ 9, -1, 0.02 };
+	in.loop[0] = (struct metrics_episode){ 1.001, 7.1, 0.04, 0, -1 };
+	in.loop[1] = (struct metrics_episode){ 9, -1, 0.02, 0, -1 };
 	n = metricstext_format(&in, buf, sizeof(buf));
 	assert_true(n > 0 && (size_t)n == strlen(buf));
 	assert_non_null(strstr(buf, "withdrawal_s=401.001\n"));
@@ -1069,7 +1358,26 @@ static void test_format_parse(void **state)
 	assert_int_equal(out.records, in.records);
 	assert_int_equal(out.drops, in.drops);
 	assert_rel(out.withdrawal_s, in.withdrawal_s);
-	assert_rel(out.discomfort, in.discomfort);
+	assert_rel(out.pain_share, in.pain_share);
+	assert_rel(out.peak_pain, in.peak_pain);
+	assert_int_equal(out.pain_episodes, 3);
+	assert_int_equal(out.gloucester, 4);
+	for (int c = 1; c < ENDOSIM_PAIN_CAUSES; c++) {
+		assert_rel(out.pain_cause_s[c], in.pain_cause_s[c]);
+	}
+	assert_rel(out.gas_used_l, in.gas_used_l);
+	assert_rel(out.peak_gas_pressure_pa, in.peak_gas_pressure_pa);
+	assert_int_equal(out.position_changes, 2);
+	assert_int_equal(out.hand_uses, 5);
+	assert_int_equal(out.perforations, 1);
+	assert_non_null(strstr(buf, "pain_episode.0=1.5,3.25,7.5,4,8\n"));
+	assert_int_equal(out.n_pain, 2);
+	assert_rel(out.pain[0].peak, 7.5);
+	assert_int_equal(out.pain[0].cause, TIP);
+	assert_int_equal(out.pain[0].place, 8);
+	assert_rel(out.pain[1].end_s, -1);
+	assert_int_equal(out.pain[1].cause, LOOP);
+	assert_int_equal(out.pain[1].place, -1);
 	assert_rel(out.mucosa_seen, in.mucosa_seen);
 	assert_int_equal(out.force_episodes, 70);
 	assert_int_equal(out.polyps_seen_mask, 0x15);
@@ -1090,6 +1398,11 @@ static void test_format_parse(void **state)
 			 -EINVAL);
 	assert_int_equal(metricstext_parse("force_episode.0=1,2\n", &out),
 			 -EINVAL);
+	/* a pain episode without its cause and place, or a cause unknown */
+	assert_int_equal(metricstext_parse("pain_episode.0=1,2,3\n", &out),
+			 -EINVAL);
+	assert_int_equal(metricstext_parse("pain_episode.0=1,2,3,9,1\n",
+					   &out), -EINVAL);
 	assert_int_equal(metricstext_parse("records=12\nfuture_key=x\n", &out),
 			 0);
 	assert_int_equal(out.records, 12);
@@ -1206,7 +1519,11 @@ int main(void)
 		cmocka_unit_test(test_loop_threshold_by_model),
 		cmocka_unit_test(test_loop_threshold_of_file),
 		cmocka_unit_test(test_episodes_beyond_the_list),
-		cmocka_unit_test(test_discomfort_constant),
+		cmocka_unit_test(test_pain_trace),
+		cmocka_unit_test(test_gloucester),
+		cmocka_unit_test(test_pain_level),
+		cmocka_unit_test(test_patient_counts),
+		cmocka_unit_test(test_format_4_file),
 		cmocka_unit_test(test_lumen_lost_straight),
 		cmocka_unit_test(test_mucosa_forward_sweep),
 		cmocka_unit_test(test_mucosa_backward_sees_nothing_ahead),
