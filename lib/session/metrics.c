@@ -18,7 +18,10 @@
  *                    peak: the largest x in between. Force: x = F, loops:
  *                    x = max over the spans of |bow_m[k]|; pain: x = pain,
  *                    starting at x >= pain_level (at or above), with the
- *                    cause and place of the first record at the peak
+ *                    cause and place of its provocation: the record with
+ *                    the largest stimulus since the pain was last below
+ *                    the episode's end (records without a stimulus: the
+ *                    cause and place of the first record at the peak)
  *   pain_share       time with pain >= pain_level over duration_s (a
  *                    record's pain holds until the next record)
  *   pain_cause_s[c]  that time by the record's cause c; a record without a
@@ -93,6 +96,11 @@ struct metrics {
 	bool responding;          /* a record with the patient's vitals */
 	uint32_t cause;           /* the last cause seen, and its place */
 	int32_t place;
+	double stim_peak;         /* the largest stimulus since the pain was
+				     last below an episode's end, its cause
+				     and place: the provocation */
+	uint32_t stim_cause;
+	int32_t stim_place;
 	double pain_s[ENDOSIM_PAIN_CAUSES];
 	double pain_time_s;
 	double peak_pain, gas_in_m3, peak_pa;
@@ -360,6 +368,25 @@ static bool taken(int32_t site, int32_t before)
 	return site >= 0 && site != before;
 }
 
+/* The provocation of the pain now at R: the largest stimulus (with a
+ * cause) since the pain was last below an episode's end. */
+static void provocation(struct metrics *m, const struct session_record *r,
+			double pain)
+{
+	if (!m->pain.active && pain < m->pain.off) {
+		m->stim_peak = 0;
+		m->stim_cause = ENDOSIM_PAIN_NONE;
+		m->stim_place = -1;
+	}
+	if (isfinite(r->pain_stimulus) && r->pain_stimulus > m->stim_peak &&
+	    r->pain_cause != ENDOSIM_PAIN_NONE &&
+	    r->pain_cause < ENDOSIM_PAIN_CAUSES) {
+		m->stim_peak = r->pain_stimulus;
+		m->stim_cause = r->pain_cause;
+		m->stim_place = r->pain_place;
+	}
+}
+
 /* The patient's measures at R (T), the previous record's state held for
  * DT; Q: the previous record with the patient, or NULL. */
 static void record_patient(struct metrics *m, const struct session_record *r,
@@ -383,7 +410,18 @@ static void record_patient(struct metrics *m, const struct session_record *r,
 	}
 	m->responding |= r->heart_rate_bpm > 0;
 	m->peak_pain = fmax(m->peak_pain, pain);
+	provocation(m, r, pain);
 	episodes_update(&m->pain, t, pain, m->cause, m->place);
+	if (m->pain.active && m->stim_cause != ENDOSIM_PAIN_NONE) {
+		struct metrics_episode *cur = episodes_current(&m->pain);
+
+		m->pain.cause = m->stim_cause;
+		m->pain.place = m->stim_place;
+		if (cur) {
+			cur->cause = m->stim_cause;
+			cur->place = m->stim_place;
+		}
+	}
 	if (q && r->gas_in_m3 > q->gas_in_m3 && isfinite(r->gas_in_m3)) {
 		m->gas_in_m3 += r->gas_in_m3 - q->gas_in_m3;
 	}

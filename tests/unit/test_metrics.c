@@ -11,7 +11,8 @@
  *   - the patient: a pain trace of known steps gives its time in pain,
  *     peak, episodes (a dip within the hysteresis does not split one, a
  *     drop below it does; a pulse shorter than min_episode_s is none)
- *     with the cause and place at each one's peak, the time in pain by
+ *     with the cause and place at each one's peak (or, with a stimulus
+ *     recorded, of its provocation: the largest stimulus), the time in pain by
  *     cause (a fade counts for the cause before it); the Gloucester
  *     estimate's every step; the gas, turns, presses and perforations of
  *     known changes; a file of format 4 (no pain) still computes;
@@ -419,12 +420,14 @@ static void test_episodes_beyond_the_list(void **state)
 
 /* ------------------------------------------------------------ the pain */
 
-/* A stretch of a pain trace: from FROM_S on, PAIN with CAUSE at PLACE. */
+/* A stretch of a pain trace: from FROM_S on, PAIN with CAUSE at PLACE,
+ * the stimulus STIMULUS (0: none recorded). */
 struct pain_step {
 	double from_s;
 	float pain;
 	uint32_t cause;
 	int32_t place;
+	float stimulus;
 };
 
 /* Records at RATE_HZ for DURATION_S with the patient enabled (a heart
@@ -454,6 +457,7 @@ static void pain_trace(struct metrics_result *res, const struct pain_step *s,
 		r.pain = t >= s[j].from_s - 1e-9 ? s[j].pain : 0;
 		r.pain_cause = s[j].cause;
 		r.pain_place = s[j].place;
+		r.pain_stimulus = s[j].stimulus;
 		metrics_record(m, &r);
 	}
 	metrics_result(m, res);
@@ -484,16 +488,17 @@ static void pain_trace(struct metrics_result *res, const struct pain_step *s,
  *   10-12 s  0
  * In pain 2.95 + 0.1 + 1 + 0.9 = 4.95 s: looping 0.5 + 0.5 + 0.9 = 1.9,
  * straightening 1, insufflation 0.95, the tip 0.1 + 1 (the fade after it).
+ * No stimulus is recorded: each cause and place is the one at the peak.
  */
 static const struct pain_step trace[] = {
-	{ 0, 1, LOOP, 2 },     { 2, 5, LOOP, 2 },
-	{ 2.5, 8, STRAIGHT, 5 }, { 3.5, 5, LOOP, 2 },
-	{ 4, 3.8f, LOOP, 2 },  { 4.05, 5, GAS, 4 },
-	{ 5, 2, NONE, -1 },    { 6, 9, TIP, 8 },
-	{ 6.1, 1, NONE, -1 },  { 7, 4, NONE, -1 },
-	{ 8, 3, NONE, -1 },    { 9, 6, LOOP, 2 },
-	{ 9.5, 3, LOOP, 2 },   { 9.6, 6, LOOP, 2 },
-	{ 10, 0, NONE, -1 },
+	{ 0, 1, LOOP, 2, 0 },     { 2, 5, LOOP, 2, 0 },
+	{ 2.5, 8, STRAIGHT, 5, 0 }, { 3.5, 5, LOOP, 2, 0 },
+	{ 4, 3.8f, LOOP, 2, 0 },  { 4.05, 5, GAS, 4, 0 },
+	{ 5, 2, NONE, -1, 0 },    { 6, 9, TIP, 8, 0 },
+	{ 6.1, 1, NONE, -1, 0 },  { 7, 4, NONE, -1, 0 },
+	{ 8, 3, NONE, -1, 0 },    { 9, 6, LOOP, 2, 0 },
+	{ 9.5, 3, LOOP, 2, 0 },   { 9.6, 6, LOOP, 2, 0 },
+	{ 10, 0, NONE, -1, 0 },
 };
 
 static void assert_pain_episode(const struct metrics_episode *e,
@@ -532,6 +537,35 @@ static void test_pain_trace(void **state)
 	assert_int_equal(res.gloucester, 5);
 }
 
+/*
+ * An episode's cause and place are its provocation's: a loop pushed in
+ * (stimulus 8, looping in the sigmoid) and reduced at once, the level
+ * crossing 4 and peaking while the tube is withdrawn (straightening, a
+ * stimulus of 3 and then 1): looping in the sigmoid, not straightening;
+ * then the tip in the cecum, alone.
+ */
+static void test_pain_provocation(void **state)
+{
+	static const struct pain_step s[] = {
+		{ 0, 0, LOOP, 2, 2 },
+		{ 1.0, 2, LOOP, 2, 8 },
+		{ 1.5, 5, STRAIGHT, 2, 3 },
+		{ 2.0, 7, STRAIGHT, 2, 1 },
+		{ 3.0, 0, NONE, -1, 0 },
+		{ 4.0, 5, TIP, 8, 6 },
+		{ 4.5, 0, NONE, -1, 0 },
+	};
+	struct metrics_result res;
+
+	(void)state;
+	pain_trace(&res, s, sizeof(s) / sizeof(s[0]), 6, RATE_HZ);
+	assert_int_equal(res.n_pain, 2);
+	assert_pain_episode(&res.pain[0], 1.5, 3, 7, LOOP, 2);
+	assert_pain_episode(&res.pain[1], 4, 4.5, 5, TIP, 8);
+	/* the time by cause is each record's own */
+	assert_near(res.pain_cause_s[STRAIGHT], 1.5, 2 * REC_TOL);
+}
+
 /* PULSES pulses of PAIN for HOLD_S each, 5 s apart, in 100 s: the
  * Gloucester estimate. */
 static uint32_t gloucester_of(int pulses, float pain, double hold_s)
@@ -540,12 +574,13 @@ static uint32_t gloucester_of(int pulses, float pain, double hold_s)
 	struct metrics_result res;
 	size_t n = 0;
 
-	s[n++] = (struct pain_step){ 0, 0, NONE, -1 };
+	s[n++] = (struct pain_step){ 0, 0, NONE, -1, 0 };
 	for (int i = 0; i < pulses; i++) {
 		double t0 = 1 + i * (hold_s + 5);
 
-		s[n++] = (struct pain_step){ t0, pain, LOOP, 2 };
-		s[n++] = (struct pain_step){ t0 + hold_s, 0, NONE, -1 };
+		s[n++] = (struct pain_step){ t0, pain, LOOP, 2, 0 };
+		s[n++] = (struct pain_step){ t0 + hold_s, 0, NONE, -1,
+					     0 };
 	}
 	pain_trace(&res, s, n, 100, 100);
 	assert_int_equal(res.pain_episodes, pulses);
@@ -1520,6 +1555,7 @@ int main(void)
 		cmocka_unit_test(test_loop_threshold_of_file),
 		cmocka_unit_test(test_episodes_beyond_the_list),
 		cmocka_unit_test(test_pain_trace),
+		cmocka_unit_test(test_pain_provocation),
 		cmocka_unit_test(test_gloucester),
 		cmocka_unit_test(test_pain_level),
 		cmocka_unit_test(test_patient_counts),

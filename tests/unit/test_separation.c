@@ -92,7 +92,8 @@ struct run {
 };
 
 /* The session R; the result into OUT. */
-static void session(const struct run *r, struct metrics_result *out)
+/* One run of R into OUT; whether the tip reached the cecum. */
+static bool session(const struct run *r, struct metrics_result *out)
 {
 	const bool expert = r->expert;
 	struct config cfg;
@@ -101,6 +102,7 @@ static void session(const struct run *r, struct metrics_result *out)
 	struct trainee *t;
 	struct metrics *m;
 	double junction, cecum, out_m;
+	bool reached = true;
 	char err[512];
 
 	config_defaults(&cfg);
@@ -137,6 +139,7 @@ static void session(const struct run *r, struct metrics_result *out)
 	}
 	/* when stuck the novice first pushes on 10 cm into the loop */
 	if (!trainee_reach(t, cecum, SPEED, expert ? 0 : 0.10)) {
+		reached = false;
 		assert_false(r->way_out);
 		printf("# %s: the %s did not reach the cecum\n", r->case_path,
 		       expert ? "expert" : "novice");
@@ -155,6 +158,7 @@ done:
 	metrics_result(m, out);
 	metrics_destroy(m);
 	trainee_destroy(t);
+	return reached;
 }
 
 static void test_expert_and_novice(void **state)
@@ -257,20 +261,27 @@ static void print_split(const struct split *s)
 	       pct(s->cause[ENDOSIM_PAIN_TIP], s->episodes));
 }
 
-/* Whether the three runs of a case go the clinic's way (printing where
- * the strict expectation is not met). */
-static bool pain_direction(const char *case_path,
+/*
+ * Whether the three runs of a case go the clinic's way (printing where
+ * the strict expectation is not met): the novice's pain peaks higher than
+ * the expert's, deep sedation's lower and no longer in pain; and where
+ * both got to the cecum (BOTH: comparable courses), the novice is in
+ * pain no shorter than the expert. Where the expert is stuck too, her
+ * reductions hurt as well: said, not failed.
+ */
+static bool pain_direction(const char *case_path, bool both,
 			   const struct metrics_result *e,
 			   const struct metrics_result *n,
 			   const struct metrics_result *d)
 {
 	if (n->pain_share <= e->pain_share || d->pain_share >= n->pain_share) {
 		printf("# %s: expected but not met: the novice in pain longer "
-		       "than the expert (%.1f / %.1f %%), deep sedation "
+		       "than the expert (%.1f / %.1f %%%s), deep sedation "
 		       "shorter (%.1f %%)\n", case_path, 100 * n->pain_share,
-		       100 * e->pain_share, 100 * d->pain_share);
+		       100 * e->pain_share, both ? "" :
+		       ": not both at the cecum", 100 * d->pain_share);
 	}
-	return n->pain_share >= e->pain_share &&
+	return (!both || n->pain_share >= e->pain_share) &&
 	       d->pain_share <= n->pain_share &&
 	       n->peak_pain > e->peak_pain && d->peak_pain < n->peak_pain;
 }
@@ -279,9 +290,10 @@ static bool pain_direction(const char *case_path,
  * The patient enabled: the same two scripts on the way in, to the cecum
  * (or as far as they get), with moderate sedation, and the novice's again
  * with deep sedation. The novice's peak pain is higher than the expert's
- * on every case, deep sedation's lower; her time in pain is no shorter,
- * deep sedation's no longer (where nobody is ever in pain both are 0:
- * said, not failed). The split of the pain episodes by place and cause is
+ * on every case, deep sedation's lower and no longer in pain; where both
+ * reach the cecum the novice's time in pain is no shorter (where either
+ * is stuck the expert's reductions hurt too, and where nobody is ever in
+ * pain both are 0: said, not failed). The split of the pain episodes by place and cause is
  * printed next to Shah et al.'s, not asserted (docs/METRICS.md).
  */
 static void test_pain(void **state)
@@ -300,11 +312,14 @@ static void test_pain(void **state)
 	}
 	for (size_t c = 0; c < cases; c++) {
 		const char *cp = pain_cases[c];
+		bool both;
 
-		session(&(struct run){ cp, true, ENDOSIM_SEDATION_MODERATE,
-				       false }, &e);
-		session(&(struct run){ cp, false, ENDOSIM_SEDATION_MODERATE,
-				       false }, &n);
+		both = session(&(struct run){ cp, true,
+					      ENDOSIM_SEDATION_MODERATE,
+					      false }, &e);
+		both &= session(&(struct run){ cp, false,
+					       ENDOSIM_SEDATION_MODERATE,
+					       false }, &n);
 		session(&(struct run){ cp, false, ENDOSIM_SEDATION_DEEP,
 				       false }, &d);
 		printf("# %s\n", cp);
@@ -314,7 +329,7 @@ static void test_pain(void **state)
 		split_add(&s, &e);
 		split_add(&s, &n);
 		split_add(&s, &d);
-		wrong += !pain_direction(cp, &e, &n, &d);
+		wrong += !pain_direction(cp, both, &e, &n, &d);
 	}
 	print_split(&s);
 	fflush(stdout);
