@@ -249,9 +249,10 @@ static void print_run(const char *who, const struct metrics_result *m)
 
 static void print_split(const struct split *s)
 {
-	printf("# pain episodes of all runs: %u; the tip in the sigmoid "
-	       "%.0f %% (Shah et al. 2002: 77 %% of the requests for "
-	       "analgesia)\n", s->episodes, pct(s->sigmoid, s->episodes));
+	printf("# pain episodes of all runs: %u; placed in the sigmoid "
+	       "%.0f %% (Shah et al. 2002: the tip in the sigmoid at 77 %% of "
+	       "the requests for analgesia)\n", s->episodes,
+	       pct(s->sigmoid, s->episodes));
 	printf("# by cause: looping %.0f %%, straightening %.0f %%, "
 	       "insufflation %.0f %%, the tip %.0f %% (Shah: 79 / 11 / 9 %%; "
 	       "the tip not a cause of theirs)\n",
