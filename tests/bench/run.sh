@@ -27,7 +27,10 @@
 #    The patient on the demo course (the scripted trainee's,
 #    test_rodcourse: its line of figures): the gas
 #    used a minute next to Bretthauer's 0.25 L/min, the pressure's range
-#    with the tip free next to Kozarek's 9-57 mmHg. Not at SCHED_FIFO: a
+#    with the tip free next to Kozarek's 9-57 mmHg. The patient's pain
+#    (test_separation, all four cases): the time in pain and the peak of
+#    the scripted expert, the novice and the novice deeply sedated, and
+#    the pain episodes' split by place and cause next to Shah et al.'s. Not at SCHED_FIFO: a
 #    process that never sleeps is throttled there by the kernel's
 #    real-time bandwidth limit (50 ms of every second,
 #    sched_rt_runtime_us), which is not the daemon's case (it sleeps
@@ -122,6 +125,9 @@ echo "=== the loop's cycle on the demo: the rod, 160 segments, the patient (goal
 echo
 echo "=== the patient on the demo course: the gas used, the pressure (test_rodcourse) ==="
 ENDOSIM_TOP=$TOP "$BUILD/tests/test_rodcourse" 2>&1 | grep '^the patient: '
+echo "=== the patient's pain: expert and novice on every case, the split next to Shah's (test_separation) ==="
+ENDOSIM_TOP=$TOP ENDOSIM_PAINRUN_FULL=1 "$BUILD/tests/test_separation" \
+	2>&1 | grep -E '^# (config/|  |pain episodes|by cause)'
 echo
 echo "=== the loop's cycle on the paper model's demo, force shading on and off ==="
 "$BUILD/tests/bench_haptics" --model paper "$CASE" \

@@ -176,14 +176,14 @@ check "session show lists them" eval \
 check "... and its JSON" eval \
 	"ctl --json session show $ID | jq -e '[.patient_events[].kind] |
 		index(\"position\") and index(\"valve\")'"
-check "the session's measures: a turn, a press (stronger, same site), gas in, a perforation" eval \
+check "the session's measures: a turn, a press (stronger, same site), gas in, two perforations (the gas's, the tip's)" eval \
 	"ctl --json session show $ID | jq -e '.metrics | .position_changes == 1 and
-		.hand_uses == 1 and .gas_used_l > 0.01 and .perforations == 1 and
+		.hand_uses == 1 and .gas_used_l > 0.01 and .perforations == 2 and
 		.peak_gas_pressure_pa > 1000 and .gloucester >= 1'"
 check "... in session show" grep -qE \
-	'^patient +1 position changes, 1 hand presses, 1 perforations$' "$TMP/show.txt"
+	'^patient +1 position changes, 1 hand presses, 2 perforations$' "$TMP/show.txt"
 check "... and the report: the perforation marked, the pain's table" eval \
-	"grep -q '<tr class=\"bad\"><th>Perforations</th><td>1</td>' $TMP/report/index.html &&
+	"grep -q '<tr class=\"bad\"><th>Perforations</th><td>2</td>' $TMP/report/index.html &&
 	 grep -q '<h3>Pain</h3>' $TMP/report/index.html"
 check "... its pain plotted when the patient felt any" eval \
 	"ctl --json session show $ID | jq -e '.metrics.peak_pain == 0' >/dev/null ||
