@@ -12,7 +12,7 @@
 # test again and the system tests in ASAN_SYSTEM (with SANITIZED=1: a test
 # may shorten what checks only timing, not memory, there); a short run of
 # each fuzz target in $BUILD/fuzz when they exist ($FUZZ_SECONDS each,
-# default 3).
+# default 2).
 #
 # The unit tests need no real time: as many run at once as there are CPUs.
 # The system tests run one at a time: they measure the force loop's timing
@@ -165,7 +165,7 @@ if [ -d "$BUILD/asan/tests" ]; then
 fi
 if [ -d "$BUILD/fuzz" ]; then
 	started=$SECONDS
-	FUZZ_SECONDS=${FUZZ_SECONDS:-3} tests/fuzz/run.sh "$BUILD/fuzz" \
+	FUZZ_SECONDS=${FUZZ_SECONDS:-2} tests/fuzz/run.sh "$BUILD/fuzz" \
 		>"$work/fuzz.out" 2>&1
 	record "fuzz" "$work/fuzz.out" $? $((SECONDS - started))
 	grep -v "passed, .* failed$" "$work/fuzz.out" | sed 's/^/    /'
