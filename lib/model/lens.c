@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "base/lag.h"
+
 static double unit(double x)
 {
 	return fmax(0, fmin(1, x));
@@ -19,7 +21,6 @@ void lens_step(struct lens *l, const struct lens_params *p,
 {
 	double pressed = fmax(0, in->tip_force_n - p->contact_n);
 	double target = in->suction && in->wall_gap_m < p->redout_gap_m;
-	double k = p->redout_s > 0 ? 1 - exp(-dt_s / p->redout_s) : 1;
 
 	if (p->smear_n_s > 0) {
 		l->smear = unit(l->smear + dt_s * pressed / p->smear_n_s);
@@ -31,5 +32,5 @@ void lens_step(struct lens *l, const struct lens_params *p,
 		l->smear = unit(l->smear - dt_s / p->wash_s);
 		l->murk = unit(l->murk - dt_s / p->wash_s);
 	}
-	l->redout += (target - l->redout) * k;
+	l->redout = lag_follow(l->redout, target, p->redout_s, dt_s);
 }

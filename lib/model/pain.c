@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "base/lag.h"
+
 /* gain and threshold factors, in enum endosim_sedation's order */
 static const double sedation_gain[ENDOSIM_SEDATIONS] = {
 	1, 0.9, 0.75, 0.3,
@@ -91,9 +93,5 @@ void pain_step(struct pain *p, const struct pain_params *par,
 		}
 	}
 	tau = p->stimulus > p->level ? par->rise_s : par->fade_s;
-	if (dt_s > 0 && tau > 0) {
-		p->level += (p->stimulus - p->level) * -expm1(-dt_s / tau);
-	} else if (dt_s > 0) {
-		p->level = p->stimulus;
-	}
+	p->level = lag_follow(p->level, p->stimulus, tau, dt_s);
 }

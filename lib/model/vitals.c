@@ -1,7 +1,7 @@
 /* vitals.c - the patient's heart rate and saturation (vitals.h). */
 #include "model/vitals.h"
 
-#include <math.h>
+#include "base/lag.h"
 
 static double spo2_of(const struct vitals_params *p, int sedation)
 {
@@ -18,19 +18,11 @@ void vitals_reset(struct vitals *v, const struct vitals_params *p,
 	v->spo2 = spo2_of(p, sedation);
 }
 
-/* X towards TARGET over DT_S with time constant TAU_S (0: at once). */
-static void follow(double *x, double target, double tau_s, double dt_s)
-{
-	if (!isfinite(target) || !(dt_s > 0)) {
-		return;
-	}
-	*x = tau_s > 0 ? *x + (target - *x) * -expm1(-dt_s / tau_s) : target;
-}
-
 void vitals_step(struct vitals *v, const struct vitals_params *p,
 		 double pain, int sedation, double dt_s)
 {
-	follow(&v->heart_rate_bpm, p->rest_bpm + p->bpm_per_pain * pain,
-	       p->heart_s, dt_s);
-	follow(&v->spo2, spo2_of(p, sedation), p->spo2_s, dt_s);
+	v->heart_rate_bpm = lag_follow(v->heart_rate_bpm,
+				       p->rest_bpm + p->bpm_per_pain * pain,
+				       p->heart_s, dt_s);
+	v->spo2 = lag_follow(v->spo2, spo2_of(p, sedation), p->spo2_s, dt_s);
 }
