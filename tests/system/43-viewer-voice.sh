@@ -32,13 +32,19 @@ SILENT=0.001 # RMS: the wave backend writes zeros while nothing plays
 SOUND=0.02   # RMS of a clip speaking (the clips' own are 0.1 to 0.4)
 TOL_S=0.05   # the replay's clock: a frame's step and the records' 1 ms
 
+# wave_conf NAME: an OpenAL Soft configuration, $TMP/NAME.conf, that
+# writes what is played into the wave file $TMP/NAME.wav
+wave_conf() {
+	printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' \
+		"$TMP/$1.wav" >"$TMP/$1.conf"
+}
+
 # hear NAME ARGS...: endoview replaying $FILE headless into the wave
 # file $TMP/NAME.wav; its output in $TMP/NAME.out
 hear() {
 	local name=$1
 	shift
-	printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' \
-		"$TMP/$name.wav" >"$TMP/$name.conf"
+	wave_conf "$name"
 	ALSOFT_CONF="$TMP/$name.conf" ALSOFT_DRIVERS=wave \
 		endoview --no-vsync --max-fps 60 --size 640x480 \
 		--replay "$FILE" "$@" >"$TMP/$name.out" 2>&1
@@ -134,8 +140,7 @@ check "... the panel says so" grep -q '^hud: voice muted (U: on)$' \
 
 # the key U, pressed as the window opens (before the first frame's
 # events are read): muted from the replay's start
-printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' "$TMP/key.wav" \
-	>"$TMP/key.conf"
+wave_conf key
 (ALSOFT_CONF="$TMP/key.conf" ALSOFT_DRIVERS=wave endoview --no-vsync \
 	--max-fps 60 --size 640x480 --replay "$FILE" --frames 500 \
 	>"$TMP/key.out" 2>&1) &
@@ -195,8 +200,7 @@ start_daemon --set patient.enabled=yes --set haptics.model=paper \
 	--set "case.directory=$TOP/tests/cases" --set case.name=straight \
 	--scenario "$TMP/wall.scn" || finish
 ctl enable >/dev/null
-printf '[general]\ndrivers = wave\n[wave]\nfile = %s\n' "$TMP/live.wav" \
-	>"$TMP/live.conf"
+wave_conf live
 (ALSOFT_CONF="$TMP/live.conf" ALSOFT_DRIVERS=wave endoview --socket "$SOCK" \
 	--shm-name "$SHM" --no-vsync --max-fps 30 --size 640x480 \
 	--frames 450 >"$TMP/live.out" 2>&1) & # 15 s at least
