@@ -13,6 +13,8 @@
 #                   colon model, the haptic step, the drives, the viewer
 #   make emulators  the drive emulators (tests/emulators/) and the drive
 #                   benchmark program (run tests/bench/drives.sh)
+#   make pictures   after make test: the docs' pictures from the tests'
+#                   screenshots (build/pictures) copied over docs/
 #   make install    PREFIX=/usr/local DESTDIR= : binaries, config, systemd
 #   make deps       install (as root) or name the Debian packages needed
 
@@ -213,6 +215,7 @@ TEST_WINGS = $(WINGS)
 FUZZ_WINGS = session rig conf model base proto
 
 .PHONY: all test check bench bench-tools demo install clean deps deps-test \
+	pictures \
 	deps-bench deps-build deps-demo \
 	unit-tests clang-build asan-build fuzz fuzz-build fuzz-targets \
 	emulators
@@ -344,6 +347,14 @@ asan-build:
 check: all unit-tests emulators clang-build asan-build fuzz-build
 	BUILD=$(BUILD) tests/run.sh
 
+# the docs' pictures: the screenshots the system tests kept in
+# $(BUILD)/pictures (keep_picture, tests/common.sh), copied over docs/
+# after `make test` (or after the tests that keep them); look at them first
+pictures:
+	@ls $(BUILD)/pictures/*.png >/dev/null 2>&1 || { echo \
+		"no pictures in $(BUILD)/pictures: run make test first"; exit 1; }
+	cp $(BUILD)/pictures/*.png docs/
+
 demo: deps-demo
 	$(MAKE) --no-print-directory all
 	BUILD=$(BUILD) tests/demo.sh
@@ -371,6 +382,8 @@ install: all
 	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
 	install -m 0644 $(VOICE_WAVS) $(DESTDIR)$(VOICEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
+	install -d $(DESTDIR)$(DOCDIR)/docs
+	install -m 0644 docs/*.md docs/*.png $(DESTDIR)$(DOCDIR)/docs/
 	sed -e 's|@SBINDIR@|$(SBINDIR)|g' -e 's|@DOCDIR@|$(DOCDIR)|g' \
 		-e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' systemd/endosimd.service \
 		> $(DESTDIR)$(SYSTEMDDIR)/endosimd.service

@@ -168,6 +168,16 @@ stop_daemon() {
 	return $rc
 }
 
+# keep_picture FILE NAME: FILE, a screenshot the docs show, kept as
+# $BUILD/pictures/NAME.png (`make pictures` copies them over docs/;
+# tests/system/19-docs.sh checks that every picture the docs show is one
+# that a test keeps so, NAME written out in its call). Nothing when the
+# screenshot was not taken (its check has failed).
+keep_picture() {
+	[ -s "$1" ] || return 0
+	mkdir -p "$BUILD/pictures" && cp "$1" "$BUILD/pictures/$2.png"
+}
+
 # --- more than one daemon ----------------------------------------------------
 # A test may keep daemons in slots, each with its own socket directory, shm
 # name, session directory and log (the first slot, "main", is the one

@@ -142,6 +142,7 @@ check "the scope goes in 30 cm" \
 	wait_for status_true '.axes.insertion.position > 0.29'
 check_status "lumen: screenshot" 0 \
 	view "${SMALL[@]}" --view endo --frames 20 --screenshot "$TMP/lumen.png"
+keep_picture "$TMP/lumen.png" endoview-lumen
 check "lumen: the straight colon, live, no OpenGL error" eval \
 	'ran_clean live && [ "$(view_field colon)" = straight ]'
 rect_of endo
@@ -224,6 +225,7 @@ WAIT_S=40 check "rod: the tube pushed on, the sigmoid moves 5 cm" wait_for \
 	status_true '.scope.bow_m[0] > 0.05 and .scenario_time_s > 9'
 check_status "rod, overview: screenshot" 0 view --view overview \
 	--frames 8 --screenshot "$TMP/rod.png" --print-state
+keep_picture "$TMP/rod.png" endoview-rod
 check "rod: no OpenGL error" ran_clean live
 rect_of overview
 read -r n share < <(share_of "$TMP/rod.png" "$(drawn rod_in=)" 'scope > 0')
@@ -328,6 +330,7 @@ WAIT_S=40 check "pushed into the splenic flexure: the wall holds the tip, the si
 	wait_for status_true '.scope.bow_m[0] > 0.05 and .haptics.contact'
 check_status "overview, loop: screenshot" 0 view --view overview \
 	--frames 8 --screenshot "$TMP/loop.png" --print-state
+keep_picture "$TMP/loop.png" endoview-loop
 check "loop: the HUD says it, beyond the paper model's 1 cm" \
 	grep -q '^hud: LOOP: the sigmoid bows [0-9.]* cm$' "$VIEW_OUT"
 check "the loop and the contact held through the screenshot" \

@@ -119,6 +119,7 @@ check "playing: the clock ran 1 s in 30 headless frames (cycle 11000)" \
 
 # --- (b) what it looks like ---------------------------------------------
 SHOT="$TMP/at-12.5.png"
+keep_picture "$SHOT" endoview-replay
 replay "$FILE" --seek 12.5 --paused --frames 2
 read -r X Y W H < <(view_rect endo)
 # the lumen somewhere in the image: its darkest sixteenth against its
@@ -141,8 +142,9 @@ echo "# the timeline at 12.5 of 25 s: lit $left before the middle, $right after"
 check "the timeline: filled up to the middle, at 12.5 s of 25" \
 	float_test "$left > 0.3 && $right < 0.2"
 check_status "overview and both views: draw and exit 0" 0 \
-	replay "$FILE" --seek 24 --view both --frames 4 \
-	--screenshot "$TMP/both.png"
+	replay "$FILE" --seek 12.5 --paused --view both --frames 8 \
+	--size 1280x720 --screenshot "$TMP/both.png"
+keep_picture "$TMP/both.png" endoview
 check "both views: no OpenGL error" ran_clean
 read -r X Y W H < <(view_rect overview)
 check "both views: the scope's green in the overview" float_test \

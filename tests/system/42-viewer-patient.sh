@@ -82,6 +82,14 @@ shot() {
 	MIDDLE="disc:$((x + w / 2)),$((y + h / 2)),$((w / 4))"
 	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 		cp "$TMP/$1.png" "$ENDOSIM_KEEP_SHOTS/patient-$1.png"
+	case $1 in
+	open) keep_picture "$TMP/open.png" patient-insufflated ;;
+	collapsed) keep_picture "$TMP/collapsed.png" patient-collapsed ;;
+	pool) keep_picture "$TMP/pool.png" patient-pool ;;
+	under) keep_picture "$TMP/under.png" patient-under ;;
+	smeared) keep_picture "$TMP/smeared.png" patient-smeared ;;
+	washed) keep_picture "$TMP/washed.png" patient-washed ;;
+	esac
 }
 
 # clean: the last run drew its frames live, without an OpenGL error
@@ -182,6 +190,10 @@ take turning turning
 check "the panel says the turn (or supine, once turned) and the hand" eval \
 	'(said "turning to supine, [0-9]+ %$" || said "patient supine$") &&
 	 said "hand on llq, 20 N; valves none$"'
+# the panel at the size where it draws the figure and the gauge (1280x720),
+# for the docs (docs/TRAINEE.md): the same moment, one run more
+view --size 1280x720 --frames 12 --screenshot "$TMP/panel.png"
+keep_picture "$TMP/panel.png" patient-panel
 
 # --- under the surface --------------------------------------------------------
 use_slot deep

@@ -174,6 +174,10 @@ look() {
 	TOP_STRIP="rect:$x,$y,$w,$((h / 12))"
 	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 		cp "$TMP/$1.png" "$ENDOSIM_KEEP_SHOTS/voice-$1.png"
+	case $1 in
+	pain) keep_picture "$TMP/pain.png" patient-pain ;;
+	torn) keep_picture "$TMP/torn.png" patient-perforation ;;
+	esac
 }
 check "pain high (11 s): screenshot" look pain 11
 check "... the panel: the level, crying out, the cause and place" \

@@ -29,6 +29,7 @@ check "the recomputed metrics find all 5 polyps" \
 
 check_screenshot "$TMP/report/index.html" "$SHOT" 1280 2000 \
 	"the plots' red marks"
+keep_picture "$SHOT" session-report
 
 chrome --dump-dom "file://$TMP/report/index.html" >"$TMP/dom.html"
 check "the rendered DOM has the four plots and the mucosa map" \

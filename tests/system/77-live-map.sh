@@ -81,6 +81,7 @@ wait "$VIEWER"
 check "Q quits the viewer cleanly" test $? = 0
 [ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 	cp "$TMP/shot2.png" "$ENDOSIM_KEEP_SHOTS/live-map.png"
+keep_picture "$TMP/shot2.png" endoview-map
 read -r mx my mw mh < <(grep '^endoview: layout' "$TMP/live.out" |
 	tr ' ' '\n' | sed -n 's/^map=//p' | tr ',' ' ')
 check "the overlay's place is given (M shown)" test "${mw:-0}" -gt 0
