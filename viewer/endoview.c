@@ -1,7 +1,7 @@
 /*
  * endoview - the colonoscopy simulator's monitor: the endoscopic image, the
  * scope's shape in the colon, the forces, and the trainee's hands on the
- * simulated rig. See README.md ("The viewer") and docs/ARCHITECTURE.md.
+ * simulated rig. See docs/TRAINEE.md and docs/ARCHITECTURE.md.
  *
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]

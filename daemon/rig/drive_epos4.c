@@ -393,7 +393,8 @@ static int epos4_exchange(struct drive *d, const double *setpoint,
 /*
  * The drive's communication watchdog: a heartbeat consumer that faults the
  * drive (0x8130) when the daemon falls silent for watchdog_s, so that a
- * dead daemon leaves no torque on (see the README on a real EPOS4 on USB).
+ * dead daemon leaves no torque on (docs/TECHNICIAN.md says what that
+ * means on a real EPOS4 on USB).
  */
 static int set_watchdog(struct epos4 *e)
 {

@@ -23,7 +23,7 @@
  *    compared: her valves and the assistant's first press among them);
  *  - last, the shipped demo is her course, step for step: a change of
  *    the physics fails here after the checks above have judged it (and
- *    the demo is then written anew, README.md says how).
+ *    the demo is then written anew, docs/INSTRUCTOR.md says how).
  *
  * Run from the top of the source tree (tests/run.sh does), or with
  * ENDOSIM_TOP naming it.
@@ -359,7 +359,7 @@ static void test_demo_is_her_course(void **unused)
 	at = first_difference(a, b);
 	if (at >= 0) {
 		fail_msg("%s is not her course on this model (write it anew: "
-			 "README.md, the demo): hers '%.*s', the file's "
+			 "docs/INSTRUCTOR.md, the demo): hers '%.*s', the file's "
 			 "'%.*s'", DEMO, (int)strcspn(a + at, "\n"), a + at,
 			 (int)strcspn(b + at, "\n"), b + at);
 	}
