@@ -30,9 +30,7 @@ struct strip {
 
 static double strip_y(const struct strip *s, double v)
 {
-	double u = (v - s->y.lo) / (s->y.hi - s->y.lo);
-
-	return s->y0 + STRIP_H - fmin(1, fmax(0, u)) * STRIP_H;
+	return htmlpage_px_band(&s->y, v, s->y0, STRIP_H);
 }
 
 /* Segment I's column's middle, px. */
@@ -53,15 +51,7 @@ static void strip_begin(struct strip *s, FILE *o, int k, double hi)
 			"width=\"%.1f\" height=\"%.1f\"/>\n", i % 2,
 			col_x(i) - COL_W / 2, s->y0, COL_W, STRIP_H);
 	}
-	for (double v = s->y.lo; v <= s->y.hi + s->y.step / 2; v += s->y.step) {
-		double y = strip_y(s, v);
-
-		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
-			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" x=\"%.1f\" "
-			"y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
-			HTMLPAGE_PLOT_X, y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W, y,
-			HTMLPAGE_PLOT_X - 6, y + 4, v);
-	}
+	htmlpage_yticks(o, &s->y, s->y0, STRIP_H);
 	fprintf(o, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
 		"height=\"%.1f\"/>\n", HTMLPAGE_PLOT_X, s->y0, HTMLPAGE_PLOT_W,
 		STRIP_H);
@@ -97,13 +87,13 @@ static void strip_bar(const struct strip *s, int i, double off, double w,
 	if (!(v > 0)) {
 		return;
 	}
-	fprintf(s->o, "<rect class=\"bar\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
-		"height=\"%.1f\" fill=\"%s\"><title>%s: %s %s</title></rect>\n"
-		"<text class=\"tick\" x=\"%.1f\" y=\"%.1f\" "
+	fprintf(s->o, "<rect class=\"bar\" x=\"%.1f\" y=\"%.1f\" "
+		"width=\"%.1f\" height=\"%.1f\" fill=\"%s\"><title>%s: %s %s"
+		"</title></rect>\n<text class=\"tick\" x=\"%.1f\" y=\"%.1f\" "
 		"text-anchor=\"middle\" stroke=\"#fff\" stroke-width=\"3\" "
 		"paint-order=\"stroke\">%s</text>\n", x - w / 2, y, w,
-		s->y0 + STRIP_H - y, color, anatomy_segment_name(i), what, value,
-		x, y - 3, value);
+		s->y0 + STRIP_H - y, color, anatomy_segment_name(i), what,
+		value, x, y - 3, value);
 }
 
 /* A dashed line at V, keyed with LABEL at the right of the title line. */
@@ -126,9 +116,23 @@ static void short_s(char *buf, size_t size, double s)
 	snprintf(buf, size, s < 10 ? "%.1f s" : "%.0f s", s);
 }
 
+/* A bar of each segment's PEAK (one decimal written above it) in COLOR,
+ * WHAT in their tooltips. */
+static void strip_peaks(const struct strip *s, const double *peak,
+			const char *color, const char *what)
+{
+	char v[32];
+
+	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+		snprintf(v, sizeof(v), "%.1f", peak[i]);
+		strip_bar(s, i, 0, COL_W * 0.4, peak[i], color, v, what);
+	}
+}
+
 static void strip_pain(FILE *o, const struct metrics_along *al,
 		       const struct metrics_params *p, bool patient)
 {
+	double peak[ANATOMY_SEGMENTS];
 	struct strip s;
 	char v[32];
 
@@ -143,10 +147,9 @@ static void strip_pain(FILE *o, const struct metrics_along *al,
 		return;
 	}
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		snprintf(v, sizeof(v), "%.1f", al->seg[i].peak_pain);
-		strip_bar(&s, i, 0, COL_W * 0.4, al->seg[i].peak_pain,
-			  PAIN_COLOR, v, "peak pain");
+		peak[i] = al->seg[i].peak_pain;
 	}
+	strip_peaks(&s, peak, PAIN_COLOR, "peak pain");
 	snprintf(v, sizeof(v), "in pain from %g", p->pain_level);
 	strip_level(&s, p->pain_level, v);
 }
@@ -183,20 +186,17 @@ static void strip_times(FILE *o, const struct metrics_along *al,
 static void strip_force(FILE *o, const struct metrics_along *al,
 			const struct metrics_params *p)
 {
-	double hi = p->force_threshold_n;
+	double hi = p->force_threshold_n, peak[ANATOMY_SEGMENTS];
 	struct strip s;
 	char v[48];
 
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		hi = fmax(hi, al->seg[i].peak_force_n);
+		peak[i] = al->seg[i].peak_force_n;
+		hi = fmax(hi, peak[i]);
 	}
 	strip_begin(&s, o, 2, hi * HEADROOM);
 	strip_title(&s, "Peak insertion force (N)", 24);
-	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-		snprintf(v, sizeof(v), "%.1f", al->seg[i].peak_force_n);
-		strip_bar(&s, i, 0, COL_W * 0.4, al->seg[i].peak_force_n,
-			  FORCE_COLOR, v, "peak insertion force (N)");
-	}
+	strip_peaks(&s, peak, FORCE_COLOR, "peak insertion force (N)");
 	snprintf(v, sizeof(v), "excessive from %g N", p->force_threshold_n);
 	strip_level(&s, p->force_threshold_n, v);
 }
@@ -239,8 +239,8 @@ static void along_figure(FILE *o, const struct metrics_along *al,
 	if (patient) {
 		fputs("<p class=\"none\" style=\"font-size:13px\">Each "
 		      "segment: while the tip was in it. A loop hurts where it "
-		      "stretches, often behind the tip: the pain episodes below "
-		      "name that place.</p>\n", o);
+		      "stretches, often behind the tip: the pain episodes "
+		      "below name that place.</p>\n", o);
 	}
 }
 
