@@ -88,15 +88,17 @@ static void strip_bar(const struct strip *s, int i, double off, double w,
 		return;
 	}
 	fprintf(s->o, "<rect class=\"bar\" x=\"%.1f\" y=\"%.1f\" "
-		"width=\"%.1f\" height=\"%.1f\" fill=\"%s\"><title>%s: %s %s"
-		"</title></rect>\n<text class=\"tick\" x=\"%.1f\" y=\"%.1f\" "
+		"width=\"%.1f\" height=\"%.1f\" fill=\"%s\" "
+		"fill-opacity=\".85\"><title>%s: %s %s</title></rect>\n"
+		"<text class=\"tick\" x=\"%.1f\" y=\"%.1f\" "
 		"text-anchor=\"middle\" stroke=\"#fff\" stroke-width=\"3\" "
 		"paint-order=\"stroke\">%s</text>\n", x - w / 2, y, w,
 		s->y0 + STRIP_H - y, color, anatomy_segment_name(i), what,
 		value, x, y - 3, value);
 }
 
-/* A dashed line at V, keyed with LABEL at the right of the title line. */
+/* A dashed line at V (under the bars, seen through them), keyed with
+ * LABEL at the right of the title line. */
 static void strip_level(const struct strip *s, double v, const char *label)
 {
 	const double right = HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W;
@@ -149,9 +151,9 @@ static void strip_pain(FILE *o, const struct metrics_along *al,
 	for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
 		peak[i] = al->seg[i].peak_pain;
 	}
-	strip_peaks(&s, peak, PAIN_COLOR, "peak pain");
 	snprintf(v, sizeof(v), "in pain from %g", p->pain_level);
 	strip_level(&s, p->pain_level, v);
+	strip_peaks(&s, peak, PAIN_COLOR, "peak pain");
 }
 
 static void strip_times(FILE *o, const struct metrics_along *al,
@@ -196,9 +198,9 @@ static void strip_force(FILE *o, const struct metrics_along *al,
 	}
 	strip_begin(&s, o, 2, hi * HEADROOM);
 	strip_title(&s, "Peak insertion force (N)", 24);
-	strip_peaks(&s, peak, FORCE_COLOR, "peak insertion force (N)");
 	snprintf(v, sizeof(v), "excessive from %g N", p->force_threshold_n);
 	strip_level(&s, p->force_threshold_n, v);
+	strip_peaks(&s, peak, FORCE_COLOR, "peak insertion force (N)");
 }
 
 /* Under the columns: each segment's name and the time the tip was there. */
