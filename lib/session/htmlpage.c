@@ -146,12 +146,32 @@ double htmlpage_px_x(const struct htmlpage_plot *p, double t_s)
 	return HTMLPAGE_PLOT_X + fmin(1, fmax(0, u)) * HTMLPAGE_PLOT_W;
 }
 
+double htmlpage_px_band(const struct htmlpage_axis *y, double v, double top,
+			double height)
+{
+	double u = (v - y->lo) / (y->hi - y->lo);
+
+	return top + height - fmin(1, fmax(0, u)) * height;
+}
+
 double htmlpage_px_y(const struct htmlpage_plot *p, double v)
 {
-	double u = (v - p->y.lo) / (p->y.hi - p->y.lo);
+	return htmlpage_px_band(&p->y, v, HTMLPAGE_PLOT_Y, HTMLPAGE_PLOT_H);
+}
 
-	return HTMLPAGE_PLOT_Y + HTMLPAGE_PLOT_H -
-	       fmin(1, fmax(0, u)) * HTMLPAGE_PLOT_H;
+void htmlpage_yticks(FILE *o, const struct htmlpage_axis *y, double top,
+		     double height)
+{
+	for (double v = y->lo; v <= y->hi + y->step / 2; v += y->step) {
+		double py = htmlpage_px_band(y, v, top, height);
+
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
+			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
+			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
+			HTMLPAGE_PLOT_X, py, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W,
+			py, HTMLPAGE_PLOT_X - 6, py + 4,
+			fabs(v) < y->step / 1e6 ? 0 : v);
+	}
 }
 
 static void plot_ticks(const struct htmlpage_plot *p, const char *xlabel,
@@ -159,16 +179,7 @@ static void plot_ticks(const struct htmlpage_plot *p, const char *xlabel,
 {
 	FILE *o = p->out;
 
-	for (double v = p->y.lo; v <= p->y.hi + p->y.step / 2; v += p->y.step) {
-		double y = htmlpage_px_y(p, v);
-
-		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" "
-			"x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" "
-			"x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
-			HTMLPAGE_PLOT_X, y, HTMLPAGE_PLOT_X + HTMLPAGE_PLOT_W,
-			y, HTMLPAGE_PLOT_X - 6, y + 4,
-			fabs(v) < p->y.step / 1e6 ? 0 : v);
-	}
+	htmlpage_yticks(o, &p->y, HTMLPAGE_PLOT_Y, HTMLPAGE_PLOT_H);
 	for (double v = p->x.lo; v <= p->x.hi + p->x.step / 2; v += p->x.step) {
 		double x = HTMLPAGE_PLOT_X + (v - p->x.lo) /
 			   (p->x.hi - p->x.lo) * HTMLPAGE_PLOT_W;

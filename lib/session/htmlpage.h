@@ -71,6 +71,16 @@ double htmlpage_px_x(const struct htmlpage_plot *p, double x);
 double htmlpage_px_y(const struct htmlpage_plot *p, double y);
 
 /*
+ * A y axis over a band of the plot's width from TOP px down HEIGHT px (a
+ * plot's: HTMLPAGE_PLOT_Y, _H; a figure of several strips: each strip's):
+ * the pixel of V on axis Y, and Y's grid lines and tick labels into O.
+ */
+double htmlpage_px_band(const struct htmlpage_axis *y, double v, double top,
+			double height);
+void htmlpage_yticks(FILE *o, const struct htmlpage_axis *y, double top,
+		     double height);
+
+/*
  * Opens a figure ID with TITLE (both as HTML, not escaped here) and its
  * svg; sets P's y axis over YLO .. YHI and draws both axes (P->x set by
  * the caller) with their labels.

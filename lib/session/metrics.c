@@ -53,6 +53,12 @@
  *   (the patient's measures count records with the patient enabled only;
  *   the first such record's hand, burst and tear count against none)
  *   lumen lost, mucosa seen, polyps seen: the view's (metricsview.c)
+ *   along the colon  segment i of a record: the first whose far end
+ *                    (anatomy_segment_start(i + 1)) is beyond tip_s_m, the
+ *                    cecum past them all; none while not inserted. The
+ *                    previous record's segment gains the time since it
+ *                    (in pain and looped as that record was); a record's
+ *                    pain and F raise its own segment's peaks
  */
 #include <math.h>
 #include <stdbool.h>
@@ -112,6 +118,10 @@ struct metrics {
 	double shape_t, shape_depth, shape_tip;
 	double shaft_in, tip_in, shaft_idle, shaft_out, tip_out;
 	double loop_in;           /* s with a loop on the way in */
+	/* along the colon: each segment's far end (m), its measures */
+	int segments;             /* 0: no case's anatomy */
+	double seg_end_m[ANATOMY_SEGMENTS];
+	struct metrics_segment along[ANATOMY_SEGMENTS];
 };
 
 void metrics_params_default(struct metrics_params *p)
@@ -276,8 +286,13 @@ struct metrics *metrics_create(const struct colon *colon,
 	}
 	m->cecum_s_m = colon_cecum_s(colon);
 	if (colon_anatomy(colon)) {
-		m->exit_s_m = anatomy_segment_start(colon_anatomy(colon),
-						    ANATOMY_RECTUM);
+		const struct anatomy *a = colon_anatomy(colon);
+
+		m->exit_s_m = anatomy_segment_start(a, ANATOMY_RECTUM);
+		for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
+			m->seg_end_m[i] = anatomy_segment_start(a, i + 1);
+		}
+		m->segments = ANATOMY_SEGMENTS;
 	}
 	m->view = metricsview_create(colon, p);
 	if (!m->view) {
@@ -360,6 +375,45 @@ static void record_shape(struct metrics *m, const struct session_record *r,
 	m->shape_t = t;
 	m->shape_depth = r->depth_m;
 	m->shape_tip = r->tip_s_m;
+}
+
+/* The segment R's tip is in, -1: out (or no anatomy). */
+static int tip_segment(const struct metrics *m, const struct session_record *r)
+{
+	int i = 0;
+
+	if (!m->segments || !(r->depth_m > 0) || !isfinite(r->tip_s_m)) {
+		return -1;
+	}
+	while (i + 1 < m->segments && r->tip_s_m >= m->seg_end_m[i]) {
+		i++;
+	}
+	return i;
+}
+
+/* Along the colon: Q's state (the previous record, NULL at the first)
+ * held for DT where Q's tip was; R's pain and insertion force F where its
+ * tip is. */
+static void record_along(struct metrics *m, const struct session_record *r,
+			 const struct session_record *q, double dt, double f)
+{
+	int i = q ? tip_segment(m, q) : -1;
+	struct metrics_segment *s;
+
+	if (i >= 0) {
+		s = &m->along[i];
+		s->time_s += dt;
+		s->pain_s += q->patient && q->pain >= m->p.pain_level ? dt : 0;
+		s->loop_s += record_bow(q) > m->loop.on ? dt : 0;
+	}
+	i = tip_segment(m, r);
+	if (i >= 0) {
+		s = &m->along[i];
+		if (r->patient && isfinite(r->pain)) {
+			s->peak_pain = fmax(s->peak_pain, r->pain);
+		}
+		s->peak_force_n = fmax(s->peak_force_n, f);
+	}
 }
 
 /* SITE taken now, other than BEFORE (-1: none). */
@@ -462,6 +516,7 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 	record_shape(m, r, t);
 	episodes_update(&m->force, t, f, 0, -1);
 	episodes_update(&m->loop, t, record_bow(r), 0, -1);
+	record_along(m, r, m->records > 1 ? &m->prev : NULL, dt, f);
 	m->prev = *r;
 	was_lost = m->lost;
 	m->lost = m->view && inserted && metricsview_lumen_lost(m->view, r);
@@ -588,6 +643,12 @@ bool metrics_has_patient(const struct metrics_result *r)
 	return r->gloucester || r->peak_pain > 0 || r->gas_used_l > 0 ||
 	       r->peak_gas_pressure_pa > 0 || r->position_changes ||
 	       r->hand_uses || r->perforations;
+}
+
+void metrics_along(const struct metrics *m, struct metrics_along *out)
+{
+	out->segments = m->segments > 0;
+	memcpy(out->seg, m->along, sizeof(out->seg));
 }
 
 double metrics_mucosa_seen_in(const struct metrics *m, double s0_m,

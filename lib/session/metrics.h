@@ -32,7 +32,10 @@
  *   - the share of the mucosa seen: the mesh's area in the camera's view
  *     (field of view, within view_distance_m, not hidden behind a fold:
  *     a depth test on the CPU, depthmap.h) for seen_dwell_s in all;
- *   - polyps found: those of the case in view for polyp_dwell_s in all.
+ *   - polyps found: those of the case in view for polyp_dwell_s in all;
+ *   - along the colon (metrics_along(), not in the result: the report
+ *     recomputes it): per anatomical segment of the case, the time the
+ *     tip spent there, in pain, looped, and the peak pain and force there.
  *
  * Threads: one struct metrics belongs to one thread. metrics_create()
  * allocates (the colon's per-vertex bookkeeping); metrics_record() does
@@ -187,6 +190,30 @@ struct metrics_result {
 	struct metrics_episode pain[METRICS_MAX_EPISODES];
 };
 
+/*
+ * Along the colon: each anatomical segment's share of the session, over
+ * the records with the tip in it (inserted, depth_m > 0, and tip_s_m
+ * within the segment's bounds of the case's anatomy; before the anal
+ * canal counts for it, past the cecum's end for the cecum). A record's
+ * state holds until the next record, as for pain_share, so the times sum
+ * to the time the tip was in; the peaks are the records' own.
+ */
+struct metrics_segment {
+	double time_s;             /* the tip there */
+	double pain_s;             /* ... the pain at or above pain_level */
+	double loop_s;             /* ... looped: any bow above
+				      loop_threshold_m (as the loop episodes) */
+	double peak_pain;          /* 0..10 (records with the patient) */
+	double peak_force_n;       /* |insertion force| (as the force
+				      episodes' F), N */
+};
+
+struct metrics_along {
+	bool segments;             /* false: no case's anatomy (no colon, or
+				      an imported one): all below 0 */
+	struct metrics_segment seg[ANATOMY_SEGMENTS]; /* anal canal .. cecum */
+};
+
 struct metrics;
 
 /*
@@ -217,6 +244,9 @@ void metrics_result(const struct metrics *m, struct metrics_result *out);
  * the body's gas, turns, presses or perforations (a file of format 4);
  * false for a session without the patient or older. */
 bool metrics_has_patient(const struct metrics_result *r);
+
+/* The measures along the colon so far (struct metrics_along). */
+void metrics_along(const struct metrics *m, struct metrics_along *out);
 
 /* The share 0..1 of the mesh's area between material S0_M and S1_M (by
  * each vertex' centreline sample) seen so far; 0 without a colon. */

@@ -13,6 +13,7 @@
 #include "session/livemap.h"
 #include "proto/names.h"
 #include "session/report.h"
+#include "session/reportalong.h"
 #include "session/reportcompare.h"
 #include "session/reportplot.h"
 #include "session/sessioninputs.h"
@@ -611,9 +612,27 @@ static void page_header(FILE *o, const struct session_file *f,
 static void page_map(FILE *o, const struct metrics_map *map,
 		     const struct anatomy *a, uint32_t found);
 
+/* Where it hurt: the pain along the colon, next to the force and the
+ * loop (reportalong.h), from ALONG (NULL: not computed). */
+static void page_along(FILE *o, const struct session_file *f,
+		       const struct metrics_result *m,
+		       const struct metrics_along *along)
+{
+	struct metrics_params mp;
+
+	if (!along || !f->n_records) {
+		return;
+	}
+	sessioninputs_file_metrics_params(f, &mp);
+	fputs("<section id=\"along\"><h2>Along the colon</h2>\n", o);
+	reportalong_write(o, along, &mp, metrics_has_patient(m));
+	fputs("</section>\n", o);
+}
+
 static void page_metrics(FILE *o, const struct session_file *f,
 			 const struct metrics_result *m,
-			 const struct anatomy *a, const struct metrics_map *map)
+			 const struct anatomy *a, const struct metrics_map *map,
+			 const struct metrics_along *along)
 {
 	struct htmlpage_plot p = { .out = o };
 
@@ -641,7 +660,9 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	} else {
 		fputs("<p class=\"none\">no records</p>\n", o);
 	}
-	fputs("</section>\n<section><h2>Episodes and events</h2>\n", o);
+	fputs("</section>\n", o);
+	page_along(o, f, m, along);
+	fputs("<section><h2>Episodes and events</h2>\n", o);
 	episode_table(o, "Excessive force", m->force, m->n_force,
 		      m->force_episodes, "N", 1);
 	episode_table(o, "Loops", m->loop, m->n_loop, m->loop_episodes, "cm",
@@ -737,12 +758,14 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 {
 	char tmp[4200], err[256];
 	struct metrics_map *map = malloc(sizeof(*map));
+	struct metrics_along along;
 	struct anatomy a;
-	bool have_a;
+	bool have_a, have_along;
 	FILE *o;
 	int r;
 
-	if (!map || sessionmetrics_map(f, map)) {
+	have_along = sessionmetrics_map(f, map, &along) == 0;
+	if (!map || !have_along) {
 		free(map);
 		map = NULL; /* the report without its map */
 	}
@@ -757,7 +780,8 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	if (ref) {
 		page_compare(o, f, m, ref, have_a ? &a : NULL);
 	}
-	page_metrics(o, f, m, have_a ? &a : NULL, map);
+	page_metrics(o, f, m, have_a ? &a : NULL, map,
+		     have_along ? &along : NULL);
 	r = htmlpage_commit(o, tmp, dir);
 	free(map);
 	return r;

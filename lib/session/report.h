@@ -13,11 +13,15 @@
  *   - each mobile segment's bow (m) with the loop threshold;
  *   - the unseen-mucosa map: the colon unrolled (along, around), each
  *     cell's share seen, the segments, the polyps found and missed;
- * force episodes and loop episodes as shaded bands on every plot, faults
- * and state changes as vertical marks, and the lists of episodes and
- * events. Long sessions are decimated to the minimum and maximum of each
- * pixel column, so that every peak survives. Every text that comes from
- * the file (trainee, case, event texts) is HTML-escaped.
+ *   - the pain along the colon, next to the force and the loop: per
+ *     anatomical segment (metrics_along(), recomputed from F's records)
+ *     the peak pain, the time in pain and looped, the peak insertion
+ *     force, and a table of them (reportalong.h);
+ * force episodes and loop episodes as shaded bands on every plot over
+ * time, faults and state changes as vertical marks, and the lists of
+ * episodes and events. Long sessions are decimated to the minimum and
+ * maximum of each pixel column, so that every peak survives. Every text
+ * that comes from the file (trainee, case, event texts) is HTML-escaped.
  *
  * The page's parts shared with the trainee's page: htmlpage.h; its plots
  * over time: reportplot.h; the comparison with a reference:

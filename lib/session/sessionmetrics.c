@@ -72,7 +72,8 @@ int sessionmetrics_compute(const struct session_file *f,
 	return 0;
 }
 
-int sessionmetrics_map(const struct session_file *f, struct metrics_map *out)
+int sessionmetrics_map(const struct session_file *f, struct metrics_map *map,
+		       struct metrics_along *along)
 {
 	struct metrics_params p;
 	struct colon *c;
@@ -84,7 +85,12 @@ int sessionmetrics_map(const struct session_file *f, struct metrics_map *out)
 	if (!m) {
 		return -ENOMEM;
 	}
-	metrics_map(m, out);
+	if (map) {
+		metrics_map(m, map);
+	}
+	if (along) {
+		metrics_along(m, along);
+	}
 	metrics_destroy(m);
 	colon_destroy(c);
 	return 0;

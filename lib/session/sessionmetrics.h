@@ -3,8 +3,8 @@
  * (metrics.h): the colon rebuilt from its CASE frame, its configuration
  * and its header's resolution (sessioninputs.h), the records fed in with
  * its events in time order. For a file whose END frame is missing (a
- * recording cut short), for the report's map, and for other thresholds
- * than those it was recorded with.
+ * recording cut short), for the report's map and measures along the
+ * colon, and for other thresholds than those it was recorded with.
  *
  * Not for the force loop: allocates (the colon, ~50 ms), reads nothing
  * but F. Any thread.
@@ -28,9 +28,12 @@ int sessionmetrics_compute(const struct session_file *f,
 			   size_t errsize);
 
 /*
- * F's unseen-mucosa map (metrics_map()), with the metrics' parameters F
- * was recorded with. 0 or -ENOMEM. The report draws it under its plots.
+ * F's unseen-mucosa map (metrics_map()) into MAP and its measures along
+ * the colon (metrics_along()) into ALONG (either NULL: not wanted), with
+ * the metrics' parameters F was recorded with: what the END frame does
+ * not hold. 0 or -ENOMEM. The report draws them under its plots.
  */
-int sessionmetrics_map(const struct session_file *f, struct metrics_map *out);
+int sessionmetrics_map(const struct session_file *f, struct metrics_map *map,
+		       struct metrics_along *along);
 
 #endif

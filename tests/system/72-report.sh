@@ -5,9 +5,10 @@
 # withdrawal of ~6.5 min), its report (tests/tools/session_report, the
 # code of `endoctl session report`), rendered in headless Chromium: the
 # screenshot is not blank (dark text, the red threshold lines), the
-# rendered DOM holds the four plots with their episode bands and the
-# unseen-mucosa map (its five polyps found), the
-# trainee's name escaped, no script. The screenshot stays in
+# rendered DOM holds the four plots with their episode bands, the
+# unseen-mucosa map (its five polyps found) and the pain along the colon
+# (no patient here: the force and the loop by segment, the sigmoid's
+# loop), the trainee's name escaped, no script. The screenshot stays in
 # $REPORT_SHOT (default $TMP/report.png) to be looked at.
 . "$(dirname "$0")/../common.sh"
 
@@ -32,8 +33,8 @@ check_screenshot "$TMP/report/index.html" "$SHOT" 1280 2000 \
 keep_picture "$SHOT" session-report
 
 chrome --dump-dom "file://$TMP/report/index.html" >"$TMP/dom.html"
-check "the rendered DOM has the four plots and the mucosa map" \
-	test "$(grep -o '<svg class="plot"' "$TMP/dom.html" | wc -l)" -eq 5
+check "the rendered DOM has the four plots, the mucosa map, along the colon" \
+	test "$(grep -o '<svg class="plot"' "$TMP/dom.html" | wc -l)" -eq 6
 check "... the map marks the case's five polyps, found" \
 	test "$(grep -o '<title>polyp [0-9]: found</title>' "$TMP/dom.html" |
 		wc -l)" -eq 5
@@ -43,6 +44,14 @@ for id in plot-force plot-torque plot-tip plot-bow; do
 			grep -q "<path class=\"series\" [^>]*d=\"M[0-9]"' \
 		_ "$id" "$TMP/dom.html"
 done
+check "the DOM has the pain along the colon with its force bars" \
+	sh -c 'sed -n "/<figure id=\"pain-along\">/,/<\/figure>/p" "$1" |
+		grep -q "<title>sigmoid: peak insertion force (N) [0-9]"' \
+	_ "$TMP/dom.html"
+check "... and its table, the sigmoid looped (the scripted loop)" \
+	sh -c 'grep -q "<table class=\"episodes\" id=\"pain-along-table\">" "$1" &&
+		grep -qE "<th>sigmoid</th>(<td>[^<]*</td>){3}<td>[1-9][0-9.]* s</td>" "$1"' \
+	_ "$TMP/dom.html"
 check "the DOM has force episode bands" \
 	grep -q '<rect class="band force"' "$TMP/dom.html"
 check "the DOM has loop episode bands" \

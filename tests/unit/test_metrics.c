@@ -16,6 +16,9 @@
  *     cause (a fade counts for the cause before it); the Gloucester
  *     estimate's every step; the gas, turns, presses and perforations of
  *     known changes; a file of format 4 (no pain) still computes;
+ *   - along the colon: a session file whose tip dwells in the sigmoid in
+ *     pain and a loop and in the descending without: each segment's times
+ *     and peaks to the nanosecond, the pain with the tip out in none;
  *   - the lumen on a straight colon: lost when dir points at the wall or
  *     presses head-on into it, kept down the lumen or 30 deg off it;
  *   - the mucosa seen on a straight colon (geometry in each test);
@@ -28,6 +31,7 @@
  * tests/cases: run from the source tree.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -753,6 +757,125 @@ static void test_format_4_file(void **state)
 	assert_near(res.duration_s, 2, 1e-12);
 	assert_int_equal(res.force_episodes, 1);
 	assert_int_equal(res.gloucester, 0);
+	session_file_close(&f);
+}
+
+/* ------------------------------------------------- along the colon */
+
+/* The text of the file PATH into BUF (SIZE bytes), NUL-terminated. */
+static void read_text(const char *path, char *buf, size_t size)
+{
+	FILE *f = fopen(path, "r");
+	size_t n;
+
+	assert_non_null(f);
+	n = fread(buf, 1, size - 1, f);
+	buf[n] = '\0';
+	fclose(f);
+}
+
+/*
+ * The straight case's segments (tests/cases/straight.case: the anal canal
+ * to 0.04 m, the rectum to 0.16, the sigmoid to 0.53, the descending to
+ * 0.68), records at 100 Hz for 9 s, the patient enabled:
+ *   0-1 s  the tip at 0.10 (rectum), no pain, 2 N
+ *   1-5 s  at 0.30 (sigmoid), pain 6 (looping, there), 8 N with one
+ *          record of 16 N at 3 s; the sigmoid bowed 5 cm at 2-4 s
+ *   5-8 s  at 0.60 (descending), no pain, 5 N, the sigmoid bowed just
+ *          below the loop threshold (the paper model's: the records')
+ *   8-9 s  out (depth 0), pain 5, looping in the sigmoid: in pain, but
+ *          in no segment (they are the tip's, not the pain's place)
+ * Each record's state holds until the next: exact to the nanosecond.
+ */
+static void write_along_session(const char *path)
+{
+	static const char head[] = "format=5\nrecord_size=520\nid=9\n"
+				   "case=straight\nstep_m=0.002\n"
+				   "ring_vertices=48\nsegment_m=0.04\n";
+	static char case_text[1 << 16];
+	int fd = open(path, O_WRONLY | O_TRUNC);
+
+	assert_true(fd >= 0);
+	read_text("tests/cases/straight.case", case_text, sizeof(case_text));
+	assert_int_equal(session_file_write_magic(fd), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_HEADER,
+						  head, strlen(head)), 0);
+	assert_int_equal(session_file_write_frame(fd, SESSION_FRAME_CASE,
+						  case_text,
+						  strlen(case_text)), 0);
+	for (uint64_t k = 0; k < 900; k++) {
+		struct session_record r = rec(k * (RATE_HZ / 100));
+		double t = k / 100.0;
+		bool sigmoid = t >= 1 && t < 5;
+
+		r.tip_s_m = t < 1 ? 0.10f : sigmoid ? 0.30f : t < 8 ? 0.60f : 0;
+		r.depth_m = t < 8 ? r.tip_s_m : 0;
+		r.limited[0] = t < 1 ? -2 : !sigmoid ? -5 : k == 300 ? -16 : -8;
+		r.bow_m[0] = t >= 2 && t < 4 ? 0.05f :
+			     t >= 5 && t < 8 ?
+			     (float)(0.95 * SESSION_LOOP_THRESHOLD_PAPER_M) : 0;
+		r.patient = 1;
+		r.heart_rate_bpm = 70;
+		r.hand_site = r.burst_segment = r.torn_segment = -1;
+		r.pain = sigmoid ? 6 : t >= 8 ? 5 : 0;
+		r.pain_cause = r.pain > 0 ? LOOP : NONE;
+		r.pain_place = r.pain > 0 ? ANATOMY_SIGMOID : -1;
+		assert_int_equal(session_file_write_frame(
+					 fd, SESSION_FRAME_RECORD, &r,
+					 sizeof(r)), 0);
+	}
+	close(fd);
+}
+
+static void assert_segment(const struct metrics_segment *g, double time_s,
+			   double pain_s, double loop_s, double peak_pain,
+			   double peak_force_n)
+{
+	assert_near(g->time_s, time_s, 1e-9);
+	assert_near(g->pain_s, pain_s, 1e-9);
+	assert_near(g->loop_s, loop_s, 1e-9);
+	assert_near(g->peak_pain, peak_pain, 1e-6);
+	assert_near(g->peak_force_n, peak_force_n, 1e-6);
+}
+
+/* The session file above, as the report recomputes it: each segment's
+ * time, time in pain and looped, peaks; the pain with the tip out in
+ * none; none without a case. */
+static void test_along_the_colon(void **state)
+{
+	char path[] = "/tmp/test_metrics_XXXXXX";
+	struct metrics_along al;
+	struct metrics_result res;
+	struct metrics_params p;
+	struct session_file f;
+	char err[256];
+	int fd = mkstemp(path);
+
+	(void)state;
+	assert_true(fd >= 0);
+	close(fd);
+	write_along_session(path);
+	assert_int_equal(session_file_read(path, &f), 0);
+	unlink(path);
+	assert_int_equal(sessionmetrics_map(&f, NULL, &al), 0);
+	assert_true(al.segments);
+	assert_segment(&al.seg[ANATOMY_ANAL_CANAL], 0, 0, 0, 0, 0);
+	assert_segment(&al.seg[ANATOMY_RECTUM], 1, 0, 0, 0, 2);
+	assert_segment(&al.seg[ANATOMY_SIGMOID], 4, 4, 2, 6, 16);
+	assert_segment(&al.seg[ANATOMY_DESCENDING], 3, 0, 0, 0, 5);
+	for (int i = ANATOMY_SPLENIC_FLEXURE; i < ANATOMY_SEGMENTS; i++) {
+		assert_segment(&al.seg[i], 0, 0, 0, 0, 0);
+	}
+	/* in pain 4 s with the tip in, 0.99 s out (the last record's none) */
+	sessioninputs_file_metrics_params(&f, &p);
+	assert_true(p.loop_threshold_m == SESSION_LOOP_THRESHOLD_PAPER_M);
+	assert_int_equal(sessionmetrics_compute(&f, &p, &res, err,
+						sizeof(err)), 0);
+	assert_near(res.pain_share * res.duration_s, 4.99, 1e-9);
+	f.case_text = NULL; /* no case: no segments */
+	assert_int_equal(sessionmetrics_map(&f, NULL, &al), 0);
+	assert_false(al.segments);
+	assert_segment(&al.seg[ANATOMY_SIGMOID], 0, 0, 0, 0, 0);
 	session_file_close(&f);
 }
 
@@ -1560,6 +1683,7 @@ int main(void)
 		cmocka_unit_test(test_pain_level),
 		cmocka_unit_test(test_patient_counts),
 		cmocka_unit_test(test_format_4_file),
+		cmocka_unit_test(test_along_the_colon),
 		cmocka_unit_test(test_lumen_lost_straight),
 		cmocka_unit_test(test_mucosa_forward_sweep),
 		cmocka_unit_test(test_mucosa_backward_sees_nothing_ahead),

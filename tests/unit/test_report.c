@@ -1,9 +1,11 @@
 /*
  * test_report.c - the instructor's report from a synthetic session in
  * memory: the page holds its four plots, the episodes as bands, the
- * events, the segments' names; text from the file is escaped; a spike of
- * one record in 20 000 survives the decimation; the metrics recomputed
- * from the file (sessionmetrics_compute()) find what the records hold.
+ * events, the segments' names, the figure and table along the colon (the
+ * force and the loop in the segment the tip was in); text from the file
+ * is escaped; a spike of one record in 20 000 survives the decimation;
+ * the metrics recomputed from the file (sessionmetrics_compute()) find
+ * what the records hold.
  *
  * Reads tests/cases/straight.case: run from the source tree. Writes to
  * $TMPDIR.
@@ -151,8 +153,9 @@ static void test_report_page(void **state)
 	assert_int_equal(report_write(&f, &m, NULL, dir), 0); /* creates DIR */
 	snprintf(path, sizeof(path), "%s/index.html", dir);
 	html = slurp(path);
-	assert_int_equal(count(html, "<svg class=\"plot\""), 5);
+	assert_int_equal(count(html, "<svg class=\"plot\""), 6);
 	assert_non_null(strstr(html, "id=\"mucosa-map\""));
+	assert_non_null(strstr(html, "id=\"pain-along\""));
 	assert_non_null(strstr(html, "id=\"plot-force\""));
 	assert_non_null(strstr(html, "id=\"plot-torque\""));
 	assert_non_null(strstr(html, "id=\"plot-tip\""));
@@ -168,6 +171,12 @@ static void test_report_page(void **state)
 	assert_null(strstr(html, "<evil>"));
 	assert_non_null(strstr(html, "&lt;evil&gt; note"));
 	assert_null(strstr(html, "src="));
+	/* along the colon, no patient: the rectum pushed at 20 N, the
+	 * sigmoid's spike of 40 N and its loop of 2 s (the tip there) */
+	assert_non_null(strstr(html, "<th>rectum</th><td>&ndash;</td><td>"
+				     "&ndash;</td><td>11.0 s</td><td>none</td>"
+				     "<td>20.0 N</td>"));
+	assert_non_null(strstr(html, "<td>2.0 s</td><td>40.0 N</td>"));
 	/* the spike's pixel: 40 N on the axis 0..40 N is the plot's top */
 	force = strstr(html, "id=\"plot-force\"");
 	force = strstr(force, "<path class=\"series\"");
