@@ -26,6 +26,9 @@
 #define LENS_CLEAN 0.05      /* ... until it is clear */
 #define LOOP_HELP_M 0.03     /* a mobile span bowed this far ... */
 #define LOOP_HELP_N 10       /* ... and her push this hard: a loop, help */
+#define EASE_PAIN 3.0        /* the patient's face this pained: she eases */
+#define CALM_PAIN 1.5        /* ... until it is back under this ... */
+#define EASE_MAX_S 8.0       /* ... or this long has passed */
 
 struct trainee {
 	struct offline *off;
@@ -42,6 +45,7 @@ struct trainee {
 	int pressing;             /* the site the assistant presses, -1 */
 	bool turned;              /* she had the patient turned for a loop */
 	bool examining;           /* withdrawing: the segment seen uppermost */
+	bool mindful;             /* she eases off when the patient hurts */
 	struct trainee_actions did;
 	void (*watch)(const struct endosim_state *s, void *arg);
 	void *watch_arg;
@@ -338,6 +342,30 @@ static void steer(struct trainee *t)
 	}
 }
 
+void trainee_mind_patient(struct trainee *t, bool mindful)
+{
+	t->mindful = mindful;
+}
+
+/* Minding the patient: while the patient hurts she neither pushes nor
+ * pulls, letting the tube settle where it wants, until the pain has
+ * eased. Whether she did. */
+static bool mind(struct trainee *t)
+{
+	double since = trainee_time(t);
+
+	if (!t->mindful || t->s->patient.pain < EASE_PAIN) {
+		return false;
+	}
+	while (t->s->patient.pain >= CALM_PAIN &&
+	       trainee_time(t) - since < EASE_MAX_S) {
+		t->depth = t->s->axis[ENDOSIM_AXIS_INSERTION].position;
+		t->roll = t->s->axis[ENDOSIM_AXIS_ROLL].position;
+		waypoint(t);
+	}
+	return true;
+}
+
 static void ask_help(struct trainee *t);
 
 bool trainee_insert(struct trainee *t, double tip_s_m, double speed,
@@ -346,6 +374,9 @@ bool trainee_insert(struct trainee *t, double tip_s_m, double speed,
 	double best = t->s->scope.tip_s_m, since = trainee_time(t);
 
 	while (t->s->scope.tip_s_m < tip_s_m) {
+		if (mind(t)) {
+			continue; /* the stuck clock ran on meanwhile */
+		}
 		if (t->s->patient.turning) { /* she waits, easing off */
 			t->depth = t->s->axis[ENDOSIM_AXIS_INSERTION].position;
 			since = trainee_time(t);
@@ -374,6 +405,7 @@ static void move(struct trainee *t, double ddepth, double droll, double speed)
 	int steps = (int)ceil(fabs(ddepth) / (speed * TRAINEE_STEP_S));
 
 	for (int i = 0; i < steps; i++) {
+		mind(t);
 		t->depth += ddepth / steps;
 		t->roll += droll / steps;
 		t->bend[0] *= 0.5;

@@ -90,6 +90,16 @@ struct trainee *trainee_create(const struct config *cfg, const char *case_path,
 /* Ends the script ("TIME end"). NULL is fine. */
 void trainee_destroy(struct trainee *t);
 
+/*
+ * Whether she minds the patient (the expert does; not at first): when
+ * the patient's pain reaches 3 of 10 (the face and the voice tell her)
+ * she stops pushing or pulling, the hand's targets where the carriage and
+ * the roll are, and waits until the pain is under 1.5 or 8 s have
+ * passed, then goes on (inserting, the wait counts towards being stuck,
+ * so that a loop that hurts each time she pushes is reduced).
+ */
+void trainee_mind_patient(struct trainee *t, bool mindful);
+
 /* The loop's latest state, its colon. */
 const struct endosim_state *trainee_state(const struct trainee *t);
 const struct colon *trainee_colon(const struct trainee *t);

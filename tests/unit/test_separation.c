@@ -33,8 +33,8 @@
  * the rest is checked in the plain build.
  *
  * The patient (test_pain): the same scripts on the way in with the
- * patient enabled, moderate sedation for both and deep for the novice
- * again, on the normal case (all four of config/cases with
+ * patient enabled, the expert minding the patient's pain, moderate
+ * sedation for both and deep for the novice again, on the normal case (all four of config/cases with
  * ENDOSIM_PAINRUN_FULL=1, as make bench runs them): the novice's pain peaks
  * higher, deep sedation's lower, and the split of the pain episodes by
  * place and cause is printed next to Shah et al. (Endoscopy 2002). Skipped
@@ -123,6 +123,7 @@ static bool session(const struct run *r, struct metrics_result *out)
 	m = metrics_create(r->way_out ? trainee_colon(t) : NULL, &p);
 	assert_non_null(m);
 	trainee_watch(t, record, m);
+	trainee_mind_patient(t, expert);
 	trainee_hold(t, 1.0);
 	trainee_insert(t, junction - 0.01, SPEED, 6);
 	trainee_hold_tip(t, IMPACTED_N_PER_M);
@@ -265,11 +266,11 @@ static void print_split(const struct split *s)
  * Whether the three runs of a case go the clinic's way (printing where
  * the strict expectation is not met): the novice's pain peaks higher than
  * the expert's, deep sedation's lower and no longer in pain; and where
- * both got to the cecum (BOTH: comparable courses), the novice is in
- * pain no shorter than the expert. Where the expert is stuck too, her
- * reductions hurt as well: said, not failed.
+ * the expert got to the cecum (THERE: she showed the way through), the
+ * novice is in pain longer than she was. Where the expert is stuck too,
+ * neither course is one to judge by: said, not failed.
  */
-static bool pain_direction(const char *case_path, bool both,
+static bool pain_direction(const char *case_path, bool there,
 			   const struct metrics_result *e,
 			   const struct metrics_result *n,
 			   const struct metrics_result *d)
@@ -278,10 +279,10 @@ static bool pain_direction(const char *case_path, bool both,
 		printf("# %s: expected but not met: the novice in pain longer "
 		       "than the expert (%.1f / %.1f %%%s), deep sedation "
 		       "shorter (%.1f %%)\n", case_path, 100 * n->pain_share,
-		       100 * e->pain_share, both ? "" :
-		       ": not both at the cecum", 100 * d->pain_share);
+		       100 * e->pain_share, there ? "" :
+		       ": the expert stuck too", 100 * d->pain_share);
 	}
-	return (!both || n->pain_share >= e->pain_share) &&
+	return (!there || n->pain_share > e->pain_share) &&
 	       d->pain_share <= n->pain_share &&
 	       n->peak_pain > e->peak_pain && d->peak_pain < n->peak_pain;
 }
@@ -289,12 +290,13 @@ static bool pain_direction(const char *case_path, bool both,
 /*
  * The patient enabled: the same two scripts on the way in, to the cecum
  * (or as far as they get), with moderate sedation, and the novice's again
- * with deep sedation. The novice's peak pain is higher than the expert's
- * on every case, deep sedation's lower and no longer in pain; where both
- * reach the cecum the novice's time in pain is no shorter (where either
- * is stuck the expert's reductions hurt too, and where nobody is ever in
- * pain both are 0: said, not failed). The split of the pain episodes by place and cause is
- * printed next to Shah et al.'s, not asserted (docs/METRICS.md).
+ * with deep sedation; the expert minds the patient (she eases off while
+ * it hurts, trainee_mind_patient()), the novice does not. The novice's
+ * peak pain is higher than the expert's on every case, deep sedation's
+ * lower and no longer in pain; where the expert reaches the cecum the
+ * novice is in pain longer (where the expert is stuck too: said, not
+ * failed). The split of the pain episodes by place and cause is printed
+ * next to Shah et al.'s, not asserted (docs/METRICS.md).
  */
 static void test_pain(void **state)
 {
@@ -312,14 +314,13 @@ static void test_pain(void **state)
 	}
 	for (size_t c = 0; c < cases; c++) {
 		const char *cp = pain_cases[c];
-		bool both;
+		bool there;
 
-		both = session(&(struct run){ cp, true,
+		there = session(&(struct run){ cp, true,
 					      ENDOSIM_SEDATION_MODERATE,
 					      false }, &e);
-		both &= session(&(struct run){ cp, false,
-					       ENDOSIM_SEDATION_MODERATE,
-					       false }, &n);
+		session(&(struct run){ cp, false, ENDOSIM_SEDATION_MODERATE,
+				       false }, &n);
 		session(&(struct run){ cp, false, ENDOSIM_SEDATION_DEEP,
 				       false }, &d);
 		printf("# %s\n", cp);
@@ -329,7 +330,7 @@ static void test_pain(void **state)
 		split_add(&s, &e);
 		split_add(&s, &n);
 		split_add(&s, &d);
-		wrong += !pain_direction(cp, both, &e, &n, &d);
+		wrong += !pain_direction(cp, there, &e, &n, &d);
 	}
 	print_split(&s);
 	fflush(stdout);
