@@ -19,8 +19,9 @@
  *                    x = max over the spans of |bow_m[k]|; pain: x = pain,
  *                    starting at x >= pain_level (at or above), with the
  *                    cause and place of its provocation: the record with
- *                    the largest stimulus since the pain was last below
- *                    the episode's end (records without a stimulus: the
+ *                    the largest stimulus from when the pain was last
+ *                    below an episode's end to the episode's first
+ *                    record (records without a stimulus: the
  *                    cause and place of the first record at the peak)
  *   pain_share       time with pain >= pain_level over duration_s (a
  *                    record's pain holds until the next record)
@@ -102,9 +103,10 @@ struct metrics {
 	bool responding;          /* a record with the patient's vitals */
 	uint32_t cause;           /* the last cause seen, and its place */
 	int32_t place;
-	double stim_peak;         /* the largest stimulus since the pain was
-				     last below an episode's end, its cause
-				     and place: the provocation */
+	double stim_peak;         /* the largest stimulus from when the pain
+				     was last below an episode's end to the
+				     episode's start, its cause and place:
+				     the provocation */
 	uint32_t stim_cause;
 	int32_t stim_place;
 	double pain_s[ENDOSIM_PAIN_CAUSES];
@@ -423,7 +425,9 @@ static bool taken(int32_t site, int32_t before)
 }
 
 /* The provocation of the pain now at R: the largest stimulus (with a
- * cause) since the pain was last below an episode's end. */
+ * cause) from when the pain was last below an episode's end up to the
+ * record where the episode began: what brought the pain on, not what
+ * came while it lasted. */
 static void provocation(struct metrics *m, const struct session_record *r,
 			double pain)
 {
@@ -432,7 +436,8 @@ static void provocation(struct metrics *m, const struct session_record *r,
 		m->stim_cause = ENDOSIM_PAIN_NONE;
 		m->stim_place = -1;
 	}
-	if (isfinite(r->pain_stimulus) && r->pain_stimulus > m->stim_peak &&
+	if (!m->pain.active && isfinite(r->pain_stimulus) &&
+	    r->pain_stimulus > m->stim_peak &&
 	    r->pain_cause != ENDOSIM_PAIN_NONE &&
 	    r->pain_cause < ENDOSIM_PAIN_CAUSES) {
 		m->stim_peak = r->pain_stimulus;

@@ -113,8 +113,9 @@ struct metrics_episode {
 	double peak;               /* N for force, m for loops, pain 0..10 */
 	/* pain episodes only (0 and -1 for the others): the cause (enum
 	 * endosim_pain_cause) and the place (anatomy segment, -1: none) of
-	 * its provocation, the record with the largest stimulus since the
-	 * pain was last below an episode's end (without a recorded stimulus:
+	 * its provocation, the record with the largest stimulus from when the
+	 * pain was last below an episode's end to the episode's first record:
+	 * what brought it on (without a recorded stimulus:
 	 * at the episode's peak, the first record at its peak; a record
 	 * with no cause, the pain fading, takes the last cause before it) */
 	uint32_t cause;

@@ -546,7 +546,9 @@ static void test_pain_trace(void **state)
  * (stimulus 8, looping in the sigmoid) and reduced at once, the level
  * crossing 4 and peaking while the tube is withdrawn (straightening, a
  * stimulus of 3 and then 1): looping in the sigmoid, not straightening;
- * then the tip in the cecum, alone.
+ * then the tip in the cecum, alone; then a loop in the transverse colon
+ * (stimulus 5) that brings the pain on, the tip pushed harder into the
+ * wall while it lasts (stimulus 9): what brought it on, the loop.
  */
 static void test_pain_provocation(void **state)
 {
@@ -558,14 +560,19 @@ static void test_pain_provocation(void **state)
 		{ 3.0, 0, NONE, -1, 0 },
 		{ 4.0, 5, TIP, 8, 6 },
 		{ 4.5, 0, NONE, -1, 0 },
+		{ 6.0, 2, LOOP, 5, 5 },
+		{ 6.5, 4.5, LOOP, 5, 5 },
+		{ 7.0, 6, TIP, 6, 9 },
+		{ 7.5, 0, NONE, -1, 0 },
 	};
 	struct metrics_result res;
 
 	(void)state;
-	pain_trace(&res, s, sizeof(s) / sizeof(s[0]), 6, RATE_HZ);
-	assert_int_equal(res.n_pain, 2);
+	pain_trace(&res, s, sizeof(s) / sizeof(s[0]), 8, RATE_HZ);
+	assert_int_equal(res.n_pain, 3);
 	assert_pain_episode(&res.pain[0], 1.5, 3, 7, LOOP, 2);
 	assert_pain_episode(&res.pain[1], 4, 4.5, 5, TIP, 8);
+	assert_pain_episode(&res.pain[2], 6.5, 7.5, 6, LOOP, 5);
 	/* the time by cause is each record's own */
 	assert_near(res.pain_cause_s[STRAIGHT], 1.5, 2 * REC_TOL);
 }
