@@ -22,6 +22,27 @@ static const char *const segment_names[ANATOMY_SEGMENTS] = {
 
 static const char *const shape_names[] = { "sessile", "pedunculated",
 					   "flat", NULL };
+static const char *const paris_names[] = { "Ip", "Is", "IIa", "IIb", NULL };
+
+/* Each Paris class's shape (the viewer draws shapes). */
+static const int paris_shape[] = {
+	[ANATOMY_PARIS_IP] = ANATOMY_POLYP_PEDUNCULATED,
+	[ANATOMY_PARIS_IS] = ANATOMY_POLYP_SESSILE,
+	[ANATOMY_PARIS_IIA] = ANATOMY_POLYP_FLAT,
+	[ANATOMY_PARIS_IIB] = ANATOMY_POLYP_FLAT,
+};
+
+/* A shape's class when the file names none. */
+static const int shape_paris[] = {
+	[ANATOMY_POLYP_SESSILE] = ANATOMY_PARIS_IS,
+	[ANATOMY_POLYP_PEDUNCULATED] = ANATOMY_PARIS_IP,
+	[ANATOMY_POLYP_FLAT] = ANATOMY_PARIS_IIA,
+};
+
+/* The lines a polyp's keys were set on (0: not set), for its checks. */
+struct polyp_lines {
+	int section, shape, paris, stalk;
+};
 
 /* The state of one case file being read (parse_file_user()): the anatomy
  * as it grows, and the lines its checks name. */
@@ -32,7 +53,7 @@ struct reader {
 	size_t errsize;
 	double taenia_depth, fold_depth; /* [lumen]'s, for segments without */
 	bool seen_case, seen_lumen;
-	bool in_segment;                 /* the current section's kind */
+	bool in_segment, in_polyp;       /* the current section's kind */
 	int segments;                    /* [segment] sections read */
 	int lines;                       /* in the file */
 	int bend_line[ANATOMY_SEGMENTS][ANATOMY_MAX_BENDS];
@@ -41,7 +62,7 @@ struct reader {
 	int collapsed_line[ANATOMY_SEGMENTS], max_line[ANATOMY_SEGMENTS];
 	int fluid_line[ANATOMY_SEGMENTS];
 	bool seg_set_taenia[ANATOMY_SEGMENTS], seg_set_fold[ANATOMY_SEGMENTS];
-	int polyp_line[ANATOMY_MAX_POLYPS];
+	struct polyp_lines polyp_line[ANATOMY_MAX_POLYPS];
 	int site_line[ANATOMY_MAX_SITES];
 };
 
@@ -68,6 +89,11 @@ const char *anatomy_segment_name(int id)
 const char *anatomy_polyp_shape_name(int shape)
 {
 	return shape >= 0 && shape < 3 ? shape_names[shape] : "?";
+}
+
+const char *anatomy_paris_name(int paris)
+{
+	return paris >= 0 && paris < 4 ? paris_names[paris] : "?";
 }
 
 double anatomy_segment_start(const struct anatomy *a, int id)
@@ -273,6 +299,11 @@ static const struct parse_key keys[] = {
 	NUM("polyp", "diameter_m", P(diameter_m), 0.001, 0.06, REQ),
 	{ .section = "polyp", .name = "shape", .type = PARSE_CHOICE,
 	  .offset = P(shape), .choices = shape_names, .unit = "" },
+	{ .section = "polyp", .name = "paris", .type = PARSE_CHOICE,
+	  .offset = P(paris), .choices = paris_names, .unit = "" },
+	NUM("polyp", "stalk_length_m", P(stalk_length_m), 0.001, 0.04, 0),
+	NUM("polyp", "stalk_diameter_m", P(stalk_diameter_m), 0.001, 0.02,
+	    0),
 	{ .section = "site", .name = "position_m", .type = PARSE_CUSTOM,
 	  .offset = T(position_m), .ops = &vec_ops, .min = -1, .max = 1,
 	  .unit = "m", .flags = REQ },
@@ -319,7 +350,8 @@ static int open_polyp(struct reader *r, int line, void **base, char *why,
 		snprintf(why, size, "more than %d polyps", ANATOMY_MAX_POLYPS);
 		return -EINVAL;
 	}
-	r->polyp_line[r->a.polyps] = line;
+	r->polyp_line[r->a.polyps].section = line;
+	r->in_polyp = true;
 	*base = &r->a.polyp[r->a.polyps++];
 	return 0;
 }
@@ -360,6 +392,7 @@ static int begin(struct parse_file *pf, const char *kind, const char *arg,
 	bool is_case = !strcmp(kind, "case"), is_lumen = !strcmp(kind, "lumen");
 
 	r->in_segment = false;
+	r->in_polyp = false;
 	if (!r->seen_case && !is_case) {
 		snprintf(why, size, "the file must start with [case]");
 		return -EINVAL;
@@ -391,10 +424,27 @@ static int begin(struct parse_file *pf, const char *kind, const char *arg,
 
 static const struct parse_table table;
 
-/* The line segment key NAME was set on (SET_ON: the kit's), 0 if not. */
+/* The line SECTION's key NAME was set on (SET_ON: the kit's), 0 if not. */
+static int key_line(const int *set_on, const char *section, const char *name)
+{
+	return set_on[parse_find(&table, section, name) - keys];
+}
+
 static int segment_line(const int *set_on, const char *name)
 {
-	return set_on[parse_find(&table, "segment", name) - keys];
+	return key_line(set_on, "segment", name);
+}
+
+/* A polyp's lines: its shape's, its class's, its stalk's (either key). */
+static void polyp_end(struct reader *r, const int *set_on)
+{
+	struct polyp_lines *l = &r->polyp_line[r->a.polyps - 1];
+	int length = key_line(set_on, "polyp", "stalk_length_m");
+
+	l->shape = key_line(set_on, "polyp", "shape");
+	l->paris = key_line(set_on, "polyp", "paris");
+	l->stalk = length ? length :
+		   key_line(set_on, "polyp", "stalk_diameter_m");
 }
 
 /* A section ends: a segment's lines for the checks after the file. */
@@ -404,6 +454,9 @@ static void end(struct parse_file *pf, const int *set_on)
 	int id = r->segments - 1;
 
 	r->lines = parse_file_line(pf);
+	if (r->in_polyp) {
+		polyp_end(r, set_on);
+	}
 	if (!r->in_segment) {
 		return;
 	}
@@ -482,6 +535,43 @@ static int check_segment(struct reader *r, int id)
 	return check_wall(r, id);
 }
 
+/* A polyp's shape and class made to agree, its stalk given its
+ * defaults (anatomy.h). */
+static int check_morphology(struct reader *r, int i)
+{
+	struct anatomy_polyp *po = &r->a.polyp[i];
+	const struct polyp_lines *l = &r->polyp_line[i];
+
+	if (!l->paris) {
+		po->paris = shape_paris[po->shape];
+	} else if (l->shape && paris_shape[po->paris] != po->shape) {
+		return fail(r, l->paris, "paris", "%s is not a %s polyp (shape "
+			    "on line %d)", paris_names[po->paris],
+			    shape_names[po->shape], l->shape);
+	}
+	po->shape = paris_shape[po->paris];
+	if (po->paris != ANATOMY_PARIS_IP) {
+		return l->stalk ? fail(r, l->stalk, "[polyp]", "only a "
+				       "pedunculated (Ip) polyp has a stalk") :
+				  0;
+	}
+	if (po->stalk_length_m == 0) {
+		po->stalk_length_m = ANATOMY_DEFAULT_STALK_LENGTH *
+				     po->diameter_m;
+	}
+	if (po->stalk_diameter_m == 0) {
+		po->stalk_diameter_m = ANATOMY_DEFAULT_STALK_DIAMETER *
+				       po->diameter_m;
+	}
+	if (po->stalk_diameter_m >= po->diameter_m) {
+		return fail(r, l->stalk ? l->stalk : l->section,
+			    "stalk_diameter_m", "%g m is not "
+			    "thinner than the head (%g m)",
+			    po->stalk_diameter_m, po->diameter_m);
+	}
+	return 0;
+}
+
 static int check_polyp(struct reader *r, int i)
 {
 	const struct anatomy_polyp *po = &r->a.polyp[i];
@@ -489,20 +579,20 @@ static int check_polyp(struct reader *r, int i)
 	int id = 0;
 
 	if (po->s_m <= 0 || po->s_m >= len) {
-		return fail(r, r->polyp_line[i], "[polyp]", "s_m %g m is not "
-			    "inside the colon (0, %g) m", po->s_m, len);
+		return fail(r, r->polyp_line[i].section, "[polyp]", "s_m %g m "
+			    "is not inside the colon (0, %g) m", po->s_m, len);
 	}
 	while (id < ANATOMY_SEGMENTS - 1 &&
 	       po->s_m >= anatomy_segment_start(&r->a, id + 1)) {
 		id++;
 	}
 	if (po->diameter_m >= r->a.seg[id].diameter_m / 2) {
-		return fail(r, r->polyp_line[i], "[polyp]", "diameter_m %g m "
-			    "is too large for the %s lumen (%g m)",
+		return fail(r, r->polyp_line[i].section, "[polyp]", "diameter_m "
+			    "%g m is too large for the %s lumen (%g m)",
 			    po->diameter_m, segment_names[id],
 			    r->a.seg[id].diameter_m);
 	}
-	return 0;
+	return check_morphology(r, i);
 }
 
 /* A site's direction made a unit vector (it must have one). */

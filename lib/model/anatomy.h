@@ -70,8 +70,24 @@
  *   [polyp]                     repeatable, up to ANATOMY_MAX_POLYPS
  *   s_m = 0.62                  required: distance from the anal verge
  *   angle_deg = 45              required: around the lumen from the frame's u
- *   diameter_m = 0.008          required
+ *   diameter_m = 0.008          required: its size (a stalked polyp's
+ *                               head), 0.001..0.06
  *   shape = sessile             sessile (default), pedunculated or flat
+ *   paris = Is                  optional, its Paris class (Endoscopy
+ *                               2003;35:570): Ip (pedunculated: a head on
+ *                               a stalk), Is (sessile), IIa (flat,
+ *                               slightly elevated) or IIb (flat, level
+ *                               with the mucosa); by default from shape
+ *                               (pedunculated Ip, sessile Is, flat IIa),
+ *                               and shape from it when only it is given;
+ *                               the two must agree when both are
+ *   stalk_length_m = 0.004      Ip only: from the wall to the head
+ *                               (0.001..0.04; default half the diameter)
+ *   stalk_diameter_m = 0.003    Ip only: its thickness, below the head's
+ *                               diameter (0.001..0.02; default 0.35 of
+ *                               it); the defaults are the proportions the
+ *                               viewer draws a pedunculated polyp with.
+ *                               What a snare needs of them: tool.h
  *
  * Coordinates (colon.h): metres, x to the patient's left, y posterior, z
  * cranial (DICOM's LPS: the mobile sigmoid and transverse colon hang
@@ -84,6 +100,8 @@
  * each wall's law able to reach the case's radius (wall_collapsed below 1,
  * wall_max above 1), a segment's fluid at most half its lumen at the
  * case's diameter, polyps inside the colon and smaller than the lumen,
+ * a polyp's shape and Paris class agreeing, a stalk only on Ip and
+ * thinner than its head,
  * sites named once and with a direction.
  *
  * Errors are one line "FILE:LINE: [section] key: what", "FILE:LINE:
@@ -132,6 +150,18 @@ enum anatomy_polyp_shape {
 	ANATOMY_POLYP_FLAT,
 };
 
+/* The Paris classes of superficial lesions a snare removes (type 0). */
+enum anatomy_paris {
+	ANATOMY_PARIS_IP = 0, /* pedunculated */
+	ANATOMY_PARIS_IS,     /* sessile */
+	ANATOMY_PARIS_IIA,    /* flat, slightly elevated (< 2.5 mm) */
+	ANATOMY_PARIS_IIB,    /* flat, level with the mucosa */
+};
+
+/* A stalk's defaults as fractions of the head's diameter. */
+#define ANATOMY_DEFAULT_STALK_LENGTH 0.5
+#define ANATOMY_DEFAULT_STALK_DIAMETER 0.35
+
 struct anatomy_bend {
 	double angle_rad;  /* 0..pi */
 	double radius_m;   /* of the arc, > lumen radius */
@@ -165,8 +195,11 @@ struct anatomy_site {
 struct anatomy_polyp {
 	double s_m;        /* from the anal verge along the centreline */
 	double angle_rad;  /* around the lumen from the frame's u */
-	double diameter_m;
+	double diameter_m; /* its size: a stalked polyp's head's */
 	int shape;         /* enum anatomy_polyp_shape */
+	int paris;         /* enum anatomy_paris, agreeing with shape */
+	double stalk_length_m;   /* Ip: wall to head; 0 otherwise */
+	double stalk_diameter_m; /* Ip: < diameter_m; 0 otherwise */
 };
 
 struct anatomy {
@@ -205,6 +238,9 @@ const char *anatomy_segment_name(int id);
 
 /* "sessile", "pedunculated", "flat"; "?" when out of range. */
 const char *anatomy_polyp_shape_name(int shape);
+
+/* "Ip", "Is", "IIa", "IIb"; "?" when out of range. */
+const char *anatomy_paris_name(int paris);
 
 /* Sum of the segments' lengths, m. */
 double anatomy_length(const struct anatomy *a);

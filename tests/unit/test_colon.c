@@ -293,6 +293,78 @@ static void test_bad_patient_keys_refused_with_line(void **state)
 	refused_with_line(bad, sizeof(bad) / sizeof(bad[0]));
 }
 
+/* A polyp 62 cm in (the sigmoid), 10 mm across, with KEYS (line 34 on). */
+#define POLYP(keys) WHOLE("") "[polyp]\ns_m = 0.62\nangle_deg = 0\n" \
+	"diameter_m = 0.01\n" keys
+
+/* Issue 25's morphology: the Paris class and the shape agree whichever
+ * the file names; a stalk on Ip only, its defaults the head's fractions;
+ * the shipped cases' polyps take their class from their shape. */
+static void test_polyp_morphology(void **state)
+{
+	static const struct {
+		const char *keys;
+		int shape, paris;
+		double stalk_length_m, stalk_diameter_m;
+	} good[] = {
+		{ "", ANATOMY_POLYP_SESSILE, ANATOMY_PARIS_IS, 0, 0 },
+		{ "shape = flat\n", ANATOMY_POLYP_FLAT, ANATOMY_PARIS_IIA, 0, 0 },
+		{ "paris = IIb\n", ANATOMY_POLYP_FLAT, ANATOMY_PARIS_IIB, 0, 0 },
+		{ "shape = pedunculated\n", ANATOMY_POLYP_PEDUNCULATED,
+		  ANATOMY_PARIS_IP, 0.005, 0.0035 },
+		{ "paris = Ip\nstalk_length_m = 0.012\n"
+		  "stalk_diameter_m = 0.004\n", ANATOMY_POLYP_PEDUNCULATED,
+		  ANATOMY_PARIS_IP, 0.012, 0.004 },
+		{ "shape = sessile\nparis = Is\n", ANATOMY_POLYP_SESSILE,
+		  ANATOMY_PARIS_IS, 0, 0 },
+	};
+	char path[512], err[512];
+	struct anatomy a;
+
+	(void)state;
+	for (size_t i = 0; i < sizeof(good) / sizeof(good[0]); i++) {
+		char text[4096];
+
+		snprintf(text, sizeof(text), POLYP("%s"), good[i].keys);
+		assert_int_equal(anatomy_parse(&a, text, "t.case", err,
+					       sizeof(err)), 0);
+		assert_int_equal(a.polyp[0].shape, good[i].shape);
+		assert_int_equal(a.polyp[0].paris, good[i].paris);
+		assert_near(a.polyp[0].stalk_length_m, good[i].stalk_length_m,
+			    1e-12);
+		assert_near(a.polyp[0].stalk_diameter_m,
+			    good[i].stalk_diameter_m, 1e-12);
+	}
+	case_path("polyps", path, sizeof(path));
+	assert_int_equal(anatomy_load(&a, path, err, sizeof(err)), 0);
+	assert_int_equal(a.polyp[0].paris, ANATOMY_PARIS_IIA);
+	assert_int_equal(a.polyp[1].paris, ANATOMY_PARIS_IS);
+	assert_int_equal(a.polyp[3].paris, ANATOMY_PARIS_IP);
+	assert_near(a.polyp[3].stalk_diameter_m, 0.35 * 0.015, 1e-12);
+	assert_string_equal(anatomy_paris_name(a.polyp[0].paris), "IIa");
+}
+
+static void test_bad_polyp_keys_refused_with_line(void **state)
+{
+	static const struct bad_case bad[] = {
+		{ POLYP("paris = III\n"), 34, "paris: 'III' is not a known" },
+		{ POLYP("shape = sessile\nparis = Ip\n"), 35,
+		  "paris: Ip is not a sessile polyp (shape on line 34)" },
+		{ POLYP("paris = IIa\nshape = pedunculated\n"), 34,
+		  "paris: IIa is not a pedunculated polyp" },
+		{ POLYP("stalk_length_m = 0.01\n"), 34,
+		  "only a pedunculated (Ip) polyp has a stalk" },
+		{ POLYP("paris = IIb\nstalk_diameter_m = 0.002\n"), 35,
+		  "only a pedunculated (Ip) polyp has a stalk" },
+		{ POLYP("paris = Ip\nstalk_diameter_m = 0.012\n"), 35,
+		  "stalk_diameter_m: 0.012 m is not thinner than the head" },
+		{ POLYP("paris = Ip\nstalk_length_m = 0.05\n"), 35,
+		  "stalk_length_m: 0.05 is out of range [0.001, 0.04]" },
+	};
+	(void)state;
+	refused_with_line(bad, sizeof(bad) / sizeof(bad[0]));
+}
+
 /* ---------------------------------------------------------------- centreline */
 
 static double polyline_length(const struct centreline *cl)
@@ -1109,6 +1181,8 @@ int main(void)
 		cmocka_unit_test(test_normal_matches_brief),
 		cmocka_unit_test(test_bad_cases_refused_with_line),
 		cmocka_unit_test(test_bad_patient_keys_refused_with_line),
+		cmocka_unit_test(test_polyp_morphology),
+		cmocka_unit_test(test_bad_polyp_keys_refused_with_line),
 		cmocka_unit_test(test_length_is_sum_of_segments),
 		cmocka_unit_test(test_frames_orthonormal),
 		cmocka_unit_test(test_no_twist_on_planar_curve),
