@@ -110,7 +110,8 @@ endef
 #   model    the colon and the endoscope (lib/model/): case files,
 #            centreline, mesh, OBJ, the colon, contact, the scope's
 #            kinematics, the god-object, the rod, the haptics, the axes'
-#            plant, the scene served; it knows nothing of the configuration
+#            plant, the tools through the channel (tool.c), the scene
+#            served; it knows nothing of the configuration
 #   base     logging, the clock, real time, histograms, rings, vectors,
 #            JSON, text (lib/base/)
 #   proto    the wire (proto/): protocol, framing, client library,
@@ -204,7 +205,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_livemap test_separation test_coursefile test_sessionindex \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
-	     test_voice test_wav
+	     test_voice test_wav test_tool
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes

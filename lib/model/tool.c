@@ -1,0 +1,315 @@
+/* tool.c - see tool.h. */
+#include "model/tool.h"
+
+#include <errno.h>
+#include <math.h>
+#include <string.h>
+
+#include "base/vec3.h"
+#include "model/centreline.h"
+#include "model/colon.h"
+
+/* Paris' limit of a IIa lesion's height over the mucosa, m. */
+#define PARIS_IIA_MAX_M 0.0025
+
+static double clamp01(double x)
+{
+	return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+void tool_reset(struct tool *t)
+{
+	memset(t, 0, sizeof(*t));
+	t->captured = -1;
+}
+
+/* The loop lets go of what it holds (the handle opened, another tool). */
+static int release(struct tool *t)
+{
+	int i = t->captured;
+
+	if (i >= 0) {
+		t->polyp[i].state = TOOL_POLYP_IN_PLACE;
+		t->captured = -1;
+	}
+	return i;
+}
+
+int tool_select(struct tool *t, int kind, double snare_m)
+{
+	if (kind < TOOL_NONE || kind > TOOL_CLIP) {
+		return -EINVAL;
+	}
+	if (kind == TOOL_SNARE &&
+	    !(snare_m >= TOOL_SNARE_MIN_M && snare_m <= TOOL_SNARE_MAX_M)) {
+		return -EINVAL;
+	}
+	release(t);
+	t->kind = kind;
+	t->snare_m = kind == TOOL_SNARE ? snare_m : 0;
+	t->command_m = 0;
+	t->loop_m = 0;
+	for (int i = 0; i < t->polyps; i++) {
+		t->polyp[i].inside = false;
+	}
+	return 0;
+}
+
+int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
+		   const double base[3], const double normal[3])
+{
+	struct tool_polyp *p;
+	double n[3];
+
+	if (t->polyps == ANATOMY_MAX_POLYPS) {
+		return -ENOSPC;
+	}
+	vec3_copy(n, normal);
+	if (!(vec3_normalize(n) > 0)) {
+		return -EINVAL;
+	}
+	p = &t->polyp[t->polyps];
+	*p = (struct tool_polyp){
+		.size_m = ap->diameter_m, .paris = ap->paris,
+		.stalk_m = ap->paris == ANATOMY_PARIS_IP ?
+			   ap->stalk_length_m : 0,
+		.stalk_diameter_m = ap->paris == ANATOMY_PARIS_IP ?
+				    ap->stalk_diameter_m : 0,
+	};
+	vec3_copy(p->base, base);
+	vec3_copy(p->normal, n);
+	return t->polyps++;
+}
+
+int tool_place_polyps(struct tool *t, const struct colon *c)
+{
+	const struct anatomy *a = colon_anatomy(c);
+	int added = 0;
+
+	for (int i = 0; a && i < a->polyps; i++) {
+		const struct anatomy_polyp *ap = &a->polyp[i];
+		struct centreline_point q;
+		double r, out[3], base[3], n[3];
+		int e;
+
+		centreline_at_s(colon_centreline(c), ap->s_m, &q);
+		r = colon_lumen_radius(c, ap->s_m, ap->angle_rad);
+		vec3_scale(out, q.u, cos(ap->angle_rad));
+		vec3_axpy(out, out, sin(ap->angle_rad), q.v);
+		vec3_axpy(base, q.p, r, out);
+		vec3_scale(n, out, -1);
+		e = tool_add_polyp(t, ap, base, n);
+		if (e < 0) {
+			return e;
+		}
+		added++;
+	}
+	return added;
+}
+
+double tool_polyp_thickness(const struct tool_polyp *p)
+{
+	return p->paris == ANATOMY_PARIS_IP ? p->stalk_diameter_m : p->size_m;
+}
+
+double tool_polyp_height(const struct tool_polyp *p, double lift_m)
+{
+	double lift = p->lifted ? lift_m : 0;
+
+	switch (p->paris) {
+	case ANATOMY_PARIS_IP:
+		return p->stalk_m;
+	case ANATOMY_PARIS_IS:
+		return p->size_m / 2 + lift;
+	case ANATOMY_PARIS_IIA:
+		return fmin(p->size_m / 4, PARIS_IIA_MAX_M) + lift;
+	default:
+		return lift;
+	}
+}
+
+double tool_loop_diameter(double snare_m, double opening, double depth_m)
+{
+	double wire = clamp01(opening) * M_PI * snare_m / 2;
+
+	if (depth_m < 0) {
+		wire = fmax(0, wire + depth_m);
+	}
+	return fmin(snare_m, 2 * wire / M_PI);
+}
+
+void tool_pose(const struct tool_params *par,
+	       const struct endosim_scope_state *sc, double depth_m,
+	       struct tool_pose *out)
+{
+	double right[3];
+
+	vec3_copy(out->dir, sc->dir);
+	vec3_cross(right, sc->dir, sc->up);
+	vec3_scale(out->radial, sc->up, cos(par->channel_angle_rad));
+	vec3_axpy(out->radial, out->radial, sin(par->channel_angle_rad),
+		  right);
+	vec3_cross(out->side, out->dir, out->radial);
+	vec3_axpy(out->exit, sc->tip, par->channel_offset_m, out->radial);
+	vec3_axpy(out->tip, out->exit, depth_m, out->dir);
+}
+
+/* The loop hangs from the sheath's tip, its centre half its diameter on. */
+static void place_loop(struct tool *t)
+{
+	vec3_axpy(t->loop_centre, t->pose.tip, t->loop_m / 2, t->pose.dir);
+}
+
+/*
+ * Whether P's axis, H_M high, crosses the loop's plane; *Q_M then the
+ * crossing's distance from the loop's centre.
+ */
+static bool crossing(const struct tool *t, const struct tool_polyp *p,
+		     double h_m, double *q_m)
+{
+	double den = vec3_dot(p->normal, t->pose.radial), x[3], lambda;
+
+	if (fabs(den) < 1e-9) {
+		return false;
+	}
+	vec3_sub(x, t->loop_centre, p->base);
+	lambda = vec3_dot(x, t->pose.radial) / den;
+	if (lambda < 0 || lambda > h_m) {
+		return false;
+	}
+	vec3_axpy(x, p->base, lambda, p->normal);
+	*q_m = vec3_dist(x, t->loop_centre);
+	return true;
+}
+
+/* The closing loop meets the polyps: the first whose axis was inside it
+ * and which the wire reaches now is captured; each one's inside flag for
+ * the next step. Returns the polyp captured, or -1. */
+static int meet(struct tool *t, const struct tool_params *par, bool closing)
+{
+	int caught = -1;
+
+	for (int i = 0; i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+		double h = tool_polyp_height(p, par->lift_m), q = 0;
+		bool x = p->state == TOOL_POLYP_IN_PLACE && h > 0 &&
+			 crossing(t, p, h, &q);
+
+		if (closing && caught < 0 && t->captured < 0 && p->inside &&
+		    x && q + tool_polyp_thickness(p) / 2 >= t->loop_m / 2) {
+			caught = i;
+		}
+		p->inside = x && q < t->loop_m / 2;
+	}
+	if (caught >= 0) {
+		t->polyp[caught].state = TOOL_POLYP_CAPTURED;
+		t->polyp[caught].inside = false;
+		t->captured = caught;
+	}
+	return caught;
+}
+
+/* The loop's circle reaches the wall's plane (within half the wire). */
+static bool loop_on_wall(const struct tool *t, const struct tool_params *par,
+			 const struct tool_input *in)
+{
+	double x[3], c = vec3_dot(t->pose.radial, in->wall_normal);
+
+	vec3_sub(x, t->loop_centre, in->wall_point);
+	return vec3_dot(x, in->wall_normal) -
+	       t->loop_m / 2 * sqrt(fmax(0, 1 - c * c)) <= par->wire_m / 2;
+}
+
+/* The held polyp cut, hot or cold; TOOL_EVENT_* bits. */
+static unsigned cut(struct tool *t, const struct tool_params *par,
+		    bool pedal, double dt_s)
+{
+	struct tool_polyp *p = &t->polyp[t->captured];
+	double th = tool_polyp_thickness(p);
+	unsigned ev = 0;
+	bool through;
+
+	if (pedal) {
+		p->energy_j += par->hot_power_w * dt_s;
+		if (!p->lifted && p->paris != ANATOMY_PARIS_IP &&
+		    !t->injured) {
+			t->injured = true;
+			ev |= TOOL_EVENT_INJURY;
+		}
+		through = p->energy_j >= par->cut_j_per_m2 * M_PI * th * th / 4;
+	} else {
+		through = t->opening <= par->closed_opening &&
+			  th < par->cold_max_m;
+	}
+	if (through) {
+		p->state = TOOL_POLYP_CUT;
+		t->captured = -1;
+		ev |= TOOL_EVENT_CUT;
+	}
+	return ev;
+}
+
+/* The snare's step after the pose; *WHICH the polyp concerned. */
+static unsigned snare_step(struct tool *t, const struct tool_params *par,
+			   const struct tool_input *in, bool pedal,
+			   double dt_s, int *which)
+{
+	double cmd = tool_loop_diameter(t->snare_m, t->opening, t->depth_m);
+	bool closing = cmd < t->command_m, opening = cmd > t->command_m;
+	unsigned ev = 0;
+	int i = t->captured;
+
+	t->command_m = cmd;
+	if (i >= 0 && opening && cmd > tool_polyp_thickness(&t->polyp[i])) {
+		*which = release(t);
+		ev |= TOOL_EVENT_RELEASE;
+	}
+	i = t->captured;
+	t->loop_m = i >= 0 ? fmax(cmd, tool_polyp_thickness(&t->polyp[i])) :
+			     cmd;
+	place_loop(t);
+	i = meet(t, par, closing);
+	if (i >= 0) {
+		*which = i;
+		ev |= TOOL_EVENT_CAPTURE;
+		t->loop_m = fmax(cmd, tool_polyp_thickness(&t->polyp[i]));
+	}
+	if (t->captured >= 0) {
+		*which = t->captured;
+		ev |= cut(t, par, pedal, dt_s);
+		t->loop_m = t->captured >= 0 ? t->loop_m : cmd;
+	}
+	place_loop(t);
+	if (pedal && t->captured < 0 && !t->injured && in->wall &&
+	    t->depth_m > 0 && loop_on_wall(t, par, in)) {
+		t->injured = true;
+		ev |= TOOL_EVENT_INJURY;
+	}
+	return ev;
+}
+
+unsigned tool_step(struct tool *t, const struct tool_params *par,
+		   const struct endosim_scope_state *sc,
+		   const struct tool_input *in, double dt_s, int *polyp)
+{
+	bool still = !isfinite(in->depth_m) || !isfinite(in->opening);
+	bool pedal = in->pedal && !still;
+	unsigned ev = 0;
+	int which = -1;
+
+	if (!still) {
+		t->depth_m = in->depth_m;
+		t->opening = clamp01(in->opening);
+	}
+	if (!pedal) {
+		t->injured = false;
+	}
+	tool_pose(par, sc, t->depth_m, &t->pose);
+	if (t->kind == TOOL_SNARE) {
+		ev = snare_step(t, par, in, pedal, dt_s, &which);
+	}
+	if (polyp) {
+		*polyp = which;
+	}
+	return ev;
+}

@@ -1,0 +1,259 @@
+/*
+ * tool.h - the tools a trainee passes through the scope's working channel
+ * (issue 25): biopsy forceps, a snare, an injection needle, a clip; the
+ * snare's capture of a polyp and its cut. This is the model alone: what
+ * the rig senses of the tool, what the loop publishes and records of it
+ * and how the viewer draws it are later slices.
+ *
+ * The tool, one at a time as the nurse hands it over (tool_select()),
+ * lies in the channel; what the rig senses of it each cycle
+ * (struct tool_input): its depth beyond the channel's exit (m, negative
+ * while still inside), its handle's opening (0 closed .. 1 open) and the
+ * cautery's foot pedal.
+ *
+ * The pose. The channel leaves the tip's face channel_offset_m from its
+ * axis at channel_angle_rad, clockwise from 12 o'clock in the endoscopic
+ * image (the scope state's up is 12 o'clock, dir x up 3 o'clock): by
+ * default 5 o'clock (150 degrees), where a colonoscope's 3.2-3.8 mm
+ * channel (docs' PATIENT notes) opens, 4 mm from the axis of a 13 mm
+ * tip (a guess from those sizes). The tool leaves it along the tip's
+ * dir: its tip is exit + depth dir.
+ *
+ * The snare. A wire loop of size D (its diameter fully open, 10..30 mm:
+ * mini snares below 11 mm, standard ones 15 mm and up, docs' PATIENT
+ * notes) is pushed out of its sheath by the handle: opening x pi D / 2
+ * of each of its two strands, the part beyond the channel's exit free to
+ * open (the sheath's tip at depth: the loop's wire beyond the exit is
+ * that length plus the depth, when the depth is negative). Those l
+ * metres of wire make a loop of perimeter 2 l, a circle of diameter
+ *   d = min(D, 2 l / pi),
+ * so that it opens as it leaves the sheath and closes as the handle
+ * closes (tool_loop_diameter()). The loop hangs from the sheath's tip
+ * forward, its centre d / 2 along dir, and lies flat towards the
+ * channel's side of the image: its plane holds dir and dir x the
+ * channel's radial direction, its normal is that radial direction (a
+ * polyp brought to 5 o'clock stands on the wall under the loop, as
+ * endoscopists turn the scope to bring it there).
+ *
+ * Capture. Each polyp of the case (tool_add_polyp(), tool_place_polyps())
+ * has an axis from its base on the wall along the wall's normal: a
+ * pedunculated (Ip) polyp's stalk, its length and thickness the case's;
+ * a sessile (Is) polyp's base, half its size high and its size thick; a
+ * flat one's, IIa a quarter of its size high and at most 2.5 mm (Paris'
+ * limit), IIb level with the mucosa (nothing a loop can close around);
+ * a base lifted by an injection stands lift_m higher. In a cycle in which the loop closes
+ * (its diameter smaller than in the cycle before), it captures the first
+ * polyp in place whose axis passed inside the loop at the loop's plane
+ * in the cycle before (the axis crossing the plane within its height, at
+ * less than d / 2 from the loop's centre) and which the wire now reaches
+ * (the crossing at d / 2 - t / 2 or more from the centre, t the axis'
+ * thickness). An axis outside the loop is not captured, however near:
+ * a stalk a stalk's width outside is pushed aside. The captured polyp
+ * holds the loop at its thickness; opening the handle again releases it.
+ *
+ * The cut, hot. With the pedal down the generator puts hot_power_w into
+ * the tissue the loop holds; it is cut through when the energy reaches
+ *   E = cut_j_per_m2 x pi t^2 / 4
+ * (the cross-section held). cut_j_per_m2 = 2.5e6 J/m^2 (2.5 J/mm^2),
+ * reasoned, not measured: the wire (0.4 mm, snares' 0.3-0.5 mm) cuts by
+ * vaporising a kerf its width; tissue ~75 % water at ~1050 kg/m^3 takes
+ * 4.18 kJ/kg/K x 63 K to boil from 37 C and 2.26 MJ/kg to vaporise,
+ * ~2.0 GJ/m^3, 0.8 MJ/m^2 over the kerf; the coagulation either side and
+ * conduction away take about twice as much again (a guess). At 30 W (a
+ * common polypectomy setting, 20-40 W; the power the tissue takes is a
+ * guess) a 5 mm stalk takes 49 J, 1.6 s; a 10 mm base 196 J, 6.5 s, the
+ * seconds current flows in a polypectomy. The energy stays in a polyp
+ * across presses of the pedal (no cooling).
+ *
+ * The cut, cold. Without the pedal, the handle closed (opening at most
+ * closed_opening) cuts what the loop holds by its force when the held
+ * thickness is below cold_max_m, 10 mm: the ESGE's guideline (Ferlitsch
+ * et al., Endoscopy 2017) takes cold snaring for polyps below 10 mm; a
+ * thicker one holds the loop shut, captured and uncut. The rig senses the
+ * handle's travel, not its force: closing it all the way stands for the
+ * force a nurse closes a cold snare with.
+ *
+ * The wall. With the pedal down and the snare out, the loop on the
+ * mucosa (the caller's nearest wall point and normal: the loop's circle
+ * reaches the wall's plane, within half the wire) with nothing captured,
+ * or the loop holding an unlifted sessile or flat base (Is, IIa: current
+ * through the whole wall beneath it), injures the wall: one
+ * TOOL_EVENT_INJURY per press of the pedal, for the patient's side to
+ * turn into a perforation.
+ *
+ * The forceps, the needle and the clip have their pose here and nothing
+ * more yet (the bite, the bleb, the clip's closure: later slices); a
+ * polyp's lifted flag is plain data the needle's model will set.
+ *
+ * Units SI. Plain data (copy it freely), no allocation, no logging; a
+ * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
+ * (about 1 us at 32 on this project's VM: `make bench`). One writer (the
+ * force loop); any thread may read a copy.
+ */
+#ifndef ENDOSIM_TOOL_H
+#define ENDOSIM_TOOL_H
+
+#include <stdbool.h>
+
+#include "model/anatomy.h"
+#include "proto/endosim_shm.h"
+
+struct colon;
+
+enum tool_kind {
+	TOOL_NONE = 0,
+	TOOL_FORCEPS,
+	TOOL_SNARE,
+	TOOL_NEEDLE,
+	TOOL_CLIP,
+};
+
+/* A snare's sizes, its loop's diameter fully open, m. */
+#define TOOL_SNARE_MIN_M 0.010
+#define TOOL_SNARE_MAX_M 0.030
+
+enum tool_polyp_state {
+	TOOL_POLYP_IN_PLACE = 0,
+	TOOL_POLYP_CAPTURED,  /* held in the snare's loop */
+	TOOL_POLYP_CUT,       /* cut free: lies in the lumen */
+};
+
+/* What happened in a step: tool_step()'s bits. */
+#define TOOL_EVENT_CAPTURE 0x1u /* the loop closed on a polyp */
+#define TOOL_EVENT_RELEASE 0x2u /* it let go (the handle opened) */
+#define TOOL_EVENT_CUT 0x4u     /* a polyp cut free */
+#define TOOL_EVENT_INJURY 0x8u  /* current into the wall (see above) */
+
+struct tool_params {
+	double channel_angle_rad; /* clockwise from 12 o'clock, image */
+	double channel_offset_m;  /* the exit from the tip's axis */
+	double cut_j_per_m2;      /* the hot cut's energy per area held */
+	double hot_power_w;       /* into the tissue, pedal down */
+	double cold_max_m;        /* thickness a cold snare cuts, below */
+	double closed_opening;    /* the handle closed, at and below */
+	double wire_m;            /* the snare wire's diameter */
+	double lift_m;            /* what an injection lifts a base by */
+};
+
+#define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (150.0 * 3.14159265358979323846 / 180)
+#define TOOL_DEFAULT_CHANNEL_OFFSET_M 0.004
+#define TOOL_DEFAULT_CUT_J_PER_M2 2.5e6
+#define TOOL_DEFAULT_HOT_POWER_W 30.0
+#define TOOL_DEFAULT_COLD_MAX_M 0.010
+#define TOOL_DEFAULT_CLOSED_OPENING 0.02
+#define TOOL_DEFAULT_WIRE_M 0.0004
+#define TOOL_DEFAULT_LIFT_M 0.004
+
+#define TOOL_PARAMS_DEFAULT { \
+		.channel_angle_rad = TOOL_DEFAULT_CHANNEL_ANGLE_RAD, \
+		.channel_offset_m = TOOL_DEFAULT_CHANNEL_OFFSET_M, \
+		.cut_j_per_m2 = TOOL_DEFAULT_CUT_J_PER_M2, \
+		.hot_power_w = TOOL_DEFAULT_HOT_POWER_W, \
+		.cold_max_m = TOOL_DEFAULT_COLD_MAX_M, \
+		.closed_opening = TOOL_DEFAULT_CLOSED_OPENING, \
+		.wire_m = TOOL_DEFAULT_WIRE_M, .lift_m = TOOL_DEFAULT_LIFT_M }
+
+/* What the rig senses of the tool this cycle. */
+struct tool_input {
+	double depth_m;        /* its tip beyond the channel's exit */
+	double opening;        /* the handle, 0 closed .. 1 open */
+	bool pedal;            /* the cautery's, down */
+	bool wall;             /* whether wall_point and wall_normal hold */
+	double wall_point[3];  /* the wall nearest the tool's tip, m */
+	double wall_normal[3]; /* unit, into the lumen */
+};
+
+/* Where the tool is: in the colon's frame, as the scope's tip. */
+struct tool_pose {
+	double exit[3];   /* the channel's exit on the tip's face, m */
+	double tip[3];    /* the tool's tip (the snare's sheath's), m */
+	double dir[3];    /* unit, the tool's (the tip's) direction */
+	double radial[3]; /* unit, from the tip's axis to the exit */
+	double side[3];   /* unit, dir x radial: the loop's width */
+};
+
+/* A polyp as the snare sees it. */
+struct tool_polyp {
+	double base[3];      /* on the wall, m */
+	double normal[3];    /* the wall's there, unit, into the lumen */
+	double size_m;       /* anatomy's diameter_m */
+	double stalk_m;      /* Ip: the stalk's length; 0 otherwise */
+	double stalk_diameter_m; /* Ip: its thickness; 0 otherwise */
+	int paris;           /* enum anatomy_paris */
+	bool lifted;         /* by an injection */
+	int state;           /* enum tool_polyp_state */
+	bool inside;         /* its axis inside the loop, last step */
+	double energy_j;     /* the cautery's into it so far */
+};
+
+struct tool {
+	int kind;            /* enum tool_kind */
+	double snare_m;      /* the snare's size, D */
+	double depth_m;      /* the last finite input's */
+	double opening;
+	struct tool_pose pose;
+	double command_m;    /* the loop's diameter the handle asks for */
+	double loop_m;       /* the loop's: command_m, or a held thickness */
+	double loop_centre[3]; /* the snare's loop, m */
+	int captured;        /* the polyp the loop holds; -1 none */
+	bool injured;        /* this press of the pedal has injured */
+	int polyps;
+	struct tool_polyp polyp[ANATOMY_MAX_POLYPS];
+};
+
+/* No tool, no polyps. */
+void tool_reset(struct tool *t);
+
+/*
+ * The tool the nurse hands over: KIND (enum tool_kind) and, for a snare,
+ * its size SNARE_M (TOOL_SNARE_MIN_M..TOOL_SNARE_MAX_M). Lets go of a
+ * captured polyp. Returns 0 or -EINVAL (T unchanged).
+ */
+int tool_select(struct tool *t, int kind, double snare_m);
+
+/*
+ * A polyp of the case, AP, standing at BASE (m) on the wall whose normal
+ * into the lumen is NORMAL (made unit). Returns its index, or -ENOSPC
+ * past ANATOMY_MAX_POLYPS, -EINVAL for a zero normal.
+ */
+int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
+		   const double base[3], const double normal[3]);
+
+/*
+ * The case's polyps on colon C's undeformed wall (colon_lumen_radius() at
+ * each polyp's place), after any added before. Returns the number added,
+ * or a negative errno; 0 for an imported mesh (no case, no polyps).
+ * Not for the force loop (it reads the centreline).
+ */
+int tool_place_polyps(struct tool *t, const struct colon *c);
+
+/* The thickness (m) and the height (m) of polyp P's axis, which the loop
+ * must close around, with lift LIFT_M (tool_params' lift_m). */
+double tool_polyp_thickness(const struct tool_polyp *p);
+double tool_polyp_height(const struct tool_polyp *p, double lift_m);
+
+/*
+ * The loop's diameter (m) of a snare of size SNARE_M with its handle at
+ * OPENING (clamped to 0..1) and its sheath's tip at DEPTH_M beyond the
+ * channel's exit (above: min(D, 2 l / pi)).
+ */
+double tool_loop_diameter(double snare_m, double opening, double depth_m);
+
+/* The tool's pose at DEPTH_M on the scope's tip in SC (tip, dir, up). */
+void tool_pose(const struct tool_params *par,
+	       const struct endosim_scope_state *sc, double depth_m,
+	       struct tool_pose *out);
+
+/*
+ * One step of DT_S seconds: the pose, the snare's loop, capture, the
+ * cut, the wall. Returns the TOOL_EVENT_* bits of what happened; the
+ * polyp concerned is T->captured for a capture, the one just released
+ * or cut otherwise (*POLYP, -1 if none; POLYP may be NULL). Non-finite
+ * inputs count as the tool still: depth and opening as in the step
+ * before, the pedal up.
+ */
+unsigned tool_step(struct tool *t, const struct tool_params *par,
+		   const struct endosim_scope_state *sc,
+		   const struct tool_input *in, double dt_s, int *polyp);
+
+#endif

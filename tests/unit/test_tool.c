@@ -1,0 +1,488 @@
+/*
+ * test_tool.c - the tools through the working channel (tool.h), against
+ * the geometry and the numbers its header states:
+ *  - the pose: the channel's exit at its clock angle in the image (5
+ *    o'clock: down and right) and offset on a known tip pose, the tool
+ *    along dir at its depth;
+ *  - the loop's diameter as it leaves the sheath: min(D, 2 l / pi) with
+ *    l = opening pi D / 2 plus a negative depth, in the step as alone;
+ *  - capture: a closing loop of known size captures a stalk whose axis
+ *    crosses its plane inside it (half a stalk's width inside the wire),
+ *    not one touching the wire from outside nor one a stalk's width
+ *    away; an unlifted IIb base never, a lifted one yes; opening the
+ *    handle lets go;
+ *  - the hot cut after cut_j_per_m2 x pi t^2 / 4, which the pedal's power
+ *    x time reaches within 2 %, nothing counted with the pedal up;
+ *  - the cold cut of a 6 mm base and not of a 15 mm one;
+ *  - the wall: the pedal on mucosa with nothing captured, or on a held
+ *    unlifted sessile base, injures once per press; a loop off the wall
+ *    or a lifted base does not;
+ *  - the case's polyps on the colon's wall (the polyps case).
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "geom_assert.h"
+#include "model/anatomy.h"
+#include "model/centreline.h"
+#include "model/colon.h"
+#include "model/tool.h"
+#include "base/vec3.h"
+
+#define DT 0.001
+#define SNARE 0.020 /* a 20 mm snare */
+#define DEPTH 0.020 /* its sheath 2 cm out */
+
+static const struct tool_params par = TOOL_PARAMS_DEFAULT;
+
+/* A tool on a tip at (0.1, 0.2, 0.3) looking along x, 12 o'clock z: the
+ * image's right is dir x up = -y. */
+struct bench {
+	struct tool t;
+	struct endosim_scope_state sc;
+	struct tool_input in;
+	unsigned events;  /* every step's, or'ed */
+	int polyp;        /* the last event's */
+	long cut_step;    /* the step a cut came in (from 1), 0: none */
+	int injuries;
+};
+
+static void bench_init(struct bench *b)
+{
+	memset(b, 0, sizeof(*b));
+	tool_reset(&b->t);
+	vec3_set(b->sc.tip, 0.1, 0.2, 0.3);
+	vec3_set(b->sc.dir, 1, 0, 0);
+	vec3_set(b->sc.up, 0, 0, 1);
+	b->in.depth_m = DEPTH;
+	b->in.opening = 1;
+	b->polyp = -1;
+}
+
+/* N steps with the handle moving linearly from where it is to OPENING. */
+static void run(struct bench *b, long n, double opening)
+{
+	double from = b->in.opening;
+
+	for (long k = 1; k <= n; k++) {
+		unsigned ev;
+		int p;
+
+		b->in.opening = from + (opening - from) * (double)k / n;
+		ev = tool_step(&b->t, &par, &b->sc, &b->in, DT, &p);
+		if (ev) {
+			b->polyp = p;
+		}
+		if (ev & TOOL_EVENT_CUT) {
+			assert_int_equal(b->cut_step, 0); /* once */
+			b->cut_step = k;
+		}
+		b->injuries += (ev & TOOL_EVENT_INJURY) != 0;
+		b->events |= ev;
+	}
+}
+
+/* The snare open at its full size, its loop placed. */
+static void open_snare(struct bench *b, double snare_m)
+{
+	assert_int_equal(tool_select(&b->t, TOOL_SNARE, snare_m), 0);
+	run(b, 10, 1);
+	assert_near(b->t.loop_m, snare_m, 1e-12);
+}
+
+/*
+ * A polyp of class PARIS, SIZE_M, its stalk T_M thick (Ip), whose axis
+ * (the wall's normal, towards the tip's axis) crosses the open loop's
+ * plane at OFF_M from the loop's centre along the loop's width: its base
+ * half its height below the plane. Returns its index.
+ */
+static int polyp_at(struct bench *b, int paris, double size_m, double t_m,
+		    double off_m, bool lifted)
+{
+	struct anatomy_polyp ap = {
+		.diameter_m = size_m, .paris = paris,
+		.stalk_length_m = paris == ANATOMY_PARIS_IP ? 0.008 : 0,
+		.stalk_diameter_m = paris == ANATOMY_PARIS_IP ? t_m : 0,
+	};
+	const struct tool_pose *po = &b->t.pose;
+	double base[3], n[3], h;
+	int i;
+
+	vec3_scale(n, po->radial, -1);
+	vec3_axpy(base, b->t.loop_centre, off_m, po->side);
+	i = tool_add_polyp(&b->t, &ap, base, n);
+	assert_true(i >= 0);
+	b->t.polyp[i].lifted = lifted;
+	h = tool_polyp_height(&b->t.polyp[i], par.lift_m);
+	assert_true(h > 0 || paris == ANATOMY_PARIS_IIB);
+	vec3_axpy(b->t.polyp[i].base, base, h / 2, po->radial);
+	return i;
+}
+
+/* ------------------------------------------------------------ the pose */
+
+static void test_pose_at_channel_angle(void **unused)
+{
+	struct tool_params p = par;
+	struct bench b;
+	double right[3] = { 0, -1, 0 }, want[3];
+	const double a = 150 * M_PI / 180, r = par.channel_offset_m;
+
+	(void)unused;
+	bench_init(&b);
+	tool_pose(&p, &b.sc, 0.015, &b.t.pose);
+	/* 5 o'clock: down (-up) and to the right */
+	assert_true(vec3_dot(b.t.pose.radial, b.sc.up) < -0.8);
+	assert_true(vec3_dot(b.t.pose.radial, right) > 0.45);
+	vec3_set(want, 0.1, 0.2 - r * sin(a), 0.3 + r * cos(a));
+	assert_vec_near(b.t.pose.exit, want, 1e-12);
+	want[0] += 0.015;
+	assert_vec_near(b.t.pose.tip, want, 1e-12);
+	assert_vec_near(b.t.pose.dir, b.sc.dir, 1e-12);
+	assert_near(vec3_dot(b.t.pose.side, b.t.pose.radial), 0, 1e-12);
+	assert_near(vec3_dot(b.t.pose.side, b.t.pose.dir), 0, 1e-12);
+	/* 3 o'clock: straight right; 12 o'clock: straight up */
+	p.channel_angle_rad = M_PI / 2;
+	tool_pose(&p, &b.sc, -0.01, &b.t.pose);
+	vec3_set(want, 0.1 - 0.01, 0.2 - r, 0.3);
+	assert_vec_near(b.t.pose.tip, want, 1e-12);
+	p.channel_angle_rad = 0;
+	tool_pose(&p, &b.sc, 0, &b.t.pose);
+	vec3_set(want, 0.1, 0.2, 0.3 + r);
+	assert_vec_near(b.t.pose.exit, want, 1e-12);
+}
+
+/* ---------------------------------------------------- the loop's size */
+
+static void test_loop_diameter_formula(void **unused)
+{
+	static const struct {
+		double snare, opening, depth;
+	} at[] = {
+		{ 0.020, 0, 0.02 }, { 0.020, 0.25, 0.02 }, { 0.020, 0.5, 0 },
+		{ 0.020, 1, 0.01 }, { 0.010, 0.7, 0.03 }, { 0.030, 1, -0.005 },
+		{ 0.030, 0.5, -0.01 }, { 0.020, 1, -0.04 }, { 0.020, 1.5, 0.02 },
+	};
+	struct bench b;
+
+	(void)unused;
+	for (size_t i = 0; i < sizeof(at) / sizeof(at[0]); i++) {
+		double o = fmin(1, at[i].opening), l, want;
+
+		l = o * M_PI * at[i].snare / 2 + fmin(0, at[i].depth);
+		want = fmin(at[i].snare, 2 * fmax(0, l) / M_PI);
+		assert_near(tool_loop_diameter(at[i].snare, at[i].opening,
+					       at[i].depth), want, 1e-12);
+		bench_init(&b);
+		assert_int_equal(tool_select(&b.t, TOOL_SNARE, at[i].snare), 0);
+		b.in.depth_m = at[i].depth;
+		b.in.opening = at[i].opening;
+		run(&b, 1, at[i].opening);
+		assert_near(b.t.loop_m, want, 1e-12);
+	}
+	/* at full opening and depth, the snare's size; half open, half */
+	assert_near(tool_loop_diameter(0.02, 1, 0.02), 0.02, 1e-12);
+	assert_near(tool_loop_diameter(0.02, 0.5, 0.02), 0.01, 1e-12);
+	/* the loop's centre half its diameter beyond the sheath's tip */
+	bench_init(&b);
+	open_snare(&b, SNARE);
+	assert_near(vec3_dist(b.t.loop_centre, b.t.pose.tip), SNARE / 2,
+		    1e-12);
+	assert_int_equal(tool_select(&b.t, TOOL_SNARE, 0.035), -EINVAL);
+	assert_int_equal(tool_select(&b.t, 7, 0), -EINVAL);
+}
+
+/* --------------------------------------------------------------- capture */
+
+/* A 20 mm loop closing in 0.5 s on a 4 mm stalk OFF_M from its centre:
+ * whether it captured it. */
+static bool closes_on(double off_m)
+{
+	struct bench b;
+	int i;
+
+	bench_init(&b);
+	open_snare(&b, SNARE);
+	i = polyp_at(&b, ANATOMY_PARIS_IP, 0.012, 0.004, off_m, false);
+	run(&b, 5, 1);
+	run(&b, 500, 0.1);
+	if (b.events & TOOL_EVENT_CAPTURE) {
+		assert_int_equal(b.t.captured, i);
+		assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CAPTURED);
+		assert_int_equal(b.polyp, i);
+		assert_near(b.t.loop_m, 0.004, 1e-12); /* held at its width */
+		return true;
+	}
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_IN_PLACE);
+	return false;
+}
+
+static void test_capture_inside_not_outside(void **unused)
+{
+	const double r = SNARE / 2, t = 0.004;
+
+	(void)unused;
+	assert_true(closes_on(0));
+	assert_true(closes_on(r / 2));
+	assert_true(closes_on(-(r - t / 2)));  /* half its width inside */
+	assert_true(closes_on(r - 0.1 * t));   /* the axis just inside */
+	assert_false(closes_on(r + 0.1 * t));  /* the axis just outside */
+	assert_false(closes_on(r + t / 2));    /* touching from outside */
+	assert_false(closes_on(-(r + t)));     /* a stalk's width away */
+	assert_false(closes_on(2 * r));
+}
+
+/* The loop held still, its wire against a stalk inside it, does not
+ * capture it; closing does; opening it lets go. */
+static void test_capture_needs_closing(void **unused)
+{
+	struct bench b;
+	int i;
+
+	(void)unused;
+	bench_init(&b);
+	open_snare(&b, SNARE);
+	i = polyp_at(&b, ANATOMY_PARIS_IP, 0.012, 0.004,
+		     SNARE / 2 - 0.001, false);
+	run(&b, 500, 1);
+	assert_int_equal(b.events, 0);
+	run(&b, 500, 0.1);
+	assert_int_equal(b.t.captured, i);
+	run(&b, 100, 0.8);
+	assert_true(b.events & TOOL_EVENT_RELEASE);
+	assert_int_equal(b.t.captured, -1);
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_IN_PLACE);
+	assert_near(b.t.loop_m, 0.8 * SNARE, 1e-12);
+}
+
+/* A flat IIb base: nothing to close around unless lifted. */
+static void test_flat_base_needs_lift(void **unused)
+{
+	struct bench b;
+
+	(void)unused;
+	bench_init(&b);
+	open_snare(&b, SNARE);
+	polyp_at(&b, ANATOMY_PARIS_IIB, 0.008, 0, 0, false);
+	run(&b, 500, 0);
+	assert_false(b.events & TOOL_EVENT_CAPTURE);
+	bench_init(&b);
+	open_snare(&b, SNARE);
+	polyp_at(&b, ANATOMY_PARIS_IIB, 0.008, 0, 0, true);
+	run(&b, 500, 0.1);
+	assert_true(b.events & TOOL_EVENT_CAPTURE);
+	assert_near(b.t.loop_m, 0.008, 1e-12);
+}
+
+/* ------------------------------------------------------------------ cuts */
+
+/* A stalk T_M thick captured and held (the handle not closed enough for
+ * a cold cut). */
+static int held_stalk(struct bench *b, double t_m)
+{
+	int i;
+
+	bench_init(b);
+	open_snare(b, SNARE);
+	i = polyp_at(b, ANATOMY_PARIS_IP, 0.015, t_m, 0, false);
+	run(b, 500, 0.1);
+	assert_int_equal(b->t.captured, i);
+	return i;
+}
+
+static void test_hot_cut_energy(void **unused)
+{
+	static const double stalk[] = { 0.003, 0.005, 0.008 };
+
+	(void)unused;
+	for (size_t k = 0; k < sizeof(stalk) / sizeof(stalk[0]); k++) {
+		double t = stalk[k], need_j, got_j;
+		struct bench b;
+		int i = held_stalk(&b, t);
+
+		need_j = par.cut_j_per_m2 * M_PI * t * t / 4;
+		/* pedal up for a second: nothing counted, nothing cut */
+		run(&b, 1000, 0.1);
+		assert_near(b.t.polyp[i].energy_j, 0, 0);
+		assert_int_equal(b.cut_step, 0);
+		b.in.pedal = true;
+		run(&b, lround(2 * need_j / par.hot_power_w / DT), 0.1);
+		assert_true(b.cut_step > 0);
+		got_j = par.hot_power_w * b.cut_step * DT;
+		assert_near(got_j, need_j, 0.02 * need_j);
+		assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+		assert_int_equal(b.t.captured, -1);
+		assert_int_equal(b.polyp, i);
+		assert_int_equal(b.injuries, 0); /* a stalk: no wall */
+	}
+}
+
+/* A sessile base SIZE_M across, the snare closed all the way without the
+ * pedal: whether it was cut. */
+static bool cold_cuts(double size_m)
+{
+	struct bench b;
+	int i;
+
+	bench_init(&b);
+	open_snare(&b, 0.025);
+	i = polyp_at(&b, ANATOMY_PARIS_IS, size_m, 0, 0, false);
+	run(&b, 500, 0.2);
+	assert_int_equal(b.t.captured, i);
+	run(&b, 500, 0);
+	run(&b, 500, 0);
+	assert_int_equal(b.injuries, 0);
+	assert_int_equal(b.t.polyp[i].state, b.cut_step ? TOOL_POLYP_CUT :
+				      TOOL_POLYP_CAPTURED);
+	return b.cut_step > 0;
+}
+
+static void test_cold_cut_small_only(void **unused)
+{
+	(void)unused;
+	assert_true(cold_cuts(0.004));
+	assert_true(cold_cuts(0.006));
+	assert_true(cold_cuts(0.0095));
+	assert_false(cold_cuts(0.0105));
+	assert_false(cold_cuts(0.015));
+}
+
+/* -------------------------------------------------------------- the wall */
+
+/* The pedal on mucosa with nothing captured: one injury per press; the
+ * loop 5 mm off the wall: none. */
+static void test_pedal_on_mucosa_injures(void **unused)
+{
+	struct bench b;
+
+	(void)unused;
+	for (int off = 0; off < 2; off++) {
+		bench_init(&b);
+		open_snare(&b, SNARE);
+		b.in.wall = true;
+		vec3_axpy(b.in.wall_point, b.t.loop_centre, off * 0.005,
+			  b.t.pose.radial);
+		vec3_scale(b.in.wall_normal, b.t.pose.radial, -1);
+		b.in.pedal = true;
+		run(&b, 300, 0.2);
+		assert_int_equal(b.injuries, off ? 0 : 1);
+		b.in.pedal = false;
+		run(&b, 10, 0.2);
+		b.in.pedal = true;
+		run(&b, 10, 0.2);
+		assert_int_equal(b.injuries, off ? 0 : 2);
+		assert_int_equal(b.polyp, -1);
+	}
+}
+
+/* Hot current through a held sessile base: an injury unless lifted; the
+ * lifted one is cut clean. */
+static void test_hot_unlifted_base_injures(void **unused)
+{
+	for (int lifted = 0; lifted < 2; lifted++) {
+		struct bench b;
+		int i;
+
+		(void)unused;
+		bench_init(&b);
+		open_snare(&b, SNARE);
+		i = polyp_at(&b, ANATOMY_PARIS_IIA, 0.008, 0, 0, lifted);
+		run(&b, 500, 0.2);
+		assert_int_equal(b.t.captured, i);
+		b.in.pedal = true;
+		run(&b, 10000, 0.2);
+		assert_int_equal(b.injuries, lifted ? 0 : 1);
+		assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+	}
+}
+
+/* Non-finite readings hold the tool still with the pedal up; another
+ * tool than the snare has a pose and nothing else. */
+static void test_still_and_other_tools(void **unused)
+{
+	struct bench b;
+	double tip[3];
+
+	(void)unused;
+	held_stalk(&b, 0.004);
+	vec3_copy(tip, b.t.pose.tip);
+	b.in.depth_m = NAN;
+	b.in.pedal = true;
+	run(&b, 100, 0.1);
+	assert_vec_near(b.t.pose.tip, tip, 0);
+	assert_near(b.t.polyp[b.t.captured].energy_j, 0, 0);
+	b.in.depth_m = DEPTH;
+	b.in.opening = INFINITY;
+	run(&b, 1, INFINITY);
+	assert_near(b.t.polyp[b.t.captured].energy_j, 0, 0);
+	assert_int_equal(tool_select(&b.t, TOOL_FORCEPS, 0), 0);
+	assert_int_equal(b.t.captured, -1);
+	b.in.opening = 0;
+	b.events = 0;
+	run(&b, 100, 1);
+	assert_int_equal(b.events, 0);
+	assert_near(b.t.loop_m, 0, 0);
+}
+
+/* -------------------------------------------------------- on the colon */
+
+static void test_place_polyps_on_wall(void **unused)
+{
+	struct colon_params cp = COLON_PARAMS_DEFAULT;
+	struct anatomy a;
+	struct colon *c;
+	struct tool t;
+	char err[256];
+
+	(void)unused;
+	assert_int_equal(anatomy_load(&a, "config/cases/polyps.case", err,
+				      sizeof(err)), 0);
+	c = colon_create(&a, &cp, err, sizeof(err));
+	assert_non_null(c);
+	tool_reset(&t);
+	assert_int_equal(tool_place_polyps(&t, c), a.polyps);
+	for (int i = 0; i < a.polyps; i++) {
+		const struct tool_polyp *p = &t.polyp[i];
+		struct centreline_point q;
+		double x[3], r;
+
+		centreline_at_s(colon_centreline(c), a.polyp[i].s_m, &q);
+		r = colon_lumen_radius(c, a.polyp[i].s_m, a.polyp[i].angle_rad);
+		vec3_sub(x, p->base, q.p);
+		assert_near(vec3_norm(x), r, 1e-9);
+		assert_near(vec3_dot(x, q.t), 0, 1e-9);
+		vec3_normalize(x);
+		assert_near(vec3_dot(x, p->normal), -1, 1e-9);
+		assert_int_equal(p->paris, a.polyp[i].paris);
+		assert_near(p->size_m, a.polyp[i].diameter_m, 0);
+	}
+	colon_destroy(c);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_pose_at_channel_angle),
+		cmocka_unit_test(test_loop_diameter_formula),
+		cmocka_unit_test(test_capture_inside_not_outside),
+		cmocka_unit_test(test_capture_needs_closing),
+		cmocka_unit_test(test_flat_base_needs_lift),
+		cmocka_unit_test(test_hot_cut_energy),
+		cmocka_unit_test(test_cold_cut_small_only),
+		cmocka_unit_test(test_pedal_on_mucosa_injures),
+		cmocka_unit_test(test_hot_unlifted_base_injures),
+		cmocka_unit_test(test_still_and_other_tools),
+		cmocka_unit_test(test_place_polyps_on_wall),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
