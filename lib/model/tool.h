@@ -87,7 +87,8 @@
  *
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
- * (about 1 us at 32 on this project's VM: `make bench`). One writer (the
+ * (p99 0.3 us with 32 in the loop on this project's VM: bench_tool in
+ * `make bench`). One writer (the
  * force loop); any thread may read a copy.
  */
 #ifndef ENDOSIM_TOOL_H

@@ -35,6 +35,9 @@
 #    real-time bandwidth limit (50 ms of every second,
 #    sched_rt_runtime_us), which is not the daemon's case (it sleeps
 #    between cycles).
+#    The tools' model (bench_tool): tool_step()'s cost per cycle, a
+#    snare on the polyps case's tip withdrawn along its centreline and
+#    the most a step does (32 stalks in the loop), next to its 10 us.
 # 4. The drives: exchange rates and transaction latency against the
 #    emulators (drives.sh).
 # 5. The viewer's frame times and the age of the state it shows
@@ -128,6 +131,9 @@ ENDOSIM_TOP=$TOP "$BUILD/tests/test_rodcourse" 2>&1 | grep '^the patient: '
 echo "=== the patient's pain: expert and novice on every case, the split next to Shah's (test_separation) ==="
 ENDOSIM_TOP=$TOP ENDOSIM_PAINRUN_FULL=1 "$BUILD/tests/test_separation" \
 	2>&1 | grep -E '^# (config/|  |pain episodes|by cause)'
+echo
+echo "=== the tools' model: a snare on the polyps case, and 32 stalks in its loop (goal: p99 <= 10 us) ==="
+"$BUILD/tests/bench_tool" "$TOP/config/cases/polyps.case"
 echo
 echo "=== the loop's cycle on the paper model's demo, force shading on and off ==="
 "$BUILD/tests/bench_haptics" --model paper "$CASE" \
