@@ -288,6 +288,45 @@ static unsigned snare_step(struct tool *t, const struct tool_params *par,
 	return ev;
 }
 
+/* The needle's point in polyp P's wall under its base. */
+static bool under_base(const struct tool *t, const struct tool_params *par,
+		       const struct tool_polyp *p)
+{
+	double x[3], depth, r = p->size_m / 2 + par->margin_m;
+
+	vec3_sub(x, t->needle, p->base);
+	depth = -vec3_dot(x, p->normal);
+	vec3_axpy(x, x, depth, p->normal);
+	return depth >= 0 && depth <= par->needle_m && vec3_dot(x, x) <= r * r;
+}
+
+/* The needle's step after the pose: out, it injects under the first
+ * sessile or flat base it is in; *WHICH the polyp it lifted. */
+static unsigned needle_step(struct tool *t, const struct tool_params *par,
+			    double dt_s, int *which)
+{
+	bool out = t->depth_m > 0 && t->opening > 0.5;
+
+	vec3_axpy(t->needle, t->pose.tip, out ? par->needle_m : 0,
+		  t->pose.dir);
+	for (int i = 0; out && i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+
+		if (p->paris == ANATOMY_PARIS_IP ||
+		    p->state != TOOL_POLYP_IN_PLACE || !under_base(t, par, p)) {
+			continue;
+		}
+		p->injected_m3 += par->inject_m3_per_s * dt_s;
+		if (!p->lifted && p->injected_m3 >= par->lift_m3) {
+			p->lifted = true;
+			*which = i;
+			return TOOL_EVENT_LIFT;
+		}
+		return 0;
+	}
+	return 0;
+}
+
 unsigned tool_step(struct tool *t, const struct tool_params *par,
 		   const struct endosim_scope_state *sc,
 		   const struct tool_input *in, double dt_s, int *polyp)
@@ -307,6 +346,8 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 	tool_pose(par, sc, t->depth_m, &t->pose);
 	if (t->kind == TOOL_SNARE) {
 		ev = snare_step(t, par, in, pedal, dt_s, &which);
+	} else if (t->kind == TOOL_NEEDLE) {
+		ev = needle_step(t, par, dt_s, &which);
 	}
 	if (polyp) {
 		*polyp = which;

@@ -81,9 +81,18 @@
  * TOOL_EVENT_INJURY per press of the pedal, for the patient's side to
  * turn into a perforation.
  *
- * The forceps, the needle and the clip have their pose here and nothing
- * more yet (the bite, the bleb, the clip's closure: later slices); a
- * polyp's lifted flag is plain data the needle's model will set.
+ * The needle. The handle pushes the needle needle_m out of its
+ * catheter (opening above one half); out, with its point in the wall
+ * under a sessile or flat polyp's base (at most needle_m below the
+ * surface, within the base's radius and margin_m more of its centre),
+ * the nurse injects at inject_m3_per_s; lift_m3 under a base lifts it
+ * (TOOL_EVENT_LIFT), so that a snare can close around it. 1 mL/s and
+ * 3 mL are guesses (EMR injects a few mL a site; the hemostasis
+ * trainer's experts inject in 36 s, beginners in 92 s, docs' PATIENT
+ * notes: the whole task, not the flow).
+ *
+ * The forceps and the clip have their pose here and nothing more yet
+ * (the bite, the clip's closure: later slices).
  *
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
@@ -124,6 +133,7 @@ enum tool_polyp_state {
 #define TOOL_EVENT_RELEASE 0x2u /* it let go (the handle opened) */
 #define TOOL_EVENT_CUT 0x4u     /* a polyp cut free */
 #define TOOL_EVENT_INJURY 0x8u  /* current into the wall (see above) */
+#define TOOL_EVENT_LIFT 0x10u   /* an injection lifted a base */
 
 struct tool_params {
 	double channel_angle_rad; /* clockwise from 12 o'clock, image */
@@ -134,6 +144,10 @@ struct tool_params {
 	double closed_opening;    /* the handle closed, at and below */
 	double wire_m;            /* the snare wire's diameter */
 	double lift_m;            /* what an injection lifts a base by */
+	double needle_m;          /* the needle out of its catheter */
+	double margin_m;          /* beyond a base's radius, still its */
+	double inject_m3_per_s;   /* the injection's flow */
+	double lift_m3;           /* what lifts a base */
 };
 
 #define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (150.0 * 3.14159265358979323846 / 180)
@@ -144,6 +158,10 @@ struct tool_params {
 #define TOOL_DEFAULT_CLOSED_OPENING 0.02
 #define TOOL_DEFAULT_WIRE_M 0.0004
 #define TOOL_DEFAULT_LIFT_M 0.004
+#define TOOL_DEFAULT_NEEDLE_M 0.004
+#define TOOL_DEFAULT_MARGIN_M 0.005
+#define TOOL_DEFAULT_INJECT_M3_PER_S 1e-6
+#define TOOL_DEFAULT_LIFT_M3 3e-6
 
 #define TOOL_PARAMS_DEFAULT { \
 		.channel_angle_rad = TOOL_DEFAULT_CHANNEL_ANGLE_RAD, \
@@ -152,7 +170,11 @@ struct tool_params {
 		.hot_power_w = TOOL_DEFAULT_HOT_POWER_W, \
 		.cold_max_m = TOOL_DEFAULT_COLD_MAX_M, \
 		.closed_opening = TOOL_DEFAULT_CLOSED_OPENING, \
-		.wire_m = TOOL_DEFAULT_WIRE_M, .lift_m = TOOL_DEFAULT_LIFT_M }
+		.wire_m = TOOL_DEFAULT_WIRE_M, .lift_m = TOOL_DEFAULT_LIFT_M, \
+		.needle_m = TOOL_DEFAULT_NEEDLE_M, \
+		.margin_m = TOOL_DEFAULT_MARGIN_M, \
+		.inject_m3_per_s = TOOL_DEFAULT_INJECT_M3_PER_S, \
+		.lift_m3 = TOOL_DEFAULT_LIFT_M3 }
 
 /* What the rig senses of the tool this cycle. */
 struct tool_input {
@@ -181,6 +203,7 @@ struct tool_polyp {
 	double stalk_m;      /* Ip: the stalk's length; 0 otherwise */
 	double stalk_diameter_m; /* Ip: its thickness; 0 otherwise */
 	int paris;           /* enum anatomy_paris */
+	double injected_m3;  /* under its base so far */
 	bool lifted;         /* by an injection */
 	int state;           /* enum tool_polyp_state */
 	bool inside;         /* its axis inside the loop, last step */
@@ -196,6 +219,7 @@ struct tool {
 	double command_m;    /* the loop's diameter the handle asks for */
 	double loop_m;       /* the loop's: command_m, or a held thickness */
 	double loop_centre[3]; /* the snare's loop, m */
+	double needle[3];    /* the needle's point, out or not, m */
 	int captured;        /* the polyp the loop holds; -1 none */
 	bool injured;        /* this press of the pedal has injured */
 	int polyps;
@@ -247,11 +271,11 @@ void tool_pose(const struct tool_params *par,
 
 /*
  * One step of DT_S seconds: the pose, the snare's loop, capture, the
- * cut, the wall. Returns the TOOL_EVENT_* bits of what happened; the
- * polyp concerned is T->captured for a capture, the one just released
- * or cut otherwise (*POLYP, -1 if none; POLYP may be NULL). Non-finite
- * inputs count as the tool still: depth and opening as in the step
- * before, the pedal up.
+ * cut, the wall; the needle's injection. Returns the TOOL_EVENT_* bits
+ * of what happened; the polyp concerned is T->captured for a capture,
+ * the one just released, cut or lifted otherwise (*POLYP, -1 if none;
+ * POLYP may be NULL). Non-finite inputs count as the tool still: depth
+ * and opening as in the step before, the pedal up.
  */
 unsigned tool_step(struct tool *t, const struct tool_params *par,
 		   const struct endosim_scope_state *sc,

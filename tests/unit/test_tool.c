@@ -14,6 +14,8 @@
  *  - the hot cut after cut_j_per_m2 x pi t^2 / 4, which the pedal's power
  *    x time reaches within 2 %, nothing counted with the pedal up;
  *  - the cold cut of a 6 mm base and not of a 15 mm one;
+ *  - the needle out under a flat base lifts it after lift_m3 injected,
+ *    not a needle beyond the base's margin or one left in its catheter;
  *  - the wall: the pedal on mucosa with nothing captured, or on a held
  *    unlifted sessile base, injures once per press; a loop off the wall
  *    or a lifted base does not;
@@ -405,6 +407,51 @@ static void test_hot_unlifted_base_injures(void **unused)
 	}
 }
 
+/* The needle out, its point 2 mm under a flat base OFF_M aside from its
+ * centre, for 5 s: the step it lifted in (from 1), 0: not. */
+static long lifts_after(double off_m, double opening)
+{
+	struct anatomy_polyp ap = { .diameter_m = 0.008,
+				    .paris = ANATOMY_PARIS_IIB };
+	struct bench b;
+	double base[3], n[3];
+	int i;
+
+	bench_init(&b);
+	assert_int_equal(tool_select(&b.t, TOOL_NEEDLE, 0), 0);
+	b.in.opening = opening;
+	run(&b, 1, opening);
+	vec3_scale(n, b.t.pose.radial, -1);
+	vec3_copy(base, b.t.pose.tip);
+	vec3_axpy(base, base, par.needle_m, b.t.pose.dir);
+	vec3_axpy(base, base, 0.002, n);
+	vec3_axpy(base, base, off_m, b.t.pose.side);
+	i = tool_add_polyp(&b.t, &ap, base, n);
+	for (long k = 1; k <= 5000; k++) {
+		int p;
+
+		if (tool_step(&b.t, &par, &b.sc, &b.in, DT, &p) &
+		    TOOL_EVENT_LIFT) {
+			assert_int_equal(p, i);
+			assert_true(b.t.polyp[i].lifted);
+			return k;
+		}
+	}
+	assert_false(b.t.polyp[i].lifted);
+	return 0;
+}
+
+static void test_needle_lifts_base(void **unused)
+{
+	long want = lround(par.lift_m3 / par.inject_m3_per_s / DT);
+
+	(void)unused;
+	assert_true(labs(lifts_after(0, 1) - want) <= 1);
+	assert_true(labs(lifts_after(0.008, 1) - want) <= 1);
+	assert_int_equal(lifts_after(0.010, 1), 0); /* beyond its margin */
+	assert_int_equal(lifts_after(0, 0.3), 0);   /* the needle in */
+}
+
 /* Non-finite readings hold the tool still with the pedal up; another
  * tool than the snare has a pose and nothing else. */
 static void test_still_and_other_tools(void **unused)
@@ -480,6 +527,7 @@ int main(void)
 		cmocka_unit_test(test_cold_cut_small_only),
 		cmocka_unit_test(test_pedal_on_mucosa_injures),
 		cmocka_unit_test(test_hot_unlifted_base_injures),
+		cmocka_unit_test(test_needle_lifts_base),
 		cmocka_unit_test(test_still_and_other_tools),
 		cmocka_unit_test(test_place_polyps_on_wall),
 	};
