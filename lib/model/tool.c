@@ -49,6 +49,7 @@ int tool_select(struct tool *t, int kind, double snare_m)
 	t->snare_m = kind == TOOL_SNARE ? snare_m : 0;
 	t->command_m = 0;
 	t->loop_m = 0;
+	t->armed = false;
 	for (int i = 0; i < t->polyps; i++) {
 		t->polyp[i].inside = false;
 	}
@@ -234,6 +235,7 @@ static unsigned cut(struct tool *t, const struct tool_params *par,
 		if (!p->lifted && p->paris != ANATOMY_PARIS_IP &&
 		    !t->injured) {
 			t->injured = true;
+			vec3_copy(t->injury_at, p->base);
 			ev |= TOOL_EVENT_INJURY;
 		}
 		through = p->energy_j >= par->cut_j_per_m2 * M_PI * th * th / 4;
@@ -283,6 +285,7 @@ static unsigned snare_step(struct tool *t, const struct tool_params *par,
 	if (pedal && t->captured < 0 && !t->injured && in->wall &&
 	    t->depth_m > 0 && loop_on_wall(t, par, in)) {
 		t->injured = true;
+		vec3_copy(t->injury_at, in->wall_point);
 		ev |= TOOL_EVENT_INJURY;
 	}
 	return ev;
@@ -327,6 +330,84 @@ static unsigned needle_step(struct tool *t, const struct tool_params *par,
 	return 0;
 }
 
+/* The jaws close: the handle, opened past one half since they last
+ * closed, closed now, the tool out of the channel. */
+static bool jaws_close(struct tool *t, const struct tool_params *par)
+{
+	t->armed |= t->opening > 0.5;
+	if (!t->armed || t->opening > par->closed_opening || t->depth_m <= 0) {
+		return false;
+	}
+	t->armed = false;
+	return true;
+}
+
+/* Point X within REACH_M of the caller's wall. */
+static bool near_wall(const double x[3], const struct tool_input *in,
+		      double reach_m)
+{
+	double d[3];
+
+	vec3_sub(d, x, in->wall_point);
+	return in->wall && vec3_dot(d, in->wall_normal) <= reach_m;
+}
+
+/* The polyp in place whose body the forceps' cups reach, or -1. */
+static int bitten(const struct tool *t, const struct tool_params *par)
+{
+	for (int i = 0; i < t->polyps; i++) {
+		const struct tool_polyp *p = &t->polyp[i];
+		double c[3], h = tool_polyp_height(p, par->lift_m);
+
+		vec3_axpy(c, p->base, h / 2, p->normal);
+		if (p->state == TOOL_POLYP_IN_PLACE &&
+		    vec3_dist(c, t->jaws) <= p->size_m / 2 + par->jaw_m) {
+			return i;
+		}
+	}
+	return -1;
+}
+
+/* The forceps' step after the pose; *WHICH the polyp bitten. */
+static unsigned forceps_step(struct tool *t, const struct tool_params *par,
+			     const struct tool_input *in, int *which)
+{
+	int i;
+
+	vec3_axpy(t->jaws, t->pose.tip, par->jaw_m, t->pose.dir);
+	if (!jaws_close(t, par)) {
+		return 0;
+	}
+	i = bitten(t, par);
+	if (i < 0 && !near_wall(t->jaws, in, par->jaw_m)) {
+		return 0;
+	}
+	vec3_copy(t->bite_at, t->jaws);
+	*which = i;
+	if (i < 0) {
+		return TOOL_EVENT_BITE;
+	}
+	t->polyp[i].bites++;
+	if (t->polyp[i].size_m <= par->forceps_max_m) {
+		t->polyp[i].state = TOOL_POLYP_CUT;
+		return TOOL_EVENT_BITE | TOOL_EVENT_CUT;
+	}
+	return TOOL_EVENT_BITE;
+}
+
+/* The clip's step after the pose. */
+static unsigned clip_step(struct tool *t, const struct tool_params *par,
+			  const struct tool_input *in)
+{
+	vec3_axpy(t->jaws, t->pose.tip, par->clip_m, t->pose.dir);
+	if (!jaws_close(t, par) || !near_wall(t->jaws, in, par->clip_m)) {
+		return 0;
+	}
+	vec3_copy(t->clip_at, t->jaws);
+	t->clips++;
+	return TOOL_EVENT_CLIP;
+}
+
 unsigned tool_step(struct tool *t, const struct tool_params *par,
 		   const struct endosim_scope_state *sc,
 		   const struct tool_input *in, double dt_s, int *polyp)
@@ -348,6 +429,10 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 		ev = snare_step(t, par, in, pedal, dt_s, &which);
 	} else if (t->kind == TOOL_NEEDLE) {
 		ev = needle_step(t, par, dt_s, &which);
+	} else if (t->kind == TOOL_FORCEPS) {
+		ev = forceps_step(t, par, in, &which);
+	} else if (t->kind == TOOL_CLIP) {
+		ev = clip_step(t, par, in);
 	}
 	if (polyp) {
 		*polyp = which;

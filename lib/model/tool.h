@@ -91,13 +91,24 @@
  * trainer's experts inject in 36 s, beginners in 92 s, docs' PATIENT
  * notes: the whole task, not the flow).
  *
- * The forceps and the clip have their pose here and nothing more yet
- * (the bite, the clip's closure: later slices).
+ * The forceps and the clip close their jaws when the handle, opened past
+ * one half since their last closing, closes (to closed_opening), the
+ * tool out of the channel; the jaws' point is jaw_m (the forceps' cups)
+ * or clip_m (a clip's jaws) beyond the tool's tip. The forceps bite a
+ * polyp in place within their cups' length of its body (a sphere of its
+ * size at half its height) or, failing one, the mucosa within a cup's
+ * length of the wall: TOOL_EVENT_BITE, the polyp's bites counted. A bite
+ * takes a polyp of forceps_max_m or less whole (TOOL_EVENT_CUT): the
+ * ESGE (Ferlitsch 2017) accepts cold forceps for diminutive polyps of 3
+ * mm or less. A clip closing within its jaws' length of the wall is
+ * placed there (TOOL_EVENT_CLIP, clip_at): what stops a bleeding point
+ * is the bleeding's slice. Cups 2.5 mm and clip jaws 5 mm long: the
+ * sizes of common models, rounded.
  *
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
- * (p99 0.3 us with 32 in the loop on this project's VM: bench_tool in
- * `make bench`). One writer (the
+ * (p99 under 0.5 us with 32 in the loop on this project's VM:
+ * bench_tool in `make bench`). One writer (the
  * force loop); any thread may read a copy.
  */
 #ifndef ENDOSIM_TOOL_H
@@ -134,6 +145,8 @@ enum tool_polyp_state {
 #define TOOL_EVENT_CUT 0x4u     /* a polyp cut free */
 #define TOOL_EVENT_INJURY 0x8u  /* current into the wall (see above) */
 #define TOOL_EVENT_LIFT 0x10u   /* an injection lifted a base */
+#define TOOL_EVENT_BITE 0x20u   /* the forceps took a sample */
+#define TOOL_EVENT_CLIP 0x40u   /* a clip closed on the wall */
 
 struct tool_params {
 	double channel_angle_rad; /* clockwise from 12 o'clock, image */
@@ -148,6 +161,9 @@ struct tool_params {
 	double margin_m;          /* beyond a base's radius, still its */
 	double inject_m3_per_s;   /* the injection's flow */
 	double lift_m3;           /* what lifts a base */
+	double jaw_m;             /* the forceps' cups, long */
+	double forceps_max_m;     /* a polyp a bite takes whole, at most */
+	double clip_m;            /* a clip's jaws, long */
 };
 
 #define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (150.0 * 3.14159265358979323846 / 180)
@@ -162,6 +178,9 @@ struct tool_params {
 #define TOOL_DEFAULT_MARGIN_M 0.005
 #define TOOL_DEFAULT_INJECT_M3_PER_S 1e-6
 #define TOOL_DEFAULT_LIFT_M3 3e-6
+#define TOOL_DEFAULT_JAW_M 0.0025
+#define TOOL_DEFAULT_FORCEPS_MAX_M 0.003
+#define TOOL_DEFAULT_CLIP_M 0.005
 
 #define TOOL_PARAMS_DEFAULT { \
 		.channel_angle_rad = TOOL_DEFAULT_CHANNEL_ANGLE_RAD, \
@@ -174,7 +193,9 @@ struct tool_params {
 		.needle_m = TOOL_DEFAULT_NEEDLE_M, \
 		.margin_m = TOOL_DEFAULT_MARGIN_M, \
 		.inject_m3_per_s = TOOL_DEFAULT_INJECT_M3_PER_S, \
-		.lift_m3 = TOOL_DEFAULT_LIFT_M3 }
+		.lift_m3 = TOOL_DEFAULT_LIFT_M3, .jaw_m = TOOL_DEFAULT_JAW_M, \
+		.forceps_max_m = TOOL_DEFAULT_FORCEPS_MAX_M, \
+		.clip_m = TOOL_DEFAULT_CLIP_M }
 
 /* What the rig senses of the tool this cycle. */
 struct tool_input {
@@ -204,6 +225,7 @@ struct tool_polyp {
 	double stalk_diameter_m; /* Ip: its thickness; 0 otherwise */
 	int paris;           /* enum anatomy_paris */
 	double injected_m3;  /* under its base so far */
+	int bites;           /* the forceps' on it */
 	bool lifted;         /* by an injection */
 	int state;           /* enum tool_polyp_state */
 	bool inside;         /* its axis inside the loop, last step */
@@ -220,6 +242,12 @@ struct tool {
 	double loop_m;       /* the loop's: command_m, or a held thickness */
 	double loop_centre[3]; /* the snare's loop, m */
 	double needle[3];    /* the needle's point, out or not, m */
+	double jaws[3];      /* the forceps' or the clip's point, m */
+	bool armed;          /* their handle opened since they closed */
+	double injury_at[3]; /* the last TOOL_EVENT_INJURY's place, m */
+	double bite_at[3];   /* the last bite's, m */
+	double clip_at[3];   /* the last clip's, m */
+	int clips;           /* placed */
 	int captured;        /* the polyp the loop holds; -1 none */
 	bool injured;        /* this press of the pedal has injured */
 	int polyps;
@@ -273,7 +301,7 @@ void tool_pose(const struct tool_params *par,
  * One step of DT_S seconds: the pose, the snare's loop, capture, the
  * cut, the wall; the needle's injection. Returns the TOOL_EVENT_* bits
  * of what happened; the polyp concerned is T->captured for a capture,
- * the one just released, cut or lifted otherwise (*POLYP, -1 if none;
+ * the one just released, cut, lifted or bitten otherwise (*POLYP, -1 if none;
  * POLYP may be NULL). Non-finite inputs count as the tool still: depth
  * and opening as in the step before, the pedal up.
  */

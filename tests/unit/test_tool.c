@@ -16,6 +16,9 @@
  *  - the cold cut of a 6 mm base and not of a 15 mm one;
  *  - the needle out under a flat base lifts it after lift_m3 injected,
  *    not a needle beyond the base's margin or one left in its catheter;
+ *  - the forceps bite the mucosa within a cup's length, take a 3 mm
+ *    polyp whole and sample a 6 mm one, once per closing; a clip closes
+ *    on a wall within its jaws' length and not beyond;
  *  - the wall: the pedal on mucosa with nothing captured, or on a held
  *    unlifted sessile base, injures once per press; a loop off the wall
  *    or a lifted base does not;
@@ -383,6 +386,9 @@ static void test_pedal_on_mucosa_injures(void **unused)
 		run(&b, 10, 0.2);
 		assert_int_equal(b.injuries, off ? 0 : 2);
 		assert_int_equal(b.polyp, -1);
+		if (!off) {
+			assert_vec_near(b.t.injury_at, b.in.wall_point, 0);
+		}
 	}
 }
 
@@ -404,6 +410,9 @@ static void test_hot_unlifted_base_injures(void **unused)
 		run(&b, 10000, 0.2);
 		assert_int_equal(b.injuries, lifted ? 0 : 1);
 		assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+		if (!lifted) {
+			assert_vec_near(b.t.injury_at, b.t.polyp[i].base, 0);
+		}
 	}
 }
 
@@ -450,6 +459,90 @@ static void test_needle_lifts_base(void **unused)
 	assert_true(labs(lifts_after(0.008, 1) - want) <= 1);
 	assert_int_equal(lifts_after(0.010, 1), 0); /* beyond its margin */
 	assert_int_equal(lifts_after(0, 0.3), 0);   /* the needle in */
+}
+
+/* TOOL (forceps or clip) out, the wall WALL_M beyond its jaws' point
+ * (-1: none), a sessile polyp of SIZE_M centred on that point (0: none);
+ * the handle opened and closed twice over: the events of the first
+ * closing; the second, without opening again, has none. */
+static unsigned jaws_on(struct bench *b, int kind, double wall_m,
+			double size_m)
+{
+	unsigned first;
+
+	bench_init(b);
+	assert_int_equal(tool_select(&b->t, kind, 0), 0);
+	b->in.opening = 0;
+	run(b, 1, 0);
+	if (wall_m >= 0) {
+		b->in.wall = true;
+		vec3_axpy(b->in.wall_point, b->t.jaws, wall_m, b->t.pose.radial);
+		vec3_scale(b->in.wall_normal, b->t.pose.radial, -1);
+	}
+	if (size_m > 0) {
+		struct anatomy_polyp ap = { .diameter_m = size_m,
+					    .paris = ANATOMY_PARIS_IS };
+		double base[3], n[3];
+
+		vec3_scale(n, b->t.pose.radial, -1);
+		vec3_axpy(base, b->t.jaws, -size_m / 4, n);
+		assert_int_equal(tool_add_polyp(&b->t, &ap, base, n), 0);
+	}
+	run(b, 100, 1);
+	assert_int_equal(b->events, 0);
+	run(b, 100, 0);
+	first = b->events;
+	b->events = 0;
+	run(b, 100, 0.3);
+	run(b, 100, 0);
+	assert_int_equal(b->events, 0);
+	return first;
+}
+
+static void test_forceps_bite(void **unused)
+{
+	struct bench b;
+
+	(void)unused;
+	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, 0.001, 0), TOOL_EVENT_BITE);
+	assert_int_equal(b.polyp, -1);
+	assert_vec_near(b.t.bite_at, b.t.jaws, 0);
+	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, 0.004, 0), 0);
+	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0), 0);
+	/* a diminutive polyp taken whole; a larger one sampled */
+	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.003),
+			 TOOL_EVENT_BITE | TOOL_EVENT_CUT);
+	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_CUT);
+	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.006),
+			 TOOL_EVENT_BITE);
+	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_IN_PLACE);
+	assert_int_equal(b.t.polyp[0].bites, 1);
+	assert_int_equal(b.polyp, 0);
+	/* still in the channel, on the wall: no bite */
+	bench_init(&b);
+	assert_int_equal(tool_select(&b.t, TOOL_FORCEPS, 0), 0);
+	b.in.depth_m = -0.001;
+	run(&b, 1, 0);
+	b.in.wall = true;
+	vec3_copy(b.in.wall_point, b.t.jaws);
+	vec3_scale(b.in.wall_normal, b.t.pose.radial, -1);
+	run(&b, 100, 1);
+	run(&b, 100, 0);
+	assert_int_equal(b.events, 0);
+}
+
+static void test_clip_on_wall(void **unused)
+{
+	struct bench b;
+	double want[3];
+
+	(void)unused;
+	assert_int_equal(jaws_on(&b, TOOL_CLIP, 0.003, 0), TOOL_EVENT_CLIP);
+	assert_int_equal(b.t.clips, 1);
+	vec3_axpy(want, b.t.pose.tip, par.clip_m, b.t.pose.dir);
+	assert_vec_near(b.t.clip_at, want, 1e-15);
+	assert_int_equal(jaws_on(&b, TOOL_CLIP, 0.008, 0), 0);
+	assert_int_equal(b.t.clips, 0);
 }
 
 /* Non-finite readings hold the tool still with the pedal up; another
@@ -528,6 +621,8 @@ int main(void)
 		cmocka_unit_test(test_pedal_on_mucosa_injures),
 		cmocka_unit_test(test_hot_unlifted_base_injures),
 		cmocka_unit_test(test_needle_lifts_base),
+		cmocka_unit_test(test_forceps_bite),
+		cmocka_unit_test(test_clip_on_wall),
 		cmocka_unit_test(test_still_and_other_tools),
 		cmocka_unit_test(test_place_polyps_on_wall),
 	};
