@@ -15,13 +15,13 @@
  * axis at channel_angle_rad, clockwise from 12 o'clock in the endoscopic
  * image (the scope state's up is 12 o'clock, dir x up 3 o'clock): by
  * default 5 o'clock (150 degrees), where a colonoscope's 3.2-3.8 mm
- * channel (docs' PATIENT notes) opens, 4 mm from the axis of a 13 mm
- * tip (a guess from those sizes). The tool leaves it along the tip's
+ * channel (the numbers gathered for issue 25) opens, 4 mm from the axis
+ * of a 13 mm tip (a guess from those sizes). The tool leaves it along the tip's
  * dir: its tip is exit + depth dir.
  *
  * The snare. A wire loop of size D (its diameter fully open, 10..30 mm:
- * mini snares below 11 mm, standard ones 15 mm and up, docs' PATIENT
- * notes) is pushed out of its sheath by the handle: opening x pi D / 2
+ * mini snares below 11 mm, standard loops 15 to 45 mm, issue 25's
+ * numbers) is pushed out of its sheath by the handle: opening x pi D / 2
  * of each of its two strands, the part beyond the channel's exit free to
  * open (the sheath's tip at depth: the loop's wire beyond the exit is
  * that length plus the depth, when the depth is negative). Those l
@@ -41,8 +41,9 @@
  * a sessile (Is) polyp's base, half its size high and its size thick; a
  * flat one's, IIa a quarter of its size high and at most 2.5 mm (Paris'
  * limit), IIb level with the mucosa (nothing a loop can close around);
- * a base lifted by an injection stands lift_m higher. In a cycle in which the loop closes
- * (its diameter smaller than in the cycle before), it captures the first
+ * a base lifted by an injection stands lift_m higher. In a cycle in
+ * which the loop closes (its diameter smaller than in the cycle
+ * before), it captures the first
  * polyp in place whose axis passed inside the loop at the loop's plane
  * in the cycle before (the axis crossing the plane within its height, at
  * less than d / 2 from the loop's centre) and which the wire now reaches
@@ -61,14 +62,17 @@
  * ~2.0 GJ/m^3, 0.8 MJ/m^2 over the kerf; the coagulation either side and
  * conduction away take about twice as much again (a guess). At 30 W (a
  * common polypectomy setting, 20-40 W; the power the tissue takes is a
- * guess) a 5 mm stalk takes 49 J, 1.6 s; a 10 mm base 196 J, 6.5 s, the
- * seconds current flows in a polypectomy. The energy stays in a polyp
+ * guess) a 5 mm stalk takes 49 J, 1.6 s; a 10 mm base 196 J, 6.5 s: a
+ * few seconds of the 24-30 s a resection takes (24 +/- 18 s with a
+ * rotary snare, 30 +/- 26 s with a standard one). The energy stays in a polyp
  * across presses of the pedal (no cooling).
  *
  * The cut, cold. Without the pedal, the handle closed (opening at most
  * closed_opening) cuts what the loop holds by its force when the held
- * thickness is below cold_max_m, 10 mm: the ESGE's guideline (Ferlitsch
- * et al., Endoscopy 2017) takes cold snaring for polyps below 10 mm; a
+ * thickness is below cold_max_m, 10 mm: the ESGE (Ferlitsch et al.,
+ * Endoscopy 2017;49:270 and its 2024 update) recommends cold snaring for
+ * diminutive and small polyps, up to 9 mm, and cold snares are used for
+ * polyps of 10 mm and less (Giri et al., Clin Endosc 2022); a
  * thicker one holds the loop shut, captured and uncut. The rig senses the
  * handle's travel, not its force: closing it all the way stands for the
  * force a nurse closes a cold snare with.
@@ -88,8 +92,8 @@
  * the nurse injects at inject_m3_per_s; lift_m3 under a base lifts it
  * (TOOL_EVENT_LIFT), so that a snare can close around it. 1 mL/s and
  * 3 mL are guesses (EMR injects a few mL a site; the hemostasis
- * trainer's experts inject in 36 s, beginners in 92 s, docs' PATIENT
- * notes: the whole task, not the flow).
+ * trainer's experts inject in 36 s, beginners in 92 s: the whole task,
+ * not the flow).
  *
  * The forceps and the clip close their jaws when the handle, opened past
  * one half since their last closing, closes (to closed_opening), the
@@ -98,18 +102,21 @@
  * polyp in place within their cups' length of its body (a sphere of its
  * size at half its height) or, failing one, the mucosa within a cup's
  * length of the wall: TOOL_EVENT_BITE, the polyp's bites counted. A bite
- * takes a polyp of forceps_max_m or less whole (TOOL_EVENT_CUT): the
- * ESGE (Ferlitsch 2017) accepts cold forceps for diminutive polyps of 3
- * mm or less. A clip closing within its jaws' length of the wall is
- * placed there (TOOL_EVENT_CLIP, clip_at): what stops a bleeding point
- * is the bleeding's slice. Cups 2.5 mm and clip jaws 5 mm long: the
- * sizes of common models, rounded.
+ * takes a polyp of forceps_max_m (3 mm) or less whole (TOOL_EVENT_CUT):
+ * cold forceps resected adenomas of 4 mm or less about as completely as
+ * a cold snare (96.9 against 100 %; Kim et al., GIE 2015), larger ones
+ * less so, and the ESGE's 2024 update recommends against them for what
+ * they leave: whether a bite removed a polyp completely is the
+ * assessment's question (a later slice). A clip closing within its
+ * jaws' length of the wall is placed there (TOOL_EVENT_CLIP, clip_at):
+ * what stops a bleeding point is the bleeding's slice. Cups 2.5 mm and
+ * clip jaws 5 mm long: the sizes of common models, rounded (guesses).
  *
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
  * (p99 under 0.5 us with 32 in the loop on this project's VM:
- * bench_tool in `make bench`). One writer (the
- * force loop); any thread may read a copy.
+ * bench_tool in `make bench`). One writer (the force loop); any thread
+ * may read a copy.
  */
 #ifndef ENDOSIM_TOOL_H
 #define ENDOSIM_TOOL_H
