@@ -218,12 +218,13 @@ static int migrate(struct records *r, sqlite3 *db, int from)
 enum found { FOUND_OK, FOUND_NEW, FOUND_MISSING };
 
 /*
- * The database opened into *DB, migrated to this schema; with CREATE
+ * The database PATH (R's, or the one a rebuild makes) opened into *DB,
+ * migrated to this schema; with CREATE
  * made when missing (*HOW FOUND_NEW: empty), else FOUND_MISSING and *DB
  * NULL. 0; -EBADMSG (damaged); -EPROTO (newer); -EIO.
  */
-static int open_db(struct records *r, bool create, sqlite3 **db,
-		   enum found *how)
+static int open_db(struct records *r, const char *path, bool create,
+		   sqlite3 **db, enum found *how)
 {
 	int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX;
 	int v = 0, e;
@@ -231,14 +232,14 @@ static int open_db(struct records *r, bool create, sqlite3 **db,
 	*db = NULL;
 	*how = FOUND_OK;
 	r->error[0] = '\0';
-	if (access(r->path, F_OK)) {
+	if (access(path, F_OK)) {
 		if (!create) {
 			*how = FOUND_MISSING;
 			return 0;
 		}
 		*how = FOUND_NEW;
 	}
-	if (sqlite3_open_v2(r->path, db, flags | (create ?
+	if (sqlite3_open_v2(path, db, flags | (create ?
 			    SQLITE_OPEN_CREATE : 0), NULL) != SQLITE_OK) {
 		e = sql_fail(r, *db, "opening it");
 		goto close;
@@ -450,8 +451,7 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	return insert_session(r, db, path, &s);
 }
 
-/* Every row deleted and every file's written (but SKIP's), one
- * transaction; how many. */
+/* Every file's row written (but SKIP's), one transaction; how many. */
 static int fill(struct records *r, sqlite3 *db, uint64_t skip,
 		size_t *written)
 {
@@ -464,9 +464,7 @@ static int fill(struct records *r, sqlite3 *db, uint64_t skip,
 			 strerror(-e));
 		return e;
 	}
-	if (!(e = exec(r, db, "BEGIN IMMEDIATE")) &&
-	    !(e = exec(r, db, "DELETE FROM measures")) &&
-	    !(e = exec(r, db, "DELETE FROM sessions"))) {
+	if (!(e = exec(r, db, "BEGIN IMMEDIATE"))) {
 		for (size_t i = 0; !e && i < n; i++) {
 			if (files[i].id != skip) {
 				e = write_file(r, db, files[i].id);
@@ -483,17 +481,57 @@ static int fill(struct records *r, sqlite3 *db, uint64_t skip,
 	return e;
 }
 
-/* A damaged database moved aside (with its WAL and shared memory). */
+/* PATH's write-ahead log and shared memory removed: never to be taken
+ * for another database's. */
+static void remove_sides(const char *path)
+{
+	char side[4300];
+
+	snprintf(side, sizeof(side), "%s-wal", path);
+	unlink(side);
+	snprintf(side, sizeof(side), "%s-shm", path);
+	unlink(side);
+}
+
+/* A damaged database moved aside, kept to be looked at. */
 static void move_aside(struct records *r)
 {
-	char to[4200], from[4200];
+	char to[4200];
 
 	snprintf(to, sizeof(to), "%s.damaged", r->path);
 	rename(r->path, to);
-	snprintf(from, sizeof(from), "%s-wal", r->path);
-	unlink(from);
-	snprintf(from, sizeof(from), "%s-shm", r->path);
-	unlink(from);
+	remove_sides(r->path);
+}
+
+/*
+ * A new database of every file (but SKIP's) made beside R's and renamed
+ * over it: nothing of the old one is trusted, not even its indexes.
+ */
+static int build_new(struct records *r, uint64_t skip, size_t *written)
+{
+	char tmp[4200];
+	sqlite3 *db;
+	enum found how;
+	int e;
+
+	snprintf(tmp, sizeof(tmp), "%s.new", r->path);
+	unlink(tmp);
+	remove_sides(tmp);
+	if ((e = open_db(r, tmp, true, &db, &how))) {
+		return e;
+	}
+	e = fill(r, db, skip, written);
+	sqlite3_close(db);
+	remove_sides(r->path);
+	if (!e && rename(tmp, r->path)) {
+		e = -errno;
+		snprintf(r->error, sizeof(r->error), "records %s: %s",
+			 r->path, strerror(errno));
+	}
+	if (e) {
+		unlink(tmp);
+	}
+	return e;
 }
 
 /*
@@ -504,20 +542,16 @@ static int ready(struct records *r, sqlite3 **db, bool *rebuilt)
 {
 	enum found how;
 	size_t written = 0;
-	int e = open_db(r, true, db, &how);
+	int e = open_db(r, r->path, false, db, &how);
 
 	*rebuilt = false;
 	if (e == -EBADMSG) {
 		move_aside(r);
-		e = open_db(r, true, db, &how);
-		how = FOUND_NEW;
 	}
-	if (!e && how == FOUND_NEW) {
+	if (e == -EBADMSG || (!e && how == FOUND_MISSING)) {
 		*rebuilt = true;
-		if ((e = fill(r, *db, 0, &written))) {
-			sqlite3_close(*db);
-			*db = NULL;
-		}
+		e = build_new(r, 0, &written);
+		e = e ? e : open_db(r, r->path, false, db, &how);
 	}
 	return e;
 }
@@ -576,7 +610,10 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 		int col = (int)i + 9;
 
 		if (f[i].kind == FIELDS_DOUBLE) {
-			*(double *)at = sqlite3_column_double(st, col);
+			/* SQLite keeps a NaN as NULL */
+			*(double *)at = sqlite3_column_type(st, col) ==
+					SQLITE_NULL ? NAN :
+					sqlite3_column_double(st, col);
 		} else if (f[i].kind == FIELDS_UINT64) {
 			*(uint64_t *)at = (uint64_t)sqlite3_column_int64(st,
 									 col);
@@ -767,7 +804,7 @@ static int integrity(struct records *r, sqlite3 *db)
 	sqlite3_stmt *st;
 	int rc, ok;
 
-	if (sqlite3_prepare_v2(db, "PRAGMA quick_check", -1, &st, NULL)) {
+	if (sqlite3_prepare_v2(db, "PRAGMA integrity_check", -1, &st, NULL)) {
 		return sql_fail(r, db, "checking it");
 	}
 	rc = sqlite3_step(st);
@@ -785,7 +822,7 @@ static int integrity(struct records *r, sqlite3 *db)
 static int check_open(struct check *c, enum found *how)
 {
 	struct records *r = c->r;
-	int e = open_db(r, c->flags & RECORDS_FIX, &c->db, how);
+	int e = open_db(r, r->path, c->flags & RECORDS_FIX, &c->db, how);
 
 	if (!e && *how != FOUND_OK) {
 		c->rep->missing = true;
@@ -868,23 +905,16 @@ int records_check(struct records *r, unsigned flags, uint64_t skip,
 int records_rebuild(struct records *r, uint64_t skip,
 		    struct records_report *rep)
 {
-	sqlite3 *db;
-	enum found how;
 	int e = records_check(r, RECORDS_DEEP, skip, rep);
 
 	if (e) {
-		return e;
+		return e; /* a newer schema's database is left alone */
 	}
 	if (rep->damaged) {
 		move_aside(r);
 	}
-	if ((e = open_db(r, true, &db, &how))) {
-		return e;
-	}
 	rep->written = 0;
-	e = fill(r, db, skip, &rep->written);
-	sqlite3_close(db);
-	return e;
+	return build_new(r, skip, &rep->written);
 }
 
 void records_report_free(struct records_report *rep)
