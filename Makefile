@@ -202,8 +202,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_model test_lod test_portal test_input test_timing test_shapes \
 	     test_vessels test_metrics test_report test_course test_rod \
 	     test_flex test_lumen test_clinic test_rodcourse test_guide \
-	     test_livemap test_separation test_coursefile test_sessionindex \
-	     test_records \
+	     test_livemap test_separation test_coursefile test_records \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
 	     test_voice test_wav
