@@ -563,7 +563,8 @@ int records_add(struct records *r, uint64_t id)
 	int e = ready(r, &db, &rebuilt);
 
 	if (e || rebuilt) {
-		return e; /* a rebuild wrote ID's row too */
+		sqlite3_close(db); /* a rebuild wrote ID's row too */
+		return e;
 	}
 	e = exec(r, db, "BEGIN IMMEDIATE");
 	if (!e) {
