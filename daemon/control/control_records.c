@@ -56,7 +56,8 @@ struct control_records *control_records_create(const struct config *cfg)
 
 	if (!cr || !(cr->db = records_create(cfg->records.database,
 					     cfg->session.directory,
-					     cfg->records.rig))) {
+					     cfg->records.rig,
+					     cfg->session.course))) {
 		log_err("control: out of memory");
 		control_records_destroy(cr);
 		return NULL;

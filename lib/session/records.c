@@ -1,5 +1,6 @@
 /* records.c - see records.h. */
 #include "session/records.h"
+#include "session/coursefile.h"
 #include "session/metricstext.h"
 
 #include <errno.h>
@@ -64,6 +65,7 @@ struct records {
 	char path[4096];
 	char dir[4096];
 	char rig[64];
+	char course[4096];      /* its file; "": none */
 	char *insert_measures;  /* INSERT INTO measures (...) VALUES (?...) */
 	char *select_list;      /* the sessions joined with their measures */
 	char error[9216];       /* room for the path and SQLite's words */
@@ -102,7 +104,7 @@ static char *field_sql(const char *prefix, const char *key_prefix,
 }
 
 struct records *records_create(const char *database, const char *dir,
-			       const char *rig)
+			       const char *rig, const char *course)
 {
 	struct records *r = calloc(1, sizeof(*r));
 
@@ -115,6 +117,7 @@ struct records *records_create(const char *database, const char *dir,
 	} else {
 		snprintf(r->path, sizeof(r->path), "%s/%s", dir, database);
 	}
+	snprintf(r->course, sizeof(r->course), "%s", course ? course : "");
 	if (rig && *rig) {
 		snprintf(r->rig, sizeof(r->rig), "%s", rig);
 	} else if (gethostname(r->rig, sizeof(r->rig) - 1)) {
@@ -124,7 +127,8 @@ struct records *records_create(const char *database, const char *dir,
 				       "", ") VALUES (?", ")");
 	r->select_list = field_sql("SELECT s.id, t.name, c.name, s.started, "
 				   "s.ended, s.bytes, s.checksum, s.rig, "
-				   "m.session_id IS NOT NULL, ", "m.",
+				   "s.judgement, m.session_id IS NOT NULL, ",
+				   "m.",
 				   "", " FROM sessions s JOIN trainees t ON "
 				   "t.id = s.trainee_id JOIN cases c ON "
 				   "c.id = s.case_id LEFT JOIN measures m ON "
@@ -396,8 +400,8 @@ static int insert_session(struct records *r, sqlite3 *db, const char *path,
 			  const struct records_session *s)
 {
 	static const char sql[] = "INSERT INTO sessions (id, trainee_id, "
-		"case_id, started, ended, path, bytes, checksum, rig) VALUES "
-		"(?, ?, ?, ?, ?, ?, ?, ?, ?)";
+		"case_id, started, ended, path, bytes, checksum, rig, judgement) "
+		"VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 	sqlite3_int64 trainee, case_id;
 	sqlite3_stmt *st;
 	int e;
@@ -419,10 +423,33 @@ static int insert_session(struct records *r, sqlite3 *db, const char *path,
 	sqlite3_bind_int64(st, 7, (sqlite3_int64)s->e.bytes);
 	sqlite3_bind_int64(st, 8, (sqlite3_int64)s->checksum);
 	sqlite3_bind_text(st, 9, r->rig, -1, SQLITE_STATIC);
+	if (s->judgement[0]) {
+		sqlite3_bind_text(st, 10, s->judgement, -1, SQLITE_STATIC);
+	}
 	if ((e = step_done(r, db, st, "inserting the session"))) {
 		return e;
 	}
 	return s->has_metrics ? insert_measures(r, db, s) : 0;
+}
+
+/* S's judgement by R's course, when it names S's case. */
+static void judge(const struct records *r, struct records_session *s)
+{
+	const struct coursefile_case *k;
+	struct coursefile *c;
+	char err[512];
+
+	if (!r->course[0] || !s->has_metrics ||
+	    !(c = malloc(sizeof(*c)))) {
+		return;
+	}
+	if (!coursefile_load(c, r->course, err, sizeof(err)) &&
+	    (k = coursefile_case(c, s->e.case_name))) {
+		snprintf(s->judgement, sizeof(s->judgement), "%s: %s",
+			 c->name, coursefile_passed(k, &s->m) ? "passed"
+							      : "failed");
+	}
+	free(c);
 }
 
 /* Session ID's file as its row, or its row deleted when the file is
@@ -448,6 +475,7 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 		return e;
 	}
 	s.e.id = id; /* the file's name says it */
+	judge(r, &s);
 	return insert_session(r, db, path, &s);
 }
 
@@ -605,10 +633,11 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	s->e.bytes = (uint64_t)sqlite3_column_int64(st, 5);
 	s->checksum = (uint64_t)sqlite3_column_int64(st, 6);
 	column_text(st, 7, s->rig, sizeof(s->rig));
-	s->has_metrics = sqlite3_column_int(st, 8);
+	column_text(st, 8, s->judgement, sizeof(s->judgement));
+	s->has_metrics = sqlite3_column_int(st, 9);
 	for (size_t i = 0; s->has_metrics && i < n; i++) {
 		char *at = (char *)&s->m + f[i].offset;
-		int col = (int)i + 9;
+		int col = (int)i + 10;
 
 		if (f[i].kind == FIELDS_DOUBLE) {
 			/* SQLite keeps a NaN as NULL */

@@ -9,7 +9,7 @@
  * cases(id, name), sessions(id: the file's ID, trainee_id, case_id,
  * started, ended, path, bytes, checksum: FNV-1a of the whole file (its
  * frames' CRC-32s would cancel a whole-file CRC-32's change),
- * rig, judgement: the course's, NULL none) and measures(session_id, one
+ * rig, judgement: "COURSE: passed|failed", NULL none) and measures(session_id, one
  * column per metricstext_fields() key) for the sessions with an END frame.
  * Its version is SQLite's user_version; the migrations are an ordered
  * list of SQL steps, each run once, in a transaction, from the database's
@@ -46,6 +46,10 @@ struct records_session {
 				       started */
 	uint64_t checksum;          /* FNV-1a (64 bits) of the whole file */
 	char rig[64];               /* the rig that recorded it */
+	char judgement[96];         /* "COURSE: passed" or "COURSE: failed"
+				       by the course its case is in; "":
+				       none (no course, not its case, no
+				       END frame) */
 	bool has_metrics;           /* m is its END frame's */
 	struct metrics_result m;    /* the scalars; no episodes */
 };
@@ -65,11 +69,13 @@ struct records_report {
 /*
  * The records of the session directory DIR in the database DATABASE (a
  * relative path is taken under DIR), RIG the name written with each
- * session (NULL or "": the host's name). Touches nothing yet. NULL on
- * ENOMEM.
+ * session (NULL or "": the host's name), COURSE the course file
+ * (coursefile.h) each session's judgement is written by (NULL or "":
+ * none; read at each write: one that does not load judges nothing).
+ * Touches nothing yet. NULL on ENOMEM.
  */
 struct records *records_create(const char *database, const char *dir,
-			       const char *rig);
+			       const char *rig, const char *course);
 void records_destroy(struct records *r);
 
 /* The database's path (DIR/records.sqlite by default). */

@@ -61,6 +61,12 @@ check "trainee list: the two trainees, Ann's course complete" \
 	test "$(list_json)" = "$WANT"
 check "... from the records, made at start-up from the files" \
 	grep -q "records $DB: made: 4 of 4 sessions written" "$LOG"
+if command -v sqlite3 >/dev/null; then
+	check "... each session judged by the course in them (1: cut short)" \
+		test "$(sqlite3 -readonly "$DB" "SELECT id || ':' ||
+			IFNULL(judgement, '') FROM sessions" | tr '\n' ' ')" = \
+		"1: 2:test: passed 3:test: passed 4:test: passed "
+fi
 check_status "trainee list (text)" 0 ctl trainee list
 check "... Ann: 3 sessions, course complete" \
 	grep -qE "^Ann O'Neil <i> +3 +polyps +3 .* complete" "$OUT"

@@ -2,9 +2,9 @@
  * test_records.c - the rig's records (records.h) on small session files
  * written here (a HEADER, an END frame or none): each added session comes
  * back as its file says, a trainee named like an SQL injection among
- * them; a deleted or damaged database is said by a check and built again
- * from the files; a file changed under it is told apart field by field
- * and fixed; a database made by the first schema opens migrated with its
+ * them, each judged by a course when one is given; a deleted or damaged
+ * database is said by a check and built again from the files; a file
+ * changed under it is told apart field by field and fixed; a database made by the first schema opens migrated with its
  * measures intact; one of a newer schema is refused, saying so.
  *
  * Writes to $TMPDIR.
@@ -111,7 +111,7 @@ static int setup(void **state)
 	write_session(1, "Ann Smith", 1, 400);
 	write_session(2, "Ann Smith", 0, 0);
 	write_session(10, BOBBY, 1, 300);
-	r = records_create("records.sqlite", dir, "rig-1");
+	r = records_create("records.sqlite", dir, "rig-1", NULL);
 	assert_non_null(r);
 	*state = r;
 	return 0;
@@ -149,6 +149,39 @@ static void test_add_and_list(void **state)
 	free(s);
 	assert_int_equal(records_add(r, 99), -ENOENT);
 	check_list(r, 4);
+}
+
+static void test_judgement(void **state)
+{
+	struct records_report rep;
+	struct records *r;
+	struct records_session *s;
+	char course[300];
+	FILE *f;
+	size_t n;
+
+	(void)state;
+	snprintf(course, sizeof(course), "%s/t.course", dir);
+	f = fopen(course, "w");
+	assert_non_null(f);
+	fputs("[course]\nname = t\nconsecutive = 1\n[case normal]\n"
+	      "withdrawal_s >= 360\n", f);
+	fclose(f);
+	r = records_create("records.sqlite", dir, "rig-1", course);
+	assert_non_null(r);
+	assert_int_equal(records_list(r, &s, &n), 0);
+	assert_int_equal(n, 3);
+	assert_string_equal(s[0].judgement, "t: passed"); /* 400 s */
+	assert_string_equal(s[1].judgement, "");          /* no END */
+	assert_string_equal(s[2].judgement, "t: failed"); /* 300 s */
+	free(s);
+	records_destroy(r);
+	r = *state; /* no course: a rebuild judges none */
+	assert_int_equal(records_rebuild(r, 0, &rep), 0);
+	records_report_free(&rep);
+	assert_int_equal(records_list(r, &s, &n), 0);
+	assert_string_equal(s[0].judgement, "");
+	free(s);
 }
 
 /* A check that finds DIFFER things, the first line holding WHAT. */
@@ -339,6 +372,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
 						teardown),
+		cmocka_unit_test_setup_teardown(test_judgement, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_check_and_fix, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_missing_and_damaged, setup,
