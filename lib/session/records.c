@@ -925,6 +925,10 @@ int records_check(struct records *r, unsigned flags, uint64_t skip,
 	if (e == -EBADMSG && rep->damaged) {
 		rep->differ = rep->files;
 		e = 0; /* what was found: the report says it */
+		if (flags & RECORDS_FIX) {
+			move_aside(r);
+			e = build_new(r, skip, &rep->written);
+		}
 	}
 	sqlite3_close(c.db);
 	free(files);

@@ -108,7 +108,9 @@ int records_list(struct records *r, struct records_session **out, size_t *n);
 enum {
 	RECORDS_DEEP = 1,  /* read every file: its checksum and its measures,
 			      not only that it is there and its size */
-	RECORDS_FIX = 2,   /* write each row that differs from its file */
+	RECORDS_FIX = 2,   /* write each row that differs from its file;
+			      a damaged database: made again (as
+			      records_rebuild()) */
 };
 
 /*

@@ -8,7 +8,8 @@
 # trainee's name changed (check says so: SQLite's integrity check finds
 # the name no longer matches its index; rebuild recovers), the daemon
 # killed (-9) right after a session stop and again while one records (on
-# restart the records equal the files, the cut session among them). After
+# restart the records equal the files, the cut session among them), and
+# stopped with its database damaged (made again at start-up). After
 # each, every session is in the database once, its measures equal to
 # `session show`'s (read with the sqlite3 program, not through endosimd).
 . "$(dirname "$0")/../common.sh"
@@ -124,5 +125,13 @@ check "the daemon's log says it made the records" \
 	grep -q "records $DB: made: 5 of 5 sessions written" "$LOG"
 check_status "session list" 0 ctl --json session list
 check "... the five" jq -e '.sessions | length == 5' "$OUT"
+
+stop_daemon
+printf 'X' | dd of="$DB" bs=1 seek=0 conv=notrunc 2>/dev/null
+start_daemon --session-dir "$SESS" || finish
+check "a damaged database at start-up: made again from the files" \
+	records_equal 5
+check "... the log says so" \
+	grep -q "records $DB: damaged: 5 of 5 sessions written" "$LOG"
 
 finish

@@ -250,6 +250,9 @@ static void test_missing_and_damaged(void **state)
 	damage(0, "garbage garbage");
 	check_list(r, 3); /* a listing rebuilds it too */
 	check_finds(r, RECORDS_DEEP, 0, "");
+	damage(0, "garbage garbage");
+	check_finds(r, RECORDS_FIX, 3, "damaged"); /* start-up's: made again */
+	check_finds(r, RECORDS_DEEP, 0, "");
 	/* the recording session left out */
 	assert_int_equal(records_rebuild(r, 10, &rep), 0);
 	assert_int_equal(rep.written, 2);
