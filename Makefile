@@ -37,7 +37,7 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3
 CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
@@ -50,10 +50,11 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
+	     libsqlite3-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev libopenal-dev \
 	     fonts-dejavu-core espeak-ng
 # libFuzzer's runtime is only a recommendation of clang: named here
-DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq \
+DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq sqlite3 \
 	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
 	    $(DEPS_SCREEN) xdotool chromium sox
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
@@ -202,7 +203,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_model test_lod test_portal test_input test_timing test_shapes \
 	     test_vessels test_metrics test_report test_course test_rod \
 	     test_flex test_lumen test_clinic test_rodcourse test_guide \
-	     test_livemap test_separation test_coursefile test_sessionindex \
+	     test_livemap test_separation test_coursefile test_records \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
 	     test_voice test_wav test_tool

@@ -737,6 +737,10 @@ static const struct command {
 	  "[--course FILE] [--dir DIR]",
 	  "endoctl trainee report ana --out /tmp/ana",
 	  "--dir: a session directory, read without endosimd" },
+	{ "records", ctl_cmd_records, "the rig's records against its session "
+	  "files", "records check | rebuild", "endoctl records check",
+	  "check: what differs between the database and the files (the "
+	  "truth); rebuild: the database written again from the files" },
 	{ "guide", ctl_cmd_guide, "guided replay of a session through the "
 	  "motors",
 	  "guide start ID|FILE [--speed X] [--from S] | stop | takeover | "

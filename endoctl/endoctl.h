@@ -3,8 +3,8 @@
  * endosimd, the daemon's commands, main; endoctl_print.c: printing its
  * replies; endoctl_session.c: training sessions; endoctl_map.c: the
  * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
- * course; endoctl_guide.c: guided replay; endoctl_patient.c: the
- * patient). One thread.
+ * course; endoctl_records.c: the rig's records; endoctl_guide.c: guided
+ * replay; endoctl_patient.c: the patient). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -80,6 +80,9 @@ int ctl_session_map(struct ctl *ctl);
 
 /* `endoctl trainee ...` (endoctl_trainee.c). */
 int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
+
+/* `endoctl records check | rebuild` (endoctl_records.c). */
+int ctl_cmd_records(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);

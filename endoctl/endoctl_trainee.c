@@ -1,14 +1,14 @@
 /*
  * endoctl_trainee.c - endoctl's trainees (endoctl.h): their sessions found
- * by name through the session directory's index, from endosimd
- * (TraineeSessions: the daemon keeps the index) or read from a session
- * directory without it (--dir: the index read, not written), judged by a
+ * by name from endosimd (TraineeSessions: the rig's records, which the
+ * daemon keeps) or read from a session directory's files without it
+ * (--dir: every file's header and END frame), judged by a
  * course file (coursefile.h), listed or written as a page
  * (traineepage.h).
  */
 #include "endoctl/endoctl.h"
 #include "session/coursefile.h"
-#include "session/sessionindex.h"
+#include "session/metricstext.h"
 #include "session/traineepage.h"
 
 /* One session, whichever way it was found. */
@@ -28,7 +28,6 @@ struct tlist {
 	size_t n;
 	char course[4096];  /* the daemon's [session] course ("": none) */
 	char directory[4096];
-	char index[16];     /* how the index was found */
 };
 
 /* The metrics of the session file PATH cut short, recomputed into T. */
@@ -78,7 +77,6 @@ static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 	}
 	snprintf(l->course, sizeof(l->course), "%s", t->course);
 	snprintf(l->directory, sizeof(l->directory), "%s", t->directory);
-	snprintf(l->index, sizeof(l->index), "%s", t->index);
 	for (size_t i = 0; i < t->n_sessions; i++) {
 		const Endosim__SessionInfo *s = t->sessions[i];
 		struct tsession *x = &l->s[l->n++];
@@ -96,14 +94,26 @@ static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 	return 0;
 }
 
+/* The END frame's metrics of the session file PATH into T; false when it
+ * has none (cut short). */
+static bool end_metrics(struct tsession *t, const char *path)
+{
+	char *end = NULL;
+	bool ok = !sessiondir_end_text(path, &end) &&
+		  !metricstext_parse(end, &t->m);
+
+	free(end);
+	t->m.n_force = t->m.n_loop = t->m.n_pain = 0; /* the scalars only */
+	return ok;
+}
+
 /* TRAINEE's sessions (NULL: everyone's) read from the directory DIR. */
 static int from_dir(const char *dir, const char *trainee, struct tlist *l)
 {
-	struct sessionindex_entry *e;
-	struct sessionindex_info info;
+	struct sessiondir_entry *e;
 	char path[4096];
 	size_t n;
-	int r = sessionindex_load(dir, false, &e, &n, &info);
+	int r = sessiondir_list(dir, &e, &n);
 
 	if (r || !(l->s = calloc(n ? n : 1, sizeof(*l->s)))) {
 		fprintf(stderr, "endoctl: %s: %s\n", dir,
@@ -112,21 +122,18 @@ static int from_dir(const char *dir, const char *trainee, struct tlist *l)
 		return EXIT_REFUSED;
 	}
 	snprintf(l->directory, sizeof(l->directory), "%s", dir);
-	snprintf(l->index, sizeof(l->index), "%s",
-		 sessionindex_state_name(info.state));
 	for (size_t i = 0; i < n; i++) {
 		struct tsession *x;
 
-		if (trainee && strcmp(trainee, e[i].e.trainee)) {
+		if ((trainee && strcmp(trainee, e[i].trainee)) ||
+		    sessiondir_path(dir, e[i].id, path, sizeof(path))) {
 			continue;
 		}
 		x = &l->s[l->n++];
-		copy_facts(x, e[i].e.id, e[i].e.trainee, e[i].e.case_name,
-			   e[i].e.started);
-		x->m = e[i].m;
-		x->have_m = e[i].has_metrics;
-		if (!x->have_m && !sessiondir_path(dir, e[i].e.id, path,
-						   sizeof(path))) {
+		copy_facts(x, e[i].id, e[i].trainee, e[i].case_name,
+			   e[i].started);
+		x->have_m = e[i].ended && end_metrics(x, path);
+		if (!x->have_m) {
 			recompute(x, path);
 		}
 	}
@@ -276,7 +283,6 @@ static void print_list(const struct ctl *ctl, const struct tlist *l,
 		json_init(&j, stdout);
 		json_object_begin(&j, NULL);
 		json_string(&j, "directory", l->directory);
-		json_string(&j, "index", l->index);
 		json_string(&j, "course", c ? c->name : "");
 		json_array_begin(&j, "trainees");
 	} else {

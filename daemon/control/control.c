@@ -295,6 +295,10 @@ static const struct handler handlers[] = {
 	  control_on_trainee_sessions },
 	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
 	{ ENDOSIM__REQUEST__BODY_PATIENT, true, control_on_patient },
+	{ ENDOSIM__REQUEST__BODY_RECORDS_CHECK, false,
+	  control_on_records_check },
+	{ ENDOSIM__REQUEST__BODY_RECORDS_REBUILD, true,
+	  control_on_records_rebuild },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -591,7 +595,8 @@ struct control *control_create(const struct config *cfg,
 	c->max_clients = cfg->socket.max_clients;
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
 	c->max_queued = (size_t)cfg->socket.max_queued_bytes;
-	if (alloc_buffers(c) || open_sockets(c)) {
+	if (alloc_buffers(c) || open_sockets(c) ||
+	    !(c->records = control_records_create(cfg))) {
 		control_destroy(c);
 		return NULL;
 	}
@@ -675,5 +680,6 @@ void control_destroy(struct control *c)
 	control_sessions_destroy(c->sessions);
 	control_trainees_destroy(c->trainees);
 	control_guide_destroy(c->guide);
+	control_records_destroy(c->records);
 	free(c);
 }

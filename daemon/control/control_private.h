@@ -23,6 +23,7 @@
 #include "control/control.h"
 #include "proto/endosim.pb-c.h"
 #include "proto/frame.h"
+#include "session/records.h"
 
 #define COMMAND_TIMEOUT_MS 200 /* the loop takes a command within this */
 
@@ -65,6 +66,7 @@ struct control {
 	struct control_sessions *sessions;
 	struct control_trainees *trainees;
 	struct control_guide *guide;
+	struct control_records *records;
 	struct colon *colon;     /* the loop's now: read its mesh only */
 	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
 	uint64_t scene_id;       /* its GetScene id */
@@ -104,6 +106,25 @@ void control_trainees_destroy(struct control_trainees *rb);
 struct control_guide *control_guide_create(void);
 void control_guide_destroy(struct control_guide *g);
 
+/*
+ * The rig's records (records.h) of CFG's session directory, brought up to
+ * date with its files; NULL on ENOMEM or a database of a newer schema
+ * (logged: endosimd does not start).
+ */
+struct control_records *control_records_create(const struct config *cfg);
+void control_records_destroy(struct control_records *cr);
+
+/* Session ID ended: its file written to the records (a failure logged:
+ * the next start-up writes it). Blocks on the disk; the control thread. */
+void control_records_ended(struct control *c, uint64_t id);
+
+/*
+ * Every session of the records (records_list()): 0, or -errno with why in
+ * ERROR (SIZE), logged.
+ */
+int control_records_list(struct control *c, struct records_session **out,
+			 size_t *n, char *error, size_t size);
+
 /* The requests, by family (see above). */
 handler_fn control_on_get_status;
 handler_fn control_on_get_stats;
@@ -129,6 +150,8 @@ handler_fn control_on_session_map;
 handler_fn control_on_trainee_sessions;
 handler_fn control_on_guide;
 handler_fn control_on_patient;
+handler_fn control_on_records_check;
+handler_fn control_on_records_rebuild;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */

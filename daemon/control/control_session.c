@@ -22,7 +22,8 @@ struct control_sessions {
 	Endosim__SessionListReply session_list;
 	Endosim__SessionInfo *list_infos;
 	Endosim__SessionInfo **list_infos_p;
-	struct sessiondir_entry *list_entries;
+	struct records_session *list_entries;
+	struct sessiondir_entry recording; /* the list's recording session */
 	struct sessiondir_entry shown;     /* SessionShow's file */
 	Endosim__MapReply map;             /* SessionMap's */
 	Endosim__MapRegion map_regions[COLON_MAX_REGIONS];
@@ -246,6 +247,7 @@ void control_on_session_stop(struct control *c, struct client *cl,
 	log_notice("session %" PRIu64 " stopped (uid %d): %" PRIu64
 		   " records, %" PRIu64 " dropped, %s", info.id, (int)cl->uid,
 		   info.records, info.drops, info.path);
+	control_records_ended(c, info.id); /* finished or cut, as the file */
 	if (r) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
 		       "the session file could not be finished (see the log)");
@@ -279,6 +281,31 @@ static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
 	}
 }
 
+/* The list's array of N sessions and a recording one. */
+static int alloc_list(struct control_sessions *rb, size_t n)
+{
+	rb->list_infos = calloc(n + 1, sizeof(*rb->list_infos));
+	rb->list_infos_p = calloc(n + 1, sizeof(*rb->list_infos_p));
+	return rb->list_infos && rb->list_infos_p ? 0 : -ENOMEM;
+}
+
+/* The recording session, which the records hold only once it ends, as
+ * the list's last (its ID the highest); how many that adds. */
+static size_t list_recording(struct control *c, const struct recorder_info *ri,
+			     size_t n)
+{
+	struct control_sessions *rb = c->sessions;
+
+	if (!ri->active || !ri->recording ||
+	    (n && rb->list_entries[n - 1].e.id >= ri->id) ||
+	    sessiondir_stat(c->cfg.session.directory, ri->id, &rb->recording)) {
+		return 0;
+	}
+	fill_entry(&rb->list_infos[n], &rb->recording, ri);
+	rb->list_infos_p[n] = &rb->list_infos[n];
+	return 1;
+}
+
 void control_on_session_list(struct control *c, struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep)
 {
@@ -291,22 +318,23 @@ void control_on_session_list(struct control *c, struct client *cl,
 	(void)req;
 	free_session_list(rb);
 	recorder_info(c->deps.recorder, &ri);
-	r = sessiondir_list(c->cfg.session.directory, &rb->list_entries, &n);
-	rb->list_infos = r ? NULL : calloc(n + 1, sizeof(*rb->list_infos));
-	rb->list_infos_p = r ? NULL : calloc(n + 1, sizeof(*rb->list_infos_p));
-	if (r || !rb->list_infos || !rb->list_infos_p) {
-		snprintf(rb->error, sizeof(rb->error), "%s: %s",
-			 c->cfg.session.directory, strerror(r ? -r : ENOMEM));
+	r = control_records_list(c, &rb->list_entries, &n, rb->error,
+				 sizeof(rb->error));
+	if (!r && alloc_list(rb, n)) {
+		snprintf(rb->error, sizeof(rb->error), "out of memory");
+		r = -ENOMEM;
+	}
+	if (r) {
 		free_session_list(rb);
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
 		return;
 	}
 	for (size_t i = 0; i < n; i++) {
-		fill_entry(&rb->list_infos[i], &rb->list_entries[i], &ri);
+		fill_entry(&rb->list_infos[i], &rb->list_entries[i].e, &ri);
 		rb->list_infos_p[i] = &rb->list_infos[i];
 	}
 	endosim__session_list_reply__init(&rb->session_list);
-	rb->session_list.n_sessions = n;
+	rb->session_list.n_sessions = n + list_recording(c, &ri, n);
 	rb->session_list.sessions = rb->list_infos_p;
 	rb->session_list.directory = c->cfg.session.directory;
 	rep->body_case = ENDOSIM__REPLY__BODY_SESSION_LIST;

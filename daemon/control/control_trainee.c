@@ -1,7 +1,7 @@
 /*
  * control_trainee.c - the control thread's TraineeSessions: a trainee's
- * sessions through the session directory's index (sessionindex.h), which
- * the daemon keeps, as the directory's owner (control_private.h).
+ * sessions from the rig's records (records.h), which the daemon keeps, as
+ * the directory's owner (control_private.h).
  */
 #include <errno.h>
 #include <stdio.h>
@@ -11,7 +11,6 @@
 #include "base/log.h"
 #include "control/control_private.h"
 #include "session/sessiondir.h"
-#include "session/sessionindex.h"
 #include "session/sessionpb.h"
 
 struct control_trainees {
@@ -20,7 +19,7 @@ struct control_trainees {
 	Endosim__SessionInfo **infos_p;
 	struct sessionpb_scalars *metrics;
 	char (*paths)[CONFIG_STR + 32];
-	struct sessionindex_entry *entries;
+	struct records_session *entries;
 	char error[256];
 };
 
@@ -53,20 +52,6 @@ void control_trainees_destroy(struct control_trainees *rb)
 	free(rb);
 }
 
-/* Says how the index was found when it had to be brought up to date. */
-static void log_index(const char *dir, const struct sessionindex_info *in)
-{
-	if (in->state != SESSIONINDEX_FRESH) {
-		log_info("session index of %s %s: %zu session files read, %zu "
-			 "bad lines", dir, sessionindex_state_name(in->state),
-			 in->reread, in->bad_lines);
-	}
-	if (in->write_error) {
-		log_warn("session index of %s: cannot write it: %s", dir,
-			    strerror(-in->write_error));
-	}
-}
-
 /* The reply's arrays for N sessions. */
 static int alloc_reply(struct control_trainees *rb, size_t n)
 {
@@ -82,7 +67,7 @@ static int alloc_reply(struct control_trainees *rb, size_t n)
 
 /* Session E as the reply's S; the recorder's own one as recording. */
 static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
-				 struct sessionindex_entry *e,
+				 struct records_session *e,
 				 struct sessionpb_scalars *pm, char *path,
 				 const struct recorder_info *ri)
 {
@@ -100,7 +85,7 @@ static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
 	}
 }
 
-/* The N entries of the index that are WHO's ("": everyone's) as the
+/* The N sessions of the records that are WHO's ("": everyone's) as the
  * reply's sessions; how many. */
 static size_t fill_sessions(struct control *c, const char *who, size_t n)
 {
@@ -110,7 +95,7 @@ static size_t fill_sessions(struct control *c, const char *who, size_t n)
 
 	recorder_info(c->deps.recorder, &ri);
 	for (size_t i = 0; i < n; i++) {
-		struct sessionindex_entry *e = &rb->entries[i];
+		struct records_session *e = &rb->entries[i];
 
 		if (*who && strcmp(who, e->e.trainee)) {
 			continue;
@@ -128,21 +113,17 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 				 Endosim__Reply *rep)
 {
 	struct control_trainees *rb = c->trainees;
-	char *dir = c->cfg.session.directory;
-	struct sessionindex_info info;
 	size_t n;
 	int r;
 
 	(void)cl;
 	free_trainee(rb);
-	r = sessionindex_load(dir, true, &rb->entries, &n, &info);
-	if (!r) {
-		log_index(dir, &info);
-		r = alloc_reply(rb, n);
+	r = control_records_list(c, &rb->entries, &n, rb->error,
+				 sizeof(rb->error));
+	if (!r && (r = alloc_reply(rb, n))) {
+		snprintf(rb->error, sizeof(rb->error), "out of memory");
 	}
 	if (r) {
-		snprintf(rb->error, sizeof(rb->error), "%s: %s", dir,
-			 strerror(-r));
 		free_trainee(rb);
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
 		return;
@@ -151,12 +132,8 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 	rb->reply.n_sessions = fill_sessions(c, req->trainee_sessions->trainee,
 					     n);
 	rb->reply.sessions = rb->infos_p;
-	rb->reply.directory = dir;
+	rb->reply.directory = c->cfg.session.directory;
 	rb->reply.course = c->cfg.session.course;
-	rb->reply.index = (char *)sessionindex_state_name(info.state);
-	rb->reply.index_reread = info.reread;
-	rb->reply.index_error = (char *)(info.write_error ?
-					 strerror(-info.write_error) : "");
 	rep->body_case = ENDOSIM__REPLY__BODY_TRAINEE;
 	rep->trainee = &rb->reply;
 }

@@ -743,6 +743,15 @@ static const struct parse_key keys[] = {
 	   "the course file (config/courses/NAME.course) that endoctl trainee "
 	   "judges the sessions by; empty: none"),
 
+	/* records.h's RECORDS_DEFAULT_NAME, which this wing cannot name
+	 * (test_config holds them to each other) */
+	KS("records", "database", records.database, "records.sqlite", 0,
+	   "the rig's records, a SQLite database of its sessions, rebuilt "
+	   "from the session files when missing; a relative path is under "
+	   "[session] directory"),
+	KS("records", "rig", records.rig, "", 0,
+	   "this rig's name in the records; empty: the host's name"),
+
 	KD("scope", "bending_length_m", scope.bending_length_m,
 	   SCOPE_DEFAULT_BENDING_LENGTH_M, 0.01, 0.3, "m", LIVE,
 	   "length of the bending section behind the tip"),

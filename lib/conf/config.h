@@ -198,6 +198,10 @@ struct config {
 		double pain_level;             /* 0..10 */
 		char course[CONFIG_STR];       /* coursefile.h: endoctl trainee */
 	} session;
+	struct {                           /* [records]: records.h */
+		char database[CONFIG_STR];     /* relative: under the sessions */
+		char rig[CONFIG_STR];          /* "": the host's name */
+	} records;
 	struct {
 		double bending_length_m;
 		double gain[2];      /* tip rad per wheel rad: ud, lr */

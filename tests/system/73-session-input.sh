@@ -3,7 +3,8 @@
 # a stop without a session, start and stop on the read-only socket, a case
 # load during a session: each a clear error that changes nothing. A file
 # cut mid-record reads up to its last complete record (show recomputes its
-# metrics, export gives the same records as before the cut); SIGTERM during
+# metrics, export gives the same records as before the cut; the records
+# find it cut, and once rebuilt the list says so); SIGTERM during
 # a session ends its file cleanly; SIGKILL leaves a file without END that
 # still shows; ids count on across restarts; reports of both kinds; with
 # endosimd stopped, a session file reads by its path.
@@ -38,7 +39,7 @@ check_status "start on the read-only socket: refused" 1 \
 check "... as read-only" grep -q "read-only" "$OUT"
 check "after all that, still no session and no file" \
 	test "$(ctl session status)" = "no session since endosimd started" -a \
-	-z "$(ls "$SESS")"
+	-z "$(ls "$SESS" | grep -v '^records\.sqlite')"
 
 # --- one session, and what is refused during it ---------------------------
 check_status "start with a case while IDLE: loads it" 0 \
@@ -81,6 +82,10 @@ check "the cut file holds about half the records ($n of $full), as shown ($cut_n
 	-a "$n" = "$cut_n"
 check "... and they are the first $n records, unchanged" \
 	cmp -s "$TMP/cut.csv" <(head -n $((n + 1)) "$TMP/full.csv")
+check "the records, which the list is served from, find the file cut" \
+	sh -c '"$1" --socket "$2" records check | grep -q "^session 1: .*size"' \
+	_ "$ENDOCTL" "$SOCK"
+ctl records rebuild >/dev/null
 check "the list says it is cut short" \
 	bash -c "'$ENDOCTL' --socket '$SOCK' session list | grep -q ' cut short '"
 

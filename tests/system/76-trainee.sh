@@ -5,11 +5,11 @@
 # only 0 of 5 polyps were found: it fails; the other two meet every
 # requirement) and one of another trainee, in the daemon's session
 # directory; a course file asking for two sessions in a row ([session]
-# course). endoctl trainee list finds them by name through the index,
-# which the daemon builds when it is missing, keeps while it is fresh, and
-# builds again after it was deleted, damaged in one line, overwritten with
-# garbage, or went stale (a session deleted, then back): each time the
-# same trainees and the same course status. endoctl trainee report writes
+# course). endoctl trainee list finds them by name in the rig's records,
+# which the daemon makes at start-up from the files and again after they
+# were deleted, damaged or overwritten with garbage, and which a rebuild
+# brings up to date after a session file was deleted, then back: each
+# time the same trainees and the same course status. endoctl trainee report writes
 # the page, rendered in headless Chromium: the rendered DOM holds the
 # course's status, the sessions with their requirements met or not, and
 # the eight learning curves with their points and the course's bounds; the
@@ -52,47 +52,43 @@ cp "$TMP/bo.tmp" "$SESS/4.endoses"
 
 start_daemon --session-dir "$SESS" --set "session.course=$COURSE" || finish
 
-# list_json: the trainees as `endoctl --json trainee list` says, without
-# the index' state; list_index: that state
-list_json() { ctl --json trainee list | jq -c 'del(.index)'; }
-list_index() { ctl --json trainee list | jq -r .index; }
+# list_json: the trainees as `endoctl --json trainee list` says
+list_json() { ctl --json trainee list | jq -c .; }
 WANT='{"directory":"'"$SESS"'","course":"test","trainees":[{"trainee":"'"$ANN"'","sessions":3,"cases":["polyps"],"last_session":3,"last_started":"2026-11-20T09:30:00Z","cases_complete":1,"course_complete":true},{"trainee":"Bo","sessions":1,"cases":["polyps"],"last_session":4,"last_started":"2026-11-20T09:30:00Z","cases_complete":0,"course_complete":false}]}'
+DB="$SESS/records.sqlite"
 
-check "no index yet: built from the files' headers" \
-	test "$(list_index)" = missing
 check "trainee list: the two trainees, Ann's course complete" \
 	test "$(list_json)" = "$WANT"
-check "the index: a line per session file" \
-	test "$(wc -l <"$SESS/index")" -eq 5
-check "... then fresh" test "$(list_index)" = fresh
+check "... from the records, made at start-up from the files" \
+	grep -q "records $DB: made: 4 of 4 sessions written" "$LOG"
+if command -v sqlite3 >/dev/null; then
+	check "... each session judged by the course in them (1: cut short)" \
+		test "$(sqlite3 -readonly "$DB" "SELECT id || ':' ||
+			IFNULL(judgement, '') FROM sessions" | tr '\n' ' ')" = \
+		"1: 2:test: passed 3:test: passed 4:test: passed "
+fi
 check_status "trainee list (text)" 0 ctl trainee list
 check "... Ann: 3 sessions, course complete" \
 	grep -qE "^Ann O'Neil <i> +3 +polyps +3 .* complete" "$OUT"
 check "... Bo: 1 session, 0 of 1 cases" grep -qE '^Bo +1 .* 0 of 1 cases' "$OUT"
 
-rm -f "$SESS/index"
-check "the index deleted: built again" test "$(list_index)" = missing
-check "... the same trainees" test "$(list_json)" = "$WANT"
-printf 'X' | dd of="$SESS/index" bs=1 seek=60 conv=notrunc 2>/dev/null
-check "a byte of the index changed: damaged" test "$(list_index)" = damaged
-check "... the same trainees" test "$(list_json)" = "$WANT"
-check "... written again: fresh" test "$(list_index)" = fresh
-head -c 3000 /dev/urandom >"$SESS/index"
-check "the index overwritten with garbage: damaged" \
-	test "$(list_index)" = damaged
-check "... the same trainees" test "$(list_json)" = "$WANT"
-check "the daemon's log says how it found the index" \
-	grep -q "session index of $SESS damaged: 4 session files read" "$LOG"
+rm -f "$DB" "$DB-wal" "$DB-shm"
+check "the records deleted: the same trainees" test "$(list_json)" = "$WANT"
+printf 'X' | dd of="$DB" bs=1 seek=0 conv=notrunc 2>/dev/null
+check "the records damaged: the same trainees" test "$(list_json)" = "$WANT"
+head -c 3000 /dev/urandom >"$DB"
+check "the records overwritten with garbage: the same trainees" \
+	test "$(list_json)" = "$WANT"
 
 mv "$SESS/3.endoses" "$TMP/3.endoses"
-check "a session deleted: stale" test "$(list_index)" = stale
-check "... Ann: 2 sessions, the course not complete (1 of 2 in a row)" \
+ctl records rebuild >/dev/null
+check "a session deleted, rebuilt: Ann 2 sessions, the course not complete" \
 	sh -c '"$1" --socket "$2" --json trainee list |
 		jq -e ".trainees[0] | .sessions == 2 and
 			(.course_complete | not)"' _ "$ENDOCTL" "$SOCK"
 mv "$TMP/3.endoses" "$SESS/3.endoses"
-check "back: stale" test "$(list_index)" = stale
-check "... the same trainees" test "$(list_json)" = "$WANT"
+ctl records rebuild >/dev/null
+check "back: the same trainees" test "$(list_json)" = "$WANT"
 
 check_status "trainee report" 0 ctl trainee report "$ANN" --out "$TMP/page"
 check "... 3 sessions, course complete" \

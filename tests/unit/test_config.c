@@ -16,6 +16,7 @@
 #include "conf/cases.h"
 #include "conf/config.h"
 #include "session/metrics.h"
+#include "session/records.h"
 #include "session/sessioninputs.h"
 
 static char path[64];
@@ -526,14 +527,19 @@ static void same_as_owners(const struct config *cfg)
 	cases_haptics_params(cfg, &ch);
 	same_haptics(&ch);
 	same_metrics(cfg);
+	if (strcmp(cfg->records.database, RECORDS_DEFAULT_NAME)) {
+		print_message("records.database: %s, records.h: %s\n",
+			      cfg->records.database, RECORDS_DEFAULT_NAME);
+		mismatches++;
+	}
 }
 
 /*
  * Each default is written once, in the module that owns it (scope.h,
  * colon.h, rod.h, lumen.h, flex.h, rodscope.h, haptics.h, gas.h, fluid.h,
  * lens.h, patient.h), and the
- * table refers to it; the metrics' thresholds twice (metrics.h and the
- * table). The configuration's defaults, as config_defaults() sets them
+ * table refers to it; the metrics' thresholds and the records' file name
+ * twice (metrics.h, records.h and the table). The configuration's defaults, as config_defaults() sets them
  * and as --print-config writes them and a file reads them back, make the
  * owners' parameters exactly: a default typed into the table, or edited
  * in one place only, or printed with less precision than it has, fails.

@@ -1,0 +1,166 @@
+/*
+ * control_records.c - the control thread's records (control_private.h):
+ * the rig's database (records.h) brought up to date with the session
+ * files at start-up, a session's row written when it ends, and
+ * RecordsCheck and RecordsRebuild.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "control/control_private.h"
+#include "session/records.h"
+
+struct control_records {
+	struct records *db;
+	struct records_report report;   /* what the last reply points into */
+	Endosim__RecordsReply reply;
+};
+
+/* The records' own words when they have some, else errno's. */
+static const char *why(const struct control_records *cr, int e)
+{
+	const char *text = records_error(cr->db);
+
+	return *text ? text : strerror(-e);
+}
+
+/* The sessions the files had and the database had not, at start-up. */
+static int bring_up_to_date(struct control_records *cr)
+{
+	struct records_report *rep = &cr->report;
+	int e = records_check(cr->db, RECORDS_FIX, 0, rep);
+
+	if (e == -EPROTO) {
+		log_err("%s", records_error(cr->db));
+		return e;
+	}
+	if (e) {
+		log_warn("records: cannot bring them up to date: %s",
+			 why(cr, e));
+	} else if (rep->missing || rep->damaged || rep->differ) {
+		log_notice("records %s: %s%zu of %zu sessions written from "
+			   "their files", records_path(cr->db), rep->missing ?
+			   "made: " : rep->damaged ? "damaged: " : "",
+			   rep->written, rep->files);
+	}
+	records_report_free(rep);
+	return 0;
+}
+
+struct control_records *control_records_create(const struct config *cfg)
+{
+	struct control_records *cr = calloc(1, sizeof(*cr));
+
+	if (!cr || !(cr->db = records_create(cfg->records.database,
+					     cfg->session.directory,
+					     cfg->records.rig,
+					     cfg->session.course))) {
+		log_err("control: out of memory");
+		control_records_destroy(cr);
+		return NULL;
+	}
+	if (bring_up_to_date(cr)) {
+		control_records_destroy(cr);
+		return NULL;
+	}
+	return cr;
+}
+
+void control_records_destroy(struct control_records *cr)
+{
+	if (!cr) {
+		return;
+	}
+	records_report_free(&cr->report);
+	records_destroy(cr->db);
+	free(cr);
+}
+
+void control_records_ended(struct control *c, uint64_t id)
+{
+	int e = records_add(c->records->db, id);
+
+	if (e) {
+		log_warn("records: session %llu not written: %s (the next "
+			 "start-up or 'endoctl records rebuild' writes it)",
+			 (unsigned long long)id, why(c->records, e));
+	}
+}
+
+int control_records_list(struct control *c, struct records_session **out,
+			 size_t *n, char *error, size_t size)
+{
+	int e = records_list(c->records->db, out, n);
+
+	if (e) {
+		snprintf(error, size, "%s", why(c->records, e));
+		log_warn("%s", error);
+	}
+	return e;
+}
+
+/* The session recording (0: none), which the files and rows leave out. */
+static uint64_t recording_id(struct control *c)
+{
+	struct recorder_info ri;
+
+	recorder_info(c->deps.recorder, &ri);
+	return ri.active && ri.recording ? ri.id : 0;
+}
+
+/* The reply of what *REP found (E: what failed). */
+static void records_reply(struct control *c, Endosim__Reply *rep, int e)
+{
+	struct control_records *cr = c->records;
+	Endosim__RecordsReply *m = &cr->reply;
+
+	if (e) {
+		snprintf(c->refusal, sizeof(c->refusal), "%s", why(cr, e));
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, c->refusal);
+		return;
+	}
+	endosim__records_reply__init(m);
+	m->database = (char *)records_path(cr->db);
+	m->missing = cr->report.missing;
+	m->damaged = cr->report.damaged;
+	m->files = cr->report.files;
+	m->rows = cr->report.rows;
+	m->differ = cr->report.differ;
+	m->written = cr->report.written;
+	m->text = cr->report.text ? cr->report.text : "";
+	rep->body_case = ENDOSIM__REPLY__BODY_RECORDS;
+	rep->records = m;
+}
+
+void control_on_records_check(struct control *c, struct client *cl,
+			      const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct control_records *cr = c->records;
+
+	(void)cl;
+	(void)req;
+	records_report_free(&cr->report);
+	records_reply(c, rep, records_check(cr->db, RECORDS_DEEP,
+					    recording_id(c), &cr->report));
+}
+
+void control_on_records_rebuild(struct control *c, struct client *cl,
+				const Endosim__Request *req,
+				Endosim__Reply *rep)
+{
+	struct control_records *cr = c->records;
+	int e;
+
+	(void)req;
+	records_report_free(&cr->report);
+	e = records_rebuild(cr->db, recording_id(c), &cr->report);
+	if (!e) {
+		log_notice("records %s rebuilt (uid %d): %zu sessions written, "
+			   "%zu differed", records_path(cr->db), (int)cl->uid,
+			   cr->report.written, cr->report.differ);
+	}
+	records_reply(c, rep, e);
+}

@@ -1,0 +1,139 @@
+/*
+ * records.h - the rig's records: a SQLite database (WAL mode) of the
+ * sessions of a session directory (sessiondir.h), so that they are
+ * listed and judged without reading their files. The files stay the
+ * truth: a missing or damaged database is built again from them
+ * (records_rebuild()), and records_check() says how the two differ.
+ *
+ * The schema (docs/SESSION_FORMAT.md, "The records"): trainees(id, name),
+ * cases(id, name), sessions(id: the file's ID, trainee_id, case_id,
+ * started, ended, path, bytes, checksum: FNV-1a of the whole file (its
+ * frames' CRC-32s would cancel a whole-file CRC-32's change),
+ * rig, judgement: "COURSE: passed|failed", NULL none) and measures(session_id, one
+ * column per metricstext_fields() key) for the sessions with an END frame.
+ * Its version is SQLite's user_version; the migrations are an ordered
+ * list of SQL steps, each run once, in a transaction, from the database's
+ * version up to RECORDS_SCHEMA_VERSION. A new measure is a new row of
+ * metricstext_fields() and a migration adding its column.
+ *
+ * Each call opens the database, does its work and closes it again: a
+ * database deleted or replaced meanwhile is noticed on the next call, and
+ * readers (endoctl) may read beside the writer (WAL). Every statement that
+ * carries a value binds it as a parameter.
+ *
+ * Reads the session files and writes the database, blocks on the disk,
+ * allocates: the control thread or a tool, never the force loop. One
+ * writer per database (endosimd, the directory's owner).
+ */
+#ifndef ENDOSIM_RECORDS_H
+#define ENDOSIM_RECORDS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "session/metrics.h"
+#include "session/sessiondir.h"
+
+#define RECORDS_SCHEMA_VERSION 2
+#define RECORDS_DEFAULT_NAME "records.sqlite"
+
+struct records;
+
+/* One session as the database (or its file) says. */
+struct records_session {
+	struct sessiondir_entry e;  /* id, bytes, ended, trainee, case,
+				       started */
+	uint64_t checksum;          /* FNV-1a (64 bits) of the whole file */
+	char rig[64];               /* the rig that recorded it */
+	char judgement[96];         /* "COURSE: passed" or "COURSE: failed"
+				       by the course its case is in; "":
+				       none (no course, not its case, no
+				       END frame) */
+	bool has_metrics;           /* m is its END frame's */
+	struct metrics_result m;    /* the scalars; no episodes */
+};
+
+/* What records_check() or records_rebuild() found and did. */
+struct records_report {
+	bool missing;       /* no database at all */
+	bool damaged;       /* SQLite could not read it, or its check failed */
+	size_t files;       /* session files in the directory */
+	size_t rows;        /* sessions in the database */
+	size_t differ;      /* sessions whose row and file differ, or only
+			       one of them is there */
+	size_t written;     /* rows written (added, replaced, deleted) */
+	char *text;         /* malloc'd: one line each thing found, "" */
+};
+
+/*
+ * The records of the session directory DIR in the database DATABASE (a
+ * relative path is taken under DIR), RIG the name written with each
+ * session (NULL or "": the host's name), COURSE the course file
+ * (coursefile.h) each session's judgement is written by (NULL or "":
+ * none; read at each write: one that does not load judges nothing).
+ * Touches nothing yet. NULL on ENOMEM.
+ */
+struct records *records_create(const char *database, const char *dir,
+			       const char *rig, const char *course);
+void records_destroy(struct records *r);
+
+/* The database's path (DIR/records.sqlite by default). */
+const char *records_path(const struct records *r);
+
+/*
+ * Why the last call failed, in words naming the database ("" when it did
+ * not): a newer schema, SQLite's error.
+ */
+const char *records_error(const struct records *r);
+
+/*
+ * The session file DIR/ID.endoses read and written as its row (replacing
+ * any), with its measures when it ends with an END frame: at a session's
+ * end. A missing or damaged database is built again from every file
+ * first. 0; -ENOENT (no such file: its row, if any, removed); -EPROTO (the
+ * database's schema is newer than this program's); -EIO (SQLite's error);
+ * -errno.
+ */
+int records_add(struct records *r, uint64_t id);
+
+/*
+ * Every session of the database sorted by ID: a malloc'd array of *N in
+ * *OUT (free() it). A missing or damaged database is built again from the
+ * files first. 0 or as records_add().
+ */
+int records_list(struct records *r, struct records_session **out, size_t *n);
+
+/* Flags of records_check(). */
+enum {
+	RECORDS_DEEP = 1,  /* read every file: its checksum and its measures,
+			      not only that it is there and its size */
+	RECORDS_FIX = 2,   /* write each row that differs from its file;
+			      a damaged database: made again (as
+			      records_rebuild()) */
+};
+
+/*
+ * The database against the files of DIR (leaving out session SKIP, the
+ * one recording; 0: none) into *REP (records_report_free() it). Without
+ * RECORDS_FIX the database is only read (a missing one is not created).
+ * 0 or as records_add(); *REP holds what was found even then.
+ */
+int records_check(struct records *r, unsigned flags, uint64_t skip,
+		  struct records_report *rep);
+
+/*
+ * The database built again from the files (all but SKIP): a damaged one
+ * moved aside to PATH.damaged, every row deleted and each file's written.
+ * *REP as records_check()'s before the rebuild, and written. 0 or as
+ * records_add().
+ */
+int records_rebuild(struct records *r, uint64_t skip,
+		    struct records_report *rep);
+
+void records_report_free(struct records_report *rep);
+
+/* The session file PATH as its row would be. 0; -errno; -EBADMSG. */
+int records_read_file(const char *path, struct records_session *s);
+
+#endif
