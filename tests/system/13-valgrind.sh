@@ -6,6 +6,14 @@
 # AddressSanitizer, with LeakSanitizer's check at exit.
 . "$(dirname "$0")/../common.sh"
 
+# endoctl with time to spare: under valgrind the daemon runs some 30 times
+# slower, and a reply (set waits for the force loop to take the new
+# configuration) took over endoctl's default 2 s on a loaded VM; this test
+# is about memory, not about how fast the daemon answers
+ctl() {
+	"$ENDOCTL" --socket "$SOCK" --timeout 20000 "$@"
+}
+
 # session: the working session's commands, each a check
 session() {
 	WAIT_S=5
