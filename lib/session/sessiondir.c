@@ -321,6 +321,8 @@ int sessiondir_list(const char *dir, struct sessiondir_entry **out,
 		*n = 0;
 		return r;
 	}
-	qsort(*out, *n, sizeof(**out), by_id);
+	if (*n) { /* an empty directory: no array to sort */
+		qsort(*out, *n, sizeof(**out), by_id);
+	}
 	return 0;
 }
