@@ -757,6 +757,16 @@ const struct colon_region *colon_region(const struct colon *c, int i)
 	return &c->region[i];
 }
 
+int colon_region_at(const struct colon *c, double s_m)
+{
+	int i = 0;
+
+	while (i + 1 < c->regions && s_m >= c->region[i].s1_m) {
+		i++;
+	}
+	return i;
+}
+
 double colon_cecum_s(const struct colon *c)
 {
 	return c->cecum_s;

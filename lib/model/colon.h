@@ -116,6 +116,10 @@ const struct contact *colon_contact(const struct colon *c);
 
 int colon_regions(const struct colon *c);
 const struct colon_region *colon_region(const struct colon *c, int i);
+/* The region arc length S_M (m) lies in: the first whose far end is
+ * beyond it, the last past them all (the first before them, and for a
+ * NaN). */
+int colon_region_at(const struct colon *c, double s_m);
 
 /* Where the cecum starts (m), the whole length for an imported colon. */
 double colon_cecum_s(const struct colon *c);

@@ -203,14 +203,5 @@ void fluid_volumes(const struct fluid *f, double out[FLUID_SEGMENTS])
 
 int fluid_segment_at(const struct fluid *f, double s_m)
 {
-	int i = 0;
-
-	if (!f->segments) {
-		return -1;
-	}
-	while (i + 1 < f->segments &&
-	       s_m >= colon_region(f->colon, i)->s1_m) {
-		i++;
-	}
-	return i;
+	return f->segments ? colon_region_at(f->colon, s_m) : -1;
 }

@@ -328,15 +328,13 @@ double gas_factor_in(const double factor[GAS_SEGMENTS], int i, double s0_m,
 double gas_factor_at(const struct colon *colon,
 		     const double factor[GAS_SEGMENTS], double s_m)
 {
-	int n = colon_anatomy(colon) ? colon_regions(colon) : 0, i = 0;
+	int n = colon_anatomy(colon) ? colon_regions(colon) : 0, i;
 	const struct colon_region *r;
 
 	if (n != GAS_SEGMENTS) {
 		return 1;
 	}
-	while (i + 1 < n && s_m >= colon_region(colon, i)->s1_m) {
-		i++;
-	}
+	i = colon_region_at(colon, s_m);
 	r = colon_region(colon, i);
 	return gas_factor_in(factor, i, r->s0_m, r->s1_m, s_m);
 }

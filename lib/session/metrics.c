@@ -54,9 +54,9 @@
  *   (the patient's measures count records with the patient enabled only;
  *   the first such record's hand, burst and tear count against none)
  *   lumen lost, mucosa seen, polyps seen: the view's (metricsview.c)
- *   along the colon  segment i of a record: the first whose far end
- *                    (anatomy_segment_start(i + 1)) is beyond tip_s_m, the
- *                    cecum past them all; none while not inserted. The
+ *   along the colon  segment i of a record: colon_region_at() its tip_s_m
+ *                    (the first whose far end is beyond it, the cecum past
+ *                    them all); none while not inserted. The
  *                    previous record's segment gains the time since it
  *                    (in pain and looped as that record was); a record's
  *                    pain and F raise its own segment's peaks
@@ -120,9 +120,9 @@ struct metrics {
 	double shape_t, shape_depth, shape_tip;
 	double shaft_in, tip_in, shaft_idle, shaft_out, tip_out;
 	double loop_in;           /* s with a loop on the way in */
-	/* along the colon: each segment's far end (m), its measures */
-	int segments;             /* 0: no case's anatomy */
-	double seg_end_m[ANATOMY_SEGMENTS];
+	/* along the colon: each segment's measures */
+	bool segments;            /* the colon is a case's (its regions are
+				     the anatomy's segments) */
 	struct metrics_segment along[ANATOMY_SEGMENTS];
 };
 
@@ -291,10 +291,7 @@ struct metrics *metrics_create(const struct colon *colon,
 		const struct anatomy *a = colon_anatomy(colon);
 
 		m->exit_s_m = anatomy_segment_start(a, ANATOMY_RECTUM);
-		for (int i = 0; i < ANATOMY_SEGMENTS; i++) {
-			m->seg_end_m[i] = anatomy_segment_start(a, i + 1);
-		}
-		m->segments = ANATOMY_SEGMENTS;
+		m->segments = true;
 	}
 	m->view = metricsview_create(colon, p);
 	if (!m->view) {
@@ -382,15 +379,10 @@ static void record_shape(struct metrics *m, const struct session_record *r,
 /* The segment R's tip is in, -1: out (or no anatomy). */
 static int tip_segment(const struct metrics *m, const struct session_record *r)
 {
-	int i = 0;
-
 	if (!m->segments || !(r->depth_m > 0) || !isfinite(r->tip_s_m)) {
 		return -1;
 	}
-	while (i + 1 < m->segments && r->tip_s_m >= m->seg_end_m[i]) {
-		i++;
-	}
-	return i;
+	return colon_region_at(m->colon, r->tip_s_m);
 }
 
 /* Along the colon: Q's state (the previous record, NULL at the first)
@@ -652,7 +644,7 @@ bool metrics_has_patient(const struct metrics_result *r)
 
 void metrics_along(const struct metrics *m, struct metrics_along *out)
 {
-	out->segments = m->segments > 0;
+	out->segments = m->segments;
 	memcpy(out->seg, m->along, sizeof(out->seg));
 }
 
