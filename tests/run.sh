@@ -96,7 +96,8 @@ record() {
 # longest first, then the rest in order), each into its own files (output, exit
 # status, seconds), then recorded in order.
 unit_tests() {
-	local dir=$work/units pair build prefix t name
+	local dir=$work/units pair build prefix t name long
+	long=" $(echo $LONG_UNITS) "
 	mkdir -p "$dir"
 	{
 		for name in $LONG_UNITS; do
@@ -112,8 +113,8 @@ unit_tests() {
 			prefix=${pair#*:}
 			for t in "$build"/tests/test_*; do
 				case "$t" in *.d) continue ;; esac
-				case " $(echo $LONG_UNITS) " in
-				*" $(basename "$t") "*) continue ;;
+				case "$long" in
+				*" ${t##*/} "*) continue ;;
 				esac
 				[ -x "$t" ] && printf '%s\0%s\0' "$t" \
 					"${prefix//\//-}"
