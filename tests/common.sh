@@ -77,8 +77,11 @@ check_status() {
 	fi
 }
 
+# ctl ARGS...: endoctl on the test's daemon; CTL_TIMEOUT_MS, when set,
+# how long it waits for a reply (endoctl's own default otherwise)
 ctl() {
-	"$ENDOCTL" --socket "$SOCK" "$@"
+	"$ENDOCTL" --socket "$SOCK" \
+		${CTL_TIMEOUT_MS:+--timeout "$CTL_TIMEOUT_MS"} "$@"
 }
 
 # status_field JQ: a jq expression over `endoctl --json status`.

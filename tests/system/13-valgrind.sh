@@ -10,9 +10,7 @@
 # slower, and a reply (set waits for the force loop to take the new
 # configuration) took over endoctl's default 2 s on a loaded VM; this test
 # is about memory, not about how fast the daemon answers
-ctl() {
-	"$ENDOCTL" --socket "$SOCK" --timeout 20000 "$@"
-}
+CTL_TIMEOUT_MS=20000
 
 # session: the working session's commands, each a check
 session() {
