@@ -136,9 +136,11 @@ enum tool_kind {
 	TOOL_CLIP,
 };
 
-/* A snare's sizes, its loop's diameter fully open, m. */
+/* A snare's sizes, its loop's diameter fully open, m; the one the nurse
+ * hands over unless told (a standard loop's smallest). */
 #define TOOL_SNARE_MIN_M 0.010
 #define TOOL_SNARE_MAX_M 0.030
+#define TOOL_DEFAULT_SNARE_M 0.015
 
 enum tool_polyp_state {
 	TOOL_POLYP_IN_PLACE = 0,
@@ -173,7 +175,10 @@ struct tool_params {
 	double clip_m;            /* a clip's jaws, long */
 };
 
-#define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (150.0 * 3.14159265358979323846 / 180)
+#define TOOL_DEFAULT_CHANNEL_ANGLE_DEG 150.0
+#define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (TOOL_DEFAULT_CHANNEL_ANGLE_DEG * \
+					TOOL_RAD_PER_DEG)
+#define TOOL_RAD_PER_DEG (3.14159265358979323846 / 180)
 #define TOOL_DEFAULT_CHANNEL_OFFSET_M 0.004
 #define TOOL_DEFAULT_CUT_J_PER_M2 2.5e6
 #define TOOL_DEFAULT_HOT_POWER_W 30.0
