@@ -422,9 +422,14 @@ static void record_copy(struct session_record *rec, const void *payload,
 
 	memset(rec, 0, sizeof(*rec));
 	memcpy(rec, payload, n);
-	if (n < sizeof(*rec)) { /* format 4 or older: nothing torn, no pain */
+	if (n < SESSION_RECORD_SIZE_5) { /* format 4 or older: nothing torn,
+					     no pain */
 		rec->pain_place = -1;
 		rec->torn_segment = -1;
+	}
+	if (n < sizeof(*rec)) { /* format 5 or older: no tool */
+		rec->tool_captured = -1;
+		rec->tool_event_polyp = -1;
 	}
 }
 
