@@ -755,6 +755,16 @@ static const struct command {
 	  "spring-loaded as on a real handle: `on` holds it S s (default 2, "
 	  "at most 10), then it springs back, `off` lets go at once; the "
 	  "other valves held stay held with it (simulated rig only)" },
+	{ "tool", ctl_cmd_tool, "the tool through the working channel",
+	  "tool status | select none|forceps|snare|needle|clip [--size MM] "
+	  "| hand DEPTH_MM OPENING [--pedal] [--for S]",
+	  "endoctl tool select snare --size 20",
+	  "select: the tool the nurse hands over, one at a time; a snare of "
+	  "MM mm, 10 to 30 (default [tool] snare_size_m); hand (simulated "
+	  "rig): the hand holds the tool DEPTH_MM beyond the channel's exit "
+	  "(negative: in it), its handle at OPENING (0 closed .. 1 open), "
+	  "the cautery's pedal down with --pedal, for S s (default 2, at "
+	  "most 10); then the reading lapses: the tool still, the pedal up" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions",
 	  "version", "endoctl version", NULL },
 	{ "debug", cmd_debug, "fault injection, for tests only",
