@@ -290,7 +290,7 @@ const struct fields_table fields_patient =
 #undef STRUCT
 #undef MESSAGE
 
-/* --- the tool in the working channel: recorded but its pose, polyps -- */
+/* --- the tool in the working channel: its sensing and events recorded - */
 #define STRUCT struct endosim_tool_polyp
 #define MESSAGE Endosim__ToolPolyp
 static const struct fields_field tool_polyp[] = {
@@ -318,13 +318,13 @@ static const struct fields_field tool[] = {
 	TOOL(snare_m, FIELDS_DOUBLE, "tool_snare_m", NULL),
 	TOOL(depth_m, FIELDS_DOUBLE, "tool_depth_m", NULL),
 	TOOL(opening, FIELDS_DOUBLE, "tool_opening_1", NULL),
-	TOOL(loop_m, FIELDS_DOUBLE, "tool_loop_m", NULL),
+	VAL(loop_m, FIELDS_DOUBLE),
 	VEC(tip),
 	VEC(loop_centre),
 	TOOL(captured, FIELDS_INT, "tool_captured", NULL),
 	TOOL(events, FIELDS_UINT, "tool_events", NULL),
 	TOOL(event_polyp, FIELDS_INT, "tool_event_polyp", NULL),
-	TOOL(clips, FIELDS_UINT, "tool_clips", NULL),
+	VAL(clips, FIELDS_UINT),
 	VAL(polyps, FIELDS_UINT),
 	MANY(polyp, FIELDS_LIST, &fields_tool_polyp),
 };

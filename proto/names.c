@@ -105,6 +105,7 @@ static const char *const event_names[] = {
 	[SESSION_EVENT_PERFORATION] = "perforation",
 	[SESSION_EVENT_TEAR] = "tear",
 	[SESSION_EVENT_SEDATION] = "sedation",
+	[SESSION_EVENT_TOOL] = "tool",
 };
 
 /* endosim.proto's DebugAction, by number */

@@ -93,7 +93,7 @@ const char *names_tool_event(uint32_t bit);
 /*
  * A session event's kind (session_file.h enum session_event_kind) as the
  * CSV says it: "state", "fault", "param", "drops", "note", "position",
- * "hand", "valve", "perforation", "tear", "sedation"; "unknown" for
+ * "hand", "valve", "perforation", "tear", "sedation", "tool"; "unknown" for
  * another.
  */
 const char *names_event(uint32_t kind);

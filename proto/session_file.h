@@ -69,7 +69,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 560 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 552 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -160,27 +160,26 @@ struct session_record {
 	float spo2;               /* 0..1 */
 	int32_t torn_segment;     /* where the tip tore the wall, -1: none */
 	/* format 6: the tool in the working channel (struct
-	   endosim_tool_state); an older record reads with no tool, nothing
-	   captured (-1) */
+	   endosim_tool_state): what the rig sensed, the polyp held and what
+	   happened, from which the rest follows (the loop, the clips); an
+	   older record reads with no tool, nothing held (-1) */
 	uint32_t tool_kind;       /* enum endosim_tool */
 	float tool_snare_m;       /* the snare's size */
 	float tool_depth_m;       /* beyond the channel's exit */
 	float tool_opening;       /* the handle, 0..1 */
 	uint32_t tool_pedal;      /* 1: down */
-	float tool_loop_m;        /* the snare's loop's diameter */
 	int32_t tool_captured;    /* the polyp the loop holds, -1: none */
 	uint32_t tool_events;     /* this cycle's enum endosim_tool_event */
 	int32_t tool_event_polyp; /* the polyp they concern, -1: none */
-	uint32_t tool_clips;      /* placed */
 };
 
-_Static_assert(sizeof(struct session_record) == 560,
+_Static_assert(sizeof(struct session_record) == 552,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
-/* Format 5's: up to torn_segment. A shorter record reads with no tool
- * and tool_captured and tool_event_polyp -1 (none). */
+/* Format 5's: up to torn_segment. A shorter record reads with no tool,
+ * tool_captured and tool_event_polyp -1 (none). */
 #define SESSION_RECORD_SIZE_5 520u
 /* Format 4's: up to burst_segment. A shorter record reads with
  * torn_segment and pain_place -1 (none), as no_patient() gives. */
@@ -212,12 +211,12 @@ enum session_event_kind {
 				      force on the wall, N */
 	SESSION_EVENT_SEDATION = 11, /* value: the enum endosim_sedation */
 	/* format 6: the tool in the working channel */
-	SESSION_EVENT_TOOL = 12,   /* a tool handed over, or one of its
-				      events: detail the enum
-				      endosim_tool_event bit (0: a tool
-				      selected, value its enum endosim_tool);
-				      axis the polyp concerned, -1: none;
-				      value: a cut's energy (J), else 0 */
+	SESSION_EVENT_TOOL = 12,   /* a tool handed over (detail 0, axis
+				      its enum endosim_tool, value a
+				      snare's size, m) or one of its events
+				      (detail its enum endosim_tool_event
+				      bit, axis the polyp concerned or -1,
+				      value the handle's opening) */
 };
 
 /* An event's fixed part; its text (not NUL-terminated) follows it. */

@@ -10,8 +10,12 @@
 # OPENING, the loop's diameter is d = min(D, 2 l / pi) with l = OPENING
 # pi D / 2 (+ DEPTH while the sheath is in the channel), computed here
 # from the formula; the pedal published while held. Once the input lapses
-# the tool stays where it was and the pedal is up. (Capture and cut,
-# cycle for cycle: test_tool_loop; the model: test_tool.)
+# the tool stays where it was and the pedal is up. Forceps and a clip
+# closed beyond the wall bite the mucosa and place a clip. A session
+# recorded across it all has each tool handed over and each of the
+# tool's events (export --events, show and its JSON) and the tool's CSV
+# columns. (Capture and cut, cycle for cycle: test_tool_loop; the model:
+# test_tool.)
 . "$(dirname "$0")/../common.sh"
 
 start_daemon --set case.name=polyps || finish
@@ -26,6 +30,9 @@ check "status --json: the tool's keys, in their order" \
 check "at the start: no tool, the case's five polyps in place" \
 	t_true '.kind == "none" and .polyps == 5 and (.polyp | length) == 5
 		and all(.polyp[]; .state == "in-place") and .captured == -1'
+
+# a session recorded across it all
+ID=$(ctl --json session start --trainee tool | jq -r .id)
 
 # --- refused, and nothing changes -----------------------------------------
 check_status "tool select on the read-only socket: refused (1)" 1 \
@@ -96,6 +103,43 @@ check_status "a hand of 11 s: usage (2)" 2 ctl tool hand 5 1 --for 11
 check_status "an opening of 2: refused (1)" 1 ctl tool hand 5 2
 check "every polyp still in place" \
 	t_true 'all(.polyp[]; .state == "in-place")'
+
+# the forceps and a clip closed well beyond the lumen's wall: a bite of
+# the mucosa, a clip placed
+bite() { # TOOL: opened past one half, then closed, 200 mm out
+	ctl tool select "$1" >/dev/null &&
+		ctl tool hand 200 1 --for 10 >/dev/null &&
+		wait_for t_true '.opening == 1' &&
+		ctl tool hand 200 0 --for 10 >/dev/null &&
+		wait_for t_true '.opening == 0'
+}
+check "forceps: opened and closed 200 mm out" bite forceps
+check "a clip: opened and closed 200 mm out" bite clip
+check "... the clip placed" t_true '.clips == 1'
+
+# --- the session ------------------------------------------------------------
+check_status "session stop" 0 ctl session stop
+ctl session export "$ID" --csv --events --out "$TMP/events.csv" >/dev/null
+for ev in ',tool,2,0,0.0149999997,"a 15 mm snare handed over"' \
+	',tool,2,0,0.0199999996,"a 20 mm snare handed over"' \
+	',tool,1,0,0,"forceps handed over"' ',tool,-1,32,0,"bite"' \
+	',tool,4,0,0,"clip handed over"' ',tool,-1,64,0,"clip"'; do
+	check "the session's events: ${ev#*\"}" grep -qF -- "$ev" "$TMP/events.csv"
+done
+check "session show lists them" eval \
+	"ctl session show $ID >$TMP/show.txt &&
+	 grep -q '^tool events$' $TMP/show.txt &&
+	 grep -qE '^ +[0-9.]+ s  tool +a 20 mm snare handed over$' $TMP/show.txt"
+check "... and its JSON" eval \
+	"ctl --json session show $ID | jq -e '[.tool_events[].detail] |
+		index(32) and index(64)'"
+ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
+check "the CSV: the tool's columns" eval \
+	"head -n 1 $TMP/s.csv | grep -q ',patient_torn_segment,tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,tool_captured,tool_events,tool_event_polyp$'"
+check "... the loop's opening 0.5 and the pedal recorded" eval \
+	"awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[\$i] = i; next }
+		\$c[\"tool_pedal\"] == 1 && \$c[\"tool_opening_1\"] == 0.5 { n++ }
+		END { exit !(n > 0) }' $TMP/s.csv"
 stop_daemon
 check "endosimd stopped cleanly" test $? = 0
 finish

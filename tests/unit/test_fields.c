@@ -440,7 +440,7 @@ static const char csv_columns[] =
 	"patient_spo2_1,patient_torn_segment,"
 	/* format 6: the tool in the working channel */
 	"tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,"
-	"tool_loop_m,tool_captured,tool_events,tool_event_polyp,tool_clips";
+	"tool_captured,tool_events,tool_event_polyp";
 
 /* The column called NAME among C's N. */
 static const struct fields_column *column(const struct fields_column *c,
@@ -491,13 +491,13 @@ static void test_columns(void **state)
 			 FIELDS_STORED_I32);
 	assert_int_equal(column(c, n, "patient_torn_segment")->stored,
 			 FIELDS_STORED_I32);
-	assert_int_equal(column(c, n, "tool_captured")->stored,
-			 FIELDS_STORED_I32);
+	assert_int_equal(column(c, n, "tool_events")->stored,
+			 FIELDS_STORED_U32);
 	assert_int_equal(column(c, n, "tool_opening_1")->stored,
 			 FIELDS_STORED_F32);
-	assert_int_equal(c[n - 1].stored, FIELDS_STORED_U32);
+	assert_int_equal(c[n - 1].stored, FIELDS_STORED_I32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, tool_clips));
+			 offsetof(struct session_record, tool_event_polyp));
 }
 
 /* A state whose every double and word differs. */

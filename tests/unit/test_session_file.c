@@ -249,7 +249,7 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * than format 1's, or not the size the header says, are refused. The CSV
  * of a file of format 3 or older has format 3's columns, a format-4
  * file's the patient's body's too (and nothing torn by the tip), a
- * format-5 file's its pain as well (and no tool, nothing captured), a
+ * format-5 file's its pain as well (and no tool), a
  * format-6 file's the tool's too.
  */
 static void test_old_layout(void **state)
@@ -337,12 +337,14 @@ static void test_old_layout(void **state)
 	assert_non_null(strstr(csv, ",patient_pain,"));
 	assert_non_null(strstr(csv, ",patient_torn_segment"));
 	assert_null(strstr(csv, "tool"));
-	/* format 5's: no tool, nothing captured */
+	/* format 5's: no tool, nothing held */
 	assert_int_equal(f.records[2].tool_kind, ENDOSIM_TOOL_NONE);
 	assert_int_equal(f.records[2].tool_captured, -1);
 	assert_int_equal(f.records[2].tool_event_polyp, -1);
+	session_record_to_state(&f.records[2], &st);
+	assert_int_equal(st.tool.captured, -1);
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=6\nrecord_size=560\n", 560, all,
+	assert_int_equal(read_sized("format=6\nrecord_size=552\n", 552, all,
 				    &f), 0);
 	assert_int_equal(f.records[2].torn_segment, 2);
 	assert_int_equal(f.records[2].tool_kind, ENDOSIM_TOOL_SNARE);
