@@ -382,13 +382,26 @@ static int cmd_set(struct ctl *ctl, int argc, char **argv)
 	return 0;
 }
 
+int ctl_hand_input(struct ctl *ctl, Endosim__HandInput *body)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
+	req.hand_input = body;
+	r = ctl_transact(ctl, true, &req, &rep);
+	if (!r) {
+		endosim__reply__free_unpacked(rep, NULL);
+	}
+	return r;
+}
+
 static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
-	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	double force[ENDOSIM_AXES];
-	Endosim__Reply *rep;
-	int r, n = 0;
+	int n = 0;
 
 	if (argc == 2 && !strcmp(argv[1], "off")) {
 		body.hands_off = true; /* the grip lets go */
@@ -420,13 +433,7 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 		body.n_force = ENDOSIM_AXES;
 		body.force = force;
 	}
-	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
-	req.hand_input = &body;
-	r = ctl_transact(ctl, true, &req, &rep);
-	if (!r) {
-		endosim__reply__free_unpacked(rep, NULL);
-	}
-	return r;
+	return ctl_hand_input(ctl, &body);
 }
 
 static void print_cases(const Endosim__CaseListReply *l, bool json)

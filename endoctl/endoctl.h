@@ -59,6 +59,10 @@ typedef int command_fn(struct ctl *ctl, int argc, char **argv);
 int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
 		 Endosim__Reply **rep);
 
+/* BODY, a hand input (simulated rig), on the read-write socket: 0 or the
+ * exit status (ctl_transact()'s). */
+int ctl_hand_input(struct ctl *ctl, Endosim__HandInput *body);
+
 /* A status or stats reply, as text or one JSON object (endoctl_print.c). */
 void ctl_print_status(const Endosim__StatusReply *s);
 void ctl_json_status(const Endosim__StatusReply *s);

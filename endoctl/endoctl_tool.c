@@ -121,11 +121,9 @@ static bool number(const char *arg, double *out)
 static int tool_hand(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
-	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	double depth_mm = 0, hold_s = TOOL_HOLD_S;
 	bool ok = argc >= 4 && number(argv[2], &depth_mm) &&
 		  number(argv[3], &body.tool_opening);
-	Endosim__Reply *rep;
 	int r;
 
 	for (int i = 4; ok && i < argc; i++) {
@@ -144,19 +142,13 @@ static int tool_hand(struct ctl *ctl, int argc, char **argv)
 	body.tool = true;
 	body.tool_depth_m = depth_mm * 1e-3;
 	body.hold_ms = (uint32_t)lround(hold_s * 1e3);
-	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
-	req.hand_input = &body;
-	r = ctl_transact(ctl, true, &req, &rep);
-	if (r) {
-		return r;
-	}
-	endosim__reply__free_unpacked(rep, NULL);
-	if (!ctl->json) {
+	r = ctl_hand_input(ctl, &body);
+	if (!r && !ctl->json) {
 		printf("tool held %.1f mm out, handle %.0f %% open, pedal %s, "
 		       "for %.1f s\n", depth_mm, body.tool_opening * 100,
 		       body.tool_pedal ? "down" : "up", hold_s);
 	}
-	return 0;
+	return r;
 }
 
 int ctl_cmd_tool(struct ctl *ctl, int argc, char **argv)
