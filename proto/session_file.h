@@ -244,7 +244,8 @@ void session_record_from_state(const struct endosim_state *in,
  * and zeroes the rest (the scope's tube is not recorded: rebuild it with
  * the scope's kinematics on the recorded case). A record without the
  * patient (disabled, or of format 3 or older) gives the disabled
- * patient's state: every lumen factor 1, no site, no burst.
+ * patient's state: every lumen factor 1, no site, no burst; one without
+ * a tool (none, or of format 5 or older) holds nothing (-1).
  */
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out);

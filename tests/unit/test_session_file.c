@@ -343,6 +343,10 @@ static void test_old_layout(void **state)
 	assert_int_equal(f.records[2].tool_event_polyp, -1);
 	session_record_to_state(&f.records[2], &st);
 	assert_int_equal(st.tool.captured, -1);
+	f.records[2].tool_captured = 0; /* a writer's zero: still none */
+	session_record_to_state(&f.records[2], &st);
+	assert_int_equal(st.tool.captured, -1);
+	assert_int_equal(st.tool.event_polyp, -1);
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=6\nrecord_size=552\n", 552, all,
 				    &f), 0);
