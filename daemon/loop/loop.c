@@ -440,7 +440,6 @@ static void fill_scope(struct loop *l)
 	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
 	haptics_publish_rod(l->haptics, l->pose.roll_rad, &l->state.rod,
 			    l->state.scope.bow_m);
-	patient_publish(haptics_patient(l->haptics), &l->state.patient);
 }
 
 /*
@@ -670,7 +669,8 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	l->scenario_was_done = l->fb.hand_done;
 	fill_state(l, now, latency);
 	fill_scope(l);
-	step_tool(l);
+	step_tool(l); /* on the scope's state; its injury tears the patient */
+	patient_publish(haptics_patient(l->haptics), &l->state.patient);
 	l->state.publish_ns = l->lockstep ? now : mono_ns();
 	if (l->pub) {
 		publish_state(l->pub, &l->state);

@@ -357,8 +357,13 @@ static void tear_event(struct recorder *r, const struct session_record *rec,
 	if (rec->torn_segment < 0 || rec->torn_segment == was->torn_segment) {
 		return;
 	}
-	snprintf(text, sizeof(text), "%s torn by the tip at %.1f N",
-		 anatomy_segment_name(rec->torn_segment), f);
+	if (rec->tool_events & ENDOSIM_TOOL_INJURY) {
+		snprintf(text, sizeof(text), "%s torn by the snare's current",
+			 anatomy_segment_name(rec->torn_segment));
+	} else {
+		snprintf(text, sizeof(text), "%s torn by the tip at %.1f N",
+			 anatomy_segment_name(rec->torn_segment), f);
+	}
 	patient_event(r, rec, (struct session_event){
 		.kind = SESSION_EVENT_TEAR, .axis = -1,
 		.detail = (uint32_t)rec->torn_segment, .value = f }, text);

@@ -1,6 +1,7 @@
 #!/bin/bash
-# The tool through the working channel in the running daemon (issue 25),
-# on the polyps case (five polyps): `endoctl tool select` hands a tool
+# The tool through the working channel in the running daemon (issue 25):
+# a case loaded has its polyps placed for the tool (the normal case none,
+# the polyps case five); `endoctl tool select` hands a tool
 # over (a snare of the default [tool] snare_size_m, or of --size MM) and
 # the status says it (text and JSON, its keys in their order, every polyp
 # in place); refused with nothing changed: on the read-only socket, an
@@ -18,11 +19,15 @@
 # test_tool.)
 . "$(dirname "$0")/../common.sh"
 
-start_daemon --set case.name=polyps || finish
+start_daemon || finish
 
 t_true() {
 	status_true ".tool | $1"
 }
+
+check "the normal case: no polyps" t_true '.polyps == 0 and .polyp == []'
+check_status "case load polyps" 0 ctl case load polyps
+check "... its polyps placed for the tool" wait_for t_true '.polyps == 5'
 
 check "status --json: the tool's keys, in their order" \
 	test "$(ctl --json status | jq -c '.tool | keys_unsorted')" = \

@@ -17,7 +17,10 @@
  *    power, E = cut_j_per_m2 pi t^2 / 4 at hot_power_w, within 2 %, its
  *    energy published;
  *  - a stale input (the client stops sending) holds the tool and the
- *    handle still and the pedal up: no energy goes in while it lasts.
+ *    handle still and the pedal up: no energy goes in while it lasts;
+ *  - the snare closed on the case's sessile polyp, unlifted, the pedal
+ *    down: an injury of the wall, the patient's perforation in the same
+ *    cycle (torn_segment; with no patient, the tool's event alone).
  */
 #include <errno.h>
 #include <math.h>
@@ -52,9 +55,11 @@ struct run {
 					    cycle (rig_sim.c) */
 	unsigned events;   /* since the last look */
 	int ip;            /* the case's pedunculated polyp */
+	int is;            /* and its first sessile one */
 };
 
-static void start(struct run *r)
+/* The loop on the polyps case, the patient there or not. */
+static void start(struct run *r, bool patient)
 {
 	char err[512];
 	struct colon *c;
@@ -63,6 +68,7 @@ static void start(struct run *r)
 	memset(r, 0, sizeof(*r));
 	config_defaults(&r->cfg);
 	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
+	r->cfg.patient.enabled = patient;
 	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
 		 "config/cases/polyps.case");
 	c = cases_load(&r->cfg, NULL, err, sizeof(err));
@@ -70,13 +76,16 @@ static void start(struct run *r)
 		fail_msg("%s", err);
 	}
 	a = colon_anatomy(c);
-	r->ip = -1;
+	r->ip = r->is = -1;
 	for (int i = 0; a && i < a->polyps; i++) {
 		if (a->polyp[i].paris == ANATOMY_PARIS_IP) {
 			r->ip = i;
 		}
+		if (a->polyp[i].paris == ANATOMY_PARIS_IS && r->is < 0) {
+			r->is = i;
+		}
 	}
-	assert_true(r->ip >= 0);
+	assert_true(r->ip >= 0 && r->is >= 0);
 	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
 	if (!r->o) {
 		fail_msg("%s", err);
@@ -118,12 +127,12 @@ static void move(struct run *r, long n, double depth_m, double opening)
 	}
 }
 
-/* The case's pedunculated polyp moved under the open loop: its stalk's
- * middle at the loop's centre, along the channel's radial direction. */
-static void polyp_under_loop(struct run *r)
+/* The case's polyp I moved under the open loop: its axis' middle at the
+ * loop's centre, along the channel's radial direction. */
+static void polyp_under_loop(struct run *r, int i)
 {
 	struct tool *t = offline_tool(r->o);
-	struct tool_polyp *p = &t->polyp[r->ip];
+	struct tool_polyp *p = &t->polyp[i];
 	struct tool_params par;
 	struct tool_pose pose;
 	double centre[3];
@@ -132,7 +141,8 @@ static void polyp_under_loop(struct run *r)
 	tool_pose(&par, &r->st->scope, r->depth_m, &pose);
 	vec3_axpy(centre, pose.tip, SNARE_M / 2, pose.dir);
 	assert_true(vec3_dist(centre, r->st->tool.loop_centre) < 1e-12);
-	vec3_axpy(p->base, centre, p->stalk_m / 2, pose.radial);
+	vec3_axpy(p->base, centre, tool_polyp_height(p, par.lift_m) / 2,
+		  pose.radial);
 	vec3_scale(p->normal, pose.radial, -1);
 }
 
@@ -141,7 +151,7 @@ static void test_polyps_placed(void **state)
 	struct run r;
 
 	(void)state;
-	start(&r);
+	start(&r, false);
 	step(&r, false);
 	assert_int_equal(r.st->tool.polyps, 5);
 	assert_int_equal(r.st->tool.kind, ENDOSIM_TOOL_NONE);
@@ -155,7 +165,7 @@ static void test_select_refused(void **state)
 	struct run r;
 
 	(void)state;
-	start(&r);
+	start(&r, false);
 	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
 	step(&r, false);
 	assert_int_equal(offline_tool_answer(r.o), 0);
@@ -214,7 +224,7 @@ static void test_capture_and_cut(void **state)
 	long n;
 
 	(void)state;
-	start(&r);
+	start(&r, false);
 	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
 	step(&r, false);
 	move(&r, 100, DEPTH_M, 0);          /* the sheath out, closed */
@@ -223,7 +233,7 @@ static void test_capture_and_cut(void **state)
 	move(&r, 200, DEPTH_M, 1);          /* open: d = D */
 	move(&r, 1, DEPTH_M, 1);
 	assert_true(r.st->tool.loop_m == SNARE_M);
-	polyp_under_loop(&r);
+	polyp_under_loop(&r, r.ip);
 	move(&r, 5, DEPTH_M, 1);            /* inside the open loop */
 	assert_int_equal(r.st->tool.captured, -1);
 	r.events = 0;
@@ -250,12 +260,53 @@ static void test_capture_and_cut(void **state)
 	offline_destroy(r.o);
 }
 
+/* The snare closed on the sessile polyp's unlifted base and the pedal
+ * down: an injury of the wall, the patient's perforation (torn_segment)
+ * in the cycle it happens; without the patient, the tool's event alone. */
+static void injury(bool patient)
+{
+	struct run r;
+
+	start(&r, patient);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 100, DEPTH_M, 1);
+	move(&r, 1, DEPTH_M, 1);
+	polyp_under_loop(&r, r.is);
+	move(&r, 5, DEPTH_M, 1);
+	r.events = 0;
+	move(&r, 300, DEPTH_M, SHUT);
+	assert_int_equal(r.st->tool.captured, r.is);
+	assert_int_equal(r.st->patient.torn_segment, -1);
+	r.pedal = true;
+	for (int k = 0; k < 10 && !(r.events & ENDOSIM_TOOL_INJURY); k++) {
+		step(&r, false);
+	}
+	assert_true(r.events & ENDOSIM_TOOL_INJURY);
+	assert_true(r.st->tool.events & ENDOSIM_TOOL_INJURY);
+	assert_int_equal(r.st->tool.event_polyp, r.is);
+	if (patient) {
+		assert_true(r.st->patient.torn_segment >= 0);
+	} else {
+		assert_int_equal(r.st->patient.torn_segment, -1);
+	}
+	offline_destroy(r.o);
+}
+
+static void test_injury_perforates(void **state)
+{
+	(void)state;
+	injury(true);
+	injury(false);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_polyps_placed),
 		cmocka_unit_test(test_select_refused),
 		cmocka_unit_test(test_capture_and_cut),
+		cmocka_unit_test(test_injury_perforates),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
