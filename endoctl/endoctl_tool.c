@@ -21,7 +21,8 @@ static void print_polyps(const Endosim__ToolStatus *t)
 		       names_polyp_state(p->state), p->energy_j,
 		       p->lifted ? ", lifted" : "");
 		if (p->bites) {
-			printf(", %u bite%s", p->bites, p->bites > 1 ? "s" : "");
+			printf(", %u bite%s", p->bites,
+			       p->bites > 1 ? "s" : "");
 		}
 		printf("\n");
 	}
