@@ -37,7 +37,7 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3 libpq
 CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
@@ -50,11 +50,12 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
-	     libsqlite3-dev \
+	     libsqlite3-dev libpq-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev libopenal-dev \
 	     fonts-dejavu-core espeak-ng
 # libFuzzer's runtime is only a recommendation of clang: named here
 DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq sqlite3 \
+	    postgresql \
 	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
 	    $(DEPS_SCREEN) xdotool chromium sox
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
@@ -158,7 +159,8 @@ endosimd_LDLIBS = $(LDLIBS)
 # instructor's report)
 endoctl_SRCS = $(wildcard endoctl/*.c)
 endoctl_WINGS = session conf model base proto
-endoctl_LDLIBS = $(CLIENT_LDLIBS)
+# and a centre's records, which it reads itself (libpq)
+endoctl_LDLIBS = $(CLIENT_LDLIBS) $(shell pkg-config --libs libpq 2>/dev/null)
 endoview_SRCS = viewer/endoview.c
 endoview_WINGS = viewer session conf model base proto
 endoview_LDLIBS = $(VIEWER_LDLIBS)
