@@ -92,7 +92,8 @@ endef
 # endosimd's own (daemon/):
 #   control  the control thread (daemon/control/): the sockets, the clients,
 #            the master configuration; its handlers: replies, cases,
-#            sessions, trainees, guided replay
+#            sessions, trainees, guided replay; the records, and the
+#            thread that feeds a centre's
 #   recorder the recorder of training sessions (daemon/recorder/)
 #   loop     the force loop (daemon/loop/): its cycle, the mailboxes the
 #            control thread posts to it through, the safety state machine
@@ -106,7 +107,8 @@ endef
 #   session  training sessions (lib/session/): metrics and their map on the
 #            wire (livemap), the session directory and its index, a
 #            session's inputs (one reader), what a session file says
-#            (views, CSV, the report), courses and the trainee's page
+#            (views, CSV, the report), courses and the trainee's page,
+#            the rig's records (SQLite) and a centre's (PostgreSQL)
 #   conf     the configuration (lib/conf/): every key once, its file, its
 #            printing; the cases: the model as the configuration sets it
 #   model    the colon and the endoscope (lib/model/): case files,
@@ -208,7 +210,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_livemap test_separation test_coursefile test_records \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
-	     test_voice test_wav test_tool
+	     test_voice test_wav test_tool test_centre
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes

@@ -348,6 +348,7 @@ static void test_migrate(void **state)
 	assert_true(s[0].m.cecum_s == 321.5);
 	assert_true(s[0].m.withdrawal_s == 410.25);
 	assert_int_equal(s[0].m.polyps_seen, 3);
+	assert_int_equal(strlen(s[0].uuid), 36); /* made for an old row */
 	free(s);
 	run_sql("SELECT * FROM sessions INDEXED BY sessions_by_trainee;");
 	assert_int_equal(records_add(r, 1), 0); /* the new schema's rows */
