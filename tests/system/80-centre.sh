@@ -18,7 +18,8 @@
 PGBIN=$(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -V | tail -n 1)
 for p in initdb pg_ctl postgres; do
 	if [ ! -x "$PGBIN/$p" ]; then
-		skip "a centre's PostgreSQL: no PostgreSQL server here ($PGBIN/$p; Debian's postgresql)"
+		skip "a centre's PostgreSQL: no PostgreSQL server here \
+(${PGBIN:-/usr/lib/postgresql/VERSION/bin}/$p: Debian's postgresql)"
 		tally
 	fi
 done
@@ -110,8 +111,8 @@ done
 
 check "the server started again" pg_start
 check "every session arrives" wait_for at_centre 6
-check "... each once" test "$(sql 'SELECT COUNT(DISTINCT uuid) FROM
-	sessions')" = 6
+check "... each once" test "$(sql 'SELECT COUNT(DISTINCT (rig, rig_session))
+	FROM sessions')" = 6
 check "... three of each rig, in the rig's order" test "$(sql "SELECT
 	rig || ':' || string_agg(rig_session::text, ',' ORDER BY arrival)
 	FROM sessions GROUP BY rig ORDER BY rig")" = \
