@@ -866,17 +866,25 @@ int records_queue_unsent(struct records *r, size_t *waiting)
 	return e;
 }
 
+/* The database as it is in *DB, NULL when missing: never built again
+ * here, so that a second thread's call cannot race its writer's rebuild. */
+static int existing(struct records *r, sqlite3 **db)
+{
+	enum found how;
+
+	return open_db(r, r->path, false, db, &how);
+}
+
 int records_queue_head(struct records *r, struct records_session *s,
 		       size_t *waiting)
 {
 	struct records_session *rows = NULL;
 	size_t n = 0;
 	sqlite3 *db;
-	bool rebuilt;
-	int e = ready(r, &db, &rebuilt);
+	int e = existing(r, &db);
 
 	*waiting = 0;
-	if (!e && !(e = queue_length(r, db, waiting))) {
+	if (!e && db && !(e = queue_length(r, db, waiting))) {
 		e = select_rows(r, db, "JOIN centre_queue q ON q.session_id "
 				"= s.id ORDER BY q.seq LIMIT 1", &rows, &n);
 	}
@@ -891,10 +899,9 @@ int records_queue_head(struct records *r, struct records_session *s,
 int records_queue_arrived(struct records *r, uint64_t id)
 {
 	sqlite3 *db;
-	bool rebuilt;
-	int e = ready(r, &db, &rebuilt);
+	int e = existing(r, &db);
 
-	if (!e) {
+	if (!e && db) {
 		e = unqueue_as(r, db, id, true);
 	}
 	sqlite3_close(db);

@@ -162,14 +162,16 @@ int records_queue_unsent(struct records *r, size_t *waiting);
 
 /*
  * The session that has waited longest for the centre into *S, and how
- * many wait (it among them) into *WAITING. 0; -ENOENT: none waits; or as
- * records_add().
+ * many wait (it among them) into *WAITING. 0; -ENOENT: none waits, or
+ * the database is missing; or as records_add(). These two never build the
+ * database again (its writer's calls do, queueing every session), so
+ * that a second thread (the centre's) may call them beside the writer.
  */
 int records_queue_head(struct records *r, struct records_session *s,
 		       size_t *waiting);
 
-/* Session ID arrived at the centre: out of the queue, marked at_centre. 0
- * or as records_add(). */
+/* Session ID arrived at the centre: out of the queue, marked at_centre
+ * (nothing when the database is missing). 0 or as records_add(). */
 int records_queue_arrived(struct records *r, uint64_t id);
 
 /* The session file PATH as its row would be. 0; -errno; -EBADMSG. */

@@ -425,16 +425,21 @@ static void test_centre_queue(void **state)
 	assert_string_not_equal(s.uuid, uuid[0]); /* another rig's */
 	free(all);
 
-	assert_int_equal(unlink(db_path), 0); /* built again: all queued, */
-	head_is(r, 1, 3);
-	assert_int_equal(records_list(r, &all, &n), 0);
+	assert_int_equal(unlink(db_path), 0);
+	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT);
+	assert_int_equal(records_queue_arrived(r, 1), 0);
+	assert_int_equal(access(db_path, F_OK), -1); /* nor made it again */
+	assert_int_equal(records_list(r, &all, &n), 0); /* built again: */
+	head_is(r, 1, 3);                               /* all queued, */
 	for (size_t i = 0; i < n; i++) { /* with the UUIDs they had */
 		assert_string_equal(all[i].uuid, uuid[i]);
 	}
 	free(all);
 	assert_int_equal(unlink(db_path), 0);
 	records_set_centre(r, false);
-	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT);
+	assert_int_equal(records_list(r, &all, &n), 0); /* no centre: */
+	free(all);
+	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT); /* none */
 }
 
 int main(void)
