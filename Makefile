@@ -37,7 +37,7 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3 libpq
 CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
@@ -50,11 +50,12 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
-	     libsqlite3-dev \
+	     libsqlite3-dev libpq-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev libopenal-dev \
 	     fonts-dejavu-core espeak-ng
 # libFuzzer's runtime is only a recommendation of clang: named here
 DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq sqlite3 \
+	    postgresql \
 	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
 	    $(DEPS_SCREEN) xdotool chromium sox
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
@@ -91,7 +92,8 @@ endef
 # endosimd's own (daemon/):
 #   control  the control thread (daemon/control/): the sockets, the clients,
 #            the master configuration; its handlers: replies, cases,
-#            sessions, trainees, guided replay
+#            sessions, trainees, guided replay; the records, and the
+#            thread that feeds a centre's
 #   recorder the recorder of training sessions (daemon/recorder/)
 #   loop     the force loop (daemon/loop/): its cycle, the mailboxes the
 #            control thread posts to it through, the safety state machine
@@ -105,7 +107,8 @@ endef
 #   session  training sessions (lib/session/): metrics and their map on the
 #            wire (livemap), the session directory and its index, a
 #            session's inputs (one reader), what a session file says
-#            (views, CSV, the report), courses and the trainee's page
+#            (views, CSV, the report), courses and the trainee's page,
+#            the rig's records (SQLite) and a centre's (PostgreSQL)
 #   conf     the configuration (lib/conf/): every key once, its file, its
 #            printing; the cases: the model as the configuration sets it
 #   model    the colon and the endoscope (lib/model/): case files,
@@ -158,7 +161,8 @@ endosimd_LDLIBS = $(LDLIBS)
 # instructor's report)
 endoctl_SRCS = $(wildcard endoctl/*.c)
 endoctl_WINGS = session conf model base proto
-endoctl_LDLIBS = $(CLIENT_LDLIBS)
+# and a centre's records, which it reads itself (libpq)
+endoctl_LDLIBS = $(CLIENT_LDLIBS) $(shell pkg-config --libs libpq 2>/dev/null)
 endoview_SRCS = viewer/endoview.c
 endoview_WINGS = viewer session conf model base proto
 endoview_LDLIBS = $(VIEWER_LDLIBS)
@@ -206,7 +210,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_livemap test_separation test_coursefile test_records \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
-	     test_voice test_wav test_tool test_tool_loop
+	     test_voice test_wav test_tool test_tool_loop test_centre
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes

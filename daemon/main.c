@@ -38,6 +38,7 @@
 #include "rig/rig_drives.h"
 #include "rig/rig_sim.h"
 #include "rig/scenario.h"
+#include "session/centre.h"
 
 #define TICK_MS 50
 
@@ -392,12 +393,29 @@ static struct colon *load_colon(const struct config *cfg)
 	return c;
 }
 
+/* [records] centre, when set, a URL libpq reads and without a password:
+ * said and refused at start-up, before the colon is built. */
+static bool centre_ok(const struct config *cfg)
+{
+	char err[512];
+
+	if (cfg->records.centre[0] &&
+	    centre_check_url(cfg->records.centre, err, sizeof(err))) {
+		log_err("[records] centre: %s", err);
+		return false;
+	}
+	return true;
+}
+
 static int start(struct daemon *d, const struct options *opt)
 {
 	struct scenario *scn = NULL;
 	struct colon *colon;
 	char err[512];
 
+	if (!centre_ok(&d->cfg)) {
+		return EX_CONFIG;
+	}
 	colon = load_colon(&d->cfg);
 	if (!colon) {
 		return EX_CONFIG;
@@ -623,7 +641,7 @@ int main(int argc, char **argv)
 		struct colon *c;
 
 		log_init("endosimd", d.cfg.log.level);
-		c = load_colon(&d.cfg);
+		c = centre_ok(&d.cfg) ? load_colon(&d.cfg) : NULL;
 		if (!c) {
 			return EX_CONFIG;
 		}

@@ -740,10 +740,11 @@ static const struct command {
 	  "ID: a session's number, or a file (./N.endoses) read without "
 	  "endosimd" },
 	{ "trainee", ctl_cmd_trainee, "trainees, their sessions and course",
-	  "trainee list [--course FILE] [--dir DIR] | report NAME --out DIR "
-	  "[--course FILE] [--dir DIR]",
+	  "trainee list [--course FILE] [--dir DIR | --centre URL] | report "
+	  "NAME --out DIR [--course FILE] [--dir DIR | --centre URL]",
 	  "endoctl trainee report ana --out /tmp/ana",
-	  "--dir: a session directory, read without endosimd" },
+	  "--dir: a session directory, read without endosimd; --centre: a "
+	  "training centre's PostgreSQL (every rig's sessions)" },
 	{ "records", ctl_cmd_records, "the rig's records against its session "
 	  "files", "records check | rebuild", "endoctl records check",
 	  "check: what differs between the database and the files (the "

@@ -2,11 +2,13 @@
  * endoctl_trainee.c - endoctl's trainees (endoctl.h): their sessions found
  * by name from endosimd (TraineeSessions: the rig's records, which the
  * daemon keeps) or read from a session directory's files without it
- * (--dir: every file's header and END frame), judged by a
- * course file (coursefile.h), listed or written as a page
- * (traineepage.h).
+ * (--dir: every file's header and END frame), or from a training
+ * centre's database, every rig's (--centre: centre.h, read here with
+ * libpq), judged by a course file (coursefile.h), listed or written as a
+ * page (traineepage.h).
  */
 #include "endoctl/endoctl.h"
+#include "session/centre.h"
 #include "session/coursefile.h"
 #include "session/metricstext.h"
 #include "session/traineepage.h"
@@ -21,11 +23,14 @@ struct tsession {
 	bool have_m;        /* m known: the END frame's, or recomputed */
 	bool recomputed;    /* the file was cut short */
 	struct metrics_result m;
+	char rig[64];       /* a centre's: the rig that recorded it */
+	char uuid[37];      /* a centre's: its key there */
 };
 
 struct tlist {
 	struct tsession *s;
 	size_t n;
+	struct centre *centre; /* read from a centre's database; NULL not */
 	char course[4096];  /* the daemon's [session] course ("": none) */
 	char directory[4096];
 };
@@ -141,6 +146,42 @@ static int from_dir(const char *dir, const char *trainee, struct tlist *l)
 	return 0;
 }
 
+/* TRAINEE's sessions (NULL: everyone's) from the centre at URL, every
+ * rig's; the connection kept in L for the reports. */
+static int from_centre(const char *url, const char *trainee, struct tlist *l)
+{
+	struct records_session *rows;
+	size_t n;
+	int e;
+
+	snprintf(l->directory, sizeof(l->directory), "the centre's records");
+	if (!(l->centre = centre_create(url, "endoctl"))) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		return EXIT_REFUSED;
+	}
+	if ((e = centre_list(l->centre, trainee, &rows, &n))) {
+		fprintf(stderr, "endoctl: %s\n", centre_error(l->centre));
+		return e == -EINVAL ? EXIT_USAGE : EXIT_COMM;
+	}
+	l->s = calloc(n ? n : 1, sizeof(*l->s));
+	for (size_t i = 0; l->s && i < n; i++) {
+		struct tsession *x = &l->s[l->n++];
+
+		copy_facts(x, rows[i].e.id, rows[i].e.trainee,
+			   rows[i].e.case_name, rows[i].e.started);
+		x->have_m = rows[i].has_metrics;
+		x->m = rows[i].m;
+		snprintf(x->rig, sizeof(x->rig), "%s", rows[i].rig);
+		snprintf(x->uuid, sizeof(x->uuid), "%s", rows[i].uuid);
+	}
+	free(rows);
+	if (!l->s) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		return EXIT_REFUSED;
+	}
+	return 0;
+}
+
 /* The course named by --course (FILE), else the daemon's; *C NULL: none. */
 static int load_course(const char *file, const struct tlist *l,
 		       struct coursefile *buf, const struct coursefile **c)
@@ -167,22 +208,24 @@ struct standing {
 	const char *trainee;
 	size_t sessions;
 	char cases[256];      /* "normal, polyps" */
+	char rigs[256];       /* a centre's: "rig-a, rig-b" */
 	const struct tsession *last;
 	size_t cases_done;    /* of the course's */
 	bool complete;
 };
 
-static void add_case(char *cases, size_t size, const char *name)
+/* NAME added to the list NAMES ("a, b") unless it is there. */
+static void add_name(char *names, size_t size, const char *name)
 {
-	size_t len = strlen(name), at = strlen(cases);
+	size_t len = strlen(name), at = strlen(names);
 
-	for (const char *p = strstr(cases, name); p; p = strstr(p + 1, name)) {
-		if ((p == cases || p[-1] == ' ') &&
+	for (const char *p = strstr(names, name); p; p = strstr(p + 1, name)) {
+		if ((p == names || p[-1] == ' ') &&
 		    (p[len] == ',' || !p[len])) {
 			return;
 		}
 	}
-	snprintf(cases + at, size - at, "%s%s", at ? ", " : "", name);
+	snprintf(names + at, size - at, "%s%s", at ? ", " : "", name);
 }
 
 static void stand(const struct tlist *l, size_t first,
@@ -204,7 +247,10 @@ static void stand(const struct tlist *l, size_t first,
 		}
 		st->sessions++;
 		st->last = s;
-		add_case(st->cases, sizeof(st->cases), s->case_name);
+		add_name(st->cases, sizeof(st->cases), s->case_name);
+		if (s->rig[0]) {
+			add_name(st->rigs, sizeof(st->rigs), s->rig);
+		}
 		if (cases && m) {
 			cases[k] = s->case_name;
 			m[k++] = s->have_m ? &s->m : NULL;
@@ -232,7 +278,7 @@ static bool trainee_seen_before(const struct tlist *l, size_t i)
 	return false;
 }
 
-static void print_standing(const struct standing *st,
+static void print_standing(const struct tlist *l, const struct standing *st,
 			   const struct coursefile *c)
 {
 	char course[64] = "-";
@@ -243,19 +289,16 @@ static void print_standing(const struct standing *st,
 		snprintf(course, sizeof(course), "%zu of %zu cases", st->cases_done,
 			 c->n_cases);
 	}
-	printf("%-24s  %8zu  %-20s  %6" PRIu64 "  %-20s  %-14s\n",
+	printf("%-24s  %8zu  %-20s  %6" PRIu64 "  %-20s  %-14s%s%s\n",
 	       st->trainee, st->sessions, st->cases, st->last->id,
-	       st->last->started, course);
+	       st->last->started, course, l->centre ? "  " : "", st->rigs);
 }
 
-static void json_standing(struct json *j, const struct standing *st,
-			  const struct coursefile *c)
+/* The list NAMES ("a, b") as the JSON array KEY. */
+static void json_names(struct json *j, const char *key, const char *names)
 {
-	json_object_begin(j, NULL);
-	json_string(j, "trainee", st->trainee);
-	json_uint(j, "sessions", st->sessions);
-	json_array_begin(j, "cases");
-	for (const char *at = st->cases; *at;) {
+	json_array_begin(j, key);
+	for (const char *at = names; *at;) {
 		size_t n = strcspn(at, ",");
 		char name[64];
 
@@ -264,8 +307,21 @@ static void json_standing(struct json *j, const struct standing *st,
 		at += n + (at[n] ? 2 : 0); /* ", " */
 	}
 	json_array_end(j);
+}
+
+static void json_standing(struct json *j, const struct tlist *l,
+			  const struct standing *st, const struct coursefile *c)
+{
+	json_object_begin(j, NULL);
+	json_string(j, "trainee", st->trainee);
+	json_uint(j, "sessions", st->sessions);
+	json_names(j, "cases", st->cases);
 	json_uint(j, "last_session", st->last->id);
 	json_string(j, "last_started", st->last->started);
+	if (l->centre) {
+		json_names(j, "rigs", st->rigs);
+		json_string(j, "last_rig", st->last->rig);
+	}
 	if (c) {
 		json_uint(j, "cases_complete", st->cases_done);
 		json_bool(j, "course_complete", st->complete);
@@ -286,8 +342,9 @@ static void print_list(const struct ctl *ctl, const struct tlist *l,
 		json_string(&j, "course", c ? c->name : "");
 		json_array_begin(&j, "trainees");
 	} else {
-		printf("%-24s  %8s  %-20s  %6s  %-20s  %-14s\n", "TRAINEE",
-		       "SESSIONS", "CASES", "LAST", "STARTED", "COURSE");
+		printf("%-24s  %8s  %-20s  %6s  %-20s  %-14s%s\n", "TRAINEE",
+		       "SESSIONS", "CASES", "LAST", "STARTED", "COURSE",
+		       l->centre ? "  RIGS" : "");
 	}
 	for (size_t i = 0; i < l->n; i++) {
 		if (trainee_seen_before(l, i)) {
@@ -295,9 +352,9 @@ static void print_list(const struct ctl *ctl, const struct tlist *l,
 		}
 		stand(l, i, c, &st);
 		if (ctl->json) {
-			json_standing(&j, &st, c);
+			json_standing(&j, l, &st, c);
 		} else {
-			print_standing(&st, c);
+			print_standing(l, &st, c);
 		}
 	}
 	if (ctl->json) {
@@ -308,31 +365,67 @@ static void print_list(const struct ctl *ctl, const struct tlist *l,
 
 /* -------------------------------------------------------------- report */
 
+/* Each session's report page from the centre, as OUT/UUID.html. */
+static int write_pages(const struct tlist *l, const char *out)
+{
+	char path[4200], *html;
+	FILE *f;
+	int e;
+
+	for (size_t i = 0; i < l->n; i++) {
+		if ((e = centre_report(l->centre, l->s[i].uuid, &html))) {
+			fprintf(stderr, "endoctl: %s\n", centre_error(l->centre));
+			return EXIT_COMM;
+		}
+		snprintf(path, sizeof(path), "%s/%s.html", out, l->s[i].uuid);
+		f = fopen(path, "we");
+		e = !f || fputs(html, f) < 0;
+		e |= f && fclose(f);
+		free(html);
+		if (e) {
+			fprintf(stderr, "endoctl: %s: %s\n", path,
+				strerror(errno));
+			return EXIT_REFUSED;
+		}
+	}
+	return 0;
+}
+
 static int write_report(const char *trainee, const struct tlist *l,
 			const struct coursefile *c, const char *out)
 {
 	struct traineepage_session *p = calloc(l->n ? l->n : 1, sizeof(*p));
+	char (*href)[48] = calloc(l->n ? l->n : 1, sizeof(*href));
 	struct standing st;
 	int r;
 
-	if (!p) {
+	if (!p || !href) {
+		free(p);
+		free(href);
 		fprintf(stderr, "endoctl: out of memory\n");
 		return EXIT_REFUSED;
 	}
 	for (size_t i = 0; i < l->n; i++) {
+		snprintf(href[i], sizeof(href[i]), "%s.html", l->s[i].uuid);
 		p[i] = (struct traineepage_session){
 			.id = l->s[i].id, .case_name = l->s[i].case_name,
 			.started = l->s[i].started,
 			.m = l->s[i].have_m ? &l->s[i].m : NULL,
 			.recomputed = l->s[i].recomputed,
+			.rig = l->centre ? l->s[i].rig : NULL,
+			.href = l->centre ? href[i] : NULL,
 		};
 	}
 	r = traineepage_write(trainee, p, l->n, c, out);
 	free(p);
+	free(href);
 	if (r) {
 		fprintf(stderr, "endoctl: trainee report in %s: %s\n", out,
 			strerror(-r));
 		return EXIT_REFUSED;
+	}
+	if (l->centre && (r = write_pages(l, out))) {
+		return r;
 	}
 	stand(l, 0, c, &st);
 	printf("wrote %s/index.html: %zu sessions%s\n", out, l->n, !c ? "" :
@@ -347,6 +440,7 @@ struct targs {
 	const char *out;    /* report: --out DIR */
 	const char *course; /* --course FILE */
 	const char *dir;    /* --dir DIR: without endosimd */
+	const char *centre; /* --centre URL: a centre's, every rig's */
 };
 
 /* The options after ARGV[FIRST]; false on anything else. */
@@ -356,6 +450,7 @@ static bool parse_args(int argc, char **argv, int first, struct targs *a)
 		const char **to = !strcmp(argv[i], "--out")      ? &a->out
 				  : !strcmp(argv[i], "--course") ? &a->course
 				  : !strcmp(argv[i], "--dir")    ? &a->dir
+				  : !strcmp(argv[i], "--centre") ? &a->centre
 								 : NULL;
 
 		if (!to || i + 1 >= argc) {
@@ -371,8 +466,9 @@ static int trainee_run(struct ctl *ctl, const struct targs *a)
 	static struct coursefile course;
 	const struct coursefile *c;
 	struct tlist l = { 0 };
-	int r = a->dir ? from_dir(a->dir, a->name, &l)
-		       : from_daemon(ctl, a->name, &l);
+	int r = a->centre ? from_centre(a->centre, a->name, &l)
+		: a->dir  ? from_dir(a->dir, a->name, &l)
+			  : from_daemon(ctl, a->name, &l);
 
 	if (!r) {
 		r = load_course(a->course, &l, &course, &c);
@@ -387,6 +483,7 @@ static int trainee_run(struct ctl *ctl, const struct targs *a)
 			    : (print_list(ctl, &l, c), 0);
 	}
 	free(l.s);
+	centre_destroy(l.centre);
 	return r;
 }
 
@@ -395,16 +492,18 @@ int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv)
 	const char *sub = argc >= 2 ? argv[1] : "";
 	struct targs a = { 0 };
 
-	if (!strcmp(sub, "list") && parse_args(argc, argv, 2, &a) && !a.out) {
+	if (!strcmp(sub, "list") && parse_args(argc, argv, 2, &a) && !a.out &&
+	    !(a.dir && a.centre)) {
 		return trainee_run(ctl, &a);
 	}
 	if (!strcmp(sub, "report") && argc >= 3 &&
-	    parse_args(argc, argv, 3, &a) && a.out) {
+	    parse_args(argc, argv, 3, &a) && a.out && !(a.dir && a.centre)) {
 		a.name = argv[2];
 		return trainee_run(ctl, &a);
 	}
-	fprintf(stderr, "endoctl: trainee list [--course FILE] [--dir DIR] | "
-		"report NAME --out DIR [--course FILE] [--dir DIR] (--dir: a "
-		"session directory read without endosimd)\n");
+	fprintf(stderr, "endoctl: trainee list [--course FILE] [--dir DIR | "
+		"--centre URL] | report NAME --out DIR [--course FILE] [--dir "
+		"DIR | --centre URL] (--dir: a session directory read without "
+		"endosimd; --centre: a centre's PostgreSQL, every rig's)\n");
 	return EXIT_USAGE;
 }

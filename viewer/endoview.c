@@ -554,7 +554,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	struct hud_info in;
 	int w, h;
 
-	glfwGetFramebufferSize(a->window, &w, &h);
+	ui_framebuffer_size(a->ui, &w, &h);
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -626,7 +626,7 @@ static int frame(struct app *a)
 	int w, h, err = 0;
 
 	glfwPollEvents();
-	glfwGetFramebufferSize(a->window, &w, &h);
+	ui_framebuffer_size(a->ui, &w, &h);
 	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
 	ui_frame(a->ui, &lay, &c, &acts, &a->orbit);
 	act(a, &acts, now);
@@ -691,7 +691,7 @@ static void report(const struct app *a)
 		.map_shown = a->map_shown,
 	};
 
-	glfwGetFramebufferSize(a->window, &s.width, &s.height);
+	ui_framebuffer_size(a->ui, &s.width, &s.height);
 	viewstats_print(stdout, &s);
 }
 
@@ -709,7 +709,7 @@ static void report_drawn(const struct app *a)
 		printf("map: %s\n", mapview_said(a->mapview));
 	}
 	if (a->overview_shown) {
-		glfwGetFramebufferSize(a->window, &w, &h);
+		ui_framebuffer_size(a->ui, &w, &h);
 		overview_print(a->overview, a->colon.model, a->shown, h,
 			       stdout);
 	}

@@ -17,6 +17,10 @@ struct ui {
 	double last_x, last_y;
 	unsigned char pad[GLFW_GAMEPAD_BUTTON_LAST + 1];
 	bool replay;
+	/* the window as its events last said (ui.h) */
+	int win_w, win_h;          /* screen coordinates */
+	int fb_w, fb_h;            /* framebuffer pixels */
+	double cursor_x, cursor_y; /* screen coordinates, top-left origin */
 };
 
 /* The one-off action KEY stands for, or NULL. */
@@ -130,6 +134,30 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 	u->scroll += dy;
 }
 
+static void on_window_size(GLFWwindow *w, int width, int height)
+{
+	struct ui *u = glfwGetWindowUserPointer(w);
+
+	u->win_w = width;
+	u->win_h = height;
+}
+
+static void on_framebuffer_size(GLFWwindow *w, int width, int height)
+{
+	struct ui *u = glfwGetWindowUserPointer(w);
+
+	u->fb_w = width;
+	u->fb_h = height;
+}
+
+static void on_cursor(GLFWwindow *w, double x, double y)
+{
+	struct ui *u = glfwGetWindowUserPointer(w);
+
+	u->cursor_x = x;
+	u->cursor_y = y;
+}
+
 struct ui *ui_create(GLFWwindow *w)
 {
 	struct ui *u = calloc(1, sizeof(*u));
@@ -139,10 +167,22 @@ struct ui *ui_create(GLFWwindow *w)
 	}
 	u->window = w;
 	u->button = -1;
+	glfwGetWindowSize(w, &u->win_w, &u->win_h);
+	glfwGetFramebufferSize(w, &u->fb_w, &u->fb_h);
+	glfwGetCursorPos(w, &u->cursor_x, &u->cursor_y);
 	glfwSetWindowUserPointer(w, u);
 	glfwSetKeyCallback(w, on_key);
 	glfwSetScrollCallback(w, on_scroll);
+	glfwSetWindowSizeCallback(w, on_window_size);
+	glfwSetFramebufferSizeCallback(w, on_framebuffer_size);
+	glfwSetCursorPosCallback(w, on_cursor);
 	return u;
+}
+
+void ui_framebuffer_size(const struct ui *u, int *w, int *h)
+{
+	*w = u->fb_w;
+	*h = u->fb_h;
 }
 
 void ui_set_replay(struct ui *u)
@@ -157,6 +197,9 @@ void ui_destroy(struct ui *u)
 	}
 	glfwSetKeyCallback(u->window, NULL);
 	glfwSetScrollCallback(u->window, NULL);
+	glfwSetWindowSizeCallback(u->window, NULL);
+	glfwSetFramebufferSizeCallback(u->window, NULL);
+	glfwSetCursorPosCallback(u->window, NULL);
 	glfwSetWindowUserPointer(u->window, NULL);
 	free(u);
 }
@@ -250,13 +293,9 @@ static bool inside(struct endo_rect r, double x, double y, int fb_h)
 /* The pointer in framebuffer pixels, top-left origin. */
 static void pointer(const struct ui *u, double *x, double *y, int *fb_h)
 {
-	int ww, wh, fw;
-
-	glfwGetCursorPos(u->window, x, y);
-	glfwGetWindowSize(u->window, &ww, &wh);
-	glfwGetFramebufferSize(u->window, &fw, fb_h);
-	*x *= ww > 0 ? (double)fw / ww : 1;
-	*y *= wh > 0 ? (double)*fb_h / wh : 1;
+	*fb_h = u->fb_h;
+	*x = u->cursor_x * (u->win_w > 0 ? (double)u->fb_w / u->win_w : 1);
+	*y = u->cursor_y * (u->win_h > 0 ? (double)u->fb_h / u->win_h : 1);
 }
 
 static int pressed_button(const struct ui *u)

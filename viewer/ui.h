@@ -68,8 +68,17 @@ struct ui_actions {
 
 struct ui;
 
-/* Takes the window's key, scroll and character callbacks. NULL: ENOMEM. */
+/*
+ * Takes the window's key, scroll, cursor and size callbacks. NULL: ENOMEM.
+ * The window's size and the pointer are kept as its events say, so that a
+ * frame asks the window system nothing: on X11 each glfwGet*Size() and
+ * glfwGetCursorPos() is a round trip to the server, which a loaded
+ * machine answers late (the frame's tail on a software renderer).
+ */
 struct ui *ui_create(GLFWwindow *w);
+
+/* The framebuffer's size in pixels, as the last events said. */
+void ui_framebuffer_size(const struct ui *u, int *w, int *h);
 
 /* NULL is fine. */
 void ui_destroy(struct ui *u);

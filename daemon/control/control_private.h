@@ -116,8 +116,29 @@ struct control_records *control_records_create(const struct config *cfg);
 void control_records_destroy(struct control_records *cr);
 
 /* Session ID ended: its file written to the records (a failure logged:
- * the next start-up writes it). Blocks on the disk; the control thread. */
+ * the next start-up writes it), and queued for the centre when there is
+ * one. Blocks on the disk; the control thread. */
 void control_records_ended(struct control *c, uint64_t id);
+
+/*
+ * A training centre's PostgreSQL ([records] centre, centre.h), fed by a
+ * worker thread of its own (control_centre.c): the control thread never
+ * waits on the network (a centre that does not answer would stall every
+ * client), and the force loop never touches it. The worker sends the
+ * sessions queued in the rig's records (records.h) in their order: at
+ * start (those left from before), when poked, and every [records]
+ * centre_retry_s while the centre cannot be reached (each try waits at
+ * most CENTRE_CONNECT_TIMEOUT_S to connect; main.c refused a URL that
+ * libpq cannot read at start-up). NULL on ENOMEM (logged: endosimd does
+ * not start). Destroy waits for the session being sent (at most the
+ * connect timeout, or the server's answer).
+ */
+struct control_centre;
+struct control_centre *control_centre_create(const struct config *cfg);
+void control_centre_destroy(struct control_centre *cc);
+/* Sessions were queued (a session's end, a rebuild): the worker sends
+ * them now. Any thread. */
+void control_centre_poke(struct control_centre *cc);
 
 /*
  * Every session of the records (records_list()): 0, or -errno with why in

@@ -1,8 +1,9 @@
 /*
  * control_records.c - the control thread's records (control_private.h):
  * the rig's database (records.h) brought up to date with the session
- * files at start-up, a session's row written when it ends, and
- * RecordsCheck and RecordsRebuild.
+ * files at start-up, a session's row written when it ends (and queued
+ * for a centre's database, control_centre.c), and RecordsCheck and
+ * RecordsRebuild.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -15,6 +16,7 @@
 
 struct control_records {
 	struct records *db;
+	struct control_centre *centre;  /* NULL: none */
 	struct records_report report;   /* what the last reply points into */
 	Endosim__RecordsReply reply;
 };
@@ -25,6 +27,25 @@ static const char *why(const struct control_records *cr, int e)
 	const char *text = records_error(cr->db);
 
 	return *text ? text : strerror(-e);
+}
+
+/* With a centre: the sessions it has not had queued, and its worker. */
+static int start_centre(struct control_records *cr, const struct config *cfg)
+{
+	size_t waiting = 0;
+	int e;
+
+	if (!cfg->records.centre[0]) {
+		return 0;
+	}
+	records_set_centre(cr->db, true);
+	if ((e = records_queue_unsent(cr->db, &waiting))) {
+		log_warn("records: the centre's queue: %s", why(cr, e));
+	} else if (waiting) {
+		log_notice("records: %zu sessions wait for the centre", waiting);
+	}
+	cr->centre = control_centre_create(cfg);
+	return cr->centre ? 0 : -EINVAL;
 }
 
 /* The sessions the files had and the database had not, at start-up. */
@@ -62,7 +83,7 @@ struct control_records *control_records_create(const struct config *cfg)
 		control_records_destroy(cr);
 		return NULL;
 	}
-	if (bring_up_to_date(cr)) {
+	if (bring_up_to_date(cr) || start_centre(cr, cfg)) {
 		control_records_destroy(cr);
 		return NULL;
 	}
@@ -74,6 +95,7 @@ void control_records_destroy(struct control_records *cr)
 	if (!cr) {
 		return;
 	}
+	control_centre_destroy(cr->centre);
 	records_report_free(&cr->report);
 	records_destroy(cr->db);
 	free(cr);
@@ -87,6 +109,8 @@ void control_records_ended(struct control *c, uint64_t id)
 		log_warn("records: session %llu not written: %s (the next "
 			 "start-up or 'endoctl records rebuild' writes it)",
 			 (unsigned long long)id, why(c->records, e));
+	} else if (c->records->centre) {
+		control_centre_poke(c->records->centre);
 	}
 }
 
@@ -157,6 +181,9 @@ void control_on_records_rebuild(struct control *c, struct client *cl,
 	(void)req;
 	records_report_free(&cr->report);
 	e = records_rebuild(cr->db, recording_id(c), &cr->report);
+	if (!e && cr->centre) {
+		control_centre_poke(cr->centre); /* all queued again */
+	}
 	if (!e) {
 		log_notice("records %s rebuilt (uid %d): %zu sessions written, "
 			   "%zu differed", records_path(cr->db), (int)cl->uid,

@@ -751,6 +751,13 @@ static const struct parse_key keys[] = {
 	   "[session] directory"),
 	KS("records", "rig", records.rig, "", 0,
 	   "this rig's name in the records; empty: the host's name"),
+	KS("records", "centre", records.centre, "", 0,
+	   "a centre's PostgreSQL (postgresql://HOST/DBNAME?...; its "
+	   "password in libpq's password file) each session goes to as "
+	   "well; empty: none"),
+	KD("records", "centre_retry_s", records.centre_retry_s, 30, 0.05,
+	   3600, "s", 0, "an unreachable centre is tried again after this "
+	   "(its sessions wait in the rig's records)"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m,
 	   SCOPE_DEFAULT_BENDING_LENGTH_M, 0.01, 0.3, "m", LIVE,

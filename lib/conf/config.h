@@ -202,6 +202,8 @@ struct config {
 	struct {                           /* [records]: records.h */
 		char database[CONFIG_STR];     /* relative: under the sessions */
 		char rig[CONFIG_STR];          /* "": the host's name */
+		char centre[CONFIG_STR];       /* centre.h's URL; "": none */
+		double centre_retry_s;         /* an unreachable centre again */
 	} records;
 	struct {
 		double bending_length_m;

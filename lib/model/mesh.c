@@ -31,6 +31,7 @@ struct mesh *mesh_create(uint32_t vertices, uint32_t triangles,
 	m->off = calloc(vertices, sizeof(*m->off));
 	m->noff = calloc(vertices, sizeof(*m->noff));
 	m->sample_rho = calloc(samples, sizeof(*m->sample_rho));
+	m->sample_axial = calloc(samples, sizeof(*m->sample_axial));
 	m->near_lo = calloc(samples, sizeof(*m->near_lo));
 	m->near_hi = calloc(samples, sizeof(*m->near_hi));
 	m->sample_min = calloc(samples, sizeof(*m->sample_min));
@@ -40,7 +41,7 @@ struct mesh *mesh_create(uint32_t vertices, uint32_t triangles,
 	m->tri = calloc(triangles, sizeof(*m->tri));
 	m->sample_first = calloc(samples + 1, sizeof(*m->sample_first));
 	if (!m->pos || !m->nrm || !m->off || !m->noff || !m->sample_rho ||
-	    !m->near_lo || !m->near_hi || !m->sample_min || !m->sample_max ||
+	    !m->sample_axial || !m->near_lo || !m->near_hi || !m->sample_min || !m->sample_max ||
 	    !m->sample || !m->tri || !m->sample_first || !m->radial) {
 		mesh_destroy(m);
 		return NULL;
@@ -61,6 +62,7 @@ void mesh_destroy(struct mesh *m)
 	free(m->off);
 	free(m->noff);
 	free(m->sample_rho);
+	free(m->sample_axial);
 	free(m->near_lo);
 	free(m->near_hi);
 	free(m->sample_min);
@@ -230,8 +232,48 @@ static void empty_box(float lo[3], float hi[3])
 	}
 }
 
-/* Places sample I's vertices that KEEP marks (all without KEEP) and bounds
- * every one of them in the sample's box. */
+/* X as a float no greater (DOWN) or no less than X. */
+static float rounded(double x, bool down)
+{
+	float f = (float)x;
+
+	if (down ? (double)f > x : (double)f < x) {
+		f = nextafterf(f, down ? -INFINITY : INFINITY);
+	}
+	return f;
+}
+
+/*
+ * Sample I's box (at C) from its ring rather than vertex by vertex: each
+ * vertex lies at p + a t + k (b u + c v) with a within the sample's axial
+ * offsets, |(b, c)| at most its largest offset and 0 <= k <= radial
+ * (fold_factor() only shortens), so along axis x within
+ * a t_x +/- radial rho |(u_x, v_x)| of p. Never smaller than the box of
+ * the vertices as placed; larger by what held folds pull in.
+ */
+static void ring_box(const struct mesh *m, size_t i,
+		     const struct centreline_point *c, float lo[3], float hi[3])
+{
+	double r = (double)m->radial[i] * m->sample_rho[i];
+	double a0 = m->sample_axial[i][0], a1 = m->sample_axial[i][1];
+
+	for (int x = 0; x < 3; x++) {
+		double e = r * hypot(c->u[x], c->v[x]);
+		double l = c->p[x] + fmin(a0 * c->t[x], a1 * c->t[x]) - e;
+		double h = c->p[x] + fmax(a0 * c->t[x], a1 * c->t[x]) + e;
+
+		if (!isfinite(l) || !isfinite(h)) {
+			empty_box(lo, hi); /* as a NaN widens nothing */
+			return;
+		}
+		lo[x] = rounded(l, true);
+		hi[x] = rounded(h, false);
+	}
+}
+
+/* Places sample I's vertices that KEEP marks (all without KEEP) and
+ * bounds them: without KEEP every vertex as placed, with it the ring
+ * (ring_box()), so that an unkept vertex costs nothing. */
 static void place_sample(struct mesh *m, const struct centreline *cl,
 			 size_t i, const uint8_t *keep)
 {
@@ -245,16 +287,19 @@ static void place_sample(struct mesh *m, const struct centreline *cl,
 		const float *n = m->noff[j];
 		float p[3];
 
-		vertex_position(m, cl, i, c, folds, j, p);
-		widen_box(lo, hi, p);
 		if (keep && !keep[j]) {
 			continue;
 		}
+		vertex_position(m, cl, i, c, folds, j, p);
+		widen_box(lo, hi, p);
 		for (int x = 0; x < 3; x++) {
 			m->pos[j][x] = p[x];
 			m->nrm[j][x] = (float)(n[0] * c->t[x] + n[1] * c->u[x] +
 					       n[2] * c->v[x]);
 		}
+	}
+	if (keep) {
+		ring_box(m, i, c, lo, hi);
 	}
 	memcpy(m->sample_min[i], lo, sizeof(lo));
 	memcpy(m->sample_max[i], hi, sizeof(hi));
@@ -817,20 +862,25 @@ static int normals(struct mesh *m, const struct centreline *cl)
 	return 0;
 }
 
-/* Each sample's largest offset, and how many samples the largest spans:
- * the fold check's reach. */
+/* Each sample's largest offset and its axial offsets' range, and how
+ * many samples the largest spans: the fold check's reach. */
 static void set_reach(struct mesh *m, const struct centreline *cl,
 		      enum mesh_finish_from from)
 {
 	float rho = 0;
 
 	for (size_t i = 0; i < m->samples; i++) {
+		float *ax = m->sample_axial[i];
+
 		m->sample_rho[i] = 0;
+		ax[0] = ax[1] = 0;
 		for (uint32_t j = m->sample_first[i]; j < m->sample_first[i + 1];
 		     j++) {
 			m->sample_rho[i] = fmaxf(m->sample_rho[i],
 						 hypotf(m->off[j][1],
 							m->off[j][2]));
+			ax[0] = fminf(ax[0], m->off[j][0]);
+			ax[1] = fmaxf(ax[1], m->off[j][0]);
 		}
 		rho = fmaxf(rho, m->sample_rho[i]);
 	}

@@ -77,6 +77,8 @@ struct mesh {
 	int hold_folds;        /* generated: keep rings between planes */
 	uint32_t reach;        /* samples within the largest offset */
 	float *sample_rho;     /* per sample: its largest offset, m */
+	float (*sample_axial)[2]; /* per sample: its offsets' least and
+				     largest a (along t), m */
 	uint32_t *near_lo, *near_hi; /* per sample: planes that may cut in */
 	float (*sample_min)[3], (*sample_max)[3]; /* per sample: the box of
 						    its vertices as placed */
@@ -129,10 +131,13 @@ void mesh_place(struct mesh *m, const struct centreline *cl, size_t first,
  * mesh_place() for a reader that uses only some vertices (endoview draws
  * a few of a fine mesh's): of the vertices it places, only those KEEP
  * marks (one byte per vertex, non-zero: kept; NULL: all) get pos and nrm;
- * the others keep their old ones (mesh_vertex_at() gives where they lie).
- * The bounding boxes are those mesh_place() makes, to the bit: every
- * vertex is placed for them, not stored. An unkept vertex costs a little
- * over half a kept one.
+ * the others keep their old ones (mesh_vertex_at() gives where they lie)
+ * and cost nothing. The bounding boxes hold every vertex, kept or not, as
+ * mesh_place() puts it, but are made from each sample's ring (its centre,
+ * frame, largest offset and radial scale), not vertex by vertex: never
+ * smaller than mesh_place()'s, larger where held folds pull a ring in
+ * (by at most the ring's largest offset). For culling, which they keep
+ * conservative; the daemon's mesh_place() boxes stay exact.
  */
 void mesh_place_kept(struct mesh *m, const struct centreline *cl,
 		     size_t first, size_t last, const uint8_t *keep);

@@ -59,6 +59,12 @@ static const char *const migrations[RECORDS_SCHEMA_VERSION] = {
 	" mucosa_seen_ascending REAL, mucosa_seen_cecum REAL);",
 	/* 2: a trainee's sessions found without reading them all */
 	"CREATE INDEX sessions_by_trainee ON sessions(trainee_id, id);",
+	/* 3: a centre's (records_set_centre()): each session's UUID, whether
+	 * the centre has it, and the queue of those it waits for */
+	"ALTER TABLE sessions ADD COLUMN uuid TEXT;"
+	"ALTER TABLE sessions ADD COLUMN at_centre INTEGER NOT NULL DEFAULT 0;"
+	"CREATE TABLE centre_queue (seq INTEGER PRIMARY KEY AUTOINCREMENT,"
+	" session_id INTEGER NOT NULL UNIQUE);",
 };
 
 struct records {
@@ -66,8 +72,10 @@ struct records {
 	char dir[4096];
 	char rig[64];
 	char course[4096];      /* its file; "": none */
+	bool centre;            /* each session written is queued */
 	char *insert_measures;  /* INSERT INTO measures (...) VALUES (?...) */
-	char *select_list;      /* the sessions joined with their measures */
+	char *select_list;      /* the sessions joined with their measures,
+				   without an ORDER BY */
 	char error[9216];       /* room for the path and SQLite's words */
 };
 
@@ -127,12 +135,12 @@ struct records *records_create(const char *database, const char *dir,
 				       "", ") VALUES (?", ")");
 	r->select_list = field_sql("SELECT s.id, t.name, c.name, s.started, "
 				   "s.ended, s.bytes, s.checksum, s.rig, "
-				   "s.judgement, m.session_id IS NOT NULL, ",
-				   "m.",
+				   "s.judgement, m.session_id IS NOT NULL, "
+				   "s.uuid, ", "m.",
 				   "", " FROM sessions s JOIN trainees t ON "
 				   "t.id = s.trainee_id JOIN cases c ON "
 				   "c.id = s.case_id LEFT JOIN measures m ON "
-				   "m.session_id = s.id ORDER BY s.id");
+				   "m.session_id = s.id");
 	if (!r->insert_measures || !r->select_list) {
 		records_destroy(r);
 		return NULL;
@@ -352,17 +360,14 @@ static int name_id(struct records *r, sqlite3 *db, const char *table,
 	return rc == SQLITE_ROW ? 0 : sql_fail(r, db, sql);
 }
 
-/* Session ID's rows deleted. */
-static int delete_row(struct records *r, sqlite3 *db, uint64_t id)
+/* The N statements SQL run in turn, each on session ID. */
+static int each_on_id(struct records *r, sqlite3 *db,
+		      const char *const *sql, size_t n, uint64_t id)
 {
-	static const char *const sql[] = {
-		"DELETE FROM measures WHERE session_id = ?",
-		"DELETE FROM sessions WHERE id = ?",
-	};
 	sqlite3_stmt *st;
 	int e = 0;
 
-	for (size_t i = 0; !e && i < 2; i++) {
+	for (size_t i = 0; !e && i < n; i++) {
 		if (sqlite3_prepare_v2(db, sql[i], -1, &st, NULL)) {
 			return sql_fail(r, db, sql[i]);
 		}
@@ -370,6 +375,54 @@ static int delete_row(struct records *r, sqlite3 *db, uint64_t id)
 		e = step_done(r, db, st, sql[i]);
 	}
 	return e;
+}
+
+/* Session ID's rows deleted. */
+static int delete_row(struct records *r, sqlite3 *db, uint64_t id)
+{
+	static const char *const sql[] = {
+		"DELETE FROM measures WHERE session_id = ?",
+		"DELETE FROM sessions WHERE id = ?",
+	};
+
+	return each_on_id(r, db, sql, 2, id);
+}
+
+/* The sessions that WHAT selects (VALUES (?): session ARG) queued for
+ * the centre, after those queued already; one queued already stays where
+ * it is. */
+static int queue_ids(struct records *r, sqlite3 *db, const char *what,
+		     uint64_t arg)
+{
+	char sql[256];
+	sqlite3_stmt *st;
+
+	snprintf(sql, sizeof(sql), "INSERT OR IGNORE INTO centre_queue "
+		 "(session_id) %s", what);
+	if (sqlite3_prepare_v2(db, sql, -1, &st, NULL)) {
+		return sql_fail(r, db, sql);
+	}
+	if (sqlite3_bind_parameter_count(st)) {
+		sqlite3_bind_int64(st, 1, (sqlite3_int64)arg);
+	}
+	return step_done(r, db, st, "queueing for the centre");
+}
+
+/* Session ID out of the centre's queue; with ARRIVED, marked as there. */
+static int unqueue_as(struct records *r, sqlite3 *db, uint64_t id,
+		      bool arrived)
+{
+	static const char *const sql[] = {
+		"DELETE FROM centre_queue WHERE session_id = ?",
+		"UPDATE sessions SET at_centre = 1 WHERE id = ?",
+	};
+
+	return each_on_id(r, db, sql, 1u + arrived, id);
+}
+
+static int unqueue(struct records *r, sqlite3 *db, uint64_t id)
+{
+	return unqueue_as(r, db, id, false);
 }
 
 static int insert_measures(struct records *r, sqlite3 *db,
@@ -400,8 +453,9 @@ static int insert_session(struct records *r, sqlite3 *db, const char *path,
 			  const struct records_session *s)
 {
 	static const char sql[] = "INSERT INTO sessions (id, trainee_id, "
-		"case_id, started, ended, path, bytes, checksum, rig, judgement) "
-		"VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+		"case_id, started, ended, path, bytes, checksum, rig, judgement, "
+		"uuid) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+	struct records_session named = *s;
 	sqlite3_int64 trainee, case_id;
 	sqlite3_stmt *st;
 	int e;
@@ -426,10 +480,14 @@ static int insert_session(struct records *r, sqlite3 *db, const char *path,
 	if (s->judgement[0]) {
 		sqlite3_bind_text(st, 10, s->judgement, -1, SQLITE_STATIC);
 	}
-	if ((e = step_done(r, db, st, "inserting the session"))) {
+	snprintf(named.rig, sizeof(named.rig), "%s", r->rig);
+	records_uuid(&named, named.uuid);
+	sqlite3_bind_text(st, 11, named.uuid, -1, SQLITE_STATIC);
+	if ((e = step_done(r, db, st, "inserting the session")) ||
+	    (s->has_metrics && (e = insert_measures(r, db, s)))) {
 		return e;
 	}
-	return s->has_metrics ? insert_measures(r, db, s) : 0;
+	return r->centre ? queue_ids(r, db, "VALUES (?)", s->e.id) : 0;
 }
 
 /* S's judgement by R's course, when it names S's case. */
@@ -467,6 +525,7 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	if (e == -ENOENT || e == -EBADMSG) {
 		int d = delete_row(r, db, id);
 
+		d = d ? d : unqueue(r, db, id);
 		return d ? d : e;
 	}
 	if (e) {
@@ -635,9 +694,13 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	column_text(st, 7, s->rig, sizeof(s->rig));
 	column_text(st, 8, s->judgement, sizeof(s->judgement));
 	s->has_metrics = sqlite3_column_int(st, 9);
+	column_text(st, 10, s->uuid, sizeof(s->uuid));
+	if (!s->uuid[0]) {
+		records_uuid(s, s->uuid); /* a row older than the column */
+	}
 	for (size_t i = 0; s->has_metrics && i < n; i++) {
 		char *at = (char *)&s->m + f[i].offset;
-		int col = (int)i + 10;
+		int col = (int)i + 11;
 
 		if (f[i].kind == FIELDS_DOUBLE) {
 			/* SQLite keeps a NaN as NULL */
@@ -654,20 +717,24 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	}
 }
 
-/* Every row of DB into *OUT, *N. */
-static int select_all(struct records *r, sqlite3 *db,
-		      struct records_session **out, size_t *n)
+/* The rows of DB that the list's statement and SUFFIX select into *OUT,
+ * *N. */
+static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
+		       struct records_session **out, size_t *n)
 {
 	size_t cap = 64;
 	sqlite3_stmt *st;
+	char *sql = NULL;
 	int rc, e = 0;
 
 	*n = 0;
 	*out = malloc(cap * sizeof(**out));
-	if (!*out) {
+	if (!*out || asprintf(&sql, "%s %s", r->select_list, suffix) < 0) {
 		return -ENOMEM;
 	}
-	if (sqlite3_prepare_v2(db, r->select_list, -1, &st, NULL)) {
+	rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
+	free(sql);
+	if (rc) {
 		return sql_fail(r, db, "preparing the list");
 	}
 	while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
@@ -689,6 +756,13 @@ static int select_all(struct records *r, sqlite3 *db,
 	}
 	sqlite3_finalize(st);
 	return e;
+}
+
+/* Every row of DB into *OUT, *N, by ID. */
+static int select_all(struct records *r, sqlite3 *db,
+		      struct records_session **out, size_t *n)
+{
+	return select_rows(r, db, "ORDER BY s.id", out, n);
 }
 
 int records_list(struct records *r, struct records_session **out, size_t *n)
@@ -717,6 +791,120 @@ int records_list(struct records *r, struct records_session **out, size_t *n)
 		*out = NULL;
 		*n = 0;
 	}
+	return e;
+}
+
+/* ------------------------------------------------------- the centre */
+
+void records_set_centre(struct records *r, bool on)
+{
+	r->centre = on;
+}
+
+void records_uuid(const struct records_session *s, char out[37])
+{
+	const char *const parts[] = { s->rig, s->e.trainee, s->e.case_name,
+				      s->e.started };
+	uint64_t h[2] = { 0xcbf29ce484222325ull, 0x6c62272e07bb0142ull };
+	unsigned char b[16];
+
+	for (int k = 0; k < 2; k++) {
+		for (int i = 0; i < 8; i++) { /* the ID, little-endian */
+			h[k] = (h[k] ^ ((s->e.id >> (8 * i)) & 0xff)) *
+			       0x100000001b3ull;
+		}
+		for (size_t p = 0; p < 4; p++) {
+			for (const char *c = parts[p]; ; c++) {
+				h[k] = (h[k] ^ (unsigned char)*c) *
+				       0x100000001b3ull;
+				if (!*c) {
+					break; /* the NUL keeps parts apart */
+				}
+			}
+		}
+	}
+	for (int i = 0; i < 16; i++) {
+		b[i] = (unsigned char)(h[i / 8] >> (8 * (i % 8)));
+	}
+	b[6] = (unsigned char)((b[6] & 0x0f) | 0x80); /* version 8 */
+	b[8] = (unsigned char)((b[8] & 0x3f) | 0x80); /* RFC 9562 */
+	snprintf(out, 37, "%02x%02x%02x%02x-%02x%02x-%02x%02x-%02x%02x-"
+		 "%02x%02x%02x%02x%02x%02x", b[0], b[1], b[2], b[3], b[4],
+		 b[5], b[6], b[7], b[8], b[9], b[10], b[11], b[12], b[13],
+		 b[14], b[15]);
+}
+
+/* How many sessions wait for the centre, into *N. */
+static int queue_length(struct records *r, sqlite3 *db, size_t *n)
+{
+	sqlite3_stmt *st;
+	int rc;
+
+	if (sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM centre_queue q JOIN "
+			       "sessions s ON s.id = q.session_id", -1, &st,
+			       NULL)) {
+		return sql_fail(r, db, "counting the centre's queue");
+	}
+	rc = sqlite3_step(st);
+	*n = (size_t)sqlite3_column_int64(st, 0);
+	sqlite3_finalize(st);
+	return rc == SQLITE_ROW ? 0 : sql_fail(r, db, "counting the queue");
+}
+
+int records_queue_unsent(struct records *r, size_t *waiting)
+{
+	sqlite3 *db;
+	bool rebuilt;
+	int e = ready(r, &db, &rebuilt);
+
+	*waiting = 0;
+	if (!e && !(e = queue_ids(r, db, "SELECT id FROM sessions WHERE "
+				  "at_centre = 0 ORDER BY id", 0))) {
+		e = queue_length(r, db, waiting);
+	}
+	sqlite3_close(db);
+	return e;
+}
+
+/* The database as it is in *DB, NULL when missing: never built again
+ * here, so that a second thread's call cannot race its writer's rebuild. */
+static int existing(struct records *r, sqlite3 **db)
+{
+	enum found how;
+
+	return open_db(r, r->path, false, db, &how);
+}
+
+int records_queue_head(struct records *r, struct records_session *s,
+		       size_t *waiting)
+{
+	struct records_session *rows = NULL;
+	size_t n = 0;
+	sqlite3 *db;
+	int e = existing(r, &db);
+
+	*waiting = 0;
+	if (!e && db && !(e = queue_length(r, db, waiting))) {
+		e = select_rows(r, db, "JOIN centre_queue q ON q.session_id "
+				"= s.id ORDER BY q.seq LIMIT 1", &rows, &n);
+	}
+	if (!e && n) {
+		*s = rows[0];
+	}
+	free(rows);
+	sqlite3_close(db);
+	return e ? e : n ? 0 : -ENOENT;
+}
+
+int records_queue_arrived(struct records *r, uint64_t id)
+{
+	sqlite3 *db;
+	int e = existing(r, &db);
+
+	if (!e && db) {
+		e = unqueue_as(r, db, id, true);
+	}
+	sqlite3_close(db);
 	return e;
 }
 

@@ -9,8 +9,11 @@
  * cases(id, name), sessions(id: the file's ID, trainee_id, case_id,
  * started, ended, path, bytes, checksum: FNV-1a of the whole file (its
  * frames' CRC-32s would cancel a whole-file CRC-32's change),
- * rig, judgement: "COURSE: passed|failed", NULL none) and measures(session_id, one
- * column per metricstext_fields() key) for the sessions with an END frame.
+ * rig, judgement: "COURSE: passed|failed", NULL none, uuid: records_uuid(),
+ * at_centre: 1 once a centre's database has it) and measures(session_id,
+ * one column per metricstext_fields() key) for the sessions with an END
+ * frame; centre_queue(seq, session_id): the sessions a centre's database
+ * (centre.h) waits for, in the order they were written.
  * Its version is SQLite's user_version; the migrations are an ordered
  * list of SQL steps, each run once, in a transaction, from the database's
  * version up to RECORDS_SCHEMA_VERSION. A new measure is a new row of
@@ -35,7 +38,7 @@
 #include "session/metrics.h"
 #include "session/sessiondir.h"
 
-#define RECORDS_SCHEMA_VERSION 2
+#define RECORDS_SCHEMA_VERSION 3
 #define RECORDS_DEFAULT_NAME "records.sqlite"
 
 struct records;
@@ -52,6 +55,7 @@ struct records_session {
 				       END frame) */
 	bool has_metrics;           /* m is its END frame's */
 	struct metrics_result m;    /* the scalars; no episodes */
+	char uuid[37];              /* records_uuid(): its key at a centre */
 };
 
 /* What records_check() or records_rebuild() found and did. */
@@ -132,6 +136,43 @@ int records_rebuild(struct records *r, uint64_t skip,
 		    struct records_report *rep);
 
 void records_report_free(struct records_report *rep);
+
+/*
+ * A centre's queue. With ON each session written (records_add(), a check's
+ * fix, a rebuild) is queued for the centre too, in the same transaction
+ * as its row; one queued already keeps its place. Off (the default): the
+ * queue is left as it is.
+ */
+void records_set_centre(struct records *r, bool on);
+
+/*
+ * S's UUID into OUT ("xxxxxxxx-xxxx-8xxx-xxxx-xxxxxxxxxxxx", RFC 9562's
+ * version 8): 128 bits of FNV-1a over its rig, ID, trainee, case and start,
+ * so that a database built again from the files gives each session the
+ * UUID it had, and the centre takes it once.
+ */
+void records_uuid(const struct records_session *s, char out[37]);
+
+/*
+ * Every session the centre is not known to have (at_centre 0: new, or
+ * its database built again) queued, after those queued already: at
+ * start-up. *WAITING: how many wait now. 0 or as records_add().
+ */
+int records_queue_unsent(struct records *r, size_t *waiting);
+
+/*
+ * The session that has waited longest for the centre into *S, and how
+ * many wait (it among them) into *WAITING. 0; -ENOENT: none waits, or
+ * the database is missing; or as records_add(). These two never build the
+ * database again (its writer's calls do, queueing every session), so
+ * that a second thread (the centre's) may call them beside the writer.
+ */
+int records_queue_head(struct records *r, struct records_session *s,
+		       size_t *waiting);
+
+/* Session ID arrived at the centre: out of the queue, marked at_centre
+ * (nothing when the database is missing). 0 or as records_add(). */
+int records_queue_arrived(struct records *r, uint64_t id);
 
 /* The session file PATH as its row would be. 0; -errno; -EBADMSG. */
 int records_read_file(const char *path, struct records_session *s);

@@ -753,27 +753,20 @@ static void page_map(FILE *o, const struct metrics_map *map,
 	htmlpage_plot_end(&(struct htmlpage_plot){ .out = o });
 }
 
-int report_write(const struct session_file *f, const struct metrics_result *m,
-		 const struct report_reference *ref, const char *dir)
+void report_print(FILE *o, const struct session_file *f,
+		  const struct metrics_result *m,
+		  const struct report_reference *ref)
 {
-	char tmp[4200], err[256];
 	struct metrics_map *map = malloc(sizeof(*map));
 	struct metrics_along along;
 	struct anatomy a;
+	char err[256];
 	bool have_a, have_along;
-	FILE *o;
-	int r;
 
 	have_along = sessionmetrics_map(f, map, &along) == 0;
 	if (!map || !have_along) {
 		free(map);
 		map = NULL; /* the report without its map */
-	}
-	o = htmlpage_create(dir, tmp, sizeof(tmp));
-	if (!o) {
-		r = -errno;
-		free(map);
-		return r;
 	}
 	have_a = sessioninputs_anatomy(f, &a, err, sizeof(err)) == 0;
 	page_header(o, f, m);
@@ -782,7 +775,18 @@ int report_write(const struct session_file *f, const struct metrics_result *m,
 	}
 	page_metrics(o, f, m, have_a ? &a : NULL, map,
 		     have_along ? &along : NULL);
-	r = htmlpage_commit(o, tmp, dir);
 	free(map);
-	return r;
+}
+
+int report_write(const struct session_file *f, const struct metrics_result *m,
+		 const struct report_reference *ref, const char *dir)
+{
+	char tmp[4200];
+	FILE *o = htmlpage_create(dir, tmp, sizeof(tmp));
+
+	if (!o) {
+		return -errno;
+	}
+	report_print(o, f, m, ref);
+	return htmlpage_commit(o, tmp, dir);
 }

@@ -57,4 +57,10 @@ struct report_reference {
 int report_write(const struct session_file *f, const struct metrics_result *m,
 		 const struct report_reference *ref, const char *dir);
 
+/* The same page written to O (the centre's copy: centre.h); O's error
+ * flag says whether it was all written. */
+void report_print(FILE *o, const struct session_file *f,
+		  const struct metrics_result *m,
+		  const struct report_reference *ref);
+
 #endif

@@ -169,8 +169,23 @@ static void session_reqs(FILE *o, const struct coursefile *c,
 static void session_row(FILE *o, const struct coursefile *c,
 			const struct traineepage_session *s)
 {
-	fprintf(o, "<tr id=\"session-%llu\"><td>%llu</td><td>",
-		(unsigned long long)s->id, (unsigned long long)s->id);
+	fputs("<tr id=\"session-", o);
+	if (s->rig) { /* IDs are the rigs' own: one may repeat another's */
+		htmlpage_escape(o, s->rig);
+		fputc('-', o);
+	}
+	fprintf(o, "%llu\"><td>", (unsigned long long)s->id);
+	if (s->href) {
+		fputs("<a href=\"", o);
+		htmlpage_escape(o, s->href);
+		fputs("\">", o);
+	}
+	fprintf(o, "%llu%s</td><td>", (unsigned long long)s->id,
+		s->href ? "</a>" : "");
+	if (s->rig) {
+		htmlpage_escape(o, s->rig);
+		fputs("</td><td>", o);
+	}
 	htmlpage_escape(o, s->started);
 	fputs("</td><td>", o);
 	htmlpage_escape(o, s->case_name);
@@ -192,10 +207,10 @@ static void session_row(FILE *o, const struct coursefile *c,
 static void page_sessions(FILE *o, const struct coursefile *c,
 			  const struct traineepage_session *s, size_t n)
 {
-	fputs("<section><h2>Sessions</h2>\n<div class=\"wide\"><table "
-	      "id=\"sessions\"><tr>"
-	      "<th>Session</th><th>Date</th><th>Case</th><th>Duration</th>",
-	      o);
+	fprintf(o, "<section><h2>Sessions</h2>\n<div class=\"wide\"><table "
+		"id=\"sessions\"><tr><th>Session</th>%s<th>Date</th>"
+		"<th>Case</th><th>Duration</th>", n && s[0].rig ?
+		"<th>Rig</th>" : "");
 	for (size_t i = 0; i < NMEASURES; i++) {
 		fprintf(o, "<th title=\"%s\">%s%s%s%s</th>", measures[i].title,
 			measures[i].brief,

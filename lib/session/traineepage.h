@@ -36,6 +36,11 @@ struct traineepage_session {
 	const char *started;            /* UTC, ISO 8601 */
 	const struct metrics_result *m; /* NULL: not known (recording) */
 	bool recomputed;                /* m recomputed: the file was cut */
+	const char *rig;                /* the rig that recorded it (a
+					   centre's, centre.h); NULL: no Rig
+					   column */
+	const char *href;               /* its own report page, linked from
+					   its ID; NULL: none */
 };
 
 /*

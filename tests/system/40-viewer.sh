@@ -320,6 +320,14 @@ check "the picture shows the NO DAEMON banner" float_test \
 start_daemon "${STRAIGHT[@]}" || finish
 WAIT_S=20 check "the daemon back: its colon is fetched again" \
 	wait_for loaded 2
+# the window resized: the frames follow its events (endoview asks the X
+# server nothing in a frame), so the next picture is the new size
+rm -f "$TMP"/endoview-*.png
+xdotool windowsize --sync "$window" 800 600
+xdotool key p
+check "resized to 800x600: the next picture is that size" \
+	wait_for eval '[ "$(png_value "$(ls "$TMP"/endoview-*.png | head -n 1)" \
+		rect:0,0,4000,4000 n)" = 480000 ]'
 xdotool key q
 wait "$viewer"
 check "Q quits the viewer cleanly" test $? = 0

@@ -5,7 +5,10 @@
  * them, each judged by a course when one is given; a deleted or damaged
  * database is said by a check and built again from the files; a file
  * changed under it is told apart field by field and fixed; a database made by the first schema opens migrated with its
- * measures intact; one of a newer schema is refused, saying so.
+ * measures intact; one of a newer schema is refused, saying so. For a
+ * centre: each session written is queued in the order written, once,
+ * leaves the queue when it arrived, and keeps its UUID when the database
+ * is built again (and is queued again then, the centre's copy telling).
  *
  * Writes to $TMPDIR.
  */
@@ -345,6 +348,7 @@ static void test_migrate(void **state)
 	assert_true(s[0].m.cecum_s == 321.5);
 	assert_true(s[0].m.withdrawal_s == 410.25);
 	assert_int_equal(s[0].m.polyps_seen, 3);
+	assert_int_equal(strlen(s[0].uuid), 36); /* made for an old row */
 	free(s);
 	run_sql("SELECT * FROM sessions INDEXED BY sessions_by_trainee;");
 	assert_int_equal(records_add(r, 1), 0); /* the new schema's rows */
@@ -370,6 +374,74 @@ static void test_newer_refused(void **state)
 	assert_int_equal(version(), 99); /* left as it was */
 }
 
+/* The session at the queue's head is ID, WAITING of them wait. */
+static void head_is(struct records *r, uint64_t id, size_t waiting)
+{
+	struct records_session s;
+	size_t n;
+
+	assert_int_equal(records_queue_head(r, &s, &n), 0);
+	assert_int_equal(s.e.id, id);
+	assert_int_equal(n, waiting);
+}
+
+static void test_centre_queue(void **state)
+{
+	struct records *r = *state;
+	struct records_session s, *all;
+	char uuid[3][37];
+	size_t n;
+
+	assert_int_equal(records_add(r, 1), 0); /* made: no centre, no queue */
+	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT);
+	assert_int_equal(n, 0);
+	records_set_centre(r, true);
+	assert_int_equal(records_add(r, 10), 0);
+	assert_int_equal(records_add(r, 1), 0);
+	assert_int_equal(records_add(r, 10), 0); /* keeps its place */
+	head_is(r, 10, 2);
+	assert_int_equal(records_queue_arrived(r, 10), 0);
+	head_is(r, 1, 1);
+	assert_int_equal(records_queue_unsent(r, &n), 0); /* 2 too */
+	assert_int_equal(n, 2);
+	head_is(r, 1, 2);
+	assert_int_equal(records_queue_arrived(r, 1), 0);
+	assert_int_equal(records_queue_arrived(r, 2), 0);
+	assert_int_equal(records_queue_unsent(r, &n), 0);
+	assert_int_equal(n, 0); /* every one arrived */
+
+	assert_int_equal(records_list(r, &all, &n), 0);
+	assert_int_equal(n, 3);
+	for (size_t i = 0; i < n; i++) {
+		memcpy(uuid[i], all[i].uuid, sizeof(uuid[i]));
+		assert_int_equal(strlen(uuid[i]), 36);
+		assert_int_equal(uuid[i][14], '8');
+		records_uuid(&all[i], s.uuid);
+		assert_string_equal(s.uuid, uuid[i]);
+	}
+	assert_string_not_equal(uuid[0], uuid[1]);
+	snprintf(all[0].rig, sizeof(all[0].rig), "rig-2");
+	records_uuid(&all[0], s.uuid);
+	assert_string_not_equal(s.uuid, uuid[0]); /* another rig's */
+	free(all);
+
+	assert_int_equal(unlink(db_path), 0);
+	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT);
+	assert_int_equal(records_queue_arrived(r, 1), 0);
+	assert_int_equal(access(db_path, F_OK), -1); /* nor made it again */
+	assert_int_equal(records_list(r, &all, &n), 0); /* built again: */
+	head_is(r, 1, 3);                               /* all queued, */
+	for (size_t i = 0; i < n; i++) { /* with the UUIDs they had */
+		assert_string_equal(all[i].uuid, uuid[i]);
+	}
+	free(all);
+	assert_int_equal(unlink(db_path), 0);
+	records_set_centre(r, false);
+	assert_int_equal(records_list(r, &all, &n), 0); /* no centre: */
+	free(all);
+	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT); /* none */
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -382,6 +454,8 @@ int main(void)
 						teardown),
 		cmocka_unit_test_setup_teardown(test_migrate, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_newer_refused, setup,
+						teardown),
+		cmocka_unit_test_setup_teardown(test_centre_queue, setup,
 						teardown),
 	};
 
