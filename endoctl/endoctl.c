@@ -382,13 +382,26 @@ static int cmd_set(struct ctl *ctl, int argc, char **argv)
 	return 0;
 }
 
+int ctl_hand_input(struct ctl *ctl, Endosim__HandInput *body)
+{
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int r;
+
+	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
+	req.hand_input = body;
+	r = ctl_transact(ctl, true, &req, &rep);
+	if (!r) {
+		endosim__reply__free_unpacked(rep, NULL);
+	}
+	return r;
+}
+
 static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
-	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	double force[ENDOSIM_AXES];
-	Endosim__Reply *rep;
-	int r, n = 0;
+	int n = 0;
 
 	if (argc == 2 && !strcmp(argv[1], "off")) {
 		body.hands_off = true; /* the grip lets go */
@@ -420,13 +433,7 @@ static int cmd_hand(struct ctl *ctl, int argc, char **argv)
 		body.n_force = ENDOSIM_AXES;
 		body.force = force;
 	}
-	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
-	req.hand_input = &body;
-	r = ctl_transact(ctl, true, &req, &rep);
-	if (!r) {
-		endosim__reply__free_unpacked(rep, NULL);
-	}
-	return r;
+	return ctl_hand_input(ctl, &body);
 }
 
 static void print_cases(const Endosim__CaseListReply *l, bool json)
@@ -756,6 +763,16 @@ static const struct command {
 	  "spring-loaded as on a real handle: `on` holds it S s (default 2, "
 	  "at most 10), then it springs back, `off` lets go at once; the "
 	  "other valves held stay held with it (simulated rig only)" },
+	{ "tool", ctl_cmd_tool, "the tool through the working channel",
+	  "tool status | select none|forceps|snare|needle|clip [--size MM] "
+	  "| hand DEPTH_MM OPENING [--pedal] [--for S]",
+	  "endoctl tool select snare --size 20",
+	  "select: the tool the nurse hands over, one at a time; a snare of "
+	  "MM mm, 10 to 30 (default [tool] snare_size_m); hand (simulated "
+	  "rig): the hand holds the tool DEPTH_MM beyond the channel's exit "
+	  "(negative: in it), its handle at OPENING (0 closed .. 1 open), "
+	  "the cautery's pedal down with --pedal, for S s (default 2, at "
+	  "most 10); then the reading lapses: the tool still, the pedal up" },
 	{ "version", cmd_version, "endoctl's and endosimd's versions",
 	  "version", "endoctl version", NULL },
 	{ "debug", cmd_debug, "fault injection, for tests only",

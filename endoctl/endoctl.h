@@ -4,7 +4,8 @@
  * replies; endoctl_session.c: training sessions; endoctl_map.c: the
  * recording session's unseen-mucosa map; endoctl_trainee.c: a trainee's
  * course; endoctl_records.c: the rig's records; endoctl_guide.c: guided
- * replay; endoctl_patient.c: the patient). One thread.
+ * replay; endoctl_patient.c: the patient; endoctl_tool.c: the tool in the
+ * working channel). One thread.
  */
 #ifndef ENDOSIM_ENDOCTL_H
 #define ENDOSIM_ENDOCTL_H
@@ -58,6 +59,10 @@ typedef int command_fn(struct ctl *ctl, int argc, char **argv);
 int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
 		 Endosim__Reply **rep);
 
+/* BODY, a hand input (simulated rig), on the read-write socket: 0 or the
+ * exit status (ctl_transact()'s). */
+int ctl_hand_input(struct ctl *ctl, Endosim__HandInput *body);
+
 /* A status or stats reply, as text or one JSON object (endoctl_print.c). */
 void ctl_print_status(const Endosim__StatusReply *s);
 void ctl_json_status(const Endosim__StatusReply *s);
@@ -92,5 +97,11 @@ int ctl_cmd_patient(struct ctl *ctl, int argc, char **argv);
 
 /* The patient as one JSON object, its fields in fields.h's order. */
 void ctl_json_patient(const Endosim__PatientStatus *p);
+
+/* MSG, a message of table T's (fields.h), as one JSON object. */
+void ctl_json_part(const struct fields_table *t, const void *msg);
+
+/* `endoctl tool ...` (endoctl_tool.c). */
+int ctl_cmd_tool(struct ctl *ctl, int argc, char **argv);
 
 #endif

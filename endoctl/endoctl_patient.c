@@ -158,7 +158,6 @@ static int patient_press(struct ctl *ctl, int argc, char **argv,
 static int patient_valve(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__HandInput body = ENDOSIM__HAND_INPUT__INIT;
-	Endosim__Request req = ENDOSIM__REQUEST__INIT;
 	double hold_s = VALVE_HOLD_S;
 	uint32_t bit = argc >= 4 ? names_valve_find(argv[2]) : 0;
 	bool on = argc >= 4 && !strcmp(argv[3], "on");
@@ -186,13 +185,10 @@ static int patient_valve(struct ctl *ctl, int argc, char **argv)
 	body.valves = on ? body.valves | bit : body.valves & ~bit;
 	body.hold_ms = body.valves ? (uint32_t)lround(hold_s * 1e3)
 				   : VALVE_OFF_MS;
-	req.body_case = ENDOSIM__REQUEST__BODY_HAND_INPUT;
-	req.hand_input = &body;
-	r = ctl_transact(ctl, true, &req, &rep);
+	r = ctl_hand_input(ctl, &body);
 	if (r) {
 		return r;
 	}
-	endosim__reply__free_unpacked(rep, NULL);
 	if (ctl->json) {
 		struct json j;
 

@@ -147,12 +147,17 @@ static void json_message(struct json *j, const char *key,
 	json_object_end(j);
 }
 
-void ctl_json_patient(const Endosim__PatientStatus *p)
+void ctl_json_part(const struct fields_table *t, const void *msg)
 {
 	struct json j;
 
 	json_init(&j, stdout);
-	json_message(&j, NULL, &fields_patient, p);
+	json_message(&j, NULL, t, msg);
+}
+
+void ctl_json_patient(const Endosim__PatientStatus *p)
+{
+	ctl_json_part(&fields_patient, p);
 }
 
 void ctl_json_status(const Endosim__StatusReply *s)

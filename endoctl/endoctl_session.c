@@ -89,40 +89,41 @@ static bool patient_kind(uint32_t kind)
 	       kind <= SESSION_EVENT_SEDATION;
 }
 
-static size_t patient_event_count(const struct session_file *f)
+/* The tool's (a tool handed over, a capture, a cut, ...). */
+static bool tool_kind(uint32_t kind)
 {
-	size_t n = 0;
-
-	for (size_t i = 0; i < f->n_events; i++) {
-		n += patient_kind(f->events[i].ev.kind);
-	}
-	return n;
+	return kind == SESSION_EVENT_TOOL;
 }
 
 /*
- * F's patient's events after the metrics: lines "  T s  KIND  TEXT", or
- * the JSON array patient_events; nothing when it has none (an older
- * file's show reads as it did).
+ * F's events of the kinds KIND says after the metrics: a line TITLE, then
+ * lines "  T s  KIND  TEXT", or the JSON array KEY; nothing when it has
+ * none (an older file's show reads as it did).
  */
-static void print_patient_events(const struct ctl *ctl, struct json *j,
-				 const struct session_file *f)
+static void print_events(const struct ctl *ctl, struct json *j,
+			 const struct session_file *f, bool (*kind)(uint32_t),
+			 const char *title, const char *key)
 {
 	uint64_t t0 = sessionview_start_ns(f);
+	size_t n = 0;
 
-	if (!patient_event_count(f)) {
+	for (size_t i = 0; i < f->n_events; i++) {
+		n += kind(f->events[i].ev.kind);
+	}
+	if (!n) {
 		return;
 	}
 	if (ctl->json) {
-		json_array_begin(j, "patient_events");
+		json_array_begin(j, key);
 	} else {
-		printf("patient events\n");
+		printf("%s\n", title);
 	}
 	for (size_t i = 0; i < f->n_events; i++) {
 		const struct session_event *ev = &f->events[i].ev;
 		double t = (double)(int64_t)(ev->stamp_ns - t0) *
 			   ENDOSIM_S_PER_NS;
 
-		if (!patient_kind(ev->kind)) {
+		if (!kind(ev->kind)) {
 			continue;
 		}
 		if (!ctl->json) {
@@ -144,8 +145,8 @@ static void print_patient_events(const struct ctl *ctl, struct json *j,
 	}
 }
 
-/* The session, the metrics M (NULL: none) and the patient's events of
- * its file F (NULL: not read) on stdout. */
+/* The session, the metrics M (NULL: none) and the patient's and the
+ * tool's events of its file F (NULL: not read) on stdout. */
 static void print_session(const struct ctl *ctl, const Endosim__SessionInfo *s,
 			  const struct metrics_result *m, const char *note,
 			  const struct session_file *f)
@@ -172,7 +173,10 @@ static void print_session(const struct ctl *ctl, const Endosim__SessionInfo *s,
 		}
 	}
 	if (f) {
-		print_patient_events(ctl, &j, f);
+		print_events(ctl, &j, f, patient_kind, "patient events",
+			     "patient_events");
+		print_events(ctl, &j, f, tool_kind, "tool events",
+			     "tool_events");
 	}
 	if (ctl->json) {
 		json_object_end(&j);

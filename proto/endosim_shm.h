@@ -24,7 +24,7 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 8u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 9u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
@@ -33,7 +33,8 @@
 				  6: guided replay;
 				  7: the patient's body;
 				  8: the patient's pain, sedation, vital
-				     signs and a perforation by the tip */
+				     signs and a perforation by the tip;
+				  9: the tool in the working channel */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -366,6 +367,68 @@ struct endosim_patient_state {
 	uint32_t reserved;
 };
 
+/* The tool in the working channel (lib/model/tool.h), one at a time. */
+enum endosim_tool {
+	ENDOSIM_TOOL_NONE = 0,
+	ENDOSIM_TOOL_FORCEPS = 1,
+	ENDOSIM_TOOL_SNARE = 2,
+	ENDOSIM_TOOL_NEEDLE = 3,
+	ENDOSIM_TOOL_CLIP = 4,
+	ENDOSIM_TOOLS
+};
+
+/* What happened to the tool in a cycle (its events' bits). */
+enum endosim_tool_event {
+	ENDOSIM_TOOL_CAPTURE = 1u << 0, /* the loop closed on a polyp */
+	ENDOSIM_TOOL_RELEASE = 1u << 1, /* it let go (the handle opened) */
+	ENDOSIM_TOOL_CUT = 1u << 2,     /* a polyp cut free */
+	ENDOSIM_TOOL_INJURY = 1u << 3,  /* current into the wall */
+	ENDOSIM_TOOL_LIFT = 1u << 4,    /* an injection lifted a base */
+	ENDOSIM_TOOL_BITE = 1u << 5,    /* the forceps took a sample */
+	ENDOSIM_TOOL_CLIP_PLACED = 1u << 6, /* a clip closed on the wall */
+};
+
+/* A polyp as the tool left it (enum endosim_polyp_state). */
+enum endosim_polyp_state {
+	ENDOSIM_POLYP_IN_PLACE = 0,
+	ENDOSIM_POLYP_CAPTURED = 1, /* held in the snare's loop */
+	ENDOSIM_POLYP_CUT = 2,      /* cut free: lies in the lumen */
+};
+
+#define ENDOSIM_POLYPS 32 /* a case's most (anatomy.h) */
+
+struct endosim_tool_polyp {
+	uint32_t state;          /* enum endosim_polyp_state */
+	uint32_t lifted;         /* 1: lifted by an injection */
+	double energy_j;         /* the cautery's into it so far */
+	uint32_t bites;          /* the forceps' on it */
+	uint32_t reserved;
+};
+
+/*
+ * The tool: which, as sensed (depth beyond the channel's exit, the
+ * handle's opening, the pedal), the snare's loop, this cycle's events and
+ * each of the case's polyps (in the case's order) as the tools left them.
+ * Colon frame (as the scope's), m.
+ */
+struct endosim_tool_state {
+	uint32_t kind;           /* enum endosim_tool */
+	uint32_t pedal;          /* 1: the pedal down */
+	double snare_m;          /* the snare's size (its loop fully open) */
+	double depth_m;          /* the tool's tip beyond the channel's exit */
+	double opening;          /* the handle, 0 closed .. 1 open */
+	double loop_m;           /* the snare's loop's diameter now */
+	double tip[3];           /* the tool's tip */
+	double loop_centre[3];   /* the snare's loop's centre */
+	int32_t captured;        /* the polyp the loop holds, -1: none */
+	uint32_t events;         /* this cycle's enum endosim_tool_event bits */
+	int32_t event_polyp;     /* the polyp they concern, -1: none */
+	uint32_t clips;          /* clips placed since the case was loaded */
+	uint32_t polyps;         /* of polyp[] in use */
+	uint32_t reserved;
+	struct endosim_tool_polyp polyp[ENDOSIM_POLYPS];
+};
+
 struct endosim_state {
 	uint64_t cycle;       /* force-loop cycles since start */
 	uint64_t stamp_ns;    /* CLOCK_MONOTONIC: this cycle's wake-up */
@@ -388,6 +451,7 @@ struct endosim_state {
 	struct endosim_rod_state rod;
 	struct endosim_guide_state guide;
 	struct endosim_patient_state patient;
+	struct endosim_tool_state tool;   /* 9 */
 };
 
 struct endosim_shm {

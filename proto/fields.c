@@ -290,6 +290,50 @@ const struct fields_table fields_patient =
 #undef STRUCT
 #undef MESSAGE
 
+/* --- the tool in the working channel: its sensing and events recorded - */
+#define STRUCT struct endosim_tool_polyp
+#define MESSAGE Endosim__ToolPolyp
+static const struct fields_field tool_polyp[] = {
+	{ "state", FIELDS_NAMED, 1, S(state), NONE, P(state), NONE, NONE,
+	  NULL, names_polyp_state, NULL },
+	VAL(lifted, FIELDS_BOOL),
+	VAL(energy_j, FIELDS_DOUBLE),
+	VAL(bites, FIELDS_UINT),
+};
+const struct fields_table fields_tool_polyp =
+	TABLE(tool_polyp, endosim__tool_polyp__descriptor, tool.polyp,
+	      ENDOSIM_POLYPS);
+#undef STRUCT
+#undef MESSAGE
+
+#define STRUCT struct endosim_tool_state
+#define MESSAGE Endosim__ToolStatus
+/* F recorded at the record's tool_F, its CSV column COLUMN */
+#define TOOL(f, kind, column, names)                                         \
+	{ #f, kind, 1, S(f), NONE, P(f), NONE, R(tool_##f), COLUMNS(column), \
+	  names, NULL }
+static const struct fields_field tool[] = {
+	TOOL(kind, FIELDS_NAMED, "tool_kind", names_tool),
+	TOOL(pedal, FIELDS_BOOL, "tool_pedal", NULL),
+	TOOL(snare_m, FIELDS_DOUBLE, "tool_snare_m", NULL),
+	TOOL(depth_m, FIELDS_DOUBLE, "tool_depth_m", NULL),
+	TOOL(opening, FIELDS_DOUBLE, "tool_opening_1", NULL),
+	VAL(loop_m, FIELDS_DOUBLE),
+	VEC(tip),
+	VEC(loop_centre),
+	TOOL(captured, FIELDS_INT, "tool_captured", NULL),
+	TOOL(events, FIELDS_UINT, "tool_events", NULL),
+	TOOL(event_polyp, FIELDS_INT, "tool_event_polyp", NULL),
+	VAL(clips, FIELDS_UINT),
+	VAL(polyps, FIELDS_UINT),
+	MANY(polyp, FIELDS_LIST, &fields_tool_polyp),
+};
+const struct fields_table fields_tool =
+	TABLE(tool, endosim__tool_status__descriptor, tool, 1);
+#undef TOOL
+#undef STRUCT
+#undef MESSAGE
+
 /* --- the state's own fields, the safety monitors', the parts ---------- */
 #define STRUCT struct endosim_state
 #define MESSAGE Endosim__StatusReply
@@ -322,6 +366,7 @@ static const struct fields_field status[] = {
 	ONE(rod, &fields_rod),
 	ONE(guide, &fields_guide),
 	ONE(patient, &fields_patient),
+	ONE(tool, &fields_tool),
 	MANY(axes, FIELDS_MAP, &fields_axis),
 	/* recorded, not on the wire */
 	KEPT(latency_ns, FIELDS_UINT),

@@ -18,7 +18,9 @@
  * it by its sub-message rows, fields_fault (a latched fault's cause:
  * Fault), fields_scope (ScopeStatus), fields_haptics (HapticsStatus),
  * fields_rod (RodStatus), fields_guide (GuideStatus), fields_patient
- * (PatientStatus) and fields_axis (each axis: AxisStatus). A table's
+ * (PatientStatus), fields_tool (ToolStatus) with fields_tool_polyp (each
+ * of the case's polyps: ToolPolyp) and fields_axis (each axis:
+ * AxisStatus). A table's
  * rows are in the order of the message's JSON.
  *
  * Adding a field to the published state:
@@ -107,6 +109,8 @@ extern const struct fields_table fields_haptics;
 extern const struct fields_table fields_rod;
 extern const struct fields_table fields_guide;
 extern const struct fields_table fields_patient;
+extern const struct fields_table fields_tool;
+extern const struct fields_table fields_tool_polyp;
 extern const struct fields_table fields_axis;
 
 /*

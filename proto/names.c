@@ -48,6 +48,26 @@ const char *const names_positions[] = {
 	NULL,
 };
 
+const char *const names_tools[] = {
+	[ENDOSIM_TOOL_NONE] = "none",
+	[ENDOSIM_TOOL_FORCEPS] = "forceps",
+	[ENDOSIM_TOOL_SNARE] = "snare",
+	[ENDOSIM_TOOL_NEEDLE] = "needle",
+	[ENDOSIM_TOOL_CLIP] = "clip",
+	NULL,
+};
+
+static const char *const polyp_state_names[] = {
+	[ENDOSIM_POLYP_IN_PLACE] = "in-place",
+	[ENDOSIM_POLYP_CAPTURED] = "captured",
+	[ENDOSIM_POLYP_CUT] = "cut",
+};
+
+/* By the bit's number (enum endosim_tool_event). */
+static const char *const tool_event_names[] = {
+	"capture", "release", "cut", "injury", "lift", "bite", "clip",
+};
+
 static const char *const pain_cause_names[] = {
 	[ENDOSIM_PAIN_NONE] = "none",
 	[ENDOSIM_PAIN_LOOPING] = "looping",
@@ -85,6 +105,7 @@ static const char *const event_names[] = {
 	[SESSION_EVENT_PERFORATION] = "perforation",
 	[SESSION_EVENT_TEAR] = "tear",
 	[SESSION_EVENT_SEDATION] = "sedation",
+	[SESSION_EVENT_TOOL] = "tool",
 };
 
 /* endosim.proto's DebugAction, by number */
@@ -172,6 +193,32 @@ static int find_in(const char *const *list, const char *name)
 int names_position_find(const char *name)
 {
 	return find_in(names_positions, name);
+}
+
+const char *names_tool(uint32_t tool)
+{
+	return tool < COUNT(names_tools) - 1 ? names_tools[tool] : "?";
+}
+
+int names_tool_find(const char *name)
+{
+	return find_in(names_tools, name);
+}
+
+const char *names_polyp_state(uint32_t state)
+{
+	return state < COUNT(polyp_state_names) ? polyp_state_names[state]
+						: "?";
+}
+
+const char *names_tool_event(uint32_t bit)
+{
+	for (size_t i = 0; i < COUNT(tool_event_names); i++) {
+		if (bit == 1u << i) {
+			return tool_event_names[i];
+		}
+	}
+	return "?";
 }
 
 const char *names_pain_cause(uint32_t cause)

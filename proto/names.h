@@ -72,9 +72,28 @@ const char *names_sedation(uint32_t sedation);
 int names_sedation_find(const char *name);
 
 /*
+ * The tool in the working channel (enum endosim_tool): "none",
+ * "forceps", "snare", "needle", "clip"; NAMES_TOOLS lists them, NULL
+ * after the last.
+ */
+extern const char *const names_tools[];
+const char *names_tool(uint32_t tool);
+
+/* The tool called NAME, or -1. */
+int names_tool_find(const char *name);
+
+/* A polyp as the tools left it (enum endosim_polyp_state): "in-place",
+ * "captured", "cut". */
+const char *names_polyp_state(uint32_t state);
+
+/* One tool event's bit (enum endosim_tool_event): "capture", "release",
+ * "cut", "injury", "lift", "bite", "clip"; "?" for another. */
+const char *names_tool_event(uint32_t bit);
+
+/*
  * A session event's kind (session_file.h enum session_event_kind) as the
  * CSV says it: "state", "fault", "param", "drops", "note", "position",
- * "hand", "valve", "perforation", "tear", "sedation"; "unknown" for
+ * "hand", "valve", "perforation", "tear", "sedation", "tool"; "unknown" for
  * another.
  */
 const char *names_event(uint32_t kind);

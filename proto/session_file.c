@@ -26,6 +26,13 @@ void session_record_from_state(const struct endosim_state *in,
 	fields_to_record(&fields_status, in, out);
 }
 
+/* No tool, as the model publishes it: nothing held. */
+static void no_tool(struct endosim_tool_state *t)
+{
+	t->captured = -1;
+	t->event_polyp = -1;
+}
+
 /* The disabled patient's state, as the model publishes it. */
 static void no_patient(struct endosim_patient_state *p)
 {
@@ -47,6 +54,9 @@ void session_record_to_state(const struct session_record *in,
 	out->fault_axis = -1;
 	if (!out->patient.enabled) {
 		no_patient(&out->patient);
+	}
+	if (out->tool.kind == ENDOSIM_TOOL_NONE) {
+		no_tool(&out->tool);
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		out->axis[a].feedback_ns = in->stamp_ns;
@@ -422,9 +432,14 @@ static void record_copy(struct session_record *rec, const void *payload,
 
 	memset(rec, 0, sizeof(*rec));
 	memcpy(rec, payload, n);
-	if (n < sizeof(*rec)) { /* format 4 or older: nothing torn, no pain */
+	if (n < SESSION_RECORD_SIZE_5) { /* format 4 or older: nothing torn,
+					     no pain */
 		rec->pain_place = -1;
 		rec->torn_segment = -1;
+	}
+	if (n < sizeof(*rec)) { /* format 5 or older: no tool */
+		rec->tool_captured = -1;
+		rec->tool_event_polyp = -1;
 	}
 }
 

@@ -26,7 +26,8 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (5; 4 before the patient's pain, 3 before the
+ * Header keys: format (6; 5 before the tool in the working channel, 4
+ * before the patient's pain, 3 before the
  * patient's body, 2 before guided replay, 1 before the rod model), id,
  * trainee, case,
  * started (UTC, ISO 8601), start_ns (CLOCK_MONOTONIC of the first
@@ -50,7 +51,7 @@
 #include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 5u
+#define SESSION_FILE_FORMAT 6u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -68,7 +69,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 520 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 552 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -158,13 +159,28 @@ struct session_record {
 	float heart_rate_bpm;
 	float spo2;               /* 0..1 */
 	int32_t torn_segment;     /* where the tip tore the wall, -1: none */
+	/* format 6: the tool in the working channel (struct
+	   endosim_tool_state): what the rig sensed, the polyp held and what
+	   happened, from which the rest follows (the loop, the clips); an
+	   older record reads with no tool, nothing held (-1) */
+	uint32_t tool_kind;       /* enum endosim_tool */
+	float tool_snare_m;       /* the snare's size */
+	float tool_depth_m;       /* beyond the channel's exit */
+	float tool_opening;       /* the handle, 0..1 */
+	uint32_t tool_pedal;      /* 1: down */
+	int32_t tool_captured;    /* the polyp the loop holds, -1: none */
+	uint32_t tool_events;     /* this cycle's enum endosim_tool_event */
+	int32_t tool_event_polyp; /* the polyp they concern, -1: none */
 };
 
-_Static_assert(sizeof(struct session_record) == 520,
+_Static_assert(sizeof(struct session_record) == 552,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
+/* Format 5's: up to torn_segment. A shorter record reads with no tool,
+ * tool_captured and tool_event_polyp -1 (none). */
+#define SESSION_RECORD_SIZE_5 520u
 /* Format 4's: up to burst_segment. A shorter record reads with
  * torn_segment and pain_place -1 (none), as no_patient() gives. */
 #define SESSION_RECORD_SIZE_4 488u
@@ -194,6 +210,13 @@ enum session_event_kind {
 				      detail: the segment; value: the tip's
 				      force on the wall, N */
 	SESSION_EVENT_SEDATION = 11, /* value: the enum endosim_sedation */
+	/* format 6: the tool in the working channel */
+	SESSION_EVENT_TOOL = 12,   /* a tool handed over (detail 0, axis
+				      its enum endosim_tool, value a
+				      snare's size, m) or one of its events
+				      (detail its enum endosim_tool_event
+				      bit, axis the polyp concerned or -1,
+				      value the handle's opening) */
 };
 
 /* An event's fixed part; its text (not NUL-terminated) follows it. */
@@ -221,7 +244,8 @@ void session_record_from_state(const struct endosim_state *in,
  * and zeroes the rest (the scope's tube is not recorded: rebuild it with
  * the scope's kinematics on the recorded case). A record without the
  * patient (disabled, or of format 3 or older) gives the disabled
- * patient's state: every lumen factor 1, no site, no burst.
+ * patient's state: every lumen factor 1, no site, no burst; one without
+ * a tool (none, or of format 5 or older) holds nothing (-1).
  */
 void session_record_to_state(const struct session_record *in,
 			     struct endosim_state *out);

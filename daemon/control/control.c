@@ -295,6 +295,7 @@ static const struct handler handlers[] = {
 	  control_on_trainee_sessions },
 	{ ENDOSIM__REQUEST__BODY_GUIDE, true, control_on_guide },
 	{ ENDOSIM__REQUEST__BODY_PATIENT, true, control_on_patient },
+	{ ENDOSIM__REQUEST__BODY_TOOL, true, control_on_tool },
 	{ ENDOSIM__REQUEST__BODY_RECORDS_CHECK, false,
 	  control_on_records_check },
 	{ ENDOSIM__REQUEST__BODY_RECORDS_REBUILD, true,

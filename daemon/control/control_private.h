@@ -8,7 +8,8 @@
  * cases; control_session.c training sessions and their live map;
  * control_trainee.c a trainee's sessions through the session directory's
  * index; control_guide.c guided replay; control_patient.c the patient's
- * commands (their refusals' words in struct control's refusal). Control
+ * commands, control_tool.c the tool's selection (their refusals' words
+ * in struct control's refusal). Control
  * thread only, as all of control.h's work.
  */
 #ifndef ENDOSIM_CONTROL_PRIVATE_H
@@ -171,6 +172,7 @@ handler_fn control_on_session_map;
 handler_fn control_on_trainee_sessions;
 handler_fn control_on_guide;
 handler_fn control_on_patient;
+handler_fn control_on_tool;
 handler_fn control_on_records_check;
 handler_fn control_on_records_rebuild;
 

@@ -36,6 +36,9 @@ struct control_replies {
 	Endosim__RodStatus rod;
 	Endosim__GuideStatus guide;
 	Endosim__PatientStatus patient;
+	Endosim__ToolStatus tool;
+	Endosim__ToolPolyp tool_polyps[ENDOSIM_POLYPS];
+	Endosim__ToolPolyp *tool_polyps_p[ENDOSIM_POLYPS];
 	struct endosim_state state; /* what the status reply points into */
 	Endosim__StatsReply stats;
 	Endosim__Histogram latency, compute;
@@ -149,6 +152,23 @@ static void fill_patient(struct control *c, Endosim__StatusReply *s)
 	s->patient = &rb->patient;
 }
 
+/* The tool's values (fields.h) with each of the case's polyps'. */
+static void fill_tool(struct control_replies *rb, Endosim__StatusReply *s)
+{
+	const struct endosim_tool_state *t = &rb->state.tool;
+	size_t n = t->polyps < ENDOSIM_POLYPS ? t->polyps : ENDOSIM_POLYPS;
+
+	fields_to_pb(&fields_tool, &rb->tool, t);
+	for (size_t i = 0; i < n; i++) {
+		fields_to_pb(&fields_tool_polyp, &rb->tool_polyps[i],
+			     &t->polyp[i]);
+		rb->tool_polyps_p[i] = &rb->tool_polyps[i];
+	}
+	rb->tool.n_polyp = n;
+	rb->tool.polyp = rb->tool_polyps_p;
+	s->tool = &rb->tool;
+}
+
 /* The state's values by fields.h's tables; the rest is the daemon's. */
 void control_build_status(struct control *c, Endosim__Reply *rep)
 {
@@ -183,6 +203,7 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	fields_to_pb(&fields_guide, &rb->guide, &st->guide);
 	s->guide = &rb->guide;
 	fill_patient(c, s);
+	fill_tool(rb, s);
 	fill_axes(rb, s);
 	rep->body_case = ENDOSIM__REPLY__BODY_STATUS_REPLY;
 	rep->status_reply = s;
@@ -434,11 +455,22 @@ void control_on_hand_input(struct control *c, struct client *cl,
 			return;
 		}
 	}
+	if (hi->tool && (!isfinite(hi->tool_depth_m) ||
+			 !isfinite(hi->tool_opening) || hi->tool_opening < 0 ||
+			 hi->tool_opening > 1)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "tool: a finite depth, an opening 0..1");
+		return;
+	}
+	if (hi->tool) {
+		hand_set_tool(c->deps.hand, hi->tool_depth_m, hi->tool_opening,
+			      hi->tool_pedal, hold, mono_ns());
+	}
 	if (hi->hands_off) {
 		hand_release(c->deps.hand);
-		if (!hi->n_force && !hi->valves) {
-			return; /* the valves held stay held */
-		}
+	}
+	if ((hi->hands_off || hi->tool) && !hi->n_force && !hi->valves) {
+		return; /* the valves held stay held */
 	}
 	hand_set_live(c->deps.hand, hi->n_force ? hi->force : NULL, hi->valves,
 		      hold, mono_ns());

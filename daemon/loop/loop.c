@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <pthread.h>
 #include <sched.h>
 #include <stdlib.h>
@@ -18,6 +19,7 @@
 #include "base/mono.h"
 #include "base/rt.h"
 #include "model/scope.h"
+#include "model/tool.h"
 #include "base/spsc.h"
 
 #define LOOP_STACK_BYTES (512 * 1024) /* more than RT_PREFAULT_BYTES */
@@ -32,6 +34,12 @@ struct guide_post {
 /* A patient command and its request's number, in their box. */
 struct patient_post {
 	struct loop_patient_command c;
+	uint32_t seq;
+};
+
+/* A tool command and its request's number, in their box. */
+struct tool_post {
+	struct loop_tool_command c;
 	uint32_t seq;
 };
 
@@ -58,6 +66,7 @@ struct loop {
 	bool guide_playing;        /* the recording's patient plays along */
 	struct guide_patient guide_was; /* what it last asked of the patient */
 	uint32_t guide_valves;     /* the recording's, pressed this cycle */
+	struct tool tool;          /* the working channel's (tool.h) */
 
 	/* shared */
 	struct rig *rig;
@@ -79,6 +88,7 @@ struct loop {
 	struct mailbox_slot cmd;
 	struct mailbox_swap colon_swap; /* struct colon * */
 	uint64_t scene_id_in;      /* published by the swap's hand-over */
+	struct tool tool_in;       /* its polyps placed, the same way */
 	struct mailbox_box debug_box; /* a test command */
 	struct loop_debug debug_mailbox;
 	struct mailbox_answer debug_answer;
@@ -88,6 +98,9 @@ struct loop {
 	struct mailbox_box patient_box; /* a patient command */
 	struct patient_post patient_mailbox;
 	struct mailbox_answer patient_answer;
+	struct mailbox_box tool_box; /* a tool command */
+	struct tool_post tool_mailbox;
+	struct mailbox_answer tool_answer;
 	_Atomic uint32_t fail_bits; /* main -> loop: a thread died */
 	_Atomic uint32_t fail_detail;
 };
@@ -135,6 +148,10 @@ struct loop *loop_create(const struct config *cfg, struct rig *rig,
 			 sizeof(l->guide_mailbox));
 	mailbox_box_init(&l->patient_box, &l->patient_mailbox,
 			 sizeof(l->patient_mailbox));
+	mailbox_box_init(&l->tool_box, &l->tool_mailbox,
+			 sizeof(l->tool_mailbox));
+	tool_reset(&l->tool);
+	(void)tool_place_polyps(&l->tool, colon);
 	l->rig = rig;
 	l->pub = pub;
 	l->colon = colon;
@@ -258,6 +275,10 @@ static void take_colon(struct loop *l)
 		mailbox_swap_give_back(&l->colon_swap, in);
 		return;
 	}
+	/* the new case's polyps, the tool in hand kept: before the give
+	 * back, which frees tool_in for the control thread */
+	(void)tool_select(&l->tool_in, l->tool.kind, l->tool.snare_m);
+	l->tool = l->tool_in;
 	mailbox_swap_give_back(&l->colon_swap, l->colon);
 	l->colon = in;
 	l->scene_id = l->scene_id_in;
@@ -419,7 +440,50 @@ static void fill_scope(struct loop *l)
 	scope_publish(&l->pose, colon_centreline(l->colon), &l->state.scope);
 	haptics_publish_rod(l->haptics, l->pose.roll_rad, &l->state.rod,
 			    l->state.scope.bow_m);
-	patient_publish(haptics_patient(l->haptics), &l->state.patient);
+}
+
+/*
+ * The tool in the working channel this cycle, on the scope's published
+ * state: the rig's sensing, the wall at the tool's tip; its injury of the
+ * wall the patient's perforation where there is a patient.
+ */
+static void step_tool(struct loop *l)
+{
+	const struct endosim_scope_state *sc = &l->state.scope;
+	struct tool_params par;
+	struct tool_input in = {
+		.depth_m = l->fb.tool_depth_m,
+		.opening = l->fb.tool_opening,
+		.pedal = l->fb.tool_pedal,
+	};
+	bool still = !isfinite(in.depth_m) || !isfinite(in.opening);
+	double depth = still ? l->tool.depth_m : in.depth_m;
+	struct tool_pose pose;
+	unsigned ev;
+	int polyp;
+
+	cases_tool_params(&l->cfg, &par);
+	tool_pose(&par, sc, depth, &pose);
+	tool_wall(l->colon, sc->tip_s_m + depth, pose.tip, &in);
+	ev = tool_step(&l->tool, &par, sc, &in,
+		       l->info.period_ns * ENDOSIM_S_PER_NS, &polyp);
+	if (ev & TOOL_EVENT_INJURY) {
+		(void)patient_perforate(haptics_patient(l->haptics),
+					sc->tip_s_m);
+	}
+	tool_publish(&l->tool, ev, polyp, &l->state.tool);
+}
+
+/* Takes a tool command, if any, applies it and answers it. */
+static void take_tool(struct loop *l)
+{
+	struct tool_post p;
+
+	if (mailbox_box_take(&l->tool_box, &p)) {
+		mailbox_answer_set(&l->tool_answer, p.seq,
+				   tool_select(&l->tool, p.c.kind,
+					       p.c.snare_m));
+	}
 }
 
 /* Takes a test command, if any (the control thread checked it is allowed). */
@@ -577,6 +641,7 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	take_guide(l);
 	take_colon(l);
 	take_patient(l);
+	take_tool(l);
 	safety_begin_cycle(&l->safety);
 	check_loop(l, now);
 	rig_read(l->rig, now, &l->fb);
@@ -604,6 +669,8 @@ static void cycle(struct loop *l, uint64_t now, uint64_t latency)
 	l->scenario_was_done = l->fb.hand_done;
 	fill_state(l, now, latency);
 	fill_scope(l);
+	step_tool(l); /* on the scope's state; its injury tears the patient */
+	patient_publish(haptics_patient(l->haptics), &l->state.patient);
 	l->state.publish_ns = l->lockstep ? now : mono_ns();
 	if (l->pub) {
 		publish_state(l->pub, &l->state);
@@ -790,6 +857,11 @@ struct patient *loop_patient(struct loop *l)
 	return haptics_patient(l->haptics);
 }
 
+struct tool *loop_tool(struct loop *l)
+{
+	return &l->tool;
+}
+
 int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 		    struct colon **old, int timeout_ms)
 {
@@ -797,6 +869,8 @@ int loop_swap_colon(struct loop *l, struct colon *colon, uint64_t scene_id,
 	int r;
 
 	l->scene_id_in = scene_id;
+	tool_reset(&l->tool_in);
+	(void)tool_place_polyps(&l->tool_in, colon);
 	r = mailbox_swap_hand(&l->colon_swap, colon, &back, timeout_ms);
 	if (r) {
 		return r;
@@ -852,6 +926,22 @@ int loop_patient_command(struct loop *l, const struct loop_patient_command *c,
 			 int timeout_ms)
 {
 	return mailbox_answer_wait(&l->patient_answer, post_patient(l, c),
+				   timeout_ms);
+}
+
+/* Leaves C in the tool's box; returns its sequence number. */
+static uint32_t post_tool(struct loop *l, const struct loop_tool_command *c)
+{
+	struct tool_post p = { *c, mailbox_answer_next(&l->tool_answer) };
+
+	mailbox_box_put(&l->tool_box, &p);
+	return p.seq;
+}
+
+int loop_tool_command(struct loop *l, const struct loop_tool_command *c,
+		      int timeout_ms)
+{
+	return mailbox_answer_wait(&l->tool_answer, post_tool(l, c),
 				   timeout_ms);
 }
 
@@ -919,6 +1009,16 @@ void loop_patient_post(struct loop *l, const struct loop_patient_command *c)
 int loop_patient_answer(const struct loop *l)
 {
 	return mailbox_answer_last(&l->patient_answer);
+}
+
+void loop_tool_post(struct loop *l, const struct loop_tool_command *c)
+{
+	(void)post_tool(l, c);
+}
+
+int loop_tool_answer(const struct loop *l)
+{
+	return mailbox_answer_last(&l->tool_answer);
 }
 
 const struct endosim_state *loop_state(const struct loop *l)

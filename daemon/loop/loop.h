@@ -26,6 +26,14 @@
  *  - test commands (inject.h): loop_debug(), the control thread only;
  *  - the patient's commands (patient.h: a turn, the hand):
  *    loop_patient_command(), the control thread only;
+ *  - the tool in the working channel (tool.h): the one selected,
+ *    loop_tool_command(), the control thread only; the case's polyps are
+ *    placed for it off the loop, by loop_create() and loop_swap_colon()
+ *    (published by the swap's hand-over), and it is stepped each cycle
+ *    after the scope's state is filled, on the rig's sensing (rig.h:
+ *    a stale reading holds the tool still, the pedal up); its injury of
+ *    the wall is the patient's perforation (patient_perforate()) where
+ *    there is a patient;
  *  - records out to the recorder (recorder.h) while a session records:
  *    loop_set_tap() before the loop starts;
  *  - a scenario's commands for the assistant (scenario.h: turn, press,
@@ -110,6 +118,13 @@ struct loop_patient_command {
 	int op;            /* enum loop_patient_op */
 	int arg;
 	double force_n;    /* PRESS: N, <= 0: [patient] hand_n */
+};
+
+/* What the tool's mailbox carries (tool.h): the tool the nurse hands
+ * over. */
+struct loop_tool_command {
+	int kind;          /* enum tool_kind */
+	double snare_m;    /* a snare's size, TOOL_SNARE_MIN_M..MAX_M */
 };
 
 struct loop_info {
@@ -209,6 +224,15 @@ int loop_patient_command(struct loop *l, const struct loop_patient_command *c,
 			 int timeout_ms);
 
 /*
+ * Control thread: hands the loop a tool (tool_select()) and waits up to
+ * TIMEOUT_MS for its answer: 0, -EINVAL (no such tool, a snare's size
+ * out of range; nothing changed) or -ETIMEDOUT (no answer yet: the loop
+ * may still take it).
+ */
+int loop_tool_command(struct loop *l, const struct loop_tool_command *c,
+		      int timeout_ms);
+
+/*
  * Main thread: latches fault BIT (ENDOSIM_FAULT_INTERNAL: a daemon thread
  * died) with DETAIL from the next cycle on, for good: torque off.
  */
@@ -251,6 +275,9 @@ void loop_hold_tip(struct loop *l, double hold_n_per_m);
  * that turn the patient, press the abdomen or look inside; the daemon's
  * control thread goes through the loop's patient mailbox instead. */
 struct patient *loop_patient(struct loop *l);
+/* In lockstep: the tool in the working channel (tool.h), for the tests
+ * that look inside it or place a polyp where the scope is. */
+struct tool *loop_tool(struct loop *l);
 void loop_post(struct loop *l, enum loop_cmd cmd);
 /* In lockstep: a guidance command for the next cycle; its answer is
  * loop_guide_answer()'s after that cycle (-EINPROGRESS before). */
@@ -261,6 +288,10 @@ int loop_guide_answer(const struct loop *l);
  * that cycle (-EINPROGRESS before). */
 void loop_patient_post(struct loop *l, const struct loop_patient_command *c);
 int loop_patient_answer(const struct loop *l);
+/* In lockstep: a tool for the next cycle, through the daemon's mailbox;
+ * its answer is loop_tool_answer()'s after that cycle. */
+void loop_tool_post(struct loop *l, const struct loop_tool_command *c);
+int loop_tool_answer(const struct loop *l);
 const struct endosim_state *loop_state(const struct loop *l);
 
 #endif

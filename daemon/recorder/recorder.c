@@ -357,8 +357,13 @@ static void tear_event(struct recorder *r, const struct session_record *rec,
 	if (rec->torn_segment < 0 || rec->torn_segment == was->torn_segment) {
 		return;
 	}
-	snprintf(text, sizeof(text), "%s torn by the tip at %.1f N",
-		 anatomy_segment_name(rec->torn_segment), f);
+	if (rec->tool_events & ENDOSIM_TOOL_INJURY) {
+		snprintf(text, sizeof(text), "%s torn by the snare's current",
+			 anatomy_segment_name(rec->torn_segment));
+	} else {
+		snprintf(text, sizeof(text), "%s torn by the tip at %.1f N",
+			 anatomy_segment_name(rec->torn_segment), f);
+	}
 	patient_event(r, rec, (struct session_event){
 		.kind = SESSION_EVENT_TEAR, .axis = -1,
 		.detail = (uint32_t)rec->torn_segment, .value = f }, text);
@@ -381,7 +386,54 @@ static void sedation_event(struct recorder *r,
 		.value = rec->sedation }, text);
 }
 
-/* The patient's events from the change since the last record. */
+/* A tool handed over (or first seen in hand). */
+static void select_event(struct recorder *r, const struct session_record *rec,
+			 const struct session_record *was)
+{
+	char text[EVENT_TEXT];
+
+	if (rec->tool_kind == was->tool_kind &&
+	    rec->tool_snare_m == was->tool_snare_m) {
+		return;
+	}
+	if (rec->tool_kind == ENDOSIM_TOOL_SNARE) {
+		snprintf(text, sizeof(text), "a %.0f mm snare handed over",
+			 rec->tool_snare_m * 1e3);
+	} else {
+		snprintf(text, sizeof(text), "%s handed over",
+			 names_tool(rec->tool_kind));
+	}
+	patient_event(r, rec, (struct session_event){
+		.kind = SESSION_EVENT_TOOL, .axis = (int32_t)rec->tool_kind,
+		.value = rec->tool_snare_m }, text);
+}
+
+/* Each of the tool's events in this record's cycle. */
+static void tool_events(struct recorder *r, const struct session_record *rec)
+{
+	int polyp = rec->tool_event_polyp;
+	char text[EVENT_TEXT];
+
+	for (uint32_t bit = 1, left = rec->tool_events; left; bit <<= 1) {
+		if (!(left & bit)) {
+			continue;
+		}
+		left &= ~bit;
+		if (polyp >= 0) {
+			snprintf(text, sizeof(text), "%s, polyp %d",
+				 names_tool_event(bit), polyp);
+		} else {
+			snprintf(text, sizeof(text), "%s",
+				 names_tool_event(bit));
+		}
+		patient_event(r, rec, (struct session_event){
+			.kind = SESSION_EVENT_TOOL, .axis = polyp,
+			.detail = bit, .value = rec->tool_opening }, text);
+	}
+}
+
+/* The patient's and the tool's events from the change since the last
+ * record. */
 static void patient_events(struct recorder *r, const struct session_record *rec)
 {
 	const struct session_record *was = r->seen_record ? &r->last
@@ -393,6 +445,8 @@ static void patient_events(struct recorder *r, const struct session_record *rec)
 	burst_event(r, rec, was);
 	tear_event(r, rec, was);
 	sedation_event(r, rec, was);
+	select_event(r, rec, was);
+	tool_events(r, rec);
 }
 
 /* STATE, FAULT, guidance and the patient's events from the change between

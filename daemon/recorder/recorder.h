@@ -24,7 +24,8 @@
  * The recorder derives STATE and FAULT events from the records' state and
  * fault bits, the guidance's NOTE events from its phase, the patient's
  * POSITION, HAND, VALVE and PERFORATION events from its fields (the
- * site's name from the session's colon), takes PARAM events from the
+ * site's name from the session's colon), the tool's TOOL events (a tool
+ * handed over, each of its event bits), takes PARAM events from the
  * control thread
  * (recorder_param()), and at stop writes the END frame (the final
  * metrics), fsyncs and closes. One session at a time.

@@ -15,6 +15,10 @@ struct live {
 	uint32_t valves;
 	uint64_t valves_until_ns; /* the valves hold until then */
 	uint32_t released;        /* hand_release()s so far */
+	double tool_depth_m;      /* the tool's (tool.h) */
+	double tool_opening;
+	bool tool_pedal;
+	uint64_t tool_until_ns;   /* the tool holds until then */
 };
 
 struct hand {
@@ -81,6 +85,18 @@ void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 	}
 	h->mailbox.valves = valves;
 	h->mailbox.valves_until_ns = until;
+	seqlock_write_end(&h->lock);
+}
+
+void hand_set_tool(struct hand *h, double depth_m, double opening, bool pedal,
+		   double hold_s, uint64_t now_ns)
+{
+	seqlock_write_begin(&h->lock);
+	h->mailbox.tool_depth_m = depth_m;
+	h->mailbox.tool_opening = opening;
+	h->mailbox.tool_pedal = pedal;
+	h->mailbox.tool_until_ns = now_ns + (uint64_t)(hold_s *
+						       ENDOSIM_NS_PER_S);
 	seqlock_write_end(&h->lock);
 }
 
@@ -195,6 +211,16 @@ uint32_t hand_valves(const struct hand *h, double t_s, uint64_t now_ns)
 		return h->cached.valves;
 	}
 	return h->scenario ? scenario_valves(h->scenario, t_s) : 0;
+}
+
+void hand_tool(const struct hand *h, uint64_t now_ns, double *depth_m,
+	       double *opening, bool *pedal)
+{
+	bool live = now_ns < h->cached.tool_until_ns;
+
+	*depth_m = live ? h->cached.tool_depth_m : NAN;
+	*opening = live ? h->cached.tool_opening : NAN;
+	*pedal = live && h->cached.tool_pedal;
 }
 
 void hand_patient(struct hand *h, double t_s, struct scenario_patient *out)

@@ -4,7 +4,9 @@
  * targets, or timed pushes) or from live input through the socket (the
  * viewer's keyboard or gamepad). Live input, while it holds, overrides the
  * scenario on every axis; live input of the valves alone (endoctl patient
- * valve) holds the valves and leaves the forces as they are.
+ * valve) holds the valves and leaves the forces as they are; the tool in
+ * the working channel (its depth, the handle, the pedal) holds on its own
+ * too.
  *
  * Every force is clamped to the configured strongest push of a hand, and
  * fades along the motion to nothing at the hand's top speed, as a
@@ -23,6 +25,7 @@
 #ifndef ENDOSIM_HAND_H
 #define ENDOSIM_HAND_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "conf/config.h"
@@ -49,6 +52,15 @@ const struct scenario *hand_scenario(const struct hand *h);
 void hand_set_live(struct hand *h, const double force[ENDOSIM_AXES],
 		   uint32_t valves, double hold_s, uint64_t now_ns);
 
+/*
+ * Control thread (one writer): the tool in the working channel as the
+ * hand holds it (tool.h: its depth beyond the channel's exit, m, the
+ * handle's opening 0..1, the pedal down), for HOLD_S seconds after
+ * NOW_NS; the forces and the valves as they were. Lock-free.
+ */
+void hand_set_tool(struct hand *h, double depth_m, double opening, bool pedal,
+		   double hold_s, uint64_t now_ns);
+
 /* Control thread: hands off, every axis let go (lock-free). */
 void hand_release(struct hand *h);
 
@@ -66,6 +78,15 @@ void hand_forces(struct hand *h, double t_s, uint64_t now_ns,
  * it holds, else the scenario's (none without one). Never blocks.
  */
 uint32_t hand_valves(const struct hand *h, double t_s, uint64_t now_ns);
+
+/*
+ * Force loop, after hand_forces() of a cycle: the tool as the live input
+ * holds it into *DEPTH_M, *OPENING and *PEDAL; once the input lapses (a
+ * client that stops sending), the tool still and the handle still
+ * (non-finite: tool.h's rule) and the pedal up. Never blocks.
+ */
+void hand_tool(const struct hand *h, uint64_t now_ns, double *depth_m,
+	       double *opening, bool *pedal);
 
 /*
  * Force loop, once a cycle: the scenario's commands for the assistant

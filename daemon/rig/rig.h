@@ -49,6 +49,12 @@ struct rig_feedback {
 	uint32_t valves;       /* the handle's (enum endosim_valve): pressed
 				  or covered; a stale or lost input reads
 				  released (0) */
+	double tool_depth_m;   /* the tool in the working channel (tool.h):
+				  its depth beyond the exit, m; */
+	double tool_opening;   /* its handle, 0 closed .. 1 open; a stale
+				  or lost input reads non-finite (the tool
+				  and the handle still) */
+	bool tool_pedal;       /* the cautery's pedal; stale or lost: up */
 	struct scenario_patient patient; /* simulated hand: the scenario's
 				  latest command for the assistant, a new
 				  number at most once a cycle (hand_patient());

@@ -53,6 +53,8 @@ static void sim_read(struct rig *rig, uint64_t now_ns, struct rig_feedback *fb)
 	fb->hand_time_s = s->t_s;
 	fb->hand_done = scn && scenario_done(scn, s->t_s);
 	fb->valves = hand_valves(s->hand, s->t_s, now_ns);
+	hand_tool(s->hand, now_ns, &fb->tool_depth_m, &fb->tool_opening,
+		  &fb->tool_pedal);
 	hand_patient(s->hand, s->t_s, &fb->patient);
 }
 

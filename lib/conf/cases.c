@@ -89,6 +89,18 @@ void cases_patient_params(const struct config *cfg,
 	};
 }
 
+void cases_tool_params(const struct config *cfg, struct tool_params *p)
+{
+	const struct config_tool *c = &cfg->tool;
+
+	*p = (struct tool_params)TOOL_PARAMS_DEFAULT;
+	p->channel_angle_rad = c->channel_angle_deg * TOOL_RAD_PER_DEG;
+	p->channel_offset_m = c->channel_offset_m;
+	p->hot_power_w = c->hot_power_w;
+	p->cut_j_per_m2 = c->cut_j_per_m2;
+	p->cold_max_m = c->cold_max_m;
+}
+
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p)
 {
 	const struct config_rod *r = &cfg->rod;

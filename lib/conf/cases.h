@@ -41,6 +41,8 @@ void cases_haptics_params(const struct config *cfg,
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p);
 void cases_patient_params(const struct config *cfg,
 			  struct patient_params *p);
+/* The tools' ([tool]; the rest tool.h's defaults). */
+void cases_tool_params(const struct config *cfg, struct tool_params *p);
 
 /*
  * Builds the colon of case NAME in cfg->colon.directory, or, when NAME is

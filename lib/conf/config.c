@@ -772,6 +772,28 @@ static const struct parse_key keys[] = {
 	KD("scope", "lr_limit_rad", scope.limit_rad[1],
 	   SCOPE_DEFAULT_LR_LIMIT_RAD, 0, 3.1416, "rad", LIVE,
 	   "largest tip bend left or right (160 deg)"),
+
+	KD("tool", "channel_angle_deg", tool.channel_angle_deg,
+	   TOOL_DEFAULT_CHANNEL_ANGLE_DEG, 0, 360, "deg", LIVE,
+	   "where the working channel opens on the tip's face: clockwise "
+	   "from 12 o'clock in the image (150: 5 o'clock)"),
+	KD("tool", "channel_offset_m", tool.channel_offset_m,
+	   TOOL_DEFAULT_CHANNEL_OFFSET_M, 0, 0.01, "m", LIVE,
+	   "the channel's exit from the tip's axis"),
+	KD("tool", "snare_size_m", tool.snare_size_m, TOOL_DEFAULT_SNARE_M,
+	   TOOL_SNARE_MIN_M, TOOL_SNARE_MAX_M, "m", LIVE,
+	   "a snare's loop fully open, when endoctl tool select snare gives "
+	   "no size"),
+	KD("tool", "hot_power_w", tool.hot_power_w, TOOL_DEFAULT_HOT_POWER_W,
+	   1, 200, "W", LIVE,
+	   "the generator's power into the tissue, the pedal down"),
+	KD("tool", "cut_j_per_m2", tool.cut_j_per_m2, TOOL_DEFAULT_CUT_J_PER_M2,
+	   1e4, 1e8, "J/m^2", LIVE,
+	   "the hot cut's energy per area of the cross-section the snare "
+	   "holds"),
+	KD("tool", "cold_max_m", tool.cold_max_m, TOOL_DEFAULT_COLD_MAX_M, 0,
+	   0.03, "m", LIVE,
+	   "a cold snare cuts what it holds thinner than this"),
 };
 
 #define KEYS (sizeof(keys) / sizeof(keys[0]))

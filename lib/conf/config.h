@@ -24,6 +24,7 @@
 #include "base/parse.h"
 #include "proto/endosim_shm.h"
 #include "model/haptics.h"
+#include "model/tool.h"
 #include "conf/regspec.h"
 
 #define CONFIG_DEFAULT_PATH "/etc/endosim/endosimd.conf"
@@ -281,6 +282,14 @@ struct config {
 		double error_s;      /* the error held so long: cannot follow */
 		double hand_filter_hz; /* the hand's force estimate's low pass */
 	} guide;
+	struct config_tool {     /* [tool]: the working channel's (tool.h) */
+		double channel_angle_deg; /* clockwise from 12 o'clock */
+		double channel_offset_m;
+		double snare_size_m;  /* a snare selected without a size */
+		double hot_power_w;
+		double cut_j_per_m2;
+		double cold_max_m;
+	} tool;
 };
 
 /* The keys' own flags (struct parse_key flags). */

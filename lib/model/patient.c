@@ -257,6 +257,19 @@ int patient_step(struct patient *pt, const struct patient_input *in,
 	return pt->torn;
 }
 
+int patient_perforate(struct patient *pt, double s_m)
+{
+	int seg;
+
+	if (!pt->p.enabled || !pt->colon || pt->perforation.torn) {
+		return -1;
+	}
+	seg = fluid_segment_at(&pt->fluid, s_m);
+	pt->perforation.torn = true;
+	pt->perforation.segment = seg;
+	return seg;
+}
+
 void patient_gravity(const struct patient *pt, double g[3])
 {
 	if (!pt->p.enabled) {

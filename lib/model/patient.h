@@ -168,6 +168,14 @@ int patient_step(struct patient *pt, const struct patient_input *in,
 		 double dt_s);
 
 /*
+ * The wall torn through where the scope's tip is, at material S_M, by
+ * something other than the tip's force (a tool's current, tool.h): the
+ * perforation as the tip's would be (torn_segment, once). Returns the
+ * segment torn, or -1 (disabled, or torn already). Fixed work.
+ */
+int patient_perforate(struct patient *pt, double s_m);
+
+/*
  * The values the force loop's non-finite check watches, into V: the
  * gas's volume and pressure, each segment's radius factor, the fluid's
  * volume and level in each segment, the lens' smear, murk and red-out,

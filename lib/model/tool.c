@@ -9,6 +9,9 @@
 #include "model/centreline.h"
 #include "model/colon.h"
 
+_Static_assert(ANATOMY_MAX_POLYPS == ENDOSIM_POLYPS,
+	       "tool: every polyp of a case published");
+
 /* Paris' limit of a IIa lesion's height over the mucosa, m. */
 #define PARIS_IIA_MAX_M 0.0025
 
@@ -106,6 +109,25 @@ int tool_place_polyps(struct tool *t, const struct colon *c)
 		added++;
 	}
 	return added;
+}
+
+void tool_wall(const struct colon *c, double s_m, const double tip[3],
+	       struct tool_input *in)
+{
+	struct centreline_point q;
+	double x[3], out[3], theta;
+
+	in->wall = colon_anatomy(c) != NULL && isfinite(s_m);
+	if (!in->wall) {
+		return;
+	}
+	centreline_at_s(colon_centreline(c), s_m, &q);
+	vec3_sub(x, tip, q.p);
+	theta = atan2(vec3_dot(x, q.v), vec3_dot(x, q.u));
+	vec3_scale(out, q.u, cos(theta));
+	vec3_axpy(out, out, sin(theta), q.v);
+	vec3_axpy(in->wall_point, q.p, colon_lumen_radius(c, s_m, theta), out);
+	vec3_scale(in->wall_normal, out, -1);
 }
 
 double tool_polyp_thickness(const struct tool_polyp *p)
@@ -421,6 +443,7 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 		t->depth_m = in->depth_m;
 		t->opening = clamp01(in->opening);
 	}
+	t->pedal = pedal;
 	if (!pedal) {
 		t->injured = false;
 	}
@@ -438,4 +461,31 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 		*polyp = which;
 	}
 	return ev;
+}
+
+void tool_publish(const struct tool *t, unsigned events, int polyp,
+		  struct endosim_tool_state *out)
+{
+	memset(out, 0, sizeof(*out));
+	out->kind = (uint32_t)t->kind;
+	out->pedal = t->pedal;
+	out->snare_m = t->snare_m;
+	out->depth_m = t->depth_m;
+	out->opening = t->opening;
+	out->loop_m = t->kind == TOOL_SNARE ? t->loop_m : 0;
+	vec3_copy(out->tip, t->pose.tip);
+	vec3_copy(out->loop_centre, t->loop_centre);
+	out->captured = t->captured;
+	out->events = events;
+	out->event_polyp = polyp;
+	out->clips = (uint32_t)t->clips;
+	out->polyps = (uint32_t)t->polyps;
+	for (int i = 0; i < t->polyps; i++) {
+		const struct tool_polyp *p = &t->polyp[i];
+
+		out->polyp[i] = (struct endosim_tool_polyp){
+			.state = (uint32_t)p->state, .lifted = p->lifted,
+			.energy_j = p->energy_j, .bites = (uint32_t)p->bites,
+		};
+	}
 }

@@ -128,32 +128,35 @@
 
 struct colon;
 
+/* The published kinds and bits (endosim_shm.h), the model's. */
 enum tool_kind {
-	TOOL_NONE = 0,
-	TOOL_FORCEPS,
-	TOOL_SNARE,
-	TOOL_NEEDLE,
-	TOOL_CLIP,
+	TOOL_NONE = ENDOSIM_TOOL_NONE,
+	TOOL_FORCEPS = ENDOSIM_TOOL_FORCEPS,
+	TOOL_SNARE = ENDOSIM_TOOL_SNARE,
+	TOOL_NEEDLE = ENDOSIM_TOOL_NEEDLE,
+	TOOL_CLIP = ENDOSIM_TOOL_CLIP,
 };
 
-/* A snare's sizes, its loop's diameter fully open, m. */
+/* A snare's sizes, its loop's diameter fully open, m; the one the nurse
+ * hands over unless told (a standard loop's smallest). */
 #define TOOL_SNARE_MIN_M 0.010
 #define TOOL_SNARE_MAX_M 0.030
+#define TOOL_DEFAULT_SNARE_M 0.015
 
 enum tool_polyp_state {
-	TOOL_POLYP_IN_PLACE = 0,
-	TOOL_POLYP_CAPTURED,  /* held in the snare's loop */
-	TOOL_POLYP_CUT,       /* cut free: lies in the lumen */
+	TOOL_POLYP_IN_PLACE = ENDOSIM_POLYP_IN_PLACE,
+	TOOL_POLYP_CAPTURED = ENDOSIM_POLYP_CAPTURED, /* held in the loop */
+	TOOL_POLYP_CUT = ENDOSIM_POLYP_CUT, /* cut free: lies in the lumen */
 };
 
 /* What happened in a step: tool_step()'s bits. */
-#define TOOL_EVENT_CAPTURE 0x1u /* the loop closed on a polyp */
-#define TOOL_EVENT_RELEASE 0x2u /* it let go (the handle opened) */
-#define TOOL_EVENT_CUT 0x4u     /* a polyp cut free */
-#define TOOL_EVENT_INJURY 0x8u  /* current into the wall (see above) */
-#define TOOL_EVENT_LIFT 0x10u   /* an injection lifted a base */
-#define TOOL_EVENT_BITE 0x20u   /* the forceps took a sample */
-#define TOOL_EVENT_CLIP 0x40u   /* a clip closed on the wall */
+#define TOOL_EVENT_CAPTURE ENDOSIM_TOOL_CAPTURE /* the loop closed on one */
+#define TOOL_EVENT_RELEASE ENDOSIM_TOOL_RELEASE /* the handle opened */
+#define TOOL_EVENT_CUT ENDOSIM_TOOL_CUT         /* a polyp cut free */
+#define TOOL_EVENT_INJURY ENDOSIM_TOOL_INJURY   /* current into the wall */
+#define TOOL_EVENT_LIFT ENDOSIM_TOOL_LIFT       /* an injection lifted one */
+#define TOOL_EVENT_BITE ENDOSIM_TOOL_BITE       /* the forceps' sample */
+#define TOOL_EVENT_CLIP ENDOSIM_TOOL_CLIP_PLACED /* a clip on the wall */
 
 struct tool_params {
 	double channel_angle_rad; /* clockwise from 12 o'clock, image */
@@ -173,7 +176,10 @@ struct tool_params {
 	double clip_m;            /* a clip's jaws, long */
 };
 
-#define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (150.0 * 3.14159265358979323846 / 180)
+#define TOOL_DEFAULT_CHANNEL_ANGLE_DEG 150.0
+#define TOOL_DEFAULT_CHANNEL_ANGLE_RAD (TOOL_DEFAULT_CHANNEL_ANGLE_DEG * \
+					TOOL_RAD_PER_DEG)
+#define TOOL_RAD_PER_DEG (3.14159265358979323846 / 180)
 #define TOOL_DEFAULT_CHANNEL_OFFSET_M 0.004
 #define TOOL_DEFAULT_CUT_J_PER_M2 2.5e6
 #define TOOL_DEFAULT_HOT_POWER_W 30.0
@@ -244,6 +250,7 @@ struct tool {
 	double snare_m;      /* the snare's size, D */
 	double depth_m;      /* the last finite input's */
 	double opening;
+	bool pedal;          /* the last step's (up while the input is stale) */
 	struct tool_pose pose;
 	double command_m;    /* the loop's diameter the handle asks for */
 	double loop_m;       /* the loop's: command_m, or a held thickness */
@@ -287,6 +294,16 @@ int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
  */
 int tool_place_polyps(struct tool *t, const struct colon *c);
 
+/*
+ * The wall nearest the tool's tip into IN (wall, wall_point, wall_normal):
+ * colon C's undeformed wall (as the polyps are placed) on the ring of the
+ * centreline's frame at the material S_M nearest the tip, in the tip's
+ * direction from the centreline. No wall for an imported mesh (no case).
+ * Fixed work, no allocation: the force loop's.
+ */
+void tool_wall(const struct colon *c, double s_m, const double tip[3],
+	       struct tool_input *in);
+
 /* The thickness (m) and the height (m) of polyp P's axis, which the loop
  * must close around, with lift LIFT_M (tool_params' lift_m). */
 double tool_polyp_thickness(const struct tool_polyp *p);
@@ -298,6 +315,10 @@ double tool_polyp_height(const struct tool_polyp *p, double lift_m);
  * channel's exit (above: min(D, 2 l / pi)).
  */
 double tool_loop_diameter(double snare_m, double opening, double depth_m);
+
+/* T as published, with this step's EVENTS and the POLYP they concern. */
+void tool_publish(const struct tool *t, unsigned events, int polyp,
+		  struct endosim_tool_state *out);
 
 /* The tool's pose at DEPTH_M on the scope's tip in SC (tip, dir, up). */
 void tool_pose(const struct tool_params *par,

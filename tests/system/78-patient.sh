@@ -194,7 +194,7 @@ col() {
 		{ print $(c[k]) }' "$TMP/s.csv" | sort -u | tr '\n' ' '
 }
 check "the CSV: the patient's columns" eval \
-	"head -n 1 $TMP/s.csv | grep -q ',patient_enabled,patient_valves,patient_position,patient_turning,patient_turn_1,patient_gas_m3,patient_pressure_pa,patient_gas_in_m3,patient_factor_anal_canal_1,.*,patient_fluid_cecum_m3,patient_hand_site,patient_hand_n,patient_lens_smear_1,patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment,patient_sedation,patient_pain,.*,patient_torn_segment$'"
+	"head -n 1 $TMP/s.csv | grep -q ',patient_enabled,patient_valves,patient_position,patient_turning,patient_turn_1,patient_gas_m3,patient_pressure_pa,patient_gas_in_m3,patient_factor_anal_canal_1,.*,patient_fluid_cecum_m3,patient_hand_site,patient_hand_n,patient_lens_smear_1,patient_lens_murk_1,patient_lens_redout_1,patient_burst_segment,patient_sedation,patient_pain,.*,patient_torn_segment,tool_kind,'"
 check "... enabled throughout, left lateral then supine" \
 	test "$(col patient_enabled)$(col patient_position)" = "1 0 1 "
 check "... the hand at llq and none" test "$(col patient_hand_site)" = "-1 0 "

@@ -131,3 +131,24 @@ void offline_command(struct offline *o, int cmd)
 {
 	loop_post(o->loop, (enum loop_cmd)cmd);
 }
+
+void offline_tool_input(struct offline *o, double depth_m, double opening,
+			bool pedal, double hold_s)
+{
+	hand_set_tool(o->hand, depth_m, opening, pedal, hold_s, o->stamp_ns);
+}
+
+void offline_tool_select(struct offline *o, int kind, double snare_m)
+{
+	loop_tool_post(o->loop, &(struct loop_tool_command){ kind, snare_m });
+}
+
+int offline_tool_answer(const struct offline *o)
+{
+	return loop_tool_answer(o->loop);
+}
+
+struct tool *offline_tool(struct offline *o)
+{
+	return loop_tool(o->loop);
+}

@@ -15,6 +15,7 @@
 #ifndef ENDOSIM_OFFLINE_H
 #define ENDOSIM_OFFLINE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -97,5 +98,24 @@ void offline_command(struct offline *o, int cmd);
  */
 void offline_guide(struct offline *o, const struct guide_command *c);
 int offline_guide_answer(const struct offline *o);
+
+/*
+ * The tool in the working channel as the hand holds it (hand_set_tool():
+ * DEPTH_M beyond the channel's exit, the handle's OPENING, the PEDAL)
+ * from the next cycle on, for HOLD_S seconds of simulated time.
+ */
+void offline_tool_input(struct offline *o, double depth_m, double opening,
+			bool pedal, double hold_s);
+
+/*
+ * The tool KIND (enum tool_kind) of size SNARE_M handed over for the next
+ * cycle (loop_tool_post()); its answer, once that cycle ran, is
+ * offline_tool_answer()'s.
+ */
+void offline_tool_select(struct offline *o, int kind, double snare_m);
+int offline_tool_answer(const struct offline *o);
+
+/* The loop's tool (loop_tool()), for the tests that look inside it. */
+struct tool *offline_tool(struct offline *o);
 
 #endif

@@ -118,6 +118,8 @@ static int put_record(struct synth *y, double t, double v, double look,
 	struct session_record r;
 
 	memset(&r, 0, sizeof(r));
+	r.tool_captured = -1; /* no tool, as the daemon records it */
+	r.tool_event_polyp = -1;
 	r.cycle = y->k;
 	r.stamp_ns = START_NS + y->k * period_ns;
 	pose(y, &r, look, phase);

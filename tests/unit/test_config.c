@@ -227,7 +227,8 @@ static void refused_at(const char *text, int line, const char *what)
 	assert_memory_equal(&cfg, &before, sizeof(cfg));
 }
 
-/* The patient's keys (issue 22): every [patient] key and [rod]
+/* The patient's keys (issue 22) and the tools' (issue 25): every [patient]
+ * and [tool] key and [rod]
  * colon_mass_per_m_kg beyond either end of its range, malformed, or not
  * one of its choices, refused with its file, line and key. */
 static void test_patient_keys(void **state)
@@ -241,6 +242,7 @@ static void test_patient_keys(void **state)
 				  k->max + fabs(k->max) + 1 };
 
 		if (strcmp(k->section, "patient") &&
+		    strcmp(k->section, "tool") &&
 		    strcmp(k->name, "colon_mass_per_m_kg")) {
 			continue;
 		}
@@ -501,6 +503,21 @@ static void same_metrics(const struct config *cfg)
 	SAME(c, m, pain_level);
 }
 
+/* The tools' ([tool]), and the snare's size the control thread takes. */
+static void same_tool(const struct config *cfg)
+{
+	const struct tool_params m = TOOL_PARAMS_DEFAULT;
+	struct tool_params c;
+
+	cases_tool_params(cfg, &c);
+	SAME(c, m, channel_angle_rad);
+	SAME(c, m, channel_offset_m);
+	SAME(c, m, cut_j_per_m2);
+	SAME(c, m, hot_power_w);
+	SAME(c, m, cold_max_m);
+	same("snare_size_m", cfg->tool.snare_size_m, TOOL_DEFAULT_SNARE_M);
+}
+
 /* CFG's model parameters (cases.h) field by field against the owners'. */
 static void same_as_owners(const struct config *cfg)
 {
@@ -527,6 +544,7 @@ static void same_as_owners(const struct config *cfg)
 	cases_haptics_params(cfg, &ch);
 	same_haptics(&ch);
 	same_metrics(cfg);
+	same_tool(cfg);
 	if (strcmp(cfg->records.database, RECORDS_DEFAULT_NAME)) {
 		print_message("records.database: %s, records.h: %s\n",
 			      cfg->records.database, RECORDS_DEFAULT_NAME);
@@ -537,7 +555,7 @@ static void same_as_owners(const struct config *cfg)
 /*
  * Each default is written once, in the module that owns it (scope.h,
  * colon.h, rod.h, lumen.h, flex.h, rodscope.h, haptics.h, gas.h, fluid.h,
- * lens.h, patient.h), and the
+ * lens.h, patient.h, tool.h), and the
  * table refers to it; the metrics' thresholds and the records' file name
  * twice (metrics.h, records.h and the table). The configuration's defaults, as config_defaults() sets them
  * and as --print-config writes them and a file reads them back, make the

@@ -69,6 +69,8 @@ static const struct {
 	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
 	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
 	PATIENT(reserved, "padding"),
+	NOT(fields_tool, struct endosim_tool_state, reserved, "padding"),
+	NOT(fields_tool_polyp, struct endosim_tool_polyp, reserved, "padding"),
 #undef NOT
 #undef STATE
 #undef CAUSE
@@ -154,7 +156,7 @@ static void test_state_covered(void **state)
 	size_t n = all_tables(t, COUNT(t)), bad = 0;
 
 	(void)state;
-	assert_int_equal(n, 8);
+	assert_int_equal(n, 10);
 	for (size_t k = 0; k < n; k++) {
 		for (size_t i = 0; i < t[k]->n_fields; i++) {
 			const struct fields_field *d = &t[k]->fields[i];
@@ -394,7 +396,7 @@ static void test_record_covered(void **state)
 	}
 }
 
-/* The CSV's columns, as docs/SESSION_FORMAT.md's format 5 has them. */
+/* The CSV's columns, as docs/SESSION_FORMAT.md's format 6 has them. */
 static const char csv_columns[] =
 	"cycle,state,fault_bits,insertion_position_m,roll_position_rad,"
 	"wheel_ud_position_rad,wheel_lr_position_rad,"
@@ -435,7 +437,10 @@ static const char csv_columns[] =
 	/* format 5: the patient responds */
 	"patient_sedation,patient_pain,patient_pain_stimulus,"
 	"patient_pain_cause,patient_pain_place,patient_heart_rate_bpm,"
-	"patient_spo2_1,patient_torn_segment";
+	"patient_spo2_1,patient_torn_segment,"
+	/* format 6: the tool in the working channel */
+	"tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,"
+	"tool_captured,tool_events,tool_event_polyp";
 
 /* The column called NAME among C's N. */
 static const struct fields_column *column(const struct fields_column *c,
@@ -484,9 +489,15 @@ static void test_columns(void **state)
 			 8 * sizeof(float));
 	assert_int_equal(column(c, n, "patient_hand_site")->stored,
 			 FIELDS_STORED_I32);
+	assert_int_equal(column(c, n, "patient_torn_segment")->stored,
+			 FIELDS_STORED_I32);
+	assert_int_equal(column(c, n, "tool_events")->stored,
+			 FIELDS_STORED_U32);
+	assert_int_equal(column(c, n, "tool_opening_1")->stored,
+			 FIELDS_STORED_F32);
 	assert_int_equal(c[n - 1].stored, FIELDS_STORED_I32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, torn_segment));
+			 offsetof(struct session_record, tool_event_polyp));
 }
 
 /* A state whose every double and word differs. */

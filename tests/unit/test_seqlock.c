@@ -166,11 +166,26 @@ static void test_reader_checks_header(void **state)
 	assert_null(shm_reader_open(shm_name));
 }
 
+/*
+ * The layout's version goes with its size: a struct endosim_state that
+ * grows or shrinks without a bump of ENDOSIM_SHM_VERSION fails here (a
+ * reader of the old layout would then take the new one's bytes for its
+ * own where the sizes happen to agree). Bump it, say beside it in
+ * endosim_shm.h what changed, and write both here. 9: the tool.
+ */
+static void test_layout_version(void **state)
+{
+	(void)state;
+	assert_int_equal(ENDOSIM_SHM_VERSION, 9);
+	assert_int_equal(sizeof(struct endosim_state), 10432);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_no_torn_copies),
 		cmocka_unit_test(test_reader_checks_header),
+		cmocka_unit_test(test_layout_version),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -217,6 +217,8 @@ static int read_sized(const char *head, size_t length, size_t fields,
 			.patient = 1, .gas_m3 = 0.002f, .hand_site = 1,
 			.burst_segment = -1, .lumen_factor = { [8] = 1.2f },
 			.pain = 4.5f, .torn_segment = 2,
+			.tool_kind = ENDOSIM_TOOL_SNARE, .tool_captured = 3,
+			.tool_event_polyp = 3,
 		};
 
 		memcpy(raw, &r, fields);
@@ -247,7 +249,8 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * than format 1's, or not the size the header says, are refused. The CSV
  * of a file of format 3 or older has format 3's columns, a format-4
  * file's the patient's body's too (and nothing torn by the tip), a
- * format-5 file's its pain as well.
+ * format-5 file's its pain as well (and no tool), a
+ * format-6 file's the tool's too.
  */
 static void test_old_layout(void **state)
 {
@@ -316,8 +319,10 @@ static void test_old_layout(void **state)
 	assert_non_null(strstr(csv, ",patient_burst_segment"));
 	assert_null(strstr(csv, "patient_pain"));
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=5\nrecord_size=520\n", 520, all,
-				    &f), 0);
+	assert_int_equal(read_sized("format=5\nrecord_size=520\n", 520,
+				    SESSION_RECORD_SIZE_5, &f), 0);
+	assert_int_equal(SESSION_RECORD_SIZE_5,
+			 offsetof(struct session_record, tool_kind));
 	assert_int_equal(f.records[2].compute_ns, 9);
 	assert_true(f.records[2].trans_rod_n == 2.5f);
 	assert_true(f.records[2].friction_n == 0.5f);
@@ -331,6 +336,25 @@ static void test_old_layout(void **state)
 	csv_header(&f, csv, sizeof(csv));
 	assert_non_null(strstr(csv, ",patient_pain,"));
 	assert_non_null(strstr(csv, ",patient_torn_segment"));
+	assert_null(strstr(csv, "tool"));
+	/* format 5's: no tool, nothing held */
+	assert_int_equal(f.records[2].tool_kind, ENDOSIM_TOOL_NONE);
+	assert_int_equal(f.records[2].tool_captured, -1);
+	assert_int_equal(f.records[2].tool_event_polyp, -1);
+	session_record_to_state(&f.records[2], &st);
+	assert_int_equal(st.tool.captured, -1);
+	f.records[2].tool_captured = 0; /* a writer's zero: still none */
+	session_record_to_state(&f.records[2], &st);
+	assert_int_equal(st.tool.captured, -1);
+	assert_int_equal(st.tool.event_polyp, -1);
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=6\nrecord_size=552\n", 552, all,
+				    &f), 0);
+	assert_int_equal(f.records[2].torn_segment, 2);
+	assert_int_equal(f.records[2].tool_kind, ENDOSIM_TOOL_SNARE);
+	assert_int_equal(f.records[2].tool_captured, 3);
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",patient_torn_segment,tool_kind,"));
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);

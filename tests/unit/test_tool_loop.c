@@ -1,0 +1,313 @@
+/*
+ * test_tool_loop.c - the tool in the running force loop (issue 25), in
+ * lockstep (offline.h), on the polyps case (config/cases/polyps.case),
+ * the paper's model (a scope that stands still when nothing pushes it):
+ *  - the case's polyps are placed for the tool when the loop is made,
+ *    every one published, nothing captured;
+ *  - a tool reaches the loop through its mailbox: a snare of 20 mm; one
+ *    of 35 mm or an unknown kind is refused there and changes nothing;
+ *  - the hand's sensing reaches the loop: the sheath pushed out of the
+ *    channel and the handle opened, the published loop's diameter is
+ *    tool_loop_diameter()'s, d = min(D, 2 l / pi), at every cycle;
+ *  - the case's pedunculated polyp, moved to stand under the open loop
+ *    where the scope is (its stalk along the channel's radial direction,
+ *    through the loop's centre), is captured as the handle closes, the
+ *    loop then held at the stalk's thickness, published;
+ *  - the pedal down, it is cut after the documented energy over the
+ *    power, E = cut_j_per_m2 pi t^2 / 4 at hot_power_w, within 2 %, its
+ *    energy published;
+ *  - a stale input (the client stops sending) holds the tool and the
+ *    handle still and the pedal up: no energy goes in while it lasts;
+ *  - the snare closed on the case's sessile polyp, unlifted, the pedal
+ *    down: an injury of the wall, the patient's perforation in the same
+ *    cycle (torn_segment; with no patient, the tool's event alone).
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "base/vec3.h"
+#include "conf/cases.h"
+#include "model/tool.h"
+#include "offline.h"
+
+#define DT (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
+#define SNARE_M 0.020
+#define DEPTH_M 0.010
+#define HOLD_S 0.003 /* three cycles: stale unless renewed */
+#define SHUT 0.1      /* the handle closed on the stalk, not cold-cut */
+
+struct run {
+	struct config cfg;
+	struct offline *o;
+	const struct endosim_state *st;
+	double depth_m, opening;
+	bool pedal;
+	double was_depth_m, was_opening; /* sent before the last cycle: the
+					    simulated hand's reading lags a
+					    cycle (rig_sim.c) */
+	unsigned events;   /* since the last look */
+	int ip;            /* the case's pedunculated polyp */
+	int is;            /* and its first sessile one */
+};
+
+/* The loop on the polyps case, the patient there or not. */
+static void start(struct run *r, bool patient)
+{
+	char err[512];
+	struct colon *c;
+	const struct anatomy *a;
+
+	memset(r, 0, sizeof(*r));
+	config_defaults(&r->cfg);
+	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
+	r->cfg.patient.enabled = patient;
+	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
+		 "config/cases/polyps.case");
+	c = cases_load(&r->cfg, NULL, err, sizeof(err));
+	if (!c) {
+		fail_msg("%s", err);
+	}
+	a = colon_anatomy(c);
+	r->ip = r->is = -1;
+	for (int i = 0; a && i < a->polyps; i++) {
+		if (a->polyp[i].paris == ANATOMY_PARIS_IP) {
+			r->ip = i;
+		}
+		if (a->polyp[i].paris == ANATOMY_PARIS_IS && r->is < 0) {
+			r->is = i;
+		}
+	}
+	assert_true(r->ip >= 0 && r->is >= 0);
+	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
+	if (!r->o) {
+		fail_msg("%s", err);
+	}
+	r->depth_m = -DEPTH_M; /* in the channel */
+}
+
+/* One cycle, the hand's input renewed unless STALE. */
+static void step(struct run *r, bool stale)
+{
+	if (!stale) {
+		offline_tool_input(r->o, r->depth_m, r->opening, r->pedal,
+				   HOLD_S);
+	}
+	r->st = offline_step(r->o);
+	r->was_depth_m = r->depth_m;
+	r->was_opening = r->opening;
+	r->events |= r->st->tool.events;
+}
+
+/* N cycles moving the depth and the handle linearly to DEPTH_M and
+ * OPENING, the published loop checked against the formula each cycle. */
+static void move(struct run *r, long n, double depth_m, double opening)
+{
+	double d0 = r->depth_m, o0 = r->opening;
+
+	for (long k = 1; k <= n; k++) {
+		double depth = r->was_depth_m, open = r->was_opening;
+
+		r->depth_m = d0 + (depth_m - d0) * (double)k / (double)n;
+		r->opening = o0 + (opening - o0) * (double)k / (double)n;
+		step(r, false);
+		if (r->st->tool.captured < 0) {
+			assert_true(r->st->tool.loop_m ==
+				    tool_loop_diameter(SNARE_M, open, depth));
+		}
+		assert_true(r->st->tool.depth_m == depth);
+		assert_true(r->st->tool.opening == open);
+	}
+}
+
+/* The case's polyp I moved under the open loop: its axis' middle at the
+ * loop's centre, along the channel's radial direction. */
+static void polyp_under_loop(struct run *r, int i)
+{
+	struct tool *t = offline_tool(r->o);
+	struct tool_polyp *p = &t->polyp[i];
+	struct tool_params par;
+	struct tool_pose pose;
+	double centre[3];
+
+	cases_tool_params(&r->cfg, &par);
+	tool_pose(&par, &r->st->scope, r->depth_m, &pose);
+	vec3_axpy(centre, pose.tip, SNARE_M / 2, pose.dir);
+	assert_true(vec3_dist(centre, r->st->tool.loop_centre) < 1e-12);
+	vec3_axpy(p->base, centre, tool_polyp_height(p, par.lift_m) / 2,
+		  pose.radial);
+	vec3_scale(p->normal, pose.radial, -1);
+}
+
+static void test_polyps_placed(void **state)
+{
+	struct run r;
+
+	(void)state;
+	start(&r, false);
+	step(&r, false);
+	assert_int_equal(r.st->tool.polyps, 5);
+	assert_int_equal(r.st->tool.kind, ENDOSIM_TOOL_NONE);
+	assert_int_equal(r.st->tool.captured, -1);
+	assert_int_equal(r.st->tool.polyp[r.ip].state, ENDOSIM_POLYP_IN_PLACE);
+	offline_destroy(r.o);
+}
+
+static void test_select_refused(void **state)
+{
+	struct run r;
+
+	(void)state;
+	start(&r, false);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	assert_int_equal(offline_tool_answer(r.o), 0);
+	assert_int_equal(r.st->tool.kind, ENDOSIM_TOOL_SNARE);
+	assert_true(r.st->tool.snare_m == SNARE_M);
+	offline_tool_select(r.o, TOOL_SNARE, 0.035);
+	step(&r, false);
+	assert_int_equal(offline_tool_answer(r.o), -EINVAL);
+	offline_tool_select(r.o, 9, 0);
+	step(&r, false);
+	assert_int_equal(offline_tool_answer(r.o), -EINVAL);
+	assert_int_equal(r.st->tool.kind, ENDOSIM_TOOL_SNARE);
+	assert_true(r.st->tool.snare_m == SNARE_M);
+	offline_destroy(r.o);
+}
+
+/* Cycles the loop saw the pedal down until the cut, the input going
+ * stale for STALE cycles after the first FIRST: the pedal then reads up,
+ * the tool and the handle still, and the energy stands still. */
+static long pedal_until_cut(struct run *r, long first, long stale)
+{
+	const struct endosim_tool_state *t = &r->st->tool;
+	long down = 0;
+	double held;
+
+	r->pedal = true;
+	r->events = 0;
+	for (long k = 0; k < 100000 && !(r->events & ENDOSIM_TOOL_CUT); k++) {
+		step(r, k >= first && k < first + stale);
+		t = &r->st->tool;
+		down += t->pedal;
+		if (k == first + stale / 2) {
+			held = t->polyp[r->ip].energy_j;
+		}
+		if (k != first + stale - 1) {
+			continue;
+		}
+		/* stale since mid-way at least: pedal up, still */
+		assert_int_equal(t->pedal, 0);
+		assert_true(t->opening == SHUT);
+		assert_true(t->depth_m == DEPTH_M);
+		assert_int_equal(t->captured, r->ip);
+		assert_true(t->polyp[r->ip].energy_j == held);
+	}
+	assert_true(r->events & ENDOSIM_TOOL_CUT);
+	assert_int_equal(t->event_polyp, r->ip);
+	assert_int_equal(t->polyp[r->ip].state, ENDOSIM_POLYP_CUT);
+	return down;
+}
+
+static void test_capture_and_cut(void **state)
+{
+	struct run r;
+	struct tool_polyp held;
+	double t_m, e_j, want_s, got_s;
+	long n;
+
+	(void)state;
+	start(&r, false);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 100, DEPTH_M, 0);          /* the sheath out, closed */
+	move(&r, 1, DEPTH_M, 0);
+	assert_true(r.st->tool.loop_m == 0);
+	move(&r, 200, DEPTH_M, 1);          /* open: d = D */
+	move(&r, 1, DEPTH_M, 1);
+	assert_true(r.st->tool.loop_m == SNARE_M);
+	polyp_under_loop(&r, r.ip);
+	move(&r, 5, DEPTH_M, 1);            /* inside the open loop */
+	assert_int_equal(r.st->tool.captured, -1);
+	r.events = 0;
+	move(&r, 300, DEPTH_M, SHUT);       /* close around the stalk */
+	move(&r, 1, DEPTH_M, SHUT);
+	held = offline_tool(r.o)->polyp[r.ip];
+	t_m = tool_polyp_thickness(&held);
+	assert_true(r.events & ENDOSIM_TOOL_CAPTURE);
+	assert_int_equal(r.st->tool.captured, r.ip);
+	assert_int_equal(r.st->tool.polyp[r.ip].state, ENDOSIM_POLYP_CAPTURED);
+	assert_true(r.st->tool.loop_m == t_m);
+	assert_false(r.events & ENDOSIM_TOOL_CUT); /* not cold: still open */
+
+	e_j = r.cfg.tool.cut_j_per_m2 * M_PI * t_m * t_m / 4;
+	want_s = e_j / r.cfg.tool.hot_power_w;
+	n = pedal_until_cut(&r, 200, 50);
+	got_s = (double)n * DT;
+	print_message("stalk %.1f mm: cut after %.3f s of pedal, E/P %.3f s\n",
+		      t_m * 1e3, got_s, want_s);
+	assert_true(fabs(got_s - want_s) <= 0.02 * want_s);
+	assert_true(fabs(r.st->tool.polyp[r.ip].energy_j - e_j) <=
+		    0.02 * e_j);
+	assert_int_equal(r.st->tool.captured, -1);
+	offline_destroy(r.o);
+}
+
+/* The snare closed on the sessile polyp's unlifted base and the pedal
+ * down: an injury of the wall, the patient's perforation (torn_segment)
+ * in the cycle it happens; without the patient, the tool's event alone. */
+static void injury(bool patient)
+{
+	struct run r;
+
+	start(&r, patient);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 100, DEPTH_M, 1);
+	move(&r, 1, DEPTH_M, 1);
+	polyp_under_loop(&r, r.is);
+	move(&r, 5, DEPTH_M, 1);
+	r.events = 0;
+	move(&r, 300, DEPTH_M, SHUT);
+	assert_int_equal(r.st->tool.captured, r.is);
+	assert_int_equal(r.st->patient.torn_segment, -1);
+	r.pedal = true;
+	for (int k = 0; k < 10 && !(r.events & ENDOSIM_TOOL_INJURY); k++) {
+		step(&r, false);
+	}
+	assert_true(r.events & ENDOSIM_TOOL_INJURY);
+	assert_true(r.st->tool.events & ENDOSIM_TOOL_INJURY);
+	assert_int_equal(r.st->tool.event_polyp, r.is);
+	if (patient) {
+		assert_true(r.st->patient.torn_segment >= 0);
+	} else {
+		assert_int_equal(r.st->patient.torn_segment, -1);
+	}
+	offline_destroy(r.o);
+}
+
+static void test_injury_perforates(void **state)
+{
+	(void)state;
+	injury(true);
+	injury(false);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_polyps_placed),
+		cmocka_unit_test(test_select_refused),
+		cmocka_unit_test(test_capture_and_cut),
+		cmocka_unit_test(test_injury_perforates),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
