@@ -76,6 +76,8 @@ struct endo {
 	const struct program *in_use;
 	GLuint texture;
 	GLuint sphere_vao, sphere_buf[2];
+	GLuint plain;              /* one white texel: the tool's surface */
+	GLuint tool_vao, tool_buf[2];
 };
 
 /*
@@ -287,6 +289,35 @@ static void make_sphere(struct endo *e)
 	glBindVertexArray(0);
 }
 
+/* The tool's tubes: a stream buffer for the longest, one index list. */
+static void make_tool(struct endo *e)
+{
+	static uint32_t idx[6 * (TOOLVIEW_POINTS - 1) * SHAPES_TUBE_SIDES];
+	static const uint8_t white[4] = { 255, 255, 255, 255 };
+	const GLsizei stride = 9 * sizeof(float);
+
+	e->plain = gfx_texture(1, 1, 4, white, false, false);
+	shapes_tube_index(TOOLVIEW_POINTS, idx);
+	glGenVertexArrays(1, &e->tool_vao);
+	glBindVertexArray(e->tool_vao);
+	glGenBuffers(2, e->tool_buf);
+	glBindBuffer(GL_ARRAY_BUFFER, e->tool_buf[0]);
+	glBufferData(GL_ARRAY_BUFFER,
+		     (GLsizeiptr)(shapes_tube_vertices(TOOLVIEW_POINTS) *
+				  9 * sizeof(float)), NULL, GL_STREAM_DRAW);
+	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, e->tool_buf[1]);
+	glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(idx), idx,
+		     GL_STATIC_DRAW);
+	for (int a = 0; a < 3; a++) {
+		glEnableVertexAttribArray((GLuint)a);
+		uintptr_t at = 3 * (uintptr_t)a * sizeof(float);
+
+		glVertexAttribPointer((GLuint)a, a < 2 ? 3 : 2, GL_FLOAT,
+				      GL_FALSE, stride, (void *)at);
+	}
+	glBindVertexArray(0);
+}
+
 static GLuint make_texture(void)
 {
 	uint8_t *img = vessels_create(TEXTURE_PX, TEXTURE_SEED);
@@ -342,6 +373,7 @@ struct endo *endo_create(void)
 		return NULL;
 	}
 	make_sphere(e);
+	make_tool(e);
 	return e;
 }
 
@@ -352,6 +384,9 @@ void endo_destroy(struct endo *e)
 	}
 	glDeleteBuffers(2, e->sphere_buf);
 	glDeleteVertexArrays(1, &e->sphere_vao);
+	glDeleteBuffers(2, e->tool_buf);
+	glDeleteVertexArrays(1, &e->tool_vao);
+	glDeleteTextures(1, &e->plain);
 	glDeleteTextures(1, &e->texture);
 	for (int k = 0; k < PROGRAMS; k++) {
 		glDeleteProgram(e->prog[k].id);
@@ -460,6 +495,7 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 {
 	const struct endosim_scope_state *sc = &st->scope;
 	const struct endosim_haptics_state *h = &st->haptics;
+	double shift[3];
 
 	vec3_copy(cam->eye, h->contact ? h->proxy : sc->tip);
 	vec3_copy(cam->dir, sc->dir);
@@ -470,6 +506,8 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 	cam->wall_m = wall_ahead(m, cam);
 	cam->exposure = light_level(cam->wall_m);
 	liquid_of(m, &st->patient, cam);
+	vec3_sub(shift, cam->eye, sc->tip);
+	toolview_build(&st->tool, sc, shift, &cam->tool);
 }
 
 static void set_uniforms(const struct program *p,
@@ -708,6 +746,44 @@ static uint32_t draw_polyps(struct endo *e, const struct model *m,
 	return tris;
 }
 
+/*
+ * The tool (CAM's parts): each a tube through its points on the plain
+ * texture in its colour, the steel glossier than the plastic; with the
+ * dry walls' program (a tool under a pool's surface is drawn clear).
+ */
+static uint32_t draw_tool(struct endo *e, const struct endo_camera *cam)
+{
+	static float v[TOOLVIEW_POINTS * (SHAPES_TUBE_SIDES + 1)][9];
+	const struct toolview *tv = &cam->tool;
+	const struct program *p;
+	uint32_t tris = 0;
+
+	if (!tv->parts) {
+		return 0;
+	}
+	p = use(e, PROG_DRY);
+	set_identity(p); /* a polyp's may be set */
+	glBindTexture(GL_TEXTURE_2D, e->plain);
+	glBindVertexArray(e->tool_vao);
+	glBindBuffer(GL_ARRAY_BUFFER, e->tool_buf[0]);
+	for (int k = 0; k < tv->parts; k++) {
+		const struct toolview_part *pt = &tv->part[k];
+		size_t n = (size_t)pt->points;
+
+		shapes_tube((const float(*)[3])pt->p, n, pt->radius_m, v);
+		glBufferSubData(GL_ARRAY_BUFFER, 0,
+				(GLsizeiptr)(shapes_tube_vertices(n) *
+					     sizeof(v[0])), v);
+		glUniform3fv(p->u[U_TINT], 1, pt->rgb);
+		glUniform1f(p->u[U_GLOSS], pt->metal ? 2 * GLOSS : GLOSS / 4);
+		glDrawElements(GL_TRIANGLES,
+			       (GLsizei)(6 * (n - 1) * SHAPES_TUBE_SIDES),
+			       GL_UNSIGNED_INT, NULL);
+		tris += (uint32_t)(2 * (n - 1) * SHAPES_TUBE_SIDES);
+	}
+	return tris; /* set_programs() sets the gloss again next frame */
+}
+
 static void begin(struct endo_rect r)
 {
 	glViewport(r.x, r.y, r.w, r.h);
@@ -749,5 +825,6 @@ void endo_draw(struct endo *e, const struct model *m, const struct lod *l,
 	glBindTexture(GL_TEXTURE_2D, e->texture);
 	st->triangles = draw_colon(e, m, l, g, cam, &v, st);
 	st->triangles += draw_polyps(e, m, &cam->liquid, &v);
+	st->triangles += draw_tool(e, cam);
 	end();
 }

@@ -53,6 +53,7 @@
 #include "viewer/gpumesh.h"
 #include "viewer/lod.h"
 #include "viewer/model.h"
+#include "viewer/toolview.h"
 
 #define ENDO_FOV_DEG 140.0
 #define ENDO_FAR_M 0.30        /* darker than a pixel's step beyond */
@@ -99,6 +100,7 @@ struct endo_camera {
 	double wall_m; /* how far the walls in the middle of the view are */
 	double exposure; /* the light's automatic level, 0..1 */
 	struct endo_liquid liquid;
+	struct toolview tool; /* the working channel's, with the lens */
 };
 
 struct endo_stats {

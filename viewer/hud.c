@@ -374,6 +374,40 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 	line(p, FONT_SMALL, dim, text);
 }
 
+/* The tool in the channel, as published: which, how far out, the
+ * handle, the snare's loop, the pedal (amber while down), a polyp held. */
+static void draw_tool(struct pen *p, const struct endosim_tool_state *t)
+{
+	char text[256]; /* the longest is under 120 */
+	int n;
+
+	if (t->kind == ENDOSIM_TOOL_NONE || t->kind >= ENDOSIM_TOOLS) {
+		return;
+	}
+	n = snprintf(text, sizeof(text), "tool: %s", names_tool(t->kind));
+	if (t->kind == ENDOSIM_TOOL_SNARE) {
+		n += snprintf(text + n, sizeof(text) - (size_t)n, " %.0f mm",
+			      t->snare_m * 1000);
+	}
+	n += snprintf(text + n, sizeof(text) - (size_t)n,
+		      t->depth_m > 0 ? ", %.0f mm out" : ", in the channel",
+		      t->depth_m * 1000);
+	n += snprintf(text + n, sizeof(text) - (size_t)n, ", handle %.0f %%",
+		      t->opening * 100);
+	if (t->kind == ENDOSIM_TOOL_SNARE && t->loop_m > 0) {
+		n += snprintf(text + n, sizeof(text) - (size_t)n,
+			      ", loop %.0f mm", t->loop_m * 1000);
+	}
+	if (t->captured >= 0) {
+		n += snprintf(text + n, sizeof(text) - (size_t)n,
+			      ", holding polyp %d", t->captured + 1);
+	}
+	if (t->pedal) {
+		snprintf(text + n, sizeof(text) - (size_t)n, ", pedal down");
+	}
+	line(p, FONT_SMALL, t->pedal ? amber : dim, text);
+}
+
 /* The largest bow of a mobile segment, and its span (-1: none). */
 static double worst_loop(const struct endosim_scope_state *sc, int *span)
 {
@@ -798,6 +832,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 			draw_moved(p, in);
 		}
 		draw_loop(p, in, t_s);
+		draw_tool(p, &in->st->tool);
 		gap(p);
 		if (in->help) {
 			draw_help(p, keys);

@@ -1,0 +1,212 @@
+/*
+ * test_toolview.c - the tool as the endoscopic view draws it
+ * (viewer/toolview.h) against the model's pose (lib/model/tool.h): the
+ * sheath from the channel's exit to the published tip; the snare's ring
+ * of the published diameter round the published centre, in the plane of
+ * dir and dir x radial, starting at the sheath's tip; the forceps' cups
+ * and the clip's prongs opening with the handle; the needle only past
+ * half open; everything moved with the lens; nothing while the tool is in
+ * the channel, for no tool, or for a state not finite.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "base/vec3.h"
+#include "model/tool.h"
+#include "viewer/toolview.h"
+
+#define TOL 1e-6 /* m: floats of positions about 0.1 m from the origin */
+
+static struct endosim_scope_state sc;
+static struct endosim_tool_state tool;
+static const double none[3] = { 0, 0, 0 };
+
+/* A scope tip at (0.01, 0.02, 0.1) looking along +z, up +y, and the
+ * model's pose of tool KIND DEPTH_M out, the handle at OPENING, a snare
+ * of 20 mm. */
+static void setup_tool(int kind, double depth_m, double opening)
+{
+	struct tool_params par = TOOL_PARAMS_DEFAULT;
+	struct tool_pose pose;
+
+	memset(&sc, 0, sizeof(sc));
+	memset(&tool, 0, sizeof(tool));
+	vec3_set(sc.tip, 0.01, 0.02, 0.1);
+	vec3_set(sc.dir, 0, 0, 1);
+	vec3_set(sc.up, 0, 1, 0);
+	tool_pose(&par, &sc, depth_m, &pose);
+	tool.kind = (uint32_t)kind;
+	tool.depth_m = depth_m;
+	tool.opening = opening;
+	tool.snare_m = 0.020;
+	vec3_copy(tool.tip, pose.tip);
+	tool.loop_m = tool_loop_diameter(tool.snare_m, opening, depth_m);
+	vec3_axpy(tool.loop_centre, pose.tip, tool.loop_m / 2, pose.dir);
+}
+
+static double dist_f(const float a[3], const double b[3])
+{
+	double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+
+	return vec3_norm(d);
+}
+
+/* The sheath: from the model's exit to its tip. */
+static void sheath(void **state)
+{
+	struct tool_params par = TOOL_PARAMS_DEFAULT;
+	struct tool_pose pose;
+	struct toolview v;
+
+	(void)state;
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.015, 1);
+	tool_pose(&par, &sc, 0.015, &pose);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 2);
+	assert_int_equal(v.part[0].points, 2);
+	assert_true(dist_f(v.part[0].p[0], pose.exit) < TOL);
+	assert_true(dist_f(v.part[0].p[1], pose.tip) < TOL);
+	assert_false(v.part[0].metal);
+	assert_true(fabs(v.part[0].radius_m - TOOLVIEW_SHEATH_M / 2) < 1e-9);
+}
+
+/* The snare's ring: its points at half the loop from the centre, in the
+ * plane that holds dir and is normal to the channel's radial direction,
+ * starting and ending at the sheath's tip. */
+static void snare_ring(void **state)
+{
+	struct tool_params par = TOOL_PARAMS_DEFAULT;
+	struct tool_pose pose;
+	struct toolview v;
+	const struct toolview_part *r;
+
+	(void)state;
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.010, 0.8);
+	tool_pose(&par, &sc, 0.010, &pose);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 2);
+	r = &v.part[1];
+	assert_int_equal(r->points, TOOLVIEW_POINTS);
+	assert_true(r->metal);
+	assert_true(tool.loop_m > 0.01);
+	for (int k = 0; k < r->points; k++) {
+		double x[3] = { r->p[k][0], r->p[k][1], r->p[k][2] };
+
+		assert_true(fabs(dist_f(r->p[k], tool.loop_centre) -
+				 tool.loop_m / 2) < TOL);
+		vec3_sub(x, x, tool.loop_centre);
+		assert_true(fabs(vec3_dot(x, pose.radial)) < TOL);
+	}
+	assert_true(dist_f(r->p[0], pose.tip) < TOL);
+	assert_true(dist_f(r->p[r->points - 1], pose.tip) < TOL);
+}
+
+/* The angle (rad) of part P's piece from dir. */
+static double angle_of(const struct toolview_part *p)
+{
+	double d[3];
+
+	for (int k = 0; k < 3; k++) {
+		d[k] = p->p[1][k] - p->p[0][k];
+	}
+	return acos(d[2] / vec3_norm(d));
+}
+
+/* The forceps' cups and the clip's prongs open with the handle, the
+ * model's lengths; the needle is out only past half open. */
+static void jaws(void **state)
+{
+	struct toolview v;
+
+	(void)state;
+	setup_tool(ENDOSIM_TOOL_FORCEPS, 0.010, 1);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 3);
+	for (int k = 1; k < 3; k++) {
+		assert_true(fabs(angle_of(&v.part[k]) - TOOLVIEW_JAWS_RAD) <
+			    1e-5);
+		assert_true(fabs(dist_f(v.part[k].p[1], tool.tip) -
+				 TOOL_DEFAULT_JAW_M) < TOL);
+	}
+	setup_tool(ENDOSIM_TOOL_FORCEPS, 0.010, 0);
+	toolview_build(&tool, &sc, none, &v);
+	assert_true(angle_of(&v.part[1]) < 1e-3);
+	setup_tool(ENDOSIM_TOOL_CLIP, 0.010, 0.5);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 3);
+	assert_true(fabs(angle_of(&v.part[2]) - 0.5 * TOOLVIEW_PRONGS_RAD) <
+		    1e-5);
+	assert_true(fabs(dist_f(v.part[2].p[1], tool.tip) -
+			 TOOL_DEFAULT_CLIP_M) < TOL);
+	setup_tool(ENDOSIM_TOOL_NEEDLE, 0.010, 0.4);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 1);
+	setup_tool(ENDOSIM_TOOL_NEEDLE, 0.010, 0.6);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 2);
+	assert_true(fabs(dist_f(v.part[1].p[1], tool.tip) -
+			 TOOL_DEFAULT_NEEDLE_M) < TOL);
+}
+
+/* The lens moved (the proxy): the tool goes with it. */
+static void with_the_lens(void **state)
+{
+	static const double shift[3] = { 0.001, -0.002, 0.0005 };
+	struct toolview a, b;
+
+	(void)state;
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.012, 1);
+	toolview_build(&tool, &sc, none, &a);
+	toolview_build(&tool, &sc, shift, &b);
+	assert_int_equal(a.parts, b.parts);
+	for (int k = 0; k < a.parts; k++) {
+		for (int j = 0; j < a.part[k].points; j++) {
+			for (int x = 0; x < 3; x++) {
+				assert_true(fabs(b.part[k].p[j][x] -
+						 a.part[k].p[j][x] -
+						 shift[x]) < TOL);
+			}
+		}
+	}
+}
+
+/* Nothing to draw: in the channel, no tool, a tool not finite. */
+static void nothing(void **state)
+{
+	struct toolview v;
+
+	(void)state;
+	setup_tool(ENDOSIM_TOOL_SNARE, -0.002, 1);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+	setup_tool(ENDOSIM_TOOL_NONE, 0.010, 1);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.010, 1);
+	tool.tip[1] = NAN;
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.010, 1);
+	tool.loop_centre[0] = NAN;
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 1); /* the sheath, no ring */
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(sheath),
+		cmocka_unit_test(snare_ring),
+		cmocka_unit_test(jaws),
+		cmocka_unit_test(with_the_lens),
+		cmocka_unit_test(nothing),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,67 @@
+/*
+ * toolview.h - the tool in the working channel as the endoscopic view
+ * draws it: a few tubes (polylines with a radius and a colour) built from
+ * the published tool (proto/endosim_shm.h's endosim_tool_state) and the
+ * scope's tip.
+ *
+ * The tool leaves the channel's exit along the tip's direction: the exit
+ * is the published tool tip less its depth along dir (lib/model/tool.h),
+ * the channel's side (radial) the exit's offset from the tip's axis. Each
+ * tool shows once its tip is out of the channel (depth > 0):
+ *  - a sheath or catheter from the exit to its tip, in the tool's colour
+ *    (TOOLVIEW_SHEATH_M thick);
+ *  - the snare: its wire loop, a circle of the published loop diameter
+ *    round the published centre, in the plane of dir and dir x radial
+ *    (tool.h's plane), TOOLVIEW_WIRE_M thick;
+ *  - the forceps: two cups (the model's jaw length) opening with the
+ *    handle up to TOOLVIEW_JAWS_RAD each side;
+ *  - the needle: out of its catheter (the model's needle length) while
+ *    the handle is past half open (tool.h);
+ *  - the clip: two prongs (the model's clip length) opening with the
+ *    handle up to TOOLVIEW_PRONGS_RAD each side.
+ * The lengths are the model's defaults (tool.h): what the view draws, not
+ * what the daemon computes with (the loop, the tip and the events are
+ * the daemon's).
+ *
+ * Everything is moved by SHIFT: the camera may stand where the scope's
+ * tip is not (the god-object's proxy, the lumen's margin: endo.h), and the
+ * tool goes with the lens. Pure computation, no allocation; colon frame,
+ * m.
+ */
+#ifndef ENDOVIEW_TOOLVIEW_H
+#define ENDOVIEW_TOOLVIEW_H
+
+#include <stdbool.h>
+
+#include "proto/endosim_shm.h"
+
+#define TOOLVIEW_PARTS 3
+#define TOOLVIEW_POINTS 41       /* the loop's ring, closed */
+#define TOOLVIEW_SHEATH_M 0.0024 /* a 2.8 mm channel's tools */
+#define TOOLVIEW_WIRE_M 0.0004   /* the snare's wire (tool.h's wire_m) */
+#define TOOLVIEW_JAWS_RAD 0.6    /* the forceps' cups, open */
+#define TOOLVIEW_PRONGS_RAD 0.45 /* the clip's prongs, open */
+
+struct toolview_part {
+	int points;                  /* of p in use, 2 or more */
+	float p[TOOLVIEW_POINTS][3]; /* m */
+	float radius_m;
+	float rgb[3];                /* the tint, 0..1 */
+	bool metal;                  /* glossy */
+};
+
+struct toolview {
+	int parts;
+	struct toolview_part part[TOOLVIEW_PARTS];
+};
+
+/*
+ * The parts that draw TOOL on the scope SC, moved by SHIFT (m), into OUT
+ * (no parts: no tool, the tool inside the channel, or a state not
+ * finite).
+ */
+void toolview_build(const struct endosim_tool_state *tool,
+		    const struct endosim_scope_state *sc,
+		    const double shift[3], struct toolview *out);
+
+#endif
