@@ -264,21 +264,21 @@ static const char *fragment_src =
 	"	frag = vec4(c * endo_mask(u_viewport, u_mask), 1.0);\n"
 	"}\n";
 
-static void make_sphere(struct endo *e)
+/* A VAO with its vertex buffer (VBYTES of V, 9 floats a vertex: position,
+ * normal, texture coordinates; V NULL: room only) and index buffer. */
+static void make_shape(GLuint *vao, GLuint buf[2], GLsizeiptr vbytes,
+		       const void *v, GLenum usage, GLsizeiptr ibytes,
+		       const uint32_t *idx)
 {
-	static float v[SHAPES_SPHERE_VERTICES][9];
-	static uint32_t idx[SHAPES_SPHERE_INDICES];
-	const GLsizei stride = sizeof(v[0]);
+	const GLsizei stride = 9 * sizeof(float);
 
-	shapes_sphere(v, idx);
-	glGenVertexArrays(1, &e->sphere_vao);
-	glBindVertexArray(e->sphere_vao);
-	glGenBuffers(2, e->sphere_buf);
-	glBindBuffer(GL_ARRAY_BUFFER, e->sphere_buf[0]);
-	glBufferData(GL_ARRAY_BUFFER, sizeof(v), v, GL_STATIC_DRAW);
-	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, e->sphere_buf[1]);
-	glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(idx), idx,
-		     GL_STATIC_DRAW);
+	glGenVertexArrays(1, vao);
+	glBindVertexArray(*vao);
+	glGenBuffers(2, buf);
+	glBindBuffer(GL_ARRAY_BUFFER, buf[0]);
+	glBufferData(GL_ARRAY_BUFFER, vbytes, v, usage);
+	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buf[1]);
+	glBufferData(GL_ELEMENT_ARRAY_BUFFER, ibytes, idx, GL_STATIC_DRAW);
 	for (int a = 0; a < 3; a++) {
 		glEnableVertexAttribArray((GLuint)a);
 		uintptr_t at = 3 * (uintptr_t)a * sizeof(float);
@@ -289,33 +289,28 @@ static void make_sphere(struct endo *e)
 	glBindVertexArray(0);
 }
 
+static void make_sphere(struct endo *e)
+{
+	static float v[SHAPES_SPHERE_VERTICES][9];
+	static uint32_t idx[SHAPES_SPHERE_INDICES];
+
+	shapes_sphere(v, idx);
+	make_shape(&e->sphere_vao, e->sphere_buf, sizeof(v), v, GL_STATIC_DRAW,
+		   sizeof(idx), idx);
+}
+
 /* The tool's tubes: a stream buffer for the longest, one index list. */
 static void make_tool(struct endo *e)
 {
 	static uint32_t idx[6 * (TOOLVIEW_POINTS - 1) * SHAPES_TUBE_SIDES];
 	static const uint8_t white[4] = { 255, 255, 255, 255 };
-	const GLsizei stride = 9 * sizeof(float);
 
 	e->plain = gfx_texture(1, 1, 4, white, false, false);
 	shapes_tube_index(TOOLVIEW_POINTS, idx);
-	glGenVertexArrays(1, &e->tool_vao);
-	glBindVertexArray(e->tool_vao);
-	glGenBuffers(2, e->tool_buf);
-	glBindBuffer(GL_ARRAY_BUFFER, e->tool_buf[0]);
-	glBufferData(GL_ARRAY_BUFFER,
-		     (GLsizeiptr)(shapes_tube_vertices(TOOLVIEW_POINTS) *
-				  9 * sizeof(float)), NULL, GL_STREAM_DRAW);
-	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, e->tool_buf[1]);
-	glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(idx), idx,
-		     GL_STATIC_DRAW);
-	for (int a = 0; a < 3; a++) {
-		glEnableVertexAttribArray((GLuint)a);
-		uintptr_t at = 3 * (uintptr_t)a * sizeof(float);
-
-		glVertexAttribPointer((GLuint)a, a < 2 ? 3 : 2, GL_FLOAT,
-				      GL_FALSE, stride, (void *)at);
-	}
-	glBindVertexArray(0);
+	make_shape(&e->tool_vao, e->tool_buf,
+		   (GLsizeiptr)(shapes_tube_vertices(TOOLVIEW_POINTS) * 9 *
+				sizeof(float)), NULL, GL_STREAM_DRAW,
+		   sizeof(idx), idx);
 }
 
 static GLuint make_texture(void)
