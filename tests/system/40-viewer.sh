@@ -76,7 +76,7 @@ scope_box() {
 	local box
 	rect_of overview
 	read -r SHARE box < <("$PNG_STATS" "$1" "rect:$X,$Y,$W,$H" |
-		sed -n 's/.* scope=\([^ ]*\) box=\([^ ]*\)/\1 \2/p')
+		sed -n 's/.* scope=\([^ ]*\) box=\([^ ]*\).*/\1 \2/p')
 	IFS=, read -r _ Y0 _ Y1 <<<"$box"
 	TALL=$((Y1 - Y0))
 }
