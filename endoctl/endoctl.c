@@ -746,9 +746,13 @@ static const struct command {
 	  "--dir: a session directory, read without endosimd; --centre: a "
 	  "training centre's PostgreSQL (every rig's sessions)" },
 	{ "records", ctl_cmd_records, "the rig's records against its session "
-	  "files", "records check | rebuild", "endoctl records check",
+	  "files, their backup", "records check | rebuild | backup FILE | "
+	  "restore FILE", "endoctl records backup /srv/records-monday.sqlite",
 	  "check: what differs between the database and the files (the "
-	  "truth); rebuild: the database written again from the files" },
+	  "truth); rebuild: the database written again from the files; "
+	  "backup: an online copy into the new FILE (endosimd writes it); "
+	  "restore: the database made again from FILE, then brought up to "
+	  "date with the files (refused while a session records)" },
 	{ "guide", ctl_cmd_guide, "guided replay of a session through the "
 	  "motors",
 	  "guide start ID|FILE [--speed X] [--from S] | stop | takeover | "

@@ -300,6 +300,10 @@ static const struct handler handlers[] = {
 	  control_on_records_check },
 	{ ENDOSIM__REQUEST__BODY_RECORDS_REBUILD, true,
 	  control_on_records_rebuild },
+	{ ENDOSIM__REQUEST__BODY_RECORDS_BACKUP, true,
+	  control_on_records_backup },
+	{ ENDOSIM__REQUEST__BODY_RECORDS_RESTORE, true,
+	  control_on_records_restore },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)

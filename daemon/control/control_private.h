@@ -175,6 +175,8 @@ handler_fn control_on_patient;
 handler_fn control_on_tool;
 handler_fn control_on_records_check;
 handler_fn control_on_records_rebuild;
+handler_fn control_on_records_backup;
+handler_fn control_on_records_restore;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */

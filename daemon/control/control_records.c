@@ -191,3 +191,85 @@ void control_on_records_rebuild(struct control *c, struct client *cl,
 	}
 	records_reply(c, rep, e);
 }
+
+/* A path the daemon takes as given: absolute, of a sane length. */
+static bool path_ok(const char *path)
+{
+	return path && path[0] == '/' && strlen(path) < 4096;
+}
+
+/* What a backup or a restore's E means to the one who asked. */
+static Endosim__Status status_of(int e)
+{
+	return e == -EEXIST || e == -EBADMSG || e == -EPROTO ||
+			       e == -ENOENT || e == -EACCES ?
+		       ENDOSIM__STATUS__STATUS_REFUSED :
+		       ENDOSIM__STATUS__STATUS_INTERNAL;
+}
+
+void control_on_records_backup(struct control *c, struct client *cl,
+			       const Endosim__Request *req,
+			       Endosim__Reply *rep)
+{
+	struct control_records *cr = c->records;
+	const char *path = req->records_backup->path;
+	size_t rows;
+	int e;
+
+	records_report_free(&cr->report);
+	if (!path_ok(path)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "backup: the file's path must be absolute");
+		return;
+	}
+	e = records_backup(cr->db, path, &rows);
+	if (e) {
+		snprintf(c->refusal, sizeof(c->refusal), "%s", why(cr, e));
+		refuse(rep, status_of(e), c->refusal);
+		return;
+	}
+	log_notice("records %s backed up into %s (uid %d): %zu sessions",
+		   records_path(cr->db), path, (int)cl->uid, rows);
+	cr->report.rows = rows;
+	cr->report.written = rows;
+	if (asprintf(&cr->report.text, "backed up %zu sessions into %s\n",
+		     rows, path) < 0) {
+		cr->report.text = NULL;
+	}
+	records_reply(c, rep, 0);
+}
+
+void control_on_records_restore(struct control *c, struct client *cl,
+				const Endosim__Request *req,
+				Endosim__Reply *rep)
+{
+	struct control_records *cr = c->records;
+	const char *path = req->records_restore->path;
+	int e;
+
+	records_report_free(&cr->report);
+	if (!path_ok(path)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "restore: the file's path must be absolute");
+		return;
+	}
+	if (recording_id(c)) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED,
+		       "restore: a session is recording; stop it first "
+		       "(endoctl session stop)");
+		return;
+	}
+	e = records_restore(cr->db, path, 0, &cr->report);
+	if (e) {
+		snprintf(c->refusal, sizeof(c->refusal), "%s", why(cr, e));
+		refuse(rep, status_of(e), c->refusal);
+		return;
+	}
+	if (cr->centre) {
+		control_centre_poke(cr->centre); /* its queue as restored */
+	}
+	log_notice("records %s restored from %s (uid %d): %zu sessions "
+		   "written from their files", records_path(cr->db), path,
+		   (int)cl->uid, cr->report.written);
+	records_reply(c, rep, 0);
+}

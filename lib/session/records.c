@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/stat.h>
 
 #include <sqlite3.h>
 
@@ -834,21 +835,28 @@ void records_uuid(const struct records_session *s, char out[37])
 		 b[14], b[15]);
 }
 
-/* How many sessions wait for the centre, into *N. */
-static int queue_length(struct records *r, sqlite3 *db, size_t *n)
+/* The one number SQL (a COUNT) gives, into *N; WHAT names it. */
+static int count(struct records *r, sqlite3 *db, const char *sql,
+		 const char *what, size_t *n)
 {
 	sqlite3_stmt *st;
 	int rc;
 
-	if (sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM centre_queue q JOIN "
-			       "sessions s ON s.id = q.session_id", -1, &st,
-			       NULL)) {
-		return sql_fail(r, db, "counting the centre's queue");
+	if (sqlite3_prepare_v2(db, sql, -1, &st, NULL)) {
+		return sql_fail(r, db, what);
 	}
 	rc = sqlite3_step(st);
-	*n = (size_t)sqlite3_column_int64(st, 0);
+	*n = rc == SQLITE_ROW ? (size_t)sqlite3_column_int64(st, 0) : 0;
 	sqlite3_finalize(st);
-	return rc == SQLITE_ROW ? 0 : sql_fail(r, db, "counting the queue");
+	return rc == SQLITE_ROW ? 0 : sql_fail(r, db, what);
+}
+
+/* How many sessions wait for the centre, into *N. */
+static int queue_length(struct records *r, sqlite3 *db, size_t *n)
+{
+	return count(r, db, "SELECT COUNT(*) FROM centre_queue q JOIN "
+		     "sessions s ON s.id = q.session_id",
+		     "counting the centre's queue", n);
 }
 
 int records_queue_unsent(struct records *r, size_t *waiting)
@@ -1137,6 +1145,135 @@ int records_rebuild(struct records *r, uint64_t skip,
 	}
 	rep->written = 0;
 	return build_new(r, skip, &rep->written);
+}
+
+/* ------------------------------------------------- backup and restore */
+
+/* Every page of FROM into TO (SQLite's online backup), waiting out a
+ * writer's lock for up to BUSY_MS. */
+static int copy_pages(struct records *r, sqlite3 *to, sqlite3 *from,
+		      const char *what)
+{
+	sqlite3_backup *b = sqlite3_backup_init(to, "main", from, "main");
+	int rc, waited = 0;
+
+	if (!b) {
+		return sql_fail(r, to, what);
+	}
+	while ((rc = sqlite3_backup_step(b, -1)) == SQLITE_BUSY ||
+	       rc == SQLITE_LOCKED) {
+		if ((waited += 50) > BUSY_MS) {
+			break;
+		}
+		sqlite3_sleep(50);
+	}
+	sqlite3_backup_finish(b);
+	return rc == SQLITE_DONE ? 0 : sql_fail(r, to, what);
+}
+
+int records_backup(struct records *r, const char *path, size_t *rows)
+{
+	sqlite3 *db = NULL, *to = NULL;
+	bool made = false;
+	struct stat sb;
+	enum found how;
+	int e;
+
+	*rows = 0;
+	r->error[0] = '\0';
+	if (!lstat(path, &sb)) { /* a link, even dangling, counts */
+		snprintf(r->error, sizeof(r->error), "backup %s: it exists "
+			 "(a backup replaces nothing)", path);
+		return -EEXIST;
+	}
+	e = open_db(r, r->path, false, &db, &how);
+	if (!e && how == FOUND_MISSING) {
+		snprintf(r->error, sizeof(r->error), "records %s: missing, "
+			 "nothing to back up ('endoctl records rebuild' makes "
+			 "it from the files)", r->path);
+		return -ENOENT;
+	}
+	if (!e && sqlite3_open_v2(path, &to, SQLITE_OPEN_READWRITE |
+				  SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
+				  NULL) != SQLITE_OK) {
+		e = sql_fail(r, to, "creating the backup");
+		snprintf(r->error, sizeof(r->error), "backup %s: %s", path,
+			 to ? sqlite3_errmsg(to) : "out of memory");
+	} else if (!e) {
+		made = true;
+	}
+	e = e ? e : copy_pages(r, to, db, "copying it");
+	e = e ? e : exec(r, to, "PRAGMA journal_mode = DELETE");
+	e = e ? e : count(r, to, "SELECT COUNT(*) FROM sessions",
+			  "counting the backup's sessions", rows);
+	sqlite3_close(to);
+	sqlite3_close(db);
+	if (e && made) {
+		unlink(path); /* made here: no half copy left */
+		remove_sides(path);
+	}
+	return e;
+}
+
+/* Whether PATH is a sound records database this program reads, opened
+ * into *FROM: 0, -errno (it cannot be read), -EBADMSG, -EPROTO (R's
+ * error says why). */
+static int sound_backup(struct records *r, const char *path, sqlite3 **from)
+{
+	const char *why = NULL;
+	size_t n;
+	int v = 0;
+
+	if (access(path, R_OK)) {
+		int e = errno;
+
+		snprintf(r->error, sizeof(r->error), "restore %s: %s", path,
+			 strerror(e));
+		return -e;
+	}
+	if (sqlite3_open_v2(path, from, SQLITE_OPEN_READONLY |
+			    SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK ||
+	    user_version(r, *from, &v)) {
+		why = "SQLite cannot read it";
+	} else if (v > RECORDS_SCHEMA_VERSION) {
+		snprintf(r->error, sizeof(r->error), "restore %s: its schema "
+			 "is version %d, newer than this endosim's %d", path,
+			 v, RECORDS_SCHEMA_VERSION);
+		return -EPROTO;
+	} else if (v < 1) {
+		why = "no records schema";
+	} else if (integrity(r, *from)) {
+		why = "SQLite's check fails";
+	} else if (count(r, *from, "SELECT COUNT(*) FROM sessions",
+			 "reading its sessions", &n)) {
+		why = "no sessions";
+	}
+	if (why) {
+		snprintf(r->error, sizeof(r->error), "restore %s: not a sound "
+			 "records database: %s", path, why);
+		return -EBADMSG;
+	}
+	return 0;
+}
+
+int records_restore(struct records *r, const char *path, uint64_t skip,
+		    struct records_report *rep)
+{
+	sqlite3 *from = NULL, *db = NULL;
+	enum found how;
+	int e;
+
+	memset(rep, 0, sizeof(*rep));
+	r->error[0] = '\0';
+	e = sound_backup(r, path, &from);
+	if (!e && (e = open_db(r, r->path, true, &db, &how)) == -EBADMSG) {
+		move_aside(r); /* a damaged one: kept beside, as a rebuild */
+		e = open_db(r, r->path, true, &db, &how);
+	}
+	e = e ? e : copy_pages(r, db, from, "restoring it");
+	sqlite3_close(db);
+	sqlite3_close(from);
+	return e ? e : records_check(r, RECORDS_DEEP | RECORDS_FIX, skip, rep);
 }
 
 void records_report_free(struct records_report *rep)

@@ -138,6 +138,30 @@ int records_rebuild(struct records *r, uint64_t skip,
 void records_report_free(struct records_report *rep);
 
 /*
+ * An online copy of the database into the new file PATH (SQLite's backup
+ * API; the copy in rollback-journal mode, one file), its sessions into
+ * *ROWS. PATH must not exist, nor a link by that name: a backup replaces
+ * nothing. 0; -EEXIST; -ENOENT (no database to copy); or as records_add()
+ * (a failed copy's file removed).
+ */
+int records_backup(struct records *r, const char *path, size_t *rows);
+
+/*
+ * The database made again from the backup PATH, then brought up to date
+ * with the files (all but SKIP, the session recording) as a check's fix
+ * does: sessions recorded since the backup written, rows whose file is
+ * gone removed, the files being the truth; what the backup alone holds of
+ * the others (their centre's queue and marks) kept. PATH is checked whole
+ * first: a file that is not a sound records database of this schema or
+ * an older one is refused, the database left as it was. *REP as
+ * records_check()'s (records_report_free() it). 0; -ENOENT; -EBADMSG (not
+ * a sound records database); -EPROTO (a newer schema's); or as
+ * records_add().
+ */
+int records_restore(struct records *r, const char *path, uint64_t skip,
+		    struct records_report *rep);
+
+/*
  * A centre's queue. With ON each session written (records_add(), a check's
  * fix, a rebuild) is queued for the centre too, in the same transaction
  * as its row; one queued already keeps its place. Off (the default): the

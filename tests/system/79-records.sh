@@ -9,7 +9,11 @@
 # the name no longer matches its index; rebuild recovers), the daemon
 # killed (-9) right after a session stop and again while one records (on
 # restart the records equal the files, the cut session among them), and
-# stopped with its database damaged (made again at start-up). After
+# backed up online and restored after rows were lost (the sessions as
+# backed up, the one recorded since from its file; refused while a
+# session records, over an existing file, on the read-only socket, from a
+# file that is no records database), and stopped with its database
+# damaged (made again at start-up). After
 # each, every session is in the database once, its measures equal to
 # `session show`'s (read with the sqlite3 program, not through endosimd).
 . "$(dirname "$0")/../common.sh"
@@ -126,12 +130,65 @@ check "the daemon's log says it made the records" \
 check_status "session list" 0 ctl --json session list
 check "... the five" jq -e '.sessions | length == 5' "$OUT"
 
+# --- backup and restore ------------------------------------------------------
+# dump [MAX_ID]: the sessions (up to MAX_ID), their measures and
+# trainees, row by row
+dump() {
+	local max=${1:-1000000}
+	sqlite3 -readonly "$DB" "SELECT * FROM sessions WHERE id <= $max
+			ORDER BY id;
+		SELECT * FROM measures WHERE session_id <= $max
+			ORDER BY session_id;
+		SELECT * FROM trainees WHERE id IN (SELECT trainee_id FROM
+			sessions WHERE id <= $max) ORDER BY id"
+}
+BACKUP="$TMP/monday.sqlite"
+dump >"$TMP/before.txt"
+check_status "records backup, online, into a new file" 0 \
+	ctl records backup "$BACKUP"
+check "... says how many sessions it holds" \
+	grep -qx "backed up 5 sessions into $BACKUP" "$OUT"
+check "... one file (no WAL beside it) of the database's rows" eval \
+	'[ ! -e "$BACKUP-wal" ] && [ "$(DB=$BACKUP dump)" = \
+		"$(cat "$TMP/before.txt")" ]'
+check_status "... never over a file: refused (1)" 1 \
+	ctl records backup "$BACKUP"
+check "... saying so" grep -q "it exists" "$OUT"
+check_status "... on the read-only socket: refused (1)" 1 \
+	"$ENDOCTL" --socket "$SOCK/status.sock" records backup "$TMP/ro.sqlite"
+check "... nothing written" test ! -e "$TMP/ro.sqlite"
+check_status "... a relative path: the daemon writes it where endoctl is" 0 \
+	sh -c "cd '$TMP' && '$ENDOCTL' --socket '$SOCK' records backup \
+		rel.sqlite"
+check "... there" test -s "$TMP/rel.sqlite"
+
+record Dan # recorded since the backup
+sqlite3 "$DB" "DELETE FROM measures; DELETE FROM sessions;"
+check_status "rows lost: records restore from the backup" 0 \
+	ctl records restore "$BACKUP"
+check "... the sessions backed up as they were" eval \
+	'[ "$(dump 5)" = "$(cat "$TMP/before.txt")" ]'
+check "... the one recorded since, from its file: the records equal the \
+files" records_equal 6
+
+ctl session start --trainee Eve >/dev/null
+check_status "restore while a session records: refused (1)" 1 \
+	ctl records restore "$BACKUP"
+check "... saying so" grep -q "a session is recording" "$OUT"
+ctl session stop >/dev/null
+printf 'not a database\n' >"$TMP/junk.sqlite"
+check_status "restore from a file that is no records database: refused (1)" \
+	1 ctl records restore "$TMP/junk.sqlite"
+check "... saying so" grep -q "not a sound records database" "$OUT"
+check "... the records as they were, with the session just stopped" \
+	records_equal 7
+
 stop_daemon
 printf 'X' | dd of="$DB" bs=1 seek=0 conv=notrunc 2>/dev/null
 start_daemon --session-dir "$SESS" || finish
 check "a damaged database at start-up: made again from the files" \
-	records_equal 5
+	records_equal 7
 check "... the log says so" \
-	grep -q "records $DB: damaged: 5 of 5 sessions written" "$LOG"
+	grep -q "records $DB: damaged: 7 of 7 sessions written" "$LOG"
 
 finish

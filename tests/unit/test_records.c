@@ -9,6 +9,8 @@
  * centre: each session written is queued in the order written, once,
  * leaves the queue when it arrived, and keeps its UUID when the database
  * is built again (and is queued again then, the centre's copy telling).
+ * A backup restored after the database was lost: the files' sessions,
+ * the backup's marks; junk, a newer schema or nothing refused.
  *
  * Writes to $TMPDIR.
  */
@@ -442,6 +444,91 @@ static void test_centre_queue(void **state)
 	assert_int_equal(records_queue_head(r, &s, &n), -ENOENT); /* none */
 }
 
+/* A file of TEXT at PATH. */
+static void write_text(const char *path, const char *text)
+{
+	FILE *f = fopen(path, "w");
+
+	assert_non_null(f);
+	fputs(text, f);
+	fclose(f);
+}
+
+/*
+ * A backup, online, into a new file of its own (one file: in rollback
+ * journal mode, no WAL), never over a file or a link; restored after the database was lost,
+ * a session recorded since and one whose file went: the sessions are the
+ * files' again, and what only the database held (the centre's marks and
+ * queue) is the backup's. A file that is not a records database, one of a
+ * newer schema, or none: refused, the database as it was.
+ */
+static void test_backup_restore(void **state)
+{
+	struct records *r = *state;
+	struct records_report rep;
+	char backup[320], other[400], link[320];
+	size_t n;
+
+	records_set_centre(r, true);
+	assert_int_equal(records_add(r, 1), 0);
+	assert_int_equal(records_add(r, 2), 0);
+	assert_int_equal(records_add(r, 10), 0);
+	assert_int_equal(records_queue_arrived(r, 10), 0); /* the db's alone */
+	snprintf(backup, sizeof(backup), "%s/backup.sqlite", dir);
+	assert_int_equal(records_backup(r, backup, &n), 0);
+	assert_int_equal(n, 3);
+	{
+		sqlite3_stmt *st;
+		sqlite3 *db;
+
+		assert_int_equal(sqlite3_open(backup, &db), SQLITE_OK);
+		assert_int_equal(sqlite3_prepare_v2(db, "PRAGMA journal_mode",
+						    -1, &st, NULL), SQLITE_OK);
+		assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+		assert_string_equal(sqlite3_column_text(st, 0), "delete");
+		sqlite3_finalize(st);
+		sqlite3_close(db);
+	}
+	assert_int_equal(records_backup(r, backup, &n), -EEXIST);
+	snprintf(link, sizeof(link), "%s/link.sqlite", dir);
+	assert_int_equal(symlink("/nonexistent/x.sqlite", link), 0);
+	assert_int_equal(records_backup(r, link, &n), -EEXIST);
+
+	assert_int_equal(unlink(db_path), 0); /* lost */
+	write_session(11, "Ann Smith", 1, 200); /* recorded since */
+	snprintf(other, sizeof(other), "%s/2.endoses", dir);
+	assert_int_equal(unlink(other), 0); /* gone since */
+	assert_int_equal(records_restore(r, backup, 0, &rep), 0);
+	assert_int_equal(rep.written, 2);
+	records_report_free(&rep);
+	check_list(r, 3);
+	head_is(r, 1, 2); /* 1 as backed up, 11 after; 10 had arrived */
+	assert_int_equal(records_queue_arrived(r, 1), 0);
+	head_is(r, 11, 1);
+
+	snprintf(other, sizeof(other), "%s/junk.sqlite", dir);
+	write_text(other, "not a database, though named like one\n");
+	assert_int_equal(records_restore(r, other, 0, &rep), -EBADMSG);
+	assert_non_null(strstr(records_error(r), "not a sound records"));
+	records_report_free(&rep);
+	snprintf(other, sizeof(other), "%s/none.sqlite", dir);
+	assert_int_equal(records_restore(r, other, 0, &rep), -ENOENT);
+	records_report_free(&rep);
+	assert_int_equal(records_backup(r, other, &n), 0);
+	{
+		sqlite3 *db;
+
+		assert_int_equal(sqlite3_open(other, &db), SQLITE_OK);
+		assert_int_equal(sqlite3_exec(db, "PRAGMA user_version = 99",
+					      NULL, NULL, NULL), SQLITE_OK);
+		sqlite3_close(db);
+	}
+	assert_int_equal(records_restore(r, other, 0, &rep), -EPROTO);
+	records_report_free(&rep);
+	check_list(r, 3); /* as it was */
+	head_is(r, 11, 1);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -456,6 +543,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_newer_refused, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_centre_queue, setup,
+						teardown),
+		cmocka_unit_test_setup_teardown(test_backup_restore, setup,
 						teardown),
 	};
 
