@@ -192,19 +192,34 @@ void control_on_records_rebuild(struct control *c, struct client *cl,
 	records_reply(c, rep, e);
 }
 
-/* A path the daemon takes as given: absolute, of a sane length. */
-static bool path_ok(const char *path)
+/* Refuses WHAT's PATH unless it is absolute and of a sane length: the
+ * daemon's working directory is not the client's. True: refused. */
+static bool bad_path(const char *what, const char *path, Endosim__Reply *rep)
 {
-	return path && path[0] == '/' && strlen(path) < 4096;
+	if (path && path[0] == '/' && strlen(path) < 4096) {
+		return false;
+	}
+	refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+	       !strcmp(what, "backup") ?
+		       "backup: the file's path must be absolute" :
+		       "restore: the file's path must be absolute");
+	return true;
 }
 
-/* What a backup or a restore's E means to the one who asked. */
-static Endosim__Status status_of(int e)
+/* Refuses with what a backup or a restore's E means (the file's fault:
+ * refused; the daemon's: internal). True: E was an error. */
+static bool failed(struct control *c, int e, Endosim__Reply *rep)
 {
-	return e == -EEXIST || e == -EBADMSG || e == -EPROTO ||
-			       e == -ENOENT || e == -EACCES ?
-		       ENDOSIM__STATUS__STATUS_REFUSED :
-		       ENDOSIM__STATUS__STATUS_INTERNAL;
+	if (!e) {
+		return false;
+	}
+	snprintf(c->refusal, sizeof(c->refusal), "%s", why(c->records, e));
+	refuse(rep, e == -EEXIST || e == -EBADMSG || e == -EPROTO ||
+			    e == -ENOENT || e == -EACCES ?
+			    ENDOSIM__STATUS__STATUS_REFUSED :
+			    ENDOSIM__STATUS__STATUS_INTERNAL,
+	       c->refusal);
+	return true;
 }
 
 void control_on_records_backup(struct control *c, struct client *cl,
@@ -214,18 +229,10 @@ void control_on_records_backup(struct control *c, struct client *cl,
 	struct control_records *cr = c->records;
 	const char *path = req->records_backup->path;
 	size_t rows;
-	int e;
 
 	records_report_free(&cr->report);
-	if (!path_ok(path)) {
-		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
-		       "backup: the file's path must be absolute");
-		return;
-	}
-	e = records_backup(cr->db, path, &rows);
-	if (e) {
-		snprintf(c->refusal, sizeof(c->refusal), "%s", why(cr, e));
-		refuse(rep, status_of(e), c->refusal);
+	if (bad_path("backup", path, rep) ||
+	    failed(c, records_backup(cr->db, path, &rows), rep)) {
 		return;
 	}
 	log_notice("records %s backed up into %s (uid %d): %zu sessions",
@@ -245,12 +252,9 @@ void control_on_records_restore(struct control *c, struct client *cl,
 {
 	struct control_records *cr = c->records;
 	const char *path = req->records_restore->path;
-	int e;
 
 	records_report_free(&cr->report);
-	if (!path_ok(path)) {
-		refuse(rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
-		       "restore: the file's path must be absolute");
+	if (bad_path("restore", path, rep)) {
 		return;
 	}
 	if (recording_id(c)) {
@@ -259,10 +263,7 @@ void control_on_records_restore(struct control *c, struct client *cl,
 		       "(endoctl session stop)");
 		return;
 	}
-	e = records_restore(cr->db, path, 0, &cr->report);
-	if (e) {
-		snprintf(c->refusal, sizeof(c->refusal), "%s", why(cr, e));
-		refuse(rep, status_of(e), c->refusal);
+	if (failed(c, records_restore(cr->db, path, 0, &cr->report), rep)) {
 		return;
 	}
 	if (cr->centre) {
