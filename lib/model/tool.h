@@ -1,9 +1,9 @@
 /*
  * tool.h - the tools a trainee passes through the scope's working channel
  * (issue 25): biopsy forceps, a snare, an injection needle, a clip; the
- * snare's capture of a polyp and its cut. This is the model alone: what
- * the rig senses of the tool, what the loop publishes and records of it
- * and how the viewer draws it are later slices.
+ * snare's capture of a polyp and its cut. This is the model alone: the
+ * loop steps it (loop.c), the simulated hand senses it (rig/hand.h), the
+ * viewer draws it from what the loop publishes (viewer/toolview.h).
  *
  * The tool, one at a time as the nurse hands it over (tool_select()),
  * lies in the channel; what the rig senses of it each cycle
