@@ -214,7 +214,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_toolview
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
-	     session_shapes
+	     session_shapes records_gen
 BENCH_TOOLS = bench_colon bench_haptics bench_metrics bench_tool
 FUZZ_TARGETS = fuzz_frame fuzz_config fuzz_scenario fuzz_anatomy fuzz_objio \
 	       fuzz_epos4 fuzz_session fuzz_rod fuzz_course

@@ -42,6 +42,9 @@
 #    emulators (drives.sh).
 # 5. The viewer's frame times and the age of the state it shows
 #    (tests/bench/viewer.sh).
+# 6. The rig's records at scale: 10 000 sessions of 50 trainees, endoctl's
+#    trainee list, trainee report and session list timed
+#    (tests/bench/records.sh).
 set -u
 . "$(dirname "$0")/../common.sh"
 
@@ -151,6 +154,9 @@ BUILD=$BUILD "$TOP/tests/bench/drives.sh"
 
 echo
 BUILD="$BUILD" bash "$TOP/tests/bench/viewer.sh"
+
+echo
+BUILD="$BUILD" bash "$TOP/tests/bench/records.sh"
 
 # The soak: the loop and the daemon's memory over a long run with the
 # scenario looping and clients subscribed (tests/bench/soak.sh).
