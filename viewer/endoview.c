@@ -114,6 +114,7 @@ struct app {
 	bool overview_shown;    /* the last frame drew the overview */
 	long frame;
 	long timed_from; /* the first frame the figures count */
+	uint64_t pass_ns; /* --pass-times: when the last pass finished */
 };
 
 /* ------------------------------------------------------------ window */
@@ -512,6 +513,24 @@ static const char *voice_line(struct app *a)
 	return a->voice_line;
 }
 
+/* --pass-times: pass K of this frame is drawn; finishes it and counts
+ * the time since the last pass finished. */
+static void pass_done(struct app *a, enum timing_kind k)
+{
+	uint64_t now;
+
+	if (!a->opt.pass_times) {
+		return;
+	}
+	glFinish();
+	now = mono_ns();
+	if (a->frame >= a->timed_from && !a->loading && a->pass_ns) {
+		timing_add(a->timing, k, (double)(now - a->pass_ns) /
+					 ENDOSIM_NS_PER_MS);
+	}
+	a->pass_ns = now;
+}
+
 static void draw_views(struct app *a, const struct hud_layout *lay,
 		       const struct endosim_state *st, bool current,
 		       double t_s)
@@ -531,14 +550,18 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, in, &es);
+		pass_done(a, TIMING_PASS_IMAGE);
 		lensfx_draw(a->lensfx, &st->patient, in, t_s);
+		pass_done(a, TIMING_PASS_LENS);
 		imagescale_end(a->scale, lay->endo);
+		pass_done(a, TIMING_PASS_SCALE);
 		a->triangles += es.triangles;
 	}
 	if (lay->overview.w) {
 		a->triangles += overview_draw(a->overview, c->model, c->lod,
 					      c->gpu, current ? st : NULL,
 					      &a->orbit, lay->overview);
+		pass_done(a, TIMING_PASS_OVERVIEW);
 	}
 	if (a->triangles > a->triangles_max) {
 		a->triangles_max = a->triangles;
@@ -555,6 +578,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	int w, h;
 
 	ui_framebuffer_size(a->ui, &w, &h);
+	a->pass_ns = a->opt.pass_times ? mono_ns() : 0; /* the GL is idle */
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -576,6 +600,7 @@ static void render(struct app *a, const struct endosim_state *st,
 			     a->status == LINK_LIVE ? st : NULL);
 	}
 	draw2d_end(a->d2d);
+	pass_done(a, TIMING_PASS_PANEL);
 }
 
 /* After the swap: the frame's time and the age of the state it showed. */
@@ -658,6 +683,7 @@ static int frame(struct app *a)
 		capture(w, h);
 	}
 	glfwSwapBuffers(a->window);
+	pass_done(a, TIMING_PASS_SWAP);
 	a->shown = st;
 	account(a, st, mono_ns());
 	return acts.quit ? 1 : err;

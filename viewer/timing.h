@@ -16,6 +16,14 @@
 enum timing_kind {
 	TIMING_FRAME = 0, /* ms from swap to swap */
 	TIMING_AGE,       /* ms from the state's publishing to the swap */
+	/* --pass-times: each pass of a frame, finished (glFinish), ms */
+	TIMING_PASS_IMAGE,    /* the window cleared, the endoscopic image
+				 (endo.h) */
+	TIMING_PASS_LENS,     /* what covers the lens (lensfx.h) */
+	TIMING_PASS_SCALE,    /* the image scaled up (imagescale.h) */
+	TIMING_PASS_OVERVIEW, /* the overview (overview.h) */
+	TIMING_PASS_PANEL,    /* the panel and labels (hud.h, draw2d.h) */
+	TIMING_PASS_SWAP,     /* the swap to the screen */
 	TIMING_KINDS,
 };
 

@@ -21,7 +21,7 @@ void viewopts_usage(FILE *f)
 		"                [--screenshot FILE.png] [--frames N]\n"
 		"                [--no-vsync] [--max-fps N] [--image-scale S]\n"
 		"                [--font FILE.ttf] [--mute] [--voice DIR]\n"
-		"                [--stats] [--print-state]\n"
+		"                [--stats] [--pass-times] [--print-state]\n"
 		"                [--replay FILE [--seek S] [--speed X] "
 		"[--paused]]\n"
 		"  --socket PATH     endosimd's socket directory (or socket);\n"
@@ -46,6 +46,9 @@ void viewopts_usage(FILE *f)
 		"  --voice DIR       the voice's clips (default: voice/\n"
 		"                    beside endoview, else %s)\n"
 		"  --stats           print the frame figures at exit\n"
+		"  --pass-times      finish each pass of a frame before the\n"
+		"                    next and print what each took (slows\n"
+		"                    the frame: for finding where it goes)\n"
 		"  --print-state     print the last frame's state at exit,\n"
 		"                    what its panel said and where its\n"
 		"                    overview drew the scope and the colon\n"
@@ -101,6 +104,7 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 		{ "image-scale", required_argument, NULL, 'I' },
 		{ "font", required_argument, NULL, 'f' },
 		{ "stats", no_argument, NULL, 'S' },
+		{ "pass-times", no_argument, NULL, 'T' },
 		{ "print-state", no_argument, NULL, 'P' },
 		{ "replay", required_argument, NULL, 'r' },
 		{ "seek", required_argument, NULL, 'k' },
@@ -166,6 +170,9 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 			break;
 		case 'S':
 			o->stats = true;
+			break;
+		case 'T':
+			o->pass_times = true;
 			break;
 		case 'P':
 			o->print_state = true;

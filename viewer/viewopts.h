@@ -4,7 +4,8 @@
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
  *            [--no-vsync] [--max-fps N] [--image-scale S]
- *            [--font FILE.ttf] [--stats] [--mute] [--voice DIR]
+ *            [--font FILE.ttf] [--stats] [--pass-times] [--mute]
+ *            [--voice DIR]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * The main thread, at start-up; no allocation (the strings point into
@@ -36,6 +37,7 @@ struct viewopts {
 	double max_fps;         /* 0: as fast as vsync lets it */
 	double image_scale;     /* 0: by the renderer (imagescale.h) */
 	bool vsync, stats, print_state, paused;
+	bool pass_times;        /* each pass finished and timed (viewstats.h) */
 	bool mute;              /* the patient's voice off at start */
 };
 

@@ -3,6 +3,10 @@
 
 #include "viewer/mapview.h"
 
+/* --pass-times' names, in timing.h's order */
+static const char *const pass_name[] = { "image", "lens", "scale",
+					 "overview", "panel", "swap" };
+
 static void print_rect(FILE *out, const char *name, struct endo_rect r,
 		       int fb_h)
 {
@@ -36,4 +40,14 @@ void viewstats_print(FILE *out, const struct viewstats *s)
 			   : (struct mapview_rect){ 0 };
 	fprintf(out, " map=%d,%d,%d,%d\n", (int)map.x, (int)map.y,
 		(int)map.w, (int)map.h);
+	if (timing_count(t, TIMING_PASS_SWAP) == 0) {
+		return; /* no --pass-times */
+	}
+	fprintf(out, "endoview: passes_ms");
+	for (int k = TIMING_PASS_IMAGE; k <= TIMING_PASS_SWAP; k++) {
+		fprintf(out, " %s=%.2f/%.2f", pass_name[k - TIMING_PASS_IMAGE],
+			timing_quantile(t, (enum timing_kind)k, 0.5),
+			timing_quantile(t, (enum timing_kind)k, 0.99));
+	}
+	fputc('\n', out);
 }

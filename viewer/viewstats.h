@@ -1,13 +1,16 @@
 /*
  * viewstats.h - endoview's closing figures (--stats, and every run of
- * --frames N), two lines on stdout that tests/bench/viewer.sh and the
- * system tests read:
+ * --frames N), two lines (three with --pass-times) on stdout that
+ * tests/bench/viewer.sh and the system tests read:
  *
  *   endoview: frames=N seconds=S fps=F frame_ms_p50=.. frame_ms_p99=..
  *     age_ms_p50=.. age_ms_p99=.. triangles=N triangles_max=N
  *     gl_errors=N daemon=live|stale|none|replay colon=NAME|none
  *   endoview: layout endo=X,Y,W,H overview=.. panel=.. timeline=..
  *     map=X,Y,W,H
+ *   endoview: passes_ms image=P50/P99 lens=.. scale=.. overview=..
+ *     panel=.. swap=..   (only with --pass-times: each pass of a frame
+ *     finished before the next, its ms; a pass not drawn counts 0)
  *
  * (each on one line), the views' rectangles in pixels from the image's
  * top-left corner, as in its PNG (0,0,0,0: not shown). Main thread; no

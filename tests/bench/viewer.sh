@@ -68,6 +68,11 @@ mesh() {
 			measure "$view" "$size"
 		done
 	done
+	# where the endoscopic frame's time goes, each pass finished
+	view --view endo --size 1280x720 --frames "$FRAMES" --pass-times &&
+		echo "  endo 1280x720 by pass, p50/p99 ms (each finished:" \
+			"the frame is slower so):" &&
+		sed -n 's/^endoview: passes_ms /    /p' "$VIEW_OUT"
 	stop_daemon
 }
 

@@ -211,6 +211,13 @@ check "lens: pressed into the wall and back in the lumen, smeared" \
 	 .axes.wheel_ud.position < 0.05 and .patient.lens_smear > 0.3'
 take smeared "smeared"
 check "the panel gives the lens" said "lens: smear [0-9]+ %"
+# --pass-times: each pass of the frame timed; the lens's drawn (> 50 us)
+view "${SMALL[@]}" --frames 12 --pass-times
+passes=$(sed -n 's/^endoview: passes_ms //p' "$VIEW_OUT")
+echo "# passes (p50/p99 ms): $passes"
+check "--pass-times: six passes, the lens's among them" eval \
+	'[ "$(echo "$passes" | grep -oE "[a-z]+=[0-9.]+/[0-9.]+" | wc -l)" = 6 ] &&
+	 float_test "$(echo "$passes" | sed -n "s/.*lens=\([0-9.]*\)\/.*/\1/p") > 0.05"'
 check_status "the water jet (endoctl patient valve water on)" 0 \
 	ctl patient valve water on --for 10
 check "... the lens clears" wait_for p_true '.lens_smear < 0.01'
