@@ -60,14 +60,18 @@
 #define ENDO_WALL_MARGIN_M 0.003
 #define ENDO_LEVEL_M 0.03, 0.06, 0.12 /* where levels 1, 2, 3 begin */
 #define ENDO_MASK_RADIUS 1.06 /* image circle, in half-sides of its square */
-/* GLSL: the image circle's mask (1 inside, 0 outside, a pixel's edge) at
- * this fragment of the viewport VP (x, y, w, h) for a circle of R
- * half-sides; the endoscopic view's and the lens's (lensfx.h) */
+/* GLSL: the image circle's mask (1 inside, 0 outside, a pixel's edge;
+ * endo_mask_px(): PX pixels') at this fragment of the viewport VP (x, y,
+ * w, h) for a circle of R half-sides; the endoscopic view's and the
+ * lens's (lensfx.h) */
 #define ENDO_MASK_GLSL \
-	"float endo_mask(vec4 vp, float r) {\n" \
+	"float endo_mask_px(vec4 vp, float r, float px) {\n" \
 	"	vec2 hs = 0.5 * vp.zw;\n" \
 	"	vec2 q = (gl_FragCoord.xy - vp.xy - hs) / hs.y;\n" \
-	"	return 1.0 - smoothstep(r - 2.0 / vp.w, r, length(q));\n" \
+	"	return 1.0 - smoothstep(r - 2.0 * px / vp.w, r, length(q));\n" \
+	"}\n" \
+	"float endo_mask(vec4 vp, float r) {\n" \
+	"	return endo_mask_px(vp, r, 1.0);\n" \
 	"}\n"
 /* the widest angle from the view direction the image shows */
 #define ENDO_HALF_ANGLE_RAD (ENDO_FOV_DEG / 2 * M_PI / 180 * ENDO_MASK_RADIUS)

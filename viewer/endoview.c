@@ -545,13 +545,14 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 		return;
 	}
 	if (lay->endo.w && current) {
+		double lens = lensfx_image_factor(&st->patient);
 		struct endo_rect in = imagescale_begin(a->scale, lay->endo,
-						       a->image_scale);
+						       a->image_scale * lens);
 
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, in, &es);
 		pass_done(a, TIMING_PASS_IMAGE);
-		lensfx_draw(a->lensfx, &st->patient, in, t_s);
+		lensfx_draw(a->lensfx, &st->patient, in, lens, t_s);
 		pass_done(a, TIMING_PASS_LENS);
 		imagescale_end(a->scale, lay->endo);
 		pass_done(a, TIMING_PASS_SCALE);

@@ -18,12 +18,12 @@
 
 enum uniform {
 	U_IMAGE, U_SOFT1, U_SOFT2, U_NOISE, U_VIEWPORT, U_MASK, U_SMEAR,
-	U_MURK, U_REDOUT, U_WATER, U_TIME, UNIFORMS
+	U_MURK, U_REDOUT, U_WATER, U_TIME, U_EDGE, UNIFORMS
 };
 
 static const char *const uniform_name[UNIFORMS] = {
 	"u_image", "u_soft1", "u_soft2", "u_noise", "u_viewport", "u_mask",
-	"u_smear", "u_murk", "u_redout", "u_water", "u_time",
+	"u_smear", "u_murk", "u_redout", "u_water", "u_time", "u_edge",
 };
 
 /* A texture and the framebuffer that draws into it. */
@@ -35,7 +35,7 @@ struct target {
 struct lensfx {
 	GLuint program, shrink, noise, vao;
 	GLint u[UNIFORMS];
-	GLint shrink_source;
+	GLint shrink_source, shrink_ratio;
 	struct target image;      /* the image as drawn (no framebuffer) */
 	struct target soft[SOFT]; /* its blurred copies */
 };
@@ -50,16 +50,19 @@ static const char *vertex_src =
 	"}\n";
 
 /*
- * A quarter of the source each way: the mean of each 4 x 4 of its texels,
- * four bilinear taps between them (a box filter; SHRINK).
+ * 1 / u_ratio of the source each way (u_ratio 4 or 2): the mean of each
+ * 4 x 4 (2 x 2) of its texels, four bilinear taps between them (4: each
+ * tap the mean of 2 x 2; 2: each on one texel), a box filter.
  */
 static const char *shrink_src =
 	"#version 330 core\n"
 	"uniform sampler2D u_source;\n"
+	"uniform float u_ratio;\n"
 	"out vec4 frag;\n"
 	"void main() {\n"
 	"	vec2 texel = 1.0 / vec2(textureSize(u_source, 0));\n"
-	"	vec2 at = gl_FragCoord.xy * 4.0 * texel;\n"
+	"	vec2 at = gl_FragCoord.xy * u_ratio * texel;\n"
+	"	texel *= 0.25 * u_ratio;\n"
 	"	vec2 x = vec2(texel.x, -texel.y);\n"
 	"	frag = 0.25 * (texture(u_source, at - texel) +\n"
 	"		texture(u_source, at + x) +\n"
@@ -73,7 +76,9 @@ static const char *shrink_src =
  * mixed by the amount: the same look at any size. Blurring by copies
  * (rather than mipmaps, which llvmpipe builds slowly) keeps the pass at
  * a few milliseconds.
- * The veils glow evenly: what the smear or the haze scatters back into
+ * How much of the sharp image shows (1.6 smear at 0.45 of it where the
+ * noise leaves no patch, 1.2 murk) is lensfx_rules.c's too: keep them
+ * together. The veils glow evenly: what the smear or the haze scatters back into
  * the lens is the light the walls return, which the light's automatic
  * level (endo.h) keeps about even. The noise's red is the smear's
  * patches, green its finer texture, blue the red-out's folds.
@@ -91,6 +96,7 @@ static const char *fragment_src =
 	"uniform float u_redout;\n"
 	"uniform float u_water;\n"
 	"uniform float u_time;\n"
+	"uniform float u_edge;\n"
 	"out vec4 frag;\n"
 	ENDO_MASK_GLSL
 	"void main() {\n"
@@ -119,7 +125,7 @@ static const char *fragment_src =
 	"	vec3 mucosa = vec3(0.55, 0.07, 0.05) * (0.8 + 0.4 * n.b);\n"
 	"	c = mix(c, mucosa, 0.95 * u_redout);\n"
 	"	c += u_water * 0.06 * max(ripple.x * ripple.y, 0.0);\n"
-	"	frag = vec4(c * endo_mask(u_viewport, u_mask), 1.0);\n"
+	"	frag = vec4(c * endo_mask_px(u_viewport, u_mask, u_edge), 1.0);\n"
 	"}\n";
 
 static uint32_t hash(uint32_t x, uint32_t y, uint32_t octave)
@@ -210,6 +216,7 @@ struct lensfx *lensfx_create(void)
 		fx->u[k] = glGetUniformLocation(fx->program, uniform_name[k]);
 	}
 	fx->shrink_source = glGetUniformLocation(fx->shrink, "u_source");
+	fx->shrink_ratio = glGetUniformLocation(fx->shrink, "u_ratio");
 	glGenVertexArrays(1, &fx->vao);
 	return fx;
 }
@@ -237,14 +244,6 @@ void lensfx_destroy(struct lensfx *fx)
 	free(fx);
 }
 
-bool lensfx_visible(const struct endosim_patient_state *p)
-{
-	return p->enabled &&
-	       (p->lens_smear > LENSFX_CLEAN || p->lens_murk > LENSFX_CLEAN ||
-		p->lens_redout > LENSFX_CLEAN ||
-		(p->valves & ENDOSIM_VALVE_WATER));
-}
-
 /* T as a W x H texture (a framebuffer's with FBO), made anew when its
  * size changed. */
 static void size_target(struct target *t, int w, int h, bool fbo)
@@ -266,8 +265,10 @@ static void size_target(struct target *t, int w, int h, bool fbo)
 }
 
 /* The image in R of the framebuffer bound into its texture, and its
- * blurred copies; that framebuffer bound again. */
-static void copy_image(struct lensfx *fx, struct endo_rect r)
+ * blurred copies, the first a quarter of the image's side at FACTOR 1
+ * (at FACTOR 0.5, the image drawn at half its side: a half); that
+ * framebuffer bound again. */
+static void copy_image(struct lensfx *fx, struct endo_rect r, double factor)
 {
 	const struct target *from = &fx->image;
 	GLint bound = 0;
@@ -283,9 +284,11 @@ static void copy_image(struct lensfx *fx, struct endo_rect r)
 	glBindVertexArray(fx->vao);
 	for (int k = 0; k < SOFT; k++) {
 		struct target *to = &fx->soft[k];
+		int ratio = k == 0 && factor < 1 ? SHRINK / 2 : SHRINK;
 
-		size_target(to, from->w / SHRINK > 0 ? from->w / SHRINK : 1,
-			    from->h / SHRINK > 0 ? from->h / SHRINK : 1, true);
+		glUniform1f(fx->shrink_ratio, (float)ratio);
+		size_target(to, from->w / ratio > 0 ? from->w / ratio : 1,
+			    from->h / ratio > 0 ? from->h / ratio : 1, true);
 		glBindFramebuffer(GL_FRAMEBUFFER, to->fbo);
 		glViewport(0, 0, to->w, to->h);
 		glBindTexture(GL_TEXTURE_2D, from->texture);
@@ -295,18 +298,13 @@ static void copy_image(struct lensfx *fx, struct endo_rect r)
 	glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)bound);
 }
 
-static float amount(double v)
-{
-	return isfinite(v) ? (float)fmax(0, fmin(1, v)) : 0;
-}
-
 void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
-		 struct endo_rect r, double t_s)
+		 struct endo_rect r, double factor, double t_s)
 {
 	if (!lensfx_visible(p) || r.w <= 0 || r.h <= 0) {
 		return;
 	}
-	copy_image(fx, r);
+	copy_image(fx, r, factor);
 	glViewport(r.x, r.y, r.w, r.h);
 	glUseProgram(fx->program);
 	glUniform1i(fx->u[U_IMAGE], 0);
@@ -316,11 +314,13 @@ void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
 	glUniform4f(fx->u[U_VIEWPORT], (float)r.x, (float)r.y, (float)r.w,
 		    (float)r.h);
 	glUniform1f(fx->u[U_MASK], (float)ENDO_MASK_RADIUS);
-	glUniform1f(fx->u[U_SMEAR], amount(p->lens_smear));
-	glUniform1f(fx->u[U_MURK], amount(p->lens_murk));
-	glUniform1f(fx->u[U_REDOUT], amount(p->lens_redout));
+	glUniform1f(fx->u[U_SMEAR], lensfx_amount(p->lens_smear));
+	glUniform1f(fx->u[U_MURK], lensfx_amount(p->lens_murk));
+	glUniform1f(fx->u[U_REDOUT], lensfx_amount(p->lens_redout));
 	glUniform1f(fx->u[U_WATER], p->valves & ENDOSIM_VALVE_WATER ? 1 : 0);
 	glUniform1f(fx->u[U_TIME], (float)fmod(t_s, 1000));
+	/* the circle's edge as wide on the screen at any FACTOR */
+	glUniform1f(fx->u[U_EDGE], (float)(1 / factor));
 	glBindTexture(GL_TEXTURE_2D, fx->image.texture);
 	for (int k = 0; k < SOFT; k++) {
 		glActiveTexture((GLenum)(GL_TEXTURE1 + k));

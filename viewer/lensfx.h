@@ -21,7 +21,18 @@
  * The image circle's mask is kept. Nothing is drawn (no copy, no pass)
  * while the lens is clean and the jet off: a clean lens costs nothing.
  *
- * Main thread, with the GL context current.
+ * A lens smeared and murky enough hides the sharp image everywhere (the
+ * pixel least smeared still takes only the blurred copies): then the
+ * image need only be as fine as the first blurred copy, and the caller
+ * draws it, and the lens over it, at LENSFX_HIDDEN_FACTOR of its side
+ * (lensfx_image_factor()): a quarter of the pixels of the image and of
+ * the lens's pass, the blurred copies the same as at full size, and the
+ * picture the same but for the image circle's edge (scaled up further).
+ * In software that takes the patient's worst frame (the tip in a pool,
+ * the lens smeared and murky) from 12 to 8 ms (p50).
+ *
+ * Main thread, with the GL context current (lensfx_visible(),
+ * lensfx_amount() and lensfx_image_factor() need none: lensfx_rules.c).
  */
 #ifndef ENDOVIEW_LENSFX_H
 #define ENDOVIEW_LENSFX_H
@@ -32,6 +43,7 @@
 #include "viewer/endo.h"
 
 #define LENSFX_CLEAN 0.002 /* an amount below this is not drawn */
+#define LENSFX_HIDDEN_FACTOR 0.5 /* the image's side, sharp image hidden */
 
 struct lensfx;
 
@@ -44,12 +56,23 @@ void lensfx_destroy(struct lensfx *fx);
 /* True when P's lens (or its jet) has anything to draw. */
 bool lensfx_visible(const struct endosim_patient_state *p);
 
+/* An amount of the lens (smear, murk, red-out) as drawn: V within
+ * 0..1, 0 when not finite. */
+float lensfx_amount(double v);
+
+/*
+ * What P's lens lets the image be drawn at, of its side: 1, or
+ * LENSFX_HIDDEN_FACTOR where it hides the sharp image everywhere.
+ */
+double lensfx_image_factor(const struct endosim_patient_state *p);
+
 /*
  * Draws P's lens over the endoscopic image in R (drawn by endo_draw() in
  * this frame, in the framebuffer bound: the back buffer, or
- * imagescale.h's target), at time T_S (s; the jet's ripples).
+ * imagescale.h's target), the image drawn at FACTOR of its side
+ * (lensfx_image_factor()'s, or 1), at time T_S (s; the jet's ripples).
  */
 void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
-		 struct endo_rect r, double t_s);
+		 struct endo_rect r, double factor, double t_s);
 
 #endif
