@@ -388,6 +388,7 @@ install: all
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
 	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
 	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
+	install -m 0644 config/centre-roles.sql $(DESTDIR)$(DATADIR)/
 	install -m 0644 $(VOICE_WAVS) $(DESTDIR)$(VOICEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	install -d $(DESTDIR)$(DOCDIR)/docs
