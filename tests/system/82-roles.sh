@@ -25,13 +25,7 @@ as() {
 }
 # add NAME ROLE PIN: a user made by the staff
 add() { ENDOSIM_NEW_PIN=$3 ctl user add "$1" --role "$2"; }
-live_status() { ctl --json session status | jq -e "$1"; }
-record() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 100' &&
-		ctl session stop >/dev/null
-}
-# listed JQ ARGS...: `endoctl --json ARGS` lists the trainees JQ says
+# trainees_of: the trainees of the sessions the last --json list gave
 trainees_of() { jq -c '[.sessions[].trainee] | sort' "$OUT"; }
 
 check "staff: an administrator, an instructor, three trainees" eval \
@@ -51,7 +45,8 @@ check "... as made" jq -e '.groups == [{"name": "2026", "instructor":
 	"Dr Ives", "trainees": ["Ann", "Bo"], "courses": ["basic.course"]}]' \
 	"$OUT"
 check "sessions of Ann, Ann, Bo and Cy" eval \
-	'record Ann && record Ann && record Bo && record Cy'
+	'record_session Ann && record_session Ann && record_session Bo &&
+	 record_session Cy'
 
 # the trainee
 check_status "Ann: whoami" 0 as Ann 1111 whoami

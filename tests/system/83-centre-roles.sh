@@ -15,12 +15,6 @@
 . "$(dirname "$0")/pg_lib.sh"
 pg_make
 
-live_status() { ctl --json session status | jq -e "$1"; }
-record() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 100' &&
-		ctl session stop >/dev/null
-}
 at_centre() { [ "$(sql 'SELECT COUNT(*) FROM sessions')" = "$1" ]; }
 # centre SQL: as the superuser in the centre's database
 centre() { psql -X -q -At -v ON_ERROR_STOP=1 \
@@ -33,7 +27,7 @@ url_of() { echo "postgresql:///endosim?host=$PGSOCK&user=$1"; }
 start_daemon --set "records.centre=$URL" --set records.rig=rig-a \
 	--set records.centre_retry_s=0.1 || finish
 check "sessions of Ann, Bo and Cy recorded" eval \
-	'record Ann && record Bo && record Cy'
+	'record_session Ann && record_session Bo && record_session Cy'
 check "... at the centre" wait_for at_centre 3
 
 check "centre-roles.sql run" centre -f "$TOP/config/centre-roles.sql"
@@ -103,7 +97,7 @@ check "Ada: Cy's deleted" test \
 	"$(as ada "DELETE FROM sessions WHERE trainee = 'Cy' RETURNING 1")" = 1
 
 # the rig writes on under the policies
-check "the rig: another session of Ann" record Ann
+check "the rig: another session of Ann" record_session Ann
 check "... at the centre" wait_for at_centre 3
 check "... and Ann's to read" test \
 	"$(as ann 'SELECT COUNT(*) FROM sessions')" = 2
