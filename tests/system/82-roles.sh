@@ -62,6 +62,11 @@ check "... in words" grep -q "Bo's sessions: a trainee sees only their own \
 check_status "Ann: Cy's session 4 shown: refused" 1 as Ann 1111 session show 4
 check "... in words" grep -q "that session is another trainee's" "$OUT"
 check_status "Ann: her session 1 shown" 0 as Ann 1111 session show 1
+check_status "Ann: Cy's session 4 exported: refused" 1 \
+	as Ann 1111 session export 4 --csv --out "$TMP/cy.csv"
+check "... nothing written" test ! -e "$TMP/cy.csv"
+check_status "Ann: her session 1 exported" 0 \
+	as Ann 1111 session export 1 --csv --out "$TMP/ann.csv"
 for what in "records check" "records rebuild" "records backup $TMP/b.sqlite"; do
 	check_status "Ann: $what: refused" 1 as Ann 1111 $what
 	check "... in words" grep -q "only an administrator checks, rebuilds" \

@@ -69,7 +69,7 @@ check_status "Ann: UPDATE her own: refused" 1 \
 	as ann "UPDATE sessions SET trainee = 'Bo'"
 check_status "Ann: the people: refused" 1 \
 	as ann "SELECT * FROM endosim_people"
-check_status "Ann: the rule's function bypassed by SET ROLE: refused" 1 \
+check_status "Ann: SET ROLE rig, the owner the rules do not bind: refused" 1 \
 	as ann "SET ROLE rig"
 check "... nothing changed: three sessions, Ann's hers" test \
 	"$(sql "SELECT string_agg(trainee, ',' ORDER BY trainee)
