@@ -25,7 +25,8 @@ struct control_accounts {
 	Endosim__AccountUser **users_p;
 	Endosim__AccountGroup *groups;
 	Endosim__AccountGroup **groups_p;
-	char **lines;               /* the groups' trainees and courses */
+	char ***lines;              /* the groups' trainees and courses:
+				       2 a group, each NULL-ended */
 	struct accounts_user *rows;
 	struct accounts_group *group_rows;
 	size_t n_groups;
@@ -59,6 +60,9 @@ struct control_accounts *control_accounts_create(const struct config *cfg)
 static void free_reply(struct control_accounts *ca)
 {
 	for (size_t i = 0; ca->lines && i < 2 * ca->n_groups; i++) {
+		for (char **l = ca->lines[i]; l && *l; l++) {
+			free(*l);
+		}
 		free(ca->lines[i]);
 	}
 	free(ca->lines);
@@ -328,10 +332,10 @@ static int fill_groups(struct control_accounts *ca)
 		g->instructor = ca->group_rows[i].instructor;
 		e = split_lines(ca->group_rows[i].trainees, &t, &g->trainees,
 				&g->n_trainees);
-		ca->lines[2 * i] = (char *)t;
+		ca->lines[2 * i] = t;
 		e = e ? e : split_lines(ca->group_rows[i].courses, &k,
 					&g->courses, &g->n_courses);
-		ca->lines[2 * i + 1] = (char *)k;
+		ca->lines[2 * i + 1] = k;
 		ca->groups_p[i] = g;
 	}
 	ca->reply.n_groups = n;
