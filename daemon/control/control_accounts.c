@@ -194,6 +194,10 @@ bool control_accounts_refuse(struct control *c, const struct client *cl,
 			       "the records need a login: endoctl --as NAME "
 			       "(or root, or the command group)");
 	}
+	if (req->body_case == ENDOSIM__REQUEST__BODY_SESSION_START) {
+		return cl->logged_in && named_unseen(c, cl,
+			req->session_start->trainee, rep);
+	}
 	return req->body_case == ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS &&
 	       named_unseen(c, cl, req->trainee_sessions->trainee, rep);
 }

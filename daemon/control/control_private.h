@@ -164,8 +164,8 @@ void control_accounts_destroy(struct control_accounts *ca);
 /*
  * Before REQ's handler: true when CL may not make it, REP refused in words
  * (the records' maintenance needs an administrator; the records' lists a
- * login, root or the command group; a trainee named needs to be one the
- * login sees). After it: the records in REP that CL's login does not see
+ * login, root or the command group; a trainee named, and a session's
+ * trainee at its start, must be one the login sees). After it: the records in REP that CL's login does not see
  * left out (a session shown: refused).
  */
 bool control_accounts_refuse(struct control *c, const struct client *cl,

@@ -75,6 +75,11 @@ for what in "records check" "records rebuild" "records backup $TMP/b.sqlite"; do
 		"$OUT"
 done
 check "... no backup made" test ! -e "$TMP/b.sqlite"
+check_status "Ann: a session of Bo started: refused" 1 \
+	as Ann 48213579 session start --trainee Bo
+check "... in words" grep -q "Bo's sessions: a trainee sees only their own" \
+	"$OUT"
+check "... none recording" live_status '.recording == false'
 check_status "Ann: user remove Bo: refused" 1 as Ann 48213579 user remove Bo
 check "... in words" grep -q "only an administrator changes the accounts" \
 	"$OUT"
