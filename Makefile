@@ -37,7 +37,8 @@ UDEVDIR = $(SYSCONFDIR)/udev/rules.d
 CFLAGS ?= -O2 -g
 WARNINGS = -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wformat=2 \
 	   -Wno-format-nonliteral
-PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3 libpq
+PKGS = libprotobuf-c inih libsystemd libusb-1.0 libmodbus zlib sqlite3 libpq \
+       libsodium
 CLIENT_PKGS = libprotobuf-c zlib inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 CASEDIR = $(DATADIR)/cases
@@ -50,7 +51,7 @@ CLIENT_LDLIBS = $(shell pkg-config --libs $(CLIENT_PKGS) 2>/dev/null) -lm
 # --- Debian packages -------------------------------------------------------
 DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 	     libinih-dev libsystemd-dev libusb-1.0-0-dev libmodbus-dev zlib1g-dev \
-	     libsqlite3-dev libpq-dev \
+	     libsqlite3-dev libpq-dev libsodium-dev \
 	     libglfw3-dev libepoxy-dev libcglm-dev libstb-dev libopenal-dev \
 	     fonts-dejavu-core espeak-ng
 # libFuzzer's runtime is only a recommendation of clang: named here
@@ -211,7 +212,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
 	     test_voice test_wav test_tool test_tool_loop test_centre \
-	     test_toolview test_lensfx
+	     test_toolview test_lensfx test_accounts
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes records_gen
@@ -387,6 +388,7 @@ install: all
 	install -m 0644 config/scenarios/*.scn $(DESTDIR)$(DATADIR)/scenarios/
 	install -m 0644 config/cases/*.case $(DESTDIR)$(CASEDIR)/
 	install -m 0644 config/courses/*.course $(DESTDIR)$(DATADIR)/courses/
+	install -m 0644 config/centre-roles.sql $(DESTDIR)$(DATADIR)/
 	install -m 0644 $(VOICE_WAVS) $(DESTDIR)$(VOICEDIR)/
 	install -m 0644 README.md $(DESTDIR)$(DOCDIR)/README.md
 	install -d $(DESTDIR)$(DOCDIR)/docs

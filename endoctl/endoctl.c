@@ -44,16 +44,11 @@ static int comm_error(int err)
 	return EXIT_COMM;
 }
 
-/* Sends REQ; on success *REP holds an OK reply. */
-int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
-		 Endosim__Reply **rep)
+int ctl_request(struct ctl *ctl, Endosim__Request *req,
+		Endosim__Reply **rep)
 {
-	int r = connect_daemon(ctl, write);
+	int r = client_request(ctl->client, req, rep, ctl->timeout_ms);
 
-	if (r) {
-		return r;
-	}
-	r = client_request(ctl->client, req, rep, ctl->timeout_ms);
 	if (r) {
 		return comm_error(r);
 	}
@@ -74,6 +69,19 @@ int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
 		return EXIT_REFUSED;
 	}
 	return 0;
+}
+
+/* Sends REQ (logged in first with --as); on success *REP holds an OK
+ * reply. */
+int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
+		 Endosim__Reply **rep)
+{
+	int r = connect_daemon(ctl, write);
+
+	if (!r && ctl->as && req->body_case != ENDOSIM__REQUEST__BODY_LOGIN) {
+		r = ctl_login(ctl);
+	}
+	return r ? r : ctl_request(ctl, req, rep);
 }
 
 /* ------------------------------------------------------------ commands */
@@ -753,6 +761,28 @@ static const struct command {
 	  "backup: an online copy into the new FILE (endosimd writes it); "
 	  "restore: the database made again from FILE, then brought up to "
 	  "date with the files (refused while a session records)" },
+	{ "user", ctl_cmd_user, "the rig's users: trainees, instructors, "
+	  "administrators", "user list | add NAME --role "
+	  "trainee|instructor|administrator | remove NAME | pin NAME",
+	  "ENDOSIM_NEW_PIN=4821 endoctl user add Ann --role trainee",
+	  "who sees what of the records: a trainee their own sessions, an "
+	  "instructor their groups' trainees', an administrator all; the PIN "
+	  "of add and pin from $ENDOSIM_NEW_PIN, else asked twice on the "
+	  "terminal (4 to 64 characters, kept only as a salted Argon2id "
+	  "hash); add, remove and another's pin: an administrator on the "
+	  "control socket (root or the endosim group are one while not "
+	  "logged in); anyone logged in may change their own PIN" },
+	{ "group", ctl_cmd_group, "groups of trainees and their courses",
+	  "group list | add GROUP --instructor NAME | remove GROUP | join "
+	  "GROUP TRAINEE... | leave GROUP TRAINEE... | assign GROUP COURSE | "
+	  "unassign GROUP COURSE", "endoctl group join 2026 Ann Bo",
+	  "a group (a year's intake) is managed by one instructor, who sees "
+	  "the sessions of its trainees; its courses are the course files "
+	  "assigned to it; changes: an administrator on the control socket" },
+	{ "whoami", ctl_cmd_whoami, "who this connection is to endosimd",
+	  "whoami", "ENDOSIM_PIN=4821 endoctl --as Ann whoami",
+	  "with --as NAME the name and role the PIN logged in as; without, "
+	  "whether root or the endosim group make you an administrator" },
 	{ "guide", ctl_cmd_guide, "guided replay of a session through the "
 	  "motors",
 	  "guide start ID|FILE [--speed X] [--from S] | stop | takeover | "
@@ -790,9 +820,10 @@ static const struct command {
 static void usage(FILE *out)
 {
 	fprintf(out, "usage: endoctl [--socket PATH] [--json] [--timeout MS] "
-		"COMMAND [ARGS]\n\nPATH is a socket or the directory holding "
-		"both (default $%s or %s).\n\ncommands:\n", CLIENT_ENV,
-		CLIENT_DEFAULT_DIR);
+		"[--as NAME] COMMAND [ARGS]\n\nPATH is a socket or the "
+		"directory holding both (default $%s or %s).\n--as NAME: "
+		"logged in as NAME, the PIN from $ENDOSIM_PIN or the "
+		"terminal.\n\ncommands:\n", CLIENT_ENV, CLIENT_DEFAULT_DIR);
 	for (size_t i = 0; i < COMMANDS; i++) {
 		fprintf(out, "  %-8s %s\n", commands[i].name, commands[i].line);
 	}
@@ -935,6 +966,7 @@ int main(int argc, char **argv)
 		{ "socket", required_argument, NULL, 's' },
 		{ "json", no_argument, NULL, 'j' },
 		{ "timeout", required_argument, NULL, 't' },
+		{ "as", required_argument, NULL, 'a' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -952,6 +984,9 @@ int main(int argc, char **argv)
 			break;
 		case 't':
 			ctl.timeout_ms = atoi(optarg);
+			break;
+		case 'a':
+			ctl.as = optarg;
 			break;
 		case 'h':
 			usage(stdout);

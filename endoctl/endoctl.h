@@ -47,6 +47,8 @@ struct ctl {
 	bool json;
 	int timeout_ms;
 	struct client *client;
+	const char *as;     /* --as NAME: each connection logs in; NULL not */
+	char pin[128];      /* its PIN, once read ("": not yet) */
 };
 
 typedef int command_fn(struct ctl *ctl, int argc, char **argv);
@@ -58,6 +60,11 @@ typedef int command_fn(struct ctl *ctl, int argc, char **argv);
  */
 int ctl_transact(struct ctl *ctl, bool write, Endosim__Request *req,
 		 Endosim__Reply **rep);
+
+/* REQ on the connection ctl_transact() made last, as it: 0 or the exit
+ * status. */
+int ctl_request(struct ctl *ctl, Endosim__Request *req,
+		Endosim__Reply **rep);
 
 /* BODY, a hand input (simulated rig), on the read-write socket: 0 or the
  * exit status (ctl_transact()'s). */
@@ -88,6 +95,24 @@ int ctl_cmd_trainee(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl records check | rebuild` (endoctl_records.c). */
 int ctl_cmd_records(struct ctl *ctl, int argc, char **argv);
+
+/*
+ * The connection just made logged in as --as NAME (endoctl_accounts.c):
+ * its PIN from $ENDOSIM_PIN, else asked on the terminal (once). 0, or the
+ * exit status with the reason on stderr (ctl_transact()'s).
+ */
+int ctl_login(struct ctl *ctl);
+
+/* A PIN for PROMPT into PIN (SIZE): $VAR, else the terminal, unechoed
+ * (ASK_TWICE: a new PIN, typed again to confirm). 0 or EXIT_USAGE. */
+int ctl_read_pin(const char *var, const char *prompt, bool ask_twice,
+		 char *pin, size_t size);
+
+/* `endoctl user ...`, `endoctl group ...`, `endoctl whoami`
+ * (endoctl_accounts.c). */
+int ctl_cmd_user(struct ctl *ctl, int argc, char **argv);
+int ctl_cmd_group(struct ctl *ctl, int argc, char **argv);
+int ctl_cmd_whoami(struct ctl *ctl, int argc, char **argv);
 
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);

@@ -452,8 +452,14 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 			"[--out FILE]\n");
 		return EXIT_USAGE;
 	}
+	if (!summary && (r = session_open(ctl, argv[2], &sh))) {
+		return r; /* refused before FILE is touched */
+	}
 	if (out_path && !(out = fopen(out_path, "we"))) {
 		fprintf(stderr, "endoctl: %s: %s\n", out_path, strerror(errno));
+		if (!summary) {
+			session_close(&sh);
+		}
 		return EXIT_REFUSED;
 	}
 	if (summary) {
@@ -461,7 +467,7 @@ static int session_export(struct ctl *ctl, int argc, char **argv)
 		for (int k = 0; k < ids && !r && !werr; k++) {
 			r = summary_row(ctl, argv[2 + k], out, &werr);
 		}
-	} else if (!(r = session_open(ctl, argv[2], &sh))) {
+	} else {
 		werr = (events ? sessionview_events_csv(out, &sh.f)
 			       : sessionview_csv(out, &sh.f)) != 0;
 		session_close(&sh);

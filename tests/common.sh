@@ -289,6 +289,15 @@ tally() {
 	exit $?
 }
 
+# record_session NAME: a session of trainee NAME on the slot's daemon, a
+# hundred records long or more
+live_status() { ctl --json session status | jq -e "$1"; }
+record_session() {
+	ctl session start --trainee "$1" >/dev/null &&
+		wait_for live_status '.records > 100' &&
+		ctl session stop >/dev/null
+}
+
 # A suite stopped from outside (tests/run.sh's time limit) says so, with
 # the daemons' logs and its tally, rather than vanishing mid-check.
 stopped() {

@@ -248,7 +248,9 @@ static void accept_client(struct control *c, int lfd, bool rw)
 	getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len);
 	cl->fd = fd;
 	cl->rw = rw;
-	cl->may_command = rw && peer_may_command(c, fd, &cred);
+	cl->staff = peer_may_command(c, fd, &cred);
+	cl->may_command = rw && cl->staff;
+	cl->logged_in = false;
 	cl->uid = cred.uid;
 	cl->pid = cred.pid;
 	cl->last_rx_ns = mono_ns();
@@ -304,6 +306,8 @@ static const struct handler handlers[] = {
 	  control_on_records_backup },
 	{ ENDOSIM__REQUEST__BODY_RECORDS_RESTORE, true,
 	  control_on_records_restore },
+	{ ENDOSIM__REQUEST__BODY_LOGIN, false, control_on_login },
+	{ ENDOSIM__REQUEST__BODY_ACCOUNTS, false, control_on_accounts },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -352,8 +356,9 @@ static int dispatch(struct control *c, struct client *cl, const uint8_t *msg,
 				(int)cl->uid, (int)cl->pid);
 		refuse(&rep, ENDOSIM__STATUS__STATUS_PERMISSION,
 		       "only root and the endosim group may command");
-	} else {
+	} else if (!control_accounts_refuse(c, cl, req, &rep)) {
 		h->fn(c, cl, req, &rep);
+		control_accounts_filter(c, cl, req, &rep);
 	}
 	r = client_reply(c, cl, &rep);
 	endosim__request__free_unpacked(req, NULL);
@@ -601,7 +606,8 @@ struct control *control_create(const struct config *cfg,
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
 	c->max_queued = (size_t)cfg->socket.max_queued_bytes;
 	if (alloc_buffers(c) || open_sockets(c) ||
-	    !(c->records = control_records_create(cfg))) {
+	    !(c->records = control_records_create(cfg)) ||
+	    !(c->accounts = control_accounts_create(cfg))) {
 		control_destroy(c);
 		return NULL;
 	}
@@ -686,5 +692,6 @@ void control_destroy(struct control *c)
 	control_trainees_destroy(c->trainees);
 	control_guide_destroy(c->guide);
 	control_records_destroy(c->records);
+	control_accounts_destroy(c->accounts);
 	free(c);
 }

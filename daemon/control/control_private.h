@@ -24,6 +24,7 @@
 #include "control/control.h"
 #include "proto/endosim.pb-c.h"
 #include "proto/frame.h"
+#include "session/accounts.h"
 #include "session/records.h"
 
 #define COMMAND_TIMEOUT_MS 200 /* the loop takes a command within this */
@@ -32,6 +33,10 @@ struct client {
 	int fd;               /* -1: free slot */
 	bool rw;              /* connected to the read-write socket */
 	bool may_command;     /* rw, and root or in the command group */
+	bool staff;           /* root or in the command group, either socket:
+				 an administrator while not logged in */
+	bool logged_in;       /* Login: as user */
+	struct accounts_user user;
 	uid_t uid;
 	pid_t pid;
 	uint64_t last_rx_ns;  /* last bytes received */
@@ -50,6 +55,7 @@ struct control_cases;
 struct control_sessions;
 struct control_trainees;
 struct control_guide;
+struct control_accounts;
 
 struct control {
 	struct config cfg;       /* the master copy */
@@ -68,6 +74,7 @@ struct control {
 	struct control_trainees *trainees;
 	struct control_guide *guide;
 	struct control_records *records;
+	struct control_accounts *accounts;
 	struct colon *colon;     /* the loop's now: read its mesh only */
 	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
 	uint64_t scene_id;       /* its GetScene id */
@@ -147,6 +154,25 @@ void control_centre_poke(struct control_centre *cc);
 int control_records_list(struct control *c, struct records_session **out,
 			 size_t *n, char *error, size_t size);
 
+/*
+ * Who sees what (control_accounts.c, accounts.h): the accounts beside
+ * CFG's records; NULL on ENOMEM or libsodium failing (logged).
+ */
+struct control_accounts *control_accounts_create(const struct config *cfg);
+void control_accounts_destroy(struct control_accounts *ca);
+
+/*
+ * Before REQ's handler: true when CL may not make it, REP refused in words
+ * (the records' maintenance needs an administrator; the records' lists a
+ * login, root or the command group; a trainee named, and a session's
+ * trainee at its start, must be one the login sees). After it: the records in REP that CL's login does not see
+ * left out (a session shown: refused).
+ */
+bool control_accounts_refuse(struct control *c, const struct client *cl,
+			     const Endosim__Request *req, Endosim__Reply *rep);
+void control_accounts_filter(struct control *c, const struct client *cl,
+			     const Endosim__Request *req, Endosim__Reply *rep);
+
 /* The requests, by family (see above). */
 handler_fn control_on_get_status;
 handler_fn control_on_get_stats;
@@ -177,6 +203,8 @@ handler_fn control_on_records_check;
 handler_fn control_on_records_rebuild;
 handler_fn control_on_records_backup;
 handler_fn control_on_records_restore;
+handler_fn control_on_login;
+handler_fn control_on_accounts;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */

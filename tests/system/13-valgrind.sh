@@ -1,6 +1,6 @@
 #!/bin/bash
 # endosimd through a working session (commands, parameter changes,
-# subscriptions, hostile input, SIGTERM): no memory errors, and nothing
+# subscriptions, hostile input, users, groups and logins, SIGTERM): no memory errors, and nothing
 # leaked at exit. The plain build runs under valgrind; the sanitizers'
 # build (which valgrind cannot run) runs the same session under its own
 # AddressSanitizer, with LeakSanitizer's check at exit.
@@ -25,6 +25,15 @@ session() {
 	printf '\377\377\377\177' | timeout 5 socat -t 1 - "UNIX-CONNECT:$SOCK/status.sock" >/dev/null 2>&1
 	check "estop" ctl estop
 	check "reset" ctl reset
+	check "users and a group" eval 'ENDOSIM_NEW_PIN=48213579 ctl user add \
+		Ann --role trainee && ENDOSIM_NEW_PIN=16180339 ctl user add \
+		Ives --role instructor && ctl group add 2026 --instructor \
+		Ives && ctl group join 2026 Ann && ctl group list'
+	check "logged in: the group, the sessions" eval 'ENDOSIM_PIN=16180339 \
+		ctl --as Ives group list && ENDOSIM_PIN=48213579 \
+		ctl --as Ann session list'
+	check_status "a wrong PIN" 1 eval 'ENDOSIM_PIN=00000000 \
+		ctl --as Ann whoami'
 }
 
 if ldd "$ENDOSIMD" | grep -q libasan; then

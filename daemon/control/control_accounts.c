@@ -1,0 +1,490 @@
+/*
+ * control_accounts.c - who sees what of the rig's records
+ * (control_private.h): Login and Accounts, and the rule that every other
+ * request of the records passes (accounts.h). A connection is who its
+ * login says; without one, root and the command group (the rig's staff,
+ * as the sockets' permissions say) are an administrator and anyone else
+ * sees no records. A PIN's hash blocks the control thread for its 40 ms
+ * or so: a login is one request of one client, rare, and wrong PINs in a
+ * row make the next tries wait (refused unhashed), so that guessing cannot
+ * keep the thread busy for one user; the force loop never waits on it.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "base/log.h"
+#include "control/control_private.h"
+
+struct control_accounts {
+	struct accounts *db;
+	Endosim__AccountsReply reply;
+	Endosim__AccountUser *users;
+	Endosim__AccountUser **users_p;
+	Endosim__AccountGroup *groups;
+	Endosim__AccountGroup **groups_p;
+	char ***lines;              /* the groups' trainees and courses:
+				       2 a group, each NULL-ended */
+	struct accounts_user *rows;
+	struct accounts_group *group_rows;
+	size_t n_groups;
+	char words[512];            /* a refusal's */
+};
+
+struct control_accounts *control_accounts_create(const struct config *cfg)
+{
+	struct control_accounts *ca = calloc(1, sizeof(*ca));
+	const char *db = cfg->records.database;
+	char path[3 * CONFIG_STR], *slash;
+
+	if (db[0] == '/') {
+		snprintf(path, sizeof(path), "%s", db);
+	} else {
+		snprintf(path, sizeof(path), "%s/%s", cfg->session.directory,
+			 db);
+	}
+	slash = strrchr(path, '/');
+	snprintf(slash + 1, sizeof(path) - (size_t)(slash + 1 - path), "%s",
+		 ACCOUNTS_DEFAULT_NAME);
+	if (!ca || !(ca->db = accounts_create(path))) {
+		log_err("control: out of memory, or libsodium cannot start");
+		free(ca);
+		return NULL;
+	}
+	return ca;
+}
+
+/* What the last reply was made of. */
+static void free_reply(struct control_accounts *ca)
+{
+	for (size_t i = 0; ca->lines && i < 2 * ca->n_groups; i++) {
+		for (char **l = ca->lines[i]; l && *l; l++) {
+			free(*l);
+		}
+		free(ca->lines[i]);
+	}
+	free(ca->lines);
+	free(ca->users);
+	free(ca->users_p);
+	free(ca->groups);
+	free(ca->groups_p);
+	free(ca->rows);
+	accounts_groups_free(ca->group_rows, ca->n_groups);
+	ca->lines = NULL;
+	ca->users = NULL;
+	ca->users_p = NULL;
+	ca->groups = NULL;
+	ca->groups_p = NULL;
+	ca->rows = NULL;
+	ca->group_rows = NULL;
+	ca->n_groups = 0;
+}
+
+void control_accounts_destroy(struct control_accounts *ca)
+{
+	if (!ca) {
+		return;
+	}
+	free_reply(ca);
+	accounts_destroy(ca->db);
+	free(ca);
+}
+
+/* ------------------------------------------------------------ the rule */
+
+static bool administrator(const struct client *cl)
+{
+	return cl->logged_in ? cl->user.role == ACCOUNTS_ADMINISTRATOR
+			     : cl->staff;
+}
+
+/* "Ann (trainee)" or "not logged in" into OUT. */
+static const char *who(const struct client *cl, char *out, size_t size)
+{
+	if (!cl->logged_in) {
+		return "not logged in";
+	}
+	snprintf(out, size, "logged in as %s (%s)", cl->user.name,
+		 accounts_role_name(cl->user.role));
+	return out;
+}
+
+/* Refuses REP with WHY (then " (you are WHO)"): true. */
+static bool refused(struct control *c, const struct client *cl,
+		    Endosim__Reply *rep, Endosim__Status status,
+		    const char *why)
+{
+	struct control_accounts *ca = c->accounts;
+	char name[128];
+
+	snprintf(ca->words, sizeof(ca->words), "%s (you are %s)", why,
+		 who(cl, name, sizeof(name)));
+	refuse(rep, status, ca->words);
+	return true;
+}
+
+/* The trainees CL sees into *NAMES (NULL: every one). 0 or -errno. */
+static int seen(struct control *c, const struct client *cl, char **names)
+{
+	bool all;
+	int e;
+
+	*names = NULL;
+	if (!cl->logged_in) {
+		return 0; /* staff: the rule let no one else this far */
+	}
+	e = accounts_seen(c->accounts->db, &cl->user, names, &all);
+	if (!e && all) {
+		free(*names);
+		*names = NULL;
+	}
+	return e;
+}
+
+static bool maintenance(Endosim__Request__BodyCase body)
+{
+	return body == ENDOSIM__REQUEST__BODY_RECORDS_CHECK ||
+	       body == ENDOSIM__REQUEST__BODY_RECORDS_REBUILD ||
+	       body == ENDOSIM__REQUEST__BODY_RECORDS_BACKUP ||
+	       body == ENDOSIM__REQUEST__BODY_RECORDS_RESTORE;
+}
+
+static bool reads_records(Endosim__Request__BodyCase body)
+{
+	return body == ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS ||
+	       body == ENDOSIM__REQUEST__BODY_SESSION_LIST ||
+	       body == ENDOSIM__REQUEST__BODY_SESSION_SHOW;
+}
+
+/* A trainee named that CL does not see: refused. */
+static bool named_unseen(struct control *c, const struct client *cl,
+			 const char *trainee, Endosim__Reply *rep)
+{
+	char *names, why[256];
+	bool out;
+
+	if (!*trainee || seen(c, cl, &names)) {
+		return false;
+	}
+	out = names && !accounts_among(names, trainee);
+	free(names);
+	if (out) {
+		snprintf(why, sizeof(why), "%s's sessions: %s", trainee,
+			 cl->user.role == ACCOUNTS_TRAINEE ?
+			 "a trainee sees only their own" :
+			 "not a trainee of your groups");
+		return refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			       why);
+	}
+	return false;
+}
+
+bool control_accounts_refuse(struct control *c, const struct client *cl,
+			     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	if (maintenance(req->body_case) && !administrator(cl)) {
+		return refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			       "only an administrator checks, rebuilds, backs "
+			       "up or restores the records");
+	}
+	if (reads_records(req->body_case) && !cl->logged_in && !cl->staff) {
+		return refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			       "the records need a login: endoctl --as NAME "
+			       "(or root, or the command group)");
+	}
+	if (req->body_case == ENDOSIM__REQUEST__BODY_SESSION_START) {
+		return cl->logged_in && named_unseen(c, cl,
+			req->session_start->trainee, rep);
+	}
+	return req->body_case == ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS &&
+	       named_unseen(c, cl, req->trainee_sessions->trainee, rep);
+}
+
+/* The N sessions S that NAMES sees, moved to its front; how many. */
+static size_t keep_seen(Endosim__SessionInfo **s, size_t n,
+			const char *names)
+{
+	size_t kept = 0;
+
+	for (size_t i = 0; i < n; i++) {
+		if (accounts_among(names, s[i]->trainee)) {
+			s[kept++] = s[i];
+		}
+	}
+	return kept;
+}
+
+void control_accounts_filter(struct control *c, const struct client *cl,
+			     const Endosim__Request *req, Endosim__Reply *rep)
+{
+	char *names = NULL;
+	int e;
+
+	if (rep->status != ENDOSIM__STATUS__STATUS_OK ||
+	    !reads_records(req->body_case)) {
+		return;
+	}
+	if ((e = seen(c, cl, &names))) {
+		rep->body_case = ENDOSIM__REPLY__BODY__NOT_SET;
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+		       accounts_error(c->accounts->db));
+		return;
+	}
+	if (!names) {
+		return; /* an administrator */
+	}
+	if (rep->body_case == ENDOSIM__REPLY__BODY_SESSION_LIST) {
+		rep->session_list->n_sessions =
+			keep_seen(rep->session_list->sessions,
+				  rep->session_list->n_sessions, names);
+	} else if (rep->body_case == ENDOSIM__REPLY__BODY_TRAINEE) {
+		rep->trainee->n_sessions = keep_seen(rep->trainee->sessions,
+						     rep->trainee->n_sessions,
+						     names);
+	} else if (!accounts_among(names, rep->session->session->trainee)) {
+		rep->body_case = ENDOSIM__REPLY__BODY__NOT_SET;
+		refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			"that session is another trainee's");
+	}
+	free(names);
+}
+
+/* ------------------------------------------------------------ replies */
+
+/* The reply: who CL is, and the users and groups it may see. */
+static int fill_list(struct control *c, const struct client *cl)
+{
+	struct control_accounts *ca = c->accounts;
+	Endosim__AccountsReply *m = &ca->reply;
+	size_t n = 0;
+	int e = 0;
+
+	endosim__accounts_reply__init(m);
+	m->who = cl->logged_in ? (char *)cl->user.name : "";
+	m->role = cl->logged_in ? (char *)accounts_role_name(cl->user.role)
+				: "";
+	m->staff = cl->staff;
+	if (administrator(cl)) {
+		e = accounts_users(ca->db, &ca->rows, &n);
+		e = e ? e : accounts_groups(ca->db, NULL, &ca->group_rows,
+					    &ca->n_groups);
+	} else if (cl->logged_in && cl->user.role == ACCOUNTS_INSTRUCTOR) {
+		e = accounts_groups(ca->db, cl->user.name, &ca->group_rows,
+				    &ca->n_groups);
+	}
+	if (e || !(ca->users = calloc(n + 1, sizeof(*ca->users))) ||
+	    !(ca->users_p = calloc(n + 1, sizeof(*ca->users_p)))) {
+		return e ? e : -ENOMEM;
+	}
+	for (size_t i = 0; i < n; i++) {
+		endosim__account_user__init(&ca->users[i]);
+		ca->users[i].name = ca->rows[i].name;
+		ca->users[i].role = (char *)accounts_role_name(ca->rows[i]
+							       .role);
+		ca->users_p[i] = &ca->users[i];
+	}
+	m->n_users = n;
+	m->users = ca->users_p;
+	return 0;
+}
+
+/* TEXT's lines as a repeated string into *OUT, *N (their storage kept in
+ * *LINE). */
+static int split_lines(char *text, char ***line, char ***out, size_t *n)
+{
+	size_t k = 0;
+
+	*n = 0;
+	*out = NULL;
+	for (char *p = text; *p; p++) {
+		k += *p == '\n';
+	}
+	k += *text != '\0';
+	if (!(*line = calloc(k + 1, sizeof(**line)))) {
+		return -ENOMEM;
+	}
+	*out = *line;
+	for (char *p = text, *end; *text && p; p = end ? end + 1 : NULL) {
+		end = strchr(p, '\n');
+		if (!((*line)[(*n)++] = strndup(p, end ? (size_t)(end - p)
+						       : strlen(p)))) {
+			return -ENOMEM;
+		}
+	}
+	return 0;
+}
+
+static int fill_groups(struct control_accounts *ca)
+{
+	size_t n = ca->n_groups;
+	int e = 0;
+
+	ca->groups = calloc(n + 1, sizeof(*ca->groups));
+	ca->groups_p = calloc(n + 1, sizeof(*ca->groups_p));
+	ca->lines = calloc(2 * n + 1, sizeof(*ca->lines));
+	if (!ca->groups || !ca->groups_p || !ca->lines) {
+		return -ENOMEM;
+	}
+	for (size_t i = 0; !e && i < n; i++) {
+		Endosim__AccountGroup *g = &ca->groups[i];
+		char **t = NULL, **k = NULL;
+
+		endosim__account_group__init(g);
+		g->name = ca->group_rows[i].name;
+		g->instructor = ca->group_rows[i].instructor;
+		e = split_lines(ca->group_rows[i].trainees, &t, &g->trainees,
+				&g->n_trainees);
+		ca->lines[2 * i] = t;
+		e = e ? e : split_lines(ca->group_rows[i].courses, &k,
+					&g->courses, &g->n_courses);
+		ca->lines[2 * i + 1] = k;
+		ca->groups_p[i] = g;
+	}
+	ca->reply.n_groups = n;
+	ca->reply.groups = ca->groups_p;
+	return e;
+}
+
+static void accounts_reply(struct control *c, const struct client *cl,
+			   Endosim__Reply *rep)
+{
+	struct control_accounts *ca = c->accounts;
+	int e = fill_list(c, cl);
+
+	e = e ? e : fill_groups(ca);
+	if (e) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+		       e == -ENOMEM ? "out of memory"
+				    : accounts_error(ca->db));
+		return;
+	}
+	rep->body_case = ENDOSIM__REPLY__BODY_ACCOUNTS;
+	rep->accounts = &ca->reply;
+}
+
+/* ------------------------------------------------------------ requests */
+
+void control_on_login(struct control *c, struct client *cl,
+		      const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct control_accounts *ca = c->accounts;
+	const Endosim__Login *m = req->login;
+	struct accounts_user u;
+	struct timespec now;
+	double wait_s;
+	int e;
+
+	free_reply(ca);
+	clock_gettime(CLOCK_REALTIME, &now);
+	e = accounts_login(ca->db, m->name, m->pin, (double)now.tv_sec +
+			   1e-9 * (double)now.tv_nsec, &u, &wait_s);
+	if (e == -EACCES) {
+		static struct log_ratelimit rl = LOG_RATELIMIT_INIT(10, 5);
+
+		log_ratelimited(&rl, LOG_NOTICE, "login as %s from uid %d "
+				"(pid %d): wrong name or PIN", m->name,
+				(int)cl->uid, (int)cl->pid);
+		snprintf(ca->words, sizeof(ca->words), "wrong name or PIN%s",
+			 wait_s > 0 ? ": wrong PINs in a row, the next try "
+			 "waits" : "");
+		refuse(rep, ENDOSIM__STATUS__STATUS_PERMISSION, ca->words);
+		return;
+	}
+	if (e) {
+		snprintf(ca->words, sizeof(ca->words), "%s",
+			 accounts_error(ca->db));
+		refuse(rep, e == -EAGAIN ? ENDOSIM__STATUS__STATUS_REFUSED
+					 : ENDOSIM__STATUS__STATUS_INTERNAL,
+		       ca->words);
+		return;
+	}
+	cl->user = u;
+	cl->logged_in = true;
+	log_info("client pid %d (uid %d): logged in as %s (%s)", (int)cl->pid,
+		 (int)cl->uid, u.name, accounts_role_name(u.role));
+	accounts_reply(c, cl, rep);
+}
+
+/* An Accounts change M carried out: 0 or as accounts.h's. */
+static int change(struct accounts *db, const Endosim__Accounts *m)
+{
+	enum accounts_role role;
+
+	switch (m->op) {
+	case ENDOSIM__ACCOUNTS__OP__OP_USER_ADD:
+		return accounts_role_parse(m->role, &role) ? -EDOM :
+			accounts_user_add(db, m->name, role, m->pin);
+	case ENDOSIM__ACCOUNTS__OP__OP_USER_REMOVE:
+		return accounts_user_remove(db, m->name);
+	case ENDOSIM__ACCOUNTS__OP__OP_USER_PIN:
+		return accounts_user_pin(db, m->name, m->pin);
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_ADD:
+		return accounts_group_add(db, m->group, m->name);
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_REMOVE:
+		return accounts_group_remove(db, m->group);
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_JOIN:
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_LEAVE:
+		return accounts_group_member(db, m->group, m->name, m->op ==
+					     ENDOSIM__ACCOUNTS__OP__OP_GROUP_JOIN);
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_ASSIGN:
+	case ENDOSIM__ACCOUNTS__OP__OP_GROUP_UNASSIGN:
+		return accounts_group_course(db, m->group, m->course, m->op ==
+					     ENDOSIM__ACCOUNTS__OP__OP_GROUP_ASSIGN);
+	default:
+		return -ENOSYS;
+	}
+}
+
+/* Whether CL may make the change M, else REP refused: true. */
+static bool change_refused(struct control *c, const struct client *cl,
+			   const Endosim__Accounts *m, Endosim__Reply *rep)
+{
+	bool own_pin = m->op == ENDOSIM__ACCOUNTS__OP__OP_USER_PIN &&
+		       cl->logged_in && !strcmp(m->name, cl->user.name);
+
+	if (own_pin) {
+		return false;
+	}
+	if (!cl->rw) {
+		refuse(rep, ENDOSIM__STATUS__STATUS_READ_ONLY,
+		       "read-only socket: use the control socket");
+		return true;
+	}
+	return !administrator(cl) &&
+	       refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+		       "only an administrator changes the accounts");
+}
+
+void control_on_accounts(struct control *c, struct client *cl,
+			 const Endosim__Request *req, Endosim__Reply *rep)
+{
+	struct control_accounts *ca = c->accounts;
+	const Endosim__Accounts *m = req->accounts;
+	int e;
+
+	free_reply(ca);
+	if (m->op != ENDOSIM__ACCOUNTS__OP__OP_LIST) {
+		if (change_refused(c, cl, m, rep)) {
+			return;
+		}
+		if ((e = change(ca->db, m))) {
+			snprintf(ca->words, sizeof(ca->words), "%s", e == -EDOM ?
+				 "a role: trainee, instructor or administrator"
+				 : e == -ENOSYS ? "no such accounts operation"
+				 : accounts_error(ca->db));
+			refuse(rep, e == -EIO || e == -ENOMEM ?
+			       ENDOSIM__STATUS__STATUS_INTERNAL :
+			       ENDOSIM__STATUS__STATUS_BAD_VALUE, ca->words);
+			return;
+		}
+		log_notice("accounts: %s %s%s%s by uid %d%s%s",
+			   protobuf_c_enum_descriptor_get_value(
+				   &endosim__accounts__op__descriptor,
+				   m->op)->name, m->name, *m->group ? " in " :
+			   "", m->group, (int)cl->uid, cl->logged_in ?
+			   " as " : "", cl->logged_in ? cl->user.name : "");
+	}
+	accounts_reply(c, cl, rep);
+}

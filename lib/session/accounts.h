@@ -1,0 +1,163 @@
+/*
+ * accounts.h - who may see what of the rig's records (docs/INSTRUCTOR.md,
+ * "Who sees what"): users with a name, a role and a PIN; groups of
+ * trainees (a year's intake), each managed by one instructor, with the
+ * courses assigned to it. A SQLite database of its own, beside the
+ * records (ACCOUNTS_DEFAULT_NAME in the records' directory): the records
+ * are made again from the session files whenever they are missing or
+ * damaged, the accounts are nobody's copy and must outlive that.
+ *
+ * The schema (user_version ACCOUNTS_SCHEMA_VERSION): users(name, role:
+ * "trainee" | "instructor" | "administrator", pin: crypto_pwhash_str()'s
+ * string (Argon2id, its salt and cost in it; never the PIN), failures,
+ * wait_until: seconds since the epoch before which a login is refused);
+ * groups(name, instructor: a user of role instructor); members(group,
+ * trainee: a user of role trainee); courses(group, course: a course file's
+ * name or path). A user is removed with their memberships; an instructor
+ * who manages a group is not (-EBUSY), nor a group's last word about
+ * anyone: removing a group removes its memberships and courses only.
+ *
+ * A trainee sees only the sessions whose trainee is their name; an
+ * instructor those of the trainees of the groups they manage; an
+ * administrator every session, and only an administrator changes the
+ * accounts or deletes records (control_accounts.c applies it).
+ *
+ * PINs: 4 to ACCOUNTS_PIN_MAX characters, no control characters; hashed
+ * with Argon2id at ACCOUNTS_PIN_OPS passes over ACCOUNTS_PIN_MEM bytes
+ * (OWASP's floor for Argon2id: about 40 ms a hash on a 2020 laptop core).
+ * A wrong PIN counts against its user: after ACCOUNTS_FREE_TRIES wrong
+ * PINs in a row each further one makes the next try wait, 1 s, then
+ * twice as long each time up to ACCOUNTS_WAIT_MAX_S; a try while it waits
+ * is refused without looking at the PIN. A right PIN clears the count.
+ * An unknown name costs the same hash as a known one and is refused in
+ * the same words.
+ *
+ * Each call opens the database, does its work and closes it. Blocks on
+ * the disk and, for a PIN, on the hash (tens of ms); allocates: the
+ * control thread or a tool, never the force loop. One writer (endosimd).
+ */
+#ifndef ENDOSIM_ACCOUNTS_H
+#define ENDOSIM_ACCOUNTS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define ACCOUNTS_SCHEMA_VERSION 1
+#define ACCOUNTS_DEFAULT_NAME "accounts.sqlite"
+#define ACCOUNTS_NAME_MAX 63        /* bytes of a user's or group's name */
+#define ACCOUNTS_PIN_MIN 4
+#define ACCOUNTS_PIN_MAX 64
+#define ACCOUNTS_PIN_OPS 2          /* Argon2id passes */
+#define ACCOUNTS_PIN_MEM (19u << 20) /* Argon2id memory, bytes */
+#define ACCOUNTS_FREE_TRIES 3
+#define ACCOUNTS_WAIT_MAX_S 300.0
+
+enum accounts_role {
+	ACCOUNTS_TRAINEE,
+	ACCOUNTS_INSTRUCTOR,
+	ACCOUNTS_ADMINISTRATOR,
+};
+
+struct accounts;
+
+/* One user as the database says (never their PIN). */
+struct accounts_user {
+	char name[ACCOUNTS_NAME_MAX + 1];
+	enum accounts_role role;
+};
+
+/* One group: its members and courses, each on a line of its own
+ * (malloc'd, "" none; accounts_groups_free()). */
+struct accounts_group {
+	char name[ACCOUNTS_NAME_MAX + 1];
+	char instructor[ACCOUNTS_NAME_MAX + 1];
+	char *trainees;
+	char *courses;
+};
+
+/* "trainee", "instructor", "administrator". */
+const char *accounts_role_name(enum accounts_role role);
+/* NAME as a role into *ROLE: 0 or -EINVAL. */
+int accounts_role_parse(const char *name, enum accounts_role *role);
+
+/*
+ * The accounts of the database PATH (made, mode 0600, on the first
+ * change). Touches nothing yet. NULL on ENOMEM or when libsodium cannot
+ * start.
+ */
+struct accounts *accounts_create(const char *path);
+void accounts_destroy(struct accounts *a);
+
+const char *accounts_path(const struct accounts *a);
+
+/* Why the last call failed, in words fit for the one refused ("" when
+ * it did not). */
+const char *accounts_error(const struct accounts *a);
+
+/*
+ * A user NAME of ROLE with PIN added. 0; -EINVAL (a name or PIN out of
+ * the rules above); -EEXIST; -EIO (SQLite's error).
+ */
+int accounts_user_add(struct accounts *a, const char *name,
+		      enum accounts_role role, const char *pin);
+
+/* User NAME's PIN replaced by PIN (its count of wrong ones cleared). 0;
+ * -EINVAL; -ENOENT; -EIO. */
+int accounts_user_pin(struct accounts *a, const char *name, const char *pin);
+
+/* User NAME removed, with their memberships. 0; -ENOENT; -EBUSY (an
+ * instructor who manages a group); -EIO. */
+int accounts_user_remove(struct accounts *a, const char *name);
+
+/*
+ * NAME logged in with PIN at NOW_S (seconds since the epoch): their
+ * account into *U. 0; -EACCES (no such user, or a wrong PIN: *WAIT_S the
+ * wait this try has earned, 0 none); -EAGAIN (a try while they wait:
+ * *WAIT_S how long still); -EIO.
+ */
+int accounts_login(struct accounts *a, const char *name, const char *pin,
+		   double now_s, struct accounts_user *u, double *wait_s);
+
+/* Every user, by name, into a malloc'd array of *N (free() it). 0; -EIO.
+ * A database not made yet has none. */
+int accounts_users(struct accounts *a, struct accounts_user **out,
+		   size_t *n);
+
+/* Group NAME managed by INSTRUCTOR (a user of that role) made. 0;
+ * -EINVAL; -EEXIST; -ENOENT (no such instructor); -EIO. */
+int accounts_group_add(struct accounts *a, const char *name,
+		       const char *instructor);
+
+/* Group NAME removed, with its memberships and courses. 0; -ENOENT;
+ * -EIO. */
+int accounts_group_remove(struct accounts *a, const char *name);
+
+/* TRAINEE (a user of that role) into group NAME (JOIN), or out of it.
+ * 0 (also when already so); -ENOENT (no such group or trainee); -EIO. */
+int accounts_group_member(struct accounts *a, const char *name,
+			  const char *trainee, bool join);
+
+/* COURSE assigned to group NAME (ASSIGN), or no longer. 0; -EINVAL (an
+ * empty course); -ENOENT; -EIO. */
+int accounts_group_course(struct accounts *a, const char *name,
+			  const char *course, bool assign);
+
+/* Every group, by name (INSTRUCTOR non-NULL: only the groups they
+ * manage), into a malloc'd array of *N (accounts_groups_free()). 0;
+ * -EIO. */
+int accounts_groups(struct accounts *a, const char *instructor,
+		    struct accounts_group **out, size_t *n);
+void accounts_groups_free(struct accounts_group *g, size_t n);
+
+/*
+ * The trainees that U sees, one a line, into *NAMES (malloc'd; free()
+ * it): a trainee themself; an instructor their groups' trainees; an
+ * administrator: *ALL set, *NAMES "". 0; -EIO.
+ */
+int accounts_seen(struct accounts *a, const struct accounts_user *u,
+		  char **names, bool *all);
+
+/* Whether TRAINEE is one of the lines of NAMES (accounts_seen()'s). */
+bool accounts_among(const char *names, const char *trainee);
+
+#endif

@@ -1,0 +1,167 @@
+#!/bin/bash
+# Who sees what on the rig (issue 24): users made by the rig's staff (root
+# or the endosim group, an administrator while not logged in), a group of
+# two trainees managed by an instructor, a trainee outside it; sessions of
+# each. Logged in (endoctl --as NAME, the PIN from $ENDOSIM_PIN), a trainee
+# lists only their own sessions and is refused, in words, another's by
+# name, a session of another shown, the records' maintenance and the
+# accounts' changes, which change nothing; the instructor lists their
+# group's trainees' only; the administrator every one. Without a login an
+# unprivileged user (nobody) sees no records, with one their own. Wrong
+# PINs: a few refused, then a try waits, even with the right PIN, a wait
+# that grows; after it the right PIN logs in. (The waits are the rule's
+# own seconds: the test sleeps them out, and the one check made inside a
+# wait has 4 s to spare.) The PINs are nowhere in
+# clear: not in the accounts' database, the records' or the log.
+. "$(dirname "$0")/../common.sh"
+
+SESS="$TMP/sessions"
+ACCOUNTS="$SESS/accounts.sqlite"
+start_daemon || finish
+
+# as NAME PIN ARGS...: endoctl logged in as NAME
+as() {
+	local name=$1 pin=$2
+	shift 2
+	ENDOSIM_PIN=$pin ctl --as "$name" "$@"
+}
+# add NAME ROLE PIN: a user made by the staff
+add() { ENDOSIM_NEW_PIN=$3 ctl user add "$1" --role "$2"; }
+# trainees_of: the trainees of the sessions the last --json list gave
+trainees_of() { jq -c '[.sessions[].trainee] | sort' "$OUT"; }
+
+check "staff: an administrator, an instructor, three trainees" eval \
+	'add Ada administrator 90210777 && add "Dr Ives" instructor 16180339 &&
+	 add Ann trainee 48213579 && add Bo trainee 27182818 && add Cy trainee 31415926'
+check_status "a PIN too short: refused" 1 \
+	env ENDOSIM_NEW_PIN=12 "$ENDOCTL" --socket "$SOCK" user add Di \
+	--role trainee
+check "... in words" grep -q "a PIN: 4 to 64 characters" "$OUT"
+check_status "a second Ann: refused" 1 add Ann trainee 44440000
+check "... in words" grep -q "there is a user Ann already" "$OUT"
+check "group 2026 of Ann and Bo, managed by Dr Ives" eval \
+	'ctl group add 2026 --instructor "Dr Ives" &&
+	 ctl group join 2026 Ann Bo && ctl group assign 2026 basic.course'
+check_status "group list" 0 ctl --json group list
+check "... as made" jq -e '.groups == [{"name": "2026", "instructor":
+	"Dr Ives", "trainees": ["Ann", "Bo"], "courses": ["basic.course"]}]' \
+	"$OUT"
+check "sessions of Ann, Ann, Bo and Cy" eval \
+	'record_session Ann && record_session Ann && record_session Bo &&
+	 record_session Cy'
+
+# the trainee
+check_status "Ann: whoami" 0 as Ann 48213579 whoami
+check "... Ann (trainee)" grep -qx "Ann (trainee)" "$OUT"
+check_status "Ann: session list" 0 as Ann 48213579 --json session list
+check "... her own two only" test "$(trainees_of)" = '["Ann","Ann"]'
+check_status "Ann: trainee list" 0 as Ann 48213579 --json trainee list
+check "... herself only" jq -e '[.trainees[].trainee] == ["Ann"]' "$OUT"
+check_status "Ann: Bo's page: refused" 1 \
+	as Ann 48213579 trainee report Bo --out "$TMP/bo"
+check "... in words" grep -q "Bo's sessions: a trainee sees only their own \
+(you are logged in as Ann (trainee))" "$OUT"
+check_status "Ann: Cy's session 4 shown: refused" 1 as Ann 48213579 session show 4
+check "... in words" grep -q "that session is another trainee's" "$OUT"
+check_status "Ann: her session 1 shown" 0 as Ann 48213579 session show 1
+check_status "Ann: Cy's session 4 exported: refused" 1 \
+	as Ann 48213579 session export 4 --csv --out "$TMP/cy.csv"
+check "... nothing written" test ! -e "$TMP/cy.csv"
+check_status "Ann: her session 1 exported" 0 \
+	as Ann 48213579 session export 1 --csv --out "$TMP/ann.csv"
+for what in "records check" "records rebuild" "records backup $TMP/b.sqlite"; do
+	check_status "Ann: $what: refused" 1 as Ann 48213579 $what
+	check "... in words" grep -q "only an administrator checks, rebuilds" \
+		"$OUT"
+done
+check "... no backup made" test ! -e "$TMP/b.sqlite"
+check_status "Ann: a session of Bo started: refused" 1 \
+	as Ann 48213579 session start --trainee Bo
+check "... in words" grep -q "Bo's sessions: a trainee sees only their own" \
+	"$OUT"
+check "... none recording" live_status '.recording == false'
+check_status "Ann: user remove Bo: refused" 1 as Ann 48213579 user remove Bo
+check "... in words" grep -q "only an administrator changes the accounts" \
+	"$OUT"
+check_status "Ann: group leave 2026 Ann: refused" 1 \
+	as Ann 48213579 group leave 2026 Ann
+check_status "... nothing changed" 0 ctl --json group list
+check "... (the group as it was)" jq -e '.groups[0].trainees == ["Ann",
+	"Bo"]' "$OUT"
+check_status "... (the users as they were)" 0 ctl --json user list
+check "... (five)" jq -e '.users | length == 5' "$OUT"
+
+# the instructor
+check_status "Dr Ives: session list" 0 as "Dr Ives" 16180339 --json session list
+check "... his group's: Ann's two and Bo's" test "$(trainees_of)" = \
+	'["Ann","Ann","Bo"]'
+check_status "Dr Ives: Cy's page: refused" 1 \
+	as "Dr Ives" 16180339 trainee report Cy --out "$TMP/cy"
+check "... in words" grep -q "Cy's sessions: not a trainee of your groups" \
+	"$OUT"
+check "... no page written" test ! -e "$TMP/cy"
+check_status "Dr Ives: group list" 0 as "Dr Ives" 16180339 --json group list
+check "... his group, no users" jq -e '(.groups | map(.name)) == ["2026"]
+	and (.users | length == 0)' "$OUT"
+
+# the administrator
+check_status "Ada: session list" 0 as Ada 90210777 --json session list
+check "... every one" test "$(trainees_of)" = '["Ann","Ann","Bo","Cy"]'
+check_status "Ada: records check" 0 as Ada 90210777 records check
+
+# an unprivileged user: the read-only socket, no records without a login
+if [ "$(id -u)" = 0 ]; then
+	chmod 711 "$TMP"
+	nobody() { runuser -u nobody -- env "$@"; }
+	check_status "nobody, not logged in: session list: refused" 1 \
+		nobody "$ENDOCTL" --socket "$SOCK" session list
+	check "... in words" grep -q "the records need a login" "$OUT"
+	check_status "nobody, as Bo: trainee list" 0 nobody ENDOSIM_PIN=27182818 \
+		"$ENDOCTL" --socket "$SOCK" --as Bo --json trainee list
+	check "... Bo's only" jq -e '[.trainees[].trainee] == ["Bo"]' "$OUT"
+	check_status "nobody, as Bo: his own PIN changed" 0 nobody \
+		ENDOSIM_PIN=27182818 ENDOSIM_NEW_PIN=55443322 "$ENDOCTL" --socket \
+		"$SOCK" --as Bo user pin Bo
+	check_status "... the new one logs in" 0 as Bo 55443322 whoami
+	check_status "nobody, as Ada: user add: the control socket is not \
+theirs" 3 nobody ENDOSIM_PIN=90210777 ENDOSIM_NEW_PIN=55550000 "$ENDOCTL" \
+		--socket "$SOCK" --as Ada user add Eve --role trainee
+else
+	skip "an unprivileged user: the test runs as one (no root to be nobody)"
+fi
+
+# wrong PINs: three in a row, then each makes the next try wait, 1 s, 2 s,
+# 4 s; each sleep below starts after the refusal, so it outlasts the wait
+for i in 1 2 3; do
+	check_status "Ann, a wrong PIN ($i): refused" 1 as Ann 00000000 whoami
+	check "... in words" grep -q "wrong name or PIN" "$OUT"
+done
+check "... the third: the next try waits" grep -q "the next try waits" "$OUT"
+sleep 1.1
+check_status "after the wait, a wrong PIN (4): refused" 1 as Ann 00000000 whoami
+sleep 2.1
+check_status "after the wait, a wrong PIN (5): refused" 1 as Ann 00000000 whoami
+check_status "the right PIN at once: refused, she waits" 1 as Ann 48213579 whoami
+check "... a wait grown to 4 s, in words" grep -q \
+	"too many wrong PINs for Ann: try again in [34] s" "$OUT"
+sleep 4.1
+check_status "after it, the right PIN: in" 0 as Ann 48213579 whoami
+check "... as Ann" grep -qx "Ann (trainee)" "$OUT"
+check_status "a wrong PIN again: refused, no wait (the count cleared)" 1 \
+	as Ann 00000000 whoami
+check "... in words" grep -qx "endoctl: permission denied: wrong name or PIN" \
+	"$OUT"
+check_status "an unknown name: refused" 1 as Zed 48213579 whoami
+check "... in the same words" grep -q "wrong name or PIN" "$OUT"
+
+# the PINs in clear: nowhere
+for f in "$ACCOUNTS" "$SESS/records.sqlite" "$LOG"; do
+	check "no PIN in clear in $(basename "$f")" eval \
+		"! grep -a -q -e 90210777 -e 16180339 -e 48213579 -e 55443322 -e 31415926 '$f'"
+done
+check "the accounts' database holds Argon2id hashes" test \
+	"$(grep -a -o '\$argon2id\$' "$ACCOUNTS" | wc -l)" -ge 5
+check "... and only its owner reads it" test \
+	"$(stat -c %a "$ACCOUNTS")" = 600
+
+finish
