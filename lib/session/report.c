@@ -16,6 +16,7 @@
 #include "session/reportalong.h"
 #include "session/reportcompare.h"
 #include "session/reportplot.h"
+#include "session/reporttherapy.h"
 #include "session/sessioninputs.h"
 #include "session/sessionmetrics.h"
 
@@ -662,6 +663,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	}
 	fputs("</section>\n", o);
 	page_along(o, f, m, along);
+	reporttherapy_write(o, m, a);
 	fputs("<section><h2>Episodes and events</h2>\n", o);
 	episode_table(o, "Excessive force", m->force, m->n_force,
 		      m->force_episodes, "N", 1);

@@ -1,0 +1,538 @@
+/*
+ * test_resection.c - the therapy's assessment (issue 25; therapy.h) on a
+ * scripted resection of the polyps case (config/cases/polyps.case), the
+ * force loop in lockstep on simulated time (offline.h), the paper's model
+ * (the scope stands still when nothing pushes it) with the patient, each
+ * cycle's state recorded as the daemon records it
+ * (session_record_from_state()) into the metrics (metrics_record()):
+ *  - the scripted expert, polyp by polyp in the case's order: where the
+ *    base is flat, or sessile and too thick for a cold snare, the needle
+ *    lifts it first; then the snare (15 mm; 20 mm for a head of 15 mm or
+ *    more) is opened around it and closed, and the polyp cut: cold
+ *    (closing the handle all the way) below the cold snare's 10 mm, hot
+ *    otherwise (the pedal down until it is free, then up). Finding each
+ *    polyp is not scripted here (the trainee's course, trainee.h,
+ *    finds them): the script brings each polyp under the open loop at
+ *    the tip, as test_tool_loop does, and over the needle's point;
+ *    retrieving it is format 7's (the bleeding's branch), not yet here.
+ *    Every polyp of the case comes out complete, the wall uninjured, no
+ *    perforation; each resection's time (the first tool's touch to the
+ *    polyp free) is the model's (the injection, the closing, the
+ *    cautery's energy over its power) and is printed; the session passes
+ *    the polypectomy course (config/courses/polypectomy.course);
+ *  - the careless script: the same resections, then the snare open
+ *    against the mucosa with the pedal held: the wall injured, the
+ *    patient perforated, and the course fails the session on exactly its
+ *    two requirements of the wall (tool_injuries, perforations);
+ *  - the fates in the END frame (metricstext_format(), parsed back
+ *    alike) and in the report's table of polyps (reporttherapy.h);
+ *  - the rules on records made for them: a polyp left, one bitten and
+ *    left in place (partly), one the forceps took whole (complete, in no
+ *    time), one burnt in the loop and let go uncut (partly; its
+ *    cautery), one lifted and cut (its time from the lift); a bite of the
+ *    mucosa, an injury, a clip counted; the same through the wire
+ *    (sessionpb.h); no polyps listed without a tool in hand.
+ *
+ * Run from the top of the source tree (tests/run.sh does), or with
+ * ENDOSIM_TOP naming it.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "base/vec3.h"
+#include "conf/cases.h"
+#include "model/tool.h"
+#include "proto/session_file.h"
+#include "session/coursefile.h"
+#include "session/metrics.h"
+#include "session/metricstext.h"
+#include "session/reporttherapy.h"
+#include "session/sessionpb.h"
+#include "session/therapy.h"
+#include "offline.h"
+
+#define CASE "config/cases/polyps.case"
+#define COURSE "config/courses/polypectomy.course"
+#define DT (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
+#define HOLD_S 0.003     /* the hand's input renewed each cycle */
+#define SHEATH_M 0.010   /* the snare's sheath out of the channel */
+#define NEEDLE_M 0.005   /* the needle's catheter out */
+#define SHUT 0.1         /* the loop closed on a polyp, not yet cut */
+#define FIND_S 1.0       /* the way to the next polyp (not scripted) */
+#define UNDER_M 0.002    /* the needle's point under a base */
+
+struct run {
+	struct config cfg;
+	struct tool_params par;
+	struct offline *o;
+	struct metrics *m;
+	const struct endosim_state *st;
+	double depth_m, opening;
+	bool pedal;
+	unsigned events;    /* since the last look */
+	int event_polyp;    /* the last event's polyp */
+};
+
+static void start(struct run *r)
+{
+	struct metrics_params mp;
+	struct colon *c;
+	char err[512];
+
+	memset(r, 0, sizeof(*r));
+	config_defaults(&r->cfg);
+	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
+	r->cfg.patient.enabled = true;
+	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file), CASE);
+	c = cases_load(&r->cfg, NULL, err, sizeof(err));
+	if (!c) {
+		fail_msg("%s", err);
+	}
+	cases_tool_params(&r->cfg, &r->par);
+	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
+	if (!r->o) {
+		fail_msg("%s", err);
+	}
+	metrics_params_default(&mp);
+	r->m = metrics_create(offline_colon(r->o), &mp);
+	assert_non_null(r->m);
+	r->depth_m = -SHEATH_M; /* in the channel */
+}
+
+static void stop(struct run *r, struct metrics_result *out)
+{
+	metrics_result(r->m, out);
+	metrics_destroy(r->m);
+	offline_destroy(r->o);
+}
+
+/* One cycle, recorded. */
+static void step(struct run *r)
+{
+	struct session_record rec;
+
+	offline_tool_input(r->o, r->depth_m, r->opening, r->pedal, HOLD_S);
+	r->st = offline_step(r->o);
+	session_record_from_state(r->st, &rec);
+	metrics_record(r->m, &rec);
+	r->events |= r->st->tool.events;
+	if (r->st->tool.events) {
+		r->event_polyp = r->st->tool.event_polyp;
+	}
+}
+
+/* S seconds moving the depth and the handle linearly to DEPTH_M and
+ * OPENING. */
+static void move(struct run *r, double s, double depth_m, double opening)
+{
+	long n = lround(s / DT);
+	double d0 = r->depth_m, o0 = r->opening;
+
+	for (long k = 1; k <= n; k++) {
+		r->depth_m = d0 + (depth_m - d0) * (double)k / (double)n;
+		r->opening = o0 + (opening - o0) * (double)k / (double)n;
+		step(r);
+	}
+}
+
+static void hold(struct run *r, double s)
+{
+	move(r, s, r->depth_m, r->opening);
+}
+
+/* Steps until EVENT (at most S seconds); whether it came. */
+static bool until(struct run *r, unsigned event, double s)
+{
+	r->events = 0;
+	for (long k = 0; k < lround(s / DT) && !(r->events & event); k++) {
+		step(r);
+	}
+	return r->events & event;
+}
+
+/* The nurse hands KIND over (SNARE_M for a snare). */
+static void hand_over(struct run *r, int kind, double snare_m)
+{
+	offline_tool_select(r->o, kind, snare_m);
+	step(r);
+	assert_int_equal(offline_tool_answer(r->o), 0);
+}
+
+/* The tool's pose at the hand's depth now. */
+static void pose(const struct run *r, struct tool_pose *out)
+{
+	tool_pose(&r->par, &r->st->scope, r->st->tool.depth_m, out);
+}
+
+/* Polyp I brought under the open loop: its axis' middle at the loop's
+ * centre, along the channel's radial direction. */
+static void under_loop(struct run *r, int i)
+{
+	struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	struct tool_pose q;
+
+	pose(r, &q);
+	vec3_axpy(p->base, r->st->tool.loop_centre,
+		  tool_polyp_height(p, r->par.lift_m) / 2, q.radial);
+	vec3_scale(p->normal, q.radial, -1);
+}
+
+/* Polyp I's base brought over the needle's point, UNDER_M above it. */
+static void over_needle(struct run *r, int i)
+{
+	struct tool *t = offline_tool(r->o);
+	struct tool_polyp *p = &t->polyp[i];
+	struct tool_pose q;
+
+	pose(r, &q);
+	vec3_axpy(p->base, t->needle, -UNDER_M, q.radial);
+	vec3_scale(p->normal, q.radial, -1);
+}
+
+/* The needle lifts polyp I's base: out, into the wall under it, the
+ * nurse injecting until it lifts; back in. */
+static void lift(struct run *r, int i)
+{
+	hand_over(r, TOOL_NEEDLE, 0);
+	move(r, 0.5, NEEDLE_M, 0);
+	move(r, 0.2, NEEDLE_M, 1);
+	over_needle(r, i);
+	assert_true(until(r, ENDOSIM_TOOL_LIFT, 10));
+	assert_int_equal(r->event_polyp, i);
+	move(r, 0.2, NEEDLE_M, 0);
+	move(r, 0.5, -SHEATH_M, 0);
+}
+
+/* Polyp I resected by the scripted expert; PEDAL_ON_WALL: then the
+ * careless trainee's pedal, held with the open loop on the mucosa. */
+static void resect(struct run *r, int i)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double th = tool_polyp_thickness(p);
+	bool hot = p->paris == ANATOMY_PARIS_IP || th >= r->par.cold_max_m;
+	bool flat = p->paris == ANATOMY_PARIS_IIA ||
+		    p->paris == ANATOMY_PARIS_IIB;
+
+	if (flat || (hot && p->paris != ANATOMY_PARIS_IP)) {
+		lift(r, i);
+	}
+	hand_over(r, TOOL_SNARE, p->size_m >= 0.015 ? 0.020 : 0.015);
+	move(r, 0.5, SHEATH_M, 0);
+	move(r, 0.5, SHEATH_M, 1);
+	under_loop(r, i);
+	hold(r, 0.05);
+	r->events = 0;
+	move(r, 0.5, SHEATH_M, SHUT);
+	assert_true(r->events & ENDOSIM_TOOL_CAPTURE);
+	assert_int_equal(r->st->tool.captured, i);
+	if (hot) {
+		r->pedal = true;
+		assert_true(until(r, ENDOSIM_TOOL_CUT, 20));
+		r->pedal = false;
+	} else {
+		r->events = 0;
+		move(r, 0.3, SHEATH_M, 0);
+		assert_true(r->events & ENDOSIM_TOOL_CUT);
+	}
+	assert_int_equal(r->event_polyp, i);
+	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
+	move(r, 0.5, -SHEATH_M, 0);
+	hold(r, FIND_S);
+}
+
+/* The careless trainee's pedal held with the open snare pushed against
+ * the mucosa: until the wall is injured (at most 20 cm of sheath). */
+static bool pedal_on_wall(struct run *r)
+{
+	hand_over(r, TOOL_SNARE, 0.020);
+	move(r, 0.5, SHEATH_M, 1);
+	r->pedal = true;
+	r->events = 0;
+	for (int k = 0; k < 200 && !(r->events & ENDOSIM_TOOL_INJURY); k++) {
+		move(r, 0.01, r->depth_m + 0.001, 1);
+	}
+	r->pedal = false;
+	hold(r, 0.5);
+	return r->events & ENDOSIM_TOOL_INJURY;
+}
+
+/* The whole script on the polyps case into OUT; CARELESS: the pedal on
+ * the wall after it. */
+static void script(struct metrics_result *out, bool careless)
+{
+	struct run r;
+	int n;
+
+	start(&r);
+	hold(&r, 0.1);
+	n = (int)r.st->tool.polyps;
+	assert_int_equal(n, 5);
+	for (int i = 0; i < n; i++) {
+		resect(&r, i);
+	}
+	if (careless) {
+		assert_true(pedal_on_wall(&r));
+		assert_true(r.st->patient.torn_segment >= 0);
+	}
+	stop(&r, out);
+}
+
+static struct metrics_result expert, careless;
+
+static int play(void **unused)
+{
+	(void)unused;
+	script(&expert, false);
+	script(&careless, true);
+	return 0;
+}
+
+/* The course's section of the polyps case. */
+static const struct coursefile_case *polyps_section(struct coursefile *c)
+{
+	char err[256];
+	const struct coursefile_case *k;
+
+	if (coursefile_load(c, COURSE, err, sizeof(err))) {
+		fail_msg("%s", err);
+	}
+	k = coursefile_case(c, "polyps");
+	assert_non_null(k);
+	return k;
+}
+
+static void test_expert_resects_all(void **unused)
+{
+	const struct metrics_result *m = &expert;
+	struct coursefile c;
+	const struct coursefile_case *k = polyps_section(&c);
+
+	(void)unused;
+	for (uint32_t i = 0; i < m->n_polyp; i++) {
+		const struct metrics_polyp *p = &m->polyp[i];
+
+		print_message("polyp %u: %s, touched at %.2f s, free %.2f s "
+			      "later, cautery %.2f s\n", i + 1,
+			      therapy_fate_name(p->fate), p->start_s,
+			      p->cut_s - p->start_s, p->cautery_s);
+		assert_int_equal(p->fate, METRICS_FATE_COMPLETE);
+		assert_true(p->start_s >= 0 && p->cut_s > p->start_s);
+	}
+	print_message("the expert: %u of %u resected, %.2f s a resection "
+		      "(published: %.0f s rotary, %.0f s standard), cautery "
+		      "%.2f s, %u injuries, %u perforations\n",
+		      m->polyps_resected, m->n_polyp, m->resection_s,
+		      REPORTTHERAPY_ROTARY_S, REPORTTHERAPY_STANDARD_S,
+		      m->cautery_s, m->tool_injuries, m->perforations);
+	assert_int_equal(m->n_polyp, 5);
+	assert_int_equal(m->polyps_resected, 5);
+	assert_int_equal(m->polyps_partly, 0);
+	assert_int_equal(m->tool_injuries, 0);
+	assert_int_equal(m->perforations, 0);
+	assert_true(m->cautery_s > 0);
+	assert_true(coursefile_passed(k, m));
+}
+
+static void test_careless_perforates(void **unused)
+{
+	const struct metrics_result *m = &careless;
+	struct coursefile c;
+	const struct coursefile_case *k = polyps_section(&c);
+	char text[128];
+
+	(void)unused;
+	assert_int_equal(m->polyps_resected, 5);
+	assert_int_equal(m->tool_injuries, 1);
+	assert_int_equal(m->perforations, 1);
+	assert_false(coursefile_passed(k, m));
+	for (size_t q = 0; q < k->n_reqs; q++) {
+		const char *key = k->req[q].field->key;
+		bool wall = !strcmp(key, "tool_injuries") ||
+			    !strcmp(key, "perforations");
+
+		coursefile_req_text(&k->req[q], text, sizeof(text));
+		print_message("careless: %s %s\n", text,
+			      coursefile_met(&k->req[q], m) ? "met" : "failed");
+		assert_true(coursefile_met(&k->req[q], m) == !wall);
+	}
+}
+
+/* The fates through the END frame's text and back, and in the report. */
+static void test_end_frame_and_report(void **unused)
+{
+	static char text[65536];
+	struct metrics_result back;
+	char *page = NULL, row[64];
+	size_t size = 0;
+	FILE *o;
+	int n;
+
+	(void)unused;
+	n = metricstext_format(&careless, text, sizeof(text));
+	assert_true(n > 0);
+	assert_non_null(strstr(text, "\npolyps_resected=5\n"));
+	assert_non_null(strstr(text, "\ntool_injuries=1\n"));
+	assert_non_null(strstr(text, "\npolyp.4=2,"));
+	assert_int_equal(metricstext_parse(text, &back), 0);
+	assert_int_equal(back.n_polyp, careless.n_polyp);
+	for (uint32_t i = 0; i < back.n_polyp; i++) {
+		assert_int_equal(back.polyp[i].fate, careless.polyp[i].fate);
+		assert_true(fabs(back.polyp[i].cut_s - careless.polyp[i].cut_s)
+			    < 1e-6);
+	}
+	assert_true(fabs(back.resection_s - careless.resection_s) < 1e-6);
+	o = open_memstream(&page, &size);
+	assert_non_null(o);
+	reporttherapy_write(o, &careless, NULL);
+	fclose(o);
+	for (uint32_t i = 0; i < careless.n_polyp; i++) {
+		snprintf(row, sizeof(row), "<tr id=\"polyp-%u\">", i + 1);
+		assert_non_null(strstr(page, row));
+	}
+	assert_non_null(strstr(page, "<td class=\"good\">complete</td>"));
+	assert_null(strstr(page, ">left</td>"));
+	assert_non_null(strstr(page, "5 of 5"));
+	free(page);
+}
+
+/* A record at T s with the tool's KIND, the pedal, the polyp held and
+ * EVENTS concerning POLYP. */
+static void record(struct metrics *m, double t, unsigned events, int polyp,
+		   int captured, bool pedal)
+{
+	struct session_record r = {
+		.stamp_ns = OFFLINE_START_NS + (uint64_t)llround(t * 1e9),
+		.tool_kind = ENDOSIM_TOOL_SNARE, .tool_pedal = pedal,
+		.tool_captured = captured, .tool_events = events,
+		.tool_event_polyp = polyp,
+	};
+
+	metrics_record(m, &r);
+}
+
+/*
+ * The rules on records made for them (no colon: the polyps listed are
+ * those the events name): polyp 0 bitten, left in place (partly); 1
+ * taken whole by a bite (complete, in no time); 2 captured, burnt for
+ * 0.5 s and let go (partly); 3 captured and cut a second later; 4 never
+ * touched (left); 5 lifted, captured, cut a second after the lift. A bite
+ * of the mucosa, an injury, a clip. Then the same through the wire.
+ */
+static void test_fates(void **unused)
+{
+	struct metrics_params mp;
+	struct metrics *m;
+	struct metrics_result r, back;
+	static const uint32_t want[] = {
+		METRICS_FATE_PARTLY, METRICS_FATE_COMPLETE,
+		METRICS_FATE_PARTLY, METRICS_FATE_COMPLETE,
+		METRICS_FATE_LEFT, METRICS_FATE_COMPLETE,
+	};
+	struct sessionpb_metrics pb;
+	Endosim__SessionMetrics *un;
+	uint8_t wire[8192];
+	size_t len;
+
+	(void)unused;
+	metrics_params_default(&mp);
+	m = metrics_create(NULL, &mp);
+	assert_non_null(m);
+	record(m, 0.0, 0, -1, -1, false);
+	record(m, 0.2, ENDOSIM_TOOL_BITE, 0, -1, false);
+	record(m, 0.4, ENDOSIM_TOOL_BITE | ENDOSIM_TOOL_CUT, 1, -1, false);
+	record(m, 1.0, ENDOSIM_TOOL_CAPTURE, 2, 2, true);
+	record(m, 1.5, ENDOSIM_TOOL_RELEASE, 2, -1, false);
+	record(m, 2.0, ENDOSIM_TOOL_CAPTURE, 3, 3, false);
+	record(m, 3.0, ENDOSIM_TOOL_CUT, 3, -1, false);
+	record(m, 3.5, ENDOSIM_TOOL_BITE, -1, -1, false);
+	record(m, 3.6, ENDOSIM_TOOL_INJURY, -1, -1, false);
+	record(m, 3.7, ENDOSIM_TOOL_CLIP_PLACED, -1, -1, false);
+	record(m, 4.0, ENDOSIM_TOOL_LIFT, 5, -1, false);
+	record(m, 4.5, ENDOSIM_TOOL_CAPTURE, 5, 5, false);
+	record(m, 5.0, ENDOSIM_TOOL_CUT, 5, -1, false);
+	metrics_result(m, &r);
+	metrics_destroy(m);
+	assert_int_equal(r.n_polyp, 6);
+	for (uint32_t i = 0; i < r.n_polyp; i++) {
+		assert_int_equal(r.polyp[i].fate, want[i]);
+	}
+	assert_int_equal(r.polyps_resected, 3);
+	assert_int_equal(r.polyps_partly, 2);
+	assert_int_equal(r.polyps_retrieved, 0);
+	assert_true(fabs(r.resection_s - 2.0 / 3) < 1e-9);
+	assert_true(fabs(r.polyp[2].cautery_s - 0.5) < 1e-9);
+	assert_true(fabs(r.cautery_s - 0.5) < 1e-9);
+	assert_true(r.polyp[4].start_s < 0 && r.polyp[4].cut_s < 0);
+	assert_true(fabs(r.polyp[5].start_s - 4.0) < 1e-9);
+	assert_int_equal(r.polyp[0].bites, 1);
+	assert_int_equal(r.biopsies, 3);
+	assert_int_equal(r.tool_injuries, 1);
+	assert_int_equal(r.clips, 1);
+
+	sessionpb_from_metrics(&pb, &r);
+	len = endosim__session_metrics__get_packed_size(&pb.msg);
+	assert_true(len <= sizeof(wire));
+	endosim__session_metrics__pack(&pb.msg, wire);
+	un = endosim__session_metrics__unpack(NULL, len, wire);
+	assert_non_null(un);
+	sessionpb_to_metrics(un, &back);
+	endosim__session_metrics__free_unpacked(un, NULL);
+	assert_int_equal(back.n_polyp, r.n_polyp);
+	assert_int_equal(back.polyps_partly, 2);
+	assert_int_equal(back.tool_injuries, 1);
+	assert_true(back.resection_s == r.resection_s);
+	for (uint32_t i = 0; i < r.n_polyp; i++) {
+		assert_int_equal(back.polyp[i].fate, want[i]);
+		assert_true(back.polyp[i].cautery_s == r.polyp[i].cautery_s);
+	}
+}
+
+/* Without a tool in hand, no polyps are listed (their fates would be
+ * "left" for a session that never meant to resect). */
+static void test_no_tool_no_fates(void **unused)
+{
+	struct metrics_params mp;
+	struct metrics *m;
+	struct metrics_result r;
+	struct session_record rec = { .tool_captured = -1,
+				      .tool_event_polyp = -1 };
+
+	(void)unused;
+	metrics_params_default(&mp);
+	m = metrics_create(NULL, &mp);
+	assert_non_null(m);
+	metrics_record(m, &rec);
+	rec.stamp_ns += ENDOSIM_NS_PER_S;
+	metrics_record(m, &rec);
+	metrics_result(m, &r);
+	metrics_destroy(m);
+	assert_int_equal(r.n_polyp, 0);
+	assert_int_equal(r.polyps_resected, 0);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_fates),
+		cmocka_unit_test(test_no_tool_no_fates),
+		cmocka_unit_test(test_expert_resects_all),
+		cmocka_unit_test(test_careless_perforates),
+		cmocka_unit_test(test_end_frame_and_report),
+	};
+	const char *top = getenv("ENDOSIM_TOP");
+
+	if (top && chdir(top)) {
+		perror(top);
+		return 1;
+	}
+	return cmocka_run_group_tests(tests, play, NULL);
+}
