@@ -288,9 +288,9 @@ $(BUILD)/tests/png_stats: tests/tools/png_stats.c
 	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
 # benchmarks: programs that print figures (tests/bench/), and the demo
-# course's test, whose figures of the patient the bench shows
+# course's test and the scripted resection's, whose figures the bench shows
 bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
-	png_stats test_rodcourse)
+	png_stats test_rodcourse test_resection)
 
 # the emulators, and the benchmark that runs the drive code against them
 emulators: $(addprefix $(BUILD)/,$(EMULATORS) bench/drives-bench)
