@@ -1,31 +1,34 @@
 /*
  * test_resection.c - the therapy's assessment (issue 25; therapy.h) on a
- * scripted resection of the polyps case (config/cases/polyps.case), the
- * force loop in lockstep on simulated time (offline.h), the paper's model
- * (the scope stands still when nothing pushes it) with the patient, each
- * cycle's state recorded as the daemon records it
- * (session_record_from_state()) into the metrics (metrics_record()):
- *  - the scripted expert, polyp by polyp in the case's order: where the
- *    base is flat, or sessile and too thick for a cold snare, the needle
- *    lifts it first; then the snare (15 mm; 20 mm for a head of 15 mm or
- *    more) is opened around it and closed, and the polyp cut: cold
- *    (closing the handle all the way) below the cold snare's 10 mm, hot
- *    otherwise (the pedal down until it is free, then up); the
- *    pedunculated polyp's stump is clipped after (the clip pushed on to
- *    the wall ahead and closed: one clip counted). Finding each
- *    polyp is not scripted here (the trainee's course, trainee.h,
- *    finds them): the script brings each polyp under the open loop at
- *    the tip, as test_tool_loop does, and over the needle's point;
- *    retrieving it is format 7's (the bleeding's branch), not yet here.
- *    Every polyp of the case comes out complete, the wall uninjured, no
- *    perforation; each resection's time (the first tool's touch to the
- *    polyp free) is the model's (the injection, the closing, the
- *    cautery's energy over its power) and is printed; the session passes
- *    the polypectomy course (config/courses/polypectomy.course);
- *  - the careless script: the same resections, then the snare open
- *    against the mucosa with the pedal held: the wall injured, the
- *    patient perforated, and the course fails the session on exactly its
- *    two requirements of the wall (tool_injuries, perforations);
+ * scripted resection of the polyps case (config/cases/polyps.case): the
+ * scripted trainee (trainee.h) on the force loop in lockstep on
+ * simulated time (offline.h), the paper's model (the scope stands still
+ * when nothing pushes it) with the patient, her every cycle recorded as
+ * the daemon records it (session_record_from_state()) into the metrics
+ * (metrics_record()), the tool's inputs added to hers:
+ *  - the scripted expert, polyp by polyp in the case's order: she finds
+ *    it (in, steering, until the tip is 2 cm short of its place along the
+ *    colon); where its base is flat, or sessile and too thick for a cold
+ *    snare, the needle lifts it first; then the snare (15 mm; 20 mm for
+ *    a head of 15 mm or more) is opened around it and closed, and the
+ *    polyp cut: cold (closing the handle all the way) below the cold
+ *    snare's 10 mm, hot otherwise (the pedal down until it is free, her
+ *    foot off as it comes free); the pedunculated polyp's stump is
+ *    clipped after (the clip pushed on to the wall ahead and closed: one
+ *    clip counted). Aiming is not scripted: each polyp, found, is brought
+ *    under the open loop at the tip (as test_tool_loop does) and over the
+ *    needle's point; retrieving it is format 7's (the bleeding's branch),
+ *    not yet here. Every polyp of the case comes out complete, the wall
+ *    uninjured, no perforation; each resection's time (the first tool's
+ *    touch to the polyp free) is the model's (the closing, the cautery's
+ *    energy over its power) and is printed with the injections' and the
+ *    clip's; the session passes the polypectomy course
+ *    (config/courses/polypectomy.course);
+ *  - the careless trainee: the same session going on, the snare open
+ *    and pushed against the mucosa with the pedal held: the wall
+ *    injured, the patient perforated, and the course fails the session
+ *    on exactly its two requirements of the wall (tool_injuries,
+ *    perforations);
  *  - the fates in the END frame (metricstext_format(), parsed back
  *    alike) and in the report's table of polyps (reporttherapy.h);
  *  - the rules on records made for them: a polyp left, one bitten and
@@ -61,6 +64,7 @@
 #include "session/sessionpb.h"
 #include "session/therapy.h"
 #include "offline.h"
+#include "trainee.h"
 
 #define CASE "config/cases/polyps.case"
 #define COURSE "config/courses/polypectomy.course"
@@ -69,82 +73,105 @@
 #define SHEATH_M 0.010   /* the snare's sheath out of the channel */
 #define NEEDLE_M 0.005   /* the needle's catheter out */
 #define SHUT 0.1         /* the loop closed on a polyp, not yet cut */
-#define FIND_S 1.0       /* the way to the next polyp (not scripted) */
+#define FIND_BEFORE_M 0.02 /* the tip short of a polyp: she sees it */
+#define FIND_SPEED 0.03  /* m/s: her pace */
+#define FIND_STUCK_S 4.0
+#define VIEW_RATE_HZ 1.0 /* the polyps and the mucosa seen: not judged
+			    here, evaluated seldom (the cost) */
+#define PUSH_M 0.0025    /* the tool pushed on towards the wall a step */
 #define UNDER_M 0.002    /* the needle's point under a base */
 
 struct run {
 	struct config cfg;
 	struct tool_params par;
-	struct offline *o;
+	struct trainee *tr;
+	struct offline *o;  /* hers */
 	struct metrics *m;
 	const struct endosim_state *st;
-	double depth_m, opening;
+	double depth_m, opening; /* the hand's tool now */
+	double from_d, from_o, to_d, to_o, t0, t1; /* ... its move */
 	bool pedal;
 	unsigned events;    /* since the last look */
 	int event_polyp;    /* the last event's polyp */
 	bool say;           /* print the injections' times */
 };
 
+static double now_s(const struct endosim_state *s)
+{
+	return (double)s->stamp_ns * ENDOSIM_S_PER_NS;
+}
+
+/*
+ * After each cycle she plays: the cycle recorded; the tool's input for
+ * the next, along its move (the foot off the pedal as soon as the polyp
+ * comes free).
+ */
+static void watch(const struct endosim_state *s, void *arg)
+{
+	struct run *r = arg;
+	struct session_record rec;
+	double f = r->t1 > r->t0 ? (now_s(s) + DT - r->t0) / (r->t1 - r->t0)
+				 : 1;
+
+	r->st = s;
+	session_record_from_state(s, &rec);
+	metrics_record(r->m, &rec);
+	r->events |= s->tool.events;
+	if (s->tool.events) {
+		r->event_polyp = s->tool.event_polyp;
+	}
+	r->pedal &= !(s->tool.events & ENDOSIM_TOOL_CUT);
+	f = fmax(0, fmin(1, f));
+	r->depth_m = r->from_d + (r->to_d - r->from_d) * f;
+	r->opening = r->from_o + (r->to_o - r->from_o) * f;
+	offline_tool_input(r->o, r->depth_m, r->opening, r->pedal, HOLD_S);
+}
+
+/* The scripted trainee on the polyps case, the paper's model, the
+ * patient; her every cycle recorded. */
 static void start(struct run *r)
 {
 	struct metrics_params mp;
-	struct colon *c;
 	char err[512];
 
 	memset(r, 0, sizeof(*r));
 	config_defaults(&r->cfg);
 	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
 	r->cfg.patient.enabled = true;
-	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file), CASE);
-	c = cases_load(&r->cfg, NULL, err, sizeof(err));
-	if (!c) {
-		fail_msg("%s", err);
-	}
 	cases_tool_params(&r->cfg, &r->par);
-	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
-	if (!r->o) {
+	r->tr = trainee_create(&r->cfg, CASE, NULL, err, sizeof(err));
+	if (!r->tr) {
 		fail_msg("%s", err);
 	}
+	r->o = trainee_offline(r->tr);
+	r->st = trainee_state(r->tr);
 	metrics_params_default(&mp);
-	r->m = metrics_create(offline_colon(r->o), &mp);
+	mp.view_rate_hz = VIEW_RATE_HZ;
+	r->m = metrics_create(trainee_colon(r->tr), &mp);
 	assert_non_null(r->m);
-	r->depth_m = -SHEATH_M; /* in the channel */
+	r->depth_m = r->from_d = r->to_d = -SHEATH_M; /* in the channel */
+	trainee_watch(r->tr, watch, r);
 }
 
 static void stop(struct run *r, struct metrics_result *out)
 {
 	metrics_result(r->m, out);
 	metrics_destroy(r->m);
-	offline_destroy(r->o);
+	trainee_destroy(r->tr);
 }
 
-/* One cycle, recorded. */
-static void step(struct run *r)
-{
-	struct session_record rec;
-
-	offline_tool_input(r->o, r->depth_m, r->opening, r->pedal, HOLD_S);
-	r->st = offline_step(r->o);
-	session_record_from_state(r->st, &rec);
-	metrics_record(r->m, &rec);
-	r->events |= r->st->tool.events;
-	if (r->st->tool.events) {
-		r->event_polyp = r->st->tool.event_polyp;
-	}
-}
-
-/* S seconds moving the depth and the handle linearly to DEPTH_M and
- * OPENING. */
+/* The tool moved linearly to DEPTH_M and OPENING over S seconds, as long
+ * as she holds the scope still (her waypoints': TRAINEE_STEP_S, at least
+ * one). */
 static void move(struct run *r, double s, double depth_m, double opening)
 {
-	long n = lround(s / DT);
-	double d0 = r->depth_m, o0 = r->opening;
-
-	for (long k = 1; k <= n; k++) {
-		r->depth_m = d0 + (depth_m - d0) * (double)k / (double)n;
-		r->opening = o0 + (opening - o0) * (double)k / (double)n;
-		step(r);
-	}
+	r->from_d = r->depth_m;
+	r->from_o = r->opening;
+	r->to_d = depth_m;
+	r->to_o = opening;
+	r->t0 = now_s(r->st);
+	r->t1 = r->t0 + s;
+	trainee_hold(r->tr, fmax(TRAINEE_STEP_S, s));
 }
 
 static void hold(struct run *r, double s)
@@ -152,12 +179,13 @@ static void hold(struct run *r, double s)
 	move(r, s, r->depth_m, r->opening);
 }
 
-/* Steps until EVENT (at most S seconds); whether it came. */
+/* Holds until EVENT (at most S seconds); whether it came. */
 static bool until(struct run *r, unsigned event, double s)
 {
 	r->events = 0;
-	for (long k = 0; k < lround(s / DT) && !(r->events & event); k++) {
-		step(r);
+	for (double t = 0; t < s && !(r->events & event);
+	     t += TRAINEE_STEP_S) {
+		trainee_hold(r->tr, TRAINEE_STEP_S);
 	}
 	return r->events & event;
 }
@@ -166,8 +194,21 @@ static bool until(struct run *r, unsigned event, double s)
 static void hand_over(struct run *r, int kind, double snare_m)
 {
 	offline_tool_select(r->o, kind, snare_m);
-	step(r);
+	hold(r, TRAINEE_STEP_S);
 	assert_int_equal(offline_tool_answer(r->o), 0);
+}
+
+/* She finds polyp I: in, steering, until the tip is FIND_BEFORE_M short
+ * of it; she lets the tube settle. The seconds it took. */
+static double find(struct run *r, int i)
+{
+	const struct anatomy *a = colon_anatomy(trainee_colon(r->tr));
+	double t0 = now_s(r->st);
+
+	assert_true(trainee_insert(r->tr, a->polyp[i].s_m - FIND_BEFORE_M,
+				   FIND_SPEED, FIND_STUCK_S));
+	trainee_relax(r->tr, TRAINEE_STEP_S);
+	return now_s(r->st) - t0;
 }
 
 /* The tool's pose at the hand's depth now. */
@@ -259,7 +300,6 @@ static void resect(struct run *r, int i)
 	assert_int_equal(r->event_polyp, i);
 	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
 	move(r, 0.5, -SHEATH_M, 0);
-	hold(r, FIND_S);
 }
 
 /* The clip's jaws' distance from the wall ahead (as the loop sees the
@@ -290,8 +330,8 @@ static double clip_wall(struct run *r)
 	hand_over(r, TOOL_CLIP, 0);
 	move(r, 0.5, SHEATH_M, 0);
 	move(r, 0.3, SHEATH_M, 1);
-	for (k = 0; k < 200 && jaws_to_wall(r) > r->par.clip_m / 2; k++) {
-		move(r, 0.01, r->depth_m + 0.001, 1);
+	for (k = 0; k < 80 && jaws_to_wall(r) > r->par.clip_m / 2; k++) {
+		move(r, TRAINEE_STEP_S, r->depth_m + PUSH_M, 1);
 	}
 	r->events = 0;
 	move(r, 0.3, r->depth_m, 0);
@@ -308,44 +348,50 @@ static bool pedal_on_wall(struct run *r)
 	move(r, 0.5, SHEATH_M, 1);
 	r->pedal = true;
 	r->events = 0;
-	for (int k = 0; k < 200 && !(r->events & ENDOSIM_TOOL_INJURY); k++) {
-		move(r, 0.01, r->depth_m + 0.001, 1);
+	for (int k = 0; k < 80 && !(r->events & ENDOSIM_TOOL_INJURY); k++) {
+		move(r, TRAINEE_STEP_S, r->depth_m + PUSH_M, 1);
 	}
 	r->pedal = false;
 	hold(r, 0.5);
 	return r->events & ENDOSIM_TOOL_INJURY;
 }
 
-/* The whole script on the polyps case into OUT; CARELESS: the pedal on
- * the wall after it. */
-static void script(struct metrics_result *out, bool careless)
+/*
+ * The whole script on the polyps case: the expert's session into EXPERT;
+ * then, the same session going on, the careless pedal on the wall, the
+ * whole into CARELESS.
+ */
+static void script(struct metrics_result *expert_out,
+		   struct metrics_result *careless_out)
 {
 	struct run r;
 	double clip_s = -1;
 	int n;
 
 	start(&r);
-	r.say = !careless;
+	r.say = true;
 	hold(&r, 0.1);
 	n = (int)r.st->tool.polyps;
 	assert_int_equal(n, 5);
 	for (int i = 0; i < n; i++) {
+		double found_s = find(&r, i);
+
+		print_message("polyp %d found %.2f s after the last, the tip at "
+			      "%.3f m\n", i + 1, found_s,
+			      r.st->scope.tip_s_m);
 		resect(&r, i);
 		if (offline_tool(r.o)->polyp[i].paris == ANATOMY_PARIS_IP) {
 			clip_s = clip_wall(&r);
 		}
 	}
-	if (r.say) {
-		print_message("the stalk's stump clipped %.2f s after the "
-			      "clip was handed over (the hemostasis "
-			      "trainer's clip: experts 20 s, beginners 73 "
-			      "s)\n", clip_s);
-	}
-	if (careless) {
-		assert_true(pedal_on_wall(&r));
-		assert_true(r.st->patient.torn_segment >= 0);
-	}
-	stop(&r, out);
+	print_message("the stalk's stump clipped %.2f s after the clip was "
+		      "handed over (the hemostasis trainer's clip: experts "
+		      "20 s, beginners 73 s)\n", clip_s);
+	metrics_result(r.m, expert_out);
+	r.say = false;
+	assert_true(pedal_on_wall(&r));
+	assert_true(r.st->patient.torn_segment >= 0);
+	stop(&r, careless_out);
 }
 
 static struct metrics_result expert, careless;
@@ -353,8 +399,7 @@ static struct metrics_result expert, careless;
 static int play(void **unused)
 {
 	(void)unused;
-	script(&expert, false);
-	script(&careless, true);
+	script(&expert, &careless);
 	return 0;
 }
 
