@@ -312,12 +312,12 @@ static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 
 static void row_begin(FILE *o, const char *what, const char *mark)
 {
-	fprintf(o, "<tr class=\"%s\"><th>%s</th><td>", mark, what);
+	htmlpage_row_begin(o, what, mark);
 }
 
 static void row_end(FILE *o, const char *note)
 {
-	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
+	htmlpage_row_end(o, note);
 }
 
 static void metrics_rows_times(FILE *o, const struct metrics_result *m)

@@ -1,49 +1,41 @@
 /* reporttherapy.c - see reporttherapy.h. */
 #include "session/reporttherapy.h"
 
+#include <stdbool.h>
+
 #include "session/htmlpage.h"
 #include "session/therapy.h"
-
-static void row(FILE *o, const char *what, const char *mark)
-{
-	fprintf(o, "<tr><th>%s</th><td class=\"%s\">", what, mark);
-}
-
-static void row_end(FILE *o, const char *note)
-{
-	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
-}
 
 static void measures(FILE *o, const struct metrics_result *m)
 {
 	uint32_t left = m->n_polyp - m->polyps_resected - m->polyps_partly;
+	char note[160];
 
 	fputs("<table class=\"metrics\">\n", o);
-	row(o, "Polyps resected", m->polyps_resected == m->n_polyp ? "good"
+	htmlpage_row_begin(o, "Polyps resected", m->polyps_resected == m->n_polyp ? "good"
 								  : "bad");
 	fprintf(o, "%u of %u, %u partly, %u left, %u retrieved",
 		m->polyps_resected, m->n_polyp, m->polyps_partly, left,
 		m->polyps_retrieved);
-	row_end(o, "cut free whole; partly: bitten or burnt, in place");
-	row(o, "Time per resection", "");
-	if (m->polyps_resected) {
-		htmlpage_duration(o, m->resection_s);
-	} else {
-		fputs("&ndash;", o);
-	}
-	row_end(o, "first touch of a tool to the polyp free; published: "
-		"24 &plusmn; 18 s (rotary snare), 30 &plusmn; 26 s "
-		"(standard)");
-	row(o, "Cautery", "");
+	htmlpage_row_end(o, "cut free whole; partly: bitten or burnt, in place");
+	htmlpage_row_begin(o, "Time per resection", "");
+	htmlpage_duration(o, m->polyps_resected ? m->resection_s : -1);
+	snprintf(note, sizeof(note), "first touch of a tool to the polyp "
+		 "free; published: %.0f &plusmn; %.0f s (rotary snare), "
+		 "%.0f &plusmn; %.0f s (standard)", REPORTTHERAPY_ROTARY_S,
+		 REPORTTHERAPY_ROTARY_SD_S, REPORTTHERAPY_STANDARD_S,
+		 REPORTTHERAPY_STANDARD_SD_S);
+	htmlpage_row_end(o, note);
+	htmlpage_row_begin(o, "Cautery", "");
 	htmlpage_duration(o, m->cautery_s);
-	row_end(o, "the pedal down");
-	row(o, "Wall injured", m->tool_injuries ? "bad" : "good");
+	htmlpage_row_end(o, "the pedal down");
+	htmlpage_row_begin(o, "Wall injured", m->tool_injuries ? "bad" : "good");
 	fprintf(o, "%u", m->tool_injuries);
-	row_end(o, "current into the wall (a perforation with the patient)");
-	row(o, "Biopsies, clips", "");
+	htmlpage_row_end(o, "current into the wall (a perforation with the patient)");
+	htmlpage_row_begin(o, "Biopsies, clips", "");
 	fprintf(o, "%u bite%s, %u clip%s", m->biopsies,
 		m->biopsies == 1 ? "" : "s", m->clips, m->clips == 1 ? "" : "s");
-	row_end(o, "the forceps' samples; the clips placed");
+	htmlpage_row_end(o, "the forceps' samples; the clips placed");
 	fputs("</table>\n", o);
 }
 
@@ -76,27 +68,21 @@ static const char *fate_mark(uint32_t fate)
 static void fates(FILE *o, const struct metrics_result *m,
 		  const struct anatomy *a)
 {
-	fputs("<table class=\"episodes\" id=\"polyp-fates\"><tr><th>#</th>"
-	      "<th>where</th><th>fate</th><th>first touch</th>"
+	fputs("<table class=\"metrics\" id=\"polyp-fates\"><tr><th>#</th>"
+	      "<th>fate</th><th>where</th><th>first touch</th>"
 	      "<th>resection</th><th>cautery</th><th>bites</th></tr>\n", o);
 	for (uint32_t i = 0; i < m->n_polyp; i++) {
 		const struct metrics_polyp *p = &m->polyp[i];
+		bool cut = p->cut_s >= 0 && p->start_s >= 0;
 
-		fprintf(o, "<tr id=\"polyp-%u\"><td>%u</td><td>", i + 1, i + 1);
+		fprintf(o, "<tr id=\"polyp-%u\" class=\"%s\"><th>%u</th>"
+			"<td>%s</td><td>", i + 1, fate_mark(p->fate), i + 1,
+			therapy_fate_name(p->fate));
 		where(o, a, i);
-		fprintf(o, "</td><td class=\"%s\">%s</td><td>",
-			fate_mark(p->fate), therapy_fate_name(p->fate));
-		if (p->start_s >= 0) {
-			htmlpage_duration(o, p->start_s);
-		} else {
-			fputs("&ndash;", o);
-		}
 		fputs("</td><td>", o);
-		if (p->cut_s >= 0 && p->start_s >= 0) {
-			htmlpage_duration(o, p->cut_s - p->start_s);
-		} else {
-			fputs("&ndash;", o);
-		}
+		htmlpage_duration(o, p->start_s);
+		fputs("</td><td>", o);
+		htmlpage_duration(o, cut ? p->cut_s - p->start_s : -1);
 		fputs("</td><td>", o);
 		htmlpage_duration(o, p->cautery_s);
 		fprintf(o, "</td><td>%u</td></tr>\n", p->bites);

@@ -504,10 +504,12 @@ static void test_end_frame_and_report(void **unused)
 	reporttherapy_write(o, &careless, NULL);
 	fclose(o);
 	for (uint32_t i = 0; i < careless.n_polyp; i++) {
-		snprintf(row, sizeof(row), "<tr id=\"polyp-%u\">", i + 1);
+		snprintf(row, sizeof(row), "<tr id=\"polyp-%u\" class=\"good\">",
+			 i + 1);
 		assert_non_null(strstr(page, row));
 	}
-	assert_non_null(strstr(page, "<td class=\"good\">complete</td>"));
+	assert_non_null(strstr(page, "<tr id=\"polyp-4\" class=\"good\">"
+				   "<th>4</th><td>complete</td>"));
 	assert_null(strstr(page, ">left</td>"));
 	assert_non_null(strstr(page, "5 of 5"));
 	free(page);
