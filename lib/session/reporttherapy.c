@@ -12,12 +12,13 @@ static void measures(FILE *o, const struct metrics_result *m)
 	char note[160];
 
 	fputs("<table class=\"metrics\">\n", o);
-	htmlpage_row_begin(o, "Polyps resected", m->polyps_resected == m->n_polyp ? "good"
-								  : "bad");
+	htmlpage_row_begin(o, "Polyps resected",
+			   m->polyps_resected == m->n_polyp ? "good" : "bad");
 	fprintf(o, "%u of %u, %u partly, %u left, %u retrieved",
 		m->polyps_resected, m->n_polyp, m->polyps_partly, left,
 		m->polyps_retrieved);
-	htmlpage_row_end(o, "cut free whole; partly: bitten or burnt, in place");
+	htmlpage_row_end(o, "cut free whole; partly: bitten or burnt, in "
+			 "place");
 	htmlpage_row_begin(o, "Time per resection", "");
 	htmlpage_duration(o, m->polyps_resected ? m->resection_s : -1);
 	snprintf(note, sizeof(note), "first touch of a tool to the polyp "
@@ -29,12 +30,15 @@ static void measures(FILE *o, const struct metrics_result *m)
 	htmlpage_row_begin(o, "Cautery", "");
 	htmlpage_duration(o, m->cautery_s);
 	htmlpage_row_end(o, "the pedal down");
-	htmlpage_row_begin(o, "Wall injured", m->tool_injuries ? "bad" : "good");
+	htmlpage_row_begin(o, "Wall injured",
+			   m->tool_injuries ? "bad" : "good");
 	fprintf(o, "%u", m->tool_injuries);
-	htmlpage_row_end(o, "current into the wall (a perforation with the patient)");
+	htmlpage_row_end(o, "current into the wall (a perforation with the "
+			 "patient)");
 	htmlpage_row_begin(o, "Biopsies, clips", "");
 	fprintf(o, "%u bite%s, %u clip%s", m->biopsies,
-		m->biopsies == 1 ? "" : "s", m->clips, m->clips == 1 ? "" : "s");
+		m->biopsies == 1 ? "" : "s", m->clips,
+		m->clips == 1 ? "" : "s");
 	htmlpage_row_end(o, "the forceps' samples; the clips placed");
 	fputs("</table>\n", o);
 }

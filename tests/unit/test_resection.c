@@ -376,8 +376,8 @@ static void script(struct metrics_result *expert_out,
 	for (int i = 0; i < n; i++) {
 		double found_s = find(&r, i);
 
-		print_message("polyp %d found %.2f s after the last, the tip at "
-			      "%.3f m\n", i + 1, found_s,
+		print_message("polyp %d found %.2f s after the last, the tip "
+			      "at %.3f m\n", i + 1, found_s,
 			      r.st->scope.tip_s_m);
 		resect(&r, i);
 		if (offline_tool(r.o)->polyp[i].paris == ANATOMY_PARIS_IP) {
@@ -504,8 +504,8 @@ static void test_end_frame_and_report(void **unused)
 	reporttherapy_write(o, &careless, NULL);
 	fclose(o);
 	for (uint32_t i = 0; i < careless.n_polyp; i++) {
-		snprintf(row, sizeof(row), "<tr id=\"polyp-%u\" class=\"good\">",
-			 i + 1);
+		snprintf(row, sizeof(row),
+			 "<tr id=\"polyp-%u\" class=\"good\">", i + 1);
 		assert_non_null(strstr(page, row));
 	}
 	assert_non_null(strstr(page, "<tr id=\"polyp-4\" class=\"good\">"
