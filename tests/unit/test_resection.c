@@ -93,7 +93,7 @@ struct run {
 	bool pedal;
 	unsigned events;    /* since the last look */
 	int event_polyp;    /* the last event's polyp */
-	bool say;           /* print the injections' times */
+	double event_s;     /* ... and its time */
 };
 
 static double now_s(const struct endosim_state *s)
@@ -119,6 +119,7 @@ static void watch(const struct endosim_state *s, void *arg)
 	r->events |= s->tool.events;
 	if (s->tool.events) {
 		r->event_polyp = s->tool.event_polyp;
+		r->event_s = now_s(s);
 	}
 	r->pedal &= !(s->tool.events & ENDOSIM_TOOL_CUT);
 	f = fmax(0, fmin(1, f));
@@ -252,22 +253,18 @@ static void lift(struct run *r, int i)
 	move(r, 0.5, NEEDLE_M, 0);
 	move(r, 0.2, NEEDLE_M, 1);
 	over_needle(r, i);
-	t0 = (double)r->st->stamp_ns * ENDOSIM_S_PER_NS;
+	t0 = now_s(r->st);
 	assert_true(until(r, ENDOSIM_TOOL_LIFT, 10));
 	assert_int_equal(r->event_polyp, i);
-	if (r->say) {
-		print_message("polyp %d: injected for %.2f s until it "
-			      "lifted (the hemostasis trainer's injection: "
-			      "experts 36 s, beginners 92 s, the whole "
-			      "task)\n", i + 1,
-			      (double)r->st->stamp_ns * ENDOSIM_S_PER_NS - t0);
-	}
+	print_message("polyp %d: injected for %.2f s until it lifted (the "
+		      "hemostasis trainer's injection: experts 36 s, "
+		      "beginners 92 s, the whole task)\n", i + 1,
+		      r->event_s - t0);
 	move(r, 0.2, NEEDLE_M, 0);
 	move(r, 0.5, -SHEATH_M, 0);
 }
 
-/* Polyp I resected by the scripted expert; PEDAL_ON_WALL: then the
- * careless trainee's pedal, held with the open loop on the mucosa. */
+/* Polyp I, found, resected by the scripted expert. */
 static void resect(struct run *r, int i)
 {
 	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
@@ -324,7 +321,7 @@ static double jaws_to_wall(const struct run *r)
  * wall, closed. Returns the seconds from its handing over to placed. */
 static double clip_wall(struct run *r)
 {
-	double t0 = (double)r->st->stamp_ns * ENDOSIM_S_PER_NS;
+	double t0 = now_s(r->st);
 	int k;
 
 	hand_over(r, TOOL_CLIP, 0);
@@ -336,12 +333,14 @@ static double clip_wall(struct run *r)
 	r->events = 0;
 	move(r, 0.3, r->depth_m, 0);
 	assert_true(r->events & ENDOSIM_TOOL_CLIP_PLACED);
+	t0 = r->event_s - t0;
 	move(r, 0.5, -SHEATH_M, 0);
-	return (double)r->st->stamp_ns * ENDOSIM_S_PER_NS - t0;
+	return t0;
 }
 
 /* The careless trainee's pedal held with the open snare pushed against
- * the mucosa: until the wall is injured (at most 20 cm of sheath). */
+ * the mucosa: until the wall is injured (at most 20 cm of sheath, 1 cm a
+ * second). */
 static bool pedal_on_wall(struct run *r)
 {
 	hand_over(r, TOOL_SNARE, 0.020);
@@ -369,8 +368,7 @@ static void script(struct metrics_result *expert_out,
 	int n;
 
 	start(&r);
-	r.say = true;
-	hold(&r, 0.1);
+	hold(&r, TRAINEE_STEP_S);
 	n = (int)r.st->tool.polyps;
 	assert_int_equal(n, 5);
 	for (int i = 0; i < n; i++) {
@@ -388,7 +386,6 @@ static void script(struct metrics_result *expert_out,
 		      "handed over (the hemostasis trainer's clip: experts "
 		      "20 s, beginners 73 s)\n", clip_s);
 	metrics_result(r.m, expert_out);
-	r.say = false;
 	assert_true(pedal_on_wall(&r));
 	assert_true(r.st->patient.torn_segment >= 0);
 	stop(&r, careless_out);
