@@ -45,7 +45,7 @@
  * Format 7 (the bleeding, the polyp in the lumen and its retrieval) adds
  * to therapy_record()'s events: a bleeding point's start and its control
  * (bleeds, the time to control them) and the retrieval (fate retrieved);
- * see therapy.c's event().
+ * see therapy.c's events().
  *
  * Plain data, no allocation; one thread (the metrics').
  */
