@@ -212,7 +212,7 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
 	     test_voice test_wav test_tool test_tool_loop test_centre \
-	     test_toolview test_lensfx test_accounts
+	     test_toolview test_lensfx test_accounts test_resection
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes records_gen
@@ -289,9 +289,9 @@ $(BUILD)/tests/png_stats: tests/tools/png_stats.c
 	$(CC) $(ALL_CFLAGS) $(VIEWER_CFLAGS) -o $@ $< $(LDFLAGS) -lstb -lm
 
 # benchmarks: programs that print figures (tests/bench/), and the demo
-# course's test, whose figures of the patient the bench shows
+# course's test and the scripted resection's, whose figures the bench shows
 bench-tools: $(addprefix $(BUILD)/tests/,$(TEST_TOOLS) $(BENCH_TOOLS) \
-	png_stats test_rodcourse)
+	png_stats test_rodcourse test_resection)
 
 # the emulators, and the benchmark that runs the drive code against them
 emulators: $(addprefix $(BUILD)/,$(EMULATORS) bench/drives-bench)

@@ -100,6 +100,16 @@ void htmlpage_escape(FILE *out, const char *text)
 	}
 }
 
+void htmlpage_row_begin(FILE *o, const char *what, const char *mark)
+{
+	fprintf(o, "<tr class=\"%s\"><th>%s</th><td>", mark, what);
+}
+
+void htmlpage_row_end(FILE *o, const char *note)
+{
+	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
+}
+
 void htmlpage_duration(FILE *out, double s)
 {
 	if (s < 0 || !isfinite(s)) {

@@ -49,6 +49,12 @@ void htmlpage_escape(FILE *out, const char *text);
 /* S seconds as "12 min 05 s" or "42.5 s"; a dash when < 0 or not finite. */
 void htmlpage_duration(FILE *out, double s);
 
+/* A row of a table of measures (class "metrics"): WHAT, the row marked
+ * MARK ("good", "bad", "warn" or ""), then the caller's value, then NOTE
+ * (HTML) with htmlpage_row_end(). */
+void htmlpage_row_begin(FILE *o, const char *what, const char *mark);
+void htmlpage_row_end(FILE *o, const char *note);
+
 /* One of six distinct colours, for the I-th series. */
 const char *htmlpage_color(int i);
 

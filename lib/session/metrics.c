@@ -54,6 +54,7 @@
  *   (the patient's measures count records with the patient enabled only;
  *   the first such record's hand, burst and tear count against none)
  *   lumen lost, mucosa seen, polyps seen: the view's (metricsview.c)
+ *   the therapy      the tools' records (therapy.c)
  *   along the colon  segment i of a record: colon_region_at() its tip_s_m
  *                    (the first whose far end is beyond it, the cecum past
  *                    them all); none while not inserted. The
@@ -68,6 +69,7 @@
 
 #include "session/metrics.h"
 #include "session/metricsview.h"
+#include "session/therapy.h"
 
 struct episodes {
 	double on, off, min_s;
@@ -124,6 +126,7 @@ struct metrics {
 	bool segments;            /* the colon is a case's (its regions are
 				     the anatomy's segments) */
 	struct metrics_segment along[ANATOMY_SEGMENTS];
+	struct therapy therapy;   /* the working channel's */
 };
 
 void metrics_params_default(struct metrics_params *p)
@@ -283,6 +286,7 @@ struct metrics *metrics_create(const struct colon *colon,
 	episodes_init(&m->pain, p->pain_level, p->min_episode_s);
 	m->pain.at_on = true;
 	m->place = -1;
+	therapy_init(&m->therapy);
 	if (!colon) {
 		return m;
 	}
@@ -514,6 +518,7 @@ void metrics_record(struct metrics *m, const struct session_record *r)
 	episodes_update(&m->force, t, f, 0, -1);
 	episodes_update(&m->loop, t, record_bow(r), 0, -1);
 	record_along(m, r, m->records > 1 ? &m->prev : NULL, dt, f);
+	therapy_record(&m->therapy, r, t, dt);
 	m->prev = *r;
 	was_lost = m->lost;
 	m->lost = m->view && inserted && metricsview_lumen_lost(m->view, r);
@@ -633,6 +638,7 @@ void metrics_result(const struct metrics *m, struct metrics_result *out)
 	out->polyps_seen_mask = metricsview_found(m->view);
 	out->polyps_seen = popcount32(out->polyps_seen_mask);
 	out->polyps_total = (uint32_t)metricsview_polyps(m->view);
+	therapy_result(&m->therapy, out->polyps_total, out);
 }
 
 bool metrics_has_patient(const struct metrics_result *r)

@@ -33,6 +33,9 @@
  *     (field of view, within view_distance_m, not hidden behind a fold:
  *     a depth test on the CPU, depthmap.h) for seen_dwell_s in all;
  *   - polyps found: those of the case in view for polyp_dwell_s in all;
+ *   - the therapy through the working channel (therapy.h): each polyp's
+ *     fate, the time per resection, the cautery, the wall injured, the
+ *     biopsies and the clips;
  *   - along the colon (metrics_along(), not in the result: the report
  *     recomputes it): per anatomical segment of the case, the time the
  *     tip spent there, in pain, looped, and the peak pain and force there.
@@ -122,6 +125,26 @@ struct metrics_episode {
 	int32_t place;
 };
 
+/* A polyp's fate at the end (therapy.h has the rules). */
+enum metrics_fate {
+	METRICS_FATE_LEFT = 0,      /* in place, untouched */
+	METRICS_FATE_PARTLY = 1,    /* in place, bitten or burnt */
+	METRICS_FATE_COMPLETE = 2,  /* cut free whole */
+	METRICS_FATE_RETRIEVED = 3, /* ... and retrieved (format 7) */
+	METRICS_FATES
+};
+
+#define METRICS_MAX_POLYPS ANATOMY_MAX_POLYPS
+
+/* One of the case's polyps as the therapy left it (therapy.h). */
+struct metrics_polyp {
+	uint32_t fate;             /* enum metrics_fate */
+	uint32_t bites;            /* the forceps' on it */
+	double start_s;            /* the first tool's event on it; -1 none */
+	double cut_s;              /* cut free; -1: not */
+	double cautery_s;          /* the pedal down while the loop held it */
+};
+
 struct metrics_result {
 	double duration_s;         /* first to last record */
 	uint64_t records;
@@ -183,6 +206,17 @@ struct metrics_result {
 	uint32_t hand_uses;        /* the assistant pressed (a site taken) */
 	uint32_t perforations;     /* bursts by pressure and tears by the
 				      tip (each segment torn, each time) */
+	/* the therapy through the working channel (therapy.h) */
+	uint32_t polyps_resected;  /* cut free whole (retrieved or not) */
+	uint32_t polyps_partly;    /* in place, bitten or burnt */
+	uint32_t polyps_retrieved; /* cut and retrieved (format 7) */
+	double resection_s;        /* the mean time per resection; 0: none */
+	double cautery_s;          /* the pedal down */
+	uint32_t tool_injuries;    /* current into the wall */
+	uint32_t biopsies;         /* the forceps' bites */
+	uint32_t clips;            /* placed */
+	uint32_t n_polyp;          /* of polyp[]: 0 without a tool in hand */
+	struct metrics_polyp polyp[METRICS_MAX_POLYPS];
 	uint32_t n_force;          /* episodes kept below */
 	uint32_t n_loop;
 	uint32_t n_pain;

@@ -49,6 +49,10 @@ static const struct metricstext_field fields[] = {
 	FIELD_SEGMENT(6, "hepatic_flexure"), FIELD_SEGMENT(7, "ascending"),
 	FIELD_SEGMENT(8, "cecum"),
 #undef FIELD_SEGMENT
+	/* the therapy through the working channel (therapy.h) */
+	FIELD_U(polyps_resected), FIELD_U(polyps_partly),
+	FIELD_U(polyps_retrieved), FIELD_D(resection_s), FIELD_D(cautery_s),
+	FIELD_U(tool_injuries), FIELD_U(biopsies), FIELD_U(clips),
 };
 _Static_assert(ANATOMY_SEGMENTS == 9, "metrics: a mucosa field a segment");
 _Static_assert(ENDOSIM_PAIN_CAUSES == 5, "metrics: a field a pain cause");
@@ -136,6 +140,21 @@ static int put_episodes(const char *kind, const struct metrics_episode *ep,
 	return 0;
 }
 
+static int put_polyps(const struct metrics_result *r, char *buf, size_t size,
+		     size_t *used)
+{
+	for (uint32_t i = 0; i < r->n_polyp && i < METRICS_MAX_POLYPS; i++) {
+		const struct metrics_polyp *p = &r->polyp[i];
+
+		if (put(buf, size, used, "polyp.%u=%u,%.9g,%.9g,%.9g,%u\n", i,
+			p->fate, p->start_s, p->cut_s, p->cautery_s,
+			p->bites)) {
+			return -ENOSPC;
+		}
+	}
+	return 0;
+}
+
 int metricstext_format(const struct metrics_result *result, char *buf,
 		      size_t size)
 {
@@ -154,7 +173,8 @@ int metricstext_format(const struct metrics_result *result, char *buf,
 	    put_episodes("loop", result->loop, result->n_loop, buf, size,
 			 &used) ||
 	    put_episodes("pain", result->pain, result->n_pain, buf, size,
-			 &used)) {
+			 &used) ||
+	    put_polyps(result, buf, size, &used)) {
 		return -ENOSPC;
 	}
 	return (int)used;
@@ -211,6 +231,26 @@ static int parse_episode(const char *index, const char *v, bool pain,
 	return 0;
 }
 
+/* "polyp.N=fate,start,cut,cautery,bites" into OUT's polyp[N]. */
+static int parse_polyp(const char *index, const char *v,
+		       struct metrics_result *out)
+{
+	struct metrics_polyp p;
+	char *end;
+	unsigned long i = strtoul(index, &end, 10);
+	int used = 0;
+
+	if (end == index || *end || i >= METRICS_MAX_POLYPS ||
+	    sscanf(v, "%u,%lf,%lf,%lf,%u%n", &p.fate, &p.start_s, &p.cut_s,
+		   &p.cautery_s, &p.bites, &used) != 5 || v[used] ||
+	    p.fate >= METRICS_FATES) {
+		return -EINVAL;
+	}
+	out->polyp[i] = p;
+	out->n_polyp = out->n_polyp > i + 1 ? out->n_polyp : (uint32_t)i + 1;
+	return 0;
+}
+
 static int parse_line(char *line, struct metrics_result *out)
 {
 	char *v = strchr(line, '=');
@@ -230,6 +270,9 @@ static int parse_line(char *line, struct metrics_result *out)
 	if (!strncmp(line, "pain_episode.", 13)) {
 		return parse_episode(line + 13, v, true, out->pain,
 				     &out->n_pain);
+	}
+	if (!strncmp(line, "polyp.", 6)) {
+		return parse_polyp(line + 6, v, out);
 	}
 	for (size_t i = 0; i < NFIELDS; i++) {
 		if (!strcmp(line, fields[i].key)) {

@@ -7,7 +7,9 @@
  * the table's order, then each kept episode as
  * "force_episode.N=start,end,peak" or "loop_episode.N=...", and
  * "pain_episode.N=start,end,peak,cause,place" (cause: enum
- * endosim_pain_cause, place: the segment, -1 none).
+ * endosim_pain_cause, place: the segment, -1 none); then each of the
+ * therapy's polyps (therapy.h) as "polyp.N=fate,start,cut,cautery,bites"
+ * (fate: enum metrics_fate; start and cut -1: none).
  *
  * Pure: any thread, no allocation, no shared state.
  */

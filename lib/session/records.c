@@ -66,6 +66,15 @@ static const char *const migrations[RECORDS_SCHEMA_VERSION] = {
 	"ALTER TABLE sessions ADD COLUMN at_centre INTEGER NOT NULL DEFAULT 0;"
 	"CREATE TABLE centre_queue (seq INTEGER PRIMARY KEY AUTOINCREMENT,"
 	" session_id INTEGER NOT NULL UNIQUE);",
+	/* 4: the therapy through the working channel (therapy.h) */
+	"ALTER TABLE measures ADD COLUMN polyps_resected INTEGER;"
+	"ALTER TABLE measures ADD COLUMN polyps_partly INTEGER;"
+	"ALTER TABLE measures ADD COLUMN polyps_retrieved INTEGER;"
+	"ALTER TABLE measures ADD COLUMN resection_s REAL;"
+	"ALTER TABLE measures ADD COLUMN cautery_s REAL;"
+	"ALTER TABLE measures ADD COLUMN tool_injuries INTEGER;"
+	"ALTER TABLE measures ADD COLUMN biopsies INTEGER;"
+	"ALTER TABLE measures ADD COLUMN clips INTEGER;",
 };
 
 struct records {

@@ -16,6 +16,7 @@
 #include "session/reportalong.h"
 #include "session/reportcompare.h"
 #include "session/reportplot.h"
+#include "session/reporttherapy.h"
 #include "session/sessioninputs.h"
 #include "session/sessionmetrics.h"
 
@@ -311,12 +312,12 @@ static void plot_bows(struct htmlpage_plot *p, const struct session_file *f,
 
 static void row_begin(FILE *o, const char *what, const char *mark)
 {
-	fprintf(o, "<tr class=\"%s\"><th>%s</th><td>", mark, what);
+	htmlpage_row_begin(o, what, mark);
 }
 
 static void row_end(FILE *o, const char *note)
 {
-	fprintf(o, "</td><td class=\"note\">%s</td></tr>\n", note);
+	htmlpage_row_end(o, note);
 }
 
 static void metrics_rows_times(FILE *o, const struct metrics_result *m)
@@ -662,6 +663,7 @@ static void page_metrics(FILE *o, const struct session_file *f,
 	}
 	fputs("</section>\n", o);
 	page_along(o, f, m, along);
+	reporttherapy_write(o, m, a);
 	fputs("<section><h2>Episodes and events</h2>\n", o);
 	episode_table(o, "Excessive force", m->force, m->n_force,
 		      m->force_episodes, "N", 1);

@@ -45,7 +45,11 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	X(gas_used_l, gas_used_l)                                            \
 	X(peak_gas_pressure_pa, peak_gas_pressure_pa)                        \
 	X(position_changes, position_changes) X(hand_uses, hand_uses)        \
-	X(perforations, perforations)
+	X(perforations, perforations)                                        \
+	X(polyps_resected, polyps_resected) X(polyps_partly, polyps_partly)  \
+	X(polyps_retrieved, polyps_retrieved) X(resection_s, resection_s)    \
+	X(cautery_s, cautery_s) X(tool_injuries, tool_injuries)              \
+	X(biopsies, biopsies) X(clips, clips)
 
 /* R's measures into M, its segments' into SEGMENT, its time in pain by
  * cause into CAUSE; no episodes. */
@@ -64,6 +68,24 @@ static void scalars_out(Endosim__SessionMetrics *m, double *segment,
 	m->pain_cause_s = cause;
 }
 
+static size_t polyps_out(Endosim__PolypFate *pf, Endosim__PolypFate **p,
+			 const struct metrics_result *r)
+{
+	size_t k = r->n_polyp < METRICS_MAX_POLYPS ? r->n_polyp
+						   : METRICS_MAX_POLYPS;
+
+	for (size_t i = 0; i < k; i++) {
+		endosim__polyp_fate__init(&pf[i]);
+		pf[i].fate = r->polyp[i].fate;
+		pf[i].start_s = r->polyp[i].start_s;
+		pf[i].cut_s = r->polyp[i].cut_s;
+		pf[i].cautery_s = r->polyp[i].cautery_s;
+		pf[i].bites = r->polyp[i].bites;
+		p[i] = &pf[i];
+	}
+	return k;
+}
+
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
 			    const struct metrics_result *r)
 {
@@ -77,6 +99,8 @@ void sessionpb_from_metrics(struct sessionpb_metrics *out,
 	m->loops = out->loop_p;
 	m->n_pain = episodes_out(out->pain, out->pain_p, r->pain, r->n_pain);
 	m->pain = out->pain_p;
+	m->n_polyps = polyps_out(out->polyp, out->polyp_p, r);
+	m->polyps = out->polyp_p;
 }
 
 void sessionpb_from_scalars(struct sessionpb_scalars *out,
@@ -110,6 +134,15 @@ void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 	out->n_force = episodes_in(out->force, in->force, in->n_force);
 	out->n_loop = episodes_in(out->loop, in->loops, in->n_loops);
 	out->n_pain = episodes_in(out->pain, in->pain, in->n_pain);
+	for (size_t i = 0; i < in->n_polyps && i < METRICS_MAX_POLYPS; i++) {
+		const Endosim__PolypFate *p = in->polyps[i];
+
+		out->polyp[i] = (struct metrics_polyp){
+			.fate = p->fate < METRICS_FATES ? p->fate : 0,
+			.start_s = p->start_s, .cut_s = p->cut_s,
+			.cautery_s = p->cautery_s, .bites = p->bites };
+		out->n_polyp = (uint32_t)i + 1;
+	}
 	for (size_t i = 0; i < in->n_pain_cause_s && i < ENDOSIM_PAIN_CAUSES;
 	     i++) {
 		out->pain_cause_s[i] = in->pain_cause_s[i];

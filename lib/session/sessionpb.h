@@ -25,11 +25,14 @@ struct sessionpb_metrics {
 	Endosim__MetricsEpisode *force_p[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *loop_p[METRICS_MAX_EPISODES];
 	Endosim__MetricsEpisode *pain_p[METRICS_MAX_EPISODES];
+	Endosim__PolypFate polyp[METRICS_MAX_POLYPS];
+	Endosim__PolypFate *polyp_p[METRICS_MAX_POLYPS];
 	double segment[ANATOMY_SEGMENTS];
 	double cause[ENDOSIM_PAIN_CAUSES];
 };
 
-/* OUT->msg becomes R on the wire; it points into OUT. */
+/* OUT->msg becomes R on the wire (its episodes and its polyps' fates);
+ * it points into OUT. */
 void sessionpb_from_metrics(struct sessionpb_metrics *out,
 			    const struct metrics_result *r);
 
@@ -46,7 +49,8 @@ struct sessionpb_scalars {
 void sessionpb_from_scalars(struct sessionpb_scalars *out,
 			    const struct metrics_result *r);
 
-/* The inverse (episodes beyond METRICS_MAX_EPISODES are left out). */
+/* The inverse (episodes beyond METRICS_MAX_EPISODES are left out, and
+ * polyps beyond METRICS_MAX_POLYPS). */
 void sessionpb_to_metrics(const Endosim__SessionMetrics *in,
 			  struct metrics_result *out);
 

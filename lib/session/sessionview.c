@@ -15,6 +15,7 @@
 #include "session/metricstext.h"
 #include "session/sessioninputs.h"
 #include "session/sessionmetrics.h"
+#include "session/therapy.h"
 
 /* ------------------------------------------------------------ metrics */
 
@@ -97,6 +98,36 @@ static void print_patient(FILE *out, const struct metrics_result *m)
 		m->perforations);
 }
 
+/* The therapy through the working channel, a line a polyp (therapy.h);
+ * nothing without a tool in hand. */
+static void print_therapy(FILE *out, const struct metrics_result *m)
+{
+	if (!m->n_polyp) {
+		return;
+	}
+	fprintf(out, "therapy           %u of %u polyps resected, %u partly, "
+		"%u retrieved; %.2f s a resection, cautery %.2f s, %u wall "
+		"injuries, %u biopsies, %u clips\n", m->polyps_resected,
+		m->n_polyp, m->polyps_partly, m->polyps_retrieved,
+		m->resection_s, m->cautery_s, m->tool_injuries, m->biopsies,
+		m->clips);
+	for (uint32_t i = 0; i < m->n_polyp; i++) {
+		const struct metrics_polyp *p = &m->polyp[i];
+
+		fprintf(out, "  polyp %u: %s", i + 1,
+			therapy_fate_name(p->fate));
+		if (p->start_s >= 0) {
+			fprintf(out, ", touched at %.2f s", p->start_s);
+		}
+		if (p->cut_s >= 0 && p->start_s >= 0) {
+			fprintf(out, ", free %.2f s later",
+				p->cut_s - p->start_s);
+		}
+		fprintf(out, ", cautery %.2f s, %u bites\n", p->cautery_s,
+			p->bites);
+	}
+}
+
 void sessionview_print(FILE *out, const struct metrics_result *m)
 {
 	fprintf(out, "duration          %.2f s, %" PRIu64 " records, %" PRIu64
@@ -131,6 +162,7 @@ void sessionview_print(FILE *out, const struct metrics_result *m)
 	fprintf(out, "way out           shaft %.3f m, tip %.3f m (retraction "
 		"efficiency %.2f)\n", m->retraction_m, m->tip_retraction_m,
 		m->retraction_efficiency);
+	print_therapy(out, m);
 }
 
 static void json_episodes(struct json *j, const char *key,
@@ -149,6 +181,27 @@ static void json_episodes(struct json *j, const char *key,
 			json_string(j, "place", ep[i].place >= 0 ?
 				    anatomy_segment_name(ep[i].place) : "");
 		}
+		json_object_end(j);
+	}
+	json_array_end(j);
+}
+
+/* The therapy's polyps (none without a tool in hand: no key). */
+static void json_polyps(struct json *j, const struct metrics_result *m)
+{
+	if (!m->n_polyp) {
+		return;
+	}
+	json_array_begin(j, "polyps");
+	for (uint32_t i = 0; i < m->n_polyp; i++) {
+		const struct metrics_polyp *p = &m->polyp[i];
+
+		json_object_begin(j, NULL);
+		json_string(j, "fate", therapy_fate_name(p->fate));
+		json_double(j, "start_s", p->start_s);
+		json_double(j, "cut_s", p->cut_s);
+		json_double(j, "cautery_s", p->cautery_s);
+		json_uint(j, "bites", p->bites);
 		json_object_end(j);
 	}
 	json_array_end(j);
@@ -173,6 +226,7 @@ void sessionview_json(struct json *j, const char *key,
 	json_episodes(j, "force", m->force, m->n_force);
 	json_episodes(j, "loops", m->loop, m->n_loop);
 	json_episodes(j, "pain", m->pain, m->n_pain);
+	json_polyps(j, m);
 	json_object_end(j);
 }
 

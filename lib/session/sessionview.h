@@ -27,10 +27,12 @@
 int sessionview_metrics(const struct session_file *f,
 			struct metrics_result *out, bool *recomputed);
 
-/* The metrics as lines "name  value unit" for people. */
+/* The metrics as lines "name  value unit" for people (the therapy a
+ * line and a line a polyp, when a tool was in hand: therapy.h). */
 void sessionview_print(FILE *out, const struct metrics_result *m);
 
-/* The metrics as the JSON object KEY (NULL: a value in an array). */
+/* The metrics as the JSON object KEY (NULL: a value in an array); the
+ * therapy's polyps as the array "polyps" when a tool was in hand. */
 void sessionview_json(struct json *j, const char *key,
 		      const struct metrics_result *m);
 

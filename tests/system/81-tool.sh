@@ -15,8 +15,9 @@
 # closed beyond the wall bite the mucosa and place a clip. A session
 # recorded across it all has each tool handed over and each of the
 # tool's events (export --events, show and its JSON) and the tool's CSV
-# columns. (Capture and cut, cycle for cycle: test_tool_loop; the model:
-# test_tool.)
+# columns; its measures (show, its JSON, the report) have the therapy:
+# the bite, the clip, each polyp left. (Capture and cut, cycle for cycle:
+# test_tool_loop; the model: test_tool; the assessment: test_resection.)
 . "$(dirname "$0")/../common.sh"
 
 start_daemon || finish
@@ -138,6 +139,19 @@ check "session show lists them" eval \
 check "... and its JSON" eval \
 	"ctl --json session show $ID | jq -e '[.tool_events[].detail] |
 		index(32) and index(64)'"
+check "the therapy in its measures: the bite, the clip, the five polyps left" \
+	eval "ctl --json session show $ID | jq -e '.metrics | .biopsies == 1 and
+		.clips == 1 and .polyps_resected == 0 and
+		(.polyps | length) == 5 and all(.polyps[]; .fate == \"left\")'"
+check "... and in show's text, a line a polyp" eval \
+	"grep -qE '^therapy +0 of 5 polyps resected, 0 partly' $TMP/show.txt &&
+	 test \$(grep -cE '^  polyp [1-5]: left, cautery' $TMP/show.txt) = 5"
+check "... and in its report: the therapy, a row a polyp, each left" eval \
+	"ctl session report $ID --out $TMP/report >/dev/null &&
+	 grep -q '<section id=\"therapy\">' $TMP/report/index.html &&
+	 test \$(grep -cE \
+		'<tr id=\"polyp-[1-5]\" class=\"bad\"><th>[1-5]</th><td>left<' \
+		$TMP/report/index.html) = 5"
 ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
 check "the CSV: the tool's columns" eval \
 	"head -n 1 $TMP/s.csv | grep -q ',patient_torn_segment,tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,tool_captured,tool_events,tool_event_polyp$'"

@@ -113,6 +113,11 @@ const struct endosim_state *trainee_state(const struct trainee *t)
 	return t->s;
 }
 
+struct offline *trainee_offline(struct trainee *t)
+{
+	return t->off;
+}
+
 const struct colon *trainee_colon(const struct trainee *t)
 {
 	return offline_colon(t->off);

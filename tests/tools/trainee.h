@@ -100,6 +100,11 @@ void trainee_destroy(struct trainee *t);
  */
 void trainee_mind_patient(struct trainee *t, bool mindful);
 
+/* The loop she plays on (offline.h), for a caller who adds inputs of
+ * its own to hers (the tool in the working channel, from a
+ * trainee_watch() callback: offline_tool_input()). */
+struct offline *trainee_offline(struct trainee *t);
+
 /* The loop's latest state, its colon. */
 const struct endosim_state *trainee_state(const struct trainee *t);
 const struct colon *trainee_colon(const struct trainee *t);

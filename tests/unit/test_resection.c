@@ -1,0 +1,646 @@
+/*
+ * test_resection.c - the therapy's assessment (issue 25; therapy.h) on a
+ * scripted resection of the polyps case (config/cases/polyps.case): the
+ * scripted trainee (trainee.h) on the force loop in lockstep on
+ * simulated time (offline.h), the paper's model (the scope stands still
+ * when nothing pushes it) with the patient, her every cycle recorded as
+ * the daemon records it (session_record_from_state()) into the metrics
+ * (metrics_record()), the tool's inputs added to hers:
+ *  - the scripted expert, polyp by polyp in the case's order: she finds
+ *    it (in, steering, until the tip is 2 cm short of its place along the
+ *    colon); where its base is flat, or sessile and too thick for a cold
+ *    snare, the needle lifts it first; then the snare (15 mm; 20 mm for
+ *    a head of 15 mm or more) is opened around it and closed, and the
+ *    polyp cut: cold (closing the handle all the way) below the cold
+ *    snare's 10 mm, hot otherwise (the pedal down until it is free, her
+ *    foot off as it comes free); the pedunculated polyp's stump is
+ *    clipped after (the clip pushed on to the wall ahead and closed: one
+ *    clip counted). Aiming is not scripted: each polyp, found, is brought
+ *    under the open loop at the tip (as test_tool_loop does) and over the
+ *    needle's point; retrieving it is format 7's (the bleeding's branch),
+ *    not yet here. Every polyp of the case comes out complete, the wall
+ *    uninjured, no perforation; each resection's time (the first tool's
+ *    touch to the polyp free) is the model's (the closing, the cautery's
+ *    energy over its power) and is printed with the injections' and the
+ *    clip's; the session passes the polypectomy course
+ *    (config/courses/polypectomy.course);
+ *  - the careless trainee: the same session going on, the snare open
+ *    and pushed against the mucosa with the pedal held: the wall
+ *    injured, the patient perforated, and the course fails the session
+ *    on exactly its two requirements of the wall (tool_injuries,
+ *    perforations);
+ *  - the fates in the END frame (metricstext_format(), parsed back
+ *    alike) and in the report's table of polyps (reporttherapy.h);
+ *  - the rules on records made for them: a polyp left, one bitten and
+ *    left in place (partly), one the forceps took whole (complete, in no
+ *    time), one burnt in the loop and let go uncut (partly; its
+ *    cautery), one lifted and cut (its time from the lift); a bite of the
+ *    mucosa, an injury, a clip counted; the same through the wire
+ *    (sessionpb.h); no polyps listed without a tool in hand.
+ *
+ * Run from the top of the source tree (tests/run.sh does), or with
+ * ENDOSIM_TOP naming it.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "base/vec3.h"
+#include "conf/cases.h"
+#include "model/tool.h"
+#include "proto/session_file.h"
+#include "session/coursefile.h"
+#include "session/metrics.h"
+#include "session/metricstext.h"
+#include "session/reporttherapy.h"
+#include "session/sessionpb.h"
+#include "session/therapy.h"
+#include "offline.h"
+#include "trainee.h"
+
+#define CASE "config/cases/polyps.case"
+#define COURSE "config/courses/polypectomy.course"
+#define DT (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
+#define HOLD_S 0.003     /* the hand's input renewed each cycle */
+#define SHEATH_M 0.010   /* the snare's sheath out of the channel */
+#define NEEDLE_M 0.005   /* the needle's catheter out */
+#define SHUT 0.1         /* the loop closed on a polyp, not yet cut */
+#define FIND_BEFORE_M 0.02 /* the tip short of a polyp: she sees it */
+#define FIND_SPEED 0.03  /* m/s: her pace */
+#define FIND_STUCK_S 4.0
+#define VIEW_RATE_HZ 1.0 /* the polyps and the mucosa seen: not judged
+			    here, evaluated seldom (the cost) */
+#define PUSH_M 0.0025    /* the tool pushed on towards the wall a step */
+#define UNDER_M 0.002    /* the needle's point under a base */
+
+struct run {
+	struct config cfg;
+	struct tool_params par;
+	struct trainee *tr;
+	struct offline *o;  /* hers */
+	struct metrics *m;
+	const struct endosim_state *st;
+	double depth_m, opening; /* the hand's tool now */
+	double from_d, from_o, to_d, to_o, t0, t1; /* ... its move */
+	bool pedal;
+	unsigned events;    /* since the last look */
+	int event_polyp;    /* the last event's polyp */
+	double event_s;     /* ... and its time */
+};
+
+static double now_s(const struct endosim_state *s)
+{
+	return (double)s->stamp_ns * ENDOSIM_S_PER_NS;
+}
+
+/*
+ * After each cycle she plays: the cycle recorded; the tool's input for
+ * the next, along its move (the foot off the pedal as soon as the polyp
+ * comes free).
+ */
+static void watch(const struct endosim_state *s, void *arg)
+{
+	struct run *r = arg;
+	struct session_record rec;
+	double f = r->t1 > r->t0 ? (now_s(s) + DT - r->t0) / (r->t1 - r->t0)
+				 : 1;
+
+	r->st = s;
+	session_record_from_state(s, &rec);
+	metrics_record(r->m, &rec);
+	r->events |= s->tool.events;
+	if (s->tool.events) {
+		r->event_polyp = s->tool.event_polyp;
+		r->event_s = now_s(s);
+	}
+	r->pedal &= !(s->tool.events & ENDOSIM_TOOL_CUT);
+	f = fmax(0, fmin(1, f));
+	r->depth_m = r->from_d + (r->to_d - r->from_d) * f;
+	r->opening = r->from_o + (r->to_o - r->from_o) * f;
+	offline_tool_input(r->o, r->depth_m, r->opening, r->pedal, HOLD_S);
+}
+
+/* The scripted trainee on the polyps case, the paper's model, the
+ * patient; her every cycle recorded. */
+static void start(struct run *r)
+{
+	struct metrics_params mp;
+	char err[512];
+
+	memset(r, 0, sizeof(*r));
+	config_defaults(&r->cfg);
+	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
+	r->cfg.patient.enabled = true;
+	cases_tool_params(&r->cfg, &r->par);
+	r->tr = trainee_create(&r->cfg, CASE, NULL, err, sizeof(err));
+	if (!r->tr) {
+		fail_msg("%s", err);
+	}
+	r->o = trainee_offline(r->tr);
+	r->st = trainee_state(r->tr);
+	metrics_params_default(&mp);
+	mp.view_rate_hz = VIEW_RATE_HZ;
+	r->m = metrics_create(trainee_colon(r->tr), &mp);
+	assert_non_null(r->m);
+	r->depth_m = r->from_d = r->to_d = -SHEATH_M; /* in the channel */
+	trainee_watch(r->tr, watch, r);
+}
+
+static void stop(struct run *r, struct metrics_result *out)
+{
+	metrics_result(r->m, out);
+	metrics_destroy(r->m);
+	trainee_destroy(r->tr);
+}
+
+/* The tool moved linearly to DEPTH_M and OPENING over S seconds, as long
+ * as she holds the scope still (her waypoints': TRAINEE_STEP_S, at least
+ * one). */
+static void move(struct run *r, double s, double depth_m, double opening)
+{
+	r->from_d = r->depth_m;
+	r->from_o = r->opening;
+	r->to_d = depth_m;
+	r->to_o = opening;
+	r->t0 = now_s(r->st);
+	r->t1 = r->t0 + s;
+	trainee_hold(r->tr, fmax(TRAINEE_STEP_S, s));
+}
+
+static void hold(struct run *r, double s)
+{
+	move(r, s, r->depth_m, r->opening);
+}
+
+/* Holds until EVENT (at most S seconds); whether it came. */
+static bool until(struct run *r, unsigned event, double s)
+{
+	r->events = 0;
+	for (double t = 0; t < s && !(r->events & event);
+	     t += TRAINEE_STEP_S) {
+		trainee_hold(r->tr, TRAINEE_STEP_S);
+	}
+	return r->events & event;
+}
+
+/* The nurse hands KIND over (SNARE_M for a snare). */
+static void hand_over(struct run *r, int kind, double snare_m)
+{
+	offline_tool_select(r->o, kind, snare_m);
+	hold(r, TRAINEE_STEP_S);
+	assert_int_equal(offline_tool_answer(r->o), 0);
+}
+
+/* She finds polyp I: in, steering, until the tip is FIND_BEFORE_M short
+ * of it; she lets the tube settle. The seconds it took. */
+static double find(struct run *r, int i)
+{
+	const struct anatomy *a = colon_anatomy(trainee_colon(r->tr));
+	double t0 = now_s(r->st);
+
+	assert_true(trainee_insert(r->tr, a->polyp[i].s_m - FIND_BEFORE_M,
+				   FIND_SPEED, FIND_STUCK_S));
+	trainee_relax(r->tr, TRAINEE_STEP_S);
+	return now_s(r->st) - t0;
+}
+
+/* The tool's pose at the hand's depth now. */
+static void pose(const struct run *r, struct tool_pose *out)
+{
+	tool_pose(&r->par, &r->st->scope, r->st->tool.depth_m, out);
+}
+
+/* Polyp I brought under the open loop: its axis' middle at the loop's
+ * centre, along the channel's radial direction. */
+static void under_loop(struct run *r, int i)
+{
+	struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	struct tool_pose q;
+
+	pose(r, &q);
+	vec3_axpy(p->base, r->st->tool.loop_centre,
+		  tool_polyp_height(p, r->par.lift_m) / 2, q.radial);
+	vec3_scale(p->normal, q.radial, -1);
+}
+
+/* Polyp I's base brought over the needle's point, UNDER_M above it. */
+static void over_needle(struct run *r, int i)
+{
+	struct tool *t = offline_tool(r->o);
+	struct tool_polyp *p = &t->polyp[i];
+	struct tool_pose q;
+
+	pose(r, &q);
+	vec3_axpy(p->base, t->needle, -UNDER_M, q.radial);
+	vec3_scale(p->normal, q.radial, -1);
+}
+
+/* The needle lifts polyp I's base: out, into the wall under it, the
+ * nurse injecting until it lifts; back in. */
+static void lift(struct run *r, int i)
+{
+	double t0;
+
+	hand_over(r, TOOL_NEEDLE, 0);
+	move(r, 0.5, NEEDLE_M, 0);
+	move(r, 0.2, NEEDLE_M, 1);
+	over_needle(r, i);
+	t0 = now_s(r->st);
+	assert_true(until(r, ENDOSIM_TOOL_LIFT, 10));
+	assert_int_equal(r->event_polyp, i);
+	print_message("polyp %d: injected for %.2f s until it lifted (the "
+		      "hemostasis trainer's injection: experts 36 s, "
+		      "beginners 92 s, the whole task)\n", i + 1,
+		      r->event_s - t0);
+	move(r, 0.2, NEEDLE_M, 0);
+	move(r, 0.5, -SHEATH_M, 0);
+}
+
+/* Polyp I, found, resected by the scripted expert. */
+static void resect(struct run *r, int i)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double th = tool_polyp_thickness(p);
+	bool hot = p->paris == ANATOMY_PARIS_IP || th >= r->par.cold_max_m;
+	bool flat = p->paris == ANATOMY_PARIS_IIA ||
+		    p->paris == ANATOMY_PARIS_IIB;
+
+	if (flat || (hot && p->paris != ANATOMY_PARIS_IP)) {
+		lift(r, i);
+	}
+	hand_over(r, TOOL_SNARE, p->size_m >= 0.015 ? 0.020 : 0.015);
+	move(r, 0.5, SHEATH_M, 0);
+	move(r, 0.5, SHEATH_M, 1);
+	under_loop(r, i);
+	hold(r, 0.05);
+	r->events = 0;
+	move(r, 0.5, SHEATH_M, SHUT);
+	assert_true(r->events & ENDOSIM_TOOL_CAPTURE);
+	assert_int_equal(r->st->tool.captured, i);
+	if (hot) {
+		r->pedal = true;
+		assert_true(until(r, ENDOSIM_TOOL_CUT, 20));
+		r->pedal = false;
+	} else {
+		r->events = 0;
+		move(r, 0.3, SHEATH_M, 0);
+		assert_true(r->events & ENDOSIM_TOOL_CUT);
+	}
+	assert_int_equal(r->event_polyp, i);
+	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
+	move(r, 0.5, -SHEATH_M, 0);
+}
+
+/* The clip's jaws' distance from the wall ahead (as the loop sees the
+ * wall: tool_wall()), m. */
+static double jaws_to_wall(const struct run *r)
+{
+	struct tool_input in = { 0 };
+	struct tool_pose q;
+	double jaws[3], d[3];
+
+	pose(r, &q);
+	vec3_axpy(jaws, q.tip, r->par.clip_m, q.dir);
+	tool_wall(offline_colon(r->o), r->st->scope.tip_s_m + r->depth_m,
+		  q.tip, &in);
+	assert_true(in.wall);
+	vec3_sub(d, jaws, in.wall_point);
+	return vec3_dot(d, in.wall_normal);
+}
+
+/* A clip closed on the wall ahead (the stalk's stump, a large polyp's):
+ * out, open, pushed on until its jaws are half their length from the
+ * wall, closed. Returns the seconds from its handing over to placed. */
+static double clip_wall(struct run *r)
+{
+	double t0 = now_s(r->st);
+	int k;
+
+	hand_over(r, TOOL_CLIP, 0);
+	move(r, 0.5, SHEATH_M, 0);
+	move(r, 0.3, SHEATH_M, 1);
+	for (k = 0; k < 80 && jaws_to_wall(r) > r->par.clip_m / 2; k++) {
+		move(r, TRAINEE_STEP_S, r->depth_m + PUSH_M, 1);
+	}
+	r->events = 0;
+	move(r, 0.3, r->depth_m, 0);
+	assert_true(r->events & ENDOSIM_TOOL_CLIP_PLACED);
+	t0 = r->event_s - t0;
+	move(r, 0.5, -SHEATH_M, 0);
+	return t0;
+}
+
+/* The careless trainee's pedal held with the open snare pushed against
+ * the mucosa: until the wall is injured (at most 20 cm of sheath, 1 cm a
+ * second). */
+static bool pedal_on_wall(struct run *r)
+{
+	hand_over(r, TOOL_SNARE, 0.020);
+	move(r, 0.5, SHEATH_M, 1);
+	r->pedal = true;
+	r->events = 0;
+	for (int k = 0; k < 80 && !(r->events & ENDOSIM_TOOL_INJURY); k++) {
+		move(r, TRAINEE_STEP_S, r->depth_m + PUSH_M, 1);
+	}
+	r->pedal = false;
+	hold(r, 0.5);
+	return r->events & ENDOSIM_TOOL_INJURY;
+}
+
+/*
+ * The whole script on the polyps case: the expert's session into EXPERT;
+ * then, the same session going on, the careless pedal on the wall, the
+ * whole into CARELESS.
+ */
+static void script(struct metrics_result *expert_out,
+		   struct metrics_result *careless_out)
+{
+	struct run r;
+	double clip_s = -1;
+	int n;
+
+	start(&r);
+	hold(&r, TRAINEE_STEP_S);
+	n = (int)r.st->tool.polyps;
+	assert_int_equal(n, 5);
+	for (int i = 0; i < n; i++) {
+		double found_s = find(&r, i);
+
+		print_message("polyp %d found %.2f s after the last, the tip "
+			      "at %.3f m\n", i + 1, found_s,
+			      r.st->scope.tip_s_m);
+		resect(&r, i);
+		if (offline_tool(r.o)->polyp[i].paris == ANATOMY_PARIS_IP) {
+			clip_s = clip_wall(&r);
+		}
+	}
+	print_message("the stalk's stump clipped %.2f s after the clip was "
+		      "handed over (the hemostasis trainer's clip: experts "
+		      "20 s, beginners 73 s)\n", clip_s);
+	metrics_result(r.m, expert_out);
+	assert_true(pedal_on_wall(&r));
+	assert_true(r.st->patient.torn_segment >= 0);
+	stop(&r, careless_out);
+}
+
+static struct metrics_result expert, careless;
+
+static int play(void **unused)
+{
+	(void)unused;
+	script(&expert, &careless);
+	return 0;
+}
+
+/* The course's section of the polyps case. */
+static const struct coursefile_case *polyps_section(struct coursefile *c)
+{
+	char err[256];
+	const struct coursefile_case *k;
+
+	if (coursefile_load(c, COURSE, err, sizeof(err))) {
+		fail_msg("%s", err);
+	}
+	k = coursefile_case(c, "polyps");
+	assert_non_null(k);
+	return k;
+}
+
+static void test_expert_resects_all(void **unused)
+{
+	const struct metrics_result *m = &expert;
+	struct coursefile c;
+	const struct coursefile_case *k = polyps_section(&c);
+
+	(void)unused;
+	for (uint32_t i = 0; i < m->n_polyp; i++) {
+		const struct metrics_polyp *p = &m->polyp[i];
+
+		print_message("polyp %u: %s, touched at %.2f s, free %.2f s "
+			      "later, cautery %.2f s\n", i + 1,
+			      therapy_fate_name(p->fate), p->start_s,
+			      p->cut_s - p->start_s, p->cautery_s);
+		assert_int_equal(p->fate, METRICS_FATE_COMPLETE);
+		assert_true(p->start_s >= 0 && p->cut_s > p->start_s);
+	}
+	print_message("the expert: %u of %u resected, %.2f s a resection "
+		      "(published: %.0f s rotary, %.0f s standard), cautery "
+		      "%.2f s, %u injuries, %u perforations\n",
+		      m->polyps_resected, m->n_polyp, m->resection_s,
+		      REPORTTHERAPY_ROTARY_S, REPORTTHERAPY_STANDARD_S,
+		      m->cautery_s, m->tool_injuries, m->perforations);
+	assert_int_equal(m->n_polyp, 5);
+	assert_int_equal(m->polyps_resected, 5);
+	assert_int_equal(m->polyps_partly, 0);
+	assert_int_equal(m->tool_injuries, 0);
+	assert_int_equal(m->perforations, 0);
+	assert_true(m->cautery_s > 0);
+	assert_int_equal(m->clips, 1);
+	assert_int_equal(m->biopsies, 0);
+	assert_true(coursefile_passed(k, m));
+}
+
+static void test_careless_perforates(void **unused)
+{
+	const struct metrics_result *m = &careless;
+	struct coursefile c;
+	const struct coursefile_case *k = polyps_section(&c);
+	char text[128];
+
+	(void)unused;
+	assert_int_equal(m->polyps_resected, 5);
+	assert_int_equal(m->tool_injuries, 1);
+	assert_int_equal(m->perforations, 1);
+	assert_false(coursefile_passed(k, m));
+	for (size_t q = 0; q < k->n_reqs; q++) {
+		const char *key = k->req[q].field->key;
+		bool wall = !strcmp(key, "tool_injuries") ||
+			    !strcmp(key, "perforations");
+
+		coursefile_req_text(&k->req[q], text, sizeof(text));
+		print_message("careless: %s %s\n", text,
+			      coursefile_met(&k->req[q], m) ? "met" : "failed");
+		assert_true(coursefile_met(&k->req[q], m) == !wall);
+	}
+}
+
+/* The fates through the END frame's text and back, and in the report. */
+static void test_end_frame_and_report(void **unused)
+{
+	static char text[65536];
+	struct metrics_result back;
+	char *page = NULL, row[64];
+	size_t size = 0;
+	FILE *o;
+	int n;
+
+	(void)unused;
+	n = metricstext_format(&careless, text, sizeof(text));
+	assert_true(n > 0);
+	assert_non_null(strstr(text, "\npolyps_resected=5\n"));
+	assert_non_null(strstr(text, "\ntool_injuries=1\n"));
+	assert_non_null(strstr(text, "\npolyp.4=2,"));
+	assert_int_equal(metricstext_parse(text, &back), 0);
+	assert_int_equal(back.n_polyp, careless.n_polyp);
+	for (uint32_t i = 0; i < back.n_polyp; i++) {
+		assert_int_equal(back.polyp[i].fate, careless.polyp[i].fate);
+		assert_true(fabs(back.polyp[i].cut_s - careless.polyp[i].cut_s)
+			    < 1e-6);
+	}
+	assert_true(fabs(back.resection_s - careless.resection_s) < 1e-6);
+	o = open_memstream(&page, &size);
+	assert_non_null(o);
+	reporttherapy_write(o, &careless, NULL);
+	fclose(o);
+	for (uint32_t i = 0; i < careless.n_polyp; i++) {
+		snprintf(row, sizeof(row),
+			 "<tr id=\"polyp-%u\" class=\"good\">", i + 1);
+		assert_non_null(strstr(page, row));
+	}
+	assert_non_null(strstr(page, "<tr id=\"polyp-4\" class=\"good\">"
+				   "<th>4</th><td>complete</td>"));
+	assert_null(strstr(page, ">left</td>"));
+	assert_non_null(strstr(page, "5 of 5"));
+	free(page);
+}
+
+/* A record at T s with the tool's KIND, the pedal, the polyp held and
+ * EVENTS concerning POLYP. */
+static void record(struct metrics *m, double t, unsigned events, int polyp,
+		   int captured, bool pedal)
+{
+	struct session_record r = {
+		.stamp_ns = OFFLINE_START_NS + (uint64_t)llround(t * 1e9),
+		.tool_kind = ENDOSIM_TOOL_SNARE, .tool_pedal = pedal,
+		.tool_captured = captured, .tool_events = events,
+		.tool_event_polyp = polyp,
+	};
+
+	metrics_record(m, &r);
+}
+
+/*
+ * The rules on records made for them (no colon: the polyps listed are
+ * those the events name): polyp 0 bitten, left in place (partly); 1
+ * taken whole by a bite (complete, in no time); 2 captured, burnt for
+ * 0.5 s and let go (partly); 3 captured and cut a second later; 4 never
+ * touched (left); 5 lifted, captured, cut a second after the lift. A bite
+ * of the mucosa, an injury, a clip. Then the same through the wire.
+ */
+static void test_fates(void **unused)
+{
+	struct metrics_params mp;
+	struct metrics *m;
+	struct metrics_result r, back;
+	static const uint32_t want[] = {
+		METRICS_FATE_PARTLY, METRICS_FATE_COMPLETE,
+		METRICS_FATE_PARTLY, METRICS_FATE_COMPLETE,
+		METRICS_FATE_LEFT, METRICS_FATE_COMPLETE,
+	};
+	struct sessionpb_metrics pb;
+	Endosim__SessionMetrics *un;
+	uint8_t wire[8192];
+	size_t len;
+
+	(void)unused;
+	metrics_params_default(&mp);
+	m = metrics_create(NULL, &mp);
+	assert_non_null(m);
+	record(m, 0.0, 0, -1, -1, false);
+	record(m, 0.2, ENDOSIM_TOOL_BITE, 0, -1, false);
+	record(m, 0.4, ENDOSIM_TOOL_BITE | ENDOSIM_TOOL_CUT, 1, -1, false);
+	record(m, 1.0, ENDOSIM_TOOL_CAPTURE, 2, 2, true);
+	record(m, 1.5, ENDOSIM_TOOL_RELEASE, 2, -1, false);
+	record(m, 2.0, ENDOSIM_TOOL_CAPTURE, 3, 3, false);
+	record(m, 3.0, ENDOSIM_TOOL_CUT, 3, -1, false);
+	record(m, 3.5, ENDOSIM_TOOL_BITE, -1, -1, false);
+	record(m, 3.6, ENDOSIM_TOOL_INJURY, -1, -1, false);
+	record(m, 3.7, ENDOSIM_TOOL_CLIP_PLACED, -1, -1, false);
+	record(m, 4.0, ENDOSIM_TOOL_LIFT, 5, -1, false);
+	record(m, 4.5, ENDOSIM_TOOL_CAPTURE, 5, 5, false);
+	record(m, 5.0, ENDOSIM_TOOL_CUT, 5, -1, false);
+	metrics_result(m, &r);
+	metrics_destroy(m);
+	assert_int_equal(r.n_polyp, 6);
+	for (uint32_t i = 0; i < r.n_polyp; i++) {
+		assert_int_equal(r.polyp[i].fate, want[i]);
+	}
+	assert_int_equal(r.polyps_resected, 3);
+	assert_int_equal(r.polyps_partly, 2);
+	assert_int_equal(r.polyps_retrieved, 0);
+	assert_true(fabs(r.resection_s - 2.0 / 3) < 1e-9);
+	assert_true(fabs(r.polyp[2].cautery_s - 0.5) < 1e-9);
+	assert_true(fabs(r.cautery_s - 0.5) < 1e-9);
+	assert_true(r.polyp[4].start_s < 0 && r.polyp[4].cut_s < 0);
+	assert_true(fabs(r.polyp[5].start_s - 4.0) < 1e-9);
+	assert_int_equal(r.polyp[0].bites, 1);
+	assert_int_equal(r.biopsies, 3);
+	assert_int_equal(r.tool_injuries, 1);
+	assert_int_equal(r.clips, 1);
+
+	sessionpb_from_metrics(&pb, &r);
+	len = endosim__session_metrics__get_packed_size(&pb.msg);
+	assert_true(len <= sizeof(wire));
+	endosim__session_metrics__pack(&pb.msg, wire);
+	un = endosim__session_metrics__unpack(NULL, len, wire);
+	assert_non_null(un);
+	sessionpb_to_metrics(un, &back);
+	endosim__session_metrics__free_unpacked(un, NULL);
+	assert_int_equal(back.n_polyp, r.n_polyp);
+	assert_int_equal(back.polyps_partly, 2);
+	assert_int_equal(back.tool_injuries, 1);
+	assert_true(back.resection_s == r.resection_s);
+	for (uint32_t i = 0; i < r.n_polyp; i++) {
+		assert_int_equal(back.polyp[i].fate, want[i]);
+		assert_true(back.polyp[i].cautery_s == r.polyp[i].cautery_s);
+	}
+}
+
+/* Without a tool in hand, no polyps are listed (their fates would be
+ * "left" for a session that never meant to resect). */
+static void test_no_tool_no_fates(void **unused)
+{
+	struct metrics_params mp;
+	struct metrics *m;
+	struct metrics_result r;
+	struct session_record rec = { .tool_captured = -1,
+				      .tool_event_polyp = -1 };
+
+	(void)unused;
+	metrics_params_default(&mp);
+	m = metrics_create(NULL, &mp);
+	assert_non_null(m);
+	metrics_record(m, &rec);
+	rec.stamp_ns += ENDOSIM_NS_PER_S;
+	metrics_record(m, &rec);
+	metrics_result(m, &r);
+	metrics_destroy(m);
+	assert_int_equal(r.n_polyp, 0);
+	assert_int_equal(r.polyps_resected, 0);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_fates),
+		cmocka_unit_test(test_no_tool_no_fates),
+		cmocka_unit_test(test_expert_resects_all),
+		cmocka_unit_test(test_careless_perforates),
+		cmocka_unit_test(test_end_frame_and_report),
+	};
+	const char *top = getenv("ENDOSIM_TOP");
+
+	if (top && chdir(top)) {
+		perror(top);
+		return 1;
+	}
+	return cmocka_run_group_tests(tests, play, NULL);
+}
