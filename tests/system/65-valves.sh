@@ -140,37 +140,9 @@ ENDOSIMD="$BUILD/endosimd"
 # --- Modbus: air and suction on slave 1's discrete inputs 0x10, 0x11;
 # water on slave 2's, an input that opens when pressed ------------------------
 
-cat >"$TMP/mb.conf" <<EOF
-[rig]
-backend = drives
-[axis.wheel_ud]
-backend = modbus
-[axis.wheel_lr]
-backend = modbus
-[modbus]
-device = $TMP/tty
-; a silent drive's transaction waits 2 s; feedback may be 0.3 s old
-response_timeout_s = 2
-feedback_max_age_s = 0.3
-[modbus.wheel_ud]
-slave = 1
-torque = holding 0x0000 i16 scale=1e-5
-enable = coil 0x0000
-position = input 0x0000 i32 cdab
-velocity = input 0x0002 f32 cdab
-fault = input 0x0004 u16
-valve_air = discrete 0x0010
-valve_suction = discrete 0x0011
-[modbus.wheel_lr]
-slave = 2
-combined_0x17 = yes
-torque = holding 0x0010 i32 scale=1e-6
-enable = holding 0x0012 u16
-position = holding 0x0020 i32
-velocity = holding 0x0022 i32
-fault = holding 0x0024 u16
-valve_water = discrete 0x0000 u16 scale=-1 offset=1
-EOF
+wheels_conf "$TMP/mb.conf" "valve_air = discrete 0x0010
+valve_suction = discrete 0x0011" \
+	"valve_water = discrete 0x0000 u16 scale=-1 offset=1"
 
 check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
 check "endosimd up on it, the patient on" start_on "$TMP/mb.conf" "${ARGS[@]}"

@@ -134,37 +134,8 @@ ENDOSIMD="$BUILD/endosimd"
 # the span its feedback reads already); the pedal on slave 2's discrete
 # input 0x00, read after its write-and-read (0x17) ----------------------------
 
-cat >"$TMP/mb.conf" <<EOF
-[rig]
-backend = drives
-[axis.wheel_ud]
-backend = modbus
-[axis.wheel_lr]
-backend = modbus
-[modbus]
-device = $TMP/tty
-; a silent drive's transaction waits 2 s; feedback may be 0.3 s old
-response_timeout_s = 2
-feedback_max_age_s = 0.3
-[modbus.wheel_ud]
-slave = 1
-torque = holding 0x0000 i16 scale=1e-5
-enable = coil 0x0000
-position = input 0x0000 i32 cdab
-velocity = input 0x0002 f32 cdab
-fault = input 0x0004 u16
-tool_depth = input 0x0020 i32 scale=1e-5
-tool_opening = input 0x0022 u16 scale=0.0001
-[modbus.wheel_lr]
-slave = 2
-combined_0x17 = yes
-torque = holding 0x0010 i32 scale=1e-6
-enable = holding 0x0012 u16
-position = holding 0x0020 i32
-velocity = holding 0x0022 i32
-fault = holding 0x0024 u16
-tool_pedal = discrete 0x0000
-EOF
+wheels_conf "$TMP/mb.conf" "tool_depth = input 0x0020 i32 scale=1e-5
+tool_opening = input 0x0022 u16 scale=0.0001" "tool_pedal = discrete 0x0000"
 
 check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
 check "endosimd up on it" start_on "$TMP/mb.conf" "${ARGS[@]}"
@@ -221,21 +192,9 @@ check "endosimd stops cleanly" stop_daemon
 # tool goes on moving; the tool's stale, the tool held and the pedal up
 # (the model takes a pedal without a tool for none) ----------------------------
 
-grep -v pedal "$TMP/usb.conf" >"$TMP/both.conf"
-cat >>"$TMP/both.conf" <<EOF
-[axis.wheel_ud]
-backend = modbus
-[modbus]
-device = $TMP/tty
-response_timeout_s = 2
-feedback_max_age_s = 0.3
-[modbus.wheel_ud]
-slave = 1
-torque = holding 0x0000 i16 scale=1e-5
-enable = coil 0x0000
-position = input 0x0000 i32 cdab
-tool_pedal = discrete 0x0013
-EOF
+wheels_conf "$TMP/both.conf" "" "tool_pedal = discrete 0x0000"
+grep -v -e pedal -e '^\[rig\]' -e '^backend = drives' "$TMP/usb.conf" \
+	>>"$TMP/both.conf"
 
 rm -f "$TMP/usb.ready" # the first emulator's testbed
 check "both emulators up" start_epos4 EMU-INS
@@ -243,20 +202,20 @@ check "... the Modbus one" start_modbus "$TMP/both.conf" --pty "$TMP/tty"
 check "endosimd up on both" start_on "$TMP/both.conf" "${ARGS[@]}"
 usb "aux EMU-INS 2 3200"
 usb "analog EMU-INS 1 3500"
-mb "tool 1 pedal on"
+mb "tool 2 pedal on"
 check "both: the tool from the EPOS4, the pedal from Modbus" \
 	wait_for tool_is 12 75 1
 
 watch_tool 12 75 0
-mb "mute 1 on"
+mb "mute 2 on"
 check "both, the pedal's drive silent: the pedal up" witnessed
 check "both, the pedal's drive silent: while it still shows present" \
-	present_not_lost wheel_ud
+	present_not_lost wheel_lr
 usb "aux EMU-INS 2 4200"
 check "both, the pedal's drive silent: the tool moves on" \
 	wait_for tool_is 22 75 0
 check "both, the pedal's drive silent: the pedal stays up" held 22 75 0
-mb "mute 1 off"
+mb "mute 2 off"
 check "both, the pedal's drive back: the pedal down" wait_for tool_is 22 75 1
 
 watch_tool 22 75 0

@@ -294,6 +294,44 @@ lost() {
 }
 
 
+# wheels_conf FILE UD_LINES LR_LINES: the two wheels on Modbus drives
+# behind $TMP/tty (slave 1 read with 0x04, slave 2 written and read with
+# 0x17), a silent drive's transaction waiting 2 s and the feedback aging
+# 0.3 s; each drive's section ends with its lines (the valves', the
+# tool's)
+wheels_conf() {
+	cat >"$1" <<EOF
+[rig]
+backend = drives
+[axis.wheel_ud]
+backend = modbus
+[axis.wheel_lr]
+backend = modbus
+[modbus]
+device = $TMP/tty
+; a silent drive's transaction waits 2 s; feedback may be 0.3 s old
+response_timeout_s = 2
+feedback_max_age_s = 0.3
+[modbus.wheel_ud]
+slave = 1
+torque = holding 0x0000 i16 scale=1e-5
+enable = coil 0x0000
+position = input 0x0000 i32 cdab
+velocity = input 0x0002 f32 cdab
+fault = input 0x0004 u16
+$2
+[modbus.wheel_lr]
+slave = 2
+combined_0x17 = yes
+torque = holding 0x0010 i32 scale=1e-6
+enable = holding 0x0012 u16
+position = holding 0x0020 i32
+velocity = holding 0x0022 i32
+fault = holding 0x0024 u16
+$3
+EOF
+}
+
 # --- cleaning up ----------------------------------------------------------------
 
 # drives_diagnose: after a failure, whether the emulators still ran and

@@ -214,6 +214,27 @@ static int load_text(struct config *c, const char *text)
 	return r;
 }
 
+/* A configuration file's text and what its refusal must say. */
+struct bad_file {
+	const char *text, *where;
+};
+
+/* Each of the N files BAD refused, saying its WHERE, the configuration
+ * left as it was. */
+static void refused(const struct bad_file *bad, size_t n)
+{
+	struct config c, before;
+
+	config_defaults(&before);
+	for (size_t i = 0; i < n; i++) {
+		if (load_text(&c, bad[i].text) != -EINVAL ||
+		    !strstr(err, bad[i].where)) {
+			fail_msg("'%s': got '%s'", bad[i].text, err);
+		}
+		assert_memory_equal(&c, &before, sizeof(c));
+	}
+}
+
 /*
  * The valves: a bit of 0x60FD on an EPOS4, a register on a Modbus drive;
  * what each drive reads; a bad bit or register refused with its line; a
@@ -272,9 +293,7 @@ static void test_valve_keys(void **state)
  * drives, refused at the line of the key that came second. */
 static void test_valve_keys_bad_input(void **state)
 {
-	static const struct {
-		const char *text, *where;
-	} bad[] = {
+	static const struct bad_file bad[] = {
 		{ "[epos4.roll]\nvalve_air_bit = 32\n",
 		  ":2: [epos4.roll] valve_air_bit: 32 is out of range" },
 		{ "[epos4.roll]\nvalve_water_bit = sixteen\n",
@@ -308,17 +327,10 @@ static void test_valve_keys_bad_input(void **state)
 		  ":12: [epos4.roll] valve_air_bit: [epos4.insertion] "
 		  "valve_air_bit reads that valve already" },
 	};
-	struct config c, before;
+	struct config c;
 
 	(void)state;
-	config_defaults(&before);
-	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
-		if (load_text(&c, bad[i].text) != -EINVAL ||
-		    !strstr(err, bad[i].where)) {
-			fail_msg("'%s': got '%s'", bad[i].text, err);
-		}
-		assert_memory_equal(&c, &before, sizeof(c));
-	}
+	refused(bad, sizeof(bad) / sizeof(bad[0]));
 	/* the same bit on a simulated axis' drive is never read */
 	assert_int_equal(load_text(&c, "[epos4.roll]\nvalve_air_bit = 16\n"
 				   "valve_water_bit = 16\n"), 0);
@@ -333,9 +345,7 @@ static void test_valve_keys_bad_input(void **state)
  */
 static void test_tool_keys(void **state)
 {
-	static const struct {
-		const char *text, *where;
-	} bad[] = {
+	static const struct bad_file bad[] = {
 		{ "[epos4.roll]\ntool_depth_sensor = 4\n",
 		  ":2: [epos4.roll] tool_depth_sensor: 4 is out of range" },
 		{ "[epos4.roll]\ntool_opening_input = 3\n",
@@ -367,7 +377,7 @@ static void test_tool_keys(void **state)
 		  ":12: [epos4.roll] tool_pedal_bit: [epos4.insertion] "
 		  "tool_pedal_bit reads it already (one drive per signal)" },
 	};
-	struct config c, before;
+	struct config c;
 
 	(void)state;
 	assert_int_equal(load_text(&c, "[rig]\nbackend = drives\n"
@@ -390,14 +400,7 @@ static void test_tool_keys(void **state)
 				   "tool_depth_sensor = 2\n"), 0);
 	assert_int_equal(config_axis_tool(&c, ENDOSIM_AXIS_ROLL), 0);
 
-	config_defaults(&before);
-	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
-		if (load_text(&c, bad[i].text) != -EINVAL ||
-		    !strstr(err, bad[i].where)) {
-			fail_msg("'%s': got '%s'", bad[i].text, err);
-		}
-		assert_memory_equal(&c, &before, sizeof(c));
-	}
+	refused(bad, sizeof(bad) / sizeof(bad[0]));
 }
 
 static void test_units(void **state)
