@@ -64,6 +64,11 @@ static void print_once(const struct endosim_state *st)
 		       st->axis[a].position, names_axis(a),
 		       st->axis[a].limited);
 	}
+	printf("tool.loop_m=%.9g\ntool.tip=%.9g,%.9g,%.9g\n"
+	       "tool.loop_centre=%.9g,%.9g,%.9g\n", st->tool.loop_m,
+	       st->tool.tip[0], st->tool.tip[1], st->tool.tip[2],
+	       st->tool.loop_centre[0], st->tool.loop_centre[1],
+	       st->tool.loop_centre[2]);
 	printf("scope.depth_m=%.9g\nscope.tip_s_m=%.9g\nscope.spans=%u\n",
 	       st->scope.depth_m, st->scope.tip_s_m, st->scope.spans);
 	printf("scope.tip=%.6f,%.6f,%.6f\n", st->scope.tip[0],
