@@ -898,7 +898,7 @@ static int load_over(struct config *new, FILE *f, const char *name,
 			 name);
 		return -EINVAL;
 	}
-	if (config_check(new, why, sizeof(why))) {
+	if (config_check_whole(new, why, sizeof(why))) {
 		return parse_error(err, errsize, name, line_of(why, lines),
 				   NULL, "%s", why);
 	}
@@ -1219,14 +1219,10 @@ static int first_tool_key(const struct config *cfg, uint32_t mapped,
 	return s;
 }
 
-/*
- * Each of the tool's signals read from one drive at most; its depth and
- * its opening both read from drives or neither (the model moves the tool
- * on both, tool.h), the pedal as the rig builder wires it.
- */
+/* Each of the tool's signals read from one drive at most. */
 static int check_tool(const struct config *cfg, char *err, size_t size)
 {
-	uint32_t all = 0, pair = CONFIG_TOOL_DEPTH | CONFIG_TOOL_OPENING;
+	uint32_t all = 0;
 	char key[80], other[80];
 
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
@@ -1246,6 +1242,20 @@ static int check_tool(const struct config *cfg, char *err, size_t size)
 		}
 		all |= t;
 	}
+	return 0;
+}
+
+/* The tool's depth and its opening both read from drives or neither (the
+ * model moves the tool on both, tool.h); the pedal as the rig builder
+ * wires it. */
+static int check_tool_pair(const struct config *cfg, char *err, size_t size)
+{
+	uint32_t all = 0, pair = CONFIG_TOOL_DEPTH | CONFIG_TOOL_OPENING;
+	char key[80];
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		all |= config_axis_tool(cfg, a);
+	}
 	if ((all & pair) && (all & pair) != pair) {
 		first_tool_key(cfg, all & pair, key, sizeof(key));
 		snprintf(err, size, "%s: the tool's %s is on no drive: its "
@@ -1254,6 +1264,14 @@ static int check_tool(const struct config *cfg, char *err, size_t size)
 		return -EINVAL;
 	}
 	return 0;
+}
+
+int config_check_whole(const struct config *cfg, char *err, size_t errsize)
+{
+	return config_check(cfg, err, errsize) ||
+			       check_tool_pair(cfg, err, errsize)
+		       ? -EINVAL
+		       : 0;
 }
 
 /* Two EPOS4 axes must not be able to find the same drive. */

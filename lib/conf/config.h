@@ -357,11 +357,19 @@ bool config_case_name_ok(const char *name);
  * Cross-key checks (travel min below max, distinct devices, a usable
  * register map for each modbus axis, each of the handle's valves and the
  * tool's pedal on an input of its own, each of the tool's signals on one
- * drive, its depth and opening on drives both or neither, the assistant's
- * hand_n within hand_max_n, a case name, ...). Returns 0 or -EINVAL with
+ * drive, the assistant's hand_n within hand_max_n, a case name, ...):
+ * what holds after every key (config_set()). Returns 0 or -EINVAL with
  * "[SECTION] KEY: message" in ERR.
  */
 int config_check(const struct config *cfg, char *err, size_t errsize);
+
+/*
+ * config_check(), and what only a whole configuration must hold, since
+ * one key set at a time cannot make it so: the tool's depth and opening
+ * on drives both or neither. config_load() checks it; so must whoever
+ * sets keys one by one (the command line's --set), after the last.
+ */
+int config_check_whole(const struct config *cfg, char *err, size_t errsize);
 
 /* The backend that moves AXIS: CONFIG_DRIVE_SIM unless [rig] backend is
  * drives. */

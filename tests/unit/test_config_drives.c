@@ -395,6 +395,14 @@ static void test_tool_keys(void **state)
 	assert_int_equal(config_axis_tool(&c, UD), 0);
 	assert_true(c.epos4[ENDOSIM_AXIS_INSERTION].tool_m_per_count == 1e-5);
 	assert_true(c.epos4[ENDOSIM_AXIS_INSERTION].tool_open_mv == 5000);
+	/* one key at a time (--set): the depth alone passes each key's
+	 * check, not the whole configuration's */
+	set(&c, "epos4.insertion.tool_opening_input", "0");
+	assert_int_equal(config_check_whole(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[epos4.insertion] tool_depth_sensor: "
+				    "the tool's opening is on no drive"));
+	set(&c, "epos4.insertion.tool_depth_sensor", "0");
+	assert_int_equal(config_check_whole(&c, err, sizeof(err)), 0);
 	/* a simulated axis' drive section reads nothing */
 	assert_int_equal(load_text(&c, "[epos4.roll]\ntool_pedal_bit = 3\n"
 				   "tool_depth_sensor = 2\n"), 0);
