@@ -238,7 +238,7 @@ static int load_config(int argc, char **argv, const struct options *opt,
 	if (apply_overrides(argc, argv, cfg)) {
 		return -EINVAL;
 	}
-	if (config_check(cfg, err, sizeof(err))) {
+	if (config_check_whole(cfg, err, sizeof(err))) {
 		fprintf(stderr, "endosimd: %s\n", err);
 		return -EINVAL;
 	}

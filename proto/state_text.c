@@ -91,6 +91,21 @@ static void rod(FILE *f, const char *prefix, const struct endosim_state *st)
 	       r->nodes < ENDOSIM_COLON_NODES ? r->nodes : ENDOSIM_COLON_NODES);
 }
 
+/* The tool in the working channel, when one is in hand. */
+static void tool(FILE *f, const char *prefix,
+		 const struct endosim_tool_state *t)
+{
+	if (t->kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	fprintf(f, "%stool_kind=%u\n%stool_depth_m=%.9g\n%stool_opening=%.9g\n"
+		"%stool_pedal=%u\n%stool_loop_m=%.9g\n", prefix, t->kind,
+		prefix, t->depth_m, prefix, t->opening, prefix, t->pedal,
+		prefix, t->loop_m);
+	doubles(f, prefix, "tool_tip", t->tip, 3);
+	doubles(f, prefix, "tool_loop_centre", t->loop_centre, 3);
+}
+
 void state_text_print(FILE *f, const char *prefix,
 		      const struct endosim_state *st)
 {
@@ -104,5 +119,6 @@ void state_text_print(FILE *f, const char *prefix,
 	scope(f, prefix, &st->scope);
 	haptics(f, prefix, &st->haptics);
 	rod(f, prefix, st);
+	tool(f, prefix, &st->tool);
 	points(f, prefix, "tube", st->scope.tube, ENDOSIM_TUBE_POINTS);
 }

@@ -12,8 +12,10 @@
  * penetration_m, contact; the rod model's model, contacts, wall_n,
  * friction_n, trans_rod_n, tube_rod_nm, span_nodes (4), rod_point (its
  * points in use as "x,y,z" separated by ';'), rod_roll (as many, by ','),
- * rod_node (its nodes in use, as rod_point); and, last, tube: the 128
- * points as "x,y,z" separated by ';'.
+ * rod_node (its nodes in use, as rod_point); with a tool in the working
+ * channel, tool_kind, tool_depth_m, tool_opening, tool_pedal, tool_loop_m,
+ * tool_tip, tool_loop_centre (3); and, last, tube: the 128 points as
+ * "x,y,z" separated by ';'.
  */
 #ifndef ENDOSIM_STATE_TEXT_H
 #define ENDOSIM_STATE_TEXT_H

@@ -11,6 +11,8 @@
 #include "base/log.h"
 #include "model/scene.h"
 #include "model/scope.h"
+#include "model/tool.h"
+#include "base/vec3.h"
 #include "proto/session_file.h"
 #include "session/sessioninputs.h"
 
@@ -31,6 +33,8 @@ struct replay {
 	struct session_shape shape; /* the rod model's, at or before st */
 	double loop_threshold_m;    /* the session's metrics' */
 	double relief_pa, strength_n_per_m; /* its [patient] */
+	struct tool_params tool_par; /* its [tool] */
+	struct tool tool;            /* its case's polyps placed for it */
 };
 
 static const char *read_error(int r)
@@ -126,6 +130,9 @@ struct replay *replay_open(const char *path, char *err, size_t errsize)
 	if (build_colon(r, path, err, errsize)) {
 		goto fail;
 	}
+	sessioninputs_tool(&r->f, &r->tool_par);
+	tool_reset(&r->tool);
+	(void)tool_place_polyps(&r->tool, r->colon);
 	return r;
 fail:
 	replay_destroy(r);
@@ -329,6 +336,36 @@ static void show_rod(struct replay *r)
 	tube_from_rod(&r->st, rec->depth_m);
 }
 
+/*
+ * The tool in the working channel where the record's sensing put it: the
+ * file records what the rig sensed (its depth, the handle, the snare's
+ * size, the polyp held), the model says where that puts the tool on the
+ * recorded tip (tool.h): its tip, and a snare's loop, held open at the
+ * thickness of the polyp it holds.
+ */
+static void show_tool(struct replay *r)
+{
+	struct endosim_tool_state *t = &r->st.tool;
+	struct tool_pose pose;
+	double loop_m;
+
+	if (t->kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	tool_pose(&r->tool_par, &r->st.scope, t->depth_m, &pose);
+	vec3_copy(t->tip, pose.tip);
+	if (t->kind != ENDOSIM_TOOL_SNARE) {
+		return;
+	}
+	loop_m = tool_loop_diameter(t->snare_m, t->opening, t->depth_m);
+	if (t->captured >= 0 && t->captured < r->tool.polyps) {
+		loop_m = fmax(loop_m, tool_polyp_thickness(
+					      &r->tool.polyp[t->captured]));
+	}
+	t->loop_m = loop_m;
+	vec3_axpy(t->loop_centre, pose.tip, loop_m / 2, pose.dir);
+}
+
 const struct endosim_state *replay_state(struct replay *r)
 {
 	size_t i = index_at(r, r->t_s);
@@ -340,6 +377,7 @@ const struct endosim_state *replay_state(struct replay *r)
 		} else {
 			rebuild_tube(r, i);
 		}
+		show_tool(r);
 		r->shown = i;
 	}
 	return &r->st;

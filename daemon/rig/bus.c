@@ -2,6 +2,7 @@
 #include "rig/bus.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -34,6 +35,7 @@ struct bus_cmd {
 struct bus_fb {
 	struct rig_axis_feedback drive[DRIVE_MAX]; /* by drive index */
 	uint32_t valves[DRIVE_MAX]; /* pressed, read at drive[i].stamp_ns */
+	struct drive_tool tool[DRIVE_MAX]; /* the tool, read then */
 	uint32_t fault_seq;                        /* latched faults so far */
 };
 
@@ -456,6 +458,7 @@ static uint32_t detail_of(const struct bus *b, int i, uint32_t status)
 
 static void publish(struct bus *b)
 {
+	const struct drive_tool still = { NAN, NAN, false };
 	struct bus_fb fb = b->fb_box;
 
 	for (int i = 0; i < b->d->n; i++) {
@@ -470,8 +473,10 @@ static void publish(struct bus *b)
 		f->stamp_ns = b->stamp_ns;
 		f->status = status_of(b, i);
 		f->fault_detail = detail_of(b, i, f->status);
-		/* what a failed exchange did not read is not pressed */
+		/* what a failed exchange did not read is not pressed, the
+		 * tool not moved */
 		fb.valves[i] = b->sample_ok ? dr->sample.valves : 0;
+		fb.tool[i] = b->sample_ok ? dr->sample.tool : still;
 	}
 	fb.fault_seq = b->fault_seq;
 	seqlock_write_begin(&b->fb_lock);
@@ -593,16 +598,44 @@ void bus_stop(struct bus *b)
 
 /* --- the force loop ------------------------------------------------- */
 
-uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
-		    const struct rig_axis_feedback *f, uint64_t now_ns,
-		    uint64_t max_age_ns)
+/* What a drive read in the exchange that gave F counts at NOW_NS: F at
+ * most MAX_AGE_NS old, its drive present, without a fault or a bus
+ * error. */
+static bool reading_fresh(const struct rig_axis_feedback *f, uint64_t now_ns,
+			  uint64_t max_age_ns)
 {
 	const uint32_t bad = ENDOSIM_DRIVE_FAULT | ENDOSIM_DRIVE_BUS_ERROR;
 	bool stale = now_ns > f->stamp_ns && now_ns - f->stamp_ns > max_age_ns;
 	bool lost = !(f->status & ENDOSIM_DRIVE_PRESENT) || (f->status & bad);
 
+	return !stale && !lost;
+}
+
+uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
+		    const struct rig_axis_feedback *f, uint64_t now_ns,
+		    uint64_t max_age_ns)
+{
 	valves &= ~mapped;
-	return stale || lost ? valves : valves | (pressed & mapped);
+	return reading_fresh(f, now_ns, max_age_ns)
+		       ? valves | (pressed & mapped) : valves;
+}
+
+void bus_tool(struct rig_feedback *fb, uint32_t mapped,
+	      const struct drive_tool *read,
+	      const struct rig_axis_feedback *f, uint64_t now_ns,
+	      uint64_t max_age_ns)
+{
+	bool fresh = reading_fresh(f, now_ns, max_age_ns);
+
+	if (mapped & CONFIG_TOOL_DEPTH) {
+		fb->tool_depth_m = fresh ? read->depth_m : NAN;
+	}
+	if (mapped & CONFIG_TOOL_OPENING) {
+		fb->tool_opening = fresh ? read->opening : NAN;
+	}
+	if (mapped & CONFIG_TOOL_PEDAL) {
+		fb->tool_pedal = fresh && read->pedal;
+	}
 }
 
 void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb)
@@ -621,6 +654,8 @@ void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb)
 		fb->valves = bus_valves(fb->valves, b->d->valves[i],
 					b->loop_fb.valves[i],
 					&b->loop_fb.drive[i], now_ns, max_age);
+		bus_tool(fb, b->d->tool[i], &b->loop_fb.tool[i],
+			 &b->loop_fb.drive[i], now_ns, max_age);
 	}
 }
 

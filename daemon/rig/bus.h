@@ -13,7 +13,8 @@
  * The handle's valves on the drives' inputs (drive.h, struct drive's
  * valves) travel with the feedback: each drive's as its last exchange
  * read them, with that exchange's time; released when the exchange
- * failed. The loop takes them by bus_valves() below.
+ * failed. The loop takes them by bus_valves() below. The tool in the
+ * working channel (struct drive's tool) likewise, by bus_tool().
  *
  * Faults. A failed transaction (ENDOSIM_DRIVE_BUS_ERROR), a drive fault
  * (ENDOSIM_DRIVE_FAULT), a vanished device (ENDOSIM_DRIVE_PRESENT cleared) or
@@ -71,8 +72,9 @@ void bus_stop(struct bus *b);
 
 /*
  * Force loop, its cycle at NOW_NS: the newest feedback of the bus' axes
- * into FB, and the valves its drives read into FB's valves (bus_valves(),
- * with the bus' feedback_max_age_s). Never blocks.
+ * into FB, the valves its drives read into FB's valves (bus_valves(),
+ * with the bus' feedback_max_age_s), the tool's signals into FB's tool
+ * (bus_tool()). Never blocks.
  */
 void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb);
 
@@ -87,6 +89,20 @@ void bus_fetch(struct bus *b, uint64_t now_ns, struct rig_feedback *fb);
 uint32_t bus_valves(uint32_t valves, uint32_t mapped, uint32_t pressed,
 		    const struct rig_axis_feedback *f, uint64_t now_ns,
 		    uint64_t max_age_ns);
+
+/*
+ * Any thread (pure): FB's tool in the working channel (its depth, its
+ * handle's opening, the pedal) with the signals a drive reads (MAPPED,
+ * enum config_tool_signal bits) replaced by what it read (READ) in the
+ * exchange that gave its feedback F, under bus_valves()' rule: as read
+ * while fresh; stale or lost, the tool still and the handle still (NaN:
+ * model/tool.h's rule) and the pedal up. The signals not MAPPED stay as
+ * they are (the simulated hand's).
+ */
+void bus_tool(struct rig_feedback *fb, uint32_t mapped,
+	      const struct drive_tool *read,
+	      const struct rig_axis_feedback *f, uint64_t now_ns,
+	      uint64_t max_age_ns);
 
 /*
  * Force loop: the newest command of its cycle at NOW_NS: SETPOINT per rig

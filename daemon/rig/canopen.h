@@ -29,9 +29,14 @@ enum {
 	CANOPEN_RATED_TORQUE = 0x6076,   /* UNSIGNED32, the drive's unit */
 	CANOPEN_TORQUE_ACTUAL = 0x6077,  /* INTEGER16, per mille of 0x6076 */
 	CANOPEN_SI_UNIT_VELOCITY = 0x60A9, /* UNSIGNED32: prefix, unit, per */
+	CANOPEN_ADDITIONAL_POSITION = 0x60E4, /* :01-03 INTEGER32: the
+					    counts of each sensor (EPOS4:
+					    sensor 1, 2, 3) */
 	CANOPEN_DIGITAL_INPUTS = 0x60FD, /* UNSIGNED32: 0-2 the limit and
 					    home switches, 16-31 the
 					    maker's (EPOS4: its inputs) */
+	EPOS4_ANALOG_INPUT_VOLTAGE = 0x3160, /* maxon's: :01-02 INTEGER16,
+						each analogue input, mV */
 };
 
 #define CANOPEN_DEVICE_PROFILE_DRIVE 402

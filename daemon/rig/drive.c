@@ -35,6 +35,14 @@ uint32_t drive_valves_of_inputs(uint32_t inputs,
 	return valves;
 }
 
+double drive_tool_opening(double voltage_mv, double closed_mv,
+			  double open_mv)
+{
+	double x = (voltage_mv - closed_mv) / (open_mv - closed_mv);
+
+	return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
+}
+
 int drive_fail(struct drive *d, int i, int err, const char *fmt, ...)
 {
 	va_list ap;

@@ -50,6 +50,17 @@ struct drive_units {
 void drive_units_init(struct drive_units *u, const struct config *cfg,
 		      int axis);
 
+/*
+ * The tool in the working channel as a drive's inputs read it: those of
+ * its signals the drive reads (struct drive's tool); the others as they
+ * were (unused).
+ */
+struct drive_tool {
+	double depth_m;   /* its tip beyond the channel's exit, m */
+	double opening;   /* its handle, 0 closed .. 1 open */
+	bool pedal;       /* the cautery's foot pedal down */
+};
+
 /* One drive's state after an exchange, at the axis. */
 struct drive_sample {
 	double position;  /* m or rad */
@@ -59,6 +70,7 @@ struct drive_sample {
 	uint32_t code;    /* its fault code when FAULT */
 	uint32_t valves;  /* enum endosim_valve bits: those of the drive's
 			     valves (struct drive's) read pressed */
+	struct drive_tool tool; /* the tool's signals the drive reads */
 };
 
 struct drive;
@@ -79,8 +91,8 @@ struct drive_ops {
 	int (*bring_up)(struct drive *d, int i);
 	/*
 	 * One cycle: sends SETPOINT[i] (N or N m at the axis) to every
-	 * enabled drive, reads every drive's position, velocity, status and
-	 * the valves on its inputs into SAMPLE[i].
+	 * enabled drive, reads every drive's position, velocity, status,
+	 * the valves and the tool's signals on its inputs into SAMPLE[i].
 	 */
 	int (*exchange)(struct drive *d, const double *setpoint,
 			struct drive_sample *sample);
@@ -104,6 +116,8 @@ struct drive {
 	struct drive_units units[DRIVE_MAX];
 	uint32_t valves[DRIVE_MAX];  /* the valves each reads (enum
 					endosim_valve bits) */
+	uint32_t tool[DRIVE_MAX];    /* the tool's signals each reads
+					(enum config_tool_signal bits) */
 	char name[200];              /* the bus: "epos4-usb 24e7:3b01 ..." */
 	char unit[DRIVE_MAX][32];    /* each drive on it: "node 1", "slave 2" */
 	char why[256];               /* the last error, in words */
@@ -128,6 +142,14 @@ struct drive *drive_modbus_create(const struct config *cfg);
  */
 uint32_t drive_valves_of_inputs(uint32_t inputs,
 				const int bit[CONFIG_VALVES]);
+
+/*
+ * The tool's handle's opening (0 closed .. 1 open, clamped) from an
+ * analogue input reading VOLTAGE_MV that reads CLOSED_MV closed and
+ * OPEN_MV open (not equal: config_check()). Pure.
+ */
+double drive_tool_opening(double voltage_mv, double closed_mv,
+			  double open_mv);
 
 /*
  * Records D's error text (printf-style) concerning drive I (-1: the whole

@@ -11,6 +11,12 @@
  * handle's valves ([epos4.NAME] valve_*_bit) adds a fifth, ReadObject
  * digital inputs 0x60FD: the frame protocol reads one object per request
  * (no PDOs over USB), so the valves cost one more round trip per exchange.
+ * The tool in the working channel ([epos4.NAME] tool_*) likewise: its
+ * depth one ReadObject of the additional position actual values
+ * 0x60E4:N (the auxiliary encoder, the drive's sensor N), its handle's
+ * opening one of an analogue input 0x3160:N (mV), its pedal a bit of
+ * 0x60FD, read once for the valves and the pedal: up to three more round
+ * trips.
  * Bringing a drive up sets its heartbeat consumer 0x1016:01 to
  * [epos4.NAME] watchdog_s.
  */
@@ -362,6 +368,34 @@ static int read_fault(struct epos4 *e, struct drive_sample *s)
 	return r;
 }
 
+/*
+ * The tool's signals this drive reads, into S, after the digital inputs
+ * INPUTS were read: the auxiliary encoder's counts and the analogue
+ * input's millivolts, each one more request.
+ */
+static int read_tool(struct epos4 *e, uint32_t inputs, struct drive_sample *s)
+{
+	const struct config_epos4 *c = &e->cfg;
+	uint32_t counts = 0, mv = 0;
+	int r = 0;
+
+	if (e->d.tool[0] & CONFIG_TOOL_DEPTH) {
+		r = sdo(e, false, CANOPEN_ADDITIONAL_POSITION,
+			(uint8_t)c->tool_depth_sensor, &counts);
+	}
+	if (!r && (e->d.tool[0] & CONFIG_TOOL_OPENING)) {
+		r = sdo(e, false, EPOS4_ANALOG_INPUT_VOLTAGE,
+			(uint8_t)c->tool_opening_input, &mv);
+	}
+	s->tool.depth_m = (int32_t)counts * c->tool_m_per_count +
+			  c->tool_depth_offset_m;
+	s->tool.opening = drive_tool_opening((int16_t)mv, c->tool_closed_mv,
+					     c->tool_open_mv);
+	s->tool.pedal = c->tool_pedal_bit >= 0 &&
+			((inputs >> c->tool_pedal_bit) & 1u);
+	return r;
+}
+
 static int epos4_exchange(struct drive *d, const double *setpoint,
 			  struct drive_sample *s)
 {
@@ -376,9 +410,10 @@ static int epos4_exchange(struct drive *d, const double *setpoint,
 	r = r ? r : read_object(e, CANOPEN_POSITION_ACTUAL, &pos);
 	r = r ? r : read_object(e, CANOPEN_VELOCITY_ACTUAL, &vel);
 	r = r ? r : read_object(e, CANOPEN_STATUSWORD, &sw);
-	if (!r && d->valves[0]) {
+	if (!r && (d->valves[0] || (d->tool[0] & CONFIG_TOOL_PEDAL))) {
 		r = read_object(e, CANOPEN_DIGITAL_INPUTS, &inputs);
 	}
+	r = r ? r : read_tool(e, inputs, s);
 	if (r) {
 		return r;
 	}
@@ -518,6 +553,7 @@ struct drive *drive_epos4_create(const struct config *cfg, int axis)
 	e->d.axis[0] = axis;
 	drive_units_init(&e->d.units[0], cfg, axis);
 	e->d.valves[0] = config_axis_valves(cfg, axis);
+	e->d.tool[0] = config_axis_tool(cfg, axis);
 	e->cfg = *c;
 	e->counts_per_rev = cfg->axis[axis].counts_per_rev;
 	e->timeout_ms = (unsigned int)lround(fmax(c->timeout_s * 1e3, 1.0));

@@ -10,7 +10,10 @@
  * ([modbus.NAME] valve_*) are feedback like the rest: a valve in a table
  * the feedback already reads, within its span, costs nothing more; valves
  * on discrete inputs (function 0x02) add one read per drive, whatever
- * their number, when within 125 bits of each other.
+ * their number, when within 125 bits of each other. The tool in the
+ * working channel ([modbus.NAME] tool_*) too: its depth and opening on
+ * input registers (function 0x04) one read per drive when within 125
+ * registers of each other, its pedal with the valves' discrete inputs.
  *
  * libmodbus' failure modes (measured; see the notes): timeouts are set short
  * and a late reply is flushed; its link recovery (which retries for seconds)
@@ -34,7 +37,9 @@
 /* The signals read each exchange; position first: with 0x17, read[0]. */
 static const int feedback[] = { REGSPEC_POSITION, REGSPEC_VELOCITY,
 				REGSPEC_FAULT, REGSPEC_VALVE_AIR,
-				REGSPEC_VALVE_WATER, REGSPEC_VALVE_SUCTION };
+				REGSPEC_VALVE_WATER, REGSPEC_VALVE_SUCTION,
+				REGSPEC_TOOL_DEPTH, REGSPEC_TOOL_OPENING,
+				REGSPEC_TOOL_PEDAL };
 #define FEEDBACK (sizeof(feedback) / sizeof(feedback[0]))
 #define PLAN_MAX FEEDBACK /* at most one read each */
 
@@ -219,6 +224,22 @@ static int write_read(struct mb *m, int i, double torque)
 	return 0;
 }
 
+/* The tool's signals DR reads (their values are SI already: the
+ * registers' scale and offset), into T. */
+static void tool_of(const struct mb_drive *dr, struct drive_tool *t)
+{
+	const struct regspec *reg = dr->cfg->reg;
+
+	if (reg[REGSPEC_TOOL_DEPTH].table != REGSPEC_NONE) {
+		t->depth_m = feedback_value(dr, REGSPEC_TOOL_DEPTH);
+	}
+	if (reg[REGSPEC_TOOL_OPENING].table != REGSPEC_NONE) {
+		t->opening = feedback_value(dr, REGSPEC_TOOL_OPENING);
+	}
+	t->pedal = reg[REGSPEC_TOOL_PEDAL].table != REGSPEC_NONE &&
+		   feedback_value(dr, REGSPEC_TOOL_PEDAL) != 0.0;
+}
+
 /* The one place where register values meet SI. */
 static void to_si(const struct mb *m, int i, struct drive_sample *s)
 {
@@ -244,6 +265,7 @@ static void to_si(const struct mb *m, int i, struct drive_sample *s)
 			s->valves |= 1u << v;
 		}
 	}
+	tool_of(dr, &s->tool);
 }
 
 static int exchange_one(struct mb *m, int i, double setpoint,
@@ -491,6 +513,7 @@ struct drive *drive_modbus_create(const struct config *cfg)
 		m->d.axis[i] = a;
 		drive_units_init(&m->d.units[i], cfg, a);
 		m->d.valves[i] = config_axis_valves(cfg, a);
+		m->d.tool[i] = config_axis_tool(cfg, a);
 		snprintf(m->d.unit[i], sizeof(m->d.unit[i]), "slave %d",
 			 m->drives[i].slave);
 		m->d.n++;

@@ -5,7 +5,8 @@
  * stay with the simulated rig (rig_sim.c), which this rig runs alongside.
  * The handle's valves likewise: those mapped to a drive's inputs come
  * from its bus (released when stale or lost), the rest from the simulated
- * hand.
+ * hand; and the tool in the working channel's signals (stale or lost:
+ * the tool and its handle still, the pedal up).
  *
  * The force loop's read and write touch only the buses' mailboxes and the
  * simulated rig: nothing here waits on a device.

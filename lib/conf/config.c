@@ -161,6 +161,25 @@ static const struct parse_ops register_ops = { register_parse,
 	   "(water); -1: not on this drive"),                                 \
 	KI(sec, "valve_suction_bit", epos4[i].valve_bit[2], -1, -1, 31, "",  \
 	   0, "the bit of 0x60FD set while the suction valve is pressed; "   \
+	   "-1: not on this drive"),                                          \
+	KI(sec, "tool_depth_sensor", epos4[i].tool_depth_sensor, 0, 0, 3, "", \
+	   0, "the subindex of 0x60E4 (the drive's sensor 1..3) counting "   \
+	   "the tool's depth; 0: not on this drive"),                        \
+	KD(sec, "tool_m_per_count", epos4[i].tool_m_per_count, 1e-5, -1, 1,  \
+	   "m", 0, "the tool's depth per count of that sensor (negative: "   \
+	   "counting down as the tool goes in)"),                            \
+	KD(sec, "tool_depth_offset_m", epos4[i].tool_depth_offset_m, 0, -2,  \
+	   2, "m", 0, "the tool's depth beyond the channel's exit at count " \
+	   "0"),                                                             \
+	KI(sec, "tool_opening_input", epos4[i].tool_opening_input, 0, 0, 2,  \
+	   "", 0, "the analogue input (0x3160:N, mV) wired to the tool's "   \
+	   "handle, 1 or 2; 0: not on this drive"),                          \
+	KD(sec, "tool_closed_mv", epos4[i].tool_closed_mv, 0, -10000, 10000, \
+	   "mV", 0, "that input with the tool's handle closed"),             \
+	KD(sec, "tool_open_mv", epos4[i].tool_open_mv, 5000, -10000, 10000,  \
+	   "mV", 0, "that input with the tool's handle open"),               \
+	KI(sec, "tool_pedal_bit", epos4[i].tool_pedal_bit, -1, -1, 31, "", 0, \
+	   "the bit of 0x60FD set while the cautery's foot pedal is down; "  \
 	   "-1: not on this drive")
 
 /* [modbus.NAME]: the Modbus wheel drive of axis I and its register map. */
@@ -191,7 +210,16 @@ static const struct parse_ops register_ops = { register_parse,
 	KR(sec, "valve_water", modbus_drive[i].reg[REGSPEC_VALVE_WATER],      \
 	   "not 0 while the air/water valve is pressed (water)"),            \
 	KR(sec, "valve_suction", modbus_drive[i].reg[REGSPEC_VALVE_SUCTION],  \
-	   "not 0 while the suction valve is pressed")
+	   "not 0 while the suction valve is pressed"),                      \
+	KR(sec, "tool_depth", modbus_drive[i].reg[REGSPEC_TOOL_DEPTH],        \
+	   "the tool's depth beyond the working channel's exit, m: an "     \
+	   "encoder's count, e.g. input 0x0020 i32 scale=1e-5"),            \
+	KR(sec, "tool_opening", modbus_drive[i].reg[REGSPEC_TOOL_OPENING],    \
+	   "the tool's handle, 0 closed .. 1 open: an analogue input, e.g. " \
+	   "input 0x0022 u16 scale=0.0002"),                                 \
+	KR(sec, "tool_pedal", modbus_drive[i].reg[REGSPEC_TOOL_PEDAL],        \
+	   "not 0 while the cautery's foot pedal is down, e.g. discrete "    \
+	   "0x0013")
 
 static const struct parse_key keys[] = {
 	KI("loop", "rate_hz", loop.rate_hz, 1000, 100, 10000, "Hz", 0,
@@ -870,7 +898,7 @@ static int load_over(struct config *new, FILE *f, const char *name,
 			 name);
 		return -EINVAL;
 	}
-	if (config_check(new, why, sizeof(why))) {
+	if (config_check_whole(new, why, sizeof(why))) {
 		return parse_error(err, errsize, name, line_of(why, lines),
 				   NULL, "%s", why);
 	}
@@ -1023,19 +1051,25 @@ static void valve_key(const struct config *cfg, int axis, int v, char *buf,
 	}
 }
 
-/* Valves V and W read the same input of AXIS' drive. */
-static bool same_input(const struct config *cfg, int axis, int v, int w)
+/* The bit of 0x60FD that switch S (a valve's or the pedal's regspec
+ * signal) is on, on AXIS' EPOS4. */
+static int epos4_bit(const struct config *cfg, int axis, int s)
+{
+	return s == REGSPEC_TOOL_PEDAL
+		       ? cfg->epos4[axis].tool_pedal_bit
+		       : cfg->epos4[axis].valve_bit[s - REGSPEC_VALVE_AIR];
+}
+
+/* Switches S and T (valves', the pedal's regspec signals) read the same
+ * input of AXIS' drive. */
+static bool same_input(const struct config *cfg, int axis, int s, int t)
 {
 	const struct regspec *reg = cfg->modbus_drive[axis].reg;
 
 	if (config_axis_backend(cfg, axis) == CONFIG_DRIVE_EPOS4_USB) {
-		return cfg->epos4[axis].valve_bit[v] ==
-		       cfg->epos4[axis].valve_bit[w];
+		return epos4_bit(cfg, axis, s) == epos4_bit(cfg, axis, t);
 	}
-	return reg[REGSPEC_VALVE_AIR + v].table ==
-		       reg[REGSPEC_VALVE_AIR + w].table &&
-	       reg[REGSPEC_VALVE_AIR + v].address ==
-		       reg[REGSPEC_VALVE_AIR + w].address;
+	return reg[s].table == reg[t].table && reg[s].address == reg[t].address;
 }
 
 /* Valve V of axis A's drive and valve W of axis B's on one input (A and B
@@ -1063,7 +1097,8 @@ static int check_axis_valves(const struct config *cfg, int axis, char *err,
 	for (int v = 0; v < CONFIG_VALVES; v++) {
 		for (int w = 0; w < v; w++) {
 			if ((mapped & 1u << v) && (mapped & 1u << w) &&
-			    same_input(cfg, axis, v, w)) {
+			    same_input(cfg, axis, REGSPEC_VALVE_AIR + v,
+				       REGSPEC_VALVE_AIR + w)) {
 				return valve_clash(cfg, axis, v, axis, w, err,
 						   size);
 			}
@@ -1091,6 +1126,152 @@ static int check_valves(const struct config *cfg, char *err, size_t size)
 		}
 	}
 	return 0;
+}
+
+uint32_t config_axis_tool(const struct config *cfg, int axis)
+{
+	const struct config_epos4 *e = &cfg->epos4[axis];
+	const struct regspec *reg = cfg->modbus_drive[axis].reg;
+	uint32_t tool = 0;
+
+	switch (config_axis_backend(cfg, axis)) {
+	case CONFIG_DRIVE_EPOS4_USB:
+		tool |= e->tool_depth_sensor > 0 ? CONFIG_TOOL_DEPTH : 0;
+		tool |= e->tool_opening_input > 0 ? CONFIG_TOOL_OPENING : 0;
+		tool |= e->tool_pedal_bit >= 0 ? CONFIG_TOOL_PEDAL : 0;
+		break;
+	case CONFIG_DRIVE_MODBUS:
+		for (int s = 0; s < CONFIG_TOOL_SIGNALS; s++) {
+			tool |= reg[REGSPEC_TOOL_DEPTH + s].table !=
+						REGSPEC_NONE
+					? 1u << s : 0;
+		}
+		break;
+	default:
+		break;
+	}
+	return tool;
+}
+
+/* The section and key that map the tool's signal S (the bit number of
+ * enum config_tool_signal) on AXIS' drive, into BUF. */
+static void tool_key(const struct config *cfg, int axis, int s, char *buf,
+		     size_t size)
+{
+	static const char *const epos4_keys[CONFIG_TOOL_SIGNALS] = {
+		"tool_depth_sensor", "tool_opening_input", "tool_pedal_bit",
+	};
+
+	if (config_axis_backend(cfg, axis) == CONFIG_DRIVE_EPOS4_USB) {
+		snprintf(buf, size, "[epos4.%s] %s", names_axis(axis),
+			 epos4_keys[s]);
+	} else {
+		snprintf(buf, size, "[modbus.%s] %s", names_axis(axis),
+			 regspec_signal_name(REGSPEC_TOOL_DEPTH + s));
+	}
+}
+
+/* On AXIS' drive, the pedal on an input of its own, and the handle's
+ * voltages apart. */
+static int check_axis_tool(const struct config *cfg, int axis, char *err,
+			   size_t size)
+{
+	uint32_t valves = config_axis_valves(cfg, axis);
+	const struct config_epos4 *e = &cfg->epos4[axis];
+	char key[80], other[80];
+
+	for (int v = 0; v < CONFIG_VALVES; v++) {
+		if ((config_axis_tool(cfg, axis) & CONFIG_TOOL_PEDAL) &&
+		    (valves & 1u << v) &&
+		    same_input(cfg, axis, REGSPEC_TOOL_PEDAL,
+			       REGSPEC_VALVE_AIR + v)) {
+			tool_key(cfg, axis, 2, key, sizeof(key));
+			valve_key(cfg, axis, v, other, sizeof(other));
+			snprintf(err, size, "%s: the input of %s (one input "
+				 "per switch)", key, other);
+			return -EINVAL;
+		}
+	}
+	if ((config_axis_tool(cfg, axis) & CONFIG_TOOL_OPENING) &&
+	    config_axis_backend(cfg, axis) == CONFIG_DRIVE_EPOS4_USB &&
+	    e->tool_open_mv == e->tool_closed_mv) {
+		snprintf(err, size, "[epos4.%s] tool_open_mv: %g mV, the same "
+			 "as tool_closed_mv: the handle's travel reads nothing",
+			 names_axis(axis), e->tool_open_mv);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+/* The tool's first signal in MAPPED (enum config_tool_signal bits), its
+ * key into BUF. */
+static int first_tool_key(const struct config *cfg, uint32_t mapped,
+			  char *buf, size_t size)
+{
+	int s = __builtin_ctz(mapped);
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		if (config_axis_tool(cfg, a) & 1u << s) {
+			tool_key(cfg, a, s, buf, size);
+			return s;
+		}
+	}
+	return s;
+}
+
+/* Each of the tool's signals read from one drive at most. */
+static int check_tool(const struct config *cfg, char *err, size_t size)
+{
+	uint32_t all = 0;
+	char key[80], other[80];
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		uint32_t t = config_axis_tool(cfg, a);
+
+		if (check_axis_tool(cfg, a, err, size)) {
+			return -EINVAL;
+		}
+		if (t & all) {
+			int s = first_tool_key(cfg, t & all, other,
+					       sizeof(other));
+
+			tool_key(cfg, a, s, key, sizeof(key));
+			snprintf(err, size, "%s: %s reads it already (one "
+				 "drive per signal)", key, other);
+			return -EINVAL;
+		}
+		all |= t;
+	}
+	return 0;
+}
+
+/* The tool's depth and its opening both read from drives or neither (the
+ * model moves the tool on both, tool.h); the pedal as the rig builder
+ * wires it. */
+static int check_tool_pair(const struct config *cfg, char *err, size_t size)
+{
+	uint32_t all = 0, pair = CONFIG_TOOL_DEPTH | CONFIG_TOOL_OPENING;
+	char key[80];
+
+	for (int a = 0; a < ENDOSIM_AXES; a++) {
+		all |= config_axis_tool(cfg, a);
+	}
+	if ((all & pair) && (all & pair) != pair) {
+		first_tool_key(cfg, all & pair, key, sizeof(key));
+		snprintf(err, size, "%s: the tool's %s is on no drive: its "
+			 "depth and its opening are read together", key,
+			 all & CONFIG_TOOL_DEPTH ? "opening" : "depth");
+		return -EINVAL;
+	}
+	return 0;
+}
+
+int config_check_whole(const struct config *cfg, char *err, size_t errsize)
+{
+	return config_check(cfg, err, errsize) ||
+			       check_tool_pair(cfg, err, errsize)
+		       ? -EINVAL
+		       : 0;
 }
 
 /* Two EPOS4 axes must not be able to find the same drive. */
@@ -1275,7 +1456,7 @@ static int check_patient(const struct config_patient *p, char *err,
 int config_check(const struct config *cfg, char *err, size_t errsize)
 {
 	if (check_epos4(cfg, err, errsize) || check_modbus(cfg, err, errsize) ||
-	    check_valves(cfg, err, errsize) ||
+	    check_valves(cfg, err, errsize) || check_tool(cfg, err, errsize) ||
 	    check_patient(&cfg->patient, err, errsize)) {
 		return -EINVAL;
 	}

@@ -77,6 +77,19 @@ struct config_axis {
  */
 #define CONFIG_VALVES 3
 
+/*
+ * The tool in the working channel a real rig senses (model/tool.h's
+ * input): its depth (an encoder), its handle's opening (an analogue
+ * input) and the cautery's foot pedal (a digital input). The bits say
+ * which of them a drive reads (config_axis_tool()).
+ */
+enum config_tool_signal {
+	CONFIG_TOOL_DEPTH = 1u << 0,
+	CONFIG_TOOL_OPENING = 1u << 1,
+	CONFIG_TOOL_PEDAL = 1u << 2,
+};
+#define CONFIG_TOOL_SIGNALS 3
+
 /* One maxon EPOS4 on USB ([epos4.NAME]). */
 struct config_epos4 {
 	int vid, pid;                 /* USB vendor and product id */
@@ -90,6 +103,19 @@ struct config_epos4 {
 	int valve_bit[CONFIG_VALVES]; /* the bit of digital inputs 0x60FD
 					 that is set while the valve is
 					 pressed; -1: not on this drive */
+	int tool_depth_sensor;        /* the subindex of 0x60E4 (additional
+					 position actual values: 1..3, the
+					 drive's sensors) that counts the
+					 tool's depth; 0: not on this drive */
+	double tool_m_per_count;      /* the depth one count is, m */
+	double tool_depth_offset_m;   /* the depth at count 0, m */
+	int tool_opening_input;       /* the analogue input (0x3160:N, mV)
+					 the handle's opening is wired to,
+					 1..2; 0: not on this drive */
+	double tool_closed_mv;        /* its voltage closed, mV */
+	double tool_open_mv;          /* its voltage open, mV */
+	int tool_pedal_bit;           /* the bit of 0x60FD set while the
+					 pedal is down; -1: not on it */
 };
 
 /* The Modbus line or connection all modbus axes share ([modbus]). */
@@ -329,11 +355,21 @@ bool config_case_name_ok(const char *name);
 
 /*
  * Cross-key checks (travel min below max, distinct devices, a usable
- * register map for each modbus axis, each of the handle's valves on an
- * input of its own, the assistant's hand_n within hand_max_n, a case
- * name, ...). Returns 0 or -EINVAL with "[SECTION] KEY: message" in ERR.
+ * register map for each modbus axis, each of the handle's valves and the
+ * tool's pedal on an input of its own, each of the tool's signals on one
+ * drive, the assistant's hand_n within hand_max_n, a case name, ...):
+ * what holds after every key (config_set()). Returns 0 or -EINVAL with
+ * "[SECTION] KEY: message" in ERR.
  */
 int config_check(const struct config *cfg, char *err, size_t errsize);
+
+/*
+ * config_check(), and what only a whole configuration must hold, since
+ * one key set at a time cannot make it so: the tool's depth and opening
+ * on drives both or neither. config_load() checks it; so must whoever
+ * sets keys one by one (the command line's --set), after the last.
+ */
+int config_check_whole(const struct config *cfg, char *err, size_t errsize);
 
 /* The backend that moves AXIS: CONFIG_DRIVE_SIM unless [rig] backend is
  * drives. */
@@ -361,6 +397,14 @@ bool config_saturation_faults(const struct config *cfg, int axis);
  * every unmapped one, come from the simulated hand). Any thread.
  */
 uint32_t config_axis_valves(const struct config *cfg, int axis);
+
+/*
+ * The tool's signals (enum config_tool_signal bits) read from the drive
+ * of AXIS: those its [epos4.NAME] tool_* or [modbus.NAME] tool_* keys
+ * map, when AXIS is on that backend; 0 for a simulated axis (the tool's
+ * unmapped signals come from the simulated hand). Any thread.
+ */
+uint32_t config_axis_tool(const struct config *cfg, int axis);
 
 /* The feedback age beyond which AXIS is faulted, s: its bus's, or [rig]'s. */
 double config_feedback_max_age_s(const struct config *cfg, int axis);

@@ -12,6 +12,7 @@
 static const char *const signal_names[REGSPEC_SIGNALS] = {
 	"torque", "enable", "position", "velocity", "fault", "fault_reset",
 	"watchdog", "valve_air", "valve_water", "valve_suction",
+	"tool_depth", "tool_opening", "tool_pedal",
 };
 
 static const char *const table_names[] = {

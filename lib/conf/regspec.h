@@ -36,6 +36,13 @@
  *             discrete input, function 0x02, is the usual place): pressed
  *             while the value is not 0 (scale=-1 offset=1 reads an input
  *             that opens when pressed); read with the feedback
+ *   tool_depth   the tool's depth beyond the working channel's exit, m
+ *             (an encoder's count on an input register, function 0x04:
+ *             scale is metres per count, offset the depth at count 0)
+ *   tool_opening the tool's handle, 0 closed .. 1 open (an analogue
+ *             input register: scale and offset map its raw value there)
+ *   tool_pedal   the cautery's foot pedal, down while not 0 (a discrete
+ *             input, as a valve)
  *
  * Pure computation: safe in any thread.
  */
@@ -75,6 +82,9 @@ enum regspec_signal {
 	REGSPEC_VALVE_AIR,     /* in enum endosim_valve's order: air, */
 	REGSPEC_VALVE_WATER,   /* water, */
 	REGSPEC_VALVE_SUCTION, /* suction */
+	REGSPEC_TOOL_DEPTH,    /* the tool in the working channel: */
+	REGSPEC_TOOL_OPENING,
+	REGSPEC_TOOL_PEDAL,
 	REGSPEC_SIGNALS,
 };
 

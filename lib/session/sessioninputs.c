@@ -139,3 +139,12 @@ int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
 	*radius_m = cfg.haptics.scope_radius_m;
 	return r;
 }
+
+void sessioninputs_tool(const struct session_file *f, struct tool_params *p)
+{
+	struct config cfg;
+	char err[256];
+
+	(void)sessioninputs_config(f, &cfg, err, sizeof(err));
+	cases_tool_params(&cfg, p);
+}

@@ -17,6 +17,7 @@
 #include "model/anatomy.h"
 #include "model/colon.h"
 #include "model/scope.h"
+#include "model/tool.h"
 #include "conf/config.h"
 #include "session/metrics.h"
 #include "proto/session_file.h"
@@ -91,5 +92,12 @@ struct colon *sessioninputs_file_colon(const struct session_file *f,
  */
 int sessioninputs_scope(const struct session_file *f, struct scope_params *p,
 			double *radius_m, char *err, size_t errsize);
+
+/*
+ * The tools F was recorded with: its configuration's [tool] (where the
+ * working channel opens on the tip) in P; the defaults where its CONFIG
+ * frame does not parse.
+ */
+void sessioninputs_tool(const struct session_file *f, struct tool_params *p);
 
 #endif

@@ -4,7 +4,8 @@
 # (umockdev), two wheel drives on a Modbus RTU pty (as fast as the pty goes,
 # and delayed like a 115200 Bd and a 1 Mbd line, with and without the
 # combined function 0x17), and on Modbus TCP over loopback; and what reading
-# the handle's valves on the drives' inputs adds to an exchange.
+# the handle's valves and the tool in the working channel on the drives'
+# inputs adds to an exchange.
 #
 #   BUILD=build tests/bench/drives.sh [SECONDS]     (after make emulators)
 #
@@ -58,6 +59,13 @@ UMOCKDEV_DIR=$(cat "$T/usb.ready") LD_PRELOAD=libumockdev-preload.so.0 \
 	"$BENCH" -c "$T/usb.conf" --seconds "$SECONDS_EACH" \
 	--label "epos4-usb, umockdev, valves on 0x60FD (5)" \
 	--set epos4.insertion.valve_air_bit=16
+UMOCKDEV_DIR=$(cat "$T/usb.ready") LD_PRELOAD=libumockdev-preload.so.0 \
+	"$BENCH" -c "$T/usb.conf" --seconds "$SECONDS_EACH" \
+	--label "epos4-usb, umockdev, valves and the tool (7)" \
+	--set epos4.insertion.valve_air_bit=16 \
+	--set epos4.insertion.tool_depth_sensor=2 \
+	--set epos4.insertion.tool_opening_input=1 \
+	--set epos4.insertion.tool_pedal_bit=20
 kill "${PIDS[0]}"
 
 # --- two wheel drives on Modbus ----------------------------------------------
@@ -97,6 +105,10 @@ sed 's/^fault = holding 0x0024$/&\nvalve_air = holding 0x0025/' "$T/mb.conf" \
 	>"$T/mb-span.conf"
 sed -i '0,/^valve_air/s//valve_suction/' "$T/mb-discrete.conf" \
 	"$T/mb-span.conf"
+# the tool on the first drive: its depth and handle on input registers
+# (one more 0x04 read), its pedal on a discrete input (one more 0x02)
+sed '0,/^fault = holding 0x0024$/s//&\ntool_depth = input 0x0000 i32 scale=1e-5\ntool_opening = input 0x0002 u16 scale=0.0001\ntool_pedal = discrete 0x0000/' \
+	"$T/mb.conf" >"$T/mb-tool.conf"
 
 # modbus LABEL EMULATOR-ARGS -- BENCH-ARGS (the drives of $MB_CONF)
 MB_CONF=$T/mb.conf
@@ -134,6 +146,9 @@ modbus "115200 Bd, valves on discrete inputs (6)" --pty "$T/tty" \
 	--baud 115200 --
 MB_CONF=$T/mb-span.conf
 modbus "115200 Bd, valves beside the feedback (4)" --pty "$T/tty" \
+	--baud 115200 --
+MB_CONF=$T/mb-tool.conf
+modbus "115200 Bd, the tool on the first drive (6)" --pty "$T/tty" \
 	--baud 115200 --
 
 cat <<'EOF'

@@ -40,11 +40,19 @@
  *                                 0x60FD is set / cleared: a switch wired
  *                                 to the drive (the handle's valves), as
  *                                 it stays through an unplug
+ *   aux SERIAL SUB COUNTS         the additional position actual value
+ *                                 0x60E4:SUB (2 or 3: the drive's sensor
+ *                                 2 or 3, an auxiliary encoder; 1 is the
+ *                                 motor's) reads COUNTS: the tool's depth
+ *   analog SERIAL N MV            analogue input N (1 or 2) reads MV
+ *                                 millivolts (0x3160:N): the tool's
+ *                                 handle
  *   quit
  * The state file (--state) has one line per device: serial, present, CiA
  * 402 state, statusword, mode, target torque (per mille), torque applied
  * (N m), position (counts), velocity (rpm), requests served, the error
- * code 0x603F, the heartbeat consumer time (ms) and the digital inputs.
+ * code 0x603F, the heartbeat consumer time (ms), the digital inputs, the
+ * auxiliary sensors' counts and the analogue inputs' millivolts.
  *
  * Communication watchdog: with a heartbeat consumer time set in 0x1016:01
  * (low 16 bits, ms), a drive in operation enabled that receives no request
@@ -110,6 +118,8 @@ struct dev {
 	bool sticky;
 	uint32_t heartbeat;  /* 0x1016:01, low 16 bits: ms; 0: off */
 	uint32_t inputs;     /* digital inputs 0x60FD */
+	int32_t aux[2];      /* 0x60E4:02, :03: sensors 2 and 3, counts */
+	int16_t analog_mv[2]; /* 0x3160:01, :02 */
 	double last_request_s;
 	uint32_t inject_abort;
 	bool inject_crc;
@@ -217,10 +227,27 @@ static int32_t rpm(const struct dev *d)
 	return (int32_t)lround(d->motor.plant.v * 60.0 / (2.0 * M_PI));
 }
 
+/* ReadObject of the sensors 0x60E4 and the analogue inputs 0x3160. */
+static uint32_t od_read_sensor(struct emu *e, struct dev *d, uint16_t index,
+			       uint8_t sub, uint32_t *value)
+{
+	if (index == CANOPEN_ADDITIONAL_POSITION) {
+		*value = sub == 0 ? 3 : sub == 1 ? (uint32_t)counts(e, d)
+					: (uint32_t)d->aux[(sub - 2) & 1];
+		return sub <= 3 ? 0 : 0x06090011;
+	}
+	*value = sub == 0 ? 2 : (uint16_t)d->analog_mv[(sub - 1) & 1];
+	return sub <= 2 ? 0 : 0x06090011;
+}
+
 /* ReadObject: the abort code, VALUE set on success. */
 static uint32_t od_read(struct emu *e, struct dev *d, uint16_t index,
 			uint8_t sub, uint32_t *value)
 {
+	if (index == CANOPEN_ADDITIONAL_POSITION ||
+	    index == EPOS4_ANALOG_INPUT_VOLTAGE) {
+		return od_read_sensor(e, d, index, sub, value);
+	}
 	if (sub != 0 && index != 0x1018 && index != CANOPEN_HEARTBEAT_CONSUMER) {
 		return 0x06090011;
 	}
@@ -284,7 +311,8 @@ static uint32_t od_write(struct dev *d, uint16_t index, uint8_t sub,
 	case CANOPEN_STATUSWORD: case CANOPEN_MODE_DISPLAY:
 	case CANOPEN_POSITION_ACTUAL: case CANOPEN_VELOCITY_ACTUAL:
 	case CANOPEN_TORQUE_ACTUAL: case CANOPEN_SI_UNIT_VELOCITY:
-	case CANOPEN_DIGITAL_INPUTS:
+	case CANOPEN_DIGITAL_INPUTS: case CANOPEN_ADDITIONAL_POSITION:
+	case EPOS4_ANALOG_INPUT_VOLTAGE:
 		return 0x06010002;
 	default: return 0x06020000;
 	}
@@ -808,6 +836,12 @@ static void change(struct emu *e, struct dev *d, int n, char **w,
 	} else if (!strcmp(w[0], "input") && n >= 4 && atoi(w[2]) >= 0 &&
 		   atoi(w[2]) < 32) {
 		set_input(d, atoi(w[2]), !strcmp(w[3], "on"));
+	} else if (!strcmp(w[0], "aux") && n >= 4 && (atoi(w[2]) == 2 ||
+						      atoi(w[2]) == 3)) {
+		d->aux[atoi(w[2]) - 2] = (int32_t)atol(w[3]);
+	} else if (!strcmp(w[0], "analog") && n >= 4 && (atoi(w[2]) == 1 ||
+							 atoi(w[2]) == 2)) {
+		d->analog_mv[atoi(w[2]) - 1] = (int16_t)atoi(w[3]);
 	} else {
 		fprintf(stderr, "epos4-emu: '%s': unknown command\n", w[0]);
 	}
@@ -856,11 +890,12 @@ static void write_state(struct emu *e)
 			s, "serial=%s present=%d state=%s sw=0x%04x mode=%d "
 			"target_permille=%d torque_nm=%.9g counts=%d rpm=%d "
 			"requests=%llu error=0x%04x heartbeat_ms=%u "
-			"inputs=0x%08x\n",
+			"inputs=0x%08x aux=%d,%d analog_mv=%d,%d\n",
 			d->serial, d->present, state, statusword(d), d->mode,
 			d->target, drive_torque_nm(d), counts(e, d), rpm(d),
 			d->requests, d->error, d->heartbeat & 0xFFFF,
-			d->inputs);
+			d->inputs, d->aux[0], d->aux[1], d->analog_mv[0],
+			d->analog_mv[1]);
 		g_free(state);
 	}
 	emu_state_write(e->state_path, s->str);

@@ -36,10 +36,16 @@
  *                                maps to that valve (valve_air, ...) reads
  *                                pressed / released, by its description
  *                                (an inverted input reads 0 when pressed)
+ *   tool SLAVE depth M | opening X | pedal on|off
+ *                                the drive's input that the configuration
+ *                                maps to the tool's depth (tool_depth, m),
+ *                                its handle's opening (tool_opening, 0..1)
+ *                                or the pedal reads that, encoded by its
+ *                                description
  *   quit
  * --state FILE: one line per drive (slave, axis, enabled, torque applied in
  * N m, position in counts, velocity in counts/s, fault, requests served,
- * the valves its inputs read pressed);
+ * the valves its inputs read pressed, the tool's depth, opening, pedal);
  * --trace FILE: every request in hex with what it asked, and the answer.
  */
 #include <errno.h>
@@ -82,6 +88,9 @@ struct slave {
 	bool mute;
 	bool nan;
 	uint32_t valves;           /* enum endosim_valve bits pressed */
+	double tool_depth_m;       /* what its tool inputs read */
+	double tool_opening;
+	bool tool_pedal;
 	int exception_next;
 	unsigned long requests;
 };
@@ -443,6 +452,36 @@ static bool valve(struct slave *s, const char *name, const char *on)
 	return false;
 }
 
+/* The tool's input SIGNAL (depth, opening, pedal) reads VALUE. */
+static bool tool(struct slave *s, const char *signal, const char *value)
+{
+	static const char *const names[] = { "depth", "opening", "pedal" };
+
+	for (int k = 0; k < 3; k++) {
+		int sig = REGSPEC_TOOL_DEPTH + k;
+		double v = k == 2 ? !strcmp(value, "on") : atof(value);
+
+		if (strcmp(signal, names[k])) {
+			continue;
+		}
+		if (s->cfg->reg[sig].table == REGSPEC_NONE) {
+			fprintf(stderr, "modbus-emu: slave %d: no tool_%s in "
+				"its map\n", s->cfg->slave, signal);
+			return true;
+		}
+		if (k == 0) {
+			s->tool_depth_m = v;
+		} else if (k == 1) {
+			s->tool_opening = v;
+		} else {
+			s->tool_pedal = v != 0.0;
+		}
+		put(s, sig, v);
+		return true;
+	}
+	return false;
+}
+
 static void change(struct mbemu *e, struct slave *s, int n, char **w,
 		   const char *args)
 {
@@ -467,6 +506,8 @@ static void change(struct mbemu *e, struct slave *s, int n, char **w,
 	} else if (!strcmp(w[0], "place") && n > 2) {
 		s->motor.plant.x = atof(w[2]) * 2.0 * M_PI / s->cpr;
 	} else if (!strcmp(w[0], "valve") && n > 3 && valve(s, w[2], w[3])) {
+		/* done */
+	} else if (!strcmp(w[0], "tool") && n > 3 && tool(s, w[2], w[3])) {
 		/* done */
 	} else {
 		fprintf(stderr, "modbus-emu: '%s': unknown command\n", w[0]);
@@ -508,11 +549,13 @@ static void write_state(struct mbemu *e)
 			text + len, sizeof(text) - len,
 			"slave=%d axis=%s enabled=%d torque_nm=%.9g counts=%.0f "
 			"velocity_counts_s=%.6g fault=0x%04x requests=%lu "
-			"mute=%d valves=%u\n", s->cfg->slave,
+			"mute=%d valves=%u tool_depth_m=%.6g tool_opening=%.4g "
+			"tool_pedal=%d\n", s->cfg->slave,
 			names_axis(s->axis), s->enabled && !s->fault,
 			s->torque_nm, counts(s),
 			s->motor.plant.v * s->cpr / (2.0 * M_PI), s->fault,
-			s->requests, s->mute, s->valves);
+			s->requests, s->mute, s->valves, s->tool_depth_m,
+			s->tool_opening, s->tool_pedal);
 	}
 	emu_state_write(e->state_path, text);
 }

@@ -25,34 +25,12 @@
 AIR=1
 WATER=2
 SUCTION=4
-PRESENT=1
-LOST_BITS=12 # fault, bus error
 ARGS=(--set patient.enabled=yes --set haptics.model=paper)
-WATCH_PID=""
 
-shm_field() {
-	"$TOOLS/shm_probe" "$SHM" --once | sed -n "s/^$1=//p"
-}
-
-# watch_valves MASK VALUE: a witness reading every state from now until
-# the valves & MASK are VALUE (started before the action that makes it so)
+# watch_valves MASK VALUE: a witness (watch_shm) until the valves & MASK
+# are VALUE
 watch_valves() {
-	"$TOOLS/shm_probe" "$SHM" --valves "$1" "$2" 10 >"$TMP/valves.out" \
-		2>&1 &
-	WATCH_PID=$!
-	# it refuses a state that is so already: the action waits until it
-	# has read the state before it
-	wait_for grep -q '^watching$' "$TMP/valves.out"
-}
-
-# seen KEY: in the first state the witness saw so (before.KEY: the one
-# before it)
-seen() {
-	sed -n "s/^$1=//p" "$TMP/valves.out"
-}
-
-witnessed() {
-	wait "$WATCH_PID"
+	watch_shm --valves "$1" "$2"
 }
 
 # gas_flows / gas_still: the gas pumped in over half a second
@@ -83,66 +61,10 @@ valves_are() {
 	[ "$(shm_field patient.valves)" = "$1" ]
 }
 
-# read_after TRACE COMMAND PATTERN N: the time of the Nth line with PATTERN
-# after the control line COMMAND
-read_after() {
-	awk -v cmd="control  ; $2" -v pat="$3" -v n="$4" '
-		!on && index($0, cmd) { on = 1; next }
-		on && index($0, pat) { if (++k == n) { print $1; exit } }' "$1"
-}
-
-# within_one_exchange TRACE COMMAND PATTERN: the witness' first state
-# showing the press was published before the third input read after it
-within_one_exchange() {
-	local r1 r3 t
-	r1=$(read_after "$1" "$2" "$3" 1)
-	r3=$(read_after "$1" "$2" "$3" 3)
-	t=$(seen stamp_ns)
-	echo "the press read at $r1 s, the third read at $r3 s; shown by" \
-		"the cycle of $(awk -v t="$t" 'BEGIN { printf "%.6f", t / 1e9 }') s"
-	[ -n "$r1" ] && [ -n "$r3" ] &&
-		awk -v t="$t" -v r="$r3" 'BEGIN { exit !(t / 1e9 <= r) }'
-}
-
-# said: what the last check's command said, as a comment
-said() {
-	sed 's/^/# /' "$TMP/check.out"
-}
-
-# reads_every_exchange TRACE INPUT POSITION: as many input reads as
-# position reads (one exchange may be under way), counted in one copy of
-# the trace (the emulator goes on writing it)
-reads_every_exchange() {
-	local i p
-	cp "$1" "$TMP/trace.copy"
-	i=$(grep -c -- "$2" "$TMP/trace.copy")
-	p=$(grep -c -- "$3" "$TMP/trace.copy")
-	echo "$i input reads, $p position reads"
-	[ "$i" -gt 100 ] && [ $((i - p)) -le 1 ] && [ $((p - i)) -le 1 ]
-}
-
 # gas_at_once: the first state with the valve had gas pumped in its cycle
 gas_at_once() {
 	awk -v a="$(seen before.patient.gas_in_m3)" \
 		-v b="$(seen patient.gas_in_m3)" 'BEGIN { exit !(b > a) }'
-}
-
-# present_not_lost AXIS / lost AXIS: the drive status in the witnessed
-# state: present without a fault or bus error / not
-present_not_lost() {
-	local st
-	st=$(seen "$1.drive_status")
-	echo "drive status $st"
-	[ -n "$st" ] && [ $((st & PRESENT)) -ne 0 ] &&
-		[ $((st & LOST_BITS)) -eq 0 ]
-}
-
-lost() {
-	local st
-	st=$(seen "$1.drive_status")
-	echo "drive status $st"
-	[ -n "$st" ] &&
-		{ [ $((st & PRESENT)) -eq 0 ] || [ $((st & LOST_BITS)) -ne 0 ]; }
 }
 
 # --- the EPOS4: air on 0x60FD bit 16, suction on bit 18 ----------------------
@@ -218,37 +140,9 @@ ENDOSIMD="$BUILD/endosimd"
 # --- Modbus: air and suction on slave 1's discrete inputs 0x10, 0x11;
 # water on slave 2's, an input that opens when pressed ------------------------
 
-cat >"$TMP/mb.conf" <<EOF
-[rig]
-backend = drives
-[axis.wheel_ud]
-backend = modbus
-[axis.wheel_lr]
-backend = modbus
-[modbus]
-device = $TMP/tty
-; a silent drive's transaction waits 2 s; feedback may be 0.3 s old
-response_timeout_s = 2
-feedback_max_age_s = 0.3
-[modbus.wheel_ud]
-slave = 1
-torque = holding 0x0000 i16 scale=1e-5
-enable = coil 0x0000
-position = input 0x0000 i32 cdab
-velocity = input 0x0002 f32 cdab
-fault = input 0x0004 u16
-valve_air = discrete 0x0010
-valve_suction = discrete 0x0011
-[modbus.wheel_lr]
-slave = 2
-combined_0x17 = yes
-torque = holding 0x0010 i32 scale=1e-6
-enable = holding 0x0012 u16
-position = holding 0x0020 i32
-velocity = holding 0x0022 i32
-fault = holding 0x0024 u16
-valve_water = discrete 0x0000 u16 scale=-1 offset=1
-EOF
+wheels_conf "$TMP/mb.conf" "valve_air = discrete 0x0010
+valve_suction = discrete 0x0011" \
+	"valve_water = discrete 0x0000 u16 scale=-1 offset=1"
 
 check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
 check "endosimd up on it, the patient on" start_on "$TMP/mb.conf" "${ARGS[@]}"

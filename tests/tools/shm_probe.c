@@ -14,11 +14,17 @@
  *                                          (they must not be so at first:
  *                                          "watching" once it has read
  *                                          the first state, to wait for)
+ *   shm_probe NAME --tool DEPTH_MM OPENING_PC PEDAL TIMEOUT_S
+ *                                          the same until the tool in the
+ *                                          working channel reads DEPTH_MM
+ *                                          mm deep, OPENING_PC % open
+ *                                          (rounded) and PEDAL (0, 1)
  *
- * Exit 0 when every read was consistent and the cycle advanced (--valves:
- * when the valves came to VALUE in time), 1 otherwise.
+ * Exit 0 when every read was consistent and the cycle advanced (--valves,
+ * --tool: when the state came so in time), 1 otherwise.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,7 +34,8 @@
 #include "proto/names.h"
 #include "proto/shm_reader.h"
 
-/* The patient's valves and gas, the axes' drives: what --valves waits on. */
+/* The patient's valves and gas, the tool in the working channel, the
+ * axes' drives: what --valves and --tool wait on. */
 static void print_valves(const char *pre, const struct endosim_state *st)
 {
 	const struct endosim_patient_state *p = &st->patient;
@@ -37,6 +44,9 @@ static void print_valves(const char *pre, const struct endosim_state *st)
 	       "%spatient.gas_in_m3=%.9g\n%spatient.pressure_pa=%.9g\n", pre,
 	       (unsigned long long)st->stamp_ns, pre, p->valves, pre,
 	       p->gas_m3, pre, p->gas_in_m3, pre, p->pressure_pa);
+	printf("%stool.depth_m=%.9g\n%stool.opening=%.9g\n%stool.pedal=%u\n",
+	       pre, st->tool.depth_m, pre, st->tool.opening, pre,
+	       st->tool.pedal);
 	for (int a = 0; a < ENDOSIM_AXES; a++) {
 		printf("%s%s.drive_status=%u\n", pre, names_axis(a),
 		       st->axis[a].drive_status);
@@ -54,6 +64,11 @@ static void print_once(const struct endosim_state *st)
 		       st->axis[a].position, names_axis(a),
 		       st->axis[a].limited);
 	}
+	printf("tool.loop_m=%.9g\ntool.tip=%.9g,%.9g,%.9g\n"
+	       "tool.loop_centre=%.9g,%.9g,%.9g\n", st->tool.loop_m,
+	       st->tool.tip[0], st->tool.tip[1], st->tool.tip[2],
+	       st->tool.loop_centre[0], st->tool.loop_centre[1],
+	       st->tool.loop_centre[2]);
 	printf("scope.depth_m=%.9g\nscope.tip_s_m=%.9g\nscope.spans=%u\n",
 	       st->scope.depth_m, st->scope.tip_s_m, st->scope.spans);
 	printf("scope.tip=%.6f,%.6f,%.6f\n", st->scope.tip[0],
@@ -87,25 +102,53 @@ static const char *check(const struct endosim_state *st,
 	return NULL;
 }
 
-/* --valves: the first state whose valves & MASK are VALUE, and the one
- * before it. */
-static int watch_valves(struct shm_reader *r, char **arg)
+/* What a watch waits for: the state is so. */
+struct watch {
+	bool (*there)(const struct watch *w, const struct endosim_state *st);
+	char *const *arg; /* the command line's, after the option */
+};
+
+/* --valves MASK VALUE */
+static bool valves_there(const struct watch *w, const struct endosim_state *st)
 {
-	uint32_t mask = (uint32_t)strtoul(arg[0], NULL, 0);
-	uint32_t value = (uint32_t)strtoul(arg[1], NULL, 0);
+	uint32_t mask = (uint32_t)strtoul(w->arg[0], NULL, 0);
+
+	return (st->patient.valves & mask) ==
+	       (uint32_t)strtoul(w->arg[1], NULL, 0);
+}
+
+/* One of --tool's readings: WANT is SCALE times the published VALUE,
+ * rounded. */
+static bool tool_reads(const char *want, double value, double scale)
+{
+	return isfinite(value) && lround(value * scale) == atol(want);
+}
+
+/* --tool DEPTH_MM OPENING_PC PEDAL */
+static bool tool_there(const struct watch *w, const struct endosim_state *st)
+{
+	return tool_reads(w->arg[0], st->tool.depth_m, 1e3) &&
+	       tool_reads(w->arg[1], st->tool.opening, 1e2) &&
+	       st->tool.pedal == (uint32_t)atoi(w->arg[2]);
+}
+
+/* The first state that is as W waits for, and the one before it. */
+static int watch(struct shm_reader *r, const struct watch *w,
+		 const char *timeout_s)
+{
 	struct timespec nap = { .tv_nsec = 50000 }, now;
 	struct endosim_state st, prev = { 0 };
 	bool have_prev = false;
 	double end_s;
 
 	clock_gettime(CLOCK_MONOTONIC, &now);
-	end_s = (double)now.tv_sec + now.tv_nsec * 1e-9 + atof(arg[2]);
+	end_s = (double)now.tv_sec + now.tv_nsec * 1e-9 + atof(timeout_s);
 	do {
 		if (!shm_reader_read(r, &st, 1000)) {
-			bool there = (st.patient.valves & mask) == value;
+			bool there = w->there(w, &st);
 
 			if (there && !have_prev) {
-				fprintf(stderr, "shm_probe: the valves were so "
+				fprintf(stderr, "shm_probe: the state was so "
 					"before the watch began\n");
 				return 1;
 			}
@@ -124,8 +167,9 @@ static int watch_valves(struct shm_reader *r, char **arg)
 		nanosleep(&nap, NULL);
 		clock_gettime(CLOCK_MONOTONIC, &now);
 	} while ((double)now.tv_sec + now.tv_nsec * 1e-9 < end_s);
-	fprintf(stderr, "shm_probe: valves & 0x%x still 0x%x, not 0x%x\n", mask,
-		prev.patient.valves & mask, value);
+	fprintf(stderr, "shm_probe: not so in time: valves %u, tool %g m "
+		"deep, %g open, pedal %u\n", prev.patient.valves,
+		prev.tool.depth_m, prev.tool.opening, prev.tool.pedal);
 	return 1;
 }
 
@@ -138,7 +182,8 @@ int main(int argc, char **argv)
 
 	if (argc < 2) {
 		fprintf(stderr, "usage: shm_probe NAME [COUNT [INTERVAL_US]] | "
-			"NAME --once | NAME --valves MASK VALUE TIMEOUT_S\n");
+			"NAME --once | NAME --valves MASK VALUE TIMEOUT_S | "
+			"NAME --tool DEPTH_MM OPENING_PC PEDAL TIMEOUT_S\n");
 		return 2;
 	}
 	r = shm_reader_open(argv[1]);
@@ -146,8 +191,12 @@ int main(int argc, char **argv)
 		fprintf(stderr, "shm_probe: %s: %s\n", argv[1], strerror(errno));
 		return 1;
 	}
-	if (argc > 5 && !strcmp(argv[2], "--valves")) {
-		int rc = watch_valves(r, argv + 3);
+	if ((argc > 5 && !strcmp(argv[2], "--valves")) ||
+	    (argc > 6 && !strcmp(argv[2], "--tool"))) {
+		bool valves = !strcmp(argv[2], "--valves");
+		struct watch w = { valves ? valves_there : tool_there,
+				   argv + 3 };
+		int rc = watch(r, &w, argv[valves ? 5 : 6]);
 
 		shm_reader_close(r);
 		return rc;

@@ -2,7 +2,8 @@
  * test_config_drives.c - the drive sections of the configuration: keys in
  * dotted sections, hexadecimal ids, register keys, the cross-key checks
  * that refuse an unusable drive setup, the feedback age per bus, and the
- * unit conversion derived from an axis' mechanics, the valves' inputs.
+ * unit conversion derived from an axis' mechanics, the valves' inputs,
+ * the tool's (issue 25).
  */
 #include <errno.h>
 #include <math.h>
@@ -213,6 +214,27 @@ static int load_text(struct config *c, const char *text)
 	return r;
 }
 
+/* A configuration file's text and what its refusal must say. */
+struct bad_file {
+	const char *text, *where;
+};
+
+/* Each of the N files BAD refused, saying its WHERE, the configuration
+ * left as it was. */
+static void refused(const struct bad_file *bad, size_t n)
+{
+	struct config c, before;
+
+	config_defaults(&before);
+	for (size_t i = 0; i < n; i++) {
+		if (load_text(&c, bad[i].text) != -EINVAL ||
+		    !strstr(err, bad[i].where)) {
+			fail_msg("'%s': got '%s'", bad[i].text, err);
+		}
+		assert_memory_equal(&c, &before, sizeof(c));
+	}
+}
+
 /*
  * The valves: a bit of 0x60FD on an EPOS4, a register on a Modbus drive;
  * what each drive reads; a bad bit or register refused with its line; a
@@ -271,9 +293,7 @@ static void test_valve_keys(void **state)
  * drives, refused at the line of the key that came second. */
 static void test_valve_keys_bad_input(void **state)
 {
-	static const struct {
-		const char *text, *where;
-	} bad[] = {
+	static const struct bad_file bad[] = {
 		{ "[epos4.roll]\nvalve_air_bit = 32\n",
 		  ":2: [epos4.roll] valve_air_bit: 32 is out of range" },
 		{ "[epos4.roll]\nvalve_water_bit = sixteen\n",
@@ -307,20 +327,88 @@ static void test_valve_keys_bad_input(void **state)
 		  ":12: [epos4.roll] valve_air_bit: [epos4.insertion] "
 		  "valve_air_bit reads that valve already" },
 	};
-	struct config c, before;
+	struct config c;
 
 	(void)state;
-	config_defaults(&before);
-	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
-		if (load_text(&c, bad[i].text) != -EINVAL ||
-		    !strstr(err, bad[i].where)) {
-			fail_msg("'%s': got '%s'", bad[i].text, err);
-		}
-		assert_memory_equal(&c, &before, sizeof(c));
-	}
+	refused(bad, sizeof(bad) / sizeof(bad[0]));
 	/* the same bit on a simulated axis' drive is never read */
 	assert_int_equal(load_text(&c, "[epos4.roll]\nvalve_air_bit = 16\n"
 				   "valve_water_bit = 16\n"), 0);
+}
+
+/*
+ * The tool in the working channel: an EPOS4's auxiliary sensor, analogue
+ * input and input bit, a Modbus drive's registers; what each drive reads;
+ * its depth and opening on drives together, each signal on one drive, the
+ * pedal on an input of its own, refused at the line of the key that came
+ * second with both keys named.
+ */
+static void test_tool_keys(void **state)
+{
+	static const struct bad_file bad[] = {
+		{ "[epos4.roll]\ntool_depth_sensor = 4\n",
+		  ":2: [epos4.roll] tool_depth_sensor: 4 is out of range" },
+		{ "[epos4.roll]\ntool_opening_input = 3\n",
+		  ":2: [epos4.roll] tool_opening_input: 3 is out of range" },
+		{ "[epos4.roll]\ntool_pedal_bit = 32\n",
+		  ":2: [epos4.roll] tool_pedal_bit: 32 is out of range" },
+		{ "[modbus.wheel_lr]\ntool_depth = input\n",
+		  ":2: [modbus.wheel_lr] tool_depth: " },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[epos4.insertion]\n"
+		  "tool_depth_sensor = 2\n",
+		  "[epos4.insertion] tool_depth_sensor: the tool's opening is "
+		  "on no drive" },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[epos4.insertion]\n"
+		  "valve_suction_bit = 16\ntool_pedal_bit = 16\n",
+		  ":7: [epos4.insertion] tool_pedal_bit: the input of "
+		  "[epos4.insertion] valve_suction_bit (one input per switch)" },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[epos4.insertion]\n"
+		  "tool_depth_sensor = 2\ntool_opening_input = 1\n"
+		  "tool_open_mv = 0\n",
+		  ":8: [epos4.insertion] tool_open_mv: 0 mV, the same as "
+		  "tool_closed_mv" },
+		{ "[rig]\nbackend = drives\n[axis.insertion]\n"
+		  "backend = epos4-usb\n[axis.roll]\nbackend = epos4-usb\n"
+		  "[epos4.insertion]\nserial = A\ntool_pedal_bit = 16\n"
+		  "[epos4.roll]\nserial = B\ntool_pedal_bit = 17\n",
+		  ":12: [epos4.roll] tool_pedal_bit: [epos4.insertion] "
+		  "tool_pedal_bit reads it already (one drive per signal)" },
+	};
+	struct config c;
+
+	(void)state;
+	assert_int_equal(load_text(&c, "[rig]\nbackend = drives\n"
+				   "[axis.insertion]\nbackend = epos4-usb\n"
+				   "[axis.wheel_lr]\nbackend = modbus\n"
+				   "[epos4.insertion]\ntool_depth_sensor = 2\n"
+				   "tool_opening_input = 1\n"
+				   "[modbus.wheel_lr]\n"
+				   "torque = holding 0 i16\n"
+				   "position = input 0 i32\n"
+				   "tool_pedal = discrete 0x13\n"), 0);
+	assert_int_equal(config_axis_tool(&c, ENDOSIM_AXIS_INSERTION),
+			 CONFIG_TOOL_DEPTH | CONFIG_TOOL_OPENING);
+	assert_int_equal(config_axis_tool(&c, LR), CONFIG_TOOL_PEDAL);
+	assert_int_equal(config_axis_tool(&c, UD), 0);
+	assert_true(c.epos4[ENDOSIM_AXIS_INSERTION].tool_m_per_count == 1e-5);
+	assert_true(c.epos4[ENDOSIM_AXIS_INSERTION].tool_open_mv == 5000);
+	/* one key at a time (--set): the depth alone passes each key's
+	 * check, not the whole configuration's */
+	set(&c, "epos4.insertion.tool_opening_input", "0");
+	assert_int_equal(config_check_whole(&c, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "[epos4.insertion] tool_depth_sensor: "
+				    "the tool's opening is on no drive"));
+	set(&c, "epos4.insertion.tool_depth_sensor", "0");
+	assert_int_equal(config_check_whole(&c, err, sizeof(err)), 0);
+	/* a simulated axis' drive section reads nothing */
+	assert_int_equal(load_text(&c, "[epos4.roll]\ntool_pedal_bit = 3\n"
+				   "tool_depth_sensor = 2\n"), 0);
+	assert_int_equal(config_axis_tool(&c, ENDOSIM_AXIS_ROLL), 0);
+
+	refused(bad, sizeof(bad) / sizeof(bad[0]));
 }
 
 static void test_units(void **state)
@@ -358,6 +446,7 @@ int main(void)
 		cmocka_unit_test(test_feedback_age_per_bus),
 		cmocka_unit_test(test_valve_keys),
 		cmocka_unit_test(test_valve_keys_bad_input),
+		cmocka_unit_test(test_tool_keys),
 		cmocka_unit_test(test_units),
 	};
 

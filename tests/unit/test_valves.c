@@ -1,18 +1,22 @@
 /*
- * test_valves.c - the handle's valves on a real rig, without emulators:
- * an EPOS4's digital inputs word to valves, a Modbus input's description
- * to pressed or not, the rule by which the force loop takes a drive's
- * valves (bus_valves()), and a bus thread (bus.h) over a scripted drive
- * backend: pressed while its exchanges succeed, released when its
- * feedback grows old, a transaction fails (its own or the other drive's on
- * its bus), the drive faults or vanishes.
+ * test_valves.c - the handle's valves and the tool in the working channel
+ * on a real rig, without emulators: an EPOS4's digital inputs word to
+ * valves, a Modbus input's description to pressed or not, an analogue
+ * input's voltage to the tool's opening, the rules by which the force
+ * loop takes a drive's valves and tool (bus_valves(), bus_tool()), and a
+ * bus thread (bus.h) over a scripted drive backend: pressed (the tool as
+ * read) while its exchanges succeed, released (the tool still, the pedal
+ * up) when its feedback grows old, a transaction fails (its own or the
+ * other drive's on its bus), the drive faults or vanishes.
  */
 #include <errno.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -104,6 +108,69 @@ static void test_taking_rule(void **state)
 			 AIR | WATER);
 }
 
+/* The handle's opening from an analogue input, either way round. */
+static void test_tool_opening(void **state)
+{
+	(void)state;
+	assert_true(drive_tool_opening(0, 0, 5000) == 0.0);
+	assert_true(fabs(drive_tool_opening(1250, 0, 5000) - 0.25) < 1e-12);
+	assert_true(drive_tool_opening(5000, 0, 5000) == 1.0);
+	/* beyond the travel (a noisy wire): clamped */
+	assert_true(drive_tool_opening(-300, 0, 5000) == 0.0);
+	assert_true(drive_tool_opening(9000, 0, 5000) == 1.0);
+	/* a potentiometer wired the other way */
+	assert_true(fabs(drive_tool_opening(1000, 5000, 0) - 0.8) < 1e-12);
+}
+
+#define DEPTH CONFIG_TOOL_DEPTH
+#define OPENING CONFIG_TOOL_OPENING
+#define PEDAL CONFIG_TOOL_PEDAL
+
+/* The hand's tool: the simulated rig's reading before the buses'. */
+static void hands_tool(struct rig_feedback *fb)
+{
+	fb->tool_depth_m = 0.25;
+	fb->tool_opening = 0.5;
+	fb->tool_pedal = true;
+}
+
+/* The loop's rule for the tool, case by case. */
+static void test_tool_rule(void **state)
+{
+	const uint64_t now = 10000 * MS, age = 50 * MS;
+	const struct drive_tool read = { 0.012, 0.75, false };
+	struct rig_axis_feedback f = { .stamp_ns = now - 10 * MS,
+				       .status = PRESENT };
+	struct rig_feedback fb;
+
+	(void)state;
+	/* fresh: as read, the pedal up as read */
+	hands_tool(&fb);
+	bus_tool(&fb, DEPTH | OPENING | PEDAL, &read, &f, now, age);
+	assert_true(fb.tool_depth_m == 0.012 && fb.tool_opening == 0.75);
+	assert_false(fb.tool_pedal);
+	/* the pedal on no drive: the hand's */
+	hands_tool(&fb);
+	bus_tool(&fb, DEPTH | OPENING, &read, &f, now, age);
+	assert_true(fb.tool_depth_m == 0.012 && fb.tool_pedal);
+	/* nothing mapped: the hand's alone, whatever the drive */
+	hands_tool(&fb);
+	bus_tool(&fb, 0, &read, &f, now, age);
+	assert_true(fb.tool_depth_m == 0.25 && fb.tool_opening == 0.5);
+	/* stale, gone, faulted, a failed transaction: still, pedal up */
+	for (int k = 0; k < 4; k++) {
+		f.stamp_ns = k == 0 ? now - age - 1 : now;
+		f.status = k == 1 ? 0
+			   : k == 2 ? PRESENT | ENDOSIM_DRIVE_FAULT
+			   : k == 3 ? PRESENT | ENDOSIM_DRIVE_BUS_ERROR
+				    : PRESENT;
+		hands_tool(&fb);
+		bus_tool(&fb, DEPTH | OPENING | PEDAL, &read, &f, now, age);
+		assert_true(isnan(fb.tool_depth_m) && isnan(fb.tool_opening));
+		assert_false(fb.tool_pedal);
+	}
+}
+
 /* --- a bus over a scripted drive -------------------------------------- */
 
 enum fake_mode {
@@ -119,6 +186,9 @@ struct fake {
 	struct drive d;
 	_Atomic int mode;
 	_Atomic uint32_t pressed; /* what its inputs read */
+	_Atomic int tool_mm;      /* the tool's depth, mm */
+	_Atomic int opening_pc;   /* its handle, % open */
+	_Atomic bool pedal;
 };
 
 static void nap_ms(long ms)
@@ -170,6 +240,9 @@ static int fake_exchange(struct drive *d, const double *setpoint,
 		break;
 	}
 	s->valves = atomic_load(&f->pressed) & d->valves[0];
+	s->tool.depth_m = atomic_load(&f->tool_mm) * 1e-3;
+	s->tool.opening = atomic_load(&f->opening_pc) * 1e-2;
+	s->tool.pedal = atomic_load(&f->pedal);
 	return 0;
 }
 
@@ -215,6 +288,36 @@ static uint32_t fetch(struct rig_valves *r)
 	return r->fb.valves;
 }
 
+/* The tool as the loop's cycle now reads it: depth mm, opening %, pedal
+ * (-1, -1: still), as "MM PC PEDAL". */
+static void tool_now(struct rig_valves *r, char *buf, size_t size)
+{
+	fetch(r);
+	if (isnan(r->fb.tool_depth_m) || isnan(r->fb.tool_opening)) {
+		snprintf(buf, size, "-1 -1 %d", r->fb.tool_pedal);
+		return;
+	}
+	snprintf(buf, size, "%.0f %.0f %d", r->fb.tool_depth_m * 1e3,
+		 r->fb.tool_opening * 1e2, r->fb.tool_pedal);
+}
+
+/* Polls (as the loop does) until the tool reads WANT, up to 3 s. */
+static bool tool_reads(struct rig_valves *r, const char *want)
+{
+	uint64_t end = mono_ns() + 3000 * MS;
+	char now[64];
+
+	while (mono_ns() < end) {
+		tool_now(r, now, sizeof(now));
+		if (!strcmp(now, want)) {
+			return true;
+		}
+		nap_ms(1);
+	}
+	fail_msg("the tool reads '%s', not '%s'", now, want);
+	return false;
+}
+
 /* Polls (as the loop does) until the valves read WANT, up to 3 s. */
 static bool reads(struct rig_valves *r, uint32_t want)
 {
@@ -258,6 +361,7 @@ static int bus_setup(void **state)
 	r->f->d.axis[0] = ENDOSIM_AXIS_WHEEL_UD;
 	r->f->d.axis[1] = ENDOSIM_AXIS_WHEEL_LR;
 	r->f->d.valves[0] = AIR | SUCTION;
+	r->f->d.tool[0] = DEPTH | OPENING | PEDAL;
 	strcpy(r->f->d.name, "fake");
 	strcpy(r->f->d.unit[0], "drive 1");
 	strcpy(r->f->d.unit[1], "drive 2");
@@ -334,17 +438,54 @@ static void test_bus_lost(void **state)
 	}
 }
 
+/*
+ * The tool through a bus: as read while the exchanges succeed; still with
+ * the pedal up while they hang, fail (its own or the other drive's), the
+ * drive faults or vanishes; as read again once the cause is gone.
+ */
+static void test_bus_tool(void **state)
+{
+	static const int causes[] = { FAKE_SLOW, FAKE_LATE, FAKE_LATE_OTHER,
+				      FAKE_FAULT, FAKE_GONE };
+	struct rig_valves *r = *state;
+	char now[64];
+
+	atomic_store(&r->f->tool_mm, 12);
+	atomic_store(&r->f->opening_pc, 75);
+	atomic_store(&r->f->pedal, true);
+	assert_true(tool_reads(r, "12 75 1"));
+	atomic_store(&r->f->tool_mm, -3);
+	atomic_store(&r->f->pedal, false);
+	assert_true(tool_reads(r, "-3 75 0"));
+	atomic_store(&r->f->pedal, true);
+	for (size_t i = 0; i < sizeof(causes) / sizeof(causes[0]); i++) {
+		assert_true(tool_reads(r, "-3 75 1"));
+		atomic_store(&r->f->mode, causes[i]);
+		assert_true(tool_reads(r, "-1 -1 0"));
+		nap_ms(100); /* and stays so */
+		tool_now(r, now, sizeof(now));
+		assert_string_equal(now, "-1 -1 0");
+		atomic_store(&r->f->mode, FAKE_OK);
+		assert_true(acknowledged(r, WATER));
+	}
+	assert_true(tool_reads(r, "-3 75 1"));
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_inputs_word),
 		cmocka_unit_test(test_modbus_input),
 		cmocka_unit_test(test_taking_rule),
+		cmocka_unit_test(test_tool_opening),
+		cmocka_unit_test(test_tool_rule),
 		cmocka_unit_test_setup_teardown(test_bus_pressed, bus_setup,
 						bus_teardown),
 		cmocka_unit_test_setup_teardown(test_bus_stale, bus_setup,
 						bus_teardown),
 		cmocka_unit_test_setup_teardown(test_bus_lost, bus_setup,
+						bus_teardown),
+		cmocka_unit_test_setup_teardown(test_bus_tool, bus_setup,
 						bus_teardown),
 	};
 
