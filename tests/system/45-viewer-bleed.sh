@@ -13,7 +13,9 @@
 # and a clip pushed out by as much as brings its jaws to the bleeding
 # point (from the published tool and scope), closed: the point clipped,
 # no flow, the image's red gone again. ENDOSIM_KEEP_SHOTS=DIR keeps the
-# pictures. No run has an OpenGL error.
+# pictures. A session recorded across it keeps the bleeding's events
+# (its start with the flow, the clip that stopped it) and its flow in the
+# CSV. No run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -62,6 +64,7 @@ shot() {
 		cp "$TMP/$1.png" "$ENDOSIM_KEEP_SHOTS/bleed-$1.png"
 }
 
+ID=$(ctl --json session start --trainee bleed | jq -r .id)
 ctl tool select snare --size 20 >/dev/null
 check "the snare open 15 mm out" hand 15 1
 check "... closed round the stalk" hand 15 0.1
@@ -98,6 +101,21 @@ keep_picture "$TMP/clipped.png" tool-clipped
 clipped=$(png_value "$TMP/clipped.png" "$IMAGE" blood)
 check "... the image's red gone ($clipped blood-red, $bleeding bleeding)" \
 	float_test "$clipped < $bleeding - 0.05"
+
+# the session: the bleeding's events with the flow, its start and stop
+check "session stop" ctl session stop
+ctl session export "$ID" --csv --events --out "$TMP/events.csv" >/dev/null
+check "the session's events: the cut and the bleeding (the flow, m^3/s)" \
+	grep -qE ",tool,$POLYP,128,1.96[0-9]*e-08,\"bleed, polyp $POLYP \(1.2 mL/min bleeding\)\"" "$TMP/events.csv"
+check "... the clip that stopped it, none bleeding after" \
+	grep -qE ",tool,$POLYP,256,0,\"clipped, polyp $POLYP \(0.0 mL/min bleeding\)\"" "$TMP/events.csv"
+check "... session show lists them" eval \
+	"ctl session show $ID | grep -qE '^ +[0-9.]+ s  tool +clipped, polyp $POLYP'"
+ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
+check "... the CSV's flow: 5 mm's while it bled" eval \
+	"awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[\$i] = i; next }
+		\$c[\"tool_bleed_m3_s\"] > 1.9e-8 { n++ } END { exit !(n > 1000) }' \
+		$TMP/s.csv"
 
 check "no run had an OpenGL error" eval \
 	'! grep -h "^endoview: frames=" "$TMP"/*.out | grep -qv " gl_errors=0 "'
