@@ -75,6 +75,8 @@ check "... and bleeding from its foot" wait_for status_true \
 	".tool.polyp[$POLYP].state == \"cut\" and .tool.bleeding == 1 and
 	 (.tool.bleed_m3_s - 1e-3 * 3.14159265 * 0.005 * 0.005 / 4 | fabs)
 	 < 1e-12"
+check "... endoctl tool says so" eval \
+	"ctl tool status | grep -qE '^polyp $POLYP +cut .*, bleeding 1.2 mL/min'"
 check "the bleeding: screenshot" shot bleeding
 keep_picture "$TMP/bleeding.png" tool-bleeding
 held=$(png_value "$TMP/held.png" "$IMAGE" blood)
