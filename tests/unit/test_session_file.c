@@ -250,7 +250,8 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * of a file of format 3 or older has format 3's columns, a format-4
  * file's the patient's body's too (and nothing torn by the tip), a
  * format-5 file's its pain as well (and no tool), a
- * format-6 file's the tool's too.
+ * format-6 file's the tool's too (and no bleeding), a format-7 file's
+ * the bleeding's flow as well.
  */
 static void test_old_layout(void **state)
 {
