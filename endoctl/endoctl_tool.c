@@ -7,8 +7,6 @@
 
 #define TOOL_HOLD_S 2.0      /* `hand` holds the tool this long ... */
 #define TOOL_HOLD_MAX_S 10.0 /* ... or as long as --for says, at most */
-#define ML_PER_M3 1e6
-#define ML_PER_MIN_PER_M3_S 6e7
 
 static const char usage_text[] =
 	"endoctl: tool status | select none|forceps|snare|needle|clip "
@@ -29,8 +27,8 @@ static void print_polyps(const Endosim__ToolStatus *t)
 		if (p->bleed != ENDOSIM_BLEED_NONE) {
 			printf(", %s %.1f mL/min, %.2f mL shed",
 			       names_bleed(p->bleed),
-			       p->bleed_m3_s * ML_PER_MIN_PER_M3_S,
-			       p->blood_m3 * ML_PER_M3);
+			       p->bleed_m3_s * ENDOSIM_ML_PER_MIN_PER_M3_S,
+			       p->blood_m3 * ENDOSIM_ML_PER_M3);
 		}
 		printf("\n");
 	}
@@ -55,9 +53,9 @@ static void print_tool(const Endosim__ToolStatus *t)
 	printf("clips     %u\n", t->clips);
 	if (t->blood_m3 > 0) {
 		printf("blood     %.2f mL shed, %u point%s bleeding %.1f "
-		       "mL/min\n", t->blood_m3 * ML_PER_M3, t->bleeding,
+		       "mL/min\n", t->blood_m3 * ENDOSIM_ML_PER_M3, t->bleeding,
 		       t->bleeding == 1 ? "" : "s",
-		       t->bleed_m3_s * ML_PER_MIN_PER_M3_S);
+		       t->bleed_m3_s * ENDOSIM_ML_PER_MIN_PER_M3_S);
 	}
 	print_polyps(t);
 }

@@ -44,6 +44,9 @@
 #define ENDOSIM_NS_PER_S 1000000000ull
 #define ENDOSIM_NS_PER_MS 1000000ull
 #define ENDOSIM_S_PER_NS 1e-9
+/* A flow's and a volume's units for people (a bleeding's: mL/min, mL). */
+#define ENDOSIM_ML_PER_M3 1e6
+#define ENDOSIM_ML_PER_MIN_PER_M3_S 6e7
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
 enum endosim_axis {

@@ -410,7 +410,6 @@ static void select_event(struct recorder *r, const struct session_record *rec,
 
 #define BLEED_BITS (ENDOSIM_TOOL_BLEED | ENDOSIM_TOOL_CLIPPED | \
 		    ENDOSIM_TOOL_STOPPED)
-#define ML_PER_MIN_PER_M3_S 6e7
 
 /* Each of the tool's events in this record's cycle: a bleeding's with
  * the points' flow after it, the others with the handle's opening. */
@@ -428,7 +427,8 @@ static void tool_events(struct recorder *r, const struct session_record *rec)
 		left &= ~bit;
 		if (bleed) {
 			snprintf(flow, sizeof(flow), " (%.1f mL/min bleeding)",
-				 rec->tool_bleed_m3_s * ML_PER_MIN_PER_M3_S);
+				 rec->tool_bleed_m3_s *
+					 ENDOSIM_ML_PER_MIN_PER_M3_S);
 		}
 		if (polyp >= 0) {
 			snprintf(text, sizeof(text), "%s, polyp %d%s",
@@ -440,8 +440,9 @@ static void tool_events(struct recorder *r, const struct session_record *rec)
 		}
 		patient_event(r, rec, (struct session_event){
 			.kind = SESSION_EVENT_TOOL, .axis = polyp,
-			.detail = bit, .value = bleed ? rec->tool_bleed_m3_s :
-					rec->tool_opening }, text);
+			.detail = bit,
+			.value = bleed ? rec->tool_bleed_m3_s
+				       : rec->tool_opening }, text);
 	}
 }
 

@@ -79,6 +79,9 @@ check "... endoctl tool says so" eval \
 	"ctl tool status | grep -qE '^polyp $POLYP +cut .*, bleeding 1.2 mL/min'"
 check "the bleeding: screenshot" shot bleeding
 keep_picture "$TMP/bleeding.png" tool-bleeding
+check "... the panel says it, in red" \
+	grep -qx 'hud: bleeding: 1 point, 1.2 mL/min, [0-9.]* mL shed' \
+	"$TMP/bleeding.out"
 held=$(png_value "$TMP/held.png" "$IMAGE" blood)
 bleeding=$(png_value "$TMP/bleeding.png" "$IMAGE" blood)
 check "... the image redder ($bleeding of it blood-red, $held before)" \

@@ -523,7 +523,8 @@ static void test_forceps_bite(void **unused)
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0), 0);
 	/* a diminutive polyp taken whole; a larger one sampled */
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.003),
-			 TOOL_EVENT_BITE | TOOL_EVENT_CUT | TOOL_EVENT_RETRIEVE);
+			 TOOL_EVENT_BITE | TOOL_EVENT_CUT |
+				 TOOL_EVENT_RETRIEVE);
 	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_RETRIEVED);
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.006),
 			 TOOL_EVENT_BITE);
@@ -665,7 +666,7 @@ static void test_bleed_volume_and_stop(void **unused)
 
 	(void)unused;
 	assert_true(cut_bleeds(0.005, 0, &b));
-	bled_s = (double)(500 - b.cut_step + 1) * DT; /* the cut's step on */
+	bled_s = (double)(500 - b.cut_step + 1) * DT; /* from the cut's */
 	assert_near(b.t.blood_m3, q * bled_s, 1e-9 * q * bled_s);
 	assert_near(b.t.polyp[0].blood_m3, b.t.blood_m3, 0);
 	while (bled_s < 2 * par.bleed_stop_s) {
