@@ -21,6 +21,9 @@
  *  - the stalk cut cold bleeds its documented flow, published; the blood
  *    shed is the flow times the time, all of it in the polyp's
  *    segment's pool when there is a patient;
+ *  - the hand's suction valve reaches the tool: a 6 mm polyp cut and
+ *    lying before the channel's exit is retrieved with it pressed, left
+ *    lying without;
  *  - the snare closed on the case's sessile polyp, unlifted, the pedal
  *    down: an injury of the wall, the patient's perforation in the same
  *    cycle (torn_segment; with no patient, the tool's event alone).
@@ -61,12 +64,14 @@ struct run {
 	int is;            /* and its first sessile one */
 };
 
-/* The loop on the polyps case, the patient there or not. */
-static void start(struct run *r, bool patient)
+/* The loop on the polyps case, the patient there or not, the hand's
+ * scenario LINE (NULL: none). */
+static void start_with(struct run *r, bool patient, const char *line)
 {
 	char err[512];
 	struct colon *c;
 	const struct anatomy *a;
+	struct scenario *scn = NULL;
 
 	memset(r, 0, sizeof(*r));
 	config_defaults(&r->cfg);
@@ -89,11 +94,22 @@ static void start(struct run *r, bool patient)
 		}
 	}
 	assert_true(r->ip >= 0 && r->is >= 0);
-	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
+	if (line) {
+		scn = scenario_create();
+		assert_non_null(scn);
+		assert_int_equal(scenario_append(scn, line, err, sizeof(err)),
+				 0);
+	}
+	r->o = offline_create_with(&r->cfg, c, scn, err, sizeof(err));
 	if (!r->o) {
 		fail_msg("%s", err);
 	}
 	r->depth_m = -DEPTH_M; /* in the channel */
+}
+
+static void start(struct run *r, bool patient)
+{
+	start_with(r, patient, NULL);
 }
 
 /* One cycle, the hand's input renewed unless STALE. */
@@ -320,6 +336,55 @@ static void test_cold_cut_bleeds_into_pool(void **state)
 	offline_destroy(r.o);
 }
 
+/*
+ * The case's 6 mm sessile polyp cut cold under the loop, then laid
+ * (where it lies: tool.h) 6 mm from the channel's exit, the hand holding
+ * the suction valve (SUCTION) or not: retrieved through the channel, or
+ * left lying.
+ */
+static int retrieved(bool suction)
+{
+	struct run r;
+	struct tool_polyp *p;
+	struct tool_params par;
+	struct tool_pose pose;
+	int i = 2, state;
+
+	start_with(&r, false, suction ? "0 valve suction on" : NULL);
+	cases_tool_params(&r.cfg, &par);
+	assert_true(offline_tool(r.o)->polyp[i].size_m == 0.006);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 100, DEPTH_M, 1);
+	move(&r, 1, DEPTH_M, 1);
+	polyp_under_loop(&r, i);
+	move(&r, 5, DEPTH_M, 1);
+	r.events = 0;
+	move(&r, 300, DEPTH_M, 0);
+	assert_true(r.events & ENDOSIM_TOOL_CUT);
+	assert_int_equal(r.st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
+	/* its body (half its height over its base) 6 mm ahead of the exit */
+	p = &offline_tool(r.o)->polyp[i];
+	tool_pose(&par, &r.st->scope, r.depth_m, &pose);
+	vec3_axpy(p->base, pose.exit, 0.006, pose.dir);
+	vec3_axpy(p->base, p->base, -tool_polyp_height(p, par.lift_m) / 2,
+		  p->normal);
+	r.events = 0;
+	move(&r, 20, DEPTH_M, 0);
+	state = (int)r.st->tool.polyp[i].state;
+	assert_int_equal((r.events & ENDOSIM_TOOL_RETRIEVE) != 0,
+			 state == ENDOSIM_POLYP_RETRIEVED);
+	offline_destroy(r.o);
+	return state;
+}
+
+static void test_retrieve_by_suction(void **state)
+{
+	(void)state;
+	assert_int_equal(retrieved(true), ENDOSIM_POLYP_RETRIEVED);
+	assert_int_equal(retrieved(false), ENDOSIM_POLYP_CUT);
+}
+
 static void injury(bool patient)
 {
 	struct run r;
@@ -365,6 +430,7 @@ int main(void)
 		cmocka_unit_test(test_capture_and_cut),
 		cmocka_unit_test(test_injury_perforates),
 		cmocka_unit_test(test_cold_cut_bleeds_into_pool),
+		cmocka_unit_test(test_retrieve_by_suction),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
