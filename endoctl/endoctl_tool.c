@@ -24,6 +24,12 @@ static void print_polyps(const Endosim__ToolStatus *t)
 			printf(", %u bite%s", p->bites,
 			       p->bites > 1 ? "s" : "");
 		}
+		if (p->bleed != ENDOSIM_BLEED_NONE) {
+			printf(", %s %.1f mL/min, %.2f mL shed",
+			       names_bleed(p->bleed),
+			       p->bleed_m3_s * ENDOSIM_ML_PER_MIN_PER_M3_S,
+			       p->blood_m3 * ENDOSIM_ML_PER_M3);
+		}
 		printf("\n");
 	}
 }
@@ -45,6 +51,12 @@ static void print_tool(const Endosim__ToolStatus *t)
 		printf("\n");
 	}
 	printf("clips     %u\n", t->clips);
+	if (t->blood_m3 > 0) {
+		printf("blood     %.2f mL shed, %u point%s bleeding %.1f "
+		       "mL/min\n", t->blood_m3 * ENDOSIM_ML_PER_M3, t->bleeding,
+		       t->bleeding == 1 ? "" : "s",
+		       t->bleed_m3_s * ENDOSIM_ML_PER_MIN_PER_M3_S);
+	}
 	print_polyps(t);
 }
 

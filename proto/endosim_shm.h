@@ -24,7 +24,7 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 9u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 10u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
@@ -34,7 +34,8 @@
 				  7: the patient's body;
 				  8: the patient's pain, sedation, vital
 				     signs and a perforation by the tip;
-				  9: the tool in the working channel */
+				  9: the tool in the working channel;
+				  10: bleeding, clips on it, retrieval */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -43,6 +44,9 @@
 #define ENDOSIM_NS_PER_S 1000000000ull
 #define ENDOSIM_NS_PER_MS 1000000ull
 #define ENDOSIM_S_PER_NS 1e-9
+/* A flow's and a volume's units for people (a bleeding's: mL/min, mL). */
+#define ENDOSIM_ML_PER_M3 1e6
+#define ENDOSIM_ML_PER_MIN_PER_M3_S 6e7
 
 /* The rig's four axes, in this order everywhere (shm, sockets, config). */
 enum endosim_axis {
@@ -386,6 +390,19 @@ enum endosim_tool_event {
 	ENDOSIM_TOOL_LIFT = 1u << 4,    /* an injection lifted a base */
 	ENDOSIM_TOOL_BITE = 1u << 5,    /* the forceps took a sample */
 	ENDOSIM_TOOL_CLIP_PLACED = 1u << 6, /* a clip closed on the wall */
+	/* 10 */
+	ENDOSIM_TOOL_BLEED = 1u << 7,   /* a cut stalk bleeds */
+	ENDOSIM_TOOL_CLIPPED = 1u << 8, /* a clip closed a bleeding point */
+	ENDOSIM_TOOL_STOPPED = 1u << 9, /* a bleeding stopped by itself */
+	ENDOSIM_TOOL_RETRIEVE = 1u << 10, /* a cut polyp sucked out */
+};
+
+/* A polyp's bleeding point (its stalk's foot) (enum endosim_bleed). */
+enum endosim_bleed {
+	ENDOSIM_BLEED_NONE = 0,
+	ENDOSIM_BLEED_BLEEDING = 1,
+	ENDOSIM_BLEED_CLIPPED = 2, /* stopped by a clip */
+	ENDOSIM_BLEED_STOPPED = 3, /* stopped by itself */
 };
 
 /* A polyp as the tool left it (enum endosim_polyp_state). */
@@ -393,6 +410,7 @@ enum endosim_polyp_state {
 	ENDOSIM_POLYP_IN_PLACE = 0,
 	ENDOSIM_POLYP_CAPTURED = 1, /* held in the snare's loop */
 	ENDOSIM_POLYP_CUT = 2,      /* cut free: lies in the lumen */
+	ENDOSIM_POLYP_RETRIEVED = 3, /* sucked out through the channel */
 };
 
 #define ENDOSIM_POLYPS 32 /* a case's most (anatomy.h) */
@@ -402,7 +420,9 @@ struct endosim_tool_polyp {
 	uint32_t lifted;         /* 1: lifted by an injection */
 	double energy_j;         /* the cautery's into it so far */
 	uint32_t bites;          /* the forceps' on it */
-	uint32_t reserved;
+	uint32_t bleed;          /* 10: enum endosim_bleed */
+	double bleed_m3_s;       /* its flow now, m^3/s */
+	double blood_m3;         /* shed from it so far */
 };
 
 /*
@@ -425,8 +445,12 @@ struct endosim_tool_state {
 	int32_t event_polyp;     /* the polyp they concern, -1: none */
 	uint32_t clips;          /* clips placed since the case was loaded */
 	uint32_t polyps;         /* of polyp[] in use */
-	uint32_t reserved;
+	uint32_t bleeding;       /* 10: the points bleeding now */
 	struct endosim_tool_polyp polyp[ENDOSIM_POLYPS];
+	double bleed_m3_s;       /* 10: their flow, all together, m^3/s */
+	double blood_m3;         /* shed since the case was loaded */
+	double bleed_at[3];      /* the point bleeding most (none: 0) */
+	double clip_at[3];       /* the last clip's place (clips > 0) */
 };
 
 struct endosim_state {

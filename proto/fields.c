@@ -299,6 +299,10 @@ static const struct fields_field tool_polyp[] = {
 	VAL(lifted, FIELDS_BOOL),
 	VAL(energy_j, FIELDS_DOUBLE),
 	VAL(bites, FIELDS_UINT),
+	{ "bleed", FIELDS_NAMED, 1, S(bleed), NONE, P(bleed), NONE, NONE,
+	  NULL, names_bleed, NULL },
+	VAL(bleed_m3_s, FIELDS_DOUBLE),
+	VAL(blood_m3, FIELDS_DOUBLE),
 };
 const struct fields_table fields_tool_polyp =
 	TABLE(tool_polyp, endosim__tool_polyp__descriptor, tool.polyp,
@@ -327,6 +331,11 @@ static const struct fields_field tool[] = {
 	VAL(clips, FIELDS_UINT),
 	VAL(polyps, FIELDS_UINT),
 	MANY(polyp, FIELDS_LIST, &fields_tool_polyp),
+	VAL(bleeding, FIELDS_UINT),
+	TOOL(bleed_m3_s, FIELDS_DOUBLE, "tool_bleed_m3_s", NULL),
+	VAL(blood_m3, FIELDS_DOUBLE),
+	VEC(bleed_at),
+	VEC(clip_at),
 };
 const struct fields_table fields_tool =
 	TABLE(tool, endosim__tool_status__descriptor, tool, 1);

@@ -61,11 +61,20 @@ static const char *const polyp_state_names[] = {
 	[ENDOSIM_POLYP_IN_PLACE] = "in-place",
 	[ENDOSIM_POLYP_CAPTURED] = "captured",
 	[ENDOSIM_POLYP_CUT] = "cut",
+	[ENDOSIM_POLYP_RETRIEVED] = "retrieved",
+};
+
+static const char *const bleed_names[] = {
+	[ENDOSIM_BLEED_NONE] = "none",
+	[ENDOSIM_BLEED_BLEEDING] = "bleeding",
+	[ENDOSIM_BLEED_CLIPPED] = "clipped",
+	[ENDOSIM_BLEED_STOPPED] = "stopped",
 };
 
 /* By the bit's number (enum endosim_tool_event). */
 static const char *const tool_event_names[] = {
 	"capture", "release", "cut", "injury", "lift", "bite", "clip",
+	"bleed", "clipped", "stopped", "retrieve",
 };
 
 static const char *const pain_cause_names[] = {
@@ -209,6 +218,11 @@ const char *names_polyp_state(uint32_t state)
 {
 	return state < COUNT(polyp_state_names) ? polyp_state_names[state]
 						: "?";
+}
+
+const char *names_bleed(uint32_t bleed)
+{
+	return bleed < COUNT(bleed_names) ? bleed_names[bleed] : "?";
 }
 
 const char *names_tool_event(uint32_t bit)

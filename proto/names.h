@@ -83,11 +83,16 @@ const char *names_tool(uint32_t tool);
 int names_tool_find(const char *name);
 
 /* A polyp as the tools left it (enum endosim_polyp_state): "in-place",
- * "captured", "cut". */
+ * "captured", "cut", "retrieved". */
 const char *names_polyp_state(uint32_t state);
 
+/* A polyp's bleeding point (enum endosim_bleed): "none", "bleeding",
+ * "clipped", "stopped"; "?" for another. */
+const char *names_bleed(uint32_t bleed);
+
 /* One tool event's bit (enum endosim_tool_event): "capture", "release",
- * "cut", "injury", "lift", "bite", "clip"; "?" for another. */
+ * "cut", "injury", "lift", "bite", "clip", "bleed", "clipped",
+ * "stopped", "retrieve"; "?" for another. */
 const char *names_tool_event(uint32_t bit);
 
 /*

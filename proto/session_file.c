@@ -437,7 +437,7 @@ static void record_copy(struct session_record *rec, const void *payload,
 		rec->pain_place = -1;
 		rec->torn_segment = -1;
 	}
-	if (n < sizeof(*rec)) { /* format 5 or older: no tool */
+	if (n < SESSION_RECORD_SIZE_6) { /* format 5 or older: no tool */
 		rec->tool_captured = -1;
 		rec->tool_event_polyp = -1;
 	}

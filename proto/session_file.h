@@ -26,7 +26,8 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (6; 5 before the tool in the working channel, 4
+ * Header keys: format (7; 6 before the bleeding, 5 before the tool in
+ * the working channel, 4
  * before the patient's pain, 3 before the
  * patient's body, 2 before guided replay, 1 before the rod model), id,
  * trainee, case,
@@ -51,7 +52,7 @@
 #include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 6u
+#define SESSION_FILE_FORMAT 7u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -69,7 +70,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 552 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 556 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -171,13 +172,19 @@ struct session_record {
 	int32_t tool_captured;    /* the polyp the loop holds, -1: none */
 	uint32_t tool_events;     /* this cycle's enum endosim_tool_event */
 	int32_t tool_event_polyp; /* the polyp they concern, -1: none */
-};
+	/* format 7: the bleeding points' flow, all together (m^3/s), from
+	   which the blood shed follows; an older record reads with none */
+	float tool_bleed_m3_s;
+} __attribute__((packed, aligned(4))); /* no tail padding: 4 bytes, not 8 */
 
-_Static_assert(sizeof(struct session_record) == 552,
+_Static_assert(sizeof(struct session_record) == 556,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
+/* Format 6's: up to tool_event_polyp. A shorter record reads with no
+ * bleeding. */
+#define SESSION_RECORD_SIZE_6 552u
 /* Format 5's: up to torn_segment. A shorter record reads with no tool,
  * tool_captured and tool_event_polyp -1 (none). */
 #define SESSION_RECORD_SIZE_5 520u
@@ -216,7 +223,10 @@ enum session_event_kind {
 				      snare's size, m) or one of its events
 				      (detail its enum endosim_tool_event
 				      bit, axis the polyp concerned or -1,
-				      value the handle's opening) */
+				      value the handle's opening; format
+				      7: for bleed, clipped and stopped the
+				      bleeding points' flow after it,
+				      m^3/s) */
 };
 
 /* An event's fixed part; its text (not NUL-terminated) follows it. */

@@ -38,7 +38,7 @@ static const float polyp_tint[3] = { 1.02f, 0.80f, 0.78f };
 
 enum uniform {
 	U_VIEW, U_MODEL, U_NORMAL, U_THETA_MAX, U_FAR, U_EXPOSURE, U_TINT,
-	U_GLOSS, U_VIEWPORT, U_MASK,
+	U_GLOSS, U_VIEWPORT, U_MASK, U_BLOOD,
 	/* the pools */
 	U_LEVEL, U_SEG_END, U_S_PER_TEX, U_DRAW_LEVEL, U_UP, U_EYE,
 	U_EYE_LEVEL, U_AXIS, U_AXIS_P, U_LUMEN_R, UNIFORMS
@@ -46,7 +46,7 @@ enum uniform {
 
 static const char *const uniform_name[UNIFORMS] = {
 	"u_view", "u_model", "u_normal", "u_theta_max", "u_far", "u_exposure",
-	"u_tint", "u_gloss", "u_viewport", "u_mask",
+	"u_tint", "u_gloss", "u_viewport", "u_mask", "u_blood",
 	"u_level", "u_seg_end", "u_s_per_tex", "u_draw_level",
 	"u_up", "u_eye", "u_eye_level", "u_axis", "u_axis_p", "u_lumen_r",
 };
@@ -155,6 +155,7 @@ static const char *fragment_src =
 	"uniform float u_gloss;\n"
 	"uniform vec4 u_viewport;\n"
 	"uniform float u_mask;\n"
+	"uniform float u_blood;\n"
 	"in vec3 v_pos;\n"
 	"in vec3 v_nrm;\n"
 	"in vec2 v_tex;\n"
@@ -260,6 +261,7 @@ static const char *fragment_src =
 	"#if POOLS\n"
 	"	c = in_liquid(c, d);\n"
 	"#endif\n"
+	"	c = mix(c, c * vec3(1.05, 0.22, 0.18), u_blood);\n"
 	"	c = 1.0 - exp(-c);\n"
 	"	frag = vec4(c * endo_mask(u_viewport, u_mask), 1.0);\n"
 	"}\n";
@@ -525,6 +527,7 @@ static void set_uniforms(const struct program *p,
 	glUniform4f(p->u[U_VIEWPORT], (float)r.x, (float)r.y, (float)r.w,
 		    (float)r.h);
 	glUniform1f(p->u[U_MASK], (float)ENDO_MASK_RADIUS);
+	glUniform1f(p->u[U_BLOOD], cam->tool.blood);
 }
 
 /* The pools' uniforms: their levels, the segments' ends along the colon
@@ -728,15 +731,19 @@ static uint32_t draw_polyp(struct endo *e, const struct model *m,
 	return tris;
 }
 
+/* The case's polyps but those retrieved (CAM's tool: gone). */
 static uint32_t draw_polyps(struct endo *e, const struct model *m,
-			    const struct endo_liquid *l,
+			    const struct endo_camera *cam,
 			    const struct portal_view *v)
 {
 	uint32_t tris = 0;
 
 	glBindVertexArray(e->sphere_vao);
 	for (int k = 0; k < m->polyps; k++) {
-		tris += draw_polyp(e, m, &m->polyp[k], l, v);
+		if (k < ENDOSIM_POLYPS && (cam->tool.gone >> k & 1u)) {
+			continue;
+		}
+		tris += draw_polyp(e, m, &m->polyp[k], &cam->liquid, v);
 	}
 	return tris;
 }
@@ -819,7 +826,7 @@ void endo_draw(struct endo *e, const struct model *m, const struct lod *l,
 	glActiveTexture(GL_TEXTURE0);
 	glBindTexture(GL_TEXTURE_2D, e->texture);
 	st->triangles = draw_colon(e, m, l, g, cam, &v, st);
-	st->triangles += draw_polyps(e, m, &cam->liquid, &v);
+	st->triangles += draw_polyps(e, m, cam, &v);
 	st->triangles += draw_tool(e, cam);
 	end();
 }

@@ -408,6 +408,22 @@ static void draw_tool(struct pen *p, const struct endosim_tool_state *t)
 	line(p, FONT_SMALL, t->pedal ? amber : dim, text);
 }
 
+/* While a point bleeds (the tools' doing: tool.h), in red: how many, the
+ * flow, the blood shed. */
+static void draw_bleeding(struct pen *p, const struct endosim_tool_state *t)
+{
+	char text[128];
+
+	if (t->bleeding == 0) {
+		return;
+	}
+	snprintf(text, sizeof(text), "bleeding: %u point%s, %.1f mL/min, "
+		 "%.1f mL shed", t->bleeding, t->bleeding == 1 ? "" : "s",
+		 t->bleed_m3_s * ENDOSIM_ML_PER_MIN_PER_M3_S,
+		 t->blood_m3 * ENDOSIM_ML_PER_M3);
+	line(p, FONT_SMALL, red, text);
+}
+
 /* The largest bow of a mobile segment, and its span (-1: none). */
 static double worst_loop(const struct endosim_scope_state *sc, int *span)
 {
@@ -833,6 +849,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 		}
 		draw_loop(p, in, t_s);
 		draw_tool(p, &in->st->tool);
+		draw_bleeding(p, &in->st->tool);
 		gap(p);
 		if (in->help) {
 			draw_help(p, keys);

@@ -16,6 +16,8 @@ static const float sheath_rgb[ENDOSIM_TOOLS][3] = {
 	[ENDOSIM_TOOL_CLIP] = { 0.30f, 0.50f, 0.85f },
 };
 static const float steel_rgb[3] = { 0.78f, 0.78f, 0.80f };
+_Static_assert(ENDOSIM_POLYPS <= 32, "toolview: gone holds every polyp");
+static const float blood_rgb[3] = { 0.50f, 0.02f, 0.02f };
 
 /* The frame the tool lies in: the exit, dir, and side = dir x radial
  * (tool.h), all moved by SHIFT. False when there is none to draw. */
@@ -103,7 +105,39 @@ static void loop(struct toolview *v, const struct frame *f,
 	}
 }
 
-void toolview_build(const struct endosim_tool_state *t,
+double toolview_redness(double bleed_m3_s)
+{
+	return bleed_m3_s > 0 && isfinite(bleed_m3_s) ?
+		       bleed_m3_s / (bleed_m3_s + TOOLVIEW_BLOOD_M3_S) : 0;
+}
+
+/* A short piece LEN_M long from AT (moved by SHIFT) towards the scope's
+ * tip: what stands on the wall there. */
+static void on_wall(struct toolview *v, const double at[3],
+		    const struct endosim_scope_state *sc,
+		    const double shift[3], double len_m, double radius_m,
+		    const float rgb[3], bool metal)
+{
+	struct toolview_part *p;
+	double from[3], to[3];
+
+	if (!isfinite(vec3_dot(at, at)) || !(vec3_norm(at) > 0) ||
+	    !isfinite(vec3_dot(sc->tip, sc->tip))) {
+		return;
+	}
+	vec3_sub(to, sc->tip, at);
+	if (!(vec3_normalize(to) > 0)) {
+		return;
+	}
+	vec3_add(from, at, shift);
+	vec3_axpy(to, from, len_m, to);
+	p = part(v, radius_m, rgb, metal);
+	put(p, from);
+	put(p, to);
+}
+
+/* The tool in hand, out of the channel, into OUT (after its parts). */
+static void in_hand(const struct endosim_tool_state *t,
 		    const struct endosim_scope_state *sc,
 		    const double shift[3], struct toolview *out)
 {
@@ -111,7 +145,6 @@ void toolview_build(const struct endosim_tool_state *t,
 	struct toolview_part *sheath;
 	struct frame f;
 
-	out->parts = 0;
 	if (t->kind <= ENDOSIM_TOOL_NONE || t->kind >= ENDOSIM_TOOLS ||
 	    !frame_of(t, sc, shift, &f)) {
 		return;
@@ -143,5 +176,28 @@ void toolview_build(const struct endosim_tool_state *t,
 		break;
 	default:
 		break;
+	}
+}
+
+void toolview_build(const struct endosim_tool_state *t,
+		    const struct endosim_scope_state *sc,
+		    const double shift[3], struct toolview *out)
+{
+	out->parts = 0;
+	out->blood = (float)toolview_redness(t->bleed_m3_s);
+	out->gone = 0;
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		out->gone |= (uint32_t)(t->polyp[i].state ==
+					ENDOSIM_POLYP_RETRIEVED) << i;
+	}
+	in_hand(t, sc, shift, out);
+	if (t->bleeding > 0) {
+		on_wall(out, t->bleed_at, sc, shift, TOOLVIEW_WELL_M,
+			TOOLVIEW_WELL_M * (0.6 + 0.8 * out->blood),
+			blood_rgb, false);
+	}
+	if (t->clips > 0) {
+		on_wall(out, t->clip_at, sc, shift, TOOLVIEW_CLIP_M,
+			TOOLVIEW_WIRE_M * 1.5, steel_rgb, true);
 	}
 }

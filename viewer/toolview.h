@@ -19,6 +19,14 @@
  *    the handle is past half open (tool.h);
  *  - the clip: two prongs (the model's clip length) opening with the
  *    handle up to TOOLVIEW_PRONGS_RAD each side.
+ * What the tools left on the wall, tool in hand or not: a bleeding
+ * point (the published bleed_at while any bleeds), a dark red welling
+ * TOOLVIEW_WELL_M high, wider as the flow grows; the last clip placed
+ * (clip_at), a steel stub TOOLVIEW_CLIP_M long; each stands from the wall
+ * towards the scope's tip. And the view's reddening, toolview_redness()
+ * of the published flow: the blood in the lumen before the lens; the
+ * polyps retrieved, which the view no longer draws (a cut one stays
+ * where it was cut, tool.h, and is drawn there).
  * The lengths are the model's defaults (tool.h): what the view draws, not
  * what the daemon computes with (the loop, the tip and the events are
  * the daemon's).
@@ -32,15 +40,21 @@
 #define ENDOVIEW_TOOLVIEW_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "proto/endosim_shm.h"
 
-#define TOOLVIEW_PARTS 3
+#define TOOLVIEW_PARTS 5           /* a tool's 3, a bleeding point, a clip */
 #define TOOLVIEW_POINTS 41       /* the loop's ring, closed */
 #define TOOLVIEW_SHEATH_M 0.0024 /* a 2.8 mm channel's tools */
 #define TOOLVIEW_WIRE_M 0.0004   /* the snare's wire (tool.h's wire_m) */
 #define TOOLVIEW_JAWS_RAD 0.6    /* the forceps' cups, open */
 #define TOOLVIEW_PRONGS_RAD 0.45 /* the clip's prongs, open */
+#define TOOLVIEW_WELL_M 0.002    /* the blood welling from a point */
+#define TOOLVIEW_CLIP_M 0.004    /* a clip placed, standing out */
+/* The flow that reddens the view half-way: a 5 mm stalk's (tool.h), a
+ * guess at what fills the view with blood. */
+#define TOOLVIEW_BLOOD_M3_S 2e-8
 
 struct toolview_part {
 	int points;                  /* of p in use, 2 or more */
@@ -51,17 +65,24 @@ struct toolview_part {
 };
 
 struct toolview {
+	float blood;                 /* the view's reddening, 0..1 */
+	uint32_t gone;               /* bit k: the case's polyp k retrieved
+					(sucked out: not drawn) */
 	int parts;
 	struct toolview_part part[TOOLVIEW_PARTS];
 };
 
 /*
  * The parts that draw TOOL on the scope SC, moved by SHIFT (m), into OUT
- * (no parts: no tool, the tool inside the channel, or a state not
+ * (no tool's parts for no tool, the tool inside the channel, or a state not
  * finite).
  */
 void toolview_build(const struct endosim_tool_state *tool,
 		    const struct endosim_scope_state *sc,
 		    const double shift[3], struct toolview *out);
+
+/* The view's reddening for the bleeding points' flow BLEED_M3_S (m^3/s):
+ * Q / (Q + TOOLVIEW_BLOOD_M3_S), 0..1; 0 for none or not finite. */
+double toolview_redness(double bleed_m3_s);
 
 #endif

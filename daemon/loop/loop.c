@@ -442,6 +442,19 @@ static void fill_scope(struct loop *l)
 			    l->state.scope.bow_m);
 }
 
+/* The bleeding points' blood this cycle of DT_S into the patient's pools. */
+static void pour_blood(struct loop *l, double dt_s)
+{
+	for (int i = 0; i < l->tool.polyps; i++) {
+		const struct tool_polyp *p = &l->tool.polyp[i];
+
+		if (p->bleed_m3_s > 0) {
+			patient_bleed(haptics_patient(l->haptics), p->s_m,
+				      p->bleed_m3_s * dt_s);
+		}
+	}
+}
+
 /*
  * The tool in the working channel this cycle, on the scope's published
  * state: the rig's sensing, the wall at the tool's tip; its injury of the
@@ -455,7 +468,10 @@ static void step_tool(struct loop *l)
 		.depth_m = l->fb.tool_depth_m,
 		.opening = l->fb.tool_opening,
 		.pedal = l->fb.tool_pedal,
+		.suction = (l->fb.valves | l->guide_valves) &
+			   ENDOSIM_VALVE_SUCTION,
 	};
+	double dt = l->info.period_ns * ENDOSIM_S_PER_NS;
 	bool still = !isfinite(in.depth_m) || !isfinite(in.opening);
 	double depth = still ? l->tool.depth_m : in.depth_m;
 	struct tool_pose pose;
@@ -465,12 +481,12 @@ static void step_tool(struct loop *l)
 	cases_tool_params(&l->cfg, &par);
 	tool_pose(&par, sc, depth, &pose);
 	tool_wall(l->colon, sc->tip_s_m + depth, pose.tip, &in);
-	ev = tool_step(&l->tool, &par, sc, &in,
-		       l->info.period_ns * ENDOSIM_S_PER_NS, &polyp);
+	ev = tool_step(&l->tool, &par, sc, &in, dt, &polyp);
 	if (ev & TOOL_EVENT_INJURY) {
 		(void)patient_perforate(haptics_patient(l->haptics),
 					sc->tip_s_m);
 	}
+	pour_blood(l, dt);
 	tool_publish(&l->tool, ev, polyp, &l->state.tool);
 }
 

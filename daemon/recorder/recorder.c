@@ -408,27 +408,41 @@ static void select_event(struct recorder *r, const struct session_record *rec,
 		.value = rec->tool_snare_m }, text);
 }
 
-/* Each of the tool's events in this record's cycle. */
+#define BLEED_BITS (ENDOSIM_TOOL_BLEED | ENDOSIM_TOOL_CLIPPED | \
+		    ENDOSIM_TOOL_STOPPED)
+
+/* Each of the tool's events in this record's cycle: a bleeding's with
+ * the points' flow after it, the others with the handle's opening. */
 static void tool_events(struct recorder *r, const struct session_record *rec)
 {
 	int polyp = rec->tool_event_polyp;
-	char text[EVENT_TEXT];
+	char text[EVENT_TEXT], flow[32] = "";
 
 	for (uint32_t bit = 1, left = rec->tool_events; left; bit <<= 1) {
+		bool bleed = bit & BLEED_BITS;
+
 		if (!(left & bit)) {
 			continue;
 		}
 		left &= ~bit;
+		if (bleed) {
+			snprintf(flow, sizeof(flow), " (%.1f mL/min bleeding)",
+				 rec->tool_bleed_m3_s *
+					 ENDOSIM_ML_PER_MIN_PER_M3_S);
+		}
 		if (polyp >= 0) {
-			snprintf(text, sizeof(text), "%s, polyp %d",
-				 names_tool_event(bit), polyp);
+			snprintf(text, sizeof(text), "%s, polyp %d%s",
+				 names_tool_event(bit), polyp,
+				 bleed ? flow : "");
 		} else {
 			snprintf(text, sizeof(text), "%s",
 				 names_tool_event(bit));
 		}
 		patient_event(r, rec, (struct session_event){
 			.kind = SESSION_EVENT_TOOL, .axis = polyp,
-			.detail = bit, .value = rec->tool_opening }, text);
+			.detail = bit,
+			.value = bleed ? rec->tool_bleed_m3_s
+				       : rec->tool_opening }, text);
 	}
 }
 

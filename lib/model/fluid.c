@@ -194,6 +194,13 @@ bool fluid_step(struct fluid *f, const double down[3], const double *factor,
 	return under;
 }
 
+void fluid_add(struct fluid *f, int i, double volume_m3)
+{
+	if (i >= 0 && i < f->segments && volume_m3 > 0) {
+		f->seg[i].volume_m3 += volume_m3;
+	}
+}
+
 void fluid_volumes(const struct fluid *f, double out[FLUID_SEGMENTS])
 {
 	for (int i = 0; i < FLUID_SEGMENTS; i++) {

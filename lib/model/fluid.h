@@ -89,6 +89,11 @@ bool fluid_step(struct fluid *f, const double down[3], const double *factor,
 		bool suction, const double tip[3], int tip_segment,
 		double dt_s);
 
+/* VOLUME_M3 (>= 0) of fluid more in segment I (blood from a bleeding
+ * point, tool.h); its level follows in its turn. Nothing for a segment
+ * not attached. Fixed work. */
+void fluid_add(struct fluid *f, int i, double volume_m3);
+
 /* Every segment's level solved again now (a start, a test). */
 void fluid_settle(struct fluid *f, const double *factor);
 

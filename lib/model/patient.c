@@ -270,6 +270,14 @@ int patient_perforate(struct patient *pt, double s_m)
 	return seg;
 }
 
+void patient_bleed(struct patient *pt, double s_m, double blood_m3)
+{
+	if (pt->p.enabled && pt->colon) {
+		fluid_add(&pt->fluid, fluid_segment_at(&pt->fluid, s_m),
+			  blood_m3);
+	}
+}
+
 void patient_gravity(const struct patient *pt, double g[3])
 {
 	if (!pt->p.enabled) {

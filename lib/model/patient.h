@@ -176,6 +176,13 @@ int patient_step(struct patient *pt, const struct patient_input *in,
 int patient_perforate(struct patient *pt, double s_m);
 
 /*
+ * BLOOD_M3 shed into the lumen at material S_M (a bleeding point,
+ * tool.h): into that segment's pool, where gravity takes it (fluid.h).
+ * Nothing when disabled. Fixed work.
+ */
+void patient_bleed(struct patient *pt, double s_m, double blood_m3);
+
+/*
  * The values the force loop's non-finite check watches, into V: the
  * gas's volume and pressure, each segment's radius factor, the fluid's
  * volume and level in each segment, the lens' smear, murk and red-out,

@@ -79,6 +79,7 @@ int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
 			   ap->stalk_length_m : 0,
 		.stalk_diameter_m = ap->paris == ANATOMY_PARIS_IP ?
 				    ap->stalk_diameter_m : 0,
+		.s_m = ap->s_m,
 	};
 	vec3_copy(p->base, base);
 	vec3_copy(p->normal, n);
@@ -243,6 +244,22 @@ static bool loop_on_wall(const struct tool *t, const struct tool_params *par,
 	       t->loop_m / 2 * sqrt(fmax(0, 1 - c * c)) <= par->wire_m / 2;
 }
 
+/* P just cut: its stalk bleeds when it was not coagulated through. */
+static unsigned start_bleed(struct tool_polyp *p,
+			    const struct tool_params *par)
+{
+	double t = p->stalk_diameter_m, area = M_PI * t * t / 4;
+
+	if (p->paris != ANATOMY_PARIS_IP || t < par->bleed_min_m ||
+	    p->energy_j >= par->coag_j_per_m3 * area * t) {
+		return 0;
+	}
+	p->bleed = TOOL_BLEED_BLEEDING;
+	p->bleed_m3_s = par->bleed_m_per_s * area;
+	p->bleed_s = 0;
+	return TOOL_EVENT_BLEED;
+}
+
 /* The held polyp cut, hot or cold; TOOL_EVENT_* bits. */
 static unsigned cut(struct tool *t, const struct tool_params *par,
 		    bool pedal, double dt_s)
@@ -268,7 +285,7 @@ static unsigned cut(struct tool *t, const struct tool_params *par,
 	if (through) {
 		p->state = TOOL_POLYP_CUT;
 		t->captured = -1;
-		ev |= TOOL_EVENT_CUT;
+		ev |= TOOL_EVENT_CUT | start_bleed(p, par);
 	}
 	return ev;
 }
@@ -411,15 +428,16 @@ static unsigned forceps_step(struct tool *t, const struct tool_params *par,
 	}
 	t->polyp[i].bites++;
 	if (t->polyp[i].size_m <= par->forceps_max_m) {
-		t->polyp[i].state = TOOL_POLYP_CUT;
-		return TOOL_EVENT_BITE | TOOL_EVENT_CUT;
+		t->polyp[i].state = TOOL_POLYP_RETRIEVED; /* in the cups */
+		return TOOL_EVENT_BITE | TOOL_EVENT_CUT | TOOL_EVENT_RETRIEVE;
 	}
 	return TOOL_EVENT_BITE;
 }
 
-/* The clip's step after the pose. */
+/* The clip's step after the pose: placed, it closes the first bleeding
+ * point within half its jaws' length; *WHICH that polyp. */
 static unsigned clip_step(struct tool *t, const struct tool_params *par,
-			  const struct tool_input *in)
+			  const struct tool_input *in, int *which)
 {
 	vec3_axpy(t->jaws, t->pose.tip, par->clip_m, t->pose.dir);
 	if (!jaws_close(t, par) || !near_wall(t->jaws, in, par->clip_m)) {
@@ -427,7 +445,92 @@ static unsigned clip_step(struct tool *t, const struct tool_params *par,
 	}
 	vec3_copy(t->clip_at, t->jaws);
 	t->clips++;
+	for (int i = 0; i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+
+		if (p->bleed == TOOL_BLEED_BLEEDING &&
+		    vec3_dist(p->base, t->clip_at) <= par->clip_m / 2) {
+			p->bleed = TOOL_BLEED_CLIPPED;
+			p->bleed_m3_s = 0;
+			*which = i;
+			return TOOL_EVENT_CLIP | TOOL_EVENT_CLIPPED;
+		}
+	}
 	return TOOL_EVENT_CLIP;
+}
+
+/* Every bleeding point sheds its step's blood (its flow, after the step,
+ * says whether it did); one that has bled bleed_stop_s stops by itself
+ * instead when FREE (no other polyp's event this step). */
+static unsigned bleed_step(struct tool *t, const struct tool_params *par,
+			   double dt_s, bool free, int *which)
+{
+	unsigned ev = 0;
+
+	for (int i = 0; i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+		double shed = p->bleed_m3_s * dt_s;
+
+		if (p->bleed != TOOL_BLEED_BLEEDING) {
+			continue;
+		}
+		if (free && p->bleed_s >= par->bleed_stop_s - dt_s / 2) {
+			p->bleed = TOOL_BLEED_STOPPED;
+			p->bleed_m3_s = 0;
+			*which = i;
+			ev = TOOL_EVENT_STOPPED;
+			free = false;
+			continue;
+		}
+		p->blood_m3 += shed;
+		t->blood_m3 += shed;
+		p->bleed_s += dt_s;
+	}
+	return ev;
+}
+
+/* Where cut polyp P lies: its body's centre (tool.h), into X. */
+static void lying(const struct tool_polyp *p, const struct tool_params *par,
+		  double x[3])
+{
+	double h = p->paris == ANATOMY_PARIS_IP ? p->stalk_m + p->size_m / 2
+						: tool_polyp_height(p,
+							par->lift_m) / 2;
+
+	vec3_axpy(x, p->base, h, p->normal);
+}
+
+/* The suction takes the first small cut polyp the channel's exit
+ * reaches; *WHICH it. */
+static unsigned retrieve_step(struct tool *t, const struct tool_params *par,
+			      const struct tool_input *in, int *which)
+{
+	for (int i = 0; in->suction && i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+		double x[3];
+
+		if (p->state != TOOL_POLYP_CUT ||
+		    p->size_m > par->retrieve_max_m) {
+			continue;
+		}
+		lying(p, par, x);
+		if (vec3_dist(x, t->pose.exit) <=
+		    p->size_m / 2 + par->retrieve_reach_m) {
+			p->state = TOOL_POLYP_RETRIEVED;
+			*which = i;
+			return TOOL_EVENT_RETRIEVE;
+		}
+	}
+	return 0;
+}
+
+int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par)
+{
+	if (p->state == TOOL_POLYP_IN_PLACE && p->bites > 0 &&
+	    p->size_m > par->forceps_max_m) {
+		return TOOL_FATE_PARTLY;
+	}
+	return p->state;
 }
 
 unsigned tool_step(struct tool *t, const struct tool_params *par,
@@ -455,7 +558,11 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 	} else if (t->kind == TOOL_FORCEPS) {
 		ev = forceps_step(t, par, in, &which);
 	} else if (t->kind == TOOL_CLIP) {
-		ev = clip_step(t, par, in);
+		ev = clip_step(t, par, in, &which);
+	}
+	ev |= bleed_step(t, par, dt_s, !ev || which < 0, &which);
+	if (!ev || which < 0) {
+		ev |= retrieve_step(t, par, in, &which);
 	}
 	if (polyp) {
 		*polyp = which;
@@ -466,6 +573,8 @@ unsigned tool_step(struct tool *t, const struct tool_params *par,
 void tool_publish(const struct tool *t, unsigned events, int polyp,
 		  struct endosim_tool_state *out)
 {
+	double most = 0;
+
 	memset(out, 0, sizeof(*out));
 	out->kind = (uint32_t)t->kind;
 	out->pedal = t->pedal;
@@ -480,12 +589,22 @@ void tool_publish(const struct tool *t, unsigned events, int polyp,
 	out->event_polyp = polyp;
 	out->clips = (uint32_t)t->clips;
 	out->polyps = (uint32_t)t->polyps;
+	out->blood_m3 = t->blood_m3;
+	vec3_copy(out->clip_at, t->clip_at);
 	for (int i = 0; i < t->polyps; i++) {
 		const struct tool_polyp *p = &t->polyp[i];
 
 		out->polyp[i] = (struct endosim_tool_polyp){
 			.state = (uint32_t)p->state, .lifted = p->lifted,
 			.energy_j = p->energy_j, .bites = (uint32_t)p->bites,
+			.bleed = (uint32_t)p->bleed,
+			.bleed_m3_s = p->bleed_m3_s, .blood_m3 = p->blood_m3,
 		};
+		if (p->bleed_m3_s > most) {
+			most = p->bleed_m3_s;
+			vec3_copy(out->bleed_at, p->base);
+		}
+		out->bleeding += p->bleed_m3_s > 0;
+		out->bleed_m3_s += p->bleed_m3_s;
 	}
 }

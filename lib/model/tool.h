@@ -102,7 +102,8 @@
  * polyp in place within their cups' length of its body (a sphere of its
  * size at half its height) or, failing one, the mucosa within a cup's
  * length of the wall: TOOL_EVENT_BITE, the polyp's bites counted. A bite
- * takes a polyp of forceps_max_m (3 mm) or less whole (TOOL_EVENT_CUT):
+ * takes a polyp of forceps_max_m (3 mm) or less whole (TOOL_EVENT_CUT,
+ * and TOOL_EVENT_RETRIEVE: it leaves in the cups through the channel):
  * cold forceps resected adenomas of 4 mm or less about as completely as
  * a cold snare (96.9 against 100 %; Kim et al., GIE 2015), larger ones
  * less so, and the ESGE's 2024 update recommends against them for what
@@ -111,6 +112,53 @@
  * jaws' length of the wall is placed there (TOOL_EVENT_CLIP, clip_at):
  * what stops a bleeding point is the bleeding's slice. Cups 2.5 mm and
  * clip jaws 5 mm long: the sizes of common models, rounded (guesses).
+ *
+ * Bleeding. A stalk's artery bleeds when it is cut before it is
+ * coagulated: at the cut (hot or cold) an Ip stalk t thick, t at least
+ * bleed_min_m, bleeds when the energy the generator put into it is below
+ *   E_coag = coag_j_per_m3 x pi t^2 / 4 x t,
+ * the stalk heated through over a collar as long as it is thick.
+ * coag_j_per_m3 = 2.5e8 J/m^3 is heating tissue (about water, ~4 MJ/m^3/K)
+ * from 37 C by ~63 K to coagulate it (reasoned, the collar a guess).
+ * "Too fast", physically: the wire parts the stalk (E_cut, which grows as
+ * its section t^2) before the heat has coagulated its bulk (E_coag, as
+ * t^3): a cold cut (no energy), a cut closed cold after too short a press
+ * of the pedal, or a hot cut of a stalk thicker than cut_j_per_m2 /
+ * coag_j_per_m3 = 10 mm, where E_cut < E_coag whatever the power (the
+ * generator's power sets how long, not how much): the ESGE's threshold
+ * for prophylaxis before cutting a stalk (10 mm or more; Ferlitsch et
+ * al., Endoscopy 2017). A sessile or flat base's vessels are not
+ * modelled (it never bleeds). The bleeding point is the stalk's foot on
+ * the wall (the polyp's base); its flow is
+ *   Q = bleed_m_per_s x pi t^2 / 4
+ * (m^3/s; 1 mm/s over the stalk's section, a guess: 1.2 mL/min from a
+ * 5 mm stalk, 6.8 mL/min from 12 mm: an oozing to a spurting immediate
+ * post-polypectomy bleed). The blood shed each step is Q dt (the loop
+ * pours it into the patient's pool there: patient_bleed()), until a clip
+ * is placed with the point within half its jaws' length clip_m / 2 of
+ * the clip's point (it closes the point that step: TOOL_EVENT_CLIPPED,
+ * nothing shed in it), or bleed_stop_s (300 s, a guess: the normal
+ * bleeding time is 2 to 9 minutes) after the cut, when it stops by
+ * itself (TOOL_EVENT_STOPPED, in the step after the one that sheds its
+ * last). A point sheds in a step exactly when its flow after the step is
+ * above zero: the loop pours bleed_m3_s x dt of each into the pool.
+ *
+ * Retrieval. A cut polyp lies free in the lumen where it was cut (no
+ * fall under gravity: kept simple): its body's centre, the head's atop
+ * its stalk (Ip) or half its height over its base. With the suction
+ * valve pressed and the channel's exit within retrieve_reach_m (5 mm)
+ * of its body's surface, one no larger than retrieve_max_m (6 mm, a
+ * guess: soft tissue squeezed through the 3.2-3.8 mm channel into the
+ * trap; larger ones need a net) is sucked through the channel
+ * (TOOL_EVENT_RETRIEVE): retrieved. A larger one stays where it lies.
+ *
+ * Each polyp's fate: in place, captured, cut (lying in the lumen) or
+ * retrieved (its state); partly resected where the forceps bit one in
+ * place too big to take whole (in place with bites, tool_polyp_fate()).
+ *
+ * At most one polyp's event a step (the *POLYP of tool_step()): a stop
+ * by itself or a retrieval waits a step while another polyp's event
+ * takes this one.
  *
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
@@ -147,6 +195,25 @@ enum tool_polyp_state {
 	TOOL_POLYP_IN_PLACE = ENDOSIM_POLYP_IN_PLACE,
 	TOOL_POLYP_CAPTURED = ENDOSIM_POLYP_CAPTURED, /* held in the loop */
 	TOOL_POLYP_CUT = ENDOSIM_POLYP_CUT, /* cut free: lies in the lumen */
+	TOOL_POLYP_RETRIEVED = ENDOSIM_POLYP_RETRIEVED, /* sucked out */
+};
+
+/* A polyp's fate, as the assessment asks: its state, or partly resected
+ * (in place, bitten, too big for a bite to take whole). */
+enum tool_polyp_fate {
+	TOOL_FATE_IN_PLACE = TOOL_POLYP_IN_PLACE,
+	TOOL_FATE_CAPTURED = TOOL_POLYP_CAPTURED,
+	TOOL_FATE_CUT = TOOL_POLYP_CUT,
+	TOOL_FATE_RETRIEVED = TOOL_POLYP_RETRIEVED,
+	TOOL_FATE_PARTLY, /* bitten in place, too big for one bite */
+};
+
+/* A polyp's bleeding (enum endosim_bleed). */
+enum tool_bleed {
+	TOOL_BLEED_NONE = ENDOSIM_BLEED_NONE,
+	TOOL_BLEED_BLEEDING = ENDOSIM_BLEED_BLEEDING,
+	TOOL_BLEED_CLIPPED = ENDOSIM_BLEED_CLIPPED, /* a clip closed it */
+	TOOL_BLEED_STOPPED = ENDOSIM_BLEED_STOPPED, /* by itself */
 };
 
 /* What happened in a step: tool_step()'s bits. */
@@ -157,6 +224,10 @@ enum tool_polyp_state {
 #define TOOL_EVENT_LIFT ENDOSIM_TOOL_LIFT       /* an injection lifted one */
 #define TOOL_EVENT_BITE ENDOSIM_TOOL_BITE       /* the forceps' sample */
 #define TOOL_EVENT_CLIP ENDOSIM_TOOL_CLIP_PLACED /* a clip on the wall */
+#define TOOL_EVENT_BLEED ENDOSIM_TOOL_BLEED     /* a cut stalk bleeds */
+#define TOOL_EVENT_CLIPPED ENDOSIM_TOOL_CLIPPED /* a clip closed a point */
+#define TOOL_EVENT_STOPPED ENDOSIM_TOOL_STOPPED /* one stopped by itself */
+#define TOOL_EVENT_RETRIEVE ENDOSIM_TOOL_RETRIEVE /* a cut one sucked out */
 
 struct tool_params {
 	double channel_angle_rad; /* clockwise from 12 o'clock, image */
@@ -174,6 +245,12 @@ struct tool_params {
 	double jaw_m;             /* the forceps' cups, long */
 	double forceps_max_m;     /* a polyp a bite takes whole, at most */
 	double clip_m;            /* a clip's jaws, long */
+	double coag_j_per_m3;     /* what coagulates a stalk, per volume */
+	double bleed_min_m;       /* a stalk this thick or more bleeds */
+	double bleed_m_per_s;     /* the flow per area of its section */
+	double bleed_stop_s;      /* a bleed stops by itself after */
+	double retrieve_max_m;    /* the largest the channel sucks out */
+	double retrieve_reach_m;  /* the exit from its surface, at most */
 };
 
 #define TOOL_DEFAULT_CHANNEL_ANGLE_DEG 150.0
@@ -194,6 +271,12 @@ struct tool_params {
 #define TOOL_DEFAULT_JAW_M 0.0025
 #define TOOL_DEFAULT_FORCEPS_MAX_M 0.003
 #define TOOL_DEFAULT_CLIP_M 0.005
+#define TOOL_DEFAULT_COAG_J_PER_M3 2.5e8
+#define TOOL_DEFAULT_BLEED_MIN_M 0.003
+#define TOOL_DEFAULT_BLEED_M_PER_S 1e-3
+#define TOOL_DEFAULT_BLEED_STOP_S 300.0
+#define TOOL_DEFAULT_RETRIEVE_MAX_M 0.006
+#define TOOL_DEFAULT_RETRIEVE_REACH_M 0.005
 
 #define TOOL_PARAMS_DEFAULT { \
 		.channel_angle_rad = TOOL_DEFAULT_CHANNEL_ANGLE_RAD, \
@@ -208,13 +291,20 @@ struct tool_params {
 		.inject_m3_per_s = TOOL_DEFAULT_INJECT_M3_PER_S, \
 		.lift_m3 = TOOL_DEFAULT_LIFT_M3, .jaw_m = TOOL_DEFAULT_JAW_M, \
 		.forceps_max_m = TOOL_DEFAULT_FORCEPS_MAX_M, \
-		.clip_m = TOOL_DEFAULT_CLIP_M }
+		.clip_m = TOOL_DEFAULT_CLIP_M, \
+		.coag_j_per_m3 = TOOL_DEFAULT_COAG_J_PER_M3, \
+		.bleed_min_m = TOOL_DEFAULT_BLEED_MIN_M, \
+		.bleed_m_per_s = TOOL_DEFAULT_BLEED_M_PER_S, \
+		.bleed_stop_s = TOOL_DEFAULT_BLEED_STOP_S, \
+		.retrieve_max_m = TOOL_DEFAULT_RETRIEVE_MAX_M, \
+		.retrieve_reach_m = TOOL_DEFAULT_RETRIEVE_REACH_M }
 
 /* What the rig senses of the tool this cycle. */
 struct tool_input {
 	double depth_m;        /* its tip beyond the channel's exit */
 	double opening;        /* the handle, 0 closed .. 1 open */
 	bool pedal;            /* the cautery's, down */
+	bool suction;          /* the suction valve pressed */
 	bool wall;             /* whether wall_point and wall_normal hold */
 	double wall_point[3];  /* the wall nearest the tool's tip, m */
 	double wall_normal[3]; /* unit, into the lumen */
@@ -243,6 +333,11 @@ struct tool_polyp {
 	int state;           /* enum tool_polyp_state */
 	bool inside;         /* its axis inside the loop, last step */
 	double energy_j;     /* the cautery's into it so far */
+	double s_m;          /* its place along the centreline (the case's) */
+	int bleed;           /* enum tool_bleed */
+	double bleed_m3_s;   /* its flow now */
+	double bleed_s;      /* how long it has bled */
+	double blood_m3;     /* shed so far */
 };
 
 struct tool {
@@ -262,6 +357,7 @@ struct tool {
 	double bite_at[3];   /* the last bite's, m */
 	double clip_at[3];   /* the last clip's, m */
 	int clips;           /* placed */
+	double blood_m3;     /* every point's shed since the case loaded */
 	int captured;        /* the polyp the loop holds; -1 none */
 	bool injured;        /* this press of the pedal has injured */
 	int polyps;
@@ -315,6 +411,9 @@ double tool_polyp_height(const struct tool_polyp *p, double lift_m);
  * channel's exit (above: min(D, 2 l / pi)).
  */
 double tool_loop_diameter(double snare_m, double opening, double depth_m);
+
+/* Polyp P's fate (enum tool_polyp_fate) with PAR's forceps_max_m. */
+int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par);
 
 /* T as published, with this step's EVENTS and the POLYP they concern. */
 void tool_publish(const struct tool *t, unsigned events, int polyp,

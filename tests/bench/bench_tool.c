@@ -16,7 +16,9 @@
  *    crossing the loop's plane inside it, the handle cycling as above on
  *    a still tip, the polyps put back in place at each opening, so that
  *    every step computes every crossing and captures, cuts and injures
- *    as they come.
+ *    as they come, every one bleeding from the start of each cycle and
+ *    the suction valve held (each step sheds every point's blood and
+ *    looks for a cut one to retrieve).
  */
 #include <math.h>
 #include <stdio.h>
@@ -117,7 +119,8 @@ static void run(struct tool *t, const struct centreline *cl, long n,
 	static const struct tool_params par = TOOL_PARAMS_DEFAULT;
 	struct series us = { calloc((size_t)n, sizeof(double)), 0 };
 	struct endosim_scope_state sc;
-	struct tool_input in = { .depth_m = 0.02, .opening = 1 };
+	struct tool_input in = { .depth_m = 0.02, .opening = 1,
+				 .suction = worst };
 	long events = 0;
 
 	if (!us.v) {
@@ -137,6 +140,9 @@ static void run(struct tool *t, const struct centreline *cl, long n,
 			for (int i = 0; i < t->polyps; i++) {
 				t->polyp[i].state = TOOL_POLYP_IN_PLACE;
 				t->polyp[i].energy_j = 0;
+				t->polyp[i].bleed = TOOL_BLEED_BLEEDING;
+				t->polyp[i].bleed_m3_s = 2e-8;
+				t->polyp[i].bleed_s = 0;
 			}
 		}
 		t0 = now_us();

@@ -9,7 +9,7 @@
  * image's top-left origin). For each, one line:
  *
  *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE yellow=SHARE
- *          scope=SHARE box=X0,Y0,X1,Y1 grey=SHARE
+ *          scope=SHARE box=X0,Y0,X1,Y1 grey=SHARE blood=SHARE
  *
  * LUMA is the mean Rec. 601 luma (0..255); lit the share of pixels with
  * luma above 40; red the share of saturated red (a banner, an alarm, the
@@ -20,7 +20,9 @@
  * scope the share of the overview's scope green; box the bounding box of
  * the scope-green pixels (-1s when none); grey the share of light, nearly
  * colourless pixels (each channel above 80, within a quarter of red of
- * each other: a tool's white sheath and its steel, not the mucosa).
+ * each other: a tool's white sheath and its steel, not the mucosa); blood
+ * the share of deep red (red above 30, green and blue below a third of
+ * it: blood over the mucosa, not its pink).
  *
  * Exit 0, 1 when the file cannot be read, 2 on usage.
  */
@@ -37,7 +39,7 @@ struct region {
 };
 
 struct tally {
-	long n, lit, red, amber, yellow, scope, grey;
+	long n, lit, red, amber, yellow, scope, grey, blood;
 	double luma;
 	int box[4];
 };
@@ -86,6 +88,7 @@ static void count(struct tally *t, const unsigned char *p, int x, int y)
 	t->amber += r > 120 && g > 0.45 * r && g < 0.8 * r && b < 0.3 * r;
 	t->yellow += r > 30 && g > 0.62 * r && g < 1.1 * r && b < 0.5 * g;
 	t->scope += scope;
+	t->blood += r > 30 && g < r / 3 && b < r / 3;
 	t->grey += r > 80 && g > 80 && b > 80 &&
 		   abs(r - g) < 0.25 * r && abs(g - b) < 0.25 * r &&
 		   abs(r - b) < 0.25 * r;
@@ -112,10 +115,10 @@ static void report(const char *name, const unsigned char *img, int w, int h,
 	}
 	n = t.n ? (double)t.n : 1;
 	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f yellow=%.4f "
-	       "scope=%.4f box=%d,%d,%d,%d grey=%.4f\n", name, t.n,
-	       t.luma / n, t.lit / n, t.red / n, t.amber / n, t.yellow / n,
-	       t.scope / n, t.box[0], t.box[1], t.box[2], t.box[3],
-	       t.grey / n);
+	       "scope=%.4f box=%d,%d,%d,%d grey=%.4f blood=%.4f\n", name,
+	       t.n, t.luma / n, t.lit / n, t.red / n, t.amber / n,
+	       t.yellow / n, t.scope / n, t.box[0], t.box[1], t.box[2],
+	       t.box[3], t.grey / n, t.blood / n);
 }
 
 int main(int argc, char **argv)

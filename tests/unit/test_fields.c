@@ -69,8 +69,6 @@ static const struct {
 	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
 	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
 	PATIENT(reserved, "padding"),
-	NOT(fields_tool, struct endosim_tool_state, reserved, "padding"),
-	NOT(fields_tool_polyp, struct endosim_tool_polyp, reserved, "padding"),
 #undef NOT
 #undef STATE
 #undef CAUSE
@@ -440,7 +438,9 @@ static const char csv_columns[] =
 	"patient_spo2_1,patient_torn_segment,"
 	/* format 6: the tool in the working channel */
 	"tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,"
-	"tool_captured,tool_events,tool_event_polyp";
+	"tool_captured,tool_events,tool_event_polyp,"
+	/* format 7: the bleeding */
+	"tool_bleed_m3_s";
 
 /* The column called NAME among C's N. */
 static const struct fields_column *column(const struct fields_column *c,
@@ -495,9 +495,9 @@ static void test_columns(void **state)
 			 FIELDS_STORED_U32);
 	assert_int_equal(column(c, n, "tool_opening_1")->stored,
 			 FIELDS_STORED_F32);
-	assert_int_equal(c[n - 1].stored, FIELDS_STORED_I32);
+	assert_int_equal(c[n - 1].stored, FIELDS_STORED_F32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, tool_event_polyp));
+			 offsetof(struct session_record, tool_bleed_m3_s));
 }
 
 /* A state whose every double and word differs. */

@@ -218,7 +218,7 @@ static int read_sized(const char *head, size_t length, size_t fields,
 			.burst_segment = -1, .lumen_factor = { [8] = 1.2f },
 			.pain = 4.5f, .torn_segment = 2,
 			.tool_kind = ENDOSIM_TOOL_SNARE, .tool_captured = 3,
-			.tool_event_polyp = 3,
+			.tool_event_polyp = 3, .tool_bleed_m3_s = 2e-8f,
 		};
 
 		memcpy(raw, &r, fields);
@@ -250,7 +250,8 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * of a file of format 3 or older has format 3's columns, a format-4
  * file's the patient's body's too (and nothing torn by the tip), a
  * format-5 file's its pain as well (and no tool), a
- * format-6 file's the tool's too.
+ * format-6 file's the tool's too (and no bleeding), a format-7 file's
+ * the bleeding's flow as well.
  */
 static void test_old_layout(void **state)
 {
@@ -348,13 +349,27 @@ static void test_old_layout(void **state)
 	assert_int_equal(st.tool.captured, -1);
 	assert_int_equal(st.tool.event_polyp, -1);
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=6\nrecord_size=552\n", 552, all,
-				    &f), 0);
+	/* format 6's: the tool, no bleeding */
+	assert_int_equal(SESSION_RECORD_SIZE_6,
+			 offsetof(struct session_record, tool_bleed_m3_s));
+	assert_int_equal(read_sized("format=6\nrecord_size=552\n", 552,
+				    SESSION_RECORD_SIZE_6, &f), 0);
 	assert_int_equal(f.records[2].torn_segment, 2);
 	assert_int_equal(f.records[2].tool_kind, ENDOSIM_TOOL_SNARE);
 	assert_int_equal(f.records[2].tool_captured, 3);
+	assert_true(f.records[2].tool_bleed_m3_s == 0);
 	csv_header(&f, csv, sizeof(csv));
 	assert_non_null(strstr(csv, ",patient_torn_segment,tool_kind,"));
+	assert_null(strstr(csv, "tool_bleed"));
+	session_file_close(&f);
+	assert_int_equal(read_sized("format=7\nrecord_size=556\n", 556, all,
+				    &f), 0);
+	assert_int_equal(f.records[2].tool_captured, 3);
+	assert_true(f.records[2].tool_bleed_m3_s == 2e-8f);
+	session_record_to_state(&f.records[2], &st);
+	assert_true(st.tool.bleed_m3_s == (double)2e-8f);
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",tool_event_polyp,tool_bleed_m3_s"));
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);

@@ -22,6 +22,17 @@
  *  - the wall: the pedal on mucosa with nothing captured, or on a held
  *    unlifted sessile base, injures once per press; a loop off the wall
  *    or a lifted base does not;
+ *  - bleeding: a stalk cut before coagulated (cold, or closed cold after
+ *    0.9 of E_coag / P; hot above 10 mm) bleeds Q = bleed_m_per_s x its
+ *    section, not after 1.1 of E_coag, nor a thin stalk, an 8 mm one cut
+ *    hot or a sessile base; the blood shed is Q t at every step; it
+ *    stops by itself bleed_stop_s after the cut, to a step; a clip on the
+ *    point (or within half its jaws) stops it in its step, one a clip's
+ *    width away does not;
+ *  - retrieval: a cut polyp of 6 mm or less is sucked out with the valve
+ *    pressed and the channel's exit within reach, not a 7 mm one, one
+ *    beyond reach or without suction; a bitten large polyp's fate is
+ *    partly resected;
  *  - the case's polyps on the colon's wall (the polyps case).
  */
 #include <errno.h>
@@ -346,6 +357,7 @@ static bool cold_cuts(double size_m)
 	run(&b, 500, 0);
 	run(&b, 500, 0);
 	assert_int_equal(b.injuries, 0);
+	assert_int_equal(b.events & TOOL_EVENT_BLEED, 0); /* no stalk */
 	assert_int_equal(b.t.polyp[i].state, b.cut_step ? TOOL_POLYP_CUT :
 				      TOOL_POLYP_CAPTURED);
 	return b.cut_step > 0;
@@ -511,8 +523,9 @@ static void test_forceps_bite(void **unused)
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0), 0);
 	/* a diminutive polyp taken whole; a larger one sampled */
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.003),
-			 TOOL_EVENT_BITE | TOOL_EVENT_CUT);
-	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_CUT);
+			 TOOL_EVENT_BITE | TOOL_EVENT_CUT |
+				 TOOL_EVENT_RETRIEVE);
+	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_RETRIEVED);
 	assert_int_equal(jaws_on(&b, TOOL_FORCEPS, -1, 0.006),
 			 TOOL_EVENT_BITE);
 	assert_int_equal(b.t.polyp[0].state, TOOL_POLYP_IN_PLACE);
@@ -573,6 +586,223 @@ static void test_still_and_other_tools(void **unused)
 	assert_near(b.t.loop_m, 0, 0);
 }
 
+/* ------------------------------------------------------------ bleeding */
+
+/* Q = bleed_m_per_s x pi t^2 / 4 and E_coag = coag_j_per_m3 x pi t^2/4 t */
+static double flow(double t_m)
+{
+	return par.bleed_m_per_s * M_PI * t_m * t_m / 4;
+}
+
+static double coag_j(double t_m)
+{
+	return par.coag_j_per_m3 * M_PI * t_m * t_m / 4 * t_m;
+}
+
+/* A stalk T_M thick held, PEDAL_S of the pedal, then (the pedal up) the
+ * handle closed all the way: whether the cut bled (and its flow then). */
+static bool cut_bleeds(double t_m, double pedal_s, struct bench *b)
+{
+	int i = held_stalk(b, t_m);
+
+	b->in.pedal = true;
+	run(b, lround(pedal_s / DT), 0.1);
+	b->in.pedal = false;
+	run(b, 500, 0);
+	assert_true(b->cut_step > 0);
+	assert_int_equal(b->t.polyp[i].state, TOOL_POLYP_CUT);
+	if (!(b->events & TOOL_EVENT_BLEED)) {
+		assert_int_equal(b->t.polyp[i].bleed, TOOL_BLEED_NONE);
+		assert_near(b->t.polyp[i].bleed_m3_s, 0, 0);
+		return false;
+	}
+	assert_int_equal(b->t.polyp[i].bleed, TOOL_BLEED_BLEEDING);
+	assert_near(b->t.polyp[i].bleed_m3_s, flow(t_m), 1e-18);
+	return true;
+}
+
+/*
+ * A stalk cut before it is coagulated bleeds: cold (5 and 8 mm), or
+ * closed cold after 0.9 of E_coag / P; not after 1.1 of it, nor a 2.5 mm
+ * stalk (below bleed_min_m), nor a hot cut of 8 mm (E_cut > E_coag);
+ * a hot cut of 12 mm does (E_cut < E_coag: above 10 mm); a sessile base
+ * cut cold never.
+ */
+static void test_bleed_uncoagulated_stalk(void **unused)
+{
+	struct bench b;
+	double t = 0.005;
+
+	(void)unused;
+	assert_true(cut_bleeds(t, 0, &b));
+	assert_int_equal(b.polyp, 0);
+	assert_true(cut_bleeds(0.008, 0, &b));
+	assert_false(cut_bleeds(0.0025, 0, &b));
+	assert_true(cut_bleeds(t, 0.9 * coag_j(t) / par.hot_power_w, &b));
+	assert_false(cut_bleeds(t, 1.1 * coag_j(t) / par.hot_power_w, &b));
+	/* hot through: E_cut = cut_j_per_m2 pi t^2 / 4 */
+	for (int k = 0; k < 2; k++) {
+		double th = k ? 0.012 : 0.008;
+		double cut_s = par.cut_j_per_m2 * M_PI * th * th / 4 /
+			       par.hot_power_w;
+		int i = held_stalk(&b, th);
+
+		b.in.pedal = true;
+		run(&b, lround(1.1 * cut_s / DT), 0.1);
+		assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+		assert_int_equal((b.events & TOOL_EVENT_BLEED) != 0, k);
+	}
+	assert_true(cold_cuts(0.006)); /* a base: it checks no bleed */
+}
+
+/* The cut 5 mm stalk's bleed: V = Q t at every step, and it stops by
+ * itself bleed_stop_s after the cut (to a step), not before. */
+static void test_bleed_volume_and_stop(void **unused)
+{
+	const double dt = 0.01;
+	struct bench b;
+	double q = flow(0.005), bled_s;
+	bool stopped = false;
+
+	(void)unused;
+	assert_true(cut_bleeds(0.005, 0, &b));
+	bled_s = (double)(500 - b.cut_step + 1) * DT; /* from the cut's */
+	assert_near(b.t.blood_m3, q * bled_s, 1e-9 * q * bled_s);
+	assert_near(b.t.polyp[0].blood_m3, b.t.blood_m3, 0);
+	while (bled_s < 2 * par.bleed_stop_s) {
+		unsigned ev = tool_step(&b.t, &par, &b.sc, &b.in, dt, NULL);
+
+		if (ev & TOOL_EVENT_STOPPED) {
+			stopped = true;
+			break;
+		}
+		assert_int_equal(ev, 0);
+		bled_s += dt;
+		assert_near(b.t.blood_m3, q * bled_s, 1e-9 * q * bled_s);
+	}
+	assert_true(stopped);
+	assert_true(bled_s >= par.bleed_stop_s - dt &&
+		    bled_s <= par.bleed_stop_s + dt);
+	assert_int_equal(b.t.polyp[0].bleed, TOOL_BLEED_STOPPED);
+	assert_near(b.t.polyp[0].bleed_m3_s, 0, 0);
+	run(&b, 100, 0);
+	assert_near(b.t.blood_m3, q * bled_s, 1e-9 * q * bled_s);
+}
+
+/* The scope moved so that the clip's point lands OFF_M along the loop's
+ * width from polyp I's base, on the wall there; the clip closed. */
+static unsigned clip_at_point(struct bench *b, int i, double off_m)
+{
+	const struct tool_polyp *p = &b->t.polyp[i];
+	double jaws[3];
+	unsigned ev = 0;
+
+	assert_int_equal(tool_select(&b->t, TOOL_CLIP, 0), 0);
+	vec3_axpy(jaws, p->base, off_m, b->t.pose.side);
+	vec3_axpy(b->sc.tip, jaws, -(par.clip_m + DEPTH), b->t.pose.dir);
+	vec3_axpy(b->sc.tip, b->sc.tip, -par.channel_offset_m,
+		  b->t.pose.radial);
+	b->in.depth_m = DEPTH;
+	b->in.wall = true;
+	vec3_copy(b->in.wall_point, jaws);
+	vec3_copy(b->in.wall_normal, p->normal);
+	b->events = 0;
+	run(b, 100, 1);
+	assert_vec_near(b->t.jaws, jaws, 1e-12);
+	run(b, 100, 0);
+	ev = b->events;
+	assert_true(ev & TOOL_EVENT_CLIP);
+	return ev;
+}
+
+/* A clip on the point stops the bleed in its step (nothing shed after);
+ * one at 0.45 clip_m too; one a clip's width (clip_m) away does not. */
+static void test_clip_stops_bleed(void **unused)
+{
+	static const double off[] = { 0, 0.45 * TOOL_DEFAULT_CLIP_M,
+				       TOOL_DEFAULT_CLIP_M };
+
+	(void)unused;
+	for (size_t k = 0; k < sizeof(off) / sizeof(off[0]); k++) {
+		bool stops = off[k] <= par.clip_m / 2;
+		struct bench b;
+		double shed, q = flow(0.005);
+		unsigned ev;
+
+		assert_true(cut_bleeds(0.005, 0, &b));
+		ev = clip_at_point(&b, 0, off[k]);
+		assert_int_equal((ev & TOOL_EVENT_CLIPPED) != 0, stops);
+		shed = b.t.blood_m3;
+		run(&b, 1000, 0);
+		assert_int_equal(b.t.polyp[0].bleed, stops ?
+				 TOOL_BLEED_CLIPPED : TOOL_BLEED_BLEEDING);
+		assert_near(b.t.blood_m3 - shed, stops ? 0 : q * 1000 * DT,
+			    1e-9 * q);
+	}
+}
+
+/* ----------------------------------------------------------- retrieval */
+
+/* A sessile SIZE_M polyp cut cold; the channel's exit then moved to
+ * REACH_M off its body's surface (radially), with the suction SUCTION:
+ * its state after 10 steps. */
+static int retrieved(double size_m, double reach_m, bool suction)
+{
+	struct bench b;
+	double body[3], exit[3];
+	int i;
+
+	bench_init(&b);
+	open_snare(&b, 0.025);
+	i = polyp_at(&b, ANATOMY_PARIS_IS, size_m, 0, 0, false);
+	run(&b, 500, 0.2);
+	run(&b, 500, 0);
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+	assert_int_equal(b.events & TOOL_EVENT_RETRIEVE, 0);
+	vec3_axpy(body, b.t.polyp[i].base, size_m / 4, b.t.polyp[i].normal);
+	vec3_axpy(exit, body, size_m / 2 + reach_m, b.t.pose.side);
+	vec3_axpy(b.sc.tip, exit, -par.channel_offset_m, b.t.pose.radial);
+	b.in.suction = suction;
+	b.events = 0;
+	run(&b, 10, 0);
+	assert_vec_near(b.t.pose.exit, exit, 1e-12);
+	assert_int_equal((b.events & TOOL_EVENT_RETRIEVE) != 0,
+			 b.t.polyp[i].state == TOOL_POLYP_RETRIEVED);
+	return b.t.polyp[i].state;
+}
+
+/* Sucked out when small, the exit within reach and the valve pressed;
+ * left lying otherwise. */
+static void test_retrieve_small_only(void **unused)
+{
+	const double r = TOOL_DEFAULT_RETRIEVE_REACH_M;
+
+	(void)unused;
+	assert_int_equal(retrieved(0.005, 0.9 * r, true),
+			 TOOL_POLYP_RETRIEVED);
+	assert_int_equal(retrieved(0.006, 0, true), TOOL_POLYP_RETRIEVED);
+	assert_int_equal(retrieved(0.007, 0, true), TOOL_POLYP_CUT);
+	assert_int_equal(retrieved(0.005, 1.1 * r, true), TOOL_POLYP_CUT);
+	assert_int_equal(retrieved(0.005, 0, false), TOOL_POLYP_CUT);
+}
+
+/* Each fate: a 6 mm polyp bitten in place is partly resected. */
+static void test_fates(void **unused)
+{
+	struct tool_polyp p = { .size_m = 0.006 };
+
+	(void)unused;
+	assert_int_equal(tool_polyp_fate(&p, &par), TOOL_FATE_IN_PLACE);
+	p.bites = 1;
+	assert_int_equal(tool_polyp_fate(&p, &par), TOOL_FATE_PARTLY);
+	p.size_m = 0.003;
+	assert_int_equal(tool_polyp_fate(&p, &par), TOOL_FATE_IN_PLACE);
+	p.state = TOOL_POLYP_CUT;
+	assert_int_equal(tool_polyp_fate(&p, &par), TOOL_FATE_CUT);
+	p.state = TOOL_POLYP_RETRIEVED;
+	assert_int_equal(tool_polyp_fate(&p, &par), TOOL_FATE_RETRIEVED);
+}
+
 /* -------------------------------------------------------- on the colon */
 
 static void test_place_polyps_on_wall(void **unused)
@@ -624,6 +854,11 @@ int main(void)
 		cmocka_unit_test(test_forceps_bite),
 		cmocka_unit_test(test_clip_on_wall),
 		cmocka_unit_test(test_still_and_other_tools),
+		cmocka_unit_test(test_bleed_uncoagulated_stalk),
+		cmocka_unit_test(test_bleed_volume_and_stop),
+		cmocka_unit_test(test_clip_stops_bleed),
+		cmocka_unit_test(test_retrieve_small_only),
+		cmocka_unit_test(test_fates),
 		cmocka_unit_test(test_place_polyps_on_wall),
 	};
 

@@ -18,6 +18,12 @@
  *    energy published;
  *  - a stale input (the client stops sending) holds the tool and the
  *    handle still and the pedal up: no energy goes in while it lasts;
+ *  - the stalk cut cold bleeds its documented flow, published; the blood
+ *    shed is the flow times the time, all of it in the polyp's
+ *    segment's pool when there is a patient;
+ *  - the hand's suction valve reaches the tool: a 6 mm polyp cut and
+ *    lying before the channel's exit is retrieved with it pressed, left
+ *    lying without;
  *  - the snare closed on the case's sessile polyp, unlifted, the pedal
  *    down: an injury of the wall, the patient's perforation in the same
  *    cycle (torn_segment; with no patient, the tool's event alone).
@@ -58,12 +64,14 @@ struct run {
 	int is;            /* and its first sessile one */
 };
 
-/* The loop on the polyps case, the patient there or not. */
-static void start(struct run *r, bool patient)
+/* The loop on the polyps case, the patient there or not, the hand's
+ * scenario LINE (NULL: none). */
+static void start_with(struct run *r, bool patient, const char *line)
 {
 	char err[512];
 	struct colon *c;
 	const struct anatomy *a;
+	struct scenario *scn = NULL;
 
 	memset(r, 0, sizeof(*r));
 	config_defaults(&r->cfg);
@@ -86,11 +94,22 @@ static void start(struct run *r, bool patient)
 		}
 	}
 	assert_true(r->ip >= 0 && r->is >= 0);
-	r->o = offline_create_with(&r->cfg, c, NULL, err, sizeof(err));
+	if (line) {
+		scn = scenario_create();
+		assert_non_null(scn);
+		assert_int_equal(scenario_append(scn, line, err, sizeof(err)),
+				 0);
+	}
+	r->o = offline_create_with(&r->cfg, c, scn, err, sizeof(err));
 	if (!r->o) {
 		fail_msg("%s", err);
 	}
 	r->depth_m = -DEPTH_M; /* in the channel */
+}
+
+static void start(struct run *r, bool patient)
+{
+	start_with(r, patient, NULL);
 }
 
 /* One cycle, the hand's input renewed unless STALE. */
@@ -216,6 +235,22 @@ static long pedal_until_cut(struct run *r, long first, long stale)
 	return down;
 }
 
+/* The snare selected, out and open, the case's stalk moved under it. */
+static void snare_over_stalk(struct run *r)
+{
+	offline_tool_select(r->o, TOOL_SNARE, SNARE_M);
+	step(r, false);
+	move(r, 100, DEPTH_M, 0);          /* the sheath out, closed */
+	move(r, 1, DEPTH_M, 0);
+	assert_true(r->st->tool.loop_m == 0);
+	move(r, 200, DEPTH_M, 1);          /* open: d = D */
+	move(r, 1, DEPTH_M, 1);
+	assert_true(r->st->tool.loop_m == SNARE_M);
+	polyp_under_loop(r, r->ip);
+	move(r, 5, DEPTH_M, 1);            /* inside the open loop */
+	assert_int_equal(r->st->tool.captured, -1);
+}
+
 static void test_capture_and_cut(void **state)
 {
 	struct run r;
@@ -225,17 +260,7 @@ static void test_capture_and_cut(void **state)
 
 	(void)state;
 	start(&r, false);
-	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
-	step(&r, false);
-	move(&r, 100, DEPTH_M, 0);          /* the sheath out, closed */
-	move(&r, 1, DEPTH_M, 0);
-	assert_true(r.st->tool.loop_m == 0);
-	move(&r, 200, DEPTH_M, 1);          /* open: d = D */
-	move(&r, 1, DEPTH_M, 1);
-	assert_true(r.st->tool.loop_m == SNARE_M);
-	polyp_under_loop(&r, r.ip);
-	move(&r, 5, DEPTH_M, 1);            /* inside the open loop */
-	assert_int_equal(r.st->tool.captured, -1);
+	snare_over_stalk(&r);
 	r.events = 0;
 	move(&r, 300, DEPTH_M, SHUT);       /* close around the stalk */
 	move(&r, 1, DEPTH_M, SHUT);
@@ -263,6 +288,103 @@ static void test_capture_and_cut(void **state)
 /* The snare closed on the sessile polyp's unlifted base and the pedal
  * down: an injury of the wall, the patient's perforation (torn_segment)
  * in the cycle it happens; without the patient, the tool's event alone. */
+/*
+ * The stalk cut cold (the handle closed all the way, no pedal): it
+ * bleeds Q = bleed_m_per_s pi t^2 / 4, published; N cycles later the
+ * blood shed is Q N dt, and with the patient, all of it in the pool of
+ * one segment, the polyp's.
+ */
+static void test_cold_cut_bleeds_into_pool(void **state)
+{
+	struct run r;
+	struct tool_params par;
+	double t_m, q, before[ENDOSIM_SEGMENTS], added = 0;
+	int changed = 0;
+
+	(void)state;
+	start(&r, true);
+	cases_tool_params(&r.cfg, &par);
+	snare_over_stalk(&r);
+	move(&r, 300, DEPTH_M, SHUT);
+	assert_int_equal(r.st->tool.captured, r.ip);
+	t_m = tool_polyp_thickness(&offline_tool(r.o)->polyp[r.ip]);
+	q = par.bleed_m_per_s * M_PI * t_m * t_m / 4;
+	memcpy(before, r.st->patient.fluid_m3, sizeof(before));
+	r.events = 0;
+	move(&r, 10, DEPTH_M, 0);
+	for (long k = 0; k < 1000; k++) {
+		step(&r, false);
+	}
+	assert_true(r.events & ENDOSIM_TOOL_CUT);
+	assert_true(r.events & ENDOSIM_TOOL_BLEED);
+	assert_int_equal(r.st->tool.bleeding, 1);
+	assert_int_equal(r.st->tool.polyp[r.ip].bleed, ENDOSIM_BLEED_BLEEDING);
+	assert_true(fabs(r.st->tool.bleed_m3_s - q) <= 1e-12 * q);
+	print_message("stalk %.1f mm: %.2f mL/min, %.4f mL shed\n", t_m * 1e3,
+		      q * 6e7, r.st->tool.blood_m3 * 1e6);
+	/* the cut came in one of the 10 closing cycles */
+	assert_true(r.st->tool.blood_m3 >= q * 1001 * DT * (1 - 1e-9) &&
+		    r.st->tool.blood_m3 <= q * 1010 * DT * (1 + 1e-9));
+	for (int i = 0; i < ENDOSIM_SEGMENTS; i++) {
+		double d = r.st->patient.fluid_m3[i] - before[i];
+
+		changed += d != 0;
+		added += d;
+	}
+	assert_int_equal(changed, 1);
+	assert_true(fabs(added - r.st->tool.blood_m3) <= 1e-9 * added);
+	offline_destroy(r.o);
+}
+
+/*
+ * The case's 6 mm sessile polyp cut cold under the loop, then laid
+ * (where it lies: tool.h) 6 mm from the channel's exit, the hand holding
+ * the suction valve (SUCTION) or not: retrieved through the channel, or
+ * left lying.
+ */
+static int retrieved(bool suction)
+{
+	struct run r;
+	struct tool_polyp *p;
+	struct tool_params par;
+	struct tool_pose pose;
+	int i = 2, state;
+
+	start_with(&r, false, suction ? "0 valve suction on" : NULL);
+	cases_tool_params(&r.cfg, &par);
+	assert_true(offline_tool(r.o)->polyp[i].size_m == 0.006);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 100, DEPTH_M, 1);
+	move(&r, 1, DEPTH_M, 1);
+	polyp_under_loop(&r, i);
+	move(&r, 5, DEPTH_M, 1);
+	r.events = 0;
+	move(&r, 300, DEPTH_M, 0);
+	assert_true(r.events & ENDOSIM_TOOL_CUT);
+	assert_int_equal(r.st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
+	/* its body (half its height over its base) 6 mm ahead of the exit */
+	p = &offline_tool(r.o)->polyp[i];
+	tool_pose(&par, &r.st->scope, r.depth_m, &pose);
+	vec3_axpy(p->base, pose.exit, 0.006, pose.dir);
+	vec3_axpy(p->base, p->base, -tool_polyp_height(p, par.lift_m) / 2,
+		  p->normal);
+	r.events = 0;
+	move(&r, 20, DEPTH_M, 0);
+	state = (int)r.st->tool.polyp[i].state;
+	assert_int_equal((r.events & ENDOSIM_TOOL_RETRIEVE) != 0,
+			 state == ENDOSIM_POLYP_RETRIEVED);
+	offline_destroy(r.o);
+	return state;
+}
+
+static void test_retrieve_by_suction(void **state)
+{
+	(void)state;
+	assert_int_equal(retrieved(true), ENDOSIM_POLYP_RETRIEVED);
+	assert_int_equal(retrieved(false), ENDOSIM_POLYP_CUT);
+}
+
 static void injury(bool patient)
 {
 	struct run r;
@@ -307,6 +429,8 @@ int main(void)
 		cmocka_unit_test(test_select_refused),
 		cmocka_unit_test(test_capture_and_cut),
 		cmocka_unit_test(test_injury_perforates),
+		cmocka_unit_test(test_cold_cut_bleeds_into_pool),
+		cmocka_unit_test(test_retrieve_by_suction),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -6,7 +6,9 @@
  * dir and dir x radial, starting at the sheath's tip; the forceps' cups
  * and the clip's prongs opening with the handle; the needle only past
  * half open; everything moved with the lens; nothing while the tool is in
- * the channel, for no tool, or for a state not finite.
+ * the channel, for no tool, or for a state not finite; a bleeding point
+ * welling from its place towards the tip, the view reddened by the flow,
+ * and the clip placed standing on the wall, tool in hand or not.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -198,6 +200,54 @@ static void nothing(void **state)
 	assert_int_equal(v.parts, 1); /* the sheath, no ring */
 }
 
+/* What the tools left: no tool in hand, a point bleeding a 5 mm stalk's
+ * flow (the view half red) welling from bleed_at towards the tip, and
+ * the clip placed standing at clip_at; nothing of either without them. */
+static void on_the_wall(void **unused)
+{
+	struct toolview v;
+	double at[3], to_tip[3], d[3];
+
+	(void)unused;
+	setup_tool(ENDOSIM_TOOL_NONE, -0.01, 0);
+	vec3_set(at, 0.02, 0.0, 0.13);
+	vec3_copy(tool.bleed_at, at);
+	tool.bleed_m3_s = TOOLVIEW_BLOOD_M3_S;
+	tool.bleeding = 1;
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 1);
+	assert_true(fabs(v.blood - 0.5) < 1e-6);
+	assert_true(dist_f(v.part[0].p[0], at) < TOL);
+	assert_true(v.part[0].rgb[0] > 4 * v.part[0].rgb[1]); /* red */
+	vec3_sub(to_tip, sc.tip, at);
+	vec3_normalize(to_tip);
+	for (int k = 0; k < 3; k++) {
+		d[k] = v.part[0].p[1][k] - v.part[0].p[0][k];
+	}
+	assert_true(fabs(vec3_dot(d, to_tip) - TOOLVIEW_WELL_M) < TOL);
+	tool.clips = 1;
+	vec3_set(tool.clip_at, 0.021, 0.0, 0.13);
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 2);
+	assert_true(dist_f(v.part[1].p[0], tool.clip_at) < TOL);
+	assert_true(v.part[1].metal);
+	tool.bleeding = 0;
+	tool.bleed_m3_s = 0;
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.parts, 1);
+	assert_true(v.part[0].metal);
+	assert_true(v.blood == 0);
+	assert_true(toolview_redness(NAN) == 0);
+	assert_true(fabs(toolview_redness(3 * TOOLVIEW_BLOOD_M3_S) - 0.75) <
+		    1e-12);
+	/* the polyps retrieved are gone from the view, no other */
+	tool.polyps = 3;
+	tool.polyp[0].state = ENDOSIM_POLYP_CUT;
+	tool.polyp[2].state = ENDOSIM_POLYP_RETRIEVED;
+	toolview_build(&tool, &sc, none, &v);
+	assert_int_equal(v.gone, 1u << 2);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -206,6 +256,7 @@ int main(void)
 		cmocka_unit_test(jaws),
 		cmocka_unit_test(with_the_lens),
 		cmocka_unit_test(nothing),
+		cmocka_unit_test(on_the_wall),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
