@@ -215,6 +215,11 @@ struct metrics_result {
 	uint32_t tool_injuries;    /* current into the wall */
 	uint32_t biopsies;         /* the forceps' bites */
 	uint32_t clips;            /* placed */
+	uint32_t bleeds;           /* bleeding points (format 7) */
+	uint32_t bleeds_clipped;   /* ... stopped by a clip */
+	double bleed_control_s;    /* the mean time from a bleeding's start to
+				      its stop, by a clip or by itself, over
+				      those stopped; 0: none */
 	uint32_t n_polyp;          /* of polyp[]: 0 without a tool in hand */
 	struct metrics_polyp polyp[METRICS_MAX_POLYPS];
 	uint32_t n_force;          /* episodes kept below */

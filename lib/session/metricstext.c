@@ -53,6 +53,7 @@ static const struct metricstext_field fields[] = {
 	FIELD_U(polyps_resected), FIELD_U(polyps_partly),
 	FIELD_U(polyps_retrieved), FIELD_D(resection_s), FIELD_D(cautery_s),
 	FIELD_U(tool_injuries), FIELD_U(biopsies), FIELD_U(clips),
+	FIELD_U(bleeds), FIELD_U(bleeds_clipped), FIELD_D(bleed_control_s),
 };
 _Static_assert(ANATOMY_SEGMENTS == 9, "metrics: a mucosa field a segment");
 _Static_assert(ENDOSIM_PAIN_CAUSES == 5, "metrics: a field a pain cause");

@@ -75,6 +75,10 @@ static const char *const migrations[RECORDS_SCHEMA_VERSION] = {
 	"ALTER TABLE measures ADD COLUMN tool_injuries INTEGER;"
 	"ALTER TABLE measures ADD COLUMN biopsies INTEGER;"
 	"ALTER TABLE measures ADD COLUMN clips INTEGER;",
+	/* 5: the bleeding (format 7; therapy.h) */
+	"ALTER TABLE measures ADD COLUMN bleeds INTEGER;"
+	"ALTER TABLE measures ADD COLUMN bleeds_clipped INTEGER;"
+	"ALTER TABLE measures ADD COLUMN bleed_control_s REAL;",
 };
 
 struct records {

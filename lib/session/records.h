@@ -38,7 +38,7 @@
 #include "session/metrics.h"
 #include "session/sessiondir.h"
 
-#define RECORDS_SCHEMA_VERSION 4
+#define RECORDS_SCHEMA_VERSION 5
 #define RECORDS_DEFAULT_NAME "records.sqlite"
 
 struct records;

@@ -40,6 +40,17 @@ static void measures(FILE *o, const struct metrics_result *m)
 		m->biopsies == 1 ? "" : "s", m->clips,
 		m->clips == 1 ? "" : "s");
 	htmlpage_row_end(o, "the forceps' samples; the clips placed");
+	htmlpage_row_begin(o, "Bleeding",
+			   m->bleeds > m->bleeds_clipped ? "warn" : "");
+	fprintf(o, "%u point%s, %u clipped", m->bleeds,
+		m->bleeds == 1 ? "" : "s", m->bleeds_clipped);
+	if (m->bleed_control_s > 0) {
+		fputs(", stopped after ", o);
+		htmlpage_duration(o, m->bleed_control_s);
+	}
+	htmlpage_row_end(o, "cut stalks bleeding; the mean time to stop, by "
+			 "a clip or by itself (the hemostasis trainer: a "
+			 "clip in 20 s, experts; 73 s, beginners)");
 	fputs("</table>\n", o);
 }
 

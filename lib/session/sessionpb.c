@@ -49,7 +49,9 @@ static size_t episodes_out(Endosim__MetricsEpisode *ep,
 	X(polyps_resected, polyps_resected) X(polyps_partly, polyps_partly)  \
 	X(polyps_retrieved, polyps_retrieved) X(resection_s, resection_s)    \
 	X(cautery_s, cautery_s) X(tool_injuries, tool_injuries)              \
-	X(biopsies, biopsies) X(clips, clips)
+	X(biopsies, biopsies) X(clips, clips)                                \
+	X(bleeds, bleeds) X(bleeds_clipped, bleeds_clipped)                  \
+	X(bleed_control_s, bleed_control_s)
 
 /* R's measures into M, its segments' into SEGMENT, its time in pain by
  * cause into CAUSE; no episodes. */

@@ -111,6 +111,11 @@ static void print_therapy(FILE *out, const struct metrics_result *m)
 		m->n_polyp, m->polyps_partly, m->polyps_retrieved,
 		m->resection_s, m->cautery_s, m->tool_injuries, m->biopsies,
 		m->clips);
+	if (m->bleeds) {
+		fprintf(out, "bleeding          %u points, %u clipped, stopped "
+			"after %.2f s on average\n", m->bleeds,
+			m->bleeds_clipped, m->bleed_control_s);
+	}
 	for (uint32_t i = 0; i < m->n_polyp; i++) {
 		const struct metrics_polyp *p = &m->polyp[i];
 

@@ -10,6 +10,7 @@ void therapy_init(struct therapy *th)
 	for (int i = 0; i < METRICS_MAX_POLYPS; i++) {
 		th->polyp[i].start_s = -1;
 		th->polyp[i].cut_s = -1;
+		th->bleed_s[i] = -1;
 	}
 }
 
@@ -25,12 +26,23 @@ static struct metrics_polyp *polyp_at(struct therapy *th, int32_t i)
 	return &th->polyp[i];
 }
 
-/*
- * R's events at T. Format 7 adds here: a bleeding's start (its polyp's
- * bleeds, the session's) and its control by a clip or by itself (the time
- * to control it), and the retrieval (fate METRICS_FATE_RETRIEVED, the
- * polyp cut before).
- */
+/* Polyp I's bleeding (EV: its BLEED, CLIPPED or STOPPED) at T. */
+static void bleeding(struct therapy *th, int32_t i, uint32_t ev, double t)
+{
+	if (ev & ENDOSIM_TOOL_BLEED) {
+		th->bleeds++;
+		th->bleed_s[i] = t;
+	}
+	if ((ev & (ENDOSIM_TOOL_CLIPPED | ENDOSIM_TOOL_STOPPED)) &&
+	    th->bleed_s[i] >= 0) {
+		th->clipped += !!(ev & ENDOSIM_TOOL_CLIPPED);
+		th->controlled++;
+		th->control_s += t - th->bleed_s[i];
+		th->bleed_s[i] = -1;
+	}
+}
+
+/* R's events at T. */
 static void events(struct therapy *th, const struct session_record *r,
 		   double t)
 {
@@ -51,6 +63,8 @@ static void events(struct therapy *th, const struct session_record *r,
 	if ((ev & ENDOSIM_TOOL_CUT) && p->cut_s < 0) {
 		p->cut_s = t;
 	}
+	th->retrieved[r->tool_event_polyp] |= !!(ev & ENDOSIM_TOOL_RETRIEVE);
+	bleeding(th, r->tool_event_polyp, ev, t);
 }
 
 void therapy_record(struct therapy *th, const struct session_record *r,
@@ -72,11 +86,12 @@ void therapy_record(struct therapy *th, const struct session_record *r,
 	th->captured = r->tool_captured;
 }
 
-/* P's fate at the end. */
-static uint32_t fate(const struct metrics_polyp *p)
+/* P's fate at the end, RETRIEVED whether it was sucked out. */
+static uint32_t fate(const struct metrics_polyp *p, bool retrieved)
 {
 	if (p->cut_s >= 0) {
-		return METRICS_FATE_COMPLETE;
+		return retrieved ? METRICS_FATE_RETRIEVED
+				 : METRICS_FATE_COMPLETE;
 	}
 	return p->bites || p->cautery_s > 0 ? METRICS_FATE_PARTLY
 					    : METRICS_FATE_LEFT;
@@ -92,6 +107,10 @@ void therapy_result(const struct therapy *th, uint32_t polyps_total,
 	out->tool_injuries = th->injuries;
 	out->biopsies = th->bites;
 	out->clips = th->clips;
+	out->bleeds = th->bleeds;
+	out->bleeds_clipped = th->clipped;
+	out->bleed_control_s = th->controlled ? th->control_s / th->controlled
+					      : 0;
 	out->n_polyp = th->tooled || th->polyps ? n : 0;
 	if (out->n_polyp > METRICS_MAX_POLYPS) {
 		out->n_polyp = METRICS_MAX_POLYPS;
@@ -100,7 +119,7 @@ void therapy_result(const struct therapy *th, uint32_t polyps_total,
 		struct metrics_polyp *p = &out->polyp[i];
 
 		*p = th->polyp[i];
-		p->fate = fate(p);
+		p->fate = fate(p, th->retrieved[i]);
 		out->polyps_partly += p->fate == METRICS_FATE_PARTLY;
 		out->polyps_retrieved += p->fate == METRICS_FATE_RETRIEVED;
 		if (p->fate >= METRICS_FATE_COMPLETE) {

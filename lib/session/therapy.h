@@ -37,15 +37,19 @@
  *                patient each is also a perforation (metrics' perforations)
  *   biopsies     the BITE events (on a polyp or the mucosa)
  *   clips        the CLIP_PLACED events
+ *   bleeds       the BLEED events: a cut stalk bleeding (format 7)
+ *   bleeds_clipped those stopped by a clip (CLIPPED)
+ *   bleed_control_s the mean time from a BLEED to its stop, by a clip
+ *                (CLIPPED) or by itself (STOPPED), over those stopped; a
+ *                bleeding still running at the end is counted in bleeds
+ *                only
  *
  * The polyps listed: the case's (polyps_total) when a tool was in hand in
  * any record, none otherwise (a session without the tools has no therapy
  * to assess); one a tool's event names beyond them is listed too.
  *
- * Format 7 (the bleeding, the polyp in the lumen and its retrieval) adds
- * to therapy_record()'s events: a bleeding point's start and its control
- * (bleeds, the time to control them) and the retrieval (fate retrieved);
- * see therapy.c's events().
+ * Format 7's events (the bleeding, its stop, the retrieval) give the
+ * bleeding's measures and the fate retrieved; older files have none.
  *
  * Plain data, no allocation; one thread (the metrics').
  */
@@ -65,6 +69,10 @@ struct therapy {
 	int32_t captured;         /* ... polyp held, -1: none */
 	double pedal_s;
 	uint32_t injuries, bites, clips;
+	uint32_t bleeds, clipped, controlled;
+	double control_s;         /* the stopped bleedings' times, summed */
+	double bleed_s[METRICS_MAX_POLYPS]; /* its bleeding's start; -1 none */
+	bool retrieved[METRICS_MAX_POLYPS];
 	uint32_t polyps;          /* 1 + the highest polyp an event named */
 	struct metrics_polyp polyp[METRICS_MAX_POLYPS];
 };
