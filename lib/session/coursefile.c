@@ -334,6 +334,46 @@ void coursefile_req_text(const struct coursefile_req *q, char *buf,
 	snprintf(buf, size, "%s %s %g", q->field->key, op, q->value);
 }
 
+int coursefile_judge(const struct coursefile *c, const char *case_name,
+		     const struct metrics_result *m)
+{
+	const struct coursefile_case *k = coursefile_case(c, case_name);
+
+	return !k || !m ? -1 : coursefile_passed(k, m);
+}
+
+/* Session I of case CASE_NAME, judged PASSED (coursefile_judge()), into
+ * OUT. */
+static void progress_step(const struct coursefile *c, const char *case_name,
+			  int passed, size_t i,
+			  struct coursefile_progress out[COURSEFILE_MAX_CASES])
+{
+	const struct coursefile_case *k = coursefile_case(c, case_name);
+	struct coursefile_progress *p;
+
+	if (!k || passed < 0) {
+		return;
+	}
+	p = &out[k - c->cases];
+	p->sessions++;
+	p->run = passed ? p->run + 1 : 0;
+	if (!p->completed && p->run >= c->consecutive) {
+		p->completed = i + 1;
+	}
+}
+
+void coursefile_progress_judged(const struct coursefile *c,
+				const char *const *case_names,
+				const signed char *passed, size_t n,
+				struct coursefile_progress
+				out[COURSEFILE_MAX_CASES])
+{
+	memset(out, 0, COURSEFILE_MAX_CASES * sizeof(*out));
+	for (size_t i = 0; i < n; i++) {
+		progress_step(c, case_names[i], passed[i], i, out);
+	}
+}
+
 void coursefile_progress(const struct coursefile *c,
 			 const char *const *case_names,
 			 const struct metrics_result *const *m, size_t n,
@@ -341,19 +381,8 @@ void coursefile_progress(const struct coursefile *c,
 {
 	memset(out, 0, COURSEFILE_MAX_CASES * sizeof(*out));
 	for (size_t i = 0; i < n; i++) {
-		const struct coursefile_case *k = coursefile_case(c,
-								  case_names[i]);
-		struct coursefile_progress *p;
-
-		if (!k || !m[i]) {
-			continue;
-		}
-		p = &out[k - c->cases];
-		p->sessions++;
-		p->run = coursefile_passed(k, m[i]) ? p->run + 1 : 0;
-		if (!p->completed && p->run >= c->consecutive) {
-			p->completed = i + 1;
-		}
+		progress_step(c, case_names[i],
+			      coursefile_judge(c, case_names[i], m[i]), i, out);
 	}
 }
 

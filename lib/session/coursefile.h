@@ -116,6 +116,25 @@ void coursefile_progress(const struct coursefile *c,
 			 const struct metrics_result *const *m, size_t n,
 			 struct coursefile_progress out[COURSEFILE_MAX_CASES]);
 
+/*
+ * Session M (NULL: its measures not known) of the case CASE_NAME judged
+ * by C: 1 it met every requirement of its case, 0 it did not, -1 not
+ * judged (M not known, or a case C does not name).
+ */
+int coursefile_judge(const struct coursefile *c, const char *case_name,
+		     const struct metrics_result *m);
+
+/*
+ * As coursefile_progress(), each session judged already: PASSED[i] as
+ * coursefile_judge() said (a listing of many sessions judges each as it
+ * reads it and keeps no measures).
+ */
+void coursefile_progress_judged(const struct coursefile *c,
+				const char *const *case_names,
+				const signed char *passed, size_t n,
+				struct coursefile_progress
+				out[COURSEFILE_MAX_CASES]);
+
 /* Whether every case of C is complete in P (coursefile_progress()). */
 bool coursefile_complete(const struct coursefile *c,
 			 const struct coursefile_progress *p);

@@ -77,6 +77,7 @@ struct records {
 	char *insert_measures;  /* INSERT INTO measures (...) VALUES (?...) */
 	char *select_list;      /* the sessions joined with their measures,
 				   without an ORDER BY */
+	char *select_facts;     /* the sessions alone, likewise */
 	char error[9216];       /* room for the path and SQLite's words */
 };
 
@@ -112,6 +113,15 @@ static char *field_sql(const char *prefix, const char *key_prefix,
 	return text;
 }
 
+/* The columns read_row() reads, with or without the measures after them
+ * (m: the measures' table), and the names they need. */
+#define FACTS_COLUMNS "SELECT s.id, t.name, c.name, s.started, s.ended, " \
+	"s.bytes, s.checksum, s.rig, s.judgement, "
+#define FACTS FACTS_COLUMNS "0, s.uuid"
+#define FACTS_WITH_MEASURES FACTS_COLUMNS "m.session_id IS NOT NULL, s.uuid"
+#define JOIN_NAMES " JOIN trainees t ON t.id = s.trainee_id" \
+	" JOIN cases c ON c.id = s.case_id"
+
 struct records *records_create(const char *database, const char *dir,
 			       const char *rig, const char *course)
 {
@@ -134,15 +144,11 @@ struct records *records_create(const char *database, const char *dir,
 	}
 	r->insert_measures = field_sql("INSERT INTO measures (session_id, ",
 				       "", ") VALUES (?", ")");
-	r->select_list = field_sql("SELECT s.id, t.name, c.name, s.started, "
-				   "s.ended, s.bytes, s.checksum, s.rig, "
-				   "s.judgement, m.session_id IS NOT NULL, "
-				   "s.uuid, ", "m.",
-				   "", " FROM sessions s JOIN trainees t ON "
-				   "t.id = s.trainee_id JOIN cases c ON "
-				   "c.id = s.case_id LEFT JOIN measures m ON "
-				   "m.session_id = s.id");
-	if (!r->insert_measures || !r->select_list) {
+	r->select_list = field_sql(FACTS_WITH_MEASURES ", ", "m.", "",
+				   " FROM sessions s" JOIN_NAMES " LEFT JOIN "
+				   "measures m ON m.session_id = s.id");
+	r->select_facts = strdup(FACTS " FROM sessions s" JOIN_NAMES);
+	if (!r->insert_measures || !r->select_list || !r->select_facts) {
 		records_destroy(r);
 		return NULL;
 	}
@@ -156,6 +162,7 @@ void records_destroy(struct records *r)
 	}
 	free(r->insert_measures);
 	free(r->select_list);
+	free(r->select_facts);
 	free(r);
 }
 
@@ -718,44 +725,80 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	}
 }
 
-/* The rows of DB that the list's statement and SUFFIX select into *OUT,
- * *N. */
-static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
-		       struct records_session **out, size_t *n)
+/* Each row of DB that SELECT and SUFFIX select (its one parameter, when
+ * it has one, bound to ARG's text) read into one S and passed to FN. */
+static int each_row(struct records *r, sqlite3 *db, const char *select,
+		    const char *suffix, const char *arg, records_fn *fn,
+		    void *fn_arg)
 {
-	size_t cap = 64;
-	sqlite3_stmt *st;
+	struct records_session *s = malloc(sizeof(*s));
+	sqlite3_stmt *st = NULL;
 	char *sql = NULL;
 	int rc, e = 0;
 
-	*n = 0;
-	*out = malloc(cap * sizeof(**out));
-	if (!*out || asprintf(&sql, "%s %s", r->select_list, suffix) < 0) {
+	if (!s || asprintf(&sql, "%s %s", select, suffix) < 0) {
+		free(s);
 		return -ENOMEM;
 	}
 	rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
 	free(sql);
 	if (rc) {
+		free(s);
 		return sql_fail(r, db, "preparing the list");
 	}
+	if (arg) {
+		sqlite3_bind_text(st, 1, arg, -1, SQLITE_STATIC);
+	}
 	while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
-		if (*n == cap) {
-			struct records_session *more =
-				realloc(*out, 2 * cap * sizeof(*more));
-
-			if (!more) {
-				e = -ENOMEM;
-				break;
-			}
-			*out = more;
-			cap *= 2;
-		}
-		read_row(st, &(*out)[(*n)++]);
+		read_row(st, s);
+		e = fn(fn_arg, s);
 	}
 	if (!e && rc != SQLITE_DONE) {
 		e = sql_fail(r, db, "listing the sessions");
 	}
 	sqlite3_finalize(st);
+	free(s);
+	return e;
+}
+
+/* A growing array of rows, for select_rows(). */
+struct rows {
+	struct records_session *s;
+	size_t n, cap;
+};
+
+static int append_row(void *arg, const struct records_session *s)
+{
+	struct rows *a = arg;
+
+	if (!s) {
+		a->n = 0; /* read again from the start */
+		return 0;
+	}
+	if (a->n == a->cap) {
+		size_t cap = a->cap ? 2 * a->cap : 64;
+		struct records_session *more = realloc(a->s, cap * sizeof(*more));
+
+		if (!more) {
+			return -ENOMEM;
+		}
+		a->s = more;
+		a->cap = cap;
+	}
+	a->s[a->n++] = *s;
+	return 0;
+}
+
+/* The rows of DB that the list's statement and SUFFIX select into *OUT,
+ * *N. */
+static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
+		       struct records_session **out, size_t *n)
+{
+	struct rows a = { 0 };
+	int e = each_row(r, db, r->select_list, suffix, NULL, append_row, &a);
+
+	*out = a.s;
+	*n = a.n;
 	return e;
 }
 
@@ -768,29 +811,40 @@ static int select_all(struct records *r, sqlite3 *db,
 
 int records_list(struct records *r, struct records_session **out, size_t *n)
 {
+	struct rows a = { 0 };
+	int e = records_each(r, NULL, RECORDS_MEASURES, append_row, &a);
+
+	if (e) {
+		free(a.s);
+		a = (struct rows){ 0 };
+	}
+	*out = a.s;
+	*n = a.n;
+	return e;
+}
+
+int records_each(struct records *r, const char *trainee, unsigned what,
+		 records_fn *fn, void *arg)
+{
+	const char *select = what & RECORDS_MEASURES ? r->select_list
+						     : r->select_facts;
+	const char *suffix = trainee ? "WHERE t.name = ? ORDER BY s.id"
+				     : "ORDER BY s.id";
 	sqlite3 *db;
 	bool rebuilt;
 	int e;
 
-	*out = NULL;
-	*n = 0;
 	for (int tries = 0; tries < 2; tries++) {
 		if ((e = ready(r, &db, &rebuilt))) {
 			return e;
 		}
-		e = select_all(r, db, out, n);
+		e = each_row(r, db, select, suffix, trainee, fn, arg);
 		sqlite3_close(db);
 		if (e != -EBADMSG) {
 			break;
 		}
-		free(*out);
-		*out = NULL;
+		fn(arg, NULL);
 		move_aside(r); /* damage found only now: rebuild, once */
-	}
-	if (e) {
-		free(*out);
-		*out = NULL;
-		*n = 0;
 	}
 	return e;
 }

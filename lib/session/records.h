@@ -108,6 +108,30 @@ int records_add(struct records *r, uint64_t id);
  */
 int records_list(struct records *r, struct records_session **out, size_t *n);
 
+/*
+ * Called with each session of records_each() in turn, S valid during the
+ * call only: 0 to go on, else what records_each() returns. S NULL: forget
+ * the sessions passed so far, they come again (the database was found
+ * damaged midway, and is read again once built from the files).
+ */
+typedef int records_fn(void *arg, const struct records_session *s);
+
+/* What records_each() reads of each session. */
+enum {
+	RECORDS_FACTS = 0,     /* its row alone: has_metrics false, m zero */
+	RECORDS_MEASURES = 1,  /* its measures too, when it has them */
+};
+
+/*
+ * The sessions of the database by ID, TRAINEE's alone (exactly; NULL:
+ * everyone's), each read as WHAT says and passed to FN with ARG as it is
+ * read: a listing holds no more than it keeps. A missing or damaged
+ * database is built again from the files first. 0, FN's nonzero return,
+ * or as records_add().
+ */
+int records_each(struct records *r, const char *trainee, unsigned what,
+		 records_fn *fn, void *arg);
+
 /* Flags of records_check(). */
 enum {
 	RECORDS_DEEP = 1,  /* read every file: its checksum and its measures,

@@ -212,6 +212,38 @@ static void test_progress(void **state)
 	assert_true(coursefile_complete(&course, p));
 }
 
+/* Judged one by one (a listing's way), the same progress. */
+static void test_progress_judged(void **state)
+{
+	struct metrics_result pass = { .cecum_s = 300, .withdrawal_s = 400,
+				       .mucosa_seen = 0.95, .polyps_seen = 5 };
+	struct metrics_result miss = pass;
+	const char *cases[] = { "normal", "normal", "polyps", "other",
+				"normal", "polyps", "normal" };
+	const struct metrics_result *m[] = { &pass, &miss, &pass, &miss,
+					     &pass, NULL, &pass };
+	struct coursefile_progress p[COURSEFILE_MAX_CASES];
+	struct coursefile_progress q[COURSEFILE_MAX_CASES];
+	signed char passed[7];
+
+	(void)state;
+	miss.force_episodes = 2;
+	assert_int_equal(coursefile_parse(&course, good, "g", err,
+					  sizeof(err)), 0);
+	for (size_t i = 0; i < 7; i++) {
+		passed[i] = (signed char)coursefile_judge(&course, cases[i],
+							  m[i]);
+	}
+	assert_int_equal(passed[1], 0);
+	assert_int_equal(passed[3], -1); /* not the course's case */
+	assert_int_equal(passed[5], -1); /* not known */
+	assert_int_equal(passed[6], 1);
+	coursefile_progress(&course, cases, m, 7, p);
+	coursefile_progress_judged(&course, cases, passed, 7, q);
+	assert_memory_equal(p, q, sizeof(p));
+	assert_int_equal(q[0].completed, 7);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -221,6 +253,7 @@ int main(void)
 		cmocka_unit_test(test_met),
 		cmocka_unit_test(test_perforation_fails),
 		cmocka_unit_test(test_progress),
+		cmocka_unit_test(test_progress_judged),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

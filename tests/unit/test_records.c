@@ -156,6 +156,66 @@ static void test_add_and_list(void **state)
 	check_list(r, 4);
 }
 
+/* What records_each() passed: its IDs in order, the measures seen. */
+struct seen {
+	uint64_t id[8];
+	size_t n, with_measures, restarts;
+	char trainee[8][64];
+};
+
+static int see(void *arg, const struct records_session *s)
+{
+	struct seen *w = arg;
+
+	if (!s) {
+		w->n = 0;
+		w->restarts++;
+		return 0;
+	}
+	assert_true(w->n < 8);
+	snprintf(w->trainee[w->n], sizeof(w->trainee[0]), "%s", s->e.trainee);
+	w->with_measures += s->has_metrics && s->m.withdrawal_s > 0;
+	w->id[w->n++] = s->e.id;
+	return 0;
+}
+
+static int stop_at_two(void *arg, const struct records_session *s)
+{
+	return see(arg, s) ? -1 : ((struct seen *)arg)->n == 2 ? -EINTR : 0;
+}
+
+/* A trainee's sessions alone, by ID; the facts without the measures; a
+ * damaged database read again from the start, built from the files. */
+static void test_each(void **state)
+{
+	struct records *r = *state;
+	struct seen w = { 0 };
+
+	assert_int_equal(records_each(r, "Ann Smith", RECORDS_MEASURES, see,
+				      &w), 0);
+	assert_int_equal(w.n, 2);
+	assert_int_equal(w.id[0], 1);
+	assert_int_equal(w.id[1], 2);
+	assert_int_equal(w.with_measures, 1); /* 2 was cut short */
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, BOBBY, RECORDS_FACTS, see, &w), 0);
+	assert_int_equal(w.n, 1);
+	assert_int_equal(w.id[0], 10);
+	assert_string_equal(w.trainee[0], BOBBY);
+	assert_int_equal(w.with_measures, 0); /* facts alone */
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, "Ann", RECORDS_FACTS, see, &w), 0);
+	assert_int_equal(w.n, 0); /* exactly the name */
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, see, &w), 0);
+	assert_int_equal(w.n, 3);
+	assert_int_equal(w.with_measures, 2);
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, NULL, RECORDS_FACTS, stop_at_two,
+				      &w), -EINTR);
+	assert_int_equal(w.n, 2);
+	assert_int_equal(w.restarts, 0);
+}
+
 static void test_judgement(void **state)
 {
 	struct records_report rep;
@@ -534,6 +594,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
 						teardown),
+		cmocka_unit_test_setup_teardown(test_each, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_judgement, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_check_and_fix, setup,
 						teardown),
