@@ -5,7 +5,9 @@
  * them, each judged by a course when one is given; a deleted or damaged
  * database is said by a check and built again from the files; a file
  * changed under it is told apart field by field and fixed; a database made by the first schema opens migrated with its
- * measures intact; one of a newer schema is refused, saying so. For a
+ * measures intact; one of a newer schema is refused, saying so. A reader
+ * listing while a writer commits a session midway (in lockstep, 100
+ * times) sees the sessions of its start whole, never an error. For a
  * centre: each session written is queued in the order written, once,
  * leaves the queue when it arrived, and keeps its UUID when the database
  * is built again (and is queued again then, the centre's copy telling).
@@ -17,6 +19,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -214,6 +217,110 @@ static void test_each(void **state)
 				      &w), -EINTR);
 	assert_int_equal(w.n, 2);
 	assert_int_equal(w.restarts, 0);
+}
+
+/*
+ * Concurrency in lockstep: a writer (a second struct records on the same
+ * database, as endosimd beside a reader) adds session N + 1 while a
+ * reader is midway through its list of N, at its first row: each pass
+ * must see the N sessions of its start whole (every row once, in order,
+ * with its own measures: cecum_s is the ID), never the one committed
+ * meanwhile nor an error. Each step waits for the other, not for time.
+ */
+struct lockstep {
+	pthread_mutex_t lock;
+	pthread_cond_t cond;
+	uint64_t want;     /* the session the writer is to add; 0: none */
+	uint64_t added;    /* the last it added */
+	int error;         /* its records_add()'s */
+	bool done;
+	struct records *writer;
+};
+
+static void *writer_thread(void *arg)
+{
+	struct lockstep *ls = arg;
+
+	pthread_mutex_lock(&ls->lock);
+	while (!ls->done) {
+		uint64_t id = ls->want;
+
+		if (!id || id == ls->added) {
+			pthread_cond_wait(&ls->cond, &ls->lock);
+			continue;
+		}
+		pthread_mutex_unlock(&ls->lock);
+		write_session(id, id % 2 ? "Ann Smith" : BOBBY, 1, 400);
+		ls->error = records_add(ls->writer, id);
+		pthread_mutex_lock(&ls->lock);
+		ls->added = id;
+		pthread_cond_broadcast(&ls->cond);
+	}
+	pthread_mutex_unlock(&ls->lock);
+	return NULL;
+}
+
+struct pass {
+	struct lockstep *ls;
+	uint64_t next;     /* the ID the next row must have */
+	bool poked;
+};
+
+static int read_row_checked(void *arg, const struct records_session *s)
+{
+	struct pass *p = arg;
+	struct lockstep *ls = p->ls;
+
+	assert_non_null(s); /* no damage: never read again */
+	assert_int_equal(s->e.id, p->next++);
+	assert_true(s->has_metrics);
+	assert_true(s->m.cecum_s == (double)s->e.id);
+	assert_string_equal(s->e.trainee, s->e.id % 2 ? "Ann Smith" : BOBBY);
+	if (!p->poked) { /* midway: the writer commits the next one now */
+		p->poked = true;
+		pthread_mutex_lock(&ls->lock);
+		ls->want = ls->added + 1;
+		pthread_cond_broadcast(&ls->cond);
+		while (ls->added != ls->want) {
+			pthread_cond_wait(&ls->cond, &ls->lock);
+		}
+		pthread_mutex_unlock(&ls->lock);
+		assert_int_equal(ls->error, 0);
+	}
+	return 0;
+}
+
+static void test_concurrent_reads(void **state)
+{
+	struct records *r = *state;
+	struct lockstep ls = { .added = 1 };
+	pthread_t t;
+	char cmd[400];
+
+	snprintf(cmd, sizeof(cmd), "rm -f '%s'/*.endoses", dir);
+	assert_int_equal(system(cmd), 0);
+	write_session(1, "Ann Smith", 1, 400);
+	assert_int_equal(records_add(r, 1), 0);
+	ls.writer = records_create("records.sqlite", dir, "rig-1", NULL);
+	assert_non_null(ls.writer);
+	pthread_mutex_init(&ls.lock, NULL);
+	pthread_cond_init(&ls.cond, NULL);
+	assert_int_equal(pthread_create(&t, NULL, writer_thread, &ls), 0);
+	for (uint64_t n = 1; n <= 100; n++) {
+		struct pass p = { .ls = &ls, .next = 1 };
+
+		assert_int_equal(records_each(r, NULL, RECORDS_MEASURES,
+					      read_row_checked, &p), 0);
+		assert_int_equal(p.next, n + 1); /* the N of its start */
+		assert_int_equal(ls.added, n + 1); /* one more committed */
+	}
+	pthread_mutex_lock(&ls.lock);
+	ls.done = true;
+	pthread_cond_broadcast(&ls.cond);
+	pthread_mutex_unlock(&ls.lock);
+	pthread_join(t, NULL);
+	records_destroy(ls.writer);
+	check_list(r, 101);
 }
 
 static void test_judgement(void **state)
@@ -595,6 +702,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_each, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_concurrent_reads, setup,
+						teardown),
 		cmocka_unit_test_setup_teardown(test_judgement, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_check_and_fix, setup,
 						teardown),
