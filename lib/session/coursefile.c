@@ -248,6 +248,21 @@ int coursefile_parse(struct coursefile *c, const char *text, const char *name,
 	return finish(&p);
 }
 
+/* TEXT (N bytes, a NUL among them) refused at its first NUL: the parser
+ * reads C strings and would take the file as cut there. */
+static int nul_byte(const char *path, const char *text, size_t n, char *err,
+		    size_t errsize)
+{
+	struct parser p = { .name = path, .err = err, .errsize = errsize,
+			    .line = 1 };
+	const char *nul = memchr(text, '\0', n);
+
+	for (const char *at = text; at < nul; at++) {
+		p.line += *at == '\n';
+	}
+	return fail(&p, "a NUL byte: a course file is text");
+}
+
 int coursefile_load(struct coursefile *c, const char *path, char *err,
 		    size_t errsize)
 {
@@ -271,6 +286,8 @@ int coursefile_load(struct coursefile *c, const char *path, char *err,
 	fclose(f);
 	if (r) {
 		snprintf(err, errsize, "%s: %s", path, strerror(-r));
+	} else if (memchr(text, '\0', n)) {
+		r = nul_byte(path, text, n, err, errsize);
 	} else {
 		text[n] = '\0';
 		r = coursefile_parse(c, text, path, err, errsize);

@@ -78,7 +78,8 @@ int coursefile_parse(struct coursefile *c, const char *text, const char *name,
 		     char *err, size_t errsize);
 
 /* Reads and parses the file PATH: 0, -errno when it cannot be read (with
- * ERR saying so), or -EINVAL as coursefile_parse(). */
+ * ERR saying so), or -EINVAL as coursefile_parse() (and "PATH:LINE: a NUL
+ * byte" for a file holding one). */
 int coursefile_load(struct coursefile *c, const char *path, char *err,
 		    size_t errsize);
 
