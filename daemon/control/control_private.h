@@ -114,10 +114,11 @@ void control_guide_destroy(struct control_guide *g);
 struct control_records *control_records_create(const struct config *cfg);
 void control_records_destroy(struct control_records *cr);
 
-/* Session ID ended: its file written to the records (a failure logged:
- * the next start-up writes it), and queued for the centre when there is
- * one. Blocks on the disk; the control thread. */
-void control_records_ended(struct control *c, uint64_t id);
+/* The session RI ended: its file written to the records (its checksum
+ * the recorder's when it knows it; a failure logged: the next start-up
+ * writes it), and queued for the centre when there is one. Blocks on the
+ * disk; the control thread. */
+void control_records_ended(struct control *c, const struct recorder_info *ri);
 
 /*
  * A training centre's PostgreSQL ([records] centre, centre.h), fed by a

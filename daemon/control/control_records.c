@@ -102,9 +102,11 @@ void control_records_destroy(struct control_records *cr)
 	free(cr);
 }
 
-void control_records_ended(struct control *c, uint64_t id)
+void control_records_ended(struct control *c, const struct recorder_info *ri)
 {
-	int e = records_add(c->records->db, id);
+	uint64_t id = ri->id;
+	int e = records_add_summed(c->records->db, id, ri->checksum_known ?
+				   &ri->checksum : NULL);
 
 	if (e) {
 		log_warn("records: session %llu not written: %s (the next "

@@ -244,7 +244,7 @@ void control_on_session_stop(struct control *c, struct client *cl,
 	log_notice("session %" PRIu64 " stopped (uid %d): %" PRIu64
 		   " records, %" PRIu64 " dropped, %s", info.id, (int)cl->uid,
 		   info.records, info.drops, info.path);
-	control_records_ended(c, info.id); /* finished or cut, as the file */
+	control_records_ended(c, &info); /* finished or cut, as the file */
 	if (r) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
 		       "the session file could not be finished (see the log)");

@@ -290,8 +290,17 @@ close:
 
 /* ------------------------------------------------------------ a file */
 
-/* FNV-1a, 64 bits, of the file PATH. */
-static int file_checksum(const char *path, uint64_t *sum)
+uint64_t records_checksum(uint64_t sum, const void *p, size_t n)
+{
+	const unsigned char *b = p;
+
+	for (size_t i = 0; i < n; i++) {
+		sum = (sum ^ b[i]) * 0x100000001b3ull;
+	}
+	return sum;
+}
+
+int records_file_checksum(const char *path, uint64_t *sum)
 {
 	unsigned char buf[65536];
 	int fd = open(path, O_RDONLY | O_CLOEXEC);
@@ -300,24 +309,29 @@ static int file_checksum(const char *path, uint64_t *sum)
 	if (fd < 0) {
 		return -errno;
 	}
-	*sum = 0xcbf29ce484222325ull;
+	*sum = RECORDS_CHECKSUM_SEED;
 	while ((got = read(fd, buf, sizeof(buf))) > 0) {
-		for (ssize_t i = 0; i < got; i++) {
-			*sum = (*sum ^ buf[i]) * 0x100000001b3ull;
-		}
+		*sum = records_checksum(*sum, buf, (size_t)got);
 	}
 	close(fd);
 	return got < 0 ? -EIO : 0;
 }
 
-int records_read_file(const char *path, struct records_session *s)
+/* The file PATH as its row; its checksum SUM when known (NULL: read the
+ * file whole for it). */
+static int read_file(const char *path, const uint64_t *sum,
+		     struct records_session *s)
 {
 	char *end = NULL;
 	int e;
 
 	memset(s, 0, sizeof(*s));
-	if ((e = sessiondir_stat_file(path, &s->e)) ||
-	    (e = file_checksum(path, &s->checksum))) {
+	if ((e = sessiondir_stat_file(path, &s->e))) {
+		return e;
+	}
+	if (sum) {
+		s->checksum = *sum;
+	} else if ((e = records_file_checksum(path, &s->checksum))) {
 		return e;
 	}
 	s->has_metrics = s->e.ended && !sessiondir_end_text(path, &end) &&
@@ -325,6 +339,11 @@ int records_read_file(const char *path, struct records_session *s)
 	s->m.n_force = s->m.n_loop = s->m.n_pain = 0;
 	free(end);
 	return 0;
+}
+
+int records_read_file(const char *path, struct records_session *s)
+{
+	return read_file(path, NULL, s);
 }
 
 /* ------------------------------------------------------------ writing */
@@ -518,9 +537,10 @@ static void judge(const struct records *r, struct records_session *s)
 	free(c);
 }
 
-/* Session ID's file as its row, or its row deleted when the file is
- * gone; not a session file: left out. */
-static int write_file(struct records *r, sqlite3 *db, uint64_t id)
+/* Session ID's file as its row (SUM: its checksum when known), or its
+ * row deleted when the file is gone; not a session file: left out. */
+static int write_summed(struct records *r, sqlite3 *db, uint64_t id,
+			const uint64_t *sum)
 {
 	struct records_session s;
 	char path[4096];
@@ -529,7 +549,7 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	if (sessiondir_path(r->dir, id, path, sizeof(path))) {
 		return -ENAMETOOLONG;
 	}
-	e = records_read_file(path, &s);
+	e = read_file(path, sum, &s);
 	if (e == -ENOENT || e == -EBADMSG) {
 		int d = delete_row(r, db, id);
 
@@ -544,6 +564,11 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	s.e.id = id; /* the file's name says it */
 	judge(r, &s);
 	return insert_session(r, db, path, &s);
+}
+
+static int write_file(struct records *r, sqlite3 *db, uint64_t id)
+{
+	return write_summed(r, db, id, NULL);
 }
 
 /* Every file's row written (but SKIP's), one transaction; how many. */
@@ -653,6 +678,11 @@ static int ready(struct records *r, sqlite3 **db, bool *rebuilt)
 
 int records_add(struct records *r, uint64_t id)
 {
+	return records_add_summed(r, id, NULL);
+}
+
+int records_add_summed(struct records *r, uint64_t id, const uint64_t *sum)
+{
 	sqlite3 *db;
 	bool rebuilt;
 	int e = ready(r, &db, &rebuilt);
@@ -663,7 +693,7 @@ int records_add(struct records *r, uint64_t id)
 	}
 	e = exec(r, db, "BEGIN IMMEDIATE");
 	if (!e) {
-		e = write_file(r, db, id);
+		e = write_summed(r, db, id, sum);
 		if (e && e != -ENOENT) {
 			sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
 		} else {

@@ -102,6 +102,21 @@ const char *records_error(const struct records *r);
 int records_add(struct records *r, uint64_t id);
 
 /*
+ * As records_add(), the file's checksum *SUM known already (NULL: not):
+ * its writer's, records_checksum() carried over every byte it wrote, so
+ * that a long session's file is not read whole again at its end.
+ */
+int records_add_summed(struct records *r, uint64_t id, const uint64_t *sum);
+
+/* The records' checksum of a file, FNV-1a (64 bits): SUM (the seed at the
+ * file's start) carried over the N bytes at P. Any thread, no state. */
+#define RECORDS_CHECKSUM_SEED 0xcbf29ce484222325ull
+uint64_t records_checksum(uint64_t sum, const void *p, size_t n);
+
+/* The checksum of the whole file PATH into *SUM. 0 or -errno (-EIO). */
+int records_file_checksum(const char *path, uint64_t *sum);
+
+/*
  * Every session of the database sorted by ID: a malloc'd array of *N in
  * *OUT (free() it). A missing or damaged database is built again from the
  * files first. 0 or as records_add().

@@ -323,6 +323,35 @@ static void test_concurrent_reads(void **state)
 	check_list(r, 101);
 }
 
+/* A session added with its writer's checksum: the file not read for it;
+ * the right one agrees with a deep check, a wrong one is found by it. */
+static void test_add_summed(void **state)
+{
+	struct records *r = *state;
+	struct records_report rep;
+	char path[300];
+	uint64_t sum, whole;
+
+	assert_int_equal(records_add(r, 1), 0);
+	write_session(11, "Ann Smith", 1, 200);
+	snprintf(path, sizeof(path), "%s/11.endoses", dir);
+	assert_int_equal(records_file_checksum(path, &whole), 0);
+	sum = records_checksum(RECORDS_CHECKSUM_SEED, "", 0);
+	assert_true(sum == RECORDS_CHECKSUM_SEED);
+	sum = whole;
+	assert_int_equal(records_add_summed(r, 11, &sum), 0);
+	assert_int_equal(records_check(r, RECORDS_DEEP, 0, &rep), 0);
+	assert_int_equal(rep.differ, 0);
+	records_report_free(&rep);
+	sum = whole ^ 1;
+	assert_int_equal(records_add_summed(r, 11, &sum), 0);
+	assert_int_equal(records_check(r, RECORDS_DEEP, 0, &rep), 0);
+	assert_int_equal(rep.differ, 1);
+	assert_non_null(strstr(rep.text, "session 11: the database's row "
+			       "differs from its file: checksum"));
+	records_report_free(&rep);
+}
+
 static void test_judgement(void **state)
 {
 	struct records_report rep;
@@ -702,6 +731,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_each, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_add_summed, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_concurrent_reads, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_judgement, setup, teardown),
