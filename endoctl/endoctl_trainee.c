@@ -132,20 +132,29 @@ static void add_replied(struct tlist *l, const Endosim__TraineeReply *t)
 }
 
 /*
- * TRAINEE's sessions (NULL: everyone's) from endosimd. A list without
- * --course asks for the sessions' facts alone unless the daemon judges by
- * a course of its own.
+ * TRAINEE's sessions (NULL: everyone's) from endosimd. A list asks only
+ * for what it judges by: by --course, the measures the course names; else
+ * what the daemon's course needs (its facts alone when it has none).
  */
 static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 {
 	Endosim__TraineeSessions body = ENDOSIM__TRAINEE_SESSIONS__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	const char *keys[COURSEFILE_MAX_CASES * COURSEFILE_MAX_REQS];
 	const Endosim__TraineeReply *t;
 	Endosim__Reply *rep;
 	int r;
 
 	body.trainee = (char *)(trainee ? trainee : "");
 	body.facts_unless_course = !l->keep_m && !l->course_file;
+	if (!l->keep_m && l->course_file) {
+		if ((r = load_course(l, NULL))) {
+			return r;
+		}
+		body.n_measures = coursefile_keys(l->c, keys, sizeof(keys) /
+						  sizeof(keys[0]));
+		body.measures = (char **)keys;
+	}
 	req.body_case = ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS;
 	req.trainee_sessions = &body;
 	if ((r = ctl_transact(ctl, false, &req, &rep))) {
@@ -153,7 +162,7 @@ static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 	}
 	t = rep->trainee;
 	snprintf(l->directory, sizeof(l->directory), "%s", t->directory);
-	r = load_course(l, t->course);
+	r = l->c ? 0 : load_course(l, t->course);
 	if (!r && !(l->s = calloc(t->n_sessions ? t->n_sessions : 1,
 				  sizeof(*l->s)))) {
 		fprintf(stderr, "endoctl: out of memory\n");

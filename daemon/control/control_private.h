@@ -144,7 +144,7 @@ void control_centre_poke(struct control_centre *cc);
  * The sessions of the records as a reply's SessionInfos, by ID: TRAINEE's
  * alone (NULL: everyone's), each with its facts (sessionpb_from_entry()),
  * with WHAT RECORDS_MEASURES its measures' scalars in metrics (absent
- * when it has none), with PATHS its file's path. Each row is malloc'd
+ * when it has none; only those KEYS names, when not NULL), with PATHS its file's path. Each row is malloc'd
  * alone (its info first: what the infos point into never moves); free
  * them with control_rows_free().
  */
@@ -153,6 +153,8 @@ struct control_rows {
 	size_t n, cap;
 	bool paths;
 	unsigned what;
+	const char *const *keys;  /* the measures alone (records_each()) */
+	size_t n_keys;
 	const char *dir;
 };
 

@@ -169,11 +169,14 @@ int control_records_rows(struct control *c, const char *trainee,
 	int e;
 
 	rows->dir = c->cfg.session.directory;
-	e = records_each(c->records->db, trainee, rows->what, add_row, rows);
+	e = records_each(c->records->db, trainee, rows->what, rows->keys,
+			 rows->n_keys, add_row, rows);
 	if (e) {
 		snprintf(error, size, "%s", e == -ENOMEM ? "out of memory"
 			 : why(c->records, e));
-		log_warn("%s", error);
+		if (e != -EINVAL) { /* a client's unknown key is not ours */
+			log_warn("%s", error);
+		}
 		control_rows_free(rows);
 	}
 	return e;

@@ -10,10 +10,18 @@
 
 #include "base/log.h"
 #include "control/control_private.h"
+#include "session/coursefile.h"
+
+/* The measures a listing judged by a course is sent besides the course's:
+ * what the reply says of each session. */
+static const char *const always[] = { "duration_s", "records", "drops" };
+#define MAX_KEYS (COURSEFILE_MAX_CASES * COURSEFILE_MAX_REQS + 3)
 
 struct control_trainees {
 	Endosim__TraineeReply reply;
 	struct control_rows rows;  /* what the reply points into */
+	struct coursefile course;  /* the daemon's, for its keys */
+	const char *keys[MAX_KEYS];
 	char error[256];
 };
 
@@ -46,6 +54,44 @@ static void fill_trainee_session(Endosim__SessionInfo *s,
 	}
 }
 
+/*
+ * What Q asks of each session into ROWS: the facts alone (no course to
+ * judge by), the measures Q names, those the daemon's course judges by,
+ * or (a course that does not load: the listing says so) every measure.
+ */
+static void what_asked(struct control *c, const Endosim__TraineeSessions *q,
+		       struct control_rows *rows)
+{
+	struct control_trainees *rb = c->trainees;
+	char err[256];
+	size_t n = 0;
+
+	rows->what = RECORDS_MEASURES;
+	rows->keys = NULL;
+	if (q->n_measures) {
+		rows->keys = (const char *const *)q->measures;
+		rows->n_keys = q->n_measures;
+		return;
+	}
+	if (!q->facts_unless_course) {
+		return;
+	}
+	if (!c->cfg.session.course[0]) {
+		rows->what = RECORDS_FACTS;
+		return;
+	}
+	if (coursefile_load(&rb->course, c->cfg.session.course, err,
+			    sizeof(err))) {
+		return;
+	}
+	for (; n < sizeof(always) / sizeof(always[0]); n++) {
+		rb->keys[n] = always[n];
+	}
+	n += coursefile_keys(&rb->course, rb->keys + n, MAX_KEYS - n);
+	rows->keys = rb->keys;
+	rows->n_keys = n;
+}
+
 void control_on_trainee_sessions(struct control *c, struct client *cl,
 				 const Endosim__Request *req,
 				 Endosim__Reply *rep)
@@ -54,15 +100,18 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 	struct control_trainees *rb = c->trainees;
 	struct control_rows *rows = &rb->rows;
 	struct recorder_info ri;
+	int r;
 
 	(void)cl;
 	control_rows_free(rows);
-	rows->what = q->facts_unless_course && !c->cfg.session.course[0]
-		     ? RECORDS_FACTS : RECORDS_MEASURES;
+	what_asked(c, q, rows);
 	rows->paths = true;
-	if (control_records_rows(c, *q->trainee ? q->trainee : NULL, rows,
-				 rb->error, sizeof(rb->error))) {
-		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
+	r = control_records_rows(c, *q->trainee ? q->trainee : NULL, rows,
+				 rb->error, sizeof(rb->error));
+	if (r) {
+		refuse(rep, r == -EINVAL ? ENDOSIM__STATUS__STATUS_BAD_VALUE
+					 : ENDOSIM__STATUS__STATUS_INTERNAL,
+		       rb->error);
 		return;
 	}
 	recorder_info(c->deps.recorder, &ri);

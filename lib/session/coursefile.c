@@ -403,6 +403,25 @@ void coursefile_progress(const struct coursefile *c,
 	}
 }
 
+size_t coursefile_keys(const struct coursefile *c, const char **keys,
+		       size_t max)
+{
+	size_t n = 0, k;
+
+	for (size_t i = 0; i < c->n_cases; i++) {
+		for (size_t j = 0; j < c->cases[i].n_reqs; j++) {
+			const char *key = c->cases[i].req[j].field->key;
+
+			for (k = 0; k < n && strcmp(keys[k], key); k++) {
+			}
+			if (k == n && n < max) {
+				keys[n++] = key;
+			}
+		}
+	}
+	return n;
+}
+
 bool coursefile_complete(const struct coursefile *c,
 			 const struct coursefile_progress *p)
 {

@@ -136,6 +136,11 @@ void coursefile_progress_judged(const struct coursefile *c,
 				struct coursefile_progress
 				out[COURSEFILE_MAX_CASES]);
 
+/* The keys of the measures C's requirements name, each once, into KEYS
+ * (room for MAX); how many. */
+size_t coursefile_keys(const struct coursefile *c, const char **keys,
+		       size_t max);
+
 /* Whether every case of C is complete in P (coursefile_progress()). */
 bool coursefile_complete(const struct coursefile *c,
 			 const struct coursefile_progress *p);

@@ -715,11 +715,21 @@ static void column_text(sqlite3_stmt *st, int col, char *out, size_t size)
 	snprintf(out, size, "%s", t ? (const char *)t : "");
 }
 
-/* The current row of the list's statement into S. */
-static void read_row(sqlite3_stmt *st, struct records_session *s)
+/* The measures a statement selects after the facts: N of them, the
+ * metricstext_fields() index of each in IDX (NULL: every field, in
+ * order). */
+struct columns {
+	const size_t *idx;
+	size_t n;
+};
+
+/* The current row of the list's statement, selecting the measures C,
+ * into S. */
+static void read_row(sqlite3_stmt *st, const struct columns *c,
+		     struct records_session *s)
 {
-	const struct metricstext_field *f;
-	size_t n = metricstext_fields(&f);
+	const struct metricstext_field *all;
+	size_t n = metricstext_fields(&all);
 
 	memset(s, 0, sizeof(*s));
 	s->e.id = (uint64_t)sqlite3_column_int64(st, 0);
@@ -736,16 +746,17 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	if (!s->uuid[0]) {
 		records_uuid(s, s->uuid); /* a row older than the column */
 	}
-	for (size_t i = 0; s->has_metrics && i < n; i++) {
-		char *at = (char *)&s->m + f[i].offset;
+	for (size_t i = 0; s->has_metrics && i < (c->idx ? c->n : n); i++) {
+		const struct metricstext_field *f = &all[c->idx ? c->idx[i] : i];
+		char *at = (char *)&s->m + f->offset;
 		int col = (int)i + 11;
 
-		if (f[i].kind == FIELDS_DOUBLE) {
+		if (f->kind == FIELDS_DOUBLE) {
 			/* SQLite keeps a NaN as NULL */
 			*(double *)at = sqlite3_column_type(st, col) ==
 					SQLITE_NULL ? NAN :
 					sqlite3_column_double(st, col);
-		} else if (f[i].kind == FIELDS_UINT64) {
+		} else if (f->kind == FIELDS_UINT64) {
 			*(uint64_t *)at = (uint64_t)sqlite3_column_int64(st,
 									 col);
 		} else {
@@ -758,8 +769,8 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 /* Each row of DB that SELECT and SUFFIX select (its one parameter, when
  * it has one, bound to ARG's text) read into one S and passed to FN. */
 static int each_row(struct records *r, sqlite3 *db, const char *select,
-		    const char *suffix, const char *arg, records_fn *fn,
-		    void *fn_arg)
+		    const struct columns *c, const char *suffix,
+		    const char *arg, records_fn *fn, void *fn_arg)
 {
 	struct records_session *s = malloc(sizeof(*s));
 	sqlite3_stmt *st = NULL;
@@ -780,7 +791,7 @@ static int each_row(struct records *r, sqlite3 *db, const char *select,
 		sqlite3_bind_text(st, 1, arg, -1, SQLITE_STATIC);
 	}
 	while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
-		read_row(st, s);
+		read_row(st, c, s);
 		e = fn(fn_arg, s);
 	}
 	if (!e && rc != SQLITE_DONE) {
@@ -825,7 +836,8 @@ static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
 		       struct records_session **out, size_t *n)
 {
 	struct rows a = { 0 };
-	int e = each_row(r, db, r->select_list, suffix, NULL, append_row, &a);
+	int e = each_row(r, db, r->select_list, &(struct columns){ 0 },
+			 suffix, NULL, append_row, &a);
 
 	*out = a.s;
 	*n = a.n;
@@ -842,7 +854,8 @@ static int select_all(struct records *r, sqlite3 *db,
 int records_list(struct records *r, struct records_session **out, size_t *n)
 {
 	struct rows a = { 0 };
-	int e = records_each(r, NULL, RECORDS_MEASURES, append_row, &a);
+	int e = records_each(r, NULL, RECORDS_MEASURES, NULL, 0, append_row,
+			     &a);
 
 	if (e) {
 		free(a.s);
@@ -853,22 +866,70 @@ int records_list(struct records *r, struct records_session **out, size_t *n)
 	return e;
 }
 
+/*
+ * The statement selecting the facts and the measures named by KEYS (N of
+ * them) into *SQL (malloc'd), their columns into C (IDX: room for N). Our
+ * table's names only: each key is checked against it. 0, -EINVAL (R's
+ * error names the key), -ENOMEM.
+ */
+static int select_some(struct records *r, const char *const *keys, size_t n,
+		       char **sql, size_t *idx, struct columns *c)
+{
+	const struct metricstext_field *f;
+	size_t nf = metricstext_fields(&f), len = 0;
+	FILE *m = open_memstream(sql, &len);
+
+	if (!m) {
+		return -ENOMEM;
+	}
+	fputs(FACTS_WITH_MEASURES, m);
+	for (size_t i = 0; i < n; i++) {
+		for (idx[i] = 0; idx[i] < nf && strcmp(f[idx[i]].key, keys[i]);
+		     idx[i]++) {
+		}
+		if (idx[i] == nf) {
+			fclose(m);
+			free(*sql);
+			snprintf(r->error, sizeof(r->error), "no measure '%.64s'",
+				 keys[i]);
+			return -EINVAL;
+		}
+		fprintf(m, ", m.%s", f[idx[i]].key);
+	}
+	fputs(" FROM sessions s" JOIN_NAMES " LEFT JOIN measures m ON "
+	      "m.session_id = s.id", m);
+	*c = (struct columns){ .idx = idx, .n = n };
+	return fclose(m) ? -ENOMEM : 0;
+}
+
 int records_each(struct records *r, const char *trainee, unsigned what,
-		 records_fn *fn, void *arg)
+		 const char *const *keys, size_t n_keys, records_fn *fn,
+		 void *arg)
 {
 	const char *select = what & RECORDS_MEASURES ? r->select_list
 						     : r->select_facts;
 	const char *suffix = trainee ? "WHERE t.name = ? ORDER BY s.id"
 				     : "ORDER BY s.id";
+	struct columns c = { 0 };
+	char *some = NULL;
+	size_t *idx = NULL;
 	sqlite3 *db;
 	bool rebuilt;
-	int e;
+	int e = 0;
 
+	r->error[0] = '\0';
+	if ((what & RECORDS_MEASURES) && keys &&
+	    (!(idx = calloc(n_keys + 1, sizeof(*idx))) ||
+	     (e = select_some(r, keys, n_keys, &some, idx, &c)))) {
+		free(idx);
+		return e ? e : -ENOMEM;
+	}
 	for (int tries = 0; tries < 2; tries++) {
 		if ((e = ready(r, &db, &rebuilt))) {
-			return e;
+			break;
 		}
-		e = each_row(r, db, select, suffix, trainee, fn, arg);
+		e = each_row(r, db, some ? some : select, &c, suffix, trainee,
+			     fn, arg);
 		sqlite3_close(db);
 		if (e != -EBADMSG) {
 			break;
@@ -876,6 +937,8 @@ int records_each(struct records *r, const char *trainee, unsigned what,
 		fn(arg, NULL);
 		move_aside(r); /* damage found only now: rebuild, once */
 	}
+	free(some);
+	free(idx);
 	return e;
 }
 

@@ -140,12 +140,15 @@ enum {
 /*
  * The sessions of the database by ID, TRAINEE's alone (exactly; NULL:
  * everyone's), each read as WHAT says and passed to FN with ARG as it is
- * read: a listing holds no more than it keeps. A missing or damaged
+ * read: a listing holds no more than it keeps. With RECORDS_MEASURES and
+ * KEYS, only the N_KEYS measures KEYS names (metricstext_fields()' keys;
+ * the others left 0): what a course judges by. A missing or damaged
  * database is built again from the files first. 0, FN's nonzero return,
- * or as records_add().
+ * -EINVAL (a key names no measure), or as records_add().
  */
 int records_each(struct records *r, const char *trainee, unsigned what,
-		 records_fn *fn, void *arg);
+		 const char *const *keys, size_t n_keys, records_fn *fn,
+		 void *arg);
 
 /* Flags of records_check(). */
 enum {

@@ -194,29 +194,65 @@ static void test_each(void **state)
 	struct records *r = *state;
 	struct seen w = { 0 };
 
-	assert_int_equal(records_each(r, "Ann Smith", RECORDS_MEASURES, see,
-				      &w), 0);
+	assert_int_equal(records_each(r, "Ann Smith", RECORDS_MEASURES, NULL,
+				      0, see, &w), 0);
 	assert_int_equal(w.n, 2);
 	assert_int_equal(w.id[0], 1);
 	assert_int_equal(w.id[1], 2);
 	assert_int_equal(w.with_measures, 1); /* 2 was cut short */
 	memset(&w, 0, sizeof(w));
-	assert_int_equal(records_each(r, BOBBY, RECORDS_FACTS, see, &w), 0);
+	assert_int_equal(records_each(r, BOBBY, RECORDS_FACTS, NULL, 0, see,
+				      &w), 0);
 	assert_int_equal(w.n, 1);
 	assert_int_equal(w.id[0], 10);
 	assert_string_equal(w.trainee[0], BOBBY);
 	assert_int_equal(w.with_measures, 0); /* facts alone */
 	memset(&w, 0, sizeof(w));
-	assert_int_equal(records_each(r, "Ann", RECORDS_FACTS, see, &w), 0);
+	assert_int_equal(records_each(r, "Ann", RECORDS_FACTS, NULL, 0, see,
+				      &w), 0);
 	assert_int_equal(w.n, 0); /* exactly the name */
-	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, see, &w), 0);
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, NULL, 0, see,
+				      &w), 0);
 	assert_int_equal(w.n, 3);
 	assert_int_equal(w.with_measures, 2);
 	memset(&w, 0, sizeof(w));
-	assert_int_equal(records_each(r, NULL, RECORDS_FACTS, stop_at_two,
-				      &w), -EINTR);
+	assert_int_equal(records_each(r, NULL, RECORDS_FACTS, NULL, 0,
+				      stop_at_two, &w), -EINTR);
 	assert_int_equal(w.n, 2);
 	assert_int_equal(w.restarts, 0);
+}
+
+/* The measures named alone, the others 0; a key naming none refused. */
+static int see_some(void *arg, const struct records_session *s)
+{
+	struct seen *w = arg;
+
+	assert_non_null(s);
+	if (s->has_metrics) {
+		assert_true(s->m.withdrawal_s == (s->e.id == 1 ? 400 : 300));
+		assert_true(s->m.cecum_s == 0);   /* not asked */
+		assert_true(s->m.mucosa_seen == 0.5);
+		w->with_measures++;
+	}
+	w->id[w->n++] = s->e.id;
+	return 0;
+}
+
+static void test_each_some(void **state)
+{
+	static const char *const keys[] = { "withdrawal_s", "mucosa_seen" };
+	static const char *const bad[] = { "withdrawal_s",
+					   "x FROM trainees; --" };
+	struct records *r = *state;
+	struct seen w = { 0 };
+
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, keys, 2,
+				      see_some, &w), 0);
+	assert_int_equal(w.n, 3);
+	assert_int_equal(w.with_measures, 2);
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, bad, 2,
+				      see_some, &w), -EINVAL);
+	assert_non_null(strstr(records_error(r), "no measure 'x FROM"));
 }
 
 /*
@@ -310,7 +346,8 @@ static void test_concurrent_reads(void **state)
 		struct pass p = { .ls = &ls, .next = 1 };
 
 		assert_int_equal(records_each(r, NULL, RECORDS_MEASURES,
-					      read_row_checked, &p), 0);
+					      NULL, 0, read_row_checked,
+					      &p), 0);
 		assert_int_equal(p.next, n + 1); /* the N of its start */
 		assert_int_equal(ls.added, n + 1); /* one more committed */
 	}
@@ -731,6 +768,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_each, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_each_some, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_add_summed, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_concurrent_reads, setup,
 						teardown),
