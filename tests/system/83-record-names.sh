@@ -16,12 +16,6 @@ HOSTILE="O'Neil \"x\"; DROP TABLE trainees;--"
 
 start_daemon --session-dir "$SESS" || finish
 
-live_status() { ctl --json session status | jq -e "$1"; }
-record() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 300' &&
-		ctl session stop >/dev/null
-}
 sessions() { ctl --json session list | jq '.sessions | length'; }
 
 check "a trainee named with quotes, semicolons and SQL recorded" \
