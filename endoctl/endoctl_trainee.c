@@ -20,9 +20,11 @@ struct tsession {
 	char case_name[64];
 	char started[32];
 	bool recording;
-	bool have_m;        /* m known: the END frame's, or recomputed */
 	bool recomputed;    /* the file was cut short */
-	struct metrics_result m;
+	signed char passed; /* by the course: coursefile_judge() */
+	struct metrics_result *m; /* a report's (malloc'd): the END frame's,
+				     or recomputed; NULL not known, and in a
+				     list, which judges each as it reads it */
 	char rig[64];       /* a centre's: the rig that recorded it */
 	char uuid[37];      /* a centre's: its key there */
 };
@@ -30,91 +32,167 @@ struct tsession {
 struct tlist {
 	struct tsession *s;
 	size_t n;
+	bool keep_m;        /* a report: each session's measures kept */
+	const char *course_file; /* --course FILE; NULL: the daemon's */
+	const struct coursefile *c; /* the course (load_course()); NULL: none */
 	struct centre *centre; /* read from a centre's database; NULL not */
-	char course[4096];  /* the daemon's [session] course ("": none) */
 	char directory[4096];
 };
 
-/* The metrics of the session file PATH cut short, recomputed into T. */
-static void recompute(struct tsession *t, const char *path)
+/* The course named by --course (FILE), else the daemon's DAEMONS (NULL
+ * or "": none), into L. */
+static int load_course(struct tlist *l, const char *daemons)
 {
-	struct session_file f;
+	static struct coursefile buf;
+	const char *path = l->course_file ? l->course_file : daemons;
+	char err[512];
 
-	if (session_file_read(path, &f)) {
-		fprintf(stderr, "endoctl: %s: unreadable: left out of the "
-			"curves\n", path);
-		return;
+	l->c = NULL;
+	if (!path || !*path) {
+		return 0;
 	}
-	t->have_m = sessionview_metrics(&f, &t->m, &t->recomputed) == 0;
-	session_file_close(&f);
+	if (coursefile_load(&buf, path, err, sizeof(err))) {
+		fprintf(stderr, "endoctl: course: %s\n", err);
+		return EXIT_REFUSED;
+	}
+	l->c = &buf;
+	return 0;
 }
 
-static void copy_facts(struct tsession *t, uint64_t id, const char *trainee,
-		       const char *case_name, const char *started)
+/* L's next session (L->s has room), its facts in; M its measures (NULL:
+ * not known), judged by L's course and kept for a report. */
+static struct tsession *add_session(struct tlist *l, uint64_t id,
+				    const char *trainee, const char *case_name,
+				    const char *started,
+				    const struct metrics_result *m)
 {
+	struct tsession *t = &l->s[l->n++];
+
+	memset(t, 0, sizeof(*t));
 	t->id = id;
 	snprintf(t->trainee, sizeof(t->trainee), "%s", trainee);
 	snprintf(t->case_name, sizeof(t->case_name), "%s", case_name);
 	snprintf(t->started, sizeof(t->started), "%s", started);
+	t->passed = l->c ? (signed char)coursefile_judge(l->c, case_name, m)
+			 : -1;
+	if (m && l->keep_m && (t->m = malloc(sizeof(*t->m)))) {
+		*t->m = *m;
+	}
+	return t;
 }
 
-/* TRAINEE's sessions (NULL: everyone's) from endosimd. */
+/* The measures of the session file PATH cut short, recomputed into *M
+ * (scratch); NULL when it cannot be read. */
+static const struct metrics_result *recompute(const char *path,
+					      struct metrics_result *m,
+					      bool *recomputed)
+{
+	struct session_file f;
+	int e;
+
+	if (session_file_read(path, &f)) {
+		fprintf(stderr, "endoctl: %s: unreadable: left out of the "
+			"curves\n", path);
+		return NULL;
+	}
+	e = sessionview_metrics(&f, m, recomputed);
+	session_file_close(&f);
+	return e ? NULL : m;
+}
+
+static void tlist_free(struct tlist *l)
+{
+	for (size_t i = 0; l->s && i < l->n; i++) {
+		free(l->s[i].m);
+	}
+	free(l->s);
+	centre_destroy(l->centre);
+}
+
+/* The sessions of the reply T into L, judged by L's course. */
+static void add_replied(struct tlist *l, const Endosim__TraineeReply *t)
+{
+	static struct metrics_result m; /* scratch: 7 kB */
+
+	for (size_t i = 0; i < t->n_sessions; i++) {
+		const Endosim__SessionInfo *s = t->sessions[i];
+		const struct metrics_result *got = NULL;
+		bool recomputed = false;
+
+		if (s->metrics) {
+			sessionpb_to_metrics(s->metrics, &m);
+			got = &m;
+		} else if (!s->recording && (l->keep_m || l->c)) {
+			got = recompute(s->path, &m, &recomputed);
+		}
+		add_session(l, s->id, s->trainee, s->case_name, s->started,
+			    got)->recording = s->recording;
+		l->s[l->n - 1].recomputed = recomputed;
+	}
+}
+
+/*
+ * TRAINEE's sessions (NULL: everyone's) from endosimd. A list asks only
+ * for what it judges by: by --course, the measures the course names; else
+ * what the daemon's course needs (its facts alone when it has none).
+ */
 static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 {
 	Endosim__TraineeSessions body = ENDOSIM__TRAINEE_SESSIONS__INIT;
 	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	const char *keys[COURSEFILE_MAX_CASES * COURSEFILE_MAX_REQS];
 	const Endosim__TraineeReply *t;
 	Endosim__Reply *rep;
 	int r;
 
 	body.trainee = (char *)(trainee ? trainee : "");
+	body.facts_unless_course = !l->keep_m && !l->course_file;
+	if (!l->keep_m && l->course_file) {
+		if ((r = load_course(l, NULL))) {
+			return r;
+		}
+		body.n_measures = coursefile_keys(l->c, keys, sizeof(keys) /
+						  sizeof(keys[0]));
+		body.measures = (char **)keys;
+	}
 	req.body_case = ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS;
 	req.trainee_sessions = &body;
 	if ((r = ctl_transact(ctl, false, &req, &rep))) {
 		return r;
 	}
 	t = rep->trainee;
-	l->s = calloc(t->n_sessions ? t->n_sessions : 1, sizeof(*l->s));
-	if (!l->s) {
-		endosim__reply__free_unpacked(rep, NULL);
-		fprintf(stderr, "endoctl: out of memory\n");
-		return EXIT_REFUSED;
-	}
-	snprintf(l->course, sizeof(l->course), "%s", t->course);
 	snprintf(l->directory, sizeof(l->directory), "%s", t->directory);
-	for (size_t i = 0; i < t->n_sessions; i++) {
-		const Endosim__SessionInfo *s = t->sessions[i];
-		struct tsession *x = &l->s[l->n++];
-
-		copy_facts(x, s->id, s->trainee, s->case_name, s->started);
-		x->recording = s->recording;
-		if (s->metrics) {
-			sessionpb_to_metrics(s->metrics, &x->m);
-			x->have_m = true;
-		} else if (!s->recording) {
-			recompute(x, s->path);
-		}
+	r = l->c ? 0 : load_course(l, t->course);
+	if (!r && !(l->s = calloc(t->n_sessions ? t->n_sessions : 1,
+				  sizeof(*l->s)))) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		r = EXIT_REFUSED;
+	}
+	if (!r) {
+		add_replied(l, t);
 	}
 	endosim__reply__free_unpacked(rep, NULL);
-	return 0;
+	return r;
 }
 
-/* The END frame's metrics of the session file PATH into T; false when it
- * has none (cut short). */
-static bool end_metrics(struct tsession *t, const char *path)
+/* The END frame's measures of the session file PATH into *M (scratch);
+ * NULL when it has none (cut short). */
+static const struct metrics_result *end_metrics(const char *path,
+						struct metrics_result *m)
 {
 	char *end = NULL;
 	bool ok = !sessiondir_end_text(path, &end) &&
-		  !metricstext_parse(end, &t->m);
+		  !metricstext_parse(end, m);
 
 	free(end);
-	t->m.n_force = t->m.n_loop = t->m.n_pain = 0; /* the scalars only */
-	return ok;
+	m->n_force = m->n_loop = m->n_pain = 0; /* the scalars only */
+	return ok ? m : NULL;
 }
 
 /* TRAINEE's sessions (NULL: everyone's) read from the directory DIR. */
 static int from_dir(const char *dir, const char *trainee, struct tlist *l)
 {
+	static struct metrics_result m; /* scratch: 7 kB */
 	struct sessiondir_entry *e;
 	char path[4096];
 	size_t n;
@@ -126,21 +204,27 @@ static int from_dir(const char *dir, const char *trainee, struct tlist *l)
 		free(r ? NULL : e);
 		return EXIT_REFUSED;
 	}
+	if ((r = load_course(l, NULL))) {
+		free(e);
+		return r;
+	}
 	snprintf(l->directory, sizeof(l->directory), "%s", dir);
 	for (size_t i = 0; i < n; i++) {
-		struct tsession *x;
+		const struct metrics_result *got = NULL;
+		bool recomputed = false;
 
 		if ((trainee && strcmp(trainee, e[i].trainee)) ||
 		    sessiondir_path(dir, e[i].id, path, sizeof(path))) {
 			continue;
 		}
-		x = &l->s[l->n++];
-		copy_facts(x, e[i].id, e[i].trainee, e[i].case_name,
-			   e[i].started);
-		x->have_m = e[i].ended && end_metrics(x, path);
-		if (!x->have_m) {
-			recompute(x, path);
+		if (e[i].ended) {
+			got = end_metrics(path, &m);
 		}
+		if (!got) {
+			got = recompute(path, &m, &recomputed);
+		}
+		add_session(l, e[i].id, e[i].trainee, e[i].case_name,
+			    e[i].started, got)->recomputed = recomputed;
 	}
 	free(e);
 	return 0;
@@ -163,14 +247,19 @@ static int from_centre(const char *url, const char *trainee, struct tlist *l)
 		fprintf(stderr, "endoctl: %s\n", centre_error(l->centre));
 		return e == -EINVAL ? EXIT_USAGE : EXIT_COMM;
 	}
+	if ((e = load_course(l, NULL))) {
+		free(rows);
+		return e;
+	}
 	l->s = calloc(n ? n : 1, sizeof(*l->s));
 	for (size_t i = 0; l->s && i < n; i++) {
-		struct tsession *x = &l->s[l->n++];
+		struct tsession *x = add_session(l, rows[i].e.id,
+						 rows[i].e.trainee,
+						 rows[i].e.case_name,
+						 rows[i].e.started,
+						 rows[i].has_metrics ?
+						 &rows[i].m : NULL);
 
-		copy_facts(x, rows[i].e.id, rows[i].e.trainee,
-			   rows[i].e.case_name, rows[i].e.started);
-		x->have_m = rows[i].has_metrics;
-		x->m = rows[i].m;
 		snprintf(x->rig, sizeof(x->rig), "%s", rows[i].rig);
 		snprintf(x->uuid, sizeof(x->uuid), "%s", rows[i].uuid);
 	}
@@ -179,25 +268,6 @@ static int from_centre(const char *url, const char *trainee, struct tlist *l)
 		fprintf(stderr, "endoctl: out of memory\n");
 		return EXIT_REFUSED;
 	}
-	return 0;
-}
-
-/* The course named by --course (FILE), else the daemon's; *C NULL: none. */
-static int load_course(const char *file, const struct tlist *l,
-		       struct coursefile *buf, const struct coursefile **c)
-{
-	const char *path = file ? file : l->course;
-	char err[512];
-
-	*c = NULL;
-	if (!*path) {
-		return 0;
-	}
-	if (coursefile_load(buf, path, err, sizeof(err))) {
-		fprintf(stderr, "endoctl: course: %s\n", err);
-		return EXIT_REFUSED;
-	}
-	*c = buf;
 	return 0;
 }
 
@@ -232,8 +302,7 @@ static void stand(const struct tlist *l, size_t first,
 		  const struct coursefile *c, struct standing *st)
 {
 	const char **cases = malloc((l->n ? l->n : 1) * sizeof(*cases));
-	const struct metrics_result **m = malloc((l->n ? l->n : 1) *
-						 sizeof(*m));
+	signed char *passed = malloc(l->n ? l->n : 1);
 	struct coursefile_progress p[COURSEFILE_MAX_CASES];
 	size_t k = 0;
 
@@ -251,20 +320,20 @@ static void stand(const struct tlist *l, size_t first,
 		if (s->rig[0]) {
 			add_name(st->rigs, sizeof(st->rigs), s->rig);
 		}
-		if (cases && m) {
+		if (cases && passed) {
 			cases[k] = s->case_name;
-			m[k++] = s->have_m ? &s->m : NULL;
+			passed[k++] = s->passed;
 		}
 	}
-	if (c && cases && m) {
-		coursefile_progress(c, cases, m, k, p);
+	if (c && cases && passed) {
+		coursefile_progress_judged(c, cases, passed, k, p);
 		for (size_t i = 0; i < c->n_cases; i++) {
 			st->cases_done += p[i].completed != 0;
 		}
 		st->complete = coursefile_complete(c, p);
 	}
 	free(cases);
-	free(m);
+	free(passed);
 }
 
 /* Whether session I's trainee came earlier. */
@@ -410,7 +479,7 @@ static int write_report(const char *trainee, const struct tlist *l,
 		p[i] = (struct traineepage_session){
 			.id = l->s[i].id, .case_name = l->s[i].case_name,
 			.started = l->s[i].started,
-			.m = l->s[i].have_m ? &l->s[i].m : NULL,
+			.m = l->s[i].m,
 			.recomputed = l->s[i].recomputed,
 			.rig = l->centre ? l->s[i].rig : NULL,
 			.href = l->centre ? href[i] : NULL,
@@ -463,27 +532,22 @@ static bool parse_args(int argc, char **argv, int first, struct targs *a)
 
 static int trainee_run(struct ctl *ctl, const struct targs *a)
 {
-	static struct coursefile course;
-	const struct coursefile *c;
-	struct tlist l = { 0 };
+	struct tlist l = { .keep_m = a->name != NULL,
+			   .course_file = a->course };
 	int r = a->centre ? from_centre(a->centre, a->name, &l)
 		: a->dir  ? from_dir(a->dir, a->name, &l)
 			  : from_daemon(ctl, a->name, &l);
 
-	if (!r) {
-		r = load_course(a->course, &l, &course, &c);
-	}
 	if (!r && a->name && !l.n) {
 		fprintf(stderr, "endoctl: no session of trainee '%s' in %s\n",
 			a->name, l.directory);
 		r = EXIT_REFUSED;
 	}
 	if (!r) {
-		r = a->name ? write_report(a->name, &l, c, a->out)
-			    : (print_list(ctl, &l, c), 0);
+		r = a->name ? write_report(a->name, &l, l.c, a->out)
+			    : (print_list(ctl, &l, l.c), 0);
 	}
-	free(l.s);
-	centre_destroy(l.centre);
+	tlist_free(&l);
 	return r;
 }
 

@@ -158,6 +158,18 @@ start_daemon() {
 	fi
 }
 
+# live_status JQ: the recording session's status (`endoctl --json
+# session status`) satisfies JQ.
+live_status() { ctl --json session status | jq -e "$1"; }
+
+# record NAME: a session of trainee NAME on the test's daemon, a few
+# hundred records long, stopped.
+record() {
+	ctl session start --trainee "$1" >/dev/null &&
+		wait_for live_status '.records > 300' &&
+		ctl session stop >/dev/null
+}
+
 # stop_daemon: SIGTERM and wait; returns the daemon's exit status.
 stop_daemon() {
 	local rc

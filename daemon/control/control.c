@@ -320,6 +320,80 @@ static const struct handler *find_handler(Endosim__Request__BodyCase body)
 	return NULL;
 }
 
+/* The varint at *P (before END) into *V, *P past it; false cut short. */
+static bool wire_varint(const uint8_t **p, const uint8_t *end, uint64_t *v)
+{
+	*v = 0;
+	for (int shift = 0; *p < end && shift < 64; shift += 7) {
+		uint8_t b = *(*p)++;
+
+		*v |= (uint64_t)(b & 0x7f) << shift;
+		if (!(b & 0x80)) {
+			return true;
+		}
+	}
+	return false;
+}
+
+/*
+ * Calls FN(ARG, FIELD, BYTES, LEN) on each length-delimited field of the
+ * protobuf message MSG (LEN bytes); stops at FN's true and returns it.
+ * false, too, for what is not well formed (the unpack said so already).
+ */
+static bool wire_each(const uint8_t *msg, size_t len,
+		      bool (*fn)(void *arg, uint64_t field, const uint8_t *b,
+				 size_t n),
+		      void *arg)
+{
+	const uint8_t *p = msg, *end = msg + len;
+	uint64_t key, n;
+
+	while (p < end && wire_varint(&p, end, &key)) {
+		switch (key & 7) {
+		case 0:
+			if (!wire_varint(&p, end, &n)) {
+				return false;
+			}
+			break;
+		case 1:
+		case 5:
+			p += (key & 7) == 1 ? 8 : 4;
+			break;
+		case 2:
+			if (!wire_varint(&p, end, &n) ||
+			    n > (uint64_t)(end - p)) {
+				return false;
+			}
+			if (fn(arg, key >> 3, p, n)) {
+				return true;
+			}
+			p += n;
+			break;
+		default:
+			return false;
+		}
+	}
+	return false;
+}
+
+static bool has_nul(void *arg, uint64_t field, const uint8_t *b, size_t n)
+{
+	(void)arg;
+	(void)field;
+	return memchr(b, '\0', n) != NULL;
+}
+
+/* Whether a name the request carries holds a NUL byte: protobuf-c's C
+ * string ends there and would be taken silently cut short. Only the
+ * requests whose every length-delimited field is a string (names). */
+static bool names_nul(void *arg, uint64_t field, const uint8_t *b, size_t n)
+{
+	(void)arg;
+	return (field == ENDOSIM__REQUEST__BODY_SESSION_START ||
+		field == ENDOSIM__REQUEST__BODY_TRAINEE_SESSIONS) &&
+	       wire_each(b, n, has_nul, NULL);
+}
+
 static int dispatch(struct control *c, struct client *cl, const uint8_t *msg,
 		    size_t len)
 {
@@ -342,6 +416,9 @@ static int dispatch(struct control *c, struct client *cl, const uint8_t *msg,
 	} else if (req->body_case == ENDOSIM__REQUEST__BODY__NOT_SET) {
 		refuse(&rep, ENDOSIM__STATUS__STATUS_MALFORMED,
 		       "no request in the message");
+	} else if (wire_each(msg, len, names_nul, NULL)) {
+		refuse(&rep, ENDOSIM__STATUS__STATUS_BAD_VALUE,
+		       "a name holds a NUL byte");
 	} else if (!h) {
 		refuse(&rep, ENDOSIM__STATUS__STATUS_UNSUPPORTED,
 		       "request not supported by this daemon");

@@ -6,8 +6,7 @@
  * with it: control_reply.c status, stats, configuration, commands, the
  * hand, subscriptions and test commands; control_case.c the scene and the
  * cases; control_session.c training sessions and their live map;
- * control_trainee.c a trainee's sessions through the session directory's
- * index; control_guide.c guided replay; control_patient.c the patient's
+ * control_trainee.c a trainee's sessions from the rig's records; control_guide.c guided replay; control_patient.c the patient's
  * commands, control_tool.c the tool's selection (their refusals' words
  * in struct control's refusal). Control
  * thread only, as all of control.h's work.
@@ -122,10 +121,11 @@ void control_guide_destroy(struct control_guide *g);
 struct control_records *control_records_create(const struct config *cfg);
 void control_records_destroy(struct control_records *cr);
 
-/* Session ID ended: its file written to the records (a failure logged:
- * the next start-up writes it), and queued for the centre when there is
- * one. Blocks on the disk; the control thread. */
-void control_records_ended(struct control *c, uint64_t id);
+/* The session RI ended: its file written to the records (its checksum
+ * the recorder's when it knows it; a failure logged: the next start-up
+ * writes it), and queued for the centre when there is one. Blocks on the
+ * disk; the control thread. */
+void control_records_ended(struct control *c, const struct recorder_info *ri);
 
 /*
  * A training centre's PostgreSQL ([records] centre, centre.h), fed by a
@@ -148,11 +148,28 @@ void control_centre_destroy(struct control_centre *cc);
 void control_centre_poke(struct control_centre *cc);
 
 /*
- * Every session of the records (records_list()): 0, or -errno with why in
- * ERROR (SIZE), logged.
+ * The sessions of the records as a reply's SessionInfos, by ID: TRAINEE's
+ * alone (NULL: everyone's), each with its facts (sessionpb_from_entry()),
+ * with WHAT RECORDS_MEASURES its measures' scalars in metrics (absent
+ * when it has none; only those KEYS names, when not NULL), with PATHS its file's path. Each row is malloc'd
+ * alone (its info first: what the infos point into never moves); free
+ * them with control_rows_free().
  */
-int control_records_list(struct control *c, struct records_session **out,
-			 size_t *n, char *error, size_t size);
+struct control_rows {
+	Endosim__SessionInfo **infos;
+	size_t n, cap;
+	bool paths;
+	unsigned what;
+	const char *const *keys;  /* the measures alone (records_each()) */
+	size_t n_keys;
+	const char *dir;
+};
+
+/* The rows ROWS asks for (its n, infos filled): 0, or -errno with why in
+ * ERROR (SIZE), logged, and no rows. */
+int control_records_rows(struct control *c, const char *trainee,
+			 struct control_rows *rows, char *error, size_t size);
+void control_rows_free(struct control_rows *rows);
 
 /*
  * Who sees what (control_accounts.c, accounts.h): the accounts beside

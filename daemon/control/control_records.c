@@ -13,6 +13,7 @@
 #include "base/log.h"
 #include "control/control_private.h"
 #include "session/records.h"
+#include "session/sessionpb.h"
 
 struct control_records {
 	struct records *db;
@@ -101,9 +102,11 @@ void control_records_destroy(struct control_records *cr)
 	free(cr);
 }
 
-void control_records_ended(struct control *c, uint64_t id)
+void control_records_ended(struct control *c, const struct recorder_info *ri)
 {
-	int e = records_add(c->records->db, id);
+	uint64_t id = ri->id;
+	int e = records_add_summed(c->records->db, id, ri->checksum_known ?
+				   &ri->checksum : NULL);
 
 	if (e) {
 		log_warn("records: session %llu not written: %s (the next "
@@ -114,16 +117,79 @@ void control_records_ended(struct control *c, uint64_t id)
 	}
 }
 
-int control_records_list(struct control *c, struct records_session **out,
-			 size_t *n, char *error, size_t size)
-{
-	int e = records_list(c->records->db, out, n);
+/* One row of control_records_rows(): what its info points into. */
+struct control_row {
+	Endosim__SessionInfo info;  /* first: free() of its address frees all */
+	struct sessiondir_entry e;
+	struct sessionpb_scalars pm;
+	char path[];
+};
 
+static int add_row(void *arg, const struct records_session *s)
+{
+	struct control_rows *rows = arg;
+	size_t len = rows->paths ? strlen(rows->dir) + 32 : 0;
+	struct control_row *row;
+
+	if (!s) {
+		control_rows_free(rows); /* read again from the start */
+		return 0;
+	}
+	if (rows->n == rows->cap) {
+		size_t cap = rows->cap ? 2 * rows->cap : 64;
+		Endosim__SessionInfo **more = realloc(rows->infos,
+						      cap * sizeof(*more));
+
+		if (!more) {
+			return -ENOMEM;
+		}
+		rows->infos = more;
+		rows->cap = cap;
+	}
+	if (!(row = malloc(sizeof(*row) + len))) {
+		return -ENOMEM;
+	}
+	row->e = s->e;
+	sessionpb_from_entry(&row->info, &row->e);
+	if (len) {
+		sessiondir_path(rows->dir, s->e.id, row->path, len);
+		row->info.path = row->path;
+	}
+	if (s->has_metrics) {
+		sessionpb_from_scalars(&row->pm, &s->m);
+		row->info.metrics = &row->pm.msg;
+	}
+	rows->infos[rows->n++] = &row->info;
+	return 0;
+}
+
+int control_records_rows(struct control *c, const char *trainee,
+			 struct control_rows *rows, char *error, size_t size)
+{
+	int e;
+
+	rows->dir = c->cfg.session.directory;
+	e = records_each(c->records->db, trainee, rows->what, rows->keys,
+			 rows->n_keys, add_row, rows);
 	if (e) {
-		snprintf(error, size, "%s", why(c->records, e));
-		log_warn("%s", error);
+		snprintf(error, size, "%s", e == -ENOMEM ? "out of memory"
+			 : why(c->records, e));
+		if (e != -EINVAL) { /* a client's unknown key is not ours */
+			log_warn("%s", error);
+		}
+		control_rows_free(rows);
 	}
 	return e;
+}
+
+void control_rows_free(struct control_rows *rows)
+{
+	for (size_t i = 0; i < rows->n; i++) {
+		free(rows->infos[i]);
+	}
+	free(rows->infos);
+	rows->infos = NULL;
+	rows->n = rows->cap = 0;
 }
 
 /* The session recording (0: none), which the files and rows leave out. */

@@ -20,10 +20,10 @@ struct control_sessions {
 	struct recorder_info rinfo;        /* what session points into */
 	struct sessionpb_metrics metrics;
 	Endosim__SessionListReply session_list;
-	Endosim__SessionInfo *list_infos;
-	Endosim__SessionInfo **list_infos_p;
-	struct records_session *list_entries;
-	struct sessiondir_entry recording; /* the list's recording session */
+	struct control_rows list_rows;     /* the records' sessions */
+	Endosim__SessionInfo **list_infos_p; /* they and the recording one */
+	Endosim__SessionInfo list_recording; /* the list's recording session */
+	struct sessiondir_entry recording;
 	struct sessiondir_entry shown;     /* SessionShow's file */
 	Endosim__MapReply map;             /* SessionMap's */
 	Endosim__MapRegion map_regions[COLON_MAX_REGIONS];
@@ -42,12 +42,9 @@ struct control_sessions *control_sessions_create(void)
 /* Frees the session list the last reply was made of. */
 static void free_session_list(struct control_sessions *rb)
 {
-	free(rb->list_infos);
+	control_rows_free(&rb->list_rows);
 	free(rb->list_infos_p);
-	free(rb->list_entries);
-	rb->list_infos = NULL;
 	rb->list_infos_p = NULL;
-	rb->list_entries = NULL;
 }
 
 void control_sessions_destroy(struct control_sessions *rb)
@@ -247,7 +244,7 @@ void control_on_session_stop(struct control *c, struct client *cl,
 	log_notice("session %" PRIu64 " stopped (uid %d): %" PRIu64
 		   " records, %" PRIu64 " dropped, %s", info.id, (int)cl->uid,
 		   info.records, info.drops, info.path);
-	control_records_ended(c, info.id); /* finished or cut, as the file */
+	control_records_ended(c, &info); /* finished or cut, as the file */
 	if (r) {
 		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
 		       "the session file could not be finished (see the log)");
@@ -268,11 +265,9 @@ void control_on_session_status(struct control *c, struct client *cl,
 }
 
 /* A listed session; the recorder's own one with what it knows. */
-static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
-		       const struct recorder_info *ri)
+static void fill_entry(Endosim__SessionInfo *s, const struct recorder_info *ri)
 {
-	sessionpb_from_entry(s, e);
-	if (ri->active && ri->id == e->id) {
+	if (ri->active && ri->id == s->id) {
 		s->recording = ri->recording;
 		s->records = ri->records;
 		s->drops = ri->drops;
@@ -281,28 +276,22 @@ static void fill_entry(Endosim__SessionInfo *s, struct sessiondir_entry *e,
 	}
 }
 
-/* The list's array of N sessions and a recording one. */
-static int alloc_list(struct control_sessions *rb, size_t n)
-{
-	rb->list_infos = calloc(n + 1, sizeof(*rb->list_infos));
-	rb->list_infos_p = calloc(n + 1, sizeof(*rb->list_infos_p));
-	return rb->list_infos && rb->list_infos_p ? 0 : -ENOMEM;
-}
-
 /* The recording session, which the records hold only once it ends, as
  * the list's last (its ID the highest); how many that adds. */
 static size_t list_recording(struct control *c, const struct recorder_info *ri,
 			     size_t n)
 {
 	struct control_sessions *rb = c->sessions;
+	Endosim__SessionInfo *s = &rb->list_recording;
 
 	if (!ri->active || !ri->recording ||
-	    (n && rb->list_entries[n - 1].e.id >= ri->id) ||
+	    (n && rb->list_infos_p[n - 1]->id >= ri->id) ||
 	    sessiondir_stat(c->cfg.session.directory, ri->id, &rb->recording)) {
 		return 0;
 	}
-	fill_entry(&rb->list_infos[n], &rb->recording, ri);
-	rb->list_infos_p[n] = &rb->list_infos[n];
+	sessionpb_from_entry(s, &rb->recording);
+	fill_entry(s, ri);
+	rb->list_infos_p[n] = s;
 	return 1;
 }
 
@@ -310,6 +299,7 @@ void control_on_session_list(struct control *c, struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep)
 {
 	struct control_sessions *rb = c->sessions;
+	struct control_rows *rows = &rb->list_rows;
 	struct recorder_info ri;
 	size_t n;
 	int r;
@@ -318,9 +308,10 @@ void control_on_session_list(struct control *c, struct client *cl,
 	(void)req;
 	free_session_list(rb);
 	recorder_info(c->deps.recorder, &ri);
-	r = control_records_list(c, &rb->list_entries, &n, rb->error,
-				 sizeof(rb->error));
-	if (!r && alloc_list(rb, n)) {
+	rows->what = RECORDS_FACTS;
+	r = control_records_rows(c, NULL, rows, rb->error, sizeof(rb->error));
+	n = rows->n;
+	if (!r && !(rb->list_infos_p = calloc(n + 1, sizeof(*rows->infos)))) {
 		snprintf(rb->error, sizeof(rb->error), "out of memory");
 		r = -ENOMEM;
 	}
@@ -330,8 +321,8 @@ void control_on_session_list(struct control *c, struct client *cl,
 		return;
 	}
 	for (size_t i = 0; i < n; i++) {
-		fill_entry(&rb->list_infos[i], &rb->list_entries[i].e, &ri);
-		rb->list_infos_p[i] = &rb->list_infos[i];
+		fill_entry(rows->infos[i], &ri);
+		rb->list_infos_p[i] = rows->infos[i];
 	}
 	endosim__session_list_reply__init(&rb->session_list);
 	rb->session_list.n_sessions = n + list_recording(c, &ri, n);
@@ -366,7 +357,7 @@ void control_on_session_show(struct control *c, struct client *cl,
 		s = fill_session(c, &ri);
 	} else {
 		memset(&rb->rinfo, 0, sizeof(rb->rinfo));
-		fill_entry(&rb->session, e, &rb->rinfo);
+		sessionpb_from_entry(&rb->session, e);
 		sessiondir_path(c->cfg.session.directory, id, rb->rinfo.path,
 				sizeof(rb->rinfo.path));
 		s = &rb->session;

@@ -10,16 +10,18 @@
 
 #include "base/log.h"
 #include "control/control_private.h"
-#include "session/sessiondir.h"
-#include "session/sessionpb.h"
+#include "session/coursefile.h"
+
+/* The measures a listing judged by a course is sent besides the course's:
+ * what the reply says of each session. */
+static const char *const always[] = { "duration_s", "records", "drops" };
+#define MAX_KEYS (COURSEFILE_MAX_CASES * COURSEFILE_MAX_REQS + 3)
 
 struct control_trainees {
 	Endosim__TraineeReply reply;
-	Endosim__SessionInfo *infos;
-	Endosim__SessionInfo **infos_p;
-	struct sessionpb_scalars *metrics;
-	char (*paths)[CONFIG_STR + 32];
-	struct records_session *entries;
+	struct control_rows rows;  /* what the reply points into */
+	struct coursefile course;  /* the daemon's, for its keys */
+	const char *keys[MAX_KEYS];
 	char error[256];
 };
 
@@ -28,110 +30,97 @@ struct control_trainees *control_trainees_create(void)
 	return calloc(1, sizeof(struct control_trainees));
 }
 
-/* Frees the sessions the last reply was made of. */
-static void free_trainee(struct control_trainees *rb)
-{
-	free(rb->infos);
-	free(rb->infos_p);
-	free(rb->metrics);
-	free(rb->entries);
-	free(rb->paths);
-	rb->infos = NULL;
-	rb->paths = NULL;
-	rb->infos_p = NULL;
-	rb->metrics = NULL;
-	rb->entries = NULL;
-}
-
 void control_trainees_destroy(struct control_trainees *rb)
 {
 	if (!rb) {
 		return;
 	}
-	free_trainee(rb);
+	control_rows_free(&rb->rows);
 	free(rb);
 }
 
-/* The reply's arrays for N sessions. */
-static int alloc_reply(struct control_trainees *rb, size_t n)
-{
-	size_t k = n ? n : 1;
-
-	rb->infos = calloc(k, sizeof(*rb->infos));
-	rb->infos_p = calloc(k, sizeof(*rb->infos_p));
-	rb->metrics = calloc(k, sizeof(*rb->metrics));
-	rb->paths = calloc(k, sizeof(*rb->paths));
-	return rb->infos && rb->infos_p && rb->metrics && rb->paths ? 0
-								    : -ENOMEM;
-}
-
-/* Session E as the reply's S; the recorder's own one as recording. */
-static void fill_trainee_session(struct control *c, Endosim__SessionInfo *s,
-				 struct records_session *e,
-				 struct sessionpb_scalars *pm, char *path,
+/* Session S of the reply as the recorder knows it: recording, its
+ * measures not yet known; else the END frame's duration and counts. */
+static void fill_trainee_session(Endosim__SessionInfo *s,
 				 const struct recorder_info *ri)
 {
-	sessionpb_from_entry(s, &e->e);
-	sessiondir_path(c->cfg.session.directory, e->e.id, path,
-			sizeof(*c->trainees->paths));
-	s->path = path;
-	s->recording = ri->active && ri->recording && ri->id == e->e.id;
-	if (e->has_metrics && !s->recording) {
-		sessionpb_from_scalars(pm, &e->m);
-		s->metrics = &pm->msg;
-		s->duration_s = e->m.duration_s;
-		s->records = e->m.records;
-		s->drops = e->m.drops;
+	s->recording = ri->active && ri->recording && ri->id == s->id;
+	if (s->recording) {
+		s->metrics = NULL;
+	} else if (s->metrics) {
+		s->duration_s = s->metrics->duration_s;
+		s->records = s->metrics->records;
+		s->drops = s->metrics->drops;
 	}
 }
 
-/* The N sessions of the records that are WHO's ("": everyone's) as the
- * reply's sessions; how many. */
-static size_t fill_sessions(struct control *c, const char *who, size_t n)
+/*
+ * What Q asks of each session into ROWS: the facts alone (no course to
+ * judge by), the measures Q names, those the daemon's course judges by,
+ * or (a course that does not load: the listing says so) every measure.
+ */
+static void what_asked(struct control *c, const Endosim__TraineeSessions *q,
+		       struct control_rows *rows)
 {
 	struct control_trainees *rb = c->trainees;
-	struct recorder_info ri;
-	size_t kept = 0;
+	char err[256];
+	size_t n = 0;
 
-	recorder_info(c->deps.recorder, &ri);
-	for (size_t i = 0; i < n; i++) {
-		struct records_session *e = &rb->entries[i];
-
-		if (*who && strcmp(who, e->e.trainee)) {
-			continue;
-		}
-		fill_trainee_session(c, &rb->infos[kept], e, &rb->metrics[kept],
-				     rb->paths[kept], &ri);
-		rb->infos_p[kept] = &rb->infos[kept];
-		kept++;
+	rows->what = RECORDS_MEASURES;
+	rows->keys = NULL;
+	if (q->n_measures) {
+		rows->keys = (const char *const *)q->measures;
+		rows->n_keys = q->n_measures;
+		return;
 	}
-	return kept;
+	if (!q->facts_unless_course) {
+		return;
+	}
+	if (!c->cfg.session.course[0]) {
+		rows->what = RECORDS_FACTS;
+		return;
+	}
+	if (coursefile_load(&rb->course, c->cfg.session.course, err,
+			    sizeof(err))) {
+		return;
+	}
+	for (; n < sizeof(always) / sizeof(always[0]); n++) {
+		rb->keys[n] = always[n];
+	}
+	n += coursefile_keys(&rb->course, rb->keys + n, MAX_KEYS - n);
+	rows->keys = rb->keys;
+	rows->n_keys = n;
 }
 
 void control_on_trainee_sessions(struct control *c, struct client *cl,
 				 const Endosim__Request *req,
 				 Endosim__Reply *rep)
 {
+	const Endosim__TraineeSessions *q = req->trainee_sessions;
 	struct control_trainees *rb = c->trainees;
-	size_t n;
+	struct control_rows *rows = &rb->rows;
+	struct recorder_info ri;
 	int r;
 
 	(void)cl;
-	free_trainee(rb);
-	r = control_records_list(c, &rb->entries, &n, rb->error,
-				 sizeof(rb->error));
-	if (!r && (r = alloc_reply(rb, n))) {
-		snprintf(rb->error, sizeof(rb->error), "out of memory");
-	}
+	control_rows_free(rows);
+	what_asked(c, q, rows);
+	rows->paths = true;
+	r = control_records_rows(c, *q->trainee ? q->trainee : NULL, rows,
+				 rb->error, sizeof(rb->error));
 	if (r) {
-		free_trainee(rb);
-		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL, rb->error);
+		refuse(rep, r == -EINVAL ? ENDOSIM__STATUS__STATUS_BAD_VALUE
+					 : ENDOSIM__STATUS__STATUS_INTERNAL,
+		       rb->error);
 		return;
 	}
+	recorder_info(c->deps.recorder, &ri);
+	for (size_t i = 0; i < rows->n; i++) {
+		fill_trainee_session(rows->infos[i], &ri);
+	}
 	endosim__trainee_reply__init(&rb->reply);
-	rb->reply.n_sessions = fill_sessions(c, req->trainee_sessions->trainee,
-					     n);
-	rb->reply.sessions = rb->infos_p;
+	rb->reply.n_sessions = rows->n;
+	rb->reply.sessions = rows->infos;
 	rb->reply.directory = c->cfg.session.directory;
 	rb->reply.course = c->cfg.session.course;
 	rep->body_case = ENDOSIM__REPLY__BODY_TRAINEE;

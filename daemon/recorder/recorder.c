@@ -23,6 +23,7 @@
 #include "session/sessiondir.h"
 #include "session/sessioninputs.h"
 #include "session/metricstext.h"
+#include "session/records.h"
 
 #define BUF_BYTES (256 * 1024)   /* gathered frames, written in one go */
 #define FLUSH_BYTES (BUF_BYTES / 2)
@@ -76,6 +77,8 @@ struct recorder {
 	struct metrics_map floats;   /* metrics_map(), before quantising */
 	struct recorder_map next;    /* the map being made */
 	uint64_t records, bytes, drops_written;
+	uint64_t sum;                /* records_checksum() of what is written */
+	bool sum_ok;                 /* every byte of the file went into sum */
 	uint64_t throttle_t0_ns, throttle_bytes;
 	uint32_t last_state, last_faults;
 	uint32_t last_guide;       /* enum endosim_guide_phase */
@@ -162,6 +165,9 @@ static void flush(struct recorder *r)
 	}
 	if (!e) {
 		r->bytes += r->used;
+		r->sum = records_checksum(r->sum, r->buf, r->used);
+	} else {
+		r->sum_ok = false; /* part of it may be in the file */
 	}
 	r->used = 0;
 }
@@ -666,6 +672,8 @@ static void ended(struct recorder *r, int result)
 	r->info.records = r->records;
 	r->info.drops = atomic_load(&r->tap.drops);
 	r->info.bytes = r->bytes + 8;
+	r->info.checksum = r->sum;
+	r->info.checksum_known = r->sum_ok && !result;
 	r->stop_result = result;
 	r->phase = PHASE_IDLE;
 	pthread_cond_broadcast(&r->changed);
@@ -774,7 +782,7 @@ static int write_head(int fd, const struct recorder_session *s,
 
 /* The recorder thread's state for a new session (it is idle now). */
 static int arm(struct recorder *r, int fd, const struct recorder_session *s,
-	       uint64_t head_bytes)
+	       uint64_t head_bytes, uint64_t head_sum)
 {
 	r->metrics = metrics_create(s->colon, &r->mp);
 	if (!r->metrics) {
@@ -785,6 +793,8 @@ static int arm(struct recorder *r, int fd, const struct recorder_session *s,
 	r->used = 0;
 	r->records = 0;
 	r->bytes = head_bytes - 8; /* info.bytes adds the magic back */
+	r->sum = head_sum;
+	r->sum_ok = true;
 	r->drops_written = 0;
 	r->seen_record = false;
 	r->last_faults = 0;
@@ -803,6 +813,7 @@ int recorder_start(struct recorder *r, const struct recorder_session *s,
 {
 	struct recorder_info in = { .active = true, .recording = true };
 	struct stat st;
+	uint64_t head_sum = 0;
 	int fd, e;
 
 	pthread_mutex_lock(&r->lock);
@@ -828,8 +839,11 @@ int recorder_start(struct recorder *r, const struct recorder_session *s,
 	if (!e && fstat(fd, &st) < 0) {
 		e = -errno;
 	}
+	if (!e) { /* the head, small, read back: the file's sum starts there */
+		e = records_file_checksum(in.path, &head_sum);
+	}
 	if (!e) {
-		e = arm(r, fd, s, (uint64_t)st.st_size);
+		e = arm(r, fd, s, (uint64_t)st.st_size, head_sum);
 	}
 	if (e) {
 		log_err("session %" PRIu64 ": %s: %s", in.id, in.path,

@@ -90,6 +90,10 @@ struct recorder_info {
 	uint64_t records;            /* written so far */
 	uint64_t drops;
 	uint64_t bytes;              /* file size so far */
+	uint64_t checksum;           /* once ended: records_checksum() of the
+					file as written */
+	bool checksum_known;         /* checksum is the whole file's (false:
+					a write failed, or it records) */
 	struct metrics_result metrics; /* live: refreshed every ~100 ms */
 };
 

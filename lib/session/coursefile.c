@@ -248,6 +248,21 @@ int coursefile_parse(struct coursefile *c, const char *text, const char *name,
 	return finish(&p);
 }
 
+/* TEXT (N bytes, a NUL among them) refused at its first NUL: the parser
+ * reads C strings and would take the file as cut there. */
+static int nul_byte(const char *path, const char *text, size_t n, char *err,
+		    size_t errsize)
+{
+	struct parser p = { .name = path, .err = err, .errsize = errsize,
+			    .line = 1 };
+	const char *nul = memchr(text, '\0', n);
+
+	for (const char *at = text; at < nul; at++) {
+		p.line += *at == '\n';
+	}
+	return fail(&p, "a NUL byte: a course file is text");
+}
+
 int coursefile_load(struct coursefile *c, const char *path, char *err,
 		    size_t errsize)
 {
@@ -271,6 +286,8 @@ int coursefile_load(struct coursefile *c, const char *path, char *err,
 	fclose(f);
 	if (r) {
 		snprintf(err, errsize, "%s: %s", path, strerror(-r));
+	} else if (memchr(text, '\0', n)) {
+		r = nul_byte(path, text, n, err, errsize);
 	} else {
 		text[n] = '\0';
 		r = coursefile_parse(c, text, path, err, errsize);
@@ -334,6 +351,46 @@ void coursefile_req_text(const struct coursefile_req *q, char *buf,
 	snprintf(buf, size, "%s %s %g", q->field->key, op, q->value);
 }
 
+int coursefile_judge(const struct coursefile *c, const char *case_name,
+		     const struct metrics_result *m)
+{
+	const struct coursefile_case *k = coursefile_case(c, case_name);
+
+	return !k || !m ? -1 : coursefile_passed(k, m);
+}
+
+/* Session I of case CASE_NAME, judged PASSED (coursefile_judge()), into
+ * OUT. */
+static void progress_step(const struct coursefile *c, const char *case_name,
+			  int passed, size_t i,
+			  struct coursefile_progress out[COURSEFILE_MAX_CASES])
+{
+	const struct coursefile_case *k = coursefile_case(c, case_name);
+	struct coursefile_progress *p;
+
+	if (!k || passed < 0) {
+		return;
+	}
+	p = &out[k - c->cases];
+	p->sessions++;
+	p->run = passed ? p->run + 1 : 0;
+	if (!p->completed && p->run >= c->consecutive) {
+		p->completed = i + 1;
+	}
+}
+
+void coursefile_progress_judged(const struct coursefile *c,
+				const char *const *case_names,
+				const signed char *passed, size_t n,
+				struct coursefile_progress
+				out[COURSEFILE_MAX_CASES])
+{
+	memset(out, 0, COURSEFILE_MAX_CASES * sizeof(*out));
+	for (size_t i = 0; i < n; i++) {
+		progress_step(c, case_names[i], passed[i], i, out);
+	}
+}
+
 void coursefile_progress(const struct coursefile *c,
 			 const char *const *case_names,
 			 const struct metrics_result *const *m, size_t n,
@@ -341,20 +398,28 @@ void coursefile_progress(const struct coursefile *c,
 {
 	memset(out, 0, COURSEFILE_MAX_CASES * sizeof(*out));
 	for (size_t i = 0; i < n; i++) {
-		const struct coursefile_case *k = coursefile_case(c,
-								  case_names[i]);
-		struct coursefile_progress *p;
+		progress_step(c, case_names[i],
+			      coursefile_judge(c, case_names[i], m[i]), i, out);
+	}
+}
 
-		if (!k || !m[i]) {
-			continue;
-		}
-		p = &out[k - c->cases];
-		p->sessions++;
-		p->run = coursefile_passed(k, m[i]) ? p->run + 1 : 0;
-		if (!p->completed && p->run >= c->consecutive) {
-			p->completed = i + 1;
+size_t coursefile_keys(const struct coursefile *c, const char **keys,
+		       size_t max)
+{
+	size_t n = 0, k;
+
+	for (size_t i = 0; i < c->n_cases; i++) {
+		for (size_t j = 0; j < c->cases[i].n_reqs; j++) {
+			const char *key = c->cases[i].req[j].field->key;
+
+			for (k = 0; k < n && strcmp(keys[k], key); k++) {
+			}
+			if (k == n && n < max) {
+				keys[n++] = key;
+			}
 		}
 	}
+	return n;
 }
 
 bool coursefile_complete(const struct coursefile *c,

@@ -78,7 +78,8 @@ int coursefile_parse(struct coursefile *c, const char *text, const char *name,
 		     char *err, size_t errsize);
 
 /* Reads and parses the file PATH: 0, -errno when it cannot be read (with
- * ERR saying so), or -EINVAL as coursefile_parse(). */
+ * ERR saying so), or -EINVAL as coursefile_parse() (and "PATH:LINE: a NUL
+ * byte" for a file holding one). */
 int coursefile_load(struct coursefile *c, const char *path, char *err,
 		    size_t errsize);
 
@@ -115,6 +116,30 @@ void coursefile_progress(const struct coursefile *c,
 			 const char *const *case_names,
 			 const struct metrics_result *const *m, size_t n,
 			 struct coursefile_progress out[COURSEFILE_MAX_CASES]);
+
+/*
+ * Session M (NULL: its measures not known) of the case CASE_NAME judged
+ * by C: 1 it met every requirement of its case, 0 it did not, -1 not
+ * judged (M not known, or a case C does not name).
+ */
+int coursefile_judge(const struct coursefile *c, const char *case_name,
+		     const struct metrics_result *m);
+
+/*
+ * As coursefile_progress(), each session judged already: PASSED[i] as
+ * coursefile_judge() said (a listing of many sessions judges each as it
+ * reads it and keeps no measures).
+ */
+void coursefile_progress_judged(const struct coursefile *c,
+				const char *const *case_names,
+				const signed char *passed, size_t n,
+				struct coursefile_progress
+				out[COURSEFILE_MAX_CASES]);
+
+/* The keys of the measures C's requirements name, each once, into KEYS
+ * (room for MAX); how many. */
+size_t coursefile_keys(const struct coursefile *c, const char **keys,
+		       size_t max);
 
 /* Whether every case of C is complete in P (coursefile_progress()). */
 bool coursefile_complete(const struct coursefile *c,

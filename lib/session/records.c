@@ -90,6 +90,7 @@ struct records {
 	char *insert_measures;  /* INSERT INTO measures (...) VALUES (?...) */
 	char *select_list;      /* the sessions joined with their measures,
 				   without an ORDER BY */
+	char *select_facts;     /* the sessions alone, likewise */
 	char error[9216];       /* room for the path and SQLite's words */
 };
 
@@ -125,6 +126,15 @@ static char *field_sql(const char *prefix, const char *key_prefix,
 	return text;
 }
 
+/* The columns read_row() reads, with or without the measures after them
+ * (m: the measures' table), and the names they need. */
+#define FACTS_COLUMNS "SELECT s.id, t.name, c.name, s.started, s.ended, " \
+	"s.bytes, s.checksum, s.rig, s.judgement, "
+#define FACTS FACTS_COLUMNS "0, s.uuid"
+#define FACTS_WITH_MEASURES FACTS_COLUMNS "m.session_id IS NOT NULL, s.uuid"
+#define JOIN_NAMES " JOIN trainees t ON t.id = s.trainee_id" \
+	" JOIN cases c ON c.id = s.case_id"
+
 struct records *records_create(const char *database, const char *dir,
 			       const char *rig, const char *course)
 {
@@ -147,15 +157,11 @@ struct records *records_create(const char *database, const char *dir,
 	}
 	r->insert_measures = field_sql("INSERT INTO measures (session_id, ",
 				       "", ") VALUES (?", ")");
-	r->select_list = field_sql("SELECT s.id, t.name, c.name, s.started, "
-				   "s.ended, s.bytes, s.checksum, s.rig, "
-				   "s.judgement, m.session_id IS NOT NULL, "
-				   "s.uuid, ", "m.",
-				   "", " FROM sessions s JOIN trainees t ON "
-				   "t.id = s.trainee_id JOIN cases c ON "
-				   "c.id = s.case_id LEFT JOIN measures m ON "
-				   "m.session_id = s.id");
-	if (!r->insert_measures || !r->select_list) {
+	r->select_list = field_sql(FACTS_WITH_MEASURES ", ", "m.", "",
+				   " FROM sessions s" JOIN_NAMES " LEFT JOIN "
+				   "measures m ON m.session_id = s.id");
+	r->select_facts = strdup(FACTS " FROM sessions s" JOIN_NAMES);
+	if (!r->insert_measures || !r->select_list || !r->select_facts) {
 		records_destroy(r);
 		return NULL;
 	}
@@ -169,6 +175,7 @@ void records_destroy(struct records *r)
 	}
 	free(r->insert_measures);
 	free(r->select_list);
+	free(r->select_facts);
 	free(r);
 }
 
@@ -296,8 +303,17 @@ close:
 
 /* ------------------------------------------------------------ a file */
 
-/* FNV-1a, 64 bits, of the file PATH. */
-static int file_checksum(const char *path, uint64_t *sum)
+uint64_t records_checksum(uint64_t sum, const void *p, size_t n)
+{
+	const unsigned char *b = p;
+
+	for (size_t i = 0; i < n; i++) {
+		sum = (sum ^ b[i]) * 0x100000001b3ull;
+	}
+	return sum;
+}
+
+int records_file_checksum(const char *path, uint64_t *sum)
 {
 	unsigned char buf[65536];
 	int fd = open(path, O_RDONLY | O_CLOEXEC);
@@ -306,24 +322,29 @@ static int file_checksum(const char *path, uint64_t *sum)
 	if (fd < 0) {
 		return -errno;
 	}
-	*sum = 0xcbf29ce484222325ull;
+	*sum = RECORDS_CHECKSUM_SEED;
 	while ((got = read(fd, buf, sizeof(buf))) > 0) {
-		for (ssize_t i = 0; i < got; i++) {
-			*sum = (*sum ^ buf[i]) * 0x100000001b3ull;
-		}
+		*sum = records_checksum(*sum, buf, (size_t)got);
 	}
 	close(fd);
 	return got < 0 ? -EIO : 0;
 }
 
-int records_read_file(const char *path, struct records_session *s)
+/* The file PATH as its row; its checksum SUM when known (NULL: read the
+ * file whole for it). */
+static int read_file(const char *path, const uint64_t *sum,
+		     struct records_session *s)
 {
 	char *end = NULL;
 	int e;
 
 	memset(s, 0, sizeof(*s));
-	if ((e = sessiondir_stat_file(path, &s->e)) ||
-	    (e = file_checksum(path, &s->checksum))) {
+	if ((e = sessiondir_stat_file(path, &s->e))) {
+		return e;
+	}
+	if (sum) {
+		s->checksum = *sum;
+	} else if ((e = records_file_checksum(path, &s->checksum))) {
 		return e;
 	}
 	s->has_metrics = s->e.ended && !sessiondir_end_text(path, &end) &&
@@ -331,6 +352,11 @@ int records_read_file(const char *path, struct records_session *s)
 	s->m.n_force = s->m.n_loop = s->m.n_pain = 0;
 	free(end);
 	return 0;
+}
+
+int records_read_file(const char *path, struct records_session *s)
+{
+	return read_file(path, NULL, s);
 }
 
 /* ------------------------------------------------------------ writing */
@@ -524,9 +550,10 @@ static void judge(const struct records *r, struct records_session *s)
 	free(c);
 }
 
-/* Session ID's file as its row, or its row deleted when the file is
- * gone; not a session file: left out. */
-static int write_file(struct records *r, sqlite3 *db, uint64_t id)
+/* Session ID's file as its row (SUM: its checksum when known), or its
+ * row deleted when the file is gone; not a session file: left out. */
+static int write_summed(struct records *r, sqlite3 *db, uint64_t id,
+			const uint64_t *sum)
 {
 	struct records_session s;
 	char path[4096];
@@ -535,7 +562,7 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	if (sessiondir_path(r->dir, id, path, sizeof(path))) {
 		return -ENAMETOOLONG;
 	}
-	e = records_read_file(path, &s);
+	e = read_file(path, sum, &s);
 	if (e == -ENOENT || e == -EBADMSG) {
 		int d = delete_row(r, db, id);
 
@@ -550,6 +577,11 @@ static int write_file(struct records *r, sqlite3 *db, uint64_t id)
 	s.e.id = id; /* the file's name says it */
 	judge(r, &s);
 	return insert_session(r, db, path, &s);
+}
+
+static int write_file(struct records *r, sqlite3 *db, uint64_t id)
+{
+	return write_summed(r, db, id, NULL);
 }
 
 /* Every file's row written (but SKIP's), one transaction; how many. */
@@ -659,6 +691,11 @@ static int ready(struct records *r, sqlite3 **db, bool *rebuilt)
 
 int records_add(struct records *r, uint64_t id)
 {
+	return records_add_summed(r, id, NULL);
+}
+
+int records_add_summed(struct records *r, uint64_t id, const uint64_t *sum)
+{
 	sqlite3 *db;
 	bool rebuilt;
 	int e = ready(r, &db, &rebuilt);
@@ -669,7 +706,7 @@ int records_add(struct records *r, uint64_t id)
 	}
 	e = exec(r, db, "BEGIN IMMEDIATE");
 	if (!e) {
-		e = write_file(r, db, id);
+		e = write_summed(r, db, id, sum);
 		if (e && e != -ENOENT) {
 			sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
 		} else {
@@ -691,11 +728,21 @@ static void column_text(sqlite3_stmt *st, int col, char *out, size_t size)
 	snprintf(out, size, "%s", t ? (const char *)t : "");
 }
 
-/* The current row of the list's statement into S. */
-static void read_row(sqlite3_stmt *st, struct records_session *s)
+/* The measures a statement selects after the facts: N of them, the
+ * metricstext_fields() index of each in IDX (NULL: every field, in
+ * order). */
+struct columns {
+	const size_t *idx;
+	size_t n;
+};
+
+/* The current row of the list's statement, selecting the measures C,
+ * into S. */
+static void read_row(sqlite3_stmt *st, const struct columns *c,
+		     struct records_session *s)
 {
-	const struct metricstext_field *f;
-	size_t n = metricstext_fields(&f);
+	const struct metricstext_field *all;
+	size_t n = metricstext_fields(&all);
 
 	memset(s, 0, sizeof(*s));
 	s->e.id = (uint64_t)sqlite3_column_int64(st, 0);
@@ -712,16 +759,17 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	if (!s->uuid[0]) {
 		records_uuid(s, s->uuid); /* a row older than the column */
 	}
-	for (size_t i = 0; s->has_metrics && i < n; i++) {
-		char *at = (char *)&s->m + f[i].offset;
+	for (size_t i = 0; s->has_metrics && i < (c->idx ? c->n : n); i++) {
+		const struct metricstext_field *f = &all[c->idx ? c->idx[i] : i];
+		char *at = (char *)&s->m + f->offset;
 		int col = (int)i + 11;
 
-		if (f[i].kind == FIELDS_DOUBLE) {
+		if (f->kind == FIELDS_DOUBLE) {
 			/* SQLite keeps a NaN as NULL */
 			*(double *)at = sqlite3_column_type(st, col) ==
 					SQLITE_NULL ? NAN :
 					sqlite3_column_double(st, col);
-		} else if (f[i].kind == FIELDS_UINT64) {
+		} else if (f->kind == FIELDS_UINT64) {
 			*(uint64_t *)at = (uint64_t)sqlite3_column_int64(st,
 									 col);
 		} else {
@@ -731,44 +779,81 @@ static void read_row(sqlite3_stmt *st, struct records_session *s)
 	}
 }
 
-/* The rows of DB that the list's statement and SUFFIX select into *OUT,
- * *N. */
-static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
-		       struct records_session **out, size_t *n)
+/* Each row of DB that SELECT and SUFFIX select (its one parameter, when
+ * it has one, bound to ARG's text) read into one S and passed to FN. */
+static int each_row(struct records *r, sqlite3 *db, const char *select,
+		    const struct columns *c, const char *suffix,
+		    const char *arg, records_fn *fn, void *fn_arg)
 {
-	size_t cap = 64;
-	sqlite3_stmt *st;
+	struct records_session *s = malloc(sizeof(*s));
+	sqlite3_stmt *st = NULL;
 	char *sql = NULL;
 	int rc, e = 0;
 
-	*n = 0;
-	*out = malloc(cap * sizeof(**out));
-	if (!*out || asprintf(&sql, "%s %s", r->select_list, suffix) < 0) {
+	if (!s || asprintf(&sql, "%s %s", select, suffix) < 0) {
+		free(s);
 		return -ENOMEM;
 	}
 	rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
 	free(sql);
 	if (rc) {
+		free(s);
 		return sql_fail(r, db, "preparing the list");
 	}
+	if (arg) {
+		sqlite3_bind_text(st, 1, arg, -1, SQLITE_STATIC);
+	}
 	while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
-		if (*n == cap) {
-			struct records_session *more =
-				realloc(*out, 2 * cap * sizeof(*more));
-
-			if (!more) {
-				e = -ENOMEM;
-				break;
-			}
-			*out = more;
-			cap *= 2;
-		}
-		read_row(st, &(*out)[(*n)++]);
+		read_row(st, c, s);
+		e = fn(fn_arg, s);
 	}
 	if (!e && rc != SQLITE_DONE) {
 		e = sql_fail(r, db, "listing the sessions");
 	}
 	sqlite3_finalize(st);
+	free(s);
+	return e;
+}
+
+/* A growing array of rows, for select_rows(). */
+struct rows {
+	struct records_session *s;
+	size_t n, cap;
+};
+
+static int append_row(void *arg, const struct records_session *s)
+{
+	struct rows *a = arg;
+
+	if (!s) {
+		a->n = 0; /* read again from the start */
+		return 0;
+	}
+	if (a->n == a->cap) {
+		size_t cap = a->cap ? 2 * a->cap : 64;
+		struct records_session *more = realloc(a->s, cap * sizeof(*more));
+
+		if (!more) {
+			return -ENOMEM;
+		}
+		a->s = more;
+		a->cap = cap;
+	}
+	a->s[a->n++] = *s;
+	return 0;
+}
+
+/* The rows of DB that the list's statement and SUFFIX select into *OUT,
+ * *N. */
+static int select_rows(struct records *r, sqlite3 *db, const char *suffix,
+		       struct records_session **out, size_t *n)
+{
+	struct rows a = { 0 };
+	int e = each_row(r, db, r->select_list, &(struct columns){ 0 },
+			 suffix, NULL, append_row, &a);
+
+	*out = a.s;
+	*n = a.n;
 	return e;
 }
 
@@ -781,30 +866,92 @@ static int select_all(struct records *r, sqlite3 *db,
 
 int records_list(struct records *r, struct records_session **out, size_t *n)
 {
+	struct rows a = { 0 };
+	int e = records_each(r, NULL, RECORDS_MEASURES, NULL, 0, append_row,
+			     &a);
+
+	if (e) {
+		free(a.s);
+		a = (struct rows){ 0 };
+	}
+	*out = a.s;
+	*n = a.n;
+	return e;
+}
+
+/*
+ * The statement selecting the facts and the measures named by KEYS (N of
+ * them) into *SQL (malloc'd), their columns into C (IDX: room for N). Our
+ * table's names only: each key is checked against it. 0, -EINVAL (R's
+ * error names the key), -ENOMEM.
+ */
+static int select_some(struct records *r, const char *const *keys, size_t n,
+		       char **sql, size_t *idx, struct columns *c)
+{
+	const struct metricstext_field *f;
+	size_t nf = metricstext_fields(&f), len = 0;
+	FILE *m = open_memstream(sql, &len);
+
+	if (!m) {
+		return -ENOMEM;
+	}
+	fputs(FACTS_WITH_MEASURES, m);
+	for (size_t i = 0; i < n; i++) {
+		for (idx[i] = 0; idx[i] < nf && strcmp(f[idx[i]].key, keys[i]);
+		     idx[i]++) {
+		}
+		if (idx[i] == nf) {
+			fclose(m);
+			free(*sql);
+			snprintf(r->error, sizeof(r->error), "no measure '%.64s'",
+				 keys[i]);
+			return -EINVAL;
+		}
+		fprintf(m, ", m.%s", f[idx[i]].key);
+	}
+	fputs(" FROM sessions s" JOIN_NAMES " LEFT JOIN measures m ON "
+	      "m.session_id = s.id", m);
+	*c = (struct columns){ .idx = idx, .n = n };
+	return fclose(m) ? -ENOMEM : 0;
+}
+
+int records_each(struct records *r, const char *trainee, unsigned what,
+		 const char *const *keys, size_t n_keys, records_fn *fn,
+		 void *arg)
+{
+	const char *select = what & RECORDS_MEASURES ? r->select_list
+						     : r->select_facts;
+	const char *suffix = trainee ? "WHERE t.name = ? ORDER BY s.id"
+				     : "ORDER BY s.id";
+	struct columns c = { 0 };
+	char *some = NULL;
+	size_t *idx = NULL;
 	sqlite3 *db;
 	bool rebuilt;
-	int e;
+	int e = 0;
 
-	*out = NULL;
-	*n = 0;
+	r->error[0] = '\0';
+	if ((what & RECORDS_MEASURES) && keys &&
+	    (!(idx = calloc(n_keys + 1, sizeof(*idx))) ||
+	     (e = select_some(r, keys, n_keys, &some, idx, &c)))) {
+		free(idx);
+		return e ? e : -ENOMEM;
+	}
 	for (int tries = 0; tries < 2; tries++) {
 		if ((e = ready(r, &db, &rebuilt))) {
-			return e;
+			break;
 		}
-		e = select_all(r, db, out, n);
+		e = each_row(r, db, some ? some : select, &c, suffix, trainee,
+			     fn, arg);
 		sqlite3_close(db);
 		if (e != -EBADMSG) {
 			break;
 		}
-		free(*out);
-		*out = NULL;
+		fn(arg, NULL);
 		move_aside(r); /* damage found only now: rebuild, once */
 	}
-	if (e) {
-		free(*out);
-		*out = NULL;
-		*n = 0;
-	}
+	free(some);
+	free(idx);
 	return e;
 }
 

@@ -102,11 +102,53 @@ const char *records_error(const struct records *r);
 int records_add(struct records *r, uint64_t id);
 
 /*
+ * As records_add(), the file's checksum *SUM known already (NULL: not):
+ * its writer's, records_checksum() carried over every byte it wrote, so
+ * that a long session's file is not read whole again at its end.
+ */
+int records_add_summed(struct records *r, uint64_t id, const uint64_t *sum);
+
+/* The records' checksum of a file, FNV-1a (64 bits): SUM (the seed at the
+ * file's start) carried over the N bytes at P. Any thread, no state. */
+#define RECORDS_CHECKSUM_SEED 0xcbf29ce484222325ull
+uint64_t records_checksum(uint64_t sum, const void *p, size_t n);
+
+/* The checksum of the whole file PATH into *SUM. 0 or -errno (-EIO). */
+int records_file_checksum(const char *path, uint64_t *sum);
+
+/*
  * Every session of the database sorted by ID: a malloc'd array of *N in
  * *OUT (free() it). A missing or damaged database is built again from the
  * files first. 0 or as records_add().
  */
 int records_list(struct records *r, struct records_session **out, size_t *n);
+
+/*
+ * Called with each session of records_each() in turn, S valid during the
+ * call only: 0 to go on, else what records_each() returns. S NULL: forget
+ * the sessions passed so far, they come again (the database was found
+ * damaged midway, and is read again once built from the files).
+ */
+typedef int records_fn(void *arg, const struct records_session *s);
+
+/* What records_each() reads of each session. */
+enum {
+	RECORDS_FACTS = 0,     /* its row alone: has_metrics false, m zero */
+	RECORDS_MEASURES = 1,  /* its measures too, when it has them */
+};
+
+/*
+ * The sessions of the database by ID, TRAINEE's alone (exactly; NULL:
+ * everyone's), each read as WHAT says and passed to FN with ARG as it is
+ * read: a listing holds no more than it keeps. With RECORDS_MEASURES and
+ * KEYS, only the N_KEYS measures KEYS names (metricstext_fields()' keys;
+ * the others left 0): what a course judges by. A missing or damaged
+ * database is built again from the files first. 0, FN's nonzero return,
+ * -EINVAL (a key names no measure), or as records_add().
+ */
+int records_each(struct records *r, const char *trainee, unsigned what,
+		 const char *const *keys, size_t n_keys, records_fn *fn,
+		 void *arg);
 
 /* Flags of records_check(). */
 enum {

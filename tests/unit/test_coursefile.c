@@ -5,7 +5,8 @@
  * reached); a case is complete after `consecutive` passing sessions in a
  * row and a failing one starts the count again; the shipped course fails
  * a session that perforated (counted from its records) or was in pain
- * more than 10 % of the time.
+ * more than 10 % of the time. Hostile files: quotes and semicolons
+ * kept as given, a NUL byte or a 10 kB line refused with FILE:LINE.
  *
  * Reads config/courses/basic.course: run from the source tree.
  */
@@ -15,7 +16,9 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -179,6 +182,23 @@ static void test_perforation_fails(void **state)
 	assert_false(coursefile_passed(k, &good_m));
 }
 
+/* Judged one by one (a listing's way): the same progress as P's, of the
+ * N sessions CASES[i] with measures M[i]. */
+static void judged_alike(const char **cases,
+			 const struct metrics_result **m, size_t n,
+			 const struct coursefile_progress *p)
+{
+	struct coursefile_progress q[COURSEFILE_MAX_CASES];
+	signed char passed[16];
+
+	for (size_t i = 0; i < n; i++) {
+		passed[i] = (signed char)coursefile_judge(&course, cases[i],
+							  m[i]);
+	}
+	coursefile_progress_judged(&course, cases, passed, n, q);
+	assert_memory_equal(p, q, sizeof(q));
+}
+
 static void test_progress(void **state)
 {
 	struct metrics_result pass = { .cecum_s = 300, .withdrawal_s = 400,
@@ -205,12 +225,69 @@ static void test_progress(void **state)
 	assert_int_equal(p[0].run, 2);
 	assert_int_equal(p[0].completed, 7);
 	assert_false(coursefile_complete(&course, p));
+	assert_int_equal(coursefile_judge(&course, "normal", &miss), 0);
+	assert_int_equal(coursefile_judge(&course, "other", &pass), -1);
+	assert_int_equal(coursefile_judge(&course, "polyps", NULL), -1);
+	assert_int_equal(coursefile_judge(&course, "normal", &pass), 1);
+	judged_alike(cases, m, 7, p);
 	cases[5] = "polyps";
 	m[5] = &pass;
 	coursefile_progress(&course, cases, m, 7, p);
 	assert_int_equal(p[1].completed, 6);
 	assert_true(coursefile_complete(&course, p));
+	judged_alike(cases, m, 7, p);
 }
+
+/* The file PATH written with the N bytes TEXT. */
+static void write_file(const char *path, const char *text, size_t n)
+{
+	FILE *f = fopen(path, "we");
+
+	assert_non_null(f);
+	assert_int_equal(fwrite(text, 1, n, f), n);
+	assert_int_equal(fclose(f), 0);
+}
+
+/* Names as given whatever they hold; what a parser reading C strings
+ * would take wrongly refused, with its file and line. */
+static void test_hostile_files(void **state)
+{
+	static const char quotes[] =
+		"[course]\nname = it's \"a\"; DROP TABLE x;--\n"
+		"description = ';--\nconsecutive = 1\n"
+		"[case normal]\ncecum_s <= 480\n";
+	static const char nul[] = "[course]\nname = t\0evil\n"
+				  "consecutive = 1\n[case normal]\n"
+				  "cecum_s <= 480\n";
+	const char *tmp = getenv("TMPDIR");
+	char path[256], *big = malloc(12000);
+	size_t n;
+
+	(void)state;
+	assert_non_null(big);
+	snprintf(path, sizeof(path), "%s/test_coursefile.%d.course",
+		 tmp ? tmp : "/tmp", (int)getpid());
+	write_file(path, quotes, sizeof(quotes) - 1);
+	assert_int_equal(coursefile_load(&course, path, err, sizeof(err)), 0);
+	assert_string_equal(course.name, "it's \"a\"; DROP TABLE x;--");
+	assert_string_equal(course.description, "';--");
+	write_file(path, nul, sizeof(nul) - 1);
+	assert_int_equal(coursefile_load(&course, path, err, sizeof(err)),
+			 -EINVAL);
+	assert_non_null(strstr(err, ":2: a NUL byte"));
+	assert_non_null(strstr(err, path));
+	n = (size_t)snprintf(big, 12000, "[course]\nname = ");
+	memset(big + n, 'x', 10240);
+	n += 10240;
+	n += (size_t)snprintf(big + n, 12000 - n, "\nconsecutive = 1\n");
+	write_file(path, big, n);
+	assert_int_equal(coursefile_load(&course, path, err, sizeof(err)),
+			 -EINVAL);
+	assert_non_null(strstr(err, ":2: line longer than"));
+	unlink(path);
+	free(big);
+}
+
 
 int main(void)
 {
@@ -221,6 +298,7 @@ int main(void)
 		cmocka_unit_test(test_met),
 		cmocka_unit_test(test_perforation_fails),
 		cmocka_unit_test(test_progress),
+		cmocka_unit_test(test_hostile_files),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -5,7 +5,9 @@
  * them, each judged by a course when one is given; a deleted or damaged
  * database is said by a check and built again from the files; a file
  * changed under it is told apart field by field and fixed; a database made by the first schema opens migrated with its
- * measures intact; one of a newer schema is refused, saying so. For a
+ * measures intact; one of a newer schema is refused, saying so. A reader
+ * listing while a writer commits a session midway (in lockstep, 100
+ * times) sees the sessions of its start whole, never an error. For a
  * centre: each session written is queued in the order written, once,
  * leaves the queue when it arrived, and keeps its UUID when the database
  * is built again (and is queued again then, the centre's copy telling).
@@ -17,6 +19,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -154,6 +157,236 @@ static void test_add_and_list(void **state)
 	free(s);
 	assert_int_equal(records_add(r, 99), -ENOENT);
 	check_list(r, 4);
+}
+
+/* What records_each() passed: its IDs in order, the measures seen. */
+struct seen {
+	uint64_t id[8];
+	size_t n, with_measures, restarts;
+	char trainee[8][64];
+};
+
+static int see(void *arg, const struct records_session *s)
+{
+	struct seen *w = arg;
+
+	if (!s) {
+		w->n = 0;
+		w->restarts++;
+		return 0;
+	}
+	assert_true(w->n < 8);
+	snprintf(w->trainee[w->n], sizeof(w->trainee[0]), "%s", s->e.trainee);
+	w->with_measures += s->has_metrics && s->m.withdrawal_s > 0;
+	w->id[w->n++] = s->e.id;
+	return 0;
+}
+
+static int stop_at_two(void *arg, const struct records_session *s)
+{
+	return see(arg, s) ? -1 : ((struct seen *)arg)->n == 2 ? -EINTR : 0;
+}
+
+/* A trainee's sessions alone, by ID; the facts without the measures; a
+ * damaged database read again from the start, built from the files. */
+static void test_each(void **state)
+{
+	struct records *r = *state;
+	struct seen w = { 0 };
+
+	assert_int_equal(records_each(r, "Ann Smith", RECORDS_MEASURES, NULL,
+				      0, see, &w), 0);
+	assert_int_equal(w.n, 2);
+	assert_int_equal(w.id[0], 1);
+	assert_int_equal(w.id[1], 2);
+	assert_int_equal(w.with_measures, 1); /* 2 was cut short */
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, BOBBY, RECORDS_FACTS, NULL, 0, see,
+				      &w), 0);
+	assert_int_equal(w.n, 1);
+	assert_int_equal(w.id[0], 10);
+	assert_string_equal(w.trainee[0], BOBBY);
+	assert_int_equal(w.with_measures, 0); /* facts alone */
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, "Ann", RECORDS_FACTS, NULL, 0, see,
+				      &w), 0);
+	assert_int_equal(w.n, 0); /* exactly the name */
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, NULL, 0, see,
+				      &w), 0);
+	assert_int_equal(w.n, 3);
+	assert_int_equal(w.with_measures, 2);
+	memset(&w, 0, sizeof(w));
+	assert_int_equal(records_each(r, NULL, RECORDS_FACTS, NULL, 0,
+				      stop_at_two, &w), -EINTR);
+	assert_int_equal(w.n, 2);
+	assert_int_equal(w.restarts, 0);
+}
+
+/* The measures named alone, the others 0; a key naming none refused. */
+static int see_some(void *arg, const struct records_session *s)
+{
+	struct seen *w = arg;
+
+	assert_non_null(s);
+	if (s->has_metrics) {
+		assert_true(s->m.withdrawal_s == (s->e.id == 1 ? 400 : 300));
+		assert_true(s->m.cecum_s == 0);   /* not asked */
+		assert_true(s->m.mucosa_seen == 0.5);
+		w->with_measures++;
+	}
+	w->id[w->n++] = s->e.id;
+	return 0;
+}
+
+static void test_each_some(void **state)
+{
+	static const char *const keys[] = { "withdrawal_s", "mucosa_seen" };
+	static const char *const bad[] = { "withdrawal_s",
+					   "x FROM trainees; --" };
+	struct records *r = *state;
+	struct seen w = { 0 };
+
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, keys, 2,
+				      see_some, &w), 0);
+	assert_int_equal(w.n, 3);
+	assert_int_equal(w.with_measures, 2);
+	assert_int_equal(records_each(r, NULL, RECORDS_MEASURES, bad, 2,
+				      see_some, &w), -EINVAL);
+	assert_non_null(strstr(records_error(r), "no measure 'x FROM"));
+}
+
+/*
+ * Concurrency in lockstep: a writer (a second struct records on the same
+ * database, as endosimd beside a reader) adds session N + 1 while a
+ * reader is midway through its list of N, at its first row: each pass
+ * must see the N sessions of its start whole (every row once, in order,
+ * with its own measures: cecum_s is the ID), never the one committed
+ * meanwhile nor an error. Each step waits for the other, not for time.
+ */
+struct lockstep {
+	pthread_mutex_t lock;
+	pthread_cond_t cond;
+	uint64_t want;     /* the session the writer is to add; 0: none */
+	uint64_t added;    /* the last it added */
+	int error;         /* its records_add()'s */
+	bool done;
+	struct records *writer;
+};
+
+static void *writer_thread(void *arg)
+{
+	struct lockstep *ls = arg;
+
+	pthread_mutex_lock(&ls->lock);
+	while (!ls->done) {
+		uint64_t id = ls->want;
+
+		if (!id || id == ls->added) {
+			pthread_cond_wait(&ls->cond, &ls->lock);
+			continue;
+		}
+		pthread_mutex_unlock(&ls->lock);
+		write_session(id, id % 2 ? "Ann Smith" : BOBBY, 1, 400);
+		ls->error = records_add(ls->writer, id);
+		pthread_mutex_lock(&ls->lock);
+		ls->added = id;
+		pthread_cond_broadcast(&ls->cond);
+	}
+	pthread_mutex_unlock(&ls->lock);
+	return NULL;
+}
+
+struct pass {
+	struct lockstep *ls;
+	uint64_t next;     /* the ID the next row must have */
+	bool poked;
+};
+
+static int read_row_checked(void *arg, const struct records_session *s)
+{
+	struct pass *p = arg;
+	struct lockstep *ls = p->ls;
+
+	assert_non_null(s); /* no damage: never read again */
+	assert_int_equal(s->e.id, p->next++);
+	assert_true(s->has_metrics);
+	assert_true(s->m.cecum_s == (double)s->e.id);
+	assert_string_equal(s->e.trainee, s->e.id % 2 ? "Ann Smith" : BOBBY);
+	if (!p->poked) { /* midway: the writer commits the next one now */
+		p->poked = true;
+		pthread_mutex_lock(&ls->lock);
+		ls->want = ls->added + 1;
+		pthread_cond_broadcast(&ls->cond);
+		while (ls->added != ls->want) {
+			pthread_cond_wait(&ls->cond, &ls->lock);
+		}
+		pthread_mutex_unlock(&ls->lock);
+		assert_int_equal(ls->error, 0);
+	}
+	return 0;
+}
+
+static void test_concurrent_reads(void **state)
+{
+	struct records *r = *state;
+	struct lockstep ls = { .added = 1 };
+	pthread_t t;
+	char cmd[400];
+
+	snprintf(cmd, sizeof(cmd), "rm -f '%s'/*.endoses", dir);
+	assert_int_equal(system(cmd), 0);
+	write_session(1, "Ann Smith", 1, 400);
+	assert_int_equal(records_add(r, 1), 0);
+	ls.writer = records_create("records.sqlite", dir, "rig-1", NULL);
+	assert_non_null(ls.writer);
+	pthread_mutex_init(&ls.lock, NULL);
+	pthread_cond_init(&ls.cond, NULL);
+	assert_int_equal(pthread_create(&t, NULL, writer_thread, &ls), 0);
+	for (uint64_t n = 1; n <= 100; n++) {
+		struct pass p = { .ls = &ls, .next = 1 };
+
+		assert_int_equal(records_each(r, NULL, RECORDS_MEASURES,
+					      NULL, 0, read_row_checked,
+					      &p), 0);
+		assert_int_equal(p.next, n + 1); /* the N of its start */
+		assert_int_equal(ls.added, n + 1); /* one more committed */
+	}
+	pthread_mutex_lock(&ls.lock);
+	ls.done = true;
+	pthread_cond_broadcast(&ls.cond);
+	pthread_mutex_unlock(&ls.lock);
+	pthread_join(t, NULL);
+	records_destroy(ls.writer);
+	check_list(r, 101);
+}
+
+/* A session added with its writer's checksum: the file not read for it;
+ * the right one agrees with a deep check, a wrong one is found by it. */
+static void test_add_summed(void **state)
+{
+	struct records *r = *state;
+	struct records_report rep;
+	char path[300];
+	uint64_t sum, whole;
+
+	assert_int_equal(records_add(r, 1), 0);
+	write_session(11, "Ann Smith", 1, 200);
+	snprintf(path, sizeof(path), "%s/11.endoses", dir);
+	assert_int_equal(records_file_checksum(path, &whole), 0);
+	sum = records_checksum(RECORDS_CHECKSUM_SEED, "", 0);
+	assert_true(sum == RECORDS_CHECKSUM_SEED);
+	sum = whole;
+	assert_int_equal(records_add_summed(r, 11, &sum), 0);
+	assert_int_equal(records_check(r, RECORDS_DEEP, 0, &rep), 0);
+	assert_int_equal(rep.differ, 0);
+	records_report_free(&rep);
+	sum = whole ^ 1;
+	assert_int_equal(records_add_summed(r, 11, &sum), 0);
+	assert_int_equal(records_check(r, RECORDS_DEEP, 0, &rep), 0);
+	assert_int_equal(rep.differ, 1);
+	assert_non_null(strstr(rep.text, "session 11: the database's row "
+			       "differs from its file: checksum"));
+	records_report_free(&rep);
 }
 
 static void test_judgement(void **state)
@@ -533,6 +766,11 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(test_add_and_list, setup,
+						teardown),
+		cmocka_unit_test_setup_teardown(test_each, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_each_some, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_add_summed, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_concurrent_reads, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_judgement, setup, teardown),
 		cmocka_unit_test_setup_teardown(test_check_and_fix, setup,
