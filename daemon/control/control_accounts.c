@@ -202,7 +202,12 @@ bool control_accounts_refuse(struct control *c, const struct client *cl,
 	       named_unseen(c, cl, req->trainee_sessions->trainee, rep);
 }
 
-/* The N sessions S that NAMES sees, moved to its front; how many. */
+/*
+ * The N sessions S that NAMES sees, moved to its front; how many. The
+ * others are swapped behind them, not overwritten: S may be the very
+ * array its rows are freed by (control_trainee.c's reply), and each row
+ * must stay in it once.
+ */
 static size_t keep_seen(Endosim__SessionInfo **s, size_t n,
 			const char *names)
 {
@@ -210,7 +215,10 @@ static size_t keep_seen(Endosim__SessionInfo **s, size_t n,
 
 	for (size_t i = 0; i < n; i++) {
 		if (accounts_among(names, s[i]->trainee)) {
-			s[kept++] = s[i];
+			Endosim__SessionInfo *seen = s[i];
+
+			s[i] = s[kept];
+			s[kept++] = seen;
 		}
 	}
 	return kept;
