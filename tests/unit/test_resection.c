@@ -89,6 +89,7 @@
 #define AIM_S 20.0       /* her time to aim a tool, at most */
 #define LOOP_TOL_M 0.002 /* the loop's centre off a polyp's axis' middle */
 #define NEEDLE_TOL_M 0.001 /* the needle's point off its place */
+#define FLAT_DEG 30.0    /* the loop over a polyp, flat to its wall within */
 
 struct run {
 	struct config cfg;
@@ -240,15 +241,22 @@ static double aim(struct run *r, const double target[3],
 }
 
 /* She brings polyp I under the open loop: its axis' middle at the loop's
- * centre. The seconds it took. */
+ * centre, the loop lying flat over it (the polyp at the channel's clock:
+ * its wall's normal within FLAT_DEG of the loop's). The seconds it
+ * took. */
 static double under_loop(struct run *r, int i)
 {
 	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	double h = tool_polyp_height(p, r->par.lift_m), mid[3];
+	double h = tool_polyp_height(p, r->par.lift_m), mid[3], s;
+	struct tool_pose q;
 
 	vec3_axpy(mid, p->base, h / 2, p->normal);
-	return aim(r, mid, p->normal, r->st->tool.loop_m / 2,
-		   fmin(LOOP_TOL_M, h / 3));
+	s = aim(r, mid, p->normal, r->st->tool.loop_m / 2,
+		fmin(LOOP_TOL_M, h / 3));
+	pose(r, &q);
+	assert_true(-vec3_dot(p->normal, q.radial) >=
+		    cos(FLAT_DEG * TOOL_RAD_PER_DEG));
+	return s;
 }
 
 /* She brings the needle's point into the wall UNDER_M under polyp I's
