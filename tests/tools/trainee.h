@@ -17,7 +17,8 @@
  *    while the hand already pushes harder than she would (the scope is
  *    stuck: she does not shove), until she gives up on it;
  *  - pushing on (the classic mistake), withdrawing with a twist (the
- *    classic reduction), holding still.
+ *    classic reduction), holding still;
+ *  - aiming a tool in the working channel at a polyp (trainee_aim()).
  *
  * With the patient enabled ([patient] enabled, struct endosim_state
  * .patient) she also looks after the view and the patient, each action a
