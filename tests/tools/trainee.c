@@ -8,6 +8,7 @@
 
 #include "conf/cases.h"
 #include "model/gas.h"
+#include "model/tool.h"
 #include "model/posture.h"
 #include "rig/scenario.h"
 #include "base/vec3.h"
@@ -29,6 +30,20 @@
 #define EASE_PAIN 3.0        /* the patient's face this pained: she eases */
 #define CALM_PAIN 1.5        /* ... until it is back under this ... */
 #define EASE_MAX_S 8.0       /* ... or this long has passed */
+/* Aiming the tool (trainee_aim()) */
+#define AIM_GAIN 0.5         /* of the error corrected a waypoint */
+#define AIM_ROLL_MAX 0.3     /* rad a waypoint, at most */
+#define AIM_BEND_MAX 0.1     /* ... of bend */
+#define AIM_IN_MAX 0.005     /* m a waypoint, in or out, at most */
+#define AIM_BEND_AHEAD 0.3   /* rad her wheels ask beyond the tip's bend */
+#define AIM_IN_AHEAD 0.01    /* m her insertion asks beyond the carriage */
+#define AIM_ROLL_AHEAD 0.3   /* rad her roll asks beyond the tube's */
+#define AIM_TOOL_MIN_M 0.003 /* the tool out of the channel, at least */
+#define AIM_TOOL_MAX_M 0.050 /* ... at most: then the scope moves in */
+#define AIM_TOOL_M 0.030     /* ... where she likes it (shorter, the
+				scope nearer the wall and bent more) */
+#define AIM_BACK 0.2         /* ... of the difference a waypoint */
+#define AIM_SETTLED 2        /* waypoints within the tolerance: there */
 
 struct trainee {
 	struct offline *off;
@@ -41,6 +56,8 @@ struct trainee {
 	double gain[2];           /* tip rad per wheel rad */
 	double wheel_max;         /* rad */
 	double bend_max[2];
+	double bending_m;         /* the bending section's length */
+	double roll_min, roll_max; /* rad, within the rig's travel */
 	uint32_t valves;          /* the valves she holds */
 	int pressing;             /* the site the assistant presses, -1 */
 	bool turned;              /* she had the patient turned for a loop */
@@ -91,6 +108,9 @@ struct trainee *trainee_create(const struct config *cfg, const char *case_path,
 		t->gain[w] = cfg->scope.gain[w];
 		t->bend_max[w] = cfg->scope.limit_rad[w];
 	}
+	t->bending_m = cfg->scope.bending_length_m;
+	t->roll_min = 0.9 * cfg->rig.travel_min[ENDOSIM_AXIS_ROLL];
+	t->roll_max = 0.9 * cfg->rig.travel_max[ENDOSIM_AXIS_ROLL];
 	t->wheel_max = 0.95 * cfg->rig.travel_max[ENDOSIM_AXIS_WHEEL_UD];
 	t->s = offline_step(t->off); /* cycle 0: the state before she acts */
 	return t;
@@ -608,4 +628,131 @@ bool trainee_course(struct trainee *t, const struct anatomy *a, double speed)
 	trainee_withdraw(t, t->s->scope.depth_m - 0.10, 2 * speed, 0);
 	t->examining = false;
 	return there;
+}
+
+static double clampd(double x, double lim)
+{
+	return fmax(-lim, fmin(lim, x));
+}
+
+/* X, at most AHEAD from where the axis is, AT. */
+static double near(double x, double at, double ahead)
+{
+	return at + clampd(x - at, ahead);
+}
+
+/* Rolls on by DROLL_RAD, turning the wheels against it so that the bent
+ * tip keeps its way (the bends are the roll's frame's: (ud, lr) turned
+ * by -DROLL_RAD bends the same way after it); the image turns. */
+static void turn(struct trainee *t, double droll_rad)
+{
+	double c = cos(droll_rad), s = sin(droll_rad), ud = t->bend[0];
+
+	t->roll += droll_rad;
+	t->bend[0] = ud * c + t->bend[1] * s;
+	t->bend[1] = -ud * s + t->bend[1] * c;
+}
+
+/* The roll (rad) that turns the image by ERR_RAD: the shorter way, unless
+ * that runs the tube's roll out of the rig's travel. */
+static double roll_to(const struct trainee *t, double err_rad)
+{
+	double d = remainder(err_rad, 2 * M_PI);
+	double other = d - copysign(2 * M_PI, d);
+
+	return t->roll + d > t->roll_max || t->roll + d < t->roll_min ? other
+								      : d;
+}
+
+/* She turns the polyp's wall (WALL: its normal into the lumen) to the
+ * channel's clock in the image: the clock of the way out to it, in the
+ * camera's up and right (a point at angle psi round the tip's axis shows
+ * at psi less the roll: rolling on by the clock's error brings it
+ * there), the wheels turned against the roll. */
+static void aim_turn(struct trainee *t, const struct tool_params *par,
+		     const double wall[3])
+{
+	const struct endosim_scope_state *sc = &t->s->scope;
+	double right[3], clock;
+
+	vec3_cross(right, sc->dir, sc->up);
+	clock = atan2(-vec3_dot(wall, right), -vec3_dot(wall, sc->up));
+	turn(t, clampd(AIM_GAIN * roll_to(t, clock - par->channel_angle_rad),
+		       AIM_ROLL_MAX));
+	t->roll = near(t->roll, t->s->axis[ENDOSIM_AXIS_ROLL].position,
+		       AIM_ROLL_AHEAD);
+}
+
+/* She swings the tip to move the aimed point, REACH_M ahead of the
+ * bending section's end, by E (m) across the view: a bend of b moves it
+ * by about (Lb / 2 + REACH_M) b. */
+static void aim_swing(struct trainee *t, const double e[3], double reach_m)
+{
+	const struct endosim_scope_state *sc = &t->s->scope;
+	double right[3], lever = t->bending_m / 2 + reach_m;
+
+	vec3_cross(right, sc->dir, sc->up);
+	t->bend[0] += clampd(AIM_GAIN * vec3_dot(e, sc->up) / lever,
+			     AIM_BEND_MAX);
+	t->bend[1] += clampd(AIM_GAIN * vec3_dot(e, right) / lever,
+			     AIM_BEND_MAX);
+	for (int w = 0; w < 2; w++) {
+		t->bend[w] = near(t->bend[w], sc->bend_rad[w], AIM_BEND_AHEAD);
+		t->bend[w] = clampd(t->bend[w], t->bend_max[w]);
+	}
+}
+
+/* She moves the aimed point by E (m) along the view: the tool's depth
+ * *DEPTH_M first; the scope in or out for what the tool cannot, and to
+ * bring the tool back to the depth she likes (AIM_TOOL_M). */
+static void aim_reach(struct trainee *t, const double e[3], double *depth_m)
+{
+	double fw = AIM_GAIN * vec3_dot(e, t->s->scope.dir), was = *depth_m;
+
+	*depth_m = fmax(AIM_TOOL_MIN_M, fmin(AIM_TOOL_MAX_M, was + fw));
+	t->depth += clampd(fw - (*depth_m - was) +
+			   AIM_BACK * (*depth_m - AIM_TOOL_M), AIM_IN_MAX);
+	t->depth = near(t->depth, t->s->axis[ENDOSIM_AXIS_INSERTION].position,
+			AIM_IN_AHEAD);
+}
+
+/*
+ * One waypoint's aim from what she sees (the published scope: where it
+ * is, not where she asked it to be, so that nothing winds up against the
+ * wall): the turn, the swing, the reach. Returns the aimed point's
+ * distance from TARGET (m) before it.
+ */
+static double aim_step(struct trainee *t, const struct tool_params *par,
+		       const double target[3], const double wall[3],
+		       double *depth_m, double beyond_m)
+{
+	double reach_m = *depth_m + beyond_m, e[3], x[3];
+	struct tool_pose q;
+
+	tool_pose(par, &t->s->scope, 0, &q);
+	vec3_axpy(x, q.exit, reach_m, q.dir);
+	vec3_sub(e, target, x);
+	aim_turn(t, par, wall);
+	aim_swing(t, e, reach_m);
+	aim_reach(t, e, depth_m);
+	return vec3_norm(e);
+}
+
+bool trainee_aim(struct trainee *t, const struct tool_params *par,
+		 const double target[3], const double wall[3],
+		 double *depth_m, double beyond_m, double tol_m, double max_s)
+{
+	double since = trainee_time(t);
+	int settled = 0;
+
+	while (trainee_time(t) - since < max_s) {
+		double e = aim_step(t, par, target, wall, depth_m, beyond_m);
+
+		settled = e <= tol_m ? settled + 1 : 0;
+		if (settled >= AIM_SETTLED) {
+			return true;
+		}
+		waypoint(t);
+	}
+	return false;
 }

@@ -17,7 +17,8 @@
  *    while the hand already pushes harder than she would (the scope is
  *    stuck: she does not shove), until she gives up on it;
  *  - pushing on (the classic mistake), withdrawing with a twist (the
- *    classic reduction), holding still.
+ *    classic reduction), holding still;
+ *  - aiming a tool in the working channel at a polyp (trainee_aim()).
  *
  * With the patient enabled ([patient] enabled, struct endosim_state
  * .patient) she also looks after the view and the patient, each action a
@@ -72,6 +73,7 @@ struct trainee_actions {
 };
 
 struct trainee;
+struct tool_params;
 
 /*
  * The demo's configuration (scenario_gen's, config/scenarios/demo.scn's):
@@ -161,6 +163,29 @@ void trainee_hold_tip(struct trainee *t, double hold_n_per_m);
 
 /* Holds everything still for SECONDS. */
 void trainee_hold(struct trainee *t, double seconds);
+
+/*
+ * Aims the tool in the working channel as an endoscopist does, from what
+ * she sees (the published scope; TARGET and WALL, a polyp's, as the
+ * test's eyes give them): she turns the polyp's wall (WALL, its normal
+ * into the lumen) to the channel's clock in the image (PAR's
+ * channel_angle_rad: 5 o'clock) by rolling the tube, the wheels turned
+ * against the roll so that the tip keeps its way; swings the tip with
+ * the wheels to bring the aimed point across the view onto TARGET (m);
+ * and reaches it along the view with the tool, *DEPTH_M (m beyond the
+ * channel's exit, kept within 3..50 mm and brought back towards 30 mm),
+ * the scope in or out for the rest. The aimed point is BEYOND_M ahead of
+ * the tool's tip along the tip's direction: the open loop's centre (half
+ * the loop), the needle's point (needle_m). Each waypoint corrects half
+ * of the error she sees, within what a hand does in a waypoint; she is
+ * there when the aimed point is within TOL_M of TARGET at two waypoints
+ * running. At most MAX_S seconds. Returns whether she got there. The
+ * caller passes *DEPTH_M on to the rig each cycle (a trainee_watch()
+ * callback: offline_tool_input()); the handle and the pedal are its.
+ */
+bool trainee_aim(struct trainee *t, const struct tool_params *par,
+		 const double target[3], const double wall[3],
+		 double *depth_m, double beyond_m, double tol_m, double max_s);
 
 /*
  * On to material TIP_S_M (m) at SPEED, steering; each time the scope is

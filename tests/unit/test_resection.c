@@ -15,14 +15,20 @@
  *    snare's 10 mm, hot otherwise (the pedal down until it is free, her
  *    foot off as it comes free); the pedunculated polyp's stump is
  *    clipped after (the clip pushed on to the wall ahead and closed: one
- *    clip counted). Aiming is not scripted: each polyp, found, is brought
- *    under the open loop at the tip (as test_tool_loop does) and over the
- *    needle's point; retrieving it is format 7's (the bleeding's branch),
- *    not yet here. Every polyp of the case comes out complete, the wall
- *    uninjured, no perforation; each resection's time (the first tool's
- *    touch to the polyp free) is the model's (the closing, the cautery's
- *    energy over its power) and is printed with the injections' and the
- *    clip's; the session passes the polypectomy course
+ *    clip counted). She aims each tool herself (trainee_aim(); the
+ *    polyps stay where the case put them): the polyp's wall rolled to
+ *    the channel's 5 o'clock, the tip swung with the wheels and the tool
+ *    or the scope moved in until the needle's point is in the wall under
+ *    the base, or the open loop's centre at the middle of the polyp's
+ *    axis (the loop hangs forward from the sheath's tip in the model, so
+ *    that the sheath's tip stays short of the polyp: she does not push
+ *    it beyond), then she closes; at most AIM_S a tool. Retrieving it is
+ *    format 7's (the bleeding's branch), not yet here. Every polyp of the
+ *    case comes out complete, the wall uninjured, no perforation; her
+ *    times per polyp (found, aimed, lifted, cut: found to free) are
+ *    printed next to the published ones, and each resection's time as
+ *    the metrics count it (the first tool's touch to the polyp free)
+ *    with the clip's; the session passes the polypectomy course
  *    (config/courses/polypectomy.course);
  *  - the careless trainee: the same session going on, the snare open
  *    and pushed against the mucosa with the pedal held: the wall
@@ -80,6 +86,10 @@
 			    here, evaluated seldom (the cost) */
 #define PUSH_M 0.0025    /* the tool pushed on towards the wall a step */
 #define UNDER_M 0.002    /* the needle's point under a base */
+#define AIM_S 20.0       /* her time to aim a tool, at most */
+#define LOOP_TOL_M 0.002 /* the loop's centre off a polyp's axis' middle */
+#define NEEDLE_TOL_M 0.001 /* the needle's point off its place */
+#define FLAT_DEG 30.0    /* the loop over a polyp, flat to its wall within */
 
 struct run {
 	struct config cfg;
@@ -218,71 +228,100 @@ static void pose(const struct run *r, struct tool_pose *out)
 	tool_pose(&r->par, &r->st->scope, r->st->tool.depth_m, out);
 }
 
-/* Polyp I brought under the open loop: its axis' middle at the loop's
- * centre, along the channel's radial direction. */
-static void under_loop(struct run *r, int i)
+/* She aims the point BEYOND_M ahead of the tool's tip at TARGET, on or
+ * by the wall whose normal is NORMAL, within TOL_M, in at most AIM_S (the
+ * tool's depth hers meanwhile); the seconds it took. */
+static double aim(struct run *r, const double target[3],
+		  const double normal[3], double beyond_m, double tol_m)
 {
-	struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	struct tool_pose q;
+	double t0 = now_s(r->st);
 
-	pose(r, &q);
-	vec3_axpy(p->base, r->st->tool.loop_centre,
-		  tool_polyp_height(p, r->par.lift_m) / 2, q.radial);
-	vec3_scale(p->normal, q.radial, -1);
+	assert_true(trainee_aim(r->tr, &r->par, target, normal, &r->to_d,
+				beyond_m, tol_m, AIM_S));
+	return now_s(r->st) - t0;
 }
 
-/* Polyp I's base brought over the needle's point, UNDER_M above it. */
-static void over_needle(struct run *r, int i)
+/* She brings polyp I under the open loop: its axis' middle at the loop's
+ * centre, the loop lying flat over it (the polyp at the channel's clock:
+ * its wall's normal within FLAT_DEG of the loop's). The seconds it
+ * took. */
+static double under_loop(struct run *r, int i)
 {
-	struct tool *t = offline_tool(r->o);
-	struct tool_polyp *p = &t->polyp[i];
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double h = tool_polyp_height(p, r->par.lift_m), mid[3], s;
 	struct tool_pose q;
 
+	vec3_axpy(mid, p->base, h / 2, p->normal);
+	s = aim(r, mid, p->normal, r->st->tool.loop_m / 2,
+		fmin(LOOP_TOL_M, h / 3));
 	pose(r, &q);
-	vec3_axpy(p->base, t->needle, -UNDER_M, q.radial);
-	vec3_scale(p->normal, q.radial, -1);
+	assert_true(-vec3_dot(p->normal, q.radial) >=
+		    cos(FLAT_DEG * TOOL_RAD_PER_DEG));
+	return s;
 }
 
-/* The needle lifts polyp I's base: out, into the wall under it, the
- * nurse injecting until it lifts; back in. */
-static void lift(struct run *r, int i)
+/* She brings the needle's point into the wall UNDER_M under polyp I's
+ * base. The seconds it took. */
+static double over_needle(struct run *r, int i)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double at[3];
+
+	vec3_axpy(at, p->base, -UNDER_M, p->normal);
+	return aim(r, at, p->normal, r->par.needle_m, NEEDLE_TOL_M);
+}
+
+/* The scripted times of a resection, s. */
+struct times {
+	double needle_s;  /* the needle aimed */
+	double lift_s;    /* ... and the base lifted, from its aiming */
+	double loop_s;    /* the loop aimed */
+	double cut_s;     /* ... and the polyp cut, from its closing */
+	double total_s;   /* from found to free */
+};
+
+/* The needle lifts polyp I's base: out, aimed into the wall under it,
+ * the nurse injecting (as soon as its point is there: the lift may come
+ * while she aims) until it lifts; back in. */
+static void lift(struct run *r, int i, struct times *tm)
 {
 	double t0;
 
 	hand_over(r, TOOL_NEEDLE, 0);
 	move(r, 0.5, NEEDLE_M, 0);
 	move(r, 0.2, NEEDLE_M, 1);
-	over_needle(r, i);
 	t0 = now_s(r->st);
-	assert_true(until(r, ENDOSIM_TOOL_LIFT, 10));
+	r->events = 0;
+	tm->needle_s = over_needle(r, i);
+	assert_true((r->events & ENDOSIM_TOOL_LIFT) ||
+		    until(r, ENDOSIM_TOOL_LIFT, 10));
 	assert_int_equal(r->event_polyp, i);
-	print_message("polyp %d: injected for %.2f s until it lifted (the "
-		      "hemostasis trainer's injection: experts 36 s, "
-		      "beginners 92 s, the whole task)\n", i + 1,
-		      r->event_s - t0);
-	move(r, 0.2, NEEDLE_M, 0);
+	tm->lift_s = r->event_s - t0;
+	move(r, 0.2, r->depth_m, 0);
 	move(r, 0.5, -SHEATH_M, 0);
 }
 
-/* Polyp I, found, resected by the scripted expert. */
-static void resect(struct run *r, int i)
+/* Polyp I, found, resected by the scripted expert: TM her times. */
+static void resect(struct run *r, int i, struct times *tm)
 {
 	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	double th = tool_polyp_thickness(p);
+	double th = tool_polyp_thickness(p), t0 = now_s(r->st), t1;
 	bool hot = p->paris == ANATOMY_PARIS_IP || th >= r->par.cold_max_m;
 	bool flat = p->paris == ANATOMY_PARIS_IIA ||
 		    p->paris == ANATOMY_PARIS_IIB;
 
+	*tm = (struct times){ .needle_s = -1, .lift_s = -1 };
 	if (flat || (hot && p->paris != ANATOMY_PARIS_IP)) {
-		lift(r, i);
+		lift(r, i, tm);
 	}
 	hand_over(r, TOOL_SNARE, p->size_m >= 0.015 ? 0.020 : 0.015);
 	move(r, 0.5, SHEATH_M, 0);
 	move(r, 0.5, SHEATH_M, 1);
-	under_loop(r, i);
+	tm->loop_s = under_loop(r, i);
 	hold(r, 0.05);
+	t1 = now_s(r->st);
 	r->events = 0;
-	move(r, 0.5, SHEATH_M, SHUT);
+	move(r, 0.5, r->depth_m, SHUT);
 	assert_true(r->events & ENDOSIM_TOOL_CAPTURE);
 	assert_int_equal(r->st->tool.captured, i);
 	if (hot) {
@@ -291,12 +330,32 @@ static void resect(struct run *r, int i)
 		r->pedal = false;
 	} else {
 		r->events = 0;
-		move(r, 0.3, SHEATH_M, 0);
+		move(r, 0.3, r->depth_m, 0);
 		assert_true(r->events & ENDOSIM_TOOL_CUT);
 	}
 	assert_int_equal(r->event_polyp, i);
 	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
+	tm->cut_s = r->event_s - t1;
+	tm->total_s = r->event_s - t0;
 	move(r, 0.5, -SHEATH_M, 0);
+}
+
+/* Polyp I's scripted times, found FOUND_S after the last. */
+static void print_times(int i, double found_s, const struct times *tm)
+{
+	char needle[160] = "no needle";
+
+	if (tm->needle_s >= 0) {
+		snprintf(needle, sizeof(needle), "needle aimed %.2f s, lifted "
+			 "at %.2f s (the hemostasis trainer's injection: "
+			 "experts 36 s, beginners 92 s, the whole task)",
+			 tm->needle_s, tm->lift_s);
+	}
+	print_message("polyp %d: found in %.2f s; %s; loop aimed %.2f s, "
+		      "cut %.2f s later: resected %.2f s after found "
+		      "(published: %.0f s rotary, %.0f s standard)\n", i + 1,
+		      found_s, needle, tm->loop_s, tm->cut_s, tm->total_s,
+		      REPORTTHERAPY_ROTARY_S, REPORTTHERAPY_STANDARD_S);
 }
 
 /* The clip's jaws' distance from the wall ahead (as the loop sees the
@@ -373,11 +432,10 @@ static void script(struct metrics_result *expert_out,
 	assert_int_equal(n, 5);
 	for (int i = 0; i < n; i++) {
 		double found_s = find(&r, i);
+		struct times tm;
 
-		print_message("polyp %d found %.2f s after the last, the tip "
-			      "at %.3f m\n", i + 1, found_s,
-			      r.st->scope.tip_s_m);
-		resect(&r, i);
+		resect(&r, i, &tm);
+		print_times(i, found_s, &tm);
 		if (offline_tool(r.o)->polyp[i].paris == ANATOMY_PARIS_IP) {
 			clip_s = clip_wall(&r);
 		}
