@@ -579,7 +579,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	int w, h;
 
 	ui_framebuffer_size(a->ui, &w, &h);
-	a->pass_ns = a->opt.pass_times ? mono_ns() : 0; /* the GL is idle */
+	pass_done(a, TIMING_PASS_UPDATE); /* since the last swap; GL idle */
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

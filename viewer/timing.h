@@ -17,6 +17,8 @@ enum timing_kind {
 	TIMING_FRAME = 0, /* ms from swap to swap */
 	TIMING_AGE,       /* ms from the state's publishing to the swap */
 	/* --pass-times: each pass of a frame, finished (glFinish), ms */
+	TIMING_PASS_UPDATE,   /* from the last swap: events, the state, the
+				 colon's moved spans laid again */
 	TIMING_PASS_IMAGE,    /* the window cleared, the endoscopic image
 				 (endo.h) */
 	TIMING_PASS_LENS,     /* what covers the lens (lensfx.h) */

@@ -4,8 +4,9 @@
 #include "viewer/mapview.h"
 
 /* --pass-times' names, in timing.h's order */
-static const char *const pass_name[] = { "image", "lens", "scale",
-					 "overview", "panel", "swap" };
+static const char *const pass_name[] = { "update", "image", "lens",
+					 "scale", "overview", "panel",
+					 "swap" };
 
 static void print_rect(FILE *out, const char *name, struct endo_rect r,
 		       int fb_h)
@@ -44,8 +45,8 @@ void viewstats_print(FILE *out, const struct viewstats *s)
 		return; /* no --pass-times */
 	}
 	fprintf(out, "endoview: passes_ms");
-	for (int k = TIMING_PASS_IMAGE; k <= TIMING_PASS_SWAP; k++) {
-		fprintf(out, " %s=%.2f/%.2f", pass_name[k - TIMING_PASS_IMAGE],
+	for (int k = TIMING_PASS_UPDATE; k <= TIMING_PASS_SWAP; k++) {
+		fprintf(out, " %s=%.2f/%.2f", pass_name[k - TIMING_PASS_UPDATE],
 			timing_quantile(t, (enum timing_kind)k, 0.5),
 			timing_quantile(t, (enum timing_kind)k, 0.99));
 	}

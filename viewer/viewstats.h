@@ -8,9 +8,10 @@
  *     gl_errors=N daemon=live|stale|none|replay colon=NAME|none
  *   endoview: layout endo=X,Y,W,H overview=.. panel=.. timeline=..
  *     map=X,Y,W,H
- *   endoview: passes_ms image=P50/P99 lens=.. scale=.. overview=..
- *     panel=.. swap=..   (only with --pass-times: each pass of a frame
- *     finished before the next, its ms; a pass not drawn counts 0)
+ *   endoview: passes_ms update=P50/P99 image=.. lens=.. scale=..
+ *     overview=.. panel=.. swap=..   (only with --pass-times: each pass
+ *     of a frame finished before the next, its ms; a pass not drawn
+ *     counts 0; update: from the last swap to the drawing)
  *
  * (each on one line), the views' rectangles in pixels from the image's
  * top-left corner, as in its PNG (0,0,0,0: not shown). Main thread; no
