@@ -585,22 +585,33 @@ static void take(struct session_file *out, uint32_t type,
 	}
 }
 
-/* OUT's arrays in one allocation for what T counted; -ENOMEM. */
+/*
+ * OUT's arrays in one allocation for what T counted; -ENOMEM. The
+ * records (packed, 4-byte aligned) take their room rounded up to the
+ * events' alignment, so that the events and the shapes after them are
+ * aligned (their sizes are multiples of it).
+ */
 static int place(struct session_file *out, const struct tally *t,
 		 struct rooms *room)
 {
+	const size_t align = _Alignof(struct session_file_event);
+	size_t records = (t->records * sizeof(struct session_record) +
+			  align - 1) / align * align;
 	unsigned char *store = malloc(
-		t->records * sizeof(struct session_record) +
-		t->events * sizeof(struct session_file_event) +
+		records + t->events * sizeof(struct session_file_event) +
 		t->shapes * sizeof(struct session_file_shape) +
 		t->shape_bytes + t->text + 1);
 
+	_Static_assert(sizeof(struct session_file_event) %
+				       _Alignof(struct session_file_shape) ==
+			       0,
+		       "session_file: the shapes follow the events aligned");
 	if (!store) {
 		return -ENOMEM;
 	}
 	out->storage = store;
 	out->records = (struct session_record *)store;
-	out->events = (struct session_file_event *)(out->records + t->records);
+	out->events = (struct session_file_event *)(store + records);
 	out->shapes = (struct session_file_shape *)(out->events + t->events);
 	room->shape = (unsigned char *)(out->shapes + t->shapes);
 	room->text = (char *)room->shape + t->shape_bytes;
