@@ -18,15 +18,7 @@
 # The system tests run one at a time: they measure the force loop's timing
 # and talk to emulated drives whose serial framing is a matter of
 # microseconds (tried: two streams at once on two CPUs saved no time and
-# broke the Modbus RTU tests). A system test leaves most of a CPU idle, so
-# the sanitizers' unit tests run meanwhile under SCHED_IDLE (chrt --idle):
-# a task of that class runs only on a CPU that nothing else wants, and is
-# preempted at once when anything does, so the system tests see an idle
-# machine (their daemon's loop and emulators are SCHED_FIFO where the run
-# is root) while the queue uses what they leave (it saved the queue's
-# 100 s of wall time). The sanitizers' unit tests that wait on the clock
-# (CLOCK_UNITS: a bus thread's answer within 3 s, readers' counts in a
-# second) run first, with the plain build's.
+# broke the Modbus RTU tests).
 set -u
 
 # The system tests the sanitizers' build runs: with the unit tests they
@@ -46,9 +38,6 @@ ASAN_SYSTEM="01-status 04-hostile 31-drives-tcp 50-fault-drive
 # took 222 s in the tests' order, 204 s so).
 LONG_UNITS="test_separation test_rodcourse test_clinic test_hand test_lod
 	test_patient test_haptics test_metrics"
-
-# The unit tests that count on the clock (above): never starved.
-CLOCK_UNITS="test_valves test_seqlock test_centre"
 
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP" || exit 1
@@ -102,24 +91,16 @@ record() {
 	fi
 }
 
-# unit_queue DIR ONLY SKIP BUILD_DIR:PREFIX...: the unit tests of each
-# build, as many at once as there are CPUs from one queue (LONG_UNITS
-# first, the longest first, then the rest in order), each into its own
-# files in DIR (output, exit status, seconds); ONLY: the names to run
-# ("": all), SKIP: names not to run.
-unit_queue() {
-	local dir=$1 only=" $(echo $2) " skip=" $(echo $3) " pair prefix t
-	local name long=" $(echo $LONG_UNITS) "
-	shift 3
+# unit_tests BUILD_DIR:PREFIX...: the unit tests of each build, as many
+# at once as there are CPUs from one queue (LONG_UNITS first, the
+# longest first, then the rest in order), each into its own files (output, exit
+# status, seconds), then recorded in order.
+unit_tests() {
+	local dir=$work/units pair build prefix t name long
+	long=" $(echo $LONG_UNITS) "
 	mkdir -p "$dir"
-	# wanted NAME: on the queue
-	wanted() {
-		[[ "$skip" != *" $1 "* ]] &&
-			{ [ "$only" = "  " ] || [[ "$only" == *" $1 "* ]]; }
-	}
 	{
 		for name in $LONG_UNITS; do
-			wanted "$name" || continue
 			for pair in "$@"; do
 				t=${pair%%:*}/tests/$name
 				prefix=${pair#*:}
@@ -128,12 +109,13 @@ unit_queue() {
 			done
 		done
 		for pair in "$@"; do
+			build=${pair%%:*}
 			prefix=${pair#*:}
-			for t in "${pair%%:*}"/tests/test_*; do
+			for t in "$build"/tests/test_*; do
 				case "$t" in *.d) continue ;; esac
-				name=${t##*/}
-				[[ "$long" == *" $name "* ]] && continue
-				wanted "$name" || continue
+				case "$long" in
+				*" ${t##*/} "*) continue ;;
+				esac
 				[ -x "$t" ] && printf '%s\0%s\0' "$t" \
 					"${prefix//\//-}"
 			done
@@ -142,19 +124,17 @@ unit_queue() {
 		'n=$3$(basename "$2"); s=$(date +%s); "$2" >"$1/$n.out" 2>&1
 		 echo $? >"$1/$n.rc"; echo $(($(date +%s) - s)) >"$1/$n.s"' \
 		_ "$dir"
-}
-
-# unit_record DIR PREFIX: records, in order, what unit_queue left in DIR
-# for the build of PREFIX.
-unit_record() {
-	local dir=$1 prefix=$2 t name
-	for t in "$dir/${prefix//\//-}"test_*.out; do
-		[ -e "$t" ] || continue
-		name=$(basename "$t" .out)
-		name=${name#"${prefix//\//-}"}
-		record "${prefix}unit/$name" "$t" \
-			"$(cat "${t%.out}.rc")" "$(cat "${t%.out}.s")"
+	for pair in "$@"; do
+		prefix=${pair#*:}
+		for t in "$dir/${prefix//\//-}"test_*.out; do
+			[ -e "$t" ] || continue
+			name=$(basename "$t" .out)
+			name=${name#"${prefix//\//-}"}
+			record "${prefix}unit/$name" "$t" \
+				"$(cat "${t%.out}.rc")" "$(cat "${t%.out}.s")"
+		done
 	done
+	rm -rf "$dir"
 }
 
 # system_tests BUILD_DIR PREFIX SANITIZED [NAME...]: in order, one at a
@@ -186,24 +166,13 @@ record "layers" "$work/layers.out" $? $((SECONDS - started))
 started=$SECONDS
 tests/commits.sh >"$work/commits.out" 2>&1
 record "commits" "$work/commits.out" $? $((SECONDS - started))
-asan=
-[ -d "$BUILD/asan/tests" ] && asan=$BUILD/asan
-if [ -n "$asan" ]; then
-	unit_queue "$work/units" "$CLOCK_UNITS" "" "$asan:asan/"
-fi
-unit_queue "$work/units" "" "" "$BUILD:"
-unit_record "$work/units" ""
-if [ -n "$asan" ]; then
-	# SCHED_IDLE where the kernel allows it, else the lowest niceness
-	(chrt --idle -p 0 $BASHPID 2>/dev/null || renice -n 19 $BASHPID
-		unit_queue "$work/units" "" "$CLOCK_UNITS" "$asan:asan/"
-	) >/dev/null 2>&1 &
-	idle_units=$!
+if [ -d "$BUILD/asan/tests" ]; then
+	unit_tests "$BUILD/asan:asan/" "$BUILD:"
+else
+	unit_tests "$BUILD:"
 fi
 system_tests "$BUILD" "" ""
-if [ -n "$asan" ]; then
-	wait "$idle_units"
-	unit_record "$work/units" "asan/"
+if [ -d "$BUILD/asan/tests" ]; then
 	# a name that names no test (renamed, mistyped) fails, not skips
 	for name in $ASAN_SYSTEM; do
 		if [ ! -e "tests/system/$name.sh" ]; then
