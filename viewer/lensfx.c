@@ -78,9 +78,9 @@ static const char *shrink_src =
  * a few milliseconds.
  * How much of the sharp image shows (1.6 smear at 0.45 of it where the
  * noise leaves no patch, 1.2 murk) is lensfx_rules.c's too: keep them
- * together. The veils glow evenly: what the smear or the haze scatters back into
- * the lens is the light the walls return, which the light's automatic
- * level (endo.h) keeps about even. The noise's red is the smear's
+ * together. The veils glow evenly: what the smear or the haze scatters
+ * back into the lens is the light the walls return, which the light's
+ * automatic level (endo.h) keeps about even. The noise's red is the smear's
  * patches, green its finer texture, blue the red-out's folds.
  */
 static const char *fragment_src =
@@ -284,7 +284,7 @@ static void copy_image(struct lensfx *fx, struct endo_rect r, double factor)
 	glBindVertexArray(fx->vao);
 	for (int k = 0; k < SOFT; k++) {
 		struct target *to = &fx->soft[k];
-		int ratio = k == 0 && factor < 1 ? SHRINK / 2 : SHRINK;
+		int ratio = k == 0 ? (int)lround(SHRINK * factor) : SHRINK;
 
 		glUniform1f(fx->shrink_ratio, (float)ratio);
 		size_target(to, from->w / ratio > 0 ? from->w / ratio : 1,
