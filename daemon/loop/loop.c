@@ -472,8 +472,7 @@ static void step_tool(struct loop *l)
 			   ENDOSIM_VALVE_SUCTION,
 	};
 	double dt = l->info.period_ns * ENDOSIM_S_PER_NS;
-	bool still = !isfinite(in.depth_m) || !isfinite(in.opening);
-	double depth = still ? l->tool.depth_m : in.depth_m;
+	double depth = tool_input_depth(&l->tool, &in);
 	struct tool_pose pose;
 	unsigned ev;
 	int polyp;

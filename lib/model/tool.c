@@ -533,11 +533,22 @@ int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par)
 	return p->state;
 }
 
+/* IN is a stale reading: the tool holds still, the pedal up. */
+static bool input_still(const struct tool_input *in)
+{
+	return !isfinite(in->depth_m) || !isfinite(in->opening);
+}
+
+double tool_input_depth(const struct tool *t, const struct tool_input *in)
+{
+	return input_still(in) ? t->depth_m : in->depth_m;
+}
+
 unsigned tool_step(struct tool *t, const struct tool_params *par,
 		   const struct endosim_scope_state *sc,
 		   const struct tool_input *in, double dt_s, int *polyp)
 {
-	bool still = !isfinite(in->depth_m) || !isfinite(in->opening);
+	bool still = input_still(in);
 	bool pedal = in->pedal && !still;
 	unsigned ev = 0;
 	int which = -1;

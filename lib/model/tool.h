@@ -425,6 +425,13 @@ void tool_pose(const struct tool_params *par,
 	       struct tool_pose *out);
 
 /*
+ * The depth (m) tool_step() takes from IN: its own, or T's last while IN
+ * is still (a depth or an opening not finite: a stale reading). The
+ * caller finds the wall at the tool's tip with it before the step.
+ */
+double tool_input_depth(const struct tool *t, const struct tool_input *in);
+
+/*
  * One step of DT_S seconds: the pose, the snare's loop, capture, the
  * cut, the wall; the needle's injection. Returns the TOOL_EVENT_* bits
  * of what happened; the polyp concerned is T->captured for a capture,
