@@ -34,33 +34,11 @@ static const char schema[] =
 	" course TEXT NOT NULL, PRIMARY KEY (group_name, course));"
 	"PRAGMA user_version = 1;";
 
-static const char *const role_names[] = {
-	[ACCOUNTS_TRAINEE] = "trainee",
-	[ACCOUNTS_INSTRUCTOR] = "instructor",
-	[ACCOUNTS_ADMINISTRATOR] = "administrator",
-};
-
 struct accounts {
 	char path[4096];
 	char dummy[crypto_pwhash_STRBYTES]; /* an unknown name's hash */
 	char error[1024];
 };
-
-const char *accounts_role_name(enum accounts_role role)
-{
-	return role <= ACCOUNTS_ADMINISTRATOR ? role_names[role] : "?";
-}
-
-int accounts_role_parse(const char *name, enum accounts_role *role)
-{
-	for (int i = 0; i <= ACCOUNTS_ADMINISTRATOR; i++) {
-		if (!strcmp(name, role_names[i])) {
-			*role = (enum accounts_role)i;
-			return 0;
-		}
-	}
-	return -EINVAL;
-}
 
 struct accounts *accounts_create(const char *path)
 {
@@ -493,9 +471,9 @@ int accounts_group_course(struct accounts *a, const char *name,
 {
 	int e;
 
-	if (bad_text(course, 1, 4095)) {
-		return fail(a, -EINVAL, "a course: 1 to 4095 bytes, no control "
-			    "characters");
+	if (bad_text(course, 1, ACCOUNTS_COURSE_MAX)) {
+		return fail(a, -EINVAL, "a course: 1 to %d bytes, no control "
+			    "characters", ACCOUNTS_COURSE_MAX);
 	}
 	if ((e = has_group(a, name))) {
 		return e;
@@ -621,4 +599,85 @@ bool accounts_among(const char *names, const char *trainee)
 		p = end ? end + 1 : p + n;
 	}
 	return false;
+}
+
+/* ------------------------------------------------- who changes what */
+
+/* Whether instructor ME may make CH, given every group G (N). */
+static int groups_may(struct accounts *a, const char *me,
+		      const struct accounts_change *ch,
+		      const struct accounts_group *g, size_t n)
+{
+	const struct accounts_group *to = NULL;
+
+	for (size_t i = 0; i < n; i++) {
+		bool mine = !strcmp(g[i].instructor, me);
+
+		if (ch->op == ACCOUNTS_USER_PIN && mine &&
+		    accounts_among(g[i].trainees, ch->name)) {
+			return 0;
+		}
+		if (ch->op == ACCOUNTS_GROUP_JOIN && !mine &&
+		    accounts_among(g[i].trainees, ch->name)) {
+			return fail(a, -EPERM, "%s is a trainee of group %s, "
+				    "%s's: an administrator moves a trainee "
+				    "to another instructor", ch->name,
+				    g[i].name, g[i].instructor);
+		}
+		to = strcmp(g[i].name, ch->group) ? to : &g[i];
+	}
+	if (ch->op == ACCOUNTS_USER_PIN) {
+		return fail(a, -EPERM, "%s's PIN: an instructor sets the PINs "
+			    "of their groups' trainees only", ch->name);
+	}
+	if (to && strcmp(to->instructor, me)) {
+		return fail(a, -EPERM, "group %s is %s's: an instructor changes "
+			    "only the groups they manage", to->name,
+			    to->instructor);
+	}
+	return 0; /* no such group: the change itself says so */
+}
+
+static int instructor_may(struct accounts *a, const char *me,
+			  const struct accounts_change *ch)
+{
+	struct accounts_group *g;
+	size_t n;
+	int e;
+
+	switch (ch->op) {
+	case ACCOUNTS_USER_ADD:
+		return ch->role == ACCOUNTS_TRAINEE ? 0 : fail(a, -EPERM,
+			"an instructor adds trainees only: an administrator "
+			"adds instructors and administrators");
+	case ACCOUNTS_USER_REMOVE:
+		return fail(a, -EPERM, "only an administrator removes a user");
+	case ACCOUNTS_GROUP_ADD:
+	case ACCOUNTS_GROUP_REMOVE:
+		return fail(a, -EPERM, "only an administrator makes or removes "
+			    "a group");
+	default:
+		break;
+	}
+	if ((e = accounts_groups(a, NULL, &g, &n))) {
+		return e;
+	}
+	e = groups_may(a, me, ch, g, n);
+	accounts_groups_free(g, n);
+	return e;
+}
+
+int accounts_may(struct accounts *a, const struct accounts_user *u,
+		 const struct accounts_change *ch)
+{
+	a->error[0] = '\0';
+	if (u->role == ACCOUNTS_ADMINISTRATOR ||
+	    (ch->op == ACCOUNTS_USER_PIN && !strcmp(ch->name, u->name))) {
+		return 0;
+	}
+	if (u->role == ACCOUNTS_INSTRUCTOR) {
+		return instructor_may(a, u->name, ch);
+	}
+	return fail(a, -EPERM, "only an administrator, or an instructor in the "
+		    "groups they manage, changes the accounts");
 }

@@ -4,7 +4,8 @@
  * and a wrong PIN, the wait that wrong PINs in a row earn and that a right
  * PIN clears, an unknown name refused in the same words, the trainees
  * each role sees, groups and their courses, and every refusal in words
- * that changes nothing.
+ * that changes nothing. Who changes what (accounts_may()): an instructor
+ * in the groups they manage and never beyond them.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -246,6 +247,110 @@ static void test_groups(void **state)
 	assert_int_equal(accounts_user_remove(f->a, "Dr Ives"), 0);
 }
 
+/* The change OP of NAME in GROUP (COURSE, ROLE) that U may make: E. */
+static void may(struct accounts *a, const struct accounts_user *u,
+		enum accounts_op op, const char *name, const char *group,
+		enum accounts_role role, int e, const char *words)
+{
+	struct accounts_change ch = { .op = op, .name = name, .role = role,
+				      .pin = "", .group = group,
+				      .course = "basic.course" };
+
+	assert_int_equal(accounts_may(a, u, &ch), e);
+	if (words) {
+		said(a, words);
+	}
+}
+
+/* The trainees of group G ("a\nb"). */
+static void members_are(struct accounts *a, const char *g, const char *want)
+{
+	struct accounts_group *all;
+	size_t n;
+	bool found = false;
+
+	assert_int_equal(accounts_groups(a, NULL, &all, &n), 0);
+	for (size_t i = 0; i < n; i++) {
+		if (!strcmp(all[i].name, g)) {
+			assert_string_equal(all[i].trainees, want);
+			found = true;
+		}
+	}
+	accounts_groups_free(all, n);
+	assert_true(found);
+}
+
+static void test_who_changes(void **state)
+{
+	struct fixture *f = *state;
+	struct accounts_user ives = { "Dr Ives", ACCOUNTS_INSTRUCTOR },
+			     ann = { "Ann", ACCOUNTS_TRAINEE },
+			     ada = { "Ada", ACCOUNTS_ADMINISTRATOR };
+	struct accounts *a = f->a;
+
+	assert_int_equal(accounts_user_add(a, "Ann", ACCOUNTS_TRAINEE, "1111"),
+			 0);
+	assert_int_equal(accounts_user_add(a, "Cy", ACCOUNTS_TRAINEE, "3333"),
+			 0);
+	assert_int_equal(accounts_user_add(a, "Di", ACCOUNTS_TRAINEE, "4444"),
+			 0);
+	assert_int_equal(accounts_user_add(a, "Dr Ives", ACCOUNTS_INSTRUCTOR,
+					   "5555"), 0);
+	assert_int_equal(accounts_user_add(a, "Dr Jay", ACCOUNTS_INSTRUCTOR,
+					   "6666"), 0);
+	assert_int_equal(accounts_group_add(a, "2026", "Dr Ives"), 0);
+	assert_int_equal(accounts_group_add(a, "2027", "Dr Jay"), 0);
+	assert_int_equal(accounts_group_member(a, "2026", "Ann", true), 0);
+	assert_int_equal(accounts_group_member(a, "2027", "Cy", true), 0);
+
+	/* an instructor in the groups they manage */
+	may(a, &ives, ACCOUNTS_USER_ADD, "Eve", "", ACCOUNTS_TRAINEE, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_JOIN, "Di", "2026", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_JOIN, "Ann", "2026", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_LEAVE, "Ann", "2026", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_ASSIGN, "", "2026", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_UNASSIGN, "", "2026", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_USER_PIN, "Ann", "", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_USER_PIN, "Dr Ives", "", 0, 0, NULL);
+	may(a, &ives, ACCOUNTS_GROUP_JOIN, "Ann", "1999", 0, 0, NULL);
+	/* and never beyond them */
+	may(a, &ives, ACCOUNTS_USER_ADD, "Eve", "", ACCOUNTS_INSTRUCTOR,
+	    -EPERM, "an instructor adds trainees only");
+	may(a, &ives, ACCOUNTS_USER_ADD, "Eve", "", ACCOUNTS_ADMINISTRATOR,
+	    -EPERM, "an instructor adds trainees only");
+	may(a, &ives, ACCOUNTS_USER_REMOVE, "Ann", "", 0, -EPERM,
+	    "only an administrator removes a user");
+	may(a, &ives, ACCOUNTS_GROUP_ADD, "Dr Ives", "2028", 0, -EPERM,
+	    "only an administrator makes or removes a group");
+	may(a, &ives, ACCOUNTS_GROUP_REMOVE, "", "2026", 0, -EPERM,
+	    "only an administrator makes or removes a group");
+	for (enum accounts_op op = ACCOUNTS_GROUP_JOIN;
+	     op <= ACCOUNTS_GROUP_UNASSIGN; op++) {
+		may(a, &ives, op, "Di", "2027", 0, -EPERM, "group 2027 is Dr "
+		    "Jay's: an instructor changes only the groups they manage");
+	}
+	may(a, &ives, ACCOUNTS_GROUP_JOIN, "Cy", "2026", 0, -EPERM,
+	    "Cy is a trainee of group 2027, Dr Jay's: an administrator moves");
+	may(a, &ives, ACCOUNTS_USER_PIN, "Cy", "", 0, -EPERM,
+	    "Cy's PIN: an instructor sets the PINs of their groups' trainees");
+	may(a, &ives, ACCOUNTS_USER_PIN, "Dr Jay", "", 0, -EPERM, "PIN");
+	/* a trainee: their own PIN; an administrator: anything */
+	may(a, &ann, ACCOUNTS_USER_PIN, "Ann", "", 0, 0, NULL);
+	may(a, &ann, ACCOUNTS_GROUP_LEAVE, "Ann", "2026", 0, -EPERM,
+	    "only an administrator, or an instructor in the groups they "
+	    "manage, changes the accounts");
+	may(a, &ann, ACCOUNTS_USER_ADD, "Eve", "", ACCOUNTS_TRAINEE, -EPERM,
+	    "only an administrator");
+	may(a, &ada, ACCOUNTS_USER_REMOVE, "Dr Jay", "", 0, 0, NULL);
+	may(a, &ada, ACCOUNTS_USER_ADD, "Eve", "", ACCOUNTS_ADMINISTRATOR, 0,
+	    NULL);
+	/* a rule judges: it changes nothing */
+	members_are(a, "2026", "Ann");
+	members_are(a, "2027", "Cy");
+	assert_string_equal(accounts_op_name(ACCOUNTS_GROUP_UNASSIGN),
+			    "group_unassign");
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -253,6 +358,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_wrong_pins, setup,
 						teardown),
 		cmocka_unit_test_setup_teardown(test_groups, setup, teardown),
+		cmocka_unit_test_setup_teardown(test_who_changes, setup,
+						teardown),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
