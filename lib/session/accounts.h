@@ -35,7 +35,9 @@
  *
  * Each call opens the database, does its work and closes it. Blocks on
  * the disk and, for a PIN, on the hash (tens of ms); allocates: the
- * control thread or a tool, never the force loop. One writer (endosimd).
+ * control thread, the centre's worker or a tool, never the force loop.
+ * Writers: endosimd's control thread and its centre's worker, each with a
+ * struct accounts of its own (SQLite's locks between them).
  */
 #ifndef ENDOSIM_ACCOUNTS_H
 #define ENDOSIM_ACCOUNTS_H
@@ -45,10 +47,11 @@
 #include <stddef.h>
 #include <string.h>
 
-#define ACCOUNTS_SCHEMA_VERSION 1
+#define ACCOUNTS_SCHEMA_VERSION 2
 #define ACCOUNTS_DEFAULT_NAME "accounts.sqlite"
 #define ACCOUNTS_NAME_MAX 63        /* bytes of a user's or group's name */
 #define ACCOUNTS_COURSE_MAX 4095    /* bytes of a course's name or path */
+#define ACCOUNTS_HASH_MAX 127       /* bytes of a PIN's Argon2id string */
 #define ACCOUNTS_PIN_MIN 4
 #define ACCOUNTS_PIN_MAX 64
 #define ACCOUNTS_PIN_OPS 2          /* Argon2id passes */
@@ -263,5 +266,70 @@ static inline int accounts_op_parse(const char *name, enum accounts_op *op)
  */
 int accounts_may(struct accounts *a, const struct accounts_user *u,
 		 const struct accounts_change *ch);
+
+/* ------------------------------------------------- a centre's copy */
+
+/*
+ * With a training centre ([records] centre, centre.h; docs/INSTRUCTOR.md
+ * "A centre's rigs together") the rigs share one set of people: the
+ * centre's users, groups, members and courses, of which each rig keeps a
+ * copy here, so that a login is checked on the rig even while the centre
+ * cannot be reached.
+ * - Up: every change made on the rig (the calls above; a wrong PIN's
+ *   count and wait are the rig's own and stay here) is queued, in the
+ *   same transaction as the change itself (the schema's triggers), with
+ *   a random ID by which the centre takes it once. The centre's worker
+ *   sends the queue in order (accounts_queue_head(), _arrived()).
+ * - Down: once the rig's queue is empty, the centre's accounts replace
+ *   the rig's (accounts_replace()): the centre's state wins every
+ *   conflict (it takes the first add of a name, and drops what it cannot
+ *   apply).
+ */
+#define ACCOUNTS_ID_LEN 32 /* a queued change's ID: hex digits */
+
+/* A queued change: CH's texts point into the struct's own. */
+struct accounts_queued {
+	char id[ACCOUNTS_ID_LEN + 1];
+	struct accounts_change ch;
+	char name[ACCOUNTS_NAME_MAX + 1];
+	char group[ACCOUNTS_NAME_MAX + 1];
+	char pin[ACCOUNTS_HASH_MAX + 1];
+	char course[ACCOUNTS_COURSE_MAX + 1];
+};
+
+/*
+ * The centre at URL (NULL or "": none) these accounts are kept with.
+ * With one: changes queued from now on; the first time with this URL,
+ * every user, group, member and course queued too (the centre takes
+ * those it lacks) and the copy's version forgotten (the database made if
+ * missing). Without: nothing queued, the queue emptied (a database not
+ * made yet is left so). 0; -EIO.
+ */
+int accounts_centre(struct accounts *a, const char *url);
+
+/* The change queued first into *Q, how many are queued into *WAITING.
+ * 0; -ENOENT (none, or no database); -EIO. */
+int accounts_queue_head(struct accounts *a, struct accounts_queued *q,
+			size_t *waiting);
+
+/* The queued change ID taken by the centre: out of the queue. 0; -EIO. */
+int accounts_queue_arrived(struct accounts *a, const char *id);
+
+/* The version of the centre's accounts last copied here into OUT (""
+ * none yet, or no database). 0; -EIO. */
+int accounts_copy_version(struct accounts *a, char *out, size_t size);
+
+/*
+ * The centre's accounts at VERSION made these, in one transaction,
+ * nothing of it queued: the N changes CH onto empty accounts, first
+ * USER_ADD (each with its Argon2id string), then GROUP_ADD, GROUP_JOIN and
+ * GROUP_ASSIGN. A user it lacks is removed; one it has keeps their count
+ * of wrong PINs while their PIN is the same. 0; -EBUSY (changes of the
+ * rig are queued still: nothing done, the copy waits for them to
+ * arrive); -EINVAL (a change of another kind, a name or hash out of the
+ * rules, a member or group whose user it lacks: nothing done); -EIO.
+ */
+int accounts_replace(struct accounts *a, const char *version,
+		     const struct accounts_change *ch, size_t n);
 
 #endif
