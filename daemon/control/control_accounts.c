@@ -33,21 +33,28 @@ struct control_accounts {
 	char words[512];            /* a refusal's */
 };
 
+void control_accounts_path(const struct config *cfg, char *out,
+			   size_t size)
+{
+	const char *db = cfg->records.database;
+	char *slash;
+
+	if (db[0] == '/') {
+		snprintf(out, size, "%s", db);
+	} else {
+		snprintf(out, size, "%s/%s", cfg->session.directory, db);
+	}
+	slash = strrchr(out, '/');
+	snprintf(slash + 1, size - (size_t)(slash + 1 - out), "%s",
+		 ACCOUNTS_DEFAULT_NAME);
+}
+
 struct control_accounts *control_accounts_create(const struct config *cfg)
 {
 	struct control_accounts *ca = calloc(1, sizeof(*ca));
-	const char *db = cfg->records.database;
-	char path[3 * CONFIG_STR], *slash;
+	char path[3 * CONFIG_STR];
 
-	if (db[0] == '/') {
-		snprintf(path, sizeof(path), "%s", db);
-	} else {
-		snprintf(path, sizeof(path), "%s/%s", cfg->session.directory,
-			 db);
-	}
-	slash = strrchr(path, '/');
-	snprintf(slash + 1, sizeof(path) - (size_t)(slash + 1 - path), "%s",
-		 ACCOUNTS_DEFAULT_NAME);
+	control_accounts_path(cfg, path, sizeof(path));
 	if (!ca || !(ca->db = accounts_create(path))) {
 		log_err("control: out of memory, or libsodium cannot start");
 		free(ca);
@@ -541,6 +548,7 @@ void control_on_accounts(struct control *c, struct client *cl,
 				   m->op)->name, m->name, *m->group ? " in " :
 			   "", m->group, (int)cl->uid, cl->logged_in ?
 			   " as " : "", cl->logged_in ? cl->user.name : "");
+		control_records_poke_centre(c);
 	}
 	accounts_reply(c, cl, rep);
 }

@@ -784,8 +784,8 @@ static const struct parse_key keys[] = {
 	   "password in libpq's password file) each session goes to as "
 	   "well; empty: none"),
 	KD("records", "centre_retry_s", records.centre_retry_s, 30, 0.05,
-	   3600, "s", 0, "an unreachable centre is tried again after this "
-	   "(its sessions wait in the rig's records)"),
+	   3600, "s", 0, "an unreachable centre is tried again after this; "
+	   "the centre's people are looked at for changes this often"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m,
 	   SCOPE_DEFAULT_BENDING_LENGTH_M, 0.01, 0.3, "m", LIVE,
