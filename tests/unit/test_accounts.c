@@ -253,6 +253,13 @@ static void test_groups(void **state)
 	assert_int_equal(accounts_user_remove(f->a, "Dr Ives"), 0);
 }
 
+/* User NAME of ROLE added with PIN. */
+static void add(struct accounts *a, const char *name, enum accounts_role role,
+		const char *pin)
+{
+	assert_int_equal(accounts_user_add(a, name, role, pin), 0);
+}
+
 /* The change OP of NAME in GROUP (COURSE, ROLE) that U may make: E. */
 static void may(struct accounts *a, const struct accounts_user *u,
 		enum accounts_op op, const char *name, const char *group,
@@ -294,16 +301,11 @@ static void test_who_changes(void **state)
 			     ada = { "Ada", ACCOUNTS_ADMINISTRATOR };
 	struct accounts *a = f->a;
 
-	assert_int_equal(accounts_user_add(a, "Ann", ACCOUNTS_TRAINEE, "1111"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Cy", ACCOUNTS_TRAINEE, "3333"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Di", ACCOUNTS_TRAINEE, "4444"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Dr Ives", ACCOUNTS_INSTRUCTOR,
-					   "5555"), 0);
-	assert_int_equal(accounts_user_add(a, "Dr Jay", ACCOUNTS_INSTRUCTOR,
-					   "6666"), 0);
+	add(a, "Ann", ACCOUNTS_TRAINEE, "1111");
+	add(a, "Cy", ACCOUNTS_TRAINEE, "3333");
+	add(a, "Di", ACCOUNTS_TRAINEE, "4444");
+	add(a, "Dr Ives", ACCOUNTS_INSTRUCTOR, "5555");
+	add(a, "Dr Jay", ACCOUNTS_INSTRUCTOR, "6666");
 	assert_int_equal(accounts_group_add(a, "2026", "Dr Ives"), 0);
 	assert_int_equal(accounts_group_add(a, "2027", "Dr Jay"), 0);
 	assert_int_equal(accounts_group_member(a, "2026", "Ann", true), 0);
@@ -394,10 +396,8 @@ static void test_centre_queue(void **state)
 	/* without a centre: nothing queued */
 	assert_int_equal(accounts_centre(a, NULL), 0);
 	assert_int_equal(access(f->path, F_OK), -1); /* nor made */
-	assert_int_equal(accounts_user_add(a, "Ann", ACCOUNTS_TRAINEE, "1111"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Dr Ives", ACCOUNTS_INSTRUCTOR,
-					   "5555"), 0);
+	add(a, "Ann", ACCOUNTS_TRAINEE, "1111");
+	add(a, "Dr Ives", ACCOUNTS_INSTRUCTOR, "5555");
 	assert_int_equal(accounts_group_add(a, "2026", "Dr Ives"), 0);
 	assert_int_equal(accounts_group_member(a, "2026", "Ann", true), 0);
 	assert_int_equal(accounts_queue_head(a, &q, &waiting), -ENOENT);
@@ -406,8 +406,7 @@ static void test_centre_queue(void **state)
 	assert_int_equal(accounts_centre(a, "postgresql:///c1"), 0);
 	assert_int_equal(accounts_copy_version(a, version, sizeof(version)), 0);
 	assert_string_equal(version, "");
-	assert_int_equal(accounts_user_add(a, "Bo", ACCOUNTS_TRAINEE, "2222"),
-			 0);
+	add(a, "Bo", ACCOUNTS_TRAINEE, "2222");
 	assert_int_equal(accounts_group_member(a, "2026", "Bo", true), 0);
 	assert_int_equal(accounts_group_member(a, "2026", "Bo", true), 0);
 	assert_int_equal(accounts_group_course(a, "2026", "basic.course", true),
@@ -471,12 +470,9 @@ static void test_centre_copy(void **state)
 	size_t waiting, n;
 	double wait;
 
-	assert_int_equal(accounts_user_add(a, "Ann", ACCOUNTS_TRAINEE, "1111"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Bo", ACCOUNTS_TRAINEE, "2222"),
-			 0);
-	assert_int_equal(accounts_user_add(a, "Zed", ACCOUNTS_TRAINEE, "9999"),
-			 0);
+	add(a, "Ann", ACCOUNTS_TRAINEE, "1111");
+	add(a, "Bo", ACCOUNTS_TRAINEE, "2222");
+	add(a, "Zed", ACCOUNTS_TRAINEE, "9999");
 	hash_of(f->path, "Ann", ann, sizeof(ann));
 	hash_of(f->path, "Bo", bo, sizeof(bo));
 	assert_int_equal(accounts_centre(a, "postgresql:///c1"), 0);
@@ -559,8 +555,7 @@ static void test_migration(void **state)
 	sqlite3 *db;
 
 	/* Ann's hash made by this schema, then the file made by the first */
-	assert_int_equal(accounts_user_add(f->a, "Ann", ACCOUNTS_TRAINEE,
-					   "1111"), 0);
+	add(f->a, "Ann", ACCOUNTS_TRAINEE, "1111");
 	hash_of(f->path, "Ann", hash, sizeof(hash));
 	unlink(f->path);
 	assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
