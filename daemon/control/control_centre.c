@@ -142,8 +142,8 @@ static const char *send_sessions(struct control_centre *cc, size_t *sent)
 	return NULL;
 }
 
-/* What the centre made of the change Q, said where the rig's accounts
- * and the centre's part (the centre's stand: the next copy brings them). */
+/* What the centre made of the change Q, said where it is not what the
+ * rig made (the centre's people stand: the next copy brings them). */
 static void said(struct control_centre *cc, const struct accounts_queued *q,
 		 enum centre_outcome out)
 {
@@ -296,8 +296,9 @@ static void *centre_main(void *arg)
 		     !accounts_copy_version(cc->accounts, cc->version,
 					    sizeof(cc->version));
 	if (!cc->people) {
-		log_err("centre: the rig's accounts: %s; they are not kept with "
-			"the centre's people", accounts_error(cc->accounts));
+		log_err("centre: the rig's accounts: %s; they are not kept "
+			"with the centre's people",
+			accounts_error(cc->accounts));
 	}
 	pthread_mutex_lock(&cc->lock);
 	while (!cc->stop) {

@@ -702,8 +702,8 @@ static int groups_may(struct accounts *a, const char *me,
 			    "of their groups' trainees only", ch->name);
 	}
 	if (to && strcmp(to->instructor, me)) {
-		return fail(a, -EPERM, "group %s is %s's: an instructor changes "
-			    "only the groups they manage", to->name,
+		return fail(a, -EPERM, "group %s is %s's: an instructor "
+			    "changes only the groups they manage", to->name,
 			    to->instructor);
 	}
 	return 0; /* no such group: the change itself says so */
@@ -829,8 +829,8 @@ int accounts_centre(struct accounts *a, const char *url)
 	}
 	e = exec(a, db, "BEGIN IMMEDIATE");
 	if (!e) {
-		e = on ? keep_with(a, db, url) : exec(a, db, "UPDATE centre SET "
-			"url = NULL, version = NULL, queue = 0;"
+		e = on ? keep_with(a, db, url) : exec(a, db, "UPDATE centre "
+			"SET url = NULL, version = NULL, queue = 0;"
 			"DELETE FROM centre_queue");
 	}
 	e = finish(a, db, e);
@@ -883,8 +883,8 @@ int accounts_queue_head(struct accounts *a, struct accounts_queued *q,
 	}
 	if (!(e = prepare(a, db, &st, "SELECT id, op, name, role, pin, "
 			  "group_name, course, (SELECT count(*) FROM "
-			  "centre_queue) FROM centre_queue ORDER BY seq LIMIT 1",
-			  NULL))) {
+			  "centre_queue) FROM centre_queue ORDER BY seq "
+			  "LIMIT 1", NULL))) {
 		rc = sqlite3_step(st);
 		e = rc == SQLITE_ROW ? queued_row(a, st, q, waiting) :
 		    rc == SQLITE_DONE ? -ENOENT : sql_fail(a, db, "its queue");
@@ -981,13 +981,14 @@ static int copy_one(struct accounts *a, sqlite3 *db,
 	}
 	switch (ch->op) {
 	case ACCOUNTS_USER_ADD:
+		/* a wrong PINs' count kept while the PIN is the same */
 		e = step(a, db, "INSERT INTO users (name, role, pin) VALUES "
-			 "(?1, ?2, ?3) ON CONFLICT (name) DO UPDATE SET role = "
-			 "excluded.role, failures = CASE WHEN pin = excluded.pin"
-			 " THEN failures ELSE 0 END, wait_until = CASE WHEN pin "
-			 "= excluded.pin THEN wait_until ELSE 0 END, pin = "
-			 "excluded.pin", ch->name, accounts_role_name(ch->role),
-			 ch->pin);
+			 "(?1, ?2, ?3) ON CONFLICT (name) DO UPDATE SET "
+			 "role = excluded.role, failures = CASE WHEN "
+			 "pin = excluded.pin THEN failures ELSE 0 END, "
+			 "wait_until = CASE WHEN pin = excluded.pin THEN "
+			 "wait_until ELSE 0 END, pin = excluded.pin", ch->name,
+			 accounts_role_name(ch->role), ch->pin);
 		return e ? e : step(a, db, "INSERT INTO temp.kept VALUES (?)",
 				    ch->name, NULL, NULL);
 	case ACCOUNTS_GROUP_ADD:

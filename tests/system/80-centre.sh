@@ -64,7 +64,8 @@ check "rig-a: Ann and Bo, Dr Ives, his group 2026 of them" eval \
 	'ENDOSIM_NEW_PIN=48213579 ctl user add Ann --role trainee &&
 	 ENDOSIM_NEW_PIN=27182818 ctl user add Bo --role trainee &&
 	 ENDOSIM_NEW_PIN=16180339 ctl user add "Dr Ives" --role instructor &&
-	 ctl group add 2026 --instructor "Dr Ives" && ctl group join 2026 Ann Bo'
+	 ctl group add 2026 --instructor "Dr Ives" &&
+	 ctl group join 2026 Ann Bo'
 use_slot rig-b
 check "rig-b: the group, from the centre" wait_for group_is 2026 '["Ann","Bo"]'
 check_status "rig-b: Ann logs in with her PIN from rig-a" 0 \
@@ -115,7 +116,8 @@ for s in rig-a:1 rig-b:0; do
 	use_slot "${s%:*}"
 	check "${s%:*}: its queue drained" wait_for drained
 	check "${s%:*}: the log says the centre came back" grep -q \
-		"centre reachable again: 2 sessions sent, ${s#*:} changes" "$LOG"
+		"centre reachable again: 2 sessions sent, ${s#*:} changes" \
+		"$LOG"
 done
 check "the change arrived: 2026 of Ann alone" wait_for members_are Ann
 check "... once" test "$(sql "SELECT COUNT(*) FROM endosim_changes
@@ -131,11 +133,12 @@ check "... Bo's none" test "$(as "Dr Ives" "SELECT COUNT(*) FROM sessions
 # the same session twice: rig-a's own database rebuilt from its files,
 # every one of its sessions queued again (which sends the join too)
 use_slot rig-a
-check "rig-a: Bo's join queued again" sqlite3 "$(sessions_dir)/accounts.sqlite" \
-	"INSERT INTO centre_queue (id, op, name, role, pin, group_name, course)
-	 VALUES ('$(sql "SELECT replace(id::text, '-', '') FROM endosim_changes
-	 WHERE op = 'group_join' AND name = 'Bo'")', 'group_join', 'Bo', '',
-	 '', '2026', '')"
+BO_JOIN=$(sql "SELECT replace(id::text, '-', '') FROM endosim_changes
+	WHERE op = 'group_join' AND name = 'Bo'")
+check "rig-a: Bo's join queued again" \
+	sqlite3 "$(sessions_dir)/accounts.sqlite" "INSERT INTO centre_queue
+	(id, op, name, role, pin, group_name, course)
+	VALUES ('$BO_JOIN', 'group_join', 'Bo', '', '', '2026', '')"
 check_status "rig-a: records rebuild" 0 ctl records rebuild
 check "... the join sent" wait_for changes_sent
 check "... and not taken twice: 2026 of Ann alone still" members_are Ann

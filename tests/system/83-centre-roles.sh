@@ -35,7 +35,8 @@ check "on the rig: Ann, Bo, Cy, Dr Ives, Ada; 2026 of Ann and Bo" eval \
 	'add Ann trainee 48213579 && add Bo trainee 27182818 &&
 	 add Cy trainee 31415926 && add "Dr Ives" instructor 16180339 &&
 	 add Ada administrator 90210777 &&
-	 ctl group add 2026 --instructor "Dr Ives" && ctl group join 2026 Ann Bo'
+	 ctl group add 2026 --instructor "Dr Ives" &&
+	 ctl group join 2026 Ann Bo'
 check "... the people at the centre, with their roles" wait_for people_are \
 	"Ada:administrator,Ann:trainee,Bo:trainee,Cy:trainee,Dr Ives:instructor"
 check "... and the group" wait_for members_are "2026:Ann,2026:Bo"
@@ -87,7 +88,8 @@ check "Dr Ives: his group's sessions, Ann's and Bo's" test \
 	"$(as "Dr Ives" 'SELECT string_agg(trainee, $$,$$ ORDER BY trainee)
 	FROM sessions')" = "Ann,Bo"
 check "Dr Ives: a query for Cy's rows returns none" test \
-	"$(as "Dr Ives" "SELECT COUNT(*) FROM sessions WHERE trainee = 'Cy'")" = 0
+	"$(as "Dr Ives" "SELECT COUNT(*) FROM sessions
+	WHERE trainee = 'Cy'")" = 0
 check_status "Dr Ives: DELETE: refused" 1 as "Dr Ives" "DELETE FROM sessions"
 check_status "Dr Ives: endoctl trainee list --centre" 0 \
 	ctl --json trainee list --centre "$(url_of "Dr Ives")"
