@@ -383,6 +383,7 @@ static int count_failure(struct accounts *a, sqlite3 *db, const char *name,
 int accounts_login(struct accounts *a, const char *name, const char *pin,
 		   double now_s, struct accounts_user *u, double *wait_s)
 {
+	char kept[crypto_pwhash_STRBYTES];
 	const char *hash = NULL;
 	sqlite3_stmt *st = NULL;
 	long failures = 0;
@@ -399,10 +400,17 @@ int accounts_login(struct accounts *a, const char *name, const char *pin,
 	    sqlite3_step(st) == SQLITE_ROW) {
 		accounts_role_parse((const char *)sqlite3_column_text(st, 0),
 				    &u->role);
-		hash = (const char *)sqlite3_column_text(st, 1);
+		snprintf(kept, sizeof(kept), "%s",
+			 (const char *)sqlite3_column_text(st, 1));
+		hash = kept;
 		failures = (long)sqlite3_column_int64(st, 2);
 		until = sqlite3_column_double(st, 3);
 	}
+	/* the read ended before the hash and any write: a wrong PIN counted
+	 * while the read held on would meet a writer beside us (the
+	 * centre's worker) waiting for it to end, and SQLite refuses the
+	 * one that would deadlock */
+	sqlite3_finalize(st);
 	if (!e && hash && until > now_s) {
 		*wait_s = until - now_s;
 		e = fail(a, -EAGAIN, "too many wrong PINs for %s: try again "
@@ -423,7 +431,6 @@ int accounts_login(struct accounts *a, const char *name, const char *pin,
 			e = count_failure(a, db, name, -1, now_s, wait_s);
 		}
 	}
-	sqlite3_finalize(st);
 	sqlite3_close(db);
 	return e;
 }
