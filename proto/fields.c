@@ -217,6 +217,15 @@ static const struct fields_field guide[] = {
 	  NULL },
 	VEC(error),
 	VEC(hand),
+	{ "expert_kind", FIELDS_NAMED, 1, S(expert_kind), NONE,
+	  P(expert_kind), NONE, NONE, NULL, names_tool, NULL },
+	VAL(expert_pedal, FIELDS_BOOL),
+	VAL(expert_snare_m, FIELDS_DOUBLE),
+	VAL(expert_depth_m, FIELDS_DOUBLE),
+	VAL(expert_opening, FIELDS_DOUBLE),
+	VAL(expert_loop_m, FIELDS_DOUBLE),
+	VEC(expert_tip),
+	VEC(expert_loop_centre),
 };
 const struct fields_table fields_guide =
 	TABLE(guide, endosim__guide_status__descriptor, guide, 1);

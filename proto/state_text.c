@@ -106,6 +106,21 @@ static void tool(FILE *f, const char *prefix,
 	doubles(f, prefix, "tool_loop_centre", t->loop_centre, 3);
 }
 
+/* Guided replay's expert's tool, while it shows one (guide.h). */
+static void expert(FILE *f, const char *prefix,
+		   const struct endosim_guide_state *g)
+{
+	if (g->expert_kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	fprintf(f, "%sexpert_kind=%u\n%sexpert_depth_m=%.9g\n"
+		"%sexpert_opening=%.9g\n%sexpert_pedal=%u\n"
+		"%sexpert_loop_m=%.9g\n", prefix, g->expert_kind, prefix,
+		g->expert_depth_m, prefix, g->expert_opening, prefix,
+		g->expert_pedal, prefix, g->expert_loop_m);
+	doubles(f, prefix, "expert_tip", g->expert_tip, 3);
+}
+
 void state_text_print(FILE *f, const char *prefix,
 		      const struct endosim_state *st)
 {
@@ -120,5 +135,6 @@ void state_text_print(FILE *f, const char *prefix,
 	haptics(f, prefix, &st->haptics);
 	rod(f, prefix, st);
 	tool(f, prefix, &st->tool);
+	expert(f, prefix, &st->guide);
 	points(f, prefix, "tube", st->scope.tube, ENDOSIM_TUBE_POINTS);
 }

@@ -458,7 +458,8 @@ static void pour_blood(struct loop *l, double dt_s)
 /*
  * The tool in the working channel this cycle, on the scope's published
  * state: the rig's sensing, the wall at the tool's tip; its injury of the
- * wall the patient's perforation where there is a patient.
+ * wall the patient's perforation where there is a patient. Then guided
+ * replay's expert's tool on the same scope, shown only (guide.h).
  */
 static void step_tool(struct loop *l)
 {
@@ -487,6 +488,7 @@ static void step_tool(struct loop *l)
 	}
 	pour_blood(l, dt);
 	tool_publish(&l->tool, ev, polyp, &l->state.tool);
+	guide_publish_tool(&l->guide, &par, sc, &l->tool, &l->state.guide);
 }
 
 /* Takes a tool command, if any, applies it and answers it. */
