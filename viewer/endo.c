@@ -505,6 +505,7 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 	liquid_of(m, &st->patient, cam);
 	vec3_sub(shift, cam->eye, sc->tip);
 	toolview_build(&st->tool, sc, shift, &cam->tool);
+	toolview_build_ghost(&st->guide, sc, shift, &cam->expert);
 }
 
 static void set_uniforms(const struct program *p,
@@ -749,19 +750,25 @@ static uint32_t draw_polyps(struct endo *e, const struct model *m,
 }
 
 /*
- * The tool (CAM's parts): each a tube through its points on the plain
+ * A tool (TV's parts): each a tube through its points on the plain
  * texture in its colour, the steel glossier than the plastic; with the
- * dry walls' program (a tool under a pool's surface is drawn clear).
+ * dry walls' program (a tool under a pool's surface is drawn clear). A
+ * ghost (the expert's) translucent over what is drawn, writing no depth.
  */
-static uint32_t draw_tool(struct endo *e, const struct endo_camera *cam)
+static uint32_t draw_tool(struct endo *e, const struct toolview *tv)
 {
 	static float v[TOOLVIEW_POINTS * (SHAPES_TUBE_SIDES + 1)][9];
-	const struct toolview *tv = &cam->tool;
 	const struct program *p;
 	uint32_t tris = 0;
 
 	if (!tv->parts) {
 		return 0;
+	}
+	if (tv->ghost) {
+		glEnable(GL_BLEND);
+		glBlendColor(0, 0, 0, TOOLVIEW_GHOST_ALPHA);
+		glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+		glDepthMask(GL_FALSE);
 	}
 	p = use(e, PROG_DRY);
 	set_identity(p); /* a polyp's may be set */
@@ -783,6 +790,8 @@ static uint32_t draw_tool(struct endo *e, const struct endo_camera *cam)
 			       GL_UNSIGNED_INT, NULL);
 		tris += (uint32_t)(2 * (n - 1) * SHAPES_TUBE_SIDES);
 	}
+	glDisable(GL_BLEND);
+	glDepthMask(GL_TRUE);
 	return tris; /* set_programs() sets the gloss again next frame */
 }
 
@@ -827,6 +836,7 @@ void endo_draw(struct endo *e, const struct model *m, const struct lod *l,
 	glBindTexture(GL_TEXTURE_2D, e->texture);
 	st->triangles = draw_colon(e, m, l, g, cam, &v, st);
 	st->triangles += draw_polyps(e, m, cam, &v);
-	st->triangles += draw_tool(e, cam);
+	st->triangles += draw_tool(e, &cam->tool);
+	st->triangles += draw_tool(e, &cam->expert);
 	end();
 }

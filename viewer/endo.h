@@ -105,6 +105,7 @@ struct endo_camera {
 	double exposure; /* the light's automatic level, 0..1 */
 	struct endo_liquid liquid;
 	struct toolview tool; /* the working channel's, with the lens */
+	struct toolview expert; /* guided replay's expert's, a ghost */
 };
 
 struct endo_stats {

@@ -10,6 +10,7 @@
  *
  *   REGION n=PIXELS mean=LUMA lit=SHARE red=SHARE amber=SHARE yellow=SHARE
  *          scope=SHARE box=X0,Y0,X1,Y1 grey=SHARE blood=SHARE
+ *          ghost=SHARE
  *
  * LUMA is the mean Rec. 601 luma (0..255); lit the share of pixels with
  * luma above 40; red the share of saturated red (a banner, an alarm, the
@@ -22,7 +23,11 @@
  * colourless pixels (each channel above 80, within a quarter of red of
  * each other: a tool's white sheath and its steel, not the mucosa); blood
  * the share of deep red (red above 30, green and blue below a third of
- * it: blood over the mucosa, not its pink).
+ * it: blood over the mucosa, not its pink); ghost the share of the
+ * blue of guided replay's expert's tool (blue above red by 40 or more,
+ * green above red by half as much: the ghost over the mucosa or the dark
+ * lumen, not the mucosa's pink, nor a forceps' blue, whose green is
+ * little above its red).
  *
  * Exit 0, 1 when the file cannot be read, 2 on usage.
  */
@@ -39,7 +44,7 @@ struct region {
 };
 
 struct tally {
-	long n, lit, red, amber, yellow, scope, grey, blood;
+	long n, lit, red, amber, yellow, scope, grey, blood, ghost;
 	double luma;
 	int box[4];
 };
@@ -89,6 +94,7 @@ static void count(struct tally *t, const unsigned char *p, int x, int y)
 	t->yellow += r > 30 && g > 0.62 * r && g < 1.1 * r && b < 0.5 * g;
 	t->scope += scope;
 	t->blood += r > 30 && g < r / 3 && b < r / 3;
+	t->ghost += b > r + 40 && g - r > 0.5 * (b - r);
 	t->grey += r > 80 && g > 80 && b > 80 &&
 		   abs(r - g) < 0.25 * r && abs(g - b) < 0.25 * r &&
 		   abs(r - b) < 0.25 * r;
@@ -115,10 +121,11 @@ static void report(const char *name, const unsigned char *img, int w, int h,
 	}
 	n = t.n ? (double)t.n : 1;
 	printf("%s n=%ld mean=%.1f lit=%.4f red=%.4f amber=%.4f yellow=%.4f "
-	       "scope=%.4f box=%d,%d,%d,%d grey=%.4f blood=%.4f\n", name,
+	       "scope=%.4f box=%d,%d,%d,%d grey=%.4f blood=%.4f ghost=%.4f\n",
+	       name,
 	       t.n, t.luma / n, t.lit / n, t.red / n, t.amber / n,
 	       t.yellow / n, t.scope / n, t.box[0], t.box[1], t.box[2],
-	       t.box[3], t.grey / n, t.blood / n);
+	       t.box[3], t.grey / n, t.blood / n, t.ghost / n);
 }
 
 int main(int argc, char **argv)
