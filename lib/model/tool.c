@@ -500,6 +500,12 @@ static void lying(const struct tool_polyp *p, const struct tool_params *par,
 	vec3_axpy(x, p->base, h, p->normal);
 }
 
+void tool_polyp_body(const struct tool_polyp *p, const struct tool_params *par,
+		     double x[3])
+{
+	lying(p, par, x);
+}
+
 /* The suction takes the first small cut polyp the channel's exit
  * reaches; *WHICH it. */
 static unsigned retrieve_step(struct tool *t, const struct tool_params *par,

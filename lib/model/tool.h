@@ -405,6 +405,12 @@ void tool_wall(const struct colon *c, double s_m, const double tip[3],
 double tool_polyp_thickness(const struct tool_polyp *p);
 double tool_polyp_height(const struct tool_polyp *p, double lift_m);
 
+/* Where polyp P's body is, its centre (m): the head atop its stalk (Ip)
+ * or half its height (with PAR's lift_m) over its base; a cut one's,
+ * where it lies, the retrieval's reach is measured from (above). */
+void tool_polyp_body(const struct tool_polyp *p, const struct tool_params *par,
+		     double x[3]);
+
 /*
  * The loop's diameter (m) of a snare of size SNARE_M with its handle at
  * OPENING (clamped to 0..1) and its sheath's tip at DEPTH_M beyond the
