@@ -152,6 +152,11 @@
  * trap; larger ones need a net) is sucked through the channel
  * (TOOL_EVENT_RETRIEVE): retrieved. A larger one stays where it lies.
  *
+ * The bleeding's constants and retrieval's, like the channel's place,
+ * the hot cut's and the cold snare's, are [tool] keys of the same names
+ * (lib/conf/config.c, their defaults the TOOL_DEFAULT_* below); the
+ * others are these defaults.
+ *
  * Each polyp's fate: in place, captured, cut (lying in the lumen) or
  * retrieved (its state); partly resected where the forceps bit one in
  * place too big to take whole (in place with bites, tool_polyp_fate()).

@@ -20,7 +20,8 @@
  *    handle still and the pedal up: no energy goes in while it lasts;
  *  - the stalk cut cold bleeds its documented flow, published; the blood
  *    shed is the flow times the time, all of it in the polyp's
- *    segment's pool when there is a patient;
+ *    segment's pool when there is a patient; [tool] bleed_stop_s set
+ *    shorter stops it by itself that long after the cut;
  *  - the hand's suction valve reaches the tool: a 6 mm polyp cut and
  *    lying before the channel's exit is retrieved with it pressed, left
  *    lying without;
@@ -64,17 +65,15 @@ struct run {
 	int is;            /* and its first sessile one */
 };
 
-/* The loop on the polyps case, the patient there or not, the hand's
- * scenario LINE (NULL: none). */
-static void start_with(struct run *r, bool patient, const char *line)
+/* The loop on the polyps case with R's configuration, the patient there
+ * or not, the hand's scenario LINE (NULL: none). */
+static void launch(struct run *r, bool patient, const char *line)
 {
 	char err[512];
 	struct colon *c;
 	const struct anatomy *a;
 	struct scenario *scn = NULL;
 
-	memset(r, 0, sizeof(*r));
-	config_defaults(&r->cfg);
 	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
 	r->cfg.patient.enabled = patient;
 	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
@@ -105,6 +104,14 @@ static void start_with(struct run *r, bool patient, const char *line)
 		fail_msg("%s", err);
 	}
 	r->depth_m = -DEPTH_M; /* in the channel */
+}
+
+/* The same with the defaults. */
+static void start_with(struct run *r, bool patient, const char *line)
+{
+	memset(r, 0, sizeof(*r));
+	config_defaults(&r->cfg);
+	launch(r, patient, line);
 }
 
 static void start(struct run *r, bool patient)
@@ -337,6 +344,47 @@ static void test_cold_cut_bleeds_into_pool(void **state)
 }
 
 /*
+ * [tool] bleed_stop_s reaches the loop: at 0.5 s (the default 300 s) the
+ * stalk cut cold stops bleeding by itself 0.5 s after the cut (the step
+ * after the 500th that shed, tool.h), having shed Q x 0.5 s.
+ */
+static void test_bleed_stop_key(void **state)
+{
+	struct run r;
+	double t_m, q;
+	long cut = -1, stop = -1;
+
+	(void)state;
+	memset(&r, 0, sizeof(r));
+	config_defaults(&r.cfg);
+	r.cfg.tool.bleed_stop_s = 0.5;
+	launch(&r, false, NULL);
+	snare_over_stalk(&r);
+	move(&r, 300, DEPTH_M, SHUT);
+	assert_int_equal(r.st->tool.captured, r.ip);
+	t_m = tool_polyp_thickness(&offline_tool(r.o)->polyp[r.ip]);
+	q = r.cfg.tool.bleed_m_per_s * M_PI * t_m * t_m / 4;
+	r.opening = 0;
+	for (long k = 0; k < 2000 && stop < 0; k++) {
+		step(&r, false);
+		if (r.st->tool.events & ENDOSIM_TOOL_BLEED) {
+			cut = k;
+		}
+		if (r.st->tool.events & ENDOSIM_TOOL_STOPPED) {
+			stop = k;
+		}
+	}
+	print_message("bleed_stop_s 0.5: cut at %ld, stopped at %ld\n", cut,
+		      stop);
+	assert_true(cut >= 0);
+	assert_int_equal(stop - cut, 500);
+	assert_int_equal(r.st->tool.polyp[r.ip].bleed, ENDOSIM_BLEED_STOPPED);
+	assert_int_equal(r.st->tool.bleeding, 0);
+	assert_true(fabs(r.st->tool.blood_m3 - q * 0.5) <= 1e-9 * q);
+	offline_destroy(r.o);
+}
+
+/*
  * The case's 6 mm sessile polyp cut cold under the loop, then laid
  * (where it lies: tool.h) 6 mm from the channel's exit, the hand holding
  * the suction valve (SUCTION) or not: retrieved through the channel, or
@@ -430,6 +478,7 @@ int main(void)
 		cmocka_unit_test(test_capture_and_cut),
 		cmocka_unit_test(test_injury_perforates),
 		cmocka_unit_test(test_cold_cut_bleeds_into_pool),
+		cmocka_unit_test(test_bleed_stop_key),
 		cmocka_unit_test(test_retrieve_by_suction),
 	};
 
