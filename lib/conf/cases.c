@@ -105,6 +105,7 @@ void cases_tool_params(const struct config *cfg, struct tool_params *p)
 	p->bleed_stop_s = c->bleed_stop_s;
 	p->retrieve_max_m = c->retrieve_max_m;
 	p->retrieve_reach_m = c->retrieve_reach_m;
+	p->fall_drag_s = c->fall_drag_s;
 }
 
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p)

@@ -843,6 +843,10 @@ static const struct parse_key keys[] = {
 	   TOOL_DEFAULT_RETRIEVE_REACH_M, 0, 0.05, "m", LIVE,
 	   "the channel's exit from a cut polyp's surface, at most, for the "
 	   "suction to take it"),
+	KD("tool", "fall_drag_s", tool.fall_drag_s, TOOL_DEFAULT_FALL_DRAG_S,
+	   0.001, 10, "s", LIVE,
+	   "a cut polyp falling to the wall: its drag's time constant (its "
+	   "speed tends to g x this)"),
 };
 
 #define KEYS (sizeof(keys) / sizeof(keys[0]))

@@ -321,6 +321,7 @@ struct config {
 		double bleed_stop_s;
 		double retrieve_max_m; /* retrieval's */
 		double retrieve_reach_m;
+		double fall_drag_s;   /* a cut polyp's fall */
 	} tool;
 };
 

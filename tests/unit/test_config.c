@@ -521,6 +521,7 @@ static void same_tool(const struct config *cfg)
 	SAME(c, m, bleed_stop_s);
 	SAME(c, m, retrieve_max_m);
 	SAME(c, m, retrieve_reach_m);
+	SAME(c, m, fall_drag_s);
 	same("snare_size_m", cfg->tool.snare_size_m, TOOL_DEFAULT_SNARE_M);
 }
 
@@ -584,6 +585,7 @@ static void test_tool_keys_reach_model(void **state)
 		TOOL_KEY("bleed_stop_s", "60", bleed_stop_s, 60),
 		TOOL_KEY("retrieve_max_m", "0.008", retrieve_max_m, 0.008),
 		TOOL_KEY("retrieve_reach_m", "0.004", retrieve_reach_m, 0.004),
+		TOOL_KEY("fall_drag_s", "0.05", fall_drag_s, 0.05),
 #undef TOOL_KEY
 	};
 	const struct tool_params def = TOOL_PARAMS_DEFAULT;

@@ -22,6 +22,9 @@
  *    shed is the flow times the time, all of it in the polyp's
  *    segment's pool when there is a patient; [tool] bleed_stop_s set
  *    shorter stops it by itself that long after the cut;
+ *  - the stalked polyp cut falls to the lowest wall of its ring, in the
+ *    time the fall's law gives, and stays; with the patient turned onto
+ *    the back it lies on the new dependent wall;
  *  - the hand's suction valve reaches the tool: a 6 mm polyp cut and
  *    lying before the channel's exit is retrieved with it pressed, left
  *    lying without;
@@ -42,6 +45,9 @@
 
 #include "base/vec3.h"
 #include "conf/cases.h"
+#include "model/centreline.h"
+#include "model/colon.h"
+#include "model/patient.h"
 #include "model/tool.h"
 #include "offline.h"
 
@@ -61,23 +67,27 @@ struct run {
 					    simulated hand's reading lags a
 					    cycle (rig_sim.c) */
 	unsigned events;   /* since the last look */
-	int ip;            /* the case's pedunculated polyp */
+	int ip;            /* the case's (last) pedunculated polyp */
 	int is;            /* and its first sessile one */
 };
 
-/* The loop on the polyps case with R's configuration, the patient there
- * or not, the hand's scenario LINE (NULL: none). */
-static void launch(struct run *r, bool patient, const char *line)
+/* The loop on R's case (the polyps case unless its configuration names
+ * one) with R's configuration, the patient there or not, the hand's
+ * scenario LINES ('\n' between them; NULL: none). */
+static void launch(struct run *r, bool patient, const char *lines)
 {
-	char err[512];
+	char err[512], text[512];
 	struct colon *c;
 	const struct anatomy *a;
 	struct scenario *scn = NULL;
+	bool polyps = !r->cfg.colon.file[0];
 
 	r->cfg.haptics.model = HAPTICS_MODEL_PAPER;
 	r->cfg.patient.enabled = patient;
-	snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
-		 "config/cases/polyps.case");
+	if (polyps) {
+		snprintf(r->cfg.colon.file, sizeof(r->cfg.colon.file),
+			 "config/cases/polyps.case");
+	}
 	c = cases_load(&r->cfg, NULL, err, sizeof(err));
 	if (!c) {
 		fail_msg("%s", err);
@@ -92,12 +102,16 @@ static void launch(struct run *r, bool patient, const char *line)
 			r->is = i;
 		}
 	}
-	assert_true(r->ip >= 0 && r->is >= 0);
-	if (line) {
+	assert_true(r->ip >= 0 && (r->is >= 0 || !polyps));
+	if (lines) {
 		scn = scenario_create();
 		assert_non_null(scn);
-		assert_int_equal(scenario_append(scn, line, err, sizeof(err)),
-				 0);
+		snprintf(text, sizeof(text), "%s", lines);
+		for (char *save, *ln = strtok_r(text, "\n", &save); ln;
+		     ln = strtok_r(NULL, "\n", &save)) {
+			assert_int_equal(scenario_append(scn, ln, err,
+							 sizeof(err)), 0);
+		}
 	}
 	r->o = offline_create_with(&r->cfg, c, scn, err, sizeof(err));
 	if (!r->o) {
@@ -133,7 +147,8 @@ static void step(struct run *r, bool stale)
 }
 
 /* N cycles moving the depth and the handle linearly to DEPTH_M and
- * OPENING, the published loop checked against the formula each cycle. */
+ * OPENING, a snare's published loop checked against the formula each
+ * cycle. */
 static void move(struct run *r, long n, double depth_m, double opening)
 {
 	double d0 = r->depth_m, o0 = r->opening;
@@ -144,7 +159,8 @@ static void move(struct run *r, long n, double depth_m, double opening)
 		r->depth_m = d0 + (depth_m - d0) * (double)k / (double)n;
 		r->opening = o0 + (opening - o0) * (double)k / (double)n;
 		step(r, false);
-		if (r->st->tool.captured < 0) {
+		if (r->st->tool.kind == ENDOSIM_TOOL_SNARE &&
+		    r->st->tool.captured < 0) {
 			assert_true(r->st->tool.loop_m ==
 				    tool_loop_diameter(SNARE_M, open, depth));
 		}
@@ -170,6 +186,7 @@ static void polyp_under_loop(struct run *r, int i)
 	vec3_axpy(p->base, centre, tool_polyp_height(p, par.lift_m) / 2,
 		  pose.radial);
 	vec3_scale(p->normal, pose.radial, -1);
+	p->s_m = r->st->scope.tip_s_m + r->depth_m + SNARE_M / 2; /* its ring */
 }
 
 static void test_polyps_placed(void **state)
@@ -385,8 +402,129 @@ static void test_bleed_stop_key(void **state)
 }
 
 /*
+ * Where a cut polyp of SIZE_M at ring S_M rests under gravity DOWN on
+ * colon C, into OUT: the lowest of 3600 wall points round the ring along
+ * DOWN, its radius in along the ring's radius.
+ */
+static void rest_by_search(const struct colon *c, double s_m, double size_m,
+			   const double down[3], double out[3])
+{
+	struct centreline_point q;
+	double best = -INFINITY;
+
+	centreline_at_s(colon_centreline(c), s_m, &q);
+	for (int k = 0; k < 3600; k++) {
+		double th = 2 * M_PI * k / 3600, x[3];
+		double r = colon_lumen_radius(c, s_m, th);
+
+		vec3_scale(x, q.u, cos(th));
+		vec3_axpy(x, x, sin(th), q.v);
+		if (r * vec3_dot(x, down) > best) {
+			best = r * vec3_dot(x, down);
+			vec3_axpy(out, q.p, r - size_m / 2, x);
+		}
+	}
+}
+
+/* The time (s) from rest over L_M pulled by G_M_S2 against a drag of
+ * TAU_S (tool.h): L = g tau (t - tau (1 - exp(-t / tau))). */
+static double fall_time(double l_m, double g_m_s2, double tau_s)
+{
+	double lo = 0, hi = 10;
+
+	for (int k = 0; k < 200; k++) {
+		double t = (lo + hi) / 2;
+
+		if (g_m_s2 * tau_s * (t - tau_s * (1 - exp(-t / tau_s))) <
+		    l_m) {
+			lo = t;
+		} else {
+			hi = t;
+		}
+	}
+	return lo;
+}
+
+/*
+ * The stalked polyp cut cold in the loop falls to the lowest wall of its
+ * ring (within 0.05 mm of a search of 3600 points round it) in the time
+ * the drag's law gives for the way from where it was cut (to two
+ * cycles), published where it lies (each cycle's lying polyp while it
+ * falls), and stays there: with no patient modelled, lying on the left
+ * side; with the patient, turned onto the back (2 s), it lies on the
+ * dependent wall again.
+ */
+static void falls_in_loop(bool patient)
+{
+	const double left[3] = { 1, 0, 0 }, back[3] = { 0, 1, 0 };
+	struct run r;
+	double from[3], want[3], l, t_s;
+	long n = -1, k;
+	const struct tool_polyp *p;
+
+	memset(&r, 0, sizeof(r));
+	config_defaults(&r.cfg);
+	r.cfg.patient.turn_s = 2;
+	launch(&r, patient, patient ? "1.5 patient position supine" : NULL);
+	snare_over_stalk(&r);
+	move(&r, 300, DEPTH_M, SHUT);
+	r.opening = 0;
+	p = &offline_tool(r.o)->polyp[r.ip];
+	for (k = 0; k < 1000 && !(r.st->tool.events & ENDOSIM_TOOL_CUT); k++) {
+		step(&r, false);
+	}
+	assert_true(r.st->tool.events & ENDOSIM_TOOL_CUT);
+	vec3_copy(from, r.st->tool.polyp[r.ip].at);
+	rest_by_search(offline_colon(r.o), p->s_m, p->size_m, left, want);
+	l = vec3_dist(from, want);
+	t_s = fall_time(l, PATIENT_GRAVITY_M_S2, r.cfg.tool.fall_drag_s);
+	for (k = 1; k < 1000 && n < 0; k++) {
+		assert_int_equal(r.st->tool.lying_polyp, r.ip);
+		assert_true(vec3_dist(r.st->tool.lying_at,
+				      r.st->tool.polyp[r.ip].at) == 0);
+		if (vec3_dist(r.st->tool.polyp[r.ip].at, want) < 5e-5 &&
+		    p->fall_v == 0) {
+			n = k;
+		}
+		step(&r, false);
+	}
+	print_message("%s: fell %.1f mm in %ld cycles, the law's %.4f s; "
+		      "%.3f mm from the lowest wall's rest\n",
+		      patient ? "the patient" : "no patient", l * 1e3, n, t_s,
+		      vec3_dist(r.st->tool.polyp[r.ip].at, want) * 1e3);
+	assert_true(n > 0 && fabs((double)n - t_s / DT) <= 2);
+	vec3_copy(from, r.st->tool.polyp[r.ip].at);
+	for (k = 0; k < 200; k++) {
+		step(&r, false);
+	}
+	assert_true(vec3_dist(r.st->tool.polyp[r.ip].at, from) == 0);
+	if (patient) {
+		while (r.st->scenario_time_s < 4.5) {
+			step(&r, false);
+		}
+		assert_int_equal(r.st->patient.position,
+				 ENDOSIM_POSITION_SUPINE);
+		assert_int_equal(r.st->patient.turning, 0);
+		rest_by_search(offline_colon(r.o), p->s_m, p->size_m, back,
+			       want);
+		print_message("turned onto the back: %.3f mm from its rest\n",
+			      vec3_dist(r.st->tool.polyp[r.ip].at, want) * 1e3);
+		assert_true(vec3_dist(r.st->tool.polyp[r.ip].at, want) < 5e-5);
+	}
+	assert_int_equal(r.st->tool.polyp[r.ip].state, ENDOSIM_POLYP_CUT);
+	offline_destroy(r.o);
+}
+
+static void test_cut_polyp_falls(void **state)
+{
+	(void)state;
+	falls_in_loop(false);
+	falls_in_loop(true);
+}
+
+/*
  * The case's 6 mm sessile polyp cut cold under the loop, then laid
- * (where it lies: tool.h) 6 mm from the channel's exit, the hand holding
+ * (where it lies: tool.h, at rest) 6 mm from the channel's exit, the hand holding
  * the suction valve (SUCTION) or not: retrieved through the channel, or
  * left lying.
  */
@@ -411,12 +549,13 @@ static int retrieved(bool suction)
 	move(&r, 300, DEPTH_M, 0);
 	assert_true(r.events & ENDOSIM_TOOL_CUT);
 	assert_int_equal(r.st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
-	/* its body (half its height over its base) 6 mm ahead of the exit */
+	/* where it lies: 6 mm ahead of the exit, at rest there */
 	p = &offline_tool(r.o)->polyp[i];
 	tool_pose(&par, &r.st->scope, r.depth_m, &pose);
-	vec3_axpy(p->base, pose.exit, 0.006, pose.dir);
-	vec3_axpy(p->base, p->base, -tool_polyp_height(p, par.lift_m) / 2,
-		  p->normal);
+	vec3_axpy(p->at, pose.exit, 0.006, pose.dir);
+	vec3_copy(p->rest, p->at);
+	p->rest_ok = true;
+	p->fall_v = 0;
 	r.events = 0;
 	move(&r, 20, DEPTH_M, 0);
 	state = (int)r.st->tool.polyp[i].state;
@@ -479,6 +618,7 @@ int main(void)
 		cmocka_unit_test(test_injury_perforates),
 		cmocka_unit_test(test_cold_cut_bleeds_into_pool),
 		cmocka_unit_test(test_bleed_stop_key),
+		cmocka_unit_test(test_cut_polyp_falls),
 		cmocka_unit_test(test_retrieve_by_suction),
 	};
 
