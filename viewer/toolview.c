@@ -179,6 +179,24 @@ static void in_hand(const struct endosim_tool_state *t,
 	}
 }
 
+/* The polyps cut: where each lies (a place not finite: not drawn). */
+static void lying(const struct endosim_tool_state *t, struct toolview *out)
+{
+	out->lying = 0;
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		const double *at = t->polyp[i].at;
+
+		if (t->polyp[i].state != ENDOSIM_POLYP_CUT ||
+		    !isfinite(vec3_dot(at, at))) {
+			continue;
+		}
+		out->lying |= 1u << i;
+		for (int k = 0; k < 3; k++) {
+			out->lie[i][k] = (float)at[k];
+		}
+	}
+}
+
 void toolview_build(const struct endosim_tool_state *t,
 		    const struct endosim_scope_state *sc,
 		    const double shift[3], struct toolview *out)
@@ -190,6 +208,7 @@ void toolview_build(const struct endosim_tool_state *t,
 		out->gone |= (uint32_t)(t->polyp[i].state ==
 					ENDOSIM_POLYP_RETRIEVED) << i;
 	}
+	lying(t, out);
 	in_hand(t, sc, shift, out);
 	if (t->bleeding > 0) {
 		on_wall(out, t->bleed_at, sc, shift, TOOLVIEW_WELL_M,
