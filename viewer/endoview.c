@@ -729,14 +729,34 @@ static void report(const struct app *a)
 	viewstats_print(stdout, &s);
 }
 
-/* Where the endoscopic view drew each cut polyp lying in the lumen, in
- * the image's pixels (top-left origin, as in the PNG). */
-static void report_lying(const struct app *a, int fb_h)
+/* "endo: WHAT at X,Y": where the endoscopic view put point AT, in the
+ * image's pixels (top-left origin, as in the PNG), if in front of it. */
+static void report_point(const struct app *a, int fb_h, const char *what,
+			 const double at[3])
+{
+	double px[2];
+
+	if (endo_project(&a->cam, a->endo_rect, at, px)) {
+		printf("endo: %s at %.1f,%.1f\n", what, px[0], fb_h - px[1]);
+	}
+}
+
+/* Where the endoscopic view drew what the tools left: the bleeding
+ * point, the last clip, each cut polyp lying in the lumen. */
+static void report_left(const struct app *a, int fb_h)
 {
 	const struct toolview *tv = &a->cam.tool;
+	const struct endosim_tool_state *t = &a->shown->tool;
+	char what[32];
 
+	if (t->bleeding > 0) {
+		report_point(a, fb_h, "bleeding", t->bleed_at);
+	}
+	if (t->clips > 0) {
+		report_point(a, fb_h, "clip", t->clip_at);
+	}
 	for (int k = 0; k < ENDOSIM_POLYPS; k++) {
-		double at[3], px[2];
+		double at[3];
 
 		if (!(tv->lying >> k & 1u)) {
 			continue;
@@ -744,16 +764,14 @@ static void report_lying(const struct app *a, int fb_h)
 		at[0] = tv->lie[k][0];
 		at[1] = tv->lie[k][1];
 		at[2] = tv->lie[k][2];
-		if (endo_project(&a->cam, a->endo_rect, at, px)) {
-			printf("endo: polyp %d lying at %.1f,%.1f\n", k, px[0],
-			       fb_h - px[1]);
-		}
+		snprintf(what, sizeof(what), "polyp %d lying", k);
+		report_point(a, fb_h, what, at);
 	}
 }
 
-/* What the panel said, where the endoscopic view drew the cut polyps and
- * the overview the scope and the colon, in the last frame (hud_said(),
- * report_lying(), overview_print()). */
+/* What the panel said, where the endoscopic view drew what the tools
+ * left and the overview the scope and the colon, in the last frame
+ * (hud_said(), report_left(), overview_print()). */
 static void report_drawn(const struct app *a)
 {
 	const char *said;
@@ -767,7 +785,7 @@ static void report_drawn(const struct app *a)
 	}
 	ui_framebuffer_size(a->ui, &w, &h);
 	if (a->endo_shown) {
-		report_lying(a, h);
+		report_left(a, h);
 	}
 	if (a->overview_shown) {
 		overview_print(a->overview, a->colon.model, a->shown, h,

@@ -33,13 +33,16 @@
  *    cycle (torn_segment; with no patient, the tool's event alone).
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -50,6 +53,9 @@
 #include "model/patient.h"
 #include "model/tool.h"
 #include "offline.h"
+#include "proto/names.h"
+#include "proto/session_file.h"
+#include "viewer/replay.h"
 
 #define DT (OFFLINE_PERIOD_NS * ENDOSIM_S_PER_NS)
 #define SNARE_M 0.020
@@ -69,6 +75,8 @@ struct run {
 	unsigned events;   /* since the last look */
 	int ip;            /* the case's (last) pedunculated polyp */
 	int is;            /* and its first sessile one */
+	int fd;            /* a session's file the cycles are recorded in, or
+			      0: none */
 };
 
 /* The loop on R's case (the polyps case unless its configuration names
@@ -141,6 +149,13 @@ static void step(struct run *r, bool stale)
 				   HOLD_S);
 	}
 	r->st = offline_step(r->o);
+	if (r->fd > 0) {
+		struct session_record rec;
+
+		session_record_from_state(r->st, &rec);
+		assert_int_equal(session_file_write_frame(r->fd,
+				 SESSION_FRAME_RECORD, &rec, sizeof(rec)), 0);
+	}
 	r->was_depth_m = r->depth_m;
 	r->was_opening = r->opening;
 	r->events |= r->st->tool.events;
@@ -522,6 +537,200 @@ static void test_cut_polyp_falls(void **state)
 	falls_in_loop(true);
 }
 
+/* ------------------------------------------------- a session, replayed */
+
+/* 46-viewer-bleed's case: the straight colon and a stalked polyp at 5
+ * o'clock 12 cm in (a 5 mm stalk 25 mm long), and its scope: 9.6 cm in,
+ * then (at 3 s) 11.3 cm in, bent towards the polyp's foot. */
+static const char bleed_polyp[] =
+	"\n[polyp]\ns_m = 0.120\nangle_deg = 150\ndiameter_m = 0.009\n"
+	"shape = pedunculated\nstalk_length_m = 0.025\n"
+	"stalk_diameter_m = 0.005\n";
+static const char bleed_scope[] =
+	"0 insertion target 0.096 1.5\n3 insertion target 0.113 1.5\n"
+	"3 wheel_ud target -0.18 1.5\n3 wheel_lr target 0.10 1.5\n"
+	"60 end";
+
+/* The text of file PATH, with MORE after it, into OUT (SIZE bytes). */
+static void read_case(const char *path, const char *more, char *out,
+		      size_t size)
+{
+	FILE *f = fopen(path, "r");
+	size_t n;
+
+	assert_non_null(f);
+	n = fread(out, 1, size - 1, f);
+	fclose(f);
+	snprintf(out + n, size - n, "%s", more);
+}
+
+/* The session file PATH begun for R's loop on the case CASE_TEXT: its
+ * head as the recorder writes it (the configuration as --print-config
+ * prints it); each cycle's record then follows (step()). */
+static void record(struct run *r, const char *path, const char *case_text)
+{
+	struct session_header h = {
+		.id = 1, .trainee = "test", .case_name = "bleed",
+		.started = "2026-11-30T10:00:00Z",
+		.start_ns = OFFLINE_START_NS, .period_ns = OFFLINE_PERIOD_NS,
+		.version = "test", .step_m = r->cfg.colon.step_m,
+		.ring_vertices = (int)r->cfg.colon.ring_vertices,
+		.segment_m = r->cfg.colon.segment_m,
+	};
+	char head[1024], *config = NULL;
+	size_t size = 0;
+	FILE *m = open_memstream(&config, &size);
+
+	assert_non_null(m);
+	config_print(&r->cfg, m);
+	fclose(m);
+	assert_true(session_header_text(&h, head, sizeof(head)) > 0);
+	r->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+	assert_true(r->fd > 0);
+	assert_int_equal(session_file_write_magic(r->fd), 0);
+	assert_int_equal(session_file_write_frame(r->fd, SESSION_FRAME_HEADER,
+						  head, strlen(head)), 0);
+	assert_int_equal(session_file_write_frame(r->fd, SESSION_FRAME_CONFIG,
+						  config, strlen(config)), 0);
+	assert_int_equal(session_file_write_frame(r->fd, SESSION_FRAME_CASE,
+						  case_text,
+						  strlen(case_text)), 0);
+	free(config);
+}
+
+/* What the loop published at one cycle, to hold the replay against. */
+struct truth {
+	uint64_t cycle;
+	struct endosim_tool_state tool;
+};
+
+/* Steps until COND holds (at most N cycles); fails otherwise. */
+#define STEP_UNTIL(r, cond, n)                                               \
+	do {                                                                 \
+		long k_ = 0;                                                 \
+		while (!(cond) && k_++ < (n)) {                              \
+			step((r), false);                                    \
+		}                                                            \
+		assert_true(cond);                                           \
+	} while (0)
+
+/*
+ * The replay of a recorded session (viewer/replay.h) against what the
+ * loop published at the same cycle: POLYP's state and where it lay,
+ * whether it bled and from where, the clips and the last one's place
+ * (within a float's rounding of the recorded tip: 1e-6 m).
+ */
+static void replay_matches(struct replay *rp, const struct truth *tr,
+			   int polyp)
+{
+	const struct endosim_tool_state *want = &tr->tool, *got;
+
+	replay_seek(rp, (double)tr->cycle * OFFLINE_PERIOD_NS *
+				ENDOSIM_S_PER_NS);
+	got = &replay_state(rp)->tool;
+	print_message("cycle %llu: polyp %s, lying %.3f mm off, %u bleeding "
+		      "%.3g mm off, %u clips %.3g mm off\n",
+		      (unsigned long long)tr->cycle,
+		      names_polyp_state(got->polyp[polyp].state),
+		      vec3_dist(got->polyp[polyp].at,
+				want->polyp[polyp].at) * 1e3, got->bleeding,
+		      vec3_dist(got->bleed_at, want->bleed_at) * 1e3,
+		      got->clips, vec3_dist(got->clip_at, want->clip_at) * 1e3);
+	assert_int_equal(replay_state(rp)->cycle, tr->cycle);
+	assert_int_equal(got->polyps, want->polyps);
+	assert_int_equal(got->polyp[polyp].state, want->polyp[polyp].state);
+	assert_true(vec3_dist(got->polyp[polyp].at, want->polyp[polyp].at) <
+		    1e-6);
+	assert_int_equal(got->polyp[polyp].bleed, want->polyp[polyp].bleed);
+	assert_int_equal(got->bleeding, want->bleeding);
+	assert_true(vec3_dist(got->bleed_at, want->bleed_at) < 1e-9);
+	assert_int_equal(got->clips, want->clips);
+	assert_true(vec3_dist(got->clip_at, want->clip_at) < 1e-6);
+}
+
+/*
+ * 46-viewer-bleed's session in lockstep, recorded: the stalk snared 15
+ * mm out, cut cold, bleeding; its head falling to the wall; the scope
+ * moved to the stalk's foot and a clip put on the point, which stops it.
+ * Its replay shows at each of those cycles what the loop published: the
+ * polyp standing, falling, lying; the bleeding point; the clip.
+ */
+static void test_replay_bleed_and_clip(void **state)
+{
+	char path[] = "/tmp/test_tool_loop_XXXXXX", err[256];
+	static char text[1 << 16];
+	struct truth tr[5];
+	struct replay *rp;
+	struct run r;
+	int fd, nt = 0, p;
+	double exit[3], depth;
+
+	(void)state;
+	fd = mkstemp(path);
+	assert_true(fd >= 0);
+	close(fd);
+	read_case("tests/cases/straight.case", bleed_polyp, text, sizeof(text));
+	memset(&r, 0, sizeof(r));
+	config_defaults(&r.cfg);
+	snprintf(r.cfg.colon.file, sizeof(r.cfg.colon.file), "%s.case", path);
+	fd = open(r.cfg.colon.file, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+	assert_int_equal(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+	close(fd);
+	launch(&r, false, bleed_scope);
+	unlink(r.cfg.colon.file);
+	record(&r, path, text);
+	p = r.ip;
+	step(&r, false);
+	STEP_UNTIL(&r, r.st->axis[0].position > 0.094, 3000);
+	offline_tool_select(r.o, TOOL_SNARE, SNARE_M);
+	step(&r, false);
+	move(&r, 300, 0.015, 1);
+	move(&r, 300, 0.015, 0.1);
+	assert_int_equal(r.st->tool.captured, p);
+	tr[nt++] = (struct truth){ r.st->cycle, r.st->tool }; /* standing */
+	r.events = 0;
+	move(&r, 20, 0.015, 0);
+	STEP_UNTIL(&r, r.events & ENDOSIM_TOOL_BLEED, 100);
+	step(&r, false);
+	tr[nt++] = (struct truth){ r.st->cycle, r.st->tool }; /* falling */
+	assert_true(offline_tool(r.o)->polyp[p].fall_v > 0);
+	move(&r, 500, 0.015, 0);
+	tr[nt++] = (struct truth){ r.st->cycle, r.st->tool }; /* lying */
+	assert_true(offline_tool(r.o)->polyp[p].fall_v == 0);
+	assert_int_equal(r.st->tool.bleeding, 1);
+	/* the scope at the foot, then the clip's jaws onto the point */
+	STEP_UNTIL(&r, r.st->scenario_time_s > 5.5, 6000);
+	offline_tool_select(r.o, TOOL_CLIP, 0);
+	step(&r, false);
+	move(&r, 200, 0.005, 0);
+	vec3_axpy(exit, r.st->tool.tip, -r.st->tool.depth_m, r.st->scope.dir);
+	vec3_sub(exit, r.st->tool.bleed_at, exit);
+	depth = vec3_dot(exit, r.st->scope.dir) - 0.005;
+	move(&r, 200, depth, 1);
+	tr[nt++] = (struct truth){ r.st->cycle, r.st->tool }; /* clip open */
+	r.events = 0;
+	move(&r, 200, depth, 0);
+	assert_true(r.events & ENDOSIM_TOOL_CLIP_PLACED);
+	assert_true(r.events & ENDOSIM_TOOL_CLIPPED);
+	move(&r, 100, depth, 0);
+	tr[nt++] = (struct truth){ r.st->cycle, r.st->tool }; /* clipped */
+	assert_int_equal(r.st->tool.bleeding, 0);
+	close(r.fd);
+	offline_destroy(r.o);
+
+	rp = replay_open(path, err, sizeof(err));
+	if (!rp) {
+		fail_msg("%s", err);
+	}
+	for (int k = 0; k < nt; k++) {
+		replay_matches(rp, &tr[k], p);
+	}
+	/* and back: a seek to an earlier time shows it as it was then */
+	replay_matches(rp, &tr[1], p);
+	replay_destroy(rp);
+	unlink(path);
+}
+
 /*
  * The case's 6 mm sessile polyp cut cold under the loop, then laid
  * (where it lies: tool.h, at rest) 6 mm from the channel's exit, the hand holding
@@ -619,6 +828,7 @@ int main(void)
 		cmocka_unit_test(test_cold_cut_bleeds_into_pool),
 		cmocka_unit_test(test_bleed_stop_key),
 		cmocka_unit_test(test_cut_polyp_falls),
+		cmocka_unit_test(test_replay_bleed_and_clip),
 		cmocka_unit_test(test_retrieve_by_suction),
 	};
 
