@@ -168,12 +168,12 @@
  * found a cut polyp stays where it was cut, a step or a few). Without
  * gravity (g zero) or a case (an imported mesh) nothing falls.
  *
- * Retrieval. With the suction
- * valve pressed and the channel's exit within retrieve_reach_m (5 mm)
- * of its body's surface where it lies, one no larger than retrieve_max_m (6 mm, a
- * guess: soft tissue squeezed through the 3.2-3.8 mm channel into the
- * trap; larger ones need a net) is sucked through the channel
- * (TOOL_EVENT_RETRIEVE): retrieved. A larger one stays where it lies.
+ * Retrieval. With the suction valve pressed and the channel's exit
+ * within retrieve_reach_m (5 mm) of its body's surface where it lies, a
+ * cut polyp no larger than retrieve_max_m (6 mm, a guess: soft tissue
+ * squeezed through the 3.2-3.8 mm channel into the trap; larger ones
+ * need a net) is sucked through the channel (TOOL_EVENT_RETRIEVE):
+ * retrieved. A larger one stays where it lies.
  *
  * The bleeding's constants and retrieval's, like the channel's place,
  * the hot cut's and the cold snare's, are [tool] keys of the same names

@@ -21,7 +21,7 @@
 # the live shots showed, has the bleeding point, the cut polyp where it
 # lay and the clip where live had them (the state within a float's
 # rounding, the image's pixel within 2, the pixels round each as live
-# drew them); replayed at the cut and then when it lay, the image
+# drew them); replayed at the cut and half a second on, the image
 # changed where it lies (the polyp fell there) and hardly elsewhere. No
 # run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
@@ -139,7 +139,7 @@ FILE="$TMP/sessions/$ID.endoses"
 # $TMP/replay-NAME.out
 replay_at() {
 	endoview --no-vsync --replay "$FILE" --seek "$2" --paused --view endo \
-		--size 1280x720 --frames 4 --print-state \
+		--size 1280x720 --frames 3 --print-state \
 		--screenshot "$TMP/replay-$1.png" >"$TMP/replay-$1.out" 2>&1 ||
 		return 1
 	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
@@ -175,9 +175,21 @@ near() {
 # disc XY R: png_stats' disc of radius R round "X,Y"
 disc() { echo "disc:$1,$2"; }
 
-cut_t=$(since "$(awk -F, -v p="$POLYP" '$2 == "tool" && $3 == p &&
-	$4 == 4 { print $1; exit }' "$TMP/events.csv")")
-check "replayed at the cut ($cut_t s)" replay_at cut "$cut_t"
+cut=$(awk -F, -v p="$POLYP" '$2 == "tool" && $3 == p && $4 == 4 {
+	print $1; exit }' "$TMP/events.csv")
+check "replayed at the cut" replay_at cut "$(since "$cut")"
+check "... and half a second on" \
+	replay_at fallen "$(since "$(awk -v t="$cut" 'BEGIN { print t + 0.5 }')")"
+check "... the scope's tip where it was at the cut" near \
+	"$(state "$TMP/replay-fallen.out" tip)" \
+	"$(state "$TMP/replay-cut.out" tip)" 1e-4
+LIE=$(drawn "$TMP/replay-fallen.out" "polyp $POLYP lying")
+moved=$(png_changed "$TMP/replay-fallen.png" "$TMP/replay-cut.png" \
+	"$(disc "$LIE" 20)")
+still=$(png_changed "$TMP/replay-fallen.png" "$TMP/replay-cut.png" \
+	"$IMAGE")
+check "the polyp fallen since the cut: the image changed where it lies, $LIE ($moved of a disc there, $still of the image)" \
+	float_test "$moved > 0.5 && $still < 0.05"
 check "replayed when live showed the bleeding" \
 	replay_at bleeding "$(since "$(cycle_t bleeding)")"
 check "... the same record" test "$(state "$TMP/replay-bleeding.out" cycle)" = \
@@ -191,15 +203,9 @@ check "... the cut polyp lying where live had it" near \
 LIE=$(drawn "$TMP/bleeding.out" "polyp $POLYP lying")
 check "... drawn where live drew it ($LIE)" near \
 	"$(drawn "$TMP/replay-bleeding.out" "polyp $POLYP lying")" "$LIE" 2
-moved=$(png_changed "$TMP/replay-bleeding.png" "$TMP/replay-cut.png" \
-	"$(disc "$LIE" 20)")
-still=$(png_changed "$TMP/replay-bleeding.png" "$TMP/replay-cut.png" \
-	"$IMAGE")
-check "the polyp fallen since the cut: the image changed where it lies ($moved of a disc there, $still of the image)" \
-	float_test "$moved > 0.5 && $still < 0.05"
 same=$(png_changed "$TMP/replay-bleeding.png" "$TMP/bleeding.png" \
 	"$(disc "$LIE" 20)")
-check "... as live drew it there ($same of the disc differs)" \
+check "... as live drew it there ($same of a disc round it differs)" \
 	float_test "$same < 0.1"
 check "replayed when live showed the clip" \
 	replay_at clipped "$(since "$(cycle_t clipped)")"

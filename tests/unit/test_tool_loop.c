@@ -733,9 +733,9 @@ static void test_replay_bleed_and_clip(void **state)
 
 /*
  * The case's 6 mm sessile polyp cut cold under the loop, then laid
- * (where it lies: tool.h, at rest) 6 mm from the channel's exit, the hand holding
- * the suction valve (SUCTION) or not: retrieved through the channel, or
- * left lying.
+ * (where it lies: tool.h, at rest) 6 mm from the channel's exit, the
+ * hand holding the suction valve (SUCTION) or not: retrieved through
+ * the channel, or left lying.
  */
 static int retrieved(bool suction)
 {
