@@ -170,46 +170,49 @@ static int told(const struct replay *r, const struct session_record *rec)
 	return k >= 0 && k < r->tool.polyps ? k : -1;
 }
 
+/* Walks the places the records tell, each polyp's changes only: counts
+ * them into R's place_n, or, with AT (each polyp's next slot), writes
+ * them into its places. */
+static void walk_places(struct replay *r, size_t *at)
+{
+	bool had[ENDOSIM_POLYPS] = { false };
+	float last[ENDOSIM_POLYPS][3];
+
+	for (size_t i = 0; i < r->f.n_records; i++) {
+		const struct session_record *rec = &r->f.records[i];
+		int k = told(r, rec);
+
+		if (k < 0 || (had[k] && !memcmp(last[k], rec->tool_lying_at,
+						sizeof(last[k])))) {
+			continue;
+		}
+		had[k] = true;
+		memcpy(last[k], rec->tool_lying_at, sizeof(last[k]));
+		if (!at) {
+			r->place_n[k]++;
+			continue;
+		}
+		r->places[at[k]++] = (struct place){
+			.rec = i, .at = { last[k][0], last[k][1], last[k][2] } };
+	}
+}
+
 /* Each polyp's changes of place as the records tell them, grouped by
  * polyp in the records' order: 0, or -ENOMEM. */
 static int read_places(struct replay *r)
 {
-	size_t n = 0, at[ENDOSIM_POLYPS] = { 0 };
-	bool had[ENDOSIM_POLYPS] = { false };
-	float last[ENDOSIM_POLYPS][3];
+	size_t n = 0, at[ENDOSIM_POLYPS];
 
-	for (int pass = 0; pass < 2; pass++) {
-		memset(had, 0, sizeof(had));
-		for (size_t i = 0; i < r->f.n_records; i++) {
-			const struct session_record *rec = &r->f.records[i];
-			int k = told(r, rec);
-
-			if (k < 0 || (had[k] && !memcmp(last[k],
-							rec->tool_lying_at,
-							sizeof(last[k])))) {
-				continue;
-			}
-			had[k] = true;
-			memcpy(last[k], rec->tool_lying_at, sizeof(last[k]));
-			if (!pass) {
-				r->place_n[k]++;
-				continue;
-			}
-			r->places[at[k]++] = (struct place){ .rec = i,
-				.at = { last[k][0], last[k][1], last[k][2] } };
-		}
-		if (pass) {
-			break;
-		}
-		for (int k = 0; k < ENDOSIM_POLYPS; k++) {
-			r->place_first[k] = at[k] = n;
-			n += r->place_n[k];
-		}
-		r->places = calloc(n ? n : 1, sizeof(*r->places));
-		if (!r->places) {
-			return -ENOMEM;
-		}
+	walk_places(r, NULL);
+	for (int k = 0; k < ENDOSIM_POLYPS; k++) {
+		r->place_first[k] = at[k] = n;
+		n += r->place_n[k];
 	}
+	r->places = calloc(n ? n : 1, sizeof(*r->places));
+	if (!r->places) {
+		return -ENOMEM;
+	}
+	walk_places(r, at);
 	return 0;
 }
 
