@@ -24,7 +24,7 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 11u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 12u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
@@ -36,7 +36,8 @@
 				     signs and a perforation by the tip;
 				  9: the tool in the working channel;
 				  10: bleeding, clips on it, retrieval;
-				  11: guided replay's expert tool */
+				  11: guided replay's expert tool;
+				  12: where each cut polyp lies */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -436,6 +437,9 @@ struct endosim_tool_polyp {
 	uint32_t bleed;          /* 10: enum endosim_bleed */
 	double bleed_m3_s;       /* its flow now, m^3/s */
 	double blood_m3;         /* shed from it so far */
+	double at[3];            /* 11: cut, its body's centre: where it
+				    falls and lies (retrieved: where it lay;
+				    before its cut 0) */
 };
 
 /*
@@ -464,6 +468,11 @@ struct endosim_tool_state {
 	double blood_m3;         /* shed since the case was loaded */
 	double bleed_at[3];      /* the point bleeding most (none: 0) */
 	double clip_at[3];       /* the last clip's place (clips > 0) */
+	/* 11: one cut polyp's place a cycle, in turn (tool.h), which a
+	   session's record keeps: the polyp, -1 none, and its at */
+	double lying_at[3];
+	int32_t lying_polyp;
+	uint32_t reserved;
 };
 
 struct endosim_state {

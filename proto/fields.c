@@ -312,6 +312,7 @@ static const struct fields_field tool_polyp[] = {
 	  NULL, names_bleed, NULL },
 	VAL(bleed_m3_s, FIELDS_DOUBLE),
 	VAL(blood_m3, FIELDS_DOUBLE),
+	VEC(at),
 };
 const struct fields_table fields_tool_polyp =
 	TABLE(tool_polyp, endosim__tool_polyp__descriptor, tool.polyp,
@@ -345,6 +346,10 @@ static const struct fields_field tool[] = {
 	VAL(blood_m3, FIELDS_DOUBLE),
 	VEC(bleed_at),
 	VEC(clip_at),
+	TOOL(lying_polyp, FIELDS_INT, "tool_lying_polyp", NULL),
+	{ "lying_at", FIELDS_VECTOR, LEN(lying_at), S(lying_at), NONE,
+	  P(lying_at), P(n_lying_at), R(tool_lying_at),
+	  XYZ("tool_lying", "m"), NULL, NULL },
 };
 const struct fields_table fields_tool =
 	TABLE(tool, endosim__tool_status__descriptor, tool, 1);

@@ -121,6 +121,37 @@ static void expert(FILE *f, const char *prefix,
 	doubles(f, prefix, "expert_tip", g->expert_tip, 3);
 }
 
+/* What the tools left in the colon, whatever is in hand. */
+static void left(FILE *f, const char *prefix,
+		 const struct endosim_tool_state *t)
+{
+	const char *sep = "";
+
+	if (t->bleeding > 0) {
+		fprintf(f, "%stool_bleeding=%u\n", prefix, t->bleeding);
+		doubles(f, prefix, "tool_bleed_at", t->bleed_at, 3);
+	}
+	if (t->clips > 0) {
+		fprintf(f, "%stool_clips=%u\n", prefix, t->clips);
+		doubles(f, prefix, "tool_clip_at", t->clip_at, 3);
+	}
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		const double *x = t->polyp[i].at;
+
+		if (t->polyp[i].state != ENDOSIM_POLYP_CUT) {
+			continue;
+		}
+		if (!*sep) {
+			fprintf(f, "%stool_lying=", prefix);
+		}
+		fprintf(f, "%s%u:%.9g,%.9g,%.9g", sep, i, x[0], x[1], x[2]);
+		sep = ";";
+	}
+	if (*sep) {
+		fputc('\n', f);
+	}
+}
+
 void state_text_print(FILE *f, const char *prefix,
 		      const struct endosim_state *st)
 {
@@ -135,6 +166,7 @@ void state_text_print(FILE *f, const char *prefix,
 	haptics(f, prefix, &st->haptics);
 	rod(f, prefix, st);
 	tool(f, prefix, &st->tool);
+	left(f, prefix, &st->tool);
 	expert(f, prefix, &st->guide);
 	points(f, prefix, "tube", st->scope.tube, ENDOSIM_TUBE_POINTS);
 }

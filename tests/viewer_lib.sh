@@ -104,6 +104,12 @@ view_channel() {
 			cy - 0.62 * r * cos(a), r / 12 }'
 }
 
+# png_changed FILE OTHER REGION: the share of REGION's pixels that differ
+# between two pictures (png_stats --diff).
+png_changed() {
+	"$PNG_STATS" "$1" --diff "$2" "$3" | sed -n 's/.* changed=\([^ ]*\).*/\1/p'
+}
+
 # png_value FILE REGION KEY: one statistic of png_stats.
 png_value() {
 	"$PNG_STATS" "$1" "$2" | sed -n "s/.* $3=\([^ ]*\).*/\1/p"

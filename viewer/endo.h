@@ -132,6 +132,16 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 		 struct endo_camera *cam);
 
 /*
+ * Where endo_draw() puts point X (colon frame, m) of CAM's view into R:
+ * its pixel PX (x right, y up from R's bottom-left, GL's way), as the
+ * vertex shader maps it (the angle from the view's axis over the image's
+ * half angle, in the direction about the axis). False for a point at the
+ * lens or behind it. No GL: for tests and the closing lines.
+ */
+bool endo_project(const struct endo_camera *cam, struct endo_rect r,
+		  const double x[3], double px[2]);
+
+/*
  * Draws the view from CAM into R (a square is best: the image circle
  * fills its height), clearing it first. Fills ST.
  */

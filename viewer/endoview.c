@@ -112,6 +112,9 @@ struct app {
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
 	bool overview_shown;    /* the last frame drew the overview */
+	bool endo_shown;        /* ... the endoscopic view: */
+	struct endo_camera cam; /* from this camera */
+	struct endo_rect endo_rect; /* into this (GL's origin) */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 	uint64_t pass_ns; /* --pass-times: when the last pass finished */
@@ -541,6 +544,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 
 	a->triangles = 0;
 	a->overview_shown = c->model && lay->overview.w;
+	a->endo_shown = false;
 	if (!c->model) {
 		return;
 	}
@@ -551,6 +555,9 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, in, &es);
+		a->endo_shown = true;
+		a->cam = cam;
+		a->endo_rect = lay->endo;
 		pass_done(a, TIMING_PASS_IMAGE);
 		lensfx_draw(a->lensfx, &st->patient, in, lens, t_s);
 		pass_done(a, TIMING_PASS_LENS);
@@ -722,8 +729,49 @@ static void report(const struct app *a)
 	viewstats_print(stdout, &s);
 }
 
-/* What the panel said, and where the overview drew the scope and the
- * colon, in the last frame (hud_said(), overview_print()). */
+/* "endo: WHAT at X,Y": where the endoscopic view put point AT, in the
+ * image's pixels (top-left origin, as in the PNG), if in front of it. */
+static void report_point(const struct app *a, int fb_h, const char *what,
+			 const double at[3])
+{
+	double px[2];
+
+	if (endo_project(&a->cam, a->endo_rect, at, px)) {
+		printf("endo: %s at %.1f,%.1f\n", what, px[0], fb_h - px[1]);
+	}
+}
+
+/* Where the endoscopic view drew what the tools left: the bleeding
+ * point, the last clip, each cut polyp lying in the lumen. */
+static void report_left(const struct app *a, int fb_h)
+{
+	const struct toolview *tv = &a->cam.tool;
+	const struct endosim_tool_state *t = &a->shown->tool;
+	char what[32];
+
+	if (t->bleeding > 0) {
+		report_point(a, fb_h, "bleeding", t->bleed_at);
+	}
+	if (t->clips > 0) {
+		report_point(a, fb_h, "clip", t->clip_at);
+	}
+	for (int k = 0; k < ENDOSIM_POLYPS; k++) {
+		double at[3];
+
+		if (!(tv->lying >> k & 1u)) {
+			continue;
+		}
+		at[0] = tv->lie[k][0];
+		at[1] = tv->lie[k][1];
+		at[2] = tv->lie[k][2];
+		snprintf(what, sizeof(what), "polyp %d lying", k);
+		report_point(a, fb_h, what, at);
+	}
+}
+
+/* What the panel said, where the endoscopic view drew what the tools
+ * left and the overview the scope and the colon, in the last frame
+ * (hud_said(), report_left(), overview_print()). */
 static void report_drawn(const struct app *a)
 {
 	const char *said;
@@ -735,8 +783,11 @@ static void report_drawn(const struct app *a)
 	if (a->map_shown) {
 		printf("map: %s\n", mapview_said(a->mapview));
 	}
+	ui_framebuffer_size(a->ui, &w, &h);
+	if (a->endo_shown) {
+		report_left(a, h);
+	}
 	if (a->overview_shown) {
-		ui_framebuffer_size(a->ui, &w, &h);
 		overview_print(a->overview, a->colon.model, a->shown, h,
 			       stdout);
 	}

@@ -212,6 +212,7 @@ void toolview_build_ghost(const struct endosim_guide_state *g,
 	out->parts = 0;
 	out->blood = 0;
 	out->gone = 0;
+	out->lying = 0;
 	in_hand(&t, sc, shift, out);
 	for (int k = 0; k < out->parts; k++) {
 		/* the snare's wire is its second part (in_hand()) */
@@ -219,6 +220,24 @@ void toolview_build_ghost(const struct endosim_guide_state *g,
 
 		memcpy(out->part[k].rgb, hot ? ghost_hot_rgb : ghost_rgb,
 		       sizeof(out->part[k].rgb));
+	}
+}
+
+/* The polyps cut: where each lies (a place not finite: not drawn). */
+static void lying(const struct endosim_tool_state *t, struct toolview *out)
+{
+	out->lying = 0;
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		const double *at = t->polyp[i].at;
+
+		if (t->polyp[i].state != ENDOSIM_POLYP_CUT ||
+		    !isfinite(vec3_dot(at, at))) {
+			continue;
+		}
+		out->lying |= 1u << i;
+		for (int k = 0; k < 3; k++) {
+			out->lie[i][k] = (float)at[k];
+		}
 	}
 }
 
@@ -234,6 +253,7 @@ void toolview_build(const struct endosim_tool_state *t,
 		out->gone |= (uint32_t)(t->polyp[i].state ==
 					ENDOSIM_POLYP_RETRIEVED) << i;
 	}
+	lying(t, out);
 	in_hand(t, sc, shift, out);
 	if (t->bleeding > 0) {
 		on_wall(out, t->bleed_at, sc, shift, TOOLVIEW_WELL_M,

@@ -25,8 +25,9 @@
  * (clip_at), a steel stub TOOLVIEW_CLIP_M long; each stands from the wall
  * towards the scope's tip. And the view's reddening, toolview_redness()
  * of the published flow: the blood in the lumen before the lens; the
- * polyps retrieved, which the view no longer draws (a cut one stays
- * where it was cut, tool.h, and is drawn there).
+ * polyps retrieved, which the view no longer draws; the polyps cut,
+ * which it draws where they lie (each one's published at: fallen to the
+ * wall, tool.h), not on the wall where they stood.
  * The lengths are the model's defaults (tool.h): what the view draws, not
  * what the daemon computes with (the loop, the tip and the events are
  * the daemon's).
@@ -81,6 +82,9 @@ struct toolview {
 	float blood;                 /* the view's reddening, 0..1 */
 	uint32_t gone;               /* bit k: the case's polyp k retrieved
 					(sucked out: not drawn) */
+	uint32_t lying;              /* bit k: polyp k cut, lying at lie[k] */
+	float lie[ENDOSIM_POLYPS][3]; /* its body's centre, m (not moved by
+					 the shift: it is the colon's) */
 	int parts;
 	struct toolview_part part[TOOLVIEW_PARTS];
 };

@@ -287,6 +287,11 @@ void patient_gravity(const struct patient *pt, double g[3])
 	vec3_scale(g, pt->posture.down, pt->p.gravity_m_s2);
 }
 
+void patient_loose_gravity(const struct patient *pt, double g[3])
+{
+	vec3_scale(g, pt->posture.down, pt->p.gravity_m_s2);
+}
+
 void patient_pad(const struct patient *pt, struct flex_pad *out)
 {
 	const struct anatomy *a = pt->colon ? colon_anatomy(pt->colon) : NULL;

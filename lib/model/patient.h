@@ -198,6 +198,14 @@ bool patient_finite(const struct patient *pt);
 /* Gravity's acceleration now (m/s^2, body frame); zeros when disabled. */
 void patient_gravity(const struct patient *pt, double g[3]);
 
+/*
+ * Gravity's acceleration (m/s^2, body frame) on what lies loose in the
+ * lumen (a cut polyp, tool.h): the posture's gravity_m_s2, whether the
+ * body is modelled or not (a disabled patient lies settled in its start
+ * position, and a polyp cut free still falls).
+ */
+void patient_loose_gravity(const struct patient *pt, double g[3]);
+
 /* The pad as it presses now (out->on false: none). */
 void patient_pad(const struct patient *pt, struct flex_pad *out);
 

@@ -68,6 +68,8 @@
 
 #include "base/vec3.h"
 #include "conf/cases.h"
+#include "model/centreline.h"
+#include "model/colon.h"
 #include "model/tool.h"
 #include "proto/session_file.h"
 #include "session/coursefile.h"
@@ -99,7 +101,10 @@
 #define FLAT_DEG 30.0    /* the loop over a polyp, flat to its wall within */
 #define RETRIEVE_S 10.0  /* her time to suck a cut polyp out, at most */
 #define OVER_M 0.0005    /* the tip's side clear of the wall by, sucking */
-#define NEARER_M 0.0002  /* less nearer a waypoint: as near as it comes */
+#define NEARER_M 0.0002  /* less nearer a waypoint: no nearer */
+#define STALLED 4        /* waypoints running no nearer: as near as it comes
+			    (rolling the scope to a polyp fallen to the
+			    other side takes her further first) */
 #define NEAR 0.6         /* of the retrieval's reach: near enough to suck */
 #define SUCK_BEFORE_M 0.01 /* the tip short of a cut polyp, to suck it */
 
@@ -138,7 +143,11 @@ static double exit_gap(const struct run *r, const struct endosim_state *s,
 	double body[3];
 
 	tool_pose(&r->par, &s->scope, 0, &q);
-	tool_polyp_body(p, &r->par, body);
+	if (p->state == TOOL_POLYP_CUT || p->state == TOOL_POLYP_RETRIEVED) {
+		vec3_copy(body, p->at); /* where it fell (and was sucked) */
+	} else {
+		tool_polyp_body(p, &r->par, body);
+	}
 	return vec3_dist(q.exit, body) - p->size_m / 2;
 }
 
@@ -395,19 +404,23 @@ static void resect(struct run *r, int i, struct times *tm)
 	move(r, 0.5, -SHEATH_M, 0);
 }
 
-/* Where she brings the channel's exit to suck cut polyp P out: its
- * body, raised over the wall as far as the tip's side needs to come
- * clear of it there (the exit is the channel's offset from the tip's
- * axis, towards the wall), into X. */
+/* Where she brings the channel's exit to suck cut polyp P out: its body
+ * where it fell (tool.h: on the lowest wall of its ring, its radius in),
+ * raised towards the lumen's centre as far as the tip's side needs to
+ * come clear of the wall there (the exit is the channel's offset from
+ * the tip's axis, towards the wall), into X; the wall's normal there
+ * into the lumen into N. */
 static void suck_at(const struct run *r, const struct tool_polyp *p,
-		    double x[3])
+		    double x[3], double n[3])
 {
 	double clear = r->cfg.haptics.scope_radius_m -
-		       r->par.channel_offset_m + OVER_M, up;
+		       r->par.channel_offset_m + OVER_M;
+	struct centreline_point c;
 
-	tool_polyp_body(p, &r->par, x);
-	up = vec3_dot(x, p->normal) - vec3_dot(p->base, p->normal);
-	vec3_axpy(x, x, fmax(0, clear - up), p->normal);
+	centreline_at_s(colon_centreline(trainee_colon(r->tr)), p->s_m, &c);
+	vec3_sub(n, c.p, p->at);
+	vec3_normalize(n);
+	vec3_axpy(x, p->at, fmax(0, clear - p->size_m / 2), n);
 }
 
 /*
@@ -423,7 +436,8 @@ static void suck_at(const struct run *r, const struct tool_polyp *p,
 static void retrieve(struct run *r, int i, struct times *tm)
 {
 	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	double at[3], was = INFINITY;
+	double at[3], wall[3], was = INFINITY;
+	int stalled = 0;
 
 	tm->retrieve_s = -1;
 	if (p->size_m > r->par.retrieve_max_m) {
@@ -441,12 +455,16 @@ static void retrieve(struct run *r, int i, struct times *tm)
 	for (double s = 0; s < RETRIEVE_S &&
 			   r->gap_m > NEAR * r->par.retrieve_reach_m;
 	     s += TRAINEE_STEP_S) {
-		suck_at(r, p, at);
-		trainee_approach(r->tr, &r->par, at, p->normal, 0,
+		suck_at(r, p, at, wall);
+		trainee_approach(r->tr, &r->par, at, wall, 0,
 				 TRAINEE_STEP_S);
 		if (r->gap_m > was - NEARER_M) {
-			break; /* as near as it comes */
+			if (++stalled >= STALLED) {
+				break; /* as near as it comes */
+			}
+			continue;
 		}
+		stalled = 0;
 		was = r->gap_m;
 	}
 	assert_false(r->events & ENDOSIM_TOOL_RETRIEVE); /* not unasked */

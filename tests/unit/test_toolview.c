@@ -10,6 +10,8 @@
  * welling from its place towards the tip, the view reddened by the flow,
  * and the clip placed standing on the wall, tool in hand or not; guided
  * replay's expert's tool as a ghost of its own colour.
+ * and the clip placed standing on the wall, tool in hand or not; the
+ * polyps cut drawn where they lie, those retrieved not at all.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -328,6 +330,33 @@ static void ghost(void **unused)
 	assert_int_equal(v.parts, 0);
 }
 
+/*
+ * The polyps: one cut drawn where it lies (its published at, not moved
+ * with the lens), one retrieved not at all, one in place where it
+ * stands; a cut one whose place is not finite not drawn.
+ */
+static void lying_where_published(void **unused)
+{
+	const double shift[3] = { 0.001, 0.002, 0.003 };
+	struct toolview v;
+
+	(void)unused;
+	setup_tool(ENDOSIM_TOOL_NONE, 0, 0);
+	tool.polyps = 4;
+	tool.polyp[0].state = ENDOSIM_POLYP_CUT;
+	vec3_set(tool.polyp[0].at, 0.012, -0.02, 0.31);
+	tool.polyp[1].state = ENDOSIM_POLYP_RETRIEVED;
+	vec3_set(tool.polyp[1].at, 0.1, 0.1, 0.1);
+	tool.polyp[2].state = ENDOSIM_POLYP_IN_PLACE;
+	tool.polyp[3].state = ENDOSIM_POLYP_CUT;
+	vec3_set(tool.polyp[3].at, NAN, 0, 0);
+	toolview_build(&tool, &sc, shift, &v);
+	assert_int_equal(v.lying, 1u << 0);
+	assert_int_equal(v.gone, 1u << 1);
+	assert_true(dist_f(v.lie[0], tool.polyp[0].at) < TOL);
+	assert_int_equal(v.parts, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -338,6 +367,7 @@ int main(void)
 		cmocka_unit_test(nothing),
 		cmocka_unit_test(on_the_wall),
 		cmocka_unit_test(ghost),
+		cmocka_unit_test(lying_where_published),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
