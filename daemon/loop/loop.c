@@ -459,7 +459,8 @@ static void pour_blood(struct loop *l, double dt_s)
  * The tool in the working channel this cycle, on the scope's published
  * state: the rig's sensing, the wall at the tool's tip; its injury of the
  * wall the patient's perforation where there is a patient; the cut
- * polyps falling where the patient lies. Then guided replay's expert's
+ * polyps falling where the patient lies, onto the wall where the gas
+ * holds it. Then guided replay's expert's
  * tool on the same scope, shown only (guide.h).
  */
 static void step_tool(struct loop *l)
@@ -488,7 +489,8 @@ static void step_tool(struct loop *l)
 					sc->tip_s_m);
 	}
 	patient_loose_gravity(haptics_patient(l->haptics), g);
-	tool_fall(&l->tool, &par, l->colon, g, dt);
+	tool_fall(&l->tool, &par, l->colon, g,
+		  patient_factors(haptics_patient(l->haptics)), dt);
 	pour_blood(l, dt);
 	tool_publish(&l->tool, ev, polyp, &l->state.tool);
 	guide_publish_tool(&l->guide, &par, sc, &l->tool, &l->state.guide);

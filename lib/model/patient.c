@@ -320,6 +320,11 @@ double patient_factor_at(const struct patient *pt, double s_m)
 	return gas_factor_at(pt->colon, pt->factor, s_m);
 }
 
+const double *patient_factors(const struct patient *pt)
+{
+	return pt->p.enabled && pt->colon ? pt->factor : NULL;
+}
+
 void patient_publish(const struct patient *pt,
 		     struct endosim_patient_state *out)
 {

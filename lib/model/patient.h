@@ -212,6 +212,11 @@ void patient_pad(const struct patient *pt, struct flex_pad *out);
 /* The lumen's radius factor at material S_M (gas_factor_at()). */
 double patient_factor_at(const struct patient *pt, double s_m);
 
+/* The lumen's GAS_SEGMENTS radius factors now (gas_factor_at()'s: for
+ * what lies on the wall, tool_fall()); NULL while disabled (the lumen
+ * as the case draws it). Valid until the next step. */
+const double *patient_factors(const struct patient *pt);
+
 /* The published state. */
 void patient_publish(const struct patient *pt,
 		     struct endosim_patient_state *out);

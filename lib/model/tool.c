@@ -8,6 +8,7 @@
 #include "base/vec3.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
 
 _Static_assert(ANATOMY_MAX_POLYPS == ENDOSIM_POLYPS,
 	       "tool: every polyp of a case published");
@@ -286,7 +287,9 @@ static void come_free(struct tool_polyp *p, const struct tool_params *par)
 	p->state = TOOL_POLYP_CUT;
 	tool_polyp_body(p, par, p->at);
 	vec3_copy(p->rest, p->at);
+	vec3_set(p->rest_wall, 0, 0, 0);
 	p->rest_ok = false;
+	p->lies = false;
 	p->fall_v = 0;
 	p->moved = true;
 }
@@ -614,13 +617,15 @@ static double lowest(const struct wall *w)
 }
 
 /* Cut polyp P's rest in colon C under gravity's direction DOWN: the
- * lowest wall point of its ring, its body's radius in. */
+ * lowest wall point of its ring, its body's radius in (the undeformed
+ * wall's, the ring's radius out to it kept for the gas to scale); it
+ * falls there. */
 static void find_rest(const struct colon *c, struct tool_polyp *p,
 		      const double down[3])
 {
 	struct centreline_point q;
 	struct wall w = { .c = c };
-	double out[3], th;
+	double out[3], th, r;
 
 	centreline_at_s(colon_centreline(c), p->s_m, &q);
 	colon_ring_at(c, p->s_m, &w.ring);
@@ -629,19 +634,21 @@ static void find_rest(const struct colon *c, struct tool_polyp *p,
 	th = lowest(&w);
 	vec3_scale(out, q.u, cos(th));
 	vec3_axpy(out, out, sin(th), q.v);
-	vec3_axpy(p->rest, q.p,
-		  colon_ring_radius(c, &w.ring, th) - p->size_m / 2, out);
+	r = colon_ring_radius(c, &w.ring, th);
+	vec3_axpy(p->rest, q.p, r - p->size_m / 2, out);
+	vec3_scale(p->rest_wall, out, r);
 	p->rest_ok = true;
+	p->lies = false;
 }
 
-/* P a step DT_S nearer its rest, pulled by G_M_S2 against the drag of
- * TAU_S, exactly for a constant pull; true if it moved. */
-static bool fall_step(struct tool_polyp *p, double g_m_s2, double tau_s,
-		      double dt_s)
+/* P a step DT_S nearer TO, pulled by G_M_S2 against the drag of TAU_S,
+ * exactly for a constant pull; true if it moved. */
+static bool fall_step(struct tool_polyp *p, const double to[3],
+		      double g_m_s2, double tau_s, double dt_s)
 {
 	double d[3], l, e = exp(-dt_s / tau_s), vt = g_m_s2 * tau_s, go;
 
-	vec3_sub(d, p->rest, p->at);
+	vec3_sub(d, to, p->at);
 	l = vec3_norm(d);
 	if (!(l > 0)) {
 		p->fall_v = 0;
@@ -650,7 +657,7 @@ static bool fall_step(struct tool_polyp *p, double g_m_s2, double tau_s,
 	go = vt * dt_s + (p->fall_v - vt) * tau_s * (1 - e);
 	p->fall_v = vt + (p->fall_v - vt) * e;
 	if (go >= l) {
-		vec3_copy(p->at, p->rest);
+		vec3_copy(p->at, to);
 		p->fall_v = 0;
 	} else {
 		vec3_axpy(p->at, p->at, go / l, d);
@@ -704,8 +711,33 @@ static void tell(struct tool *t)
 	}
 }
 
+/*
+ * Cut polyp P a step on with the gas's radius factor F at its place: its
+ * rest where the gas holds the wall (moved along the ring's radius by
+ * (F - 1) times it: exactly the rest at F 1); lying there, carried with
+ * the wall; else a step of its fall towards it (G_M_S2, TAU_S, DT_S:
+ * fall_step()), lying once there. True if it moved.
+ */
+static bool settle(struct tool_polyp *p, double f, double g_m_s2,
+		   double tau_s, double dt_s)
+{
+	double to[3];
+	bool moved;
+
+	vec3_axpy(to, p->rest, f - 1, p->rest_wall);
+	if (p->lies) {
+		moved = memcmp(to, p->at, sizeof(to)) != 0;
+		vec3_copy(p->at, to);
+		return moved;
+	}
+	moved = fall_step(p, to, g_m_s2, tau_s, dt_s);
+	p->lies = p->rest_ok && memcmp(to, p->at, sizeof(to)) == 0;
+	return moved;
+}
+
 void tool_fall(struct tool *t, const struct tool_params *par,
-	       const struct colon *c, const double g[3], double dt_s)
+	       const struct colon *c, const double g[3],
+	       const double *factor, double dt_s)
 {
 	double a = vec3_norm(g), down[3];
 
@@ -715,8 +747,12 @@ void tool_fall(struct tool *t, const struct tool_params *par,
 		for (int i = 0; i < t->polyps; i++) {
 			struct tool_polyp *p = &t->polyp[i];
 
-			if (p->state == TOOL_POLYP_CUT &&
-			    fall_step(p, a, par->fall_drag_s, dt_s)) {
+			if (p->state != TOOL_POLYP_CUT) {
+				continue;
+			}
+			if (settle(p, factor ? gas_factor_at(c, factor, p->s_m)
+					     : 1,
+				   a, par->fall_drag_s, dt_s)) {
 				p->moved = true;
 			}
 		}

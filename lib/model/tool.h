@@ -147,16 +147,24 @@
  * (at) the head's atop its stalk (Ip) or half its height over its base,
  * and falls under gravity to the dependent wall of the lumen there
  * (tool_fall(), the loop's step after tool_step()): on the ring of the
- * centreline's frame at its place s_m (colon C's undeformed wall, as the
- * polyps are placed), the wall point lowest along gravity, g's direction
- * in the colon's frame (the patient's posture, posture.h: +x lying on
- * the left side, +y on the back; found among TOOL_REST_COARSE points
- * round the ring, then by golden section to TOOL_REST_FINE steps), its
- * body's radius (size / 2) in from the wall along the ring's radius,
- * is where it comes to rest. It goes there along the straight line from
- * where it is, as a body of the full weight slowed by a linear drag: its
- * speed v along the line follows dv/dt = |g| - v / fall_drag_s, from
- * rest at the cut, so that the distance L takes t with
+ * centreline's frame at its place s_m (colon C's wall as the case draws
+ * it, where the polyps are placed), the wall point lowest along
+ * gravity, g's direction in the colon's frame (the patient's posture,
+ * posture.h: +x lying on the left side, +y on the back; found among
+ * TOOL_REST_COARSE points round the ring, then by golden section to
+ * TOOL_REST_FINE steps), taken where the gas holds the wall (patient.h:
+ * the lumen's radius factor f at its place scales the ring's radius r
+ * about the centreline, as for the tip's contact and the picture: the
+ * same lowest point round the ring), its body's radius (size / 2) in
+ * along the ring's radius, f r - size / 2 from the centreline, is where
+ * it comes to rest; lying there, it is carried with the wall as the gas
+ * opens or collapses the lumen. (Where the polyps case's 6 mm polyp is
+ * cut, in its descending colon collapsed to f 0.6, the case's own wall
+ * lies 9 mm beyond the wall the scope touches and the picture shows.)
+ * It goes to its rest along the straight line from where it is, as a
+ * body of the full weight slowed by a linear drag: its speed v along the
+ * line follows dv/dt = |g| - v / fall_drag_s, from rest at the cut, so
+ * that the distance L takes t with
  *   L = |g| tau (t - tau (1 - exp(-t / tau))),   tau = fall_drag_s
  * (integrated exactly each step; it stops at its rest, v 0). The drag's
  * 0.1 s (terminal speed ~1 m/s; a 25 mm fall in 0.08 s, against 0.071
@@ -198,8 +206,8 @@
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
  * (p99 under 0.5 us with 32 in the loop on this project's VM:
  * bench_tool in `make bench`; with tool_fall() after it, every polyp
- * cut and gravity turning, under 5 us). One writer (the force loop); any
- * thread may read a copy.
+ * cut, gravity turning and the gas moving the wall, under 5 us). One
+ * writer (the force loop); any thread may read a copy.
  */
 #ifndef ENDOSIM_TOOL_H
 #define ENDOSIM_TOOL_H
@@ -380,8 +388,13 @@ struct tool_polyp {
 	double bleed_s;      /* how long it has bled */
 	double blood_m3;     /* shed so far */
 	double at[3];        /* cut: its body's centre, where it lies, m */
-	double rest[3];      /* cut: where it comes to rest, m */
+	double rest[3];      /* cut: where it comes to rest, m (by the
+				undeformed wall) */
+	double rest_wall[3]; /* ... the ring's radius out to that wall, m:
+				the gas's factor f moves the wall, and the
+				rest, by (f - 1) times it */
 	bool rest_ok;        /* rest is for the gravity of t->down */
+	bool lies;           /* at its rest: carried with the wall */
 	double fall_v;       /* cut: its speed towards rest, m/s */
 	bool moved;          /* since it was last the published lying one */
 };
@@ -478,13 +491,16 @@ int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par);
 /*
  * The cut polyps' fall (above), a step of DT_S seconds after tool_step():
  * on colon C's rings (NULL, or an imported mesh: none falls) under
- * gravity G (m/s^2, colon frame; zero: none falls); and the cut polyp
+ * gravity G (m/s^2, colon frame; zero: none falls), the wall where the
+ * gas holds it (FACTOR: the lumen's GAS_SEGMENTS radius factors,
+ * gas_factor_at()'s; NULL: the undeformed wall); and the cut polyp
  * published this step (T->lying). Fixed work, no allocation: at most one
  * rest found (TOOL_REST_COARSE + TOOL_REST_FINE of the lumen's radius), a
- * pass or two over the polyps. The force loop's.
+ * pass or two over the polyps, a factor each cut one. The force loop's.
  */
 void tool_fall(struct tool *t, const struct tool_params *par,
-	       const struct colon *c, const double g[3], double dt_s);
+	       const struct colon *c, const double g[3],
+	       const double *factor, double dt_s);
 
 /* T as published, with this step's EVENTS and the POLYP they concern. */
 void tool_publish(const struct tool *t, unsigned events, int polyp,

@@ -20,9 +20,12 @@
  *    the suction valve held (each step sheds every point's blood and
  *    looks for a cut one to retrieve), and gravity turning all the
  *    while (1 rad/s about the body's long axis: each step seeks a cut
- *    polyp's rest again and moves every cut one towards its own).
+ *    polyp's rest again and moves every cut one towards its own), the
+ *    gas opening and collapsing the lumen (every segment's radius
+ *    factor 0.8 +- 0.2 at 1 rad/s: a polyp lying is carried with the
+ *    wall each step).
  * tool_fall() follows each tool_step(), timed with it (the case's
- * polyps: gravity still, lying on the left side).
+ * polyps: gravity still, lying on the left side, the gas's factors 0.8).
  */
 #include <math.h>
 #include <stdio.h>
@@ -34,6 +37,7 @@
 #include "model/anatomy.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
 #include "model/tool.h"
 
 #define DT 0.001
@@ -127,7 +131,7 @@ static void run(struct tool *t, const struct colon *c, long n, bool worst,
 	struct endosim_scope_state sc;
 	struct tool_input in = { .depth_m = 0.02, .opening = 1,
 				 .suction = worst };
-	double g[3] = { 9.81, 0, 0 };
+	double g[3] = { 9.81, 0, 0 }, factor[GAS_SEGMENTS];
 	long events = 0;
 
 	if (!us.v) {
@@ -152,12 +156,15 @@ static void run(struct tool *t, const struct colon *c, long n, bool worst,
 				t->polyp[i].bleed_s = 0;
 			}
 		}
+		for (int i = 0; i < GAS_SEGMENTS; i++) {
+			factor[i] = 0.8 + (worst ? 0.2 * sin(t_s) : 0);
+		}
 		if (worst) {
 			vec3_set(g, 9.81 * cos(t_s), 9.81 * sin(t_s), 0);
 		}
 		t0 = now_us();
 		events += tool_step(t, &par, &sc, &in, DT, NULL) != 0;
-		tool_fall(t, &par, c, g, DT);
+		tool_fall(t, &par, c, g, factor, DT);
 		us.v[us.n++] = now_us() - t0;
 	}
 	printf("  %s: tool_step() and tool_fall() per cycle p50 %.3f us, "

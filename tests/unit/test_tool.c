@@ -33,6 +33,9 @@
  *    pressed and the channel's exit within reach, not a 7 mm one, one
  *    beyond reach or without suction; a bitten large polyp's fate is
  *    partly resected;
+ *  - the fall of a cut polyp to the lowest wall of its ring, in the
+ *    drag's time, following a turn, onto the wall where the gas holds
+ *    it and carried with that wall (each test below says how);
  *  - the case's polyps on the colon's wall (the polyps case).
  */
 #include <errno.h>
@@ -51,6 +54,7 @@
 #include "model/anatomy.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
 #include "model/posture.h"
 #include "model/tool.h"
 #include "base/vec3.h"
@@ -857,7 +861,7 @@ static long fall_until_rest(struct bench *b, const struct colon *c,
 	long n = 0;
 
 	do {
-		tool_fall(&b->t, &par, c, g, DT);
+		tool_fall(&b->t, &par, c, g, NULL, DT);
 		n++;
 	} while (n < max && !(p->rest_ok && vec3_dist(p->at, p->rest) == 0));
 	return n;
@@ -893,7 +897,7 @@ static void falls_to(const double down[3])
 	assert_vec_near(b.t.polyp[i].at, want, 1e-9);
 	assert_true(fabs((double)n - t_s / DT) <= 1);
 	for (int k = 0; k < 100; k++) {
-		tool_fall(&b.t, &par, c, g, DT);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
 	}
 	assert_vec_near(b.t.polyp[i].at, want, 1e-9);
 	assert_true(b.t.polyp[i].fall_v == 0);
@@ -975,7 +979,7 @@ static void test_fall_follows_turn(void **unused)
 
 		posture_step(&pos, DT);
 		vec3_scale(g, pos.down, G_M_S2);
-		tool_fall(&b.t, &par, c, g, DT);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
 		vec3_sub(x, b.t.polyp[i].at, q.p);
 		off = 0.025 - FALL_SIZE / 2 - vec3_norm(x);
 		worst = fmax(worst, off);
@@ -990,9 +994,101 @@ static void test_fall_follows_turn(void **unused)
 	memset(g, 0, sizeof(g));
 	vec3_copy(want, b.t.polyp[i].at);
 	for (int k = 0; k < 100; k++) {
-		tool_fall(&b.t, &par, c, g, DT);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
 	}
 	assert_vec_near(b.t.polyp[i].at, want, 0);
+	colon_destroy(c);
+}
+
+/* Every segment's radius factor F, into FACTOR. */
+static void factors(double factor[GAS_SEGMENTS], double f)
+{
+	for (int k = 0; k < GAS_SEGMENTS; k++) {
+		factor[k] = f;
+	}
+}
+
+/* Polyp P's distance from the ring's centre Q less F times R (its
+ * centre's on the wall of radius R at factor 1, the body's radius in:
+ * f R - size / 2 from the axis): 0 on the wall the gas holds. */
+static double off_gas_wall(const struct tool_polyp *p,
+			   const struct centreline_point *q, double f, double r)
+{
+	return vec3_dist(p->at, q->p) - (f * r - p->size_m / 2);
+}
+
+/*
+ * The wall where the gas holds it. In the polyps case's sigmoid
+ * collapsed to a radius factor of 0.6, the cut polyp falls to the lowest
+ * of 3600 points round the ring scaled by 0.6, its radius in (not to the
+ * case's wall, 40 % further out), in the time the drag's law gives for
+ * that way. Lying there it is carried with the wall: the lumen opened
+ * to 1.2 over a second, on the wall at every step (f R - size / 2 from
+ * the axis, along the same radius), never falling (its speed 0);
+ * collapsed to 0.4 in a step, on the wall in that step; at 1, at its rest
+ * by the case's wall exactly.
+ */
+static void test_fall_onto_gas_wall(void **unused)
+{
+	struct colon *c = fall_colon("config/cases/polyps.case", 0);
+	const double down[3] = { 0, 1, 0 };
+	double factor[GAS_SEGMENTS], g[3], x[3], u[3], best = -1, got, l, t_s;
+	double r, worst = 0, turned = 0;
+	struct centreline_point q;
+	const struct tool_polyp *p;
+	struct bench b;
+	long n = 0;
+	int i;
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	p = &b.t.polyp[i];
+	factors(factor, 0.6);
+	assert_near(gas_factor_at(c, factor, FALL_S_M), 0.6, 1e-12);
+	for (int k = 0; k < 3600; k++) {
+		double th = 2 * M_PI * k / 3600;
+		double rk = 0.6 * colon_lumen_radius(c, FALL_S_M, th);
+
+		vec3_scale(x, q.u, rk * cos(th));
+		vec3_axpy(x, x, rk * sin(th), q.v);
+		best = fmax(best, vec3_dot(x, down));
+	}
+	vec3_scale(g, down, G_M_S2);
+	do {
+		tool_fall(&b.t, &par, c, g, factor, DT);
+	} while (++n < 10000 && !p->lies);
+	vec3_sub(u, p->at, q.p);
+	l = vec3_normalize(u);
+	got = vec3_dot(u, down) * (l + FALL_SIZE / 2);
+	t_s = fall_time(l, G_M_S2, par.fall_drag_s);
+	print_message("collapsed to 0.6: the lowest wall along gravity %.4f "
+		      "mm, the rest's %.4f mm; %.1f mm in %ld steps, the law's "
+		      "%.4f s\n", best * 1e3, got * 1e3, l * 1e3, n, t_s);
+	assert_near(got, best, 1e-5);
+	assert_true(fabs((double)n - t_s / DT) <= 1);
+	r = (l + FALL_SIZE / 2) / 0.6;
+	for (int k = 1; k <= 1000; k++) {
+		double f = 0.6 + 0.6 * k / 1000;
+
+		factors(factor, f);
+		tool_fall(&b.t, &par, c, g, factor, DT);
+		vec3_sub(x, p->at, q.p);
+		vec3_normalize(x);
+		worst = fmax(worst, fabs(off_gas_wall(p, &q, f, r)));
+		turned = fmax(turned, 1 - vec3_dot(x, u));
+		assert_true(p->fall_v == 0);
+	}
+	print_message("opened to 1.2 over 1 s: at most %.2g m off the wall, "
+		      "%.2g off its radius\n", worst, turned);
+	assert_true(worst < 1e-12 && turned < 1e-12);
+	factors(factor, 0.4);
+	tool_fall(&b.t, &par, c, g, factor, DT);
+	assert_near(off_gas_wall(p, &q, 0.4, r), 0, 1e-12);
+	factors(factor, 1);
+	tool_fall(&b.t, &par, c, g, factor, DT);
+	assert_vec_near(p->at, p->rest, 0);
+	assert_near(off_gas_wall(p, &q, 1, r), 0, 1e-12);
 	colon_destroy(c);
 }
 
@@ -1045,7 +1141,7 @@ static void test_lying_in_turn(void **unused)
 	(void)unused;
 	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
 	cut_free(&b, q.p, &i);
-	tool_fall(&b.t, &par, c, g, DT);
+	tool_fall(&b.t, &par, c, g, NULL, DT);
 	tool_publish(&b.t, 0, -1, &pub);
 	assert_int_equal(pub.lying_polyp, i);
 	assert_vec_near(pub.lying_at, b.t.polyp[i].at, 0);
@@ -1059,18 +1155,18 @@ static void test_lying_in_turn(void **unused)
 	b.t.polyp[j].rest_ok = false;
 	b.t.polyp[j].moved = true;
 	for (int k = 0; k < 20; k++) {
-		tool_fall(&b.t, &par, c, g, DT);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
 		assert_int_equal(b.t.lying, j);
 	}
 	fall_until_rest(&b, c, g, j, 10000);
 	for (int k = 0; k < 10; k++) {
-		tool_fall(&b.t, &par, c, g, DT);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
 		seen[b.t.lying]++;
 	}
 	assert_int_equal(seen[0], 5);
 	assert_int_equal(seen[1], 5);
 	b.t.polyp[i].state = b.t.polyp[j].state = TOOL_POLYP_RETRIEVED;
-	tool_fall(&b.t, &par, c, g, DT);
+	tool_fall(&b.t, &par, c, g, NULL, DT);
 	assert_int_equal(b.t.lying, -1);
 	colon_destroy(c);
 }
@@ -1150,6 +1246,7 @@ int main(void)
 		cmocka_unit_test(test_fall_supine_and_left),
 		cmocka_unit_test(test_fall_lowest_of_ring),
 		cmocka_unit_test(test_fall_follows_turn),
+		cmocka_unit_test(test_fall_onto_gas_wall),
 		cmocka_unit_test(test_retrieve_where_it_lies),
 		cmocka_unit_test(test_lying_in_turn),
 		cmocka_unit_test(test_fates),
