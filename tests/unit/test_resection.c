@@ -25,10 +25,13 @@
  *    it beyond), then she closes; at most AIM_S a tool. A cut polyp the
  *    channel takes (retrieve_max_m, tool.h: the case's 4 and 6 mm ones)
  *    she sucks out: the snare back in, the channel's exit brought to
- *    where it lies with the scope (trainee_approach()), then the suction
- *    valve pressed: it is retrieved in the first cycle the valve is,
- *    the exit within retrieve_reach_m of its surface (and not before:
- *    no suction, no retrieval); a larger one she leaves lying. Every
+ *    where it lies with the scope (trainee_approach()): fallen to the
+ *    lowest wall of its ring, that wall where the gas holds it (tool.h;
+ *    the 6 mm one lies where the lumen is collapsed to 0.6 of the
+ *    case's radius), then the suction valve pressed: it is retrieved in
+ *    the first cycle the valve is, the exit within retrieve_reach_m of
+ *    its surface (and not before: no suction, no retrieval); a larger
+ *    one she leaves lying. Every
  *    polyp of the case comes out complete (retrieved where it can be),
  *    the wall uninjured, no perforation;
  *    her times per polyp (found, aimed, lifted, cut: found to free; the
@@ -405,7 +408,8 @@ static void resect(struct run *r, int i, struct times *tm)
 }
 
 /* Where she brings the channel's exit to suck cut polyp P out: its body
- * where it fell (tool.h: on the lowest wall of its ring, its radius in),
+ * where it fell (tool.h: on the lowest wall of its ring where the gas
+ * holds it, its radius in),
  * raised towards the lumen's centre as far as the tip's side needs to
  * come clear of the wall there (the exit is the channel's offset from
  * the tip's axis, towards the wall), into X; the wall's normal there
