@@ -115,6 +115,7 @@ static void json_accounts(const Endosim__AccountsReply *m)
 	json_string(&j, "who", m->who);
 	json_string(&j, "role", m->role);
 	json_bool(&j, "staff", m->staff);
+	json_string(&j, "training", m->training);
 	json_array_begin(&j, "users");
 	for (size_t i = 0; i < m->n_users; i++) {
 		json_object_begin(&j, NULL);
@@ -145,6 +146,9 @@ static void print_whoami(const Endosim__AccountsReply *m)
 	} else {
 		printf("not logged in%s\n", m->staff ? ": root or the endosim "
 		       "group, an administrator" : ": no records to see");
+	}
+	if (*m->training) {
+		printf("%s trains at the rig\n", m->training);
 	}
 }
 

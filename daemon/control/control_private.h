@@ -23,6 +23,7 @@
 #include "control/control.h"
 #include "proto/endosim.pb-c.h"
 #include "proto/frame.h"
+#include "control/training.h"
 #include "session/accounts.h"
 #include "session/records.h"
 
@@ -74,6 +75,8 @@ struct control {
 	struct control_guide *guide;
 	struct control_records *records;
 	struct control_accounts *accounts;
+	struct training training; /* who trains at the rig */
+	Endosim__AccountsReply logout; /* Logout's reply */
 	struct colon *colon;     /* the loop's now: read its mesh only */
 	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
 	uint64_t scene_id;       /* its GetScene id */
@@ -189,6 +192,34 @@ bool control_accounts_refuse(struct control *c, const struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep);
 void control_accounts_filter(struct control *c, const struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep);
+/* The accounts' database (accounts.h), for the families that read it. */
+struct accounts *control_accounts_db(struct control *c);
+
+/*
+ * Who trains at the rig (control_training.c, training.h): whether the
+ * accounts hold a trainee, looked up at start-up (init) and after the
+ * change M of the accounts (changed; a user removed no longer trains).
+ */
+void control_training_init(struct control *c);
+void control_training_changed(struct control *c, const Endosim__Accounts *m);
+
+/*
+ * A Login M that asks to train at the rig (else false at once): before
+ * the PIN's hash (U NULL) whether what it names alone is refused (not
+ * the control socket's staff, another's session recording); after it
+ * (U the user logged in), U made the rig's trainee, or refused. true:
+ * refused, REP says why, nothing changed.
+ */
+bool control_training_refused(struct control *c, const struct client *cl,
+			      const Endosim__Login *m,
+			      const struct accounts_user *u,
+			      Endosim__Reply *rep);
+
+/* The trainee of a session CL starts naming NAMED ("" none) into OUT
+ * (SIZE bytes): 0, or -1 refused (REP says why). */
+int control_training_session(struct control *c, const struct client *cl,
+			     const char *named, char *out, size_t size,
+			     Endosim__Reply *rep);
 
 /* The requests, by family (see above). */
 handler_fn control_on_get_status;
@@ -222,6 +253,7 @@ handler_fn control_on_records_backup;
 handler_fn control_on_records_restore;
 handler_fn control_on_login;
 handler_fn control_on_accounts;
+handler_fn control_on_logout;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */
