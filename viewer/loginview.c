@@ -54,7 +54,8 @@ static void text_line(struct form *f, enum font_size size, const float rgb[4],
 	char cut[256];
 	size_t n = (size_t)snprintf(cut, sizeof(cut), "%s", text);
 
-	while (n > 1 && draw2d_text_width(f->d, size, cut) > f->w - 2 * f->pad) {
+	while (n > 1 &&
+	       draw2d_text_width(f->d, size, cut) > f->w - 2 * f->pad) {
 		cut[--n] = '\0';
 	}
 	draw2d_text(f->d, size, f->x + f->pad, f->y + px, rgb, cut);

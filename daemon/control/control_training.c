@@ -21,9 +21,11 @@ static bool any_trainee(struct control *c)
 	bool any = false;
 	size_t n = 0;
 
-	if (accounts_users(control_accounts_db(c), &u, &n)) {
+	struct accounts *db = control_accounts_db(c);
+
+	if (accounts_users(db, &u, &n)) {
 		log_warn("accounts: %s: whether endoview asks who is training "
-			 "is not known", accounts_error(control_accounts_db(c)));
+			 "is not known", accounts_error(db));
 	}
 	for (size_t i = 0; i < n && !any; i++) {
 		any = u[i].role == ACCOUNTS_TRAINEE;
