@@ -272,11 +272,32 @@ static int each_trainee(struct ctl *ctl, Endosim__Accounts *body, int argc,
 	return r;
 }
 
+/* A course as assigned: a name (endosimd's courses' directory), or a path,
+ * made absolute here (endosimd's working directory is not ours). BUF:
+ * PATH_MAX bytes at least. */
+static const char *course_arg(const char *course, char *buf, size_t size)
+{
+	char cwd[4096];
+
+	if (!strchr(course, '/') || course[0] == '/') {
+		return course; /* a name, or absolute */
+	}
+	if (realpath(course, buf)) {
+		return buf;
+	}
+	if (!getcwd(cwd, sizeof(cwd))) {
+		return course;
+	}
+	snprintf(buf, size, "%s/%s", cwd, course);
+	return buf;
+}
+
 int ctl_cmd_group(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__Accounts body = ENDOSIM__ACCOUNTS__INIT;
 	const char *verb = argc > 1 ? argv[1] : "";
 	bool join = !strcmp(verb, "join"), assign = !strcmp(verb, "assign");
+	char path[8192];
 
 	body.group = argc > 2 ? argv[2] : "";
 	if (!strcmp(verb, "list") && argc == 2) {
@@ -294,7 +315,7 @@ int ctl_cmd_group(struct ctl *ctl, int argc, char **argv)
 	} else if ((assign || !strcmp(verb, "unassign")) && argc == 4) {
 		body.op = assign ? ENDOSIM__ACCOUNTS__OP__OP_GROUP_ASSIGN
 				 : ENDOSIM__ACCOUNTS__OP__OP_GROUP_UNASSIGN;
-		body.course = argv[3];
+		body.course = (char *)course_arg(argv[3], path, sizeof(path));
 	} else {
 		fputs("usage: " GROUP_USAGE, stderr);
 		return EXIT_USAGE;

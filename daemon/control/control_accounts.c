@@ -148,6 +148,12 @@ static int seen(struct control *c, const struct client *cl, char **names)
 	return e;
 }
 
+int control_accounts_seen(struct control *c, const struct client *cl,
+			  char **names)
+{
+	return seen(c, cl, names);
+}
+
 static bool maintenance(Endosim__Request__BodyCase body)
 {
 	return body == ENDOSIM__REQUEST__BODY_RECORDS_CHECK ||
@@ -486,7 +492,8 @@ void control_on_accounts(struct control *c, struct client *cl,
 
 	free_reply(ca);
 	if (m->op != ENDOSIM__ACCOUNTS__OP__OP_LIST) {
-		if (change_refused(c, cl, m, rep)) {
+		if (change_refused(c, cl, m, rep) ||
+		    control_course_refused(c, m, rep)) {
 			return;
 		}
 		if ((e = change(ca->db, m))) {

@@ -70,6 +70,21 @@ check_status "Ann: session list" 0 as Ann 48213579 --json session list
 check "... her own two only" test "$(trainees_of)" = '["Ann","Ann"]'
 check_status "Ann: trainee list" 0 as Ann 48213579 --json trainee list
 check "... herself only" jq -e '[.trainees[].trainee] == ["Ann"]' "$OUT"
+check "... judged by her group's course" jq -e \
+	'.trainees[0].courses | map(.name + " of " + .group) == ["basic of 2026"]' \
+	"$OUT"
+printf '[course]\nname = c\nconsecutive = 1\n[case normal]\ncecum_s <= 480\n' \
+	>"$TMP/c.course"
+check "Cy's group 2027 and its course" eval 'ctl group add 2027 \
+	--instructor "Dr Ives" && ctl group join 2027 Cy &&
+	ctl group assign 2027 "$TMP/c.course"'
+echo garbage >"$TMP/c.course"
+check_status "... gone bad: the staff's list refused" 1 ctl trainee list
+check "... in words" grep -q "group 2027's course $TMP/c.course: $TMP/c.course:1:" \
+	"$OUT"
+check_status "... Ann's, which it does not judge, is not" 0 \
+	as Ann 48213579 trainee list
+ctl group remove 2027 >/dev/null
 check_status "Ann: Bo's page: refused" 1 \
 	as Ann 48213579 trainee report Bo --out "$TMP/bo"
 check "... in words" grep -q "Bo's sessions: a trainee sees only their own \
