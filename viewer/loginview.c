@@ -5,8 +5,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define DOT_SIDES 12
-
 static const float veil[4] = { 0, 0, 0, 0.78f };
 static const float box_rgb[4] = { 0.10f, 0.12f, 0.16f, 0.96f };
 static const float field_rgb[4] = { 0.02f, 0.03f, 0.05f, 1 };
@@ -31,19 +29,6 @@ static void outline(struct draw2d *d, float x, float y, float w, float h,
 	draw2d_rect(d, x, y + h - width, w, width, rgb);
 	draw2d_rect(d, x, y, width, h, rgb);
 	draw2d_rect(d, x + w - width, y, width, h, rgb);
-}
-
-static void dot(struct draw2d *d, float cx, float cy, float r,
-		const float rgb[4])
-{
-	for (int k = 0; k < DOT_SIDES; k++) {
-		float a0 = (float)(2 * M_PI * k / DOT_SIDES);
-		float a1 = (float)(2 * M_PI * (k + 1) / DOT_SIDES);
-		float xy[6] = { cx, cy, cx + r * cosf(a0), cy + r * sinf(a0),
-				cx + r * cosf(a1), cy + r * sinf(a1) };
-
-		draw2d_triangle(d, xy, rgb);
-	}
 }
 
 /* TEXT in SIZE at the pen, cut to the box; the pen moves down. */
@@ -99,8 +84,8 @@ static void field(struct form *f, const char *label, const char *text,
 				   white, shown);
 	}
 	for (long k = 0; k < dots; k++) {
-		dot(f->d, end + f->large * 0.35f, f->y + fh / 2,
-		    f->large * 0.22f, white);
+		draw2d_disc(f->d, end + f->large * 0.35f, f->y + fh / 2,
+			    f->large * 0.22f, white);
 		end += f->large * 0.75f;
 	}
 	if (focus && caret) {
