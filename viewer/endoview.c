@@ -441,8 +441,10 @@ static void update_login(struct app *a, const struct ui_actions *act,
 	int r;
 
 	r = rigctl_trainee(a->rig, now, &asks, trainee, sizeof(trainee));
-	if (r == 1 || (r < 0 && r != -EAGAIN)) {
-		login_daemon(l, asks, r == 1 ? trainee : "");
+	if (r == 1) {
+		login_daemon(l, asks, trainee);
+	} else if (r < 0 && a->status == LINK_NO_DAEMON) {
+		login_daemon(l, false, ""); /* a slow answer changes nothing */
 	}
 	for (int k = 0; k < act->n_typed; k++) {
 		uint32_t c = act->typed[k];
