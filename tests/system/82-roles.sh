@@ -183,7 +183,7 @@ check "--trainee Ann with a wrong PIN: the screen says so" grep -qx \
 	"login: asking: name 'Ann', PIN 0 characters, focus PIN: wrong name or PIN" \
 	"$VIEW_OUT"
 keep_picture "$TMP/login.png" endoview-login
-ENDOSIM_PIN=48213579 view --frames 4 --trainee Ann --print-state
+ENDOSIM_PIN=48213579 view --frames 1 --trainee Ann --print-state
 check "--trainee Ann, the PIN from \$ENDOSIM_PIN: in without the screen" \
 	grep -qx "login: Ann trains" "$VIEW_OUT"
 check "... the HUD names her" grep -q "^hud: trainee Ann  (C: log out)" \
