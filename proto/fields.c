@@ -384,6 +384,8 @@ static const struct fields_field status[] = {
 	REC(scenario_time_s, FIELDS_DOUBLE),
 	VAL(scenario_done, FIELDS_BOOL),
 	ROW("case", FIELDS_STRING, NONE, P(case_name), NONE),
+	WIRE(trainee, FIELDS_STRING),
+	WIRE(asks_trainee, FIELDS_BOOL),
 	ONE(scope, &fields_scope),
 	ONE(haptics, &fields_haptics),
 	ONE(rod, &fields_rod),

@@ -6,11 +6,13 @@
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
  *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
- *            [--mute] [--voice DIR]
+ *            [--mute] [--voice DIR] [--trainee NAME | --no-login]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * A separate process: it only reads the daemon's shared memory and asks
- * the sockets, so whatever happens to it, the force loop goes on. With
+ * the sockets, so whatever happens to it, the force loop goes on. Where
+ * the rig's accounts hold a trainee, it asks who is training (login.h,
+ * loginview.h) and logs them out when it quits, if it logged them in. With
  * --replay it plays a recorded session instead (replay.h), with no daemon
  * and no socket. The patient's voice (voice.h) sounds through the audio
  * device (sound.h); without one, endoview says so once and goes on
@@ -45,6 +47,8 @@
 #include "viewer/lensfx.h"
 #include "viewer/link.h"
 #include "viewer/lod.h"
+#include "viewer/login.h"
+#include "viewer/loginview.h"
 #include "base/log.h"
 #include "viewer/mapview.h"
 #include "viewer/model.h"
@@ -102,6 +106,8 @@ struct app {
 	struct colon_set colon;
 	struct input_hand hand;
 	struct overview_orbit orbit;
+	struct login login;     /* who is training */
+	bool logged_in_here;    /* this viewer logged the trainee in */
 	enum link_status status;
 	bool loading, help, map_shown;
 	uint32_t triangles, triangles_max;
@@ -278,6 +284,7 @@ static void update_link(struct app *a, uint64_t now)
 	if (link_daemon_changed(a->link)) {
 		held = 0; /* a new daemon's scene ids start again */
 		colon_free(&a->colon);
+		rigctl_trainee_now(a->rig); /* and nobody trains there yet */
 	}
 	if (a->loading) {
 		load_colon(a, now);
@@ -362,6 +369,10 @@ static void drive(struct app *a, const struct input_controls *c,
 	}
 	dt = a->hand_ns ? (double)(now - a->hand_ns) / ENDOSIM_NS_PER_S : 0;
 	a->hand_ns = now;
+	if (a->login.stage == LOGIN_ASK) {
+		a->hand.engaged = false; /* the form: nothing drives */
+		return;
+	}
 	grip = input_step(&a->hand, c, st, fmin(dt, 0.1), now, force);
 	if (grip || c->valves || a->valves) {
 		rigctl_hand(a->rig, grip ? force : NULL, c->valves,
@@ -370,6 +381,90 @@ static void drive(struct app *a, const struct input_controls *c,
 					LAPSE_MS, now);
 	}
 	a->valves = c->valves;
+}
+
+/* ------------------------------------------------------------ login */
+
+/* The form's name and PIN sent: who trains now, or the refusal shown. */
+static void send_login(struct app *a, uint64_t now)
+{
+	struct login *l = &a->login;
+	char trainee[256] = "", words[256];
+
+	if (rigctl_login(a->rig, l->name, l->pin, now, trainee, words,
+			 sizeof(words))) {
+		log_info("login of %s refused: %s", l->name, words);
+		login_refused(l, words);
+		return;
+	}
+	a->logged_in_here = true;
+	login_accepted(l, trainee);
+}
+
+/* C: who trains logs out; the form asks for the next. */
+static void send_logout(struct app *a, uint64_t now)
+{
+	char words[256];
+
+	if (rigctl_logout(a->rig, now, words, sizeof(words))) {
+		log_info("logout refused: %s", words);
+		return;
+	}
+	a->logged_in_here = false;
+	login_daemon(&a->login, true, "");
+}
+
+static void log_stage(const struct login *l, enum login_stage was)
+{
+	if (l->stage == was) {
+		return;
+	}
+	if (l->stage == LOGIN_ASK) {
+		log_info("login: who is training? (the login screen)");
+	} else if (l->stage == LOGIN_IN) {
+		log_info("login: %s trains at the rig", l->trainee);
+	} else {
+		log_info("login: nobody asked (no trainee's account, or no "
+			 "daemon)");
+	}
+}
+
+/*
+ * Who is training: what the daemon says (every second), what was typed
+ * into the form in order (each Enter that completes it sends the login),
+ * --trainee's login once the daemon answers, C's logout.
+ */
+static void update_login(struct app *a, const struct ui_actions *act,
+			 uint64_t now)
+{
+	struct login *l = &a->login;
+	enum login_stage was = l->stage;
+	char trainee[ACCOUNTS_NAME_MAX + 1];
+	bool asks = false;
+	int r;
+
+	r = rigctl_trainee(a->rig, now, &asks, trainee, sizeof(trainee));
+	if (r == 1) {
+		login_daemon(l, asks, trainee);
+	} else if (r < 0 && a->status == LINK_NO_DAEMON) {
+		login_daemon(l, false, ""); /* a slow answer changes nothing */
+	}
+	for (int k = 0; k < act->n_typed; k++) {
+		uint32_t c = act->typed[k];
+
+		if (c < UI_TYPED_KEY) {
+			login_type(l, c);
+		} else if (login_key(l, (enum login_key)(c - UI_TYPED_KEY))) {
+			send_login(a, now);
+		}
+	}
+	if (login_scripted(l)) {
+		send_login(a, now);
+	}
+	if (act->switch_trainee && l->stage == LOGIN_IN) {
+		send_logout(a, now);
+	}
+	log_stage(l, was);
 }
 
 /* T: the patient to the next position (after the one it lies in or
@@ -502,6 +597,7 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 				  : 0,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
+		.trainee = a->login.stage == LOGIN_IN ? a->login.trainee : "",
 	};
 	link_patient_limits(a->link, &in->relief_pa, &in->strength_n_per_m);
 }
@@ -607,6 +703,8 @@ static void render(struct app *a, const struct endosim_state *st,
 		mapview_draw(a->mapview, a->d2d, w, h,
 			     a->status == LINK_LIVE ? st : NULL);
 	}
+	loginview_draw(a->d2d, &a->login, w, h, (double)now /
+		       ENDOSIM_NS_PER_S);
 	draw2d_end(a->d2d);
 	pass_done(a, TIMING_PASS_PANEL);
 }
@@ -658,6 +756,7 @@ static int frame(struct app *a)
 	bool current;
 	int w, h, err = 0;
 
+	ui_set_typing(a->ui, a->login.stage == LOGIN_ASK);
 	glfwPollEvents();
 	ui_framebuffer_size(a->ui, &w, &h);
 	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
@@ -667,6 +766,7 @@ static int frame(struct app *a)
 		st = update_replay(a, now);
 	} else {
 		update_link(a, now);
+		update_login(a, &acts, now);
 		st = link_state(a->link);
 		drive(a, &c, st, now);
 		command_patient(a, &acts, st, now);
@@ -777,8 +877,14 @@ static void report_drawn(const struct app *a)
 	const char *said;
 	int w, h;
 
+	char login[512];
+
 	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
 		printf("hud: %s\n", said);
+	}
+	if (!a->replay) {
+		login_said(&a->login, login, sizeof(login));
+		printf("login: %s\n", login);
 	}
 	if (a->map_shown) {
 		printf("map: %s\n", mapview_said(a->mapview));
@@ -854,6 +960,16 @@ static int run(struct app *a)
 		report(a);
 	}
 	report_state(a);
+	if (a->logged_in_here && a->login.stage == LOGIN_IN) {
+		char words[256];
+
+		if (rigctl_logout(a->rig, mono_ns(), words, sizeof(words))) {
+			log_info("logout at exit refused: %s", words);
+		} else {
+			log_info("login: %s logged out as endoview quits",
+				 a->login.trainee);
+		}
+	}
 	return r < 0 ? r : 0;
 }
 
@@ -954,6 +1070,8 @@ int main(int argc, char **argv)
 	if (a.opt.replay && open_replay(&a)) {
 		goto out;
 	}
+	login_init(&a.login, a.opt.no_login || a.opt.replay, a.opt.trainee,
+		   a.opt.trainee ? getenv("ENDOSIM_PIN") : NULL);
 	if (!a.opt.replay) {
 		a.link = link_create(a.opt.socket, a.opt.shm_name);
 		a.rig = rigctl_create(a.opt.socket);

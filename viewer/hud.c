@@ -42,6 +42,7 @@ const char *const hud_keys[] = {
 	"M\tthe unseen-mucosa map (recording)",
 	"U\tthe patient's voice off, on",
 	"P\tsave a picture (PNG, here)",
+	"C\tlog out: another trainee logs in",
 	"H  Q\tthis help, quit",
 	NULL,
 };
@@ -255,6 +256,11 @@ static void draw_state(struct pen *p, const struct hud_info *in)
 	snprintf(text, sizeof(text), "endosim  %s%s", in->m ? in->m->name : "",
 		 rod(in->st) ? "  rod model" : "");
 	line(p, FONT_SMALL, dim, text);
+	if (in->trainee && *in->trainee) {
+		snprintf(text, sizeof(text), "trainee %s  (C: log out)",
+			 in->trainee);
+		line(p, FONT_SMALL, green, text);
+	}
 	if (!in->st || in->link == LINK_NO_DAEMON) {
 		line(p, FONT_LARGE, red, "NO DAEMON");
 		line(p, FONT_SMALL, dim, in->link_problem);

@@ -769,7 +769,8 @@ static const struct parse_key keys[] = {
 	   "the time in pain, the pain episodes"),
 	KS("session", "course", session.course, "", 0,
 	   "the course file (config/courses/NAME.course) that endoctl trainee "
-	   "judges the sessions by; empty: none"),
+	   "judges the sessions by, of the trainees whose groups have no "
+	   "course assigned; empty: none"),
 
 	/* records.h's RECORDS_DEFAULT_NAME, which this wing cannot name
 	 * (test_config holds them to each other) */
