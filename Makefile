@@ -212,7 +212,8 @@ UNIT_TESTS = test_config test_frame test_seqlock test_plant test_scenario \
 	     test_parse test_gas test_patient test_mailbox test_valves \
 	     test_burstmark test_hand test_pain test_perforation test_grip \
 	     test_voice test_wav test_tool test_tool_loop test_centre \
-	     test_toolview test_lensfx test_accounts test_resection
+	     test_toolview test_lensfx test_accounts test_resection \
+	     test_training test_login
 TEST_TOOLS = shm_probe shm_latency obj_import scenario_gen fault_watch \
 	     notify_listen session_synth session_script session_report \
 	     session_shapes records_gen

@@ -787,6 +787,16 @@ static const struct command {
 	  "whoami", "ENDOSIM_PIN=4821 endoctl --as Ann whoami",
 	  "with --as NAME the name and role the PIN logged in as; without, "
 	  "whether root or the endosim group make you an administrator" },
+	{ "login", ctl_cmd_login, "who trains at the rig: a trainee logs in",
+	  "login NAME", "ENDOSIM_PIN=4821 endoctl login Ann",
+	  "what endoview's login screen does: from now on a session started "
+	  "without --trainee is NAME's, until logout; the PIN from "
+	  "$ENDOSIM_PIN, else asked on the terminal; a trainee's login only, "
+	  "on the control socket, refused while a session of another "
+	  "records" },
+	{ "logout", ctl_cmd_logout, "nobody trains at the rig any more",
+	  "logout", "endoctl logout", "endoview's C key; refused while a "
+	  "session records, and to a trainee logged in (--as) as another" },
 	{ "guide", ctl_cmd_guide, "guided replay of a session through the "
 	  "motors",
 	  "guide start ID|FILE [--speed X] [--from S] | stop | takeover | "

@@ -114,6 +114,11 @@ int ctl_cmd_user(struct ctl *ctl, int argc, char **argv);
 int ctl_cmd_group(struct ctl *ctl, int argc, char **argv);
 int ctl_cmd_whoami(struct ctl *ctl, int argc, char **argv);
 
+/* `endoctl login NAME`, `endoctl logout`: who trains at the rig
+ * (endoctl_training.c). */
+int ctl_cmd_login(struct ctl *ctl, int argc, char **argv);
+int ctl_cmd_logout(struct ctl *ctl, int argc, char **argv);
+
 /* `endoctl guide ...` (endoctl_guide.c). */
 int ctl_cmd_guide(struct ctl *ctl, int argc, char **argv);
 

@@ -115,6 +115,7 @@ static void json_accounts(const Endosim__AccountsReply *m)
 	json_string(&j, "who", m->who);
 	json_string(&j, "role", m->role);
 	json_bool(&j, "staff", m->staff);
+	json_string(&j, "training", m->training);
 	json_array_begin(&j, "users");
 	for (size_t i = 0; i < m->n_users; i++) {
 		json_object_begin(&j, NULL);
@@ -145,6 +146,9 @@ static void print_whoami(const Endosim__AccountsReply *m)
 	} else {
 		printf("not logged in%s\n", m->staff ? ": root or the endosim "
 		       "group, an administrator" : ": no records to see");
+	}
+	if (*m->training) {
+		printf("%s trains at the rig\n", m->training);
 	}
 }
 
@@ -268,11 +272,32 @@ static int each_trainee(struct ctl *ctl, Endosim__Accounts *body, int argc,
 	return r;
 }
 
+/* A course as assigned: a name (endosimd's courses' directory), or a path,
+ * made absolute here (endosimd's working directory is not ours). BUF:
+ * PATH_MAX bytes at least. */
+static const char *course_arg(const char *course, char *buf, size_t size)
+{
+	char cwd[4096];
+
+	if (!strchr(course, '/') || course[0] == '/') {
+		return course; /* a name, or absolute */
+	}
+	if (realpath(course, buf)) {
+		return buf;
+	}
+	if (!getcwd(cwd, sizeof(cwd))) {
+		return course;
+	}
+	snprintf(buf, size, "%s/%s", cwd, course);
+	return buf;
+}
+
 int ctl_cmd_group(struct ctl *ctl, int argc, char **argv)
 {
 	Endosim__Accounts body = ENDOSIM__ACCOUNTS__INIT;
 	const char *verb = argc > 1 ? argv[1] : "";
 	bool join = !strcmp(verb, "join"), assign = !strcmp(verb, "assign");
+	char path[8192];
 
 	body.group = argc > 2 ? argv[2] : "";
 	if (!strcmp(verb, "list") && argc == 2) {
@@ -290,7 +315,7 @@ int ctl_cmd_group(struct ctl *ctl, int argc, char **argv)
 	} else if ((assign || !strcmp(verb, "unassign")) && argc == 4) {
 		body.op = assign ? ENDOSIM__ACCOUNTS__OP__OP_GROUP_ASSIGN
 				 : ENDOSIM__ACCOUNTS__OP__OP_GROUP_UNASSIGN;
-		body.course = argv[3];
+		body.course = (char *)course_arg(argv[3], path, sizeof(path));
 	} else {
 		fputs("usage: " GROUP_USAGE, stderr);
 		return EXIT_USAGE;

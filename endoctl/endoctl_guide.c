@@ -15,6 +15,22 @@
 	"endoctl guide start ID|FILE [--speed X] [--from S] | stop | " \
 	"takeover | resume | reset [--to S] | status\n"
 
+/* The expert's tool shown while guiding, if any: "; expert: ...". */
+static void print_expert(const Endosim__GuideStatus *g)
+{
+	if (g->expert_kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	printf("; expert: %s", names_tool(g->expert_kind));
+	if (g->expert_kind == ENDOSIM_TOOL_SNARE) {
+		printf(" %.0f mm", g->expert_snare_m * 1e3);
+	}
+	printf(g->expert_depth_m > 0 ? ", %.1f mm out" : ", in the channel",
+	       g->expert_depth_m * 1e3);
+	printf(", handle %.0f %% open, pedal %s", g->expert_opening * 100,
+	       g->expert_pedal ? "down" : "up");
+}
+
 /* The guidance in one line. */
 static void print_guide(const Endosim__GuideStatus *g)
 {
@@ -47,6 +63,7 @@ static void print_guide(const Endosim__GuideStatus *g)
 			       g->error[a] * scale[a], unit[a]);
 		}
 	}
+	print_expert(g);
 	printf("\n");
 }
 

@@ -267,6 +267,10 @@ void ctl_print_status(const Endosim__StatusReply *s)
 	printf("cycle     %llu, uptime %.1f s, scenario %.1f s%s\n",
 	       (unsigned long long)s->cycle, s->uptime_s, s->scenario_time_s,
 	       s->scenario_done ? " (ended)" : "");
+	if (*s->trainee || s->asks_trainee) {
+		printf("trainee   %s\n", *s->trainee ? s->trainee :
+		       "nobody logged in (endoview asks who is training)");
+	}
 	if (s->scope && s->scope->n_tip == 3 && s->scope->n_bend_rad == 2) {
 		const Endosim__ScopeStatus *sc = s->scope;
 

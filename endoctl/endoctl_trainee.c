@@ -4,14 +4,19 @@
  * daemon keeps) or read from a session directory's files without it
  * (--dir: every file's header and END frame), or from a training
  * centre's database, every rig's (--centre: centre.h, read here with
- * libpq), judged by a course file (coursefile.h), listed or written as a
- * page (traineepage.h).
+ * libpq), judged by course files (coursefile.h), listed or written as a
+ * page (traineepage.h). Which courses judge a trainee: --course FILE,
+ * everyone's; else the courses assigned to the trainee's groups (the
+ * daemon's TraineeReply says which; none with --dir or --centre); else
+ * the daemon's [session] course; else none.
  */
 #include "endoctl/endoctl.h"
 #include "session/centre.h"
 #include "session/coursefile.h"
 #include "session/metricstext.h"
 #include "session/traineepage.h"
+
+#define TLIST_MAX_COURSES TRAINEEPAGE_MAX_COURSES /* of one listing, at most */
 
 /* One session, whichever way it was found. */
 struct tsession {
@@ -21,7 +26,9 @@ struct tsession {
 	char started[32];
 	bool recording;
 	bool recomputed;    /* the file was cut short */
-	signed char passed; /* by the course: coursefile_judge() */
+	signed char passed[TLIST_MAX_COURSES]; /* by each course of the
+						  list's (coursefile_judge()),
+						  -1 not judged by it */
 	struct metrics_result *m; /* a report's (malloc'd): the END frame's,
 				     or recomputed; NULL not known, and in a
 				     list, which judges each as it reads it */
@@ -29,34 +36,148 @@ struct tsession {
 	char uuid[37];      /* a centre's: its key there */
 };
 
+/* A course that judges some of the list's trainees. */
+struct tcourse {
+	struct coursefile c;
+	char file[4096];
+	char group[64];     /* the group it is assigned to; "": the rig's
+			       (--course, [session] course) */
+};
+
+/* The courses of one trainee of the list's groups, by index. */
+struct tjudged {
+	char trainee[64];
+	size_t k[TLIST_MAX_COURSES];
+	size_t n;
+};
+
 struct tlist {
 	struct tsession *s;
 	size_t n;
 	bool keep_m;        /* a report: each session's measures kept */
 	const char *course_file; /* --course FILE; NULL: the daemon's */
-	const struct coursefile *c; /* the course (load_course()); NULL: none */
+	struct tcourse *courses; /* loaded, TLIST_MAX_COURSES room */
+	size_t n_courses;
+	int rig;            /* the rig's course (--course, else [session]
+			       course): its index; -1: none */
+	struct tjudged *judged; /* the trainees of groups with courses */
+	size_t n_judged;
 	struct centre *centre; /* read from a centre's database; NULL not */
 	char directory[4096];
 };
 
+/* The course of FILE (of GROUP, "" the rig's) loaded into L once: its
+ * index, or -1 (said on stderr). */
+static int add_course(struct tlist *l, const char *file, const char *group)
+{
+	char err[512];
+	struct tcourse *t;
+
+	for (size_t k = 0; k < l->n_courses; k++) {
+		if (!strcmp(l->courses[k].file, file) &&
+		    !strcmp(l->courses[k].group, group)) {
+			return (int)k;
+		}
+	}
+	if (!l->courses &&
+	    !(l->courses = calloc(TLIST_MAX_COURSES, sizeof(*l->courses)))) {
+		fprintf(stderr, "endoctl: out of memory\n");
+		return -1;
+	}
+	if (l->n_courses == TLIST_MAX_COURSES) {
+		fprintf(stderr, "endoctl: course: more than %d courses judge "
+			"these trainees: name one (--course FILE)\n",
+			TLIST_MAX_COURSES);
+		return -1;
+	}
+	t = &l->courses[l->n_courses];
+	if (coursefile_load(&t->c, file, err, sizeof(err))) {
+		fprintf(stderr, "endoctl: course%s%s: %s\n", *group ?
+			" of group " : "", group, err);
+		return -1;
+	}
+	snprintf(t->file, sizeof(t->file), "%s", file);
+	snprintf(t->group, sizeof(t->group), "%s", group);
+	return (int)l->n_courses++;
+}
+
 /* The course named by --course (FILE), else the daemon's DAEMONS (NULL
- * or "": none), into L. */
+ * or "": none), into L as the rig's. */
 static int load_course(struct tlist *l, const char *daemons)
 {
-	static struct coursefile buf;
 	const char *path = l->course_file ? l->course_file : daemons;
-	char err[512];
 
-	l->c = NULL;
+	l->rig = -1;
 	if (!path || !*path) {
 		return 0;
 	}
-	if (coursefile_load(&buf, path, err, sizeof(err))) {
-		fprintf(stderr, "endoctl: course: %s\n", err);
-		return EXIT_REFUSED;
+	l->rig = add_course(l, path, "");
+	return l->rig < 0 ? EXIT_REFUSED : 0;
+}
+
+/* TRAINEE's courses in L, added (with none) if not there yet; NULL:
+ * ENOMEM. */
+static struct tjudged *judged_of(struct tlist *l, const char *trainee)
+{
+	struct tjudged *j;
+
+	for (size_t m = 0; m < l->n_judged; m++) {
+		if (!strcmp(l->judged[m].trainee, trainee)) {
+			return &l->judged[m];
+		}
 	}
-	l->c = &buf;
+	j = reallocarray(l->judged, l->n_judged + 1, sizeof(*j));
+	if (!j) {
+		return NULL;
+	}
+	l->judged = j;
+	j = &l->judged[l->n_judged++];
+	memset(j, 0, sizeof(*j));
+	snprintf(j->trainee, sizeof(j->trainee), "%s", trainee);
+	return j;
+}
+
+/* The courses of the trainees' groups that the reply T names into L
+ * (--course given: none asked for); a trainee in two groups of one
+ * course file is judged by it once. */
+static int load_group_courses(struct tlist *l, const Endosim__TraineeReply *t)
+{
+	for (size_t i = 0; i < t->n_courses; i++) {
+		const Endosim__TraineeCourse *e = t->courses[i];
+		int k = add_course(l, e->file, e->group);
+		struct tjudged *j;
+
+		if (k < 0) {
+			return EXIT_REFUSED; /* said */
+		}
+		if (!(j = judged_of(l, e->trainee))) {
+			fprintf(stderr, "endoctl: out of memory\n");
+			return EXIT_REFUSED;
+		}
+		for (size_t m = 0; m < j->n && k >= 0; m++) {
+			k = strcmp(l->courses[j->k[m]].file, e->file) ? k : -1;
+		}
+		if (k >= 0) { /* fewer than the list's: room */
+			j->k[j->n++] = (size_t)k;
+		}
+	}
 	return 0;
+}
+
+/* The indices of the courses that judge TRAINEE into K: how many. */
+static size_t courses_of(const struct tlist *l, const char *trainee,
+			 size_t k[TLIST_MAX_COURSES])
+{
+	for (size_t m = 0; !l->course_file && m < l->n_judged; m++) {
+		const struct tjudged *j = &l->judged[m];
+
+		if (!strcmp(j->trainee, trainee)) {
+			memcpy(k, j->k, sizeof(j->k));
+			return j->n;
+		}
+	}
+	k[0] = (size_t)l->rig;
+	return l->rig >= 0;
 }
 
 /* L's next session (L->s has room), its facts in; M its measures (NULL:
@@ -67,14 +188,18 @@ static struct tsession *add_session(struct tlist *l, uint64_t id,
 				    const struct metrics_result *m)
 {
 	struct tsession *t = &l->s[l->n++];
+	size_t k[TLIST_MAX_COURSES], n = courses_of(l, trainee, k);
 
 	memset(t, 0, sizeof(*t));
 	t->id = id;
 	snprintf(t->trainee, sizeof(t->trainee), "%s", trainee);
 	snprintf(t->case_name, sizeof(t->case_name), "%s", case_name);
 	snprintf(t->started, sizeof(t->started), "%s", started);
-	t->passed = l->c ? (signed char)coursefile_judge(l->c, case_name, m)
-			 : -1;
+	memset(t->passed, -1, sizeof(t->passed));
+	for (size_t i = 0; i < n; i++) {
+		t->passed[k[i]] = (signed char)coursefile_judge(
+			&l->courses[k[i]].c, case_name, m);
+	}
 	if (m && l->keep_m && (t->m = malloc(sizeof(*t->m)))) {
 		*t->m = *m;
 	}
@@ -106,6 +231,8 @@ static void tlist_free(struct tlist *l)
 		free(l->s[i].m);
 	}
 	free(l->s);
+	free(l->courses);
+	free(l->judged);
 	centre_destroy(l->centre);
 }
 
@@ -122,7 +249,7 @@ static void add_replied(struct tlist *l, const Endosim__TraineeReply *t)
 		if (s->metrics) {
 			sessionpb_to_metrics(s->metrics, &m);
 			got = &m;
-		} else if (!s->recording && (l->keep_m || l->c)) {
+		} else if (!s->recording && (l->keep_m || l->n_courses)) {
 			got = recompute(s->path, &m, &recomputed);
 		}
 		add_session(l, s->id, s->trainee, s->case_name, s->started,
@@ -147,11 +274,13 @@ static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 
 	body.trainee = (char *)(trainee ? trainee : "");
 	body.facts_unless_course = !l->keep_m && !l->course_file;
+	body.course_given = l->course_file != NULL;
 	if (!l->keep_m && l->course_file) {
 		if ((r = load_course(l, NULL))) {
 			return r;
 		}
-		body.n_measures = coursefile_keys(l->c, keys, sizeof(keys) /
+		body.n_measures = coursefile_keys(&l->courses[l->rig].c, keys,
+						  sizeof(keys) /
 						  sizeof(keys[0]));
 		body.measures = (char **)keys;
 	}
@@ -162,7 +291,8 @@ static int from_daemon(struct ctl *ctl, const char *trainee, struct tlist *l)
 	}
 	t = rep->trainee;
 	snprintf(l->directory, sizeof(l->directory), "%s", t->directory);
-	r = l->c ? 0 : load_course(l, t->course);
+	r = l->course_file && !l->keep_m ? 0 : load_course(l, t->course);
+	r = r ? r : load_group_courses(l, t);
 	if (!r && !(l->s = calloc(t->n_sessions ? t->n_sessions : 1,
 				  sizeof(*l->s)))) {
 		fprintf(stderr, "endoctl: out of memory\n");
@@ -280,8 +410,12 @@ struct standing {
 	char cases[256];      /* "normal, polyps" */
 	char rigs[256];       /* a centre's: "rig-a, rig-b" */
 	const struct tsession *last;
-	size_t cases_done;    /* of the course's */
-	bool complete;
+	size_t n_courses;     /* that judge them */
+	struct {
+		size_t k;         /* the course: its index in the list */
+		size_t cases_done; /* of its cases */
+		bool complete;
+	} course[TLIST_MAX_COURSES];
 };
 
 /* NAME added to the list NAMES ("a, b") unless it is there. */
@@ -298,13 +432,34 @@ static void add_name(char *names, size_t size, const char *name)
 	snprintf(names + at, size - at, "%s%s", at ? ", " : "", name);
 }
 
-static void stand(const struct tlist *l, size_t first,
-		  const struct coursefile *c, struct standing *st)
+/* ST's standing in its course J, its N sessions' CASES judged PASSED[i *
+ * TLIST_MAX_COURSES + course]. */
+static void stand_in(const struct tlist *l, struct standing *st, size_t j,
+		     const char **cases, const signed char *passed, size_t n)
 {
-	const char **cases = malloc((l->n ? l->n : 1) * sizeof(*cases));
-	signed char *passed = malloc(l->n ? l->n : 1);
+	const struct coursefile *c = &l->courses[st->course[j].k].c;
 	struct coursefile_progress p[COURSEFILE_MAX_CASES];
-	size_t k = 0;
+	signed char *mine = malloc(n ? n : 1);
+
+	if (!mine) {
+		return;
+	}
+	for (size_t i = 0; i < n; i++) {
+		mine[i] = passed[i * TLIST_MAX_COURSES + st->course[j].k];
+	}
+	coursefile_progress_judged(c, cases, mine, n, p);
+	for (size_t i = 0; i < c->n_cases; i++) {
+		st->course[j].cases_done += p[i].completed != 0;
+	}
+	st->course[j].complete = coursefile_complete(c, p);
+	free(mine);
+}
+
+static void stand(const struct tlist *l, size_t first, struct standing *st)
+{
+	size_t room = l->n ? l->n : 1, k = 0, ks[TLIST_MAX_COURSES];
+	const char **cases = malloc(room * sizeof(*cases));
+	signed char *passed = malloc(room * TLIST_MAX_COURSES);
 
 	memset(st, 0, sizeof(*st));
 	st->trainee = l->s[first].trainee;
@@ -322,18 +477,25 @@ static void stand(const struct tlist *l, size_t first,
 		}
 		if (cases && passed) {
 			cases[k] = s->case_name;
-			passed[k++] = s->passed;
+			memcpy(passed + k++ * TLIST_MAX_COURSES, s->passed,
+			       TLIST_MAX_COURSES);
 		}
 	}
-	if (c && cases && passed) {
-		coursefile_progress_judged(c, cases, passed, k, p);
-		for (size_t i = 0; i < c->n_cases; i++) {
-			st->cases_done += p[i].completed != 0;
-		}
-		st->complete = coursefile_complete(c, p);
+	st->n_courses = cases && passed ? courses_of(l, st->trainee, ks) : 0;
+	for (size_t j = 0; j < st->n_courses; j++) {
+		st->course[j].k = ks[j];
+		stand_in(l, st, j, cases, passed, k);
 	}
 	free(cases);
 	free(passed);
+}
+
+/* Whether ST is judged by the courses of their groups (each named), not
+ * by the rig's one course (as it always was). */
+static bool by_groups(const struct tlist *l, const struct standing *st)
+{
+	return st->n_courses &&
+	       (st->n_courses > 1 || (int)st->course[0].k != l->rig);
 }
 
 /* Whether session I's trainee came earlier. */
@@ -347,16 +509,38 @@ static bool trainee_seen_before(const struct tlist *l, size_t i)
 	return false;
 }
 
-static void print_standing(const struct tlist *l, const struct standing *st,
-			   const struct coursefile *c)
+/* The standing in course J into OUT at AT: "complete" or "N of M
+ * cases", after the course's name when NAMED. */
+static size_t course_words(const struct tlist *l, const struct standing *st,
+			   size_t j, bool named, char *out, size_t at,
+			   size_t size)
 {
-	char course[64] = "-";
+	const struct coursefile *c = &l->courses[st->course[j].k].c;
+	const char *sep = at ? ", " : "", *name = named ? c->name : "";
+	int n;
 
-	if (c && st->complete) {
-		snprintf(course, sizeof(course), "complete");
-	} else if (c) {
-		snprintf(course, sizeof(course), "%zu of %zu cases", st->cases_done,
-			 c->n_cases);
+	if (at >= size) {
+		return at;
+	}
+	if (st->course[j].complete) {
+		n = snprintf(out + at, size - at, "%s%s%scomplete", sep, name,
+			     named ? " " : "");
+	} else {
+		n = snprintf(out + at, size - at, "%s%s%s%zu of %zu cases", sep,
+			     name, named ? " " : "", st->course[j].cases_done,
+			     c->n_cases);
+	}
+	return n < 0 ? size : at + (size_t)n;
+}
+
+static void print_standing(const struct tlist *l, const struct standing *st)
+{
+	char course[512] = "-";
+	size_t at = 0;
+
+	for (size_t j = 0; j < st->n_courses; j++) {
+		at = course_words(l, st, j, by_groups(l, st), course, at,
+				  sizeof(course));
 	}
 	printf("%-24s  %8zu  %-20s  %6" PRIu64 "  %-20s  %-14s%s%s\n",
 	       st->trainee, st->sessions, st->cases, st->last->id,
@@ -378,8 +562,28 @@ static void json_names(struct json *j, const char *key, const char *names)
 	json_array_end(j);
 }
 
+/* The courses of their groups that judge ST, each with its standing. */
+static void json_courses(struct json *j, const struct tlist *l,
+			 const struct standing *st)
+{
+	json_array_begin(j, "courses");
+	for (size_t i = 0; i < st->n_courses; i++) {
+		const struct tcourse *t = &l->courses[st->course[i].k];
+
+		json_object_begin(j, NULL);
+		json_string(j, "name", t->c.name);
+		json_string(j, "group", t->group);
+		json_string(j, "file", t->file);
+		json_uint(j, "cases", t->c.n_cases);
+		json_uint(j, "cases_complete", st->course[i].cases_done);
+		json_bool(j, "complete", st->course[i].complete);
+		json_object_end(j);
+	}
+	json_array_end(j);
+}
+
 static void json_standing(struct json *j, const struct tlist *l,
-			  const struct standing *st, const struct coursefile *c)
+			  const struct standing *st)
 {
 	json_object_begin(j, NULL);
 	json_string(j, "trainee", st->trainee);
@@ -391,16 +595,20 @@ static void json_standing(struct json *j, const struct tlist *l,
 		json_names(j, "rigs", st->rigs);
 		json_string(j, "last_rig", st->last->rig);
 	}
-	if (c) {
-		json_uint(j, "cases_complete", st->cases_done);
-		json_bool(j, "course_complete", st->complete);
+	if (st->n_courses == 1) {
+		json_uint(j, "cases_complete", st->course[0].cases_done);
+		json_bool(j, "course_complete", st->course[0].complete);
+	}
+	if (by_groups(l, st)) {
+		json_courses(j, l, st);
 	}
 	json_object_end(j);
 }
 
-static void print_list(const struct ctl *ctl, const struct tlist *l,
-		       const struct coursefile *c)
+static void print_list(const struct ctl *ctl, const struct tlist *l)
 {
+	const struct coursefile *c = l->rig >= 0 ? &l->courses[l->rig].c
+						 : NULL;
 	struct standing st;
 	struct json j;
 
@@ -419,11 +627,11 @@ static void print_list(const struct ctl *ctl, const struct tlist *l,
 		if (trainee_seen_before(l, i)) {
 			continue;
 		}
-		stand(l, i, c, &st);
+		stand(l, i, &st);
 		if (ctl->json) {
-			json_standing(&j, l, &st, c);
+			json_standing(&j, l, &st);
 		} else {
-			print_standing(l, &st, c);
+			print_standing(l, &st);
 		}
 	}
 	if (ctl->json) {
@@ -460,11 +668,29 @@ static int write_pages(const struct tlist *l, const char *out)
 	return 0;
 }
 
+/* The line after writing the page: TRAINEE's courses' standing (ST). */
+static void print_written(const struct tlist *l, const struct standing *st,
+			  const char *out)
+{
+	printf("wrote %s/index.html: %zu sessions", out, l->n);
+	if (st->n_courses == 1) {
+		printf(st->course[0].complete ? ", course complete" :
+		       ", course not complete");
+	}
+	for (size_t j = 0; st->n_courses > 1 && j < st->n_courses; j++) {
+		printf("%s%s %scomplete", j ? ", " : ", courses: ",
+		       l->courses[st->course[j].k].c.name,
+		       st->course[j].complete ? "" : "not ");
+	}
+	printf("\n");
+}
+
 static int write_report(const char *trainee, const struct tlist *l,
-			const struct coursefile *c, const char *out)
+			const char *out)
 {
 	struct traineepage_session *p = calloc(l->n ? l->n : 1, sizeof(*p));
 	char (*href)[48] = calloc(l->n ? l->n : 1, sizeof(*href));
+	const struct coursefile *c[TLIST_MAX_COURSES];
 	struct standing st;
 	int r;
 
@@ -485,7 +711,11 @@ static int write_report(const char *trainee, const struct tlist *l,
 			.href = l->centre ? href[i] : NULL,
 		};
 	}
-	r = traineepage_write(trainee, p, l->n, c, out);
+	stand(l, 0, &st);
+	for (size_t j = 0; j < st.n_courses; j++) {
+		c[j] = &l->courses[st.course[j].k].c;
+	}
+	r = traineepage_write(trainee, p, l->n, c, st.n_courses, out);
 	free(p);
 	free(href);
 	if (r) {
@@ -496,9 +726,7 @@ static int write_report(const char *trainee, const struct tlist *l,
 	if (l->centre && (r = write_pages(l, out))) {
 		return r;
 	}
-	stand(l, 0, c, &st);
-	printf("wrote %s/index.html: %zu sessions%s\n", out, l->n, !c ? "" :
-	       st.complete ? ", course complete" : ", course not complete");
+	print_written(l, &st, out);
 	return 0;
 }
 
@@ -533,7 +761,7 @@ static bool parse_args(int argc, char **argv, int first, struct targs *a)
 static int trainee_run(struct ctl *ctl, const struct targs *a)
 {
 	struct tlist l = { .keep_m = a->name != NULL,
-			   .course_file = a->course };
+			   .course_file = a->course, .rig = -1 };
 	int r = a->centre ? from_centre(a->centre, a->name, &l)
 		: a->dir  ? from_dir(a->dir, a->name, &l)
 			  : from_daemon(ctl, a->name, &l);
@@ -544,8 +772,8 @@ static int trainee_run(struct ctl *ctl, const struct targs *a)
 		r = EXIT_REFUSED;
 	}
 	if (!r) {
-		r = a->name ? write_report(a->name, &l, l.c, a->out)
-			    : (print_list(ctl, &l, l.c), 0);
+		r = a->name ? write_report(a->name, &l, a->out)
+			    : (print_list(ctl, &l), 0);
 	}
 	tlist_free(&l);
 	return r;

@@ -24,7 +24,7 @@
 #include "proto/seqlock.h"
 
 #define ENDOSIM_SHM_MAGIC 0x314d49534f444e45ULL /* "ENDOSIM1", little-endian */
-#define ENDOSIM_SHM_VERSION 10u /* 2: the scope and the colon's bows;
+#define ENDOSIM_SHM_VERSION 12u /* 2: the scope and the colon's bows;
 				  3: the haptic rendering's forces;
 				  4: the safety monitors and every latched
 				     fault with its time, axis and values;
@@ -35,7 +35,9 @@
 				  8: the patient's pain, sedation, vital
 				     signs and a perforation by the tip;
 				  9: the tool in the working channel;
-				  10: bleeding, clips on it, retrieval */
+				  10: bleeding, clips on it, retrieval;
+				  11: guided replay's expert tool;
+				  12: where each cut polyp lies */
 #define ENDOSIM_SHM_DEFAULT_NAME "/endosim"
 
 /* The unit of every *_ns stamp and period, here and in session files:
@@ -286,6 +288,18 @@ struct endosim_guide_state {
 	double force[ENDOSIM_AXES];     /* N, N m: in the command */
 	double error[ENDOSIM_AXES];     /* reference - position */
 	double hand[ENDOSIM_AXES];      /* N, N m: the hand's, estimated */
+	/* 11: the expert's tool, while GUIDING a session recorded with one
+	   (daemon/rig/guide.h): the recording's at the playhead, drawn on
+	   the scope as it is now; a tool that acts on nothing (kind NONE in
+	   any other phase, and the rest zero) */
+	uint32_t expert_kind;     /* enum endosim_tool; NONE: no ghost */
+	uint32_t expert_pedal;    /* 1: the expert's pedal down */
+	double expert_snare_m;    /* the snare's size */
+	double expert_depth_m;    /* beyond the channel's exit */
+	double expert_opening;    /* the handle, 0 closed .. 1 open */
+	double expert_loop_m;     /* the snare's loop's diameter */
+	double expert_tip[3];     /* the tool's tip, colon frame, m */
+	double expert_loop_centre[3]; /* the snare's loop's centre, m */
 };
 
 /* The patient's body (lib/model/patient.h). */
@@ -423,6 +437,9 @@ struct endosim_tool_polyp {
 	uint32_t bleed;          /* 10: enum endosim_bleed */
 	double bleed_m3_s;       /* its flow now, m^3/s */
 	double blood_m3;         /* shed from it so far */
+	double at[3];            /* 11: cut, its body's centre: where it
+				    falls and lies (retrieved: where it lay;
+				    before its cut 0) */
 };
 
 /*
@@ -451,6 +468,11 @@ struct endosim_tool_state {
 	double blood_m3;         /* shed since the case was loaded */
 	double bleed_at[3];      /* the point bleeding most (none: 0) */
 	double clip_at[3];       /* the last clip's place (clips > 0) */
+	/* 11: one cut polyp's place a cycle, in turn (tool.h), which a
+	   session's record keeps: the polyp, -1 none, and its at */
+	double lying_at[3];
+	int32_t lying_polyp;
+	uint32_t reserved;
 };
 
 struct endosim_state {

@@ -217,6 +217,15 @@ static const struct fields_field guide[] = {
 	  NULL },
 	VEC(error),
 	VEC(hand),
+	{ "expert_kind", FIELDS_NAMED, 1, S(expert_kind), NONE,
+	  P(expert_kind), NONE, NONE, NULL, names_tool, NULL },
+	VAL(expert_pedal, FIELDS_BOOL),
+	VAL(expert_snare_m, FIELDS_DOUBLE),
+	VAL(expert_depth_m, FIELDS_DOUBLE),
+	VAL(expert_opening, FIELDS_DOUBLE),
+	VAL(expert_loop_m, FIELDS_DOUBLE),
+	VEC(expert_tip),
+	VEC(expert_loop_centre),
 };
 const struct fields_table fields_guide =
 	TABLE(guide, endosim__guide_status__descriptor, guide, 1);
@@ -303,6 +312,7 @@ static const struct fields_field tool_polyp[] = {
 	  NULL, names_bleed, NULL },
 	VAL(bleed_m3_s, FIELDS_DOUBLE),
 	VAL(blood_m3, FIELDS_DOUBLE),
+	VEC(at),
 };
 const struct fields_table fields_tool_polyp =
 	TABLE(tool_polyp, endosim__tool_polyp__descriptor, tool.polyp,
@@ -336,6 +346,10 @@ static const struct fields_field tool[] = {
 	VAL(blood_m3, FIELDS_DOUBLE),
 	VEC(bleed_at),
 	VEC(clip_at),
+	TOOL(lying_polyp, FIELDS_INT, "tool_lying_polyp", NULL),
+	{ "lying_at", FIELDS_VECTOR, LEN(lying_at), S(lying_at), NONE,
+	  P(lying_at), P(n_lying_at), R(tool_lying_at),
+	  XYZ("tool_lying", "m"), NULL, NULL },
 };
 const struct fields_table fields_tool =
 	TABLE(tool, endosim__tool_status__descriptor, tool, 1);
@@ -370,6 +384,8 @@ static const struct fields_field status[] = {
 	REC(scenario_time_s, FIELDS_DOUBLE),
 	VAL(scenario_done, FIELDS_BOOL),
 	ROW("case", FIELDS_STRING, NONE, P(case_name), NONE),
+	WIRE(trainee, FIELDS_STRING),
+	WIRE(asks_trainee, FIELDS_BOOL),
 	ONE(scope, &fields_scope),
 	ONE(haptics, &fields_haptics),
 	ONE(rod, &fields_rod),

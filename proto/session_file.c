@@ -441,6 +441,9 @@ static void record_copy(struct session_record *rec, const void *payload,
 		rec->tool_captured = -1;
 		rec->tool_event_polyp = -1;
 	}
+	if (n <= SESSION_RECORD_SIZE_7) { /* format 7 or older: none lying */
+		rec->tool_lying_polyp = -1;
+	}
 }
 
 /* The record size HEADER says in *SAID; false when it says none. */

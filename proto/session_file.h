@@ -26,7 +26,8 @@
  *   SHAPE   (7)  the rod model only, every session_shape_every() cycles
  *                (>= 30 Hz), among the records: struct session_shape
  *
- * Header keys: format (7; 6 before the bleeding, 5 before the tool in
+ * Header keys: format (8; 7 before the cut polyps' places, 6 before the
+ * bleeding, 5 before the tool in
  * the working channel, 4
  * before the patient's pain, 3 before the
  * patient's body, 2 before guided replay, 1 before the rod model), id,
@@ -52,7 +53,7 @@
 #include "proto/endosim_shm.h"
 
 #define SESSION_FILE_MAGIC "ENDOSES1"
-#define SESSION_FILE_FORMAT 7u
+#define SESSION_FILE_FORMAT 8u
 
 enum session_frame_type {
 	SESSION_FRAME_HEADER = 1,
@@ -70,7 +71,7 @@ enum session_frame_type {
 /*
  * One force-loop cycle as published (struct endosim_state), compact:
  * floats for the physical values (a float's 7 digits are far below the
- * rig's resolution), SI units as in endosim_shm.h. 556 bytes. Which field
+ * rig's resolution), SI units as in endosim_shm.h. 572 bytes. Which field
  * of the state each holds, and its CSV column, is said once, in
  * fields.h's tables; a field added goes at the end (the CSV's columns are
  * in this order), the header's record_size says how long a file's records
@@ -175,13 +176,21 @@ struct session_record {
 	/* format 7: the bleeding points' flow, all together (m^3/s), from
 	   which the blood shed follows; an older record reads with none */
 	float tool_bleed_m3_s;
+	/* format 8: one cut polyp's place a cycle, in turn (tool.h: the one
+	   that moved, else the next lying), from which a replay draws each
+	   where it lies; an older record reads with none (-1) */
+	int32_t tool_lying_polyp; /* the case's order, -1: none */
+	float tool_lying_at[3];   /* its body's centre, m */
 } __attribute__((packed, aligned(4))); /* no tail padding: 4 bytes, not 8 */
 
-_Static_assert(sizeof(struct session_record) == 556,
+_Static_assert(sizeof(struct session_record) == 572,
 	       "session_record: its size is part of the file format");
 
 /* Format 1's record: the fields up to compute_ns and two zero words. */
 #define SESSION_RECORD_SIZE_1 304u
+/* Format 7's: up to tool_bleed_m3_s. A shorter record reads with no
+ * polyp lying (tool_lying_polyp -1). */
+#define SESSION_RECORD_SIZE_7 556u
 /* Format 6's: up to tool_event_polyp. A shorter record reads with no
  * bleeding. */
 #define SESSION_RECORD_SIZE_6 552u

@@ -106,6 +106,52 @@ static void tool(FILE *f, const char *prefix,
 	doubles(f, prefix, "tool_loop_centre", t->loop_centre, 3);
 }
 
+/* Guided replay's expert's tool, while it shows one (guide.h). */
+static void expert(FILE *f, const char *prefix,
+		   const struct endosim_guide_state *g)
+{
+	if (g->expert_kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	fprintf(f, "%sexpert_kind=%u\n%sexpert_depth_m=%.9g\n"
+		"%sexpert_opening=%.9g\n%sexpert_pedal=%u\n"
+		"%sexpert_loop_m=%.9g\n", prefix, g->expert_kind, prefix,
+		g->expert_depth_m, prefix, g->expert_opening, prefix,
+		g->expert_pedal, prefix, g->expert_loop_m);
+	doubles(f, prefix, "expert_tip", g->expert_tip, 3);
+}
+
+/* What the tools left in the colon, whatever is in hand. */
+static void left(FILE *f, const char *prefix,
+		 const struct endosim_tool_state *t)
+{
+	const char *sep = "";
+
+	if (t->bleeding > 0) {
+		fprintf(f, "%stool_bleeding=%u\n", prefix, t->bleeding);
+		doubles(f, prefix, "tool_bleed_at", t->bleed_at, 3);
+	}
+	if (t->clips > 0) {
+		fprintf(f, "%stool_clips=%u\n", prefix, t->clips);
+		doubles(f, prefix, "tool_clip_at", t->clip_at, 3);
+	}
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		const double *x = t->polyp[i].at;
+
+		if (t->polyp[i].state != ENDOSIM_POLYP_CUT) {
+			continue;
+		}
+		if (!*sep) {
+			fprintf(f, "%stool_lying=", prefix);
+		}
+		fprintf(f, "%s%u:%.9g,%.9g,%.9g", sep, i, x[0], x[1], x[2]);
+		sep = ";";
+	}
+	if (*sep) {
+		fputc('\n', f);
+	}
+}
+
 void state_text_print(FILE *f, const char *prefix,
 		      const struct endosim_state *st)
 {
@@ -120,5 +166,7 @@ void state_text_print(FILE *f, const char *prefix,
 	haptics(f, prefix, &st->haptics);
 	rod(f, prefix, st);
 	tool(f, prefix, &st->tool);
+	left(f, prefix, &st->tool);
+	expert(f, prefix, &st->guide);
 	points(f, prefix, "tube", st->scope.tube, ENDOSIM_TUBE_POINTS);
 }

@@ -14,8 +14,13 @@
  * points in use as "x,y,z" separated by ';'), rod_roll (as many, by ','),
  * rod_node (its nodes in use, as rod_point); with a tool in the working
  * channel, tool_kind, tool_depth_m, tool_opening, tool_pedal, tool_loop_m,
- * tool_tip, tool_loop_centre (3); and, last, tube: the 128 points as
- * "x,y,z" separated by ';'.
+ * tool_tip, tool_loop_centre (3); what the tools left, tool in hand or
+ * not: while any bleeds tool_bleeding and tool_bleed_at (3), with a clip
+ * placed tool_clips and tool_clip_at (3), with a polyp cut and lying
+ * tool_lying (each as "K:x,y,z", K its index, separated by ';'); with
+ * guided replay's expert's tool shown, expert_kind, expert_depth_m,
+ * expert_opening, expert_pedal, expert_loop_m, expert_tip (3); and, last,
+ * tube: the 128 points as "x,y,z" separated by ';'.
  */
 #ifndef ENDOSIM_STATE_TEXT_H
 #define ENDOSIM_STATE_TEXT_H

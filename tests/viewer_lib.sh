@@ -91,6 +91,25 @@ view_rect() {
 		sed -n "s/^$1=//p" | tr ',' ' '
 }
 
+# view_channel: the region where the working channel's tools show in the
+# endoscopic view of $VIEW_OUT's layout: a disc at 5 o'clock (the
+# channel's default clock), 0.62 of the way out, a twelfth of the view's
+# width across.
+view_channel() {
+	local x y w h
+	read -r x y w h < <(view_rect endo)
+	awk -v cx=$((x + w / 2)) -v cy=$((y + h / 2)) -v r=$((w / 2)) 'BEGIN {
+		a = 150 * atan2(0, -1) / 180
+		printf "disc:%d,%d,%d\n", cx + 0.62 * r * sin(a),
+			cy - 0.62 * r * cos(a), r / 12 }'
+}
+
+# png_changed FILE OTHER REGION: the share of REGION's pixels that differ
+# between two pictures (png_stats --diff).
+png_changed() {
+	"$PNG_STATS" "$1" --diff "$2" "$3" | sed -n 's/.* changed=\([^ ]*\).*/\1/p'
+}
+
 # png_value FILE REGION KEY: one statistic of png_stats.
 png_value() {
 	"$PNG_STATS" "$1" "$2" | sed -n "s/.* $3=\([^ ]*\).*/\1/p"

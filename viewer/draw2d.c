@@ -201,6 +201,21 @@ void draw2d_triangle(struct draw2d *d, const float xy[6],
 	}
 }
 
+void draw2d_disc(struct draw2d *d, float x, float y, float r,
+		 const float rgba[4])
+{
+	const int n = 16;
+
+	for (int k = 0; k < n; k++) {
+		float a0 = (float)(2 * M_PI * k / n);
+		float a1 = (float)(2 * M_PI * (k + 1) / n);
+		float xy[6] = { x, y, x + r * cosf(a0), y + r * sinf(a0),
+				x + r * cosf(a1), y + r * sinf(a1) };
+
+		draw2d_triangle(d, xy, rgba);
+	}
+}
+
 void draw2d_line(struct draw2d *d, float x0, float y0, float x1, float y1,
 		 float width, const float rgba[4])
 {

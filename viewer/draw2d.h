@@ -28,6 +28,10 @@ void draw2d_rect(struct draw2d *d, float x, float y, float w, float h,
 void draw2d_triangle(struct draw2d *d, const float xy[6],
 		     const float rgba[4]);
 
+/* A disc of radius R pixels centred at (X, Y), 16 triangles round. */
+void draw2d_disc(struct draw2d *d, float x, float y, float r,
+		 const float rgba[4]);
+
 /* A segment WIDTH pixels wide. */
 void draw2d_line(struct draw2d *d, float x0, float y0, float x1, float y1,
 		 float width, const float rgba[4]);

@@ -505,6 +505,7 @@ void endo_camera(const struct model *m, const struct endosim_state *st,
 	liquid_of(m, &st->patient, cam);
 	vec3_sub(shift, cam->eye, sc->tip);
 	toolview_build(&st->tool, sc, shift, &cam->tool);
+	toolview_build_ghost(&st->guide, sc, shift, &cam->expert);
 }
 
 static void set_uniforms(const struct program *p,
@@ -695,18 +696,25 @@ static const struct blob polyp_blobs[][2] = {
 	[MODEL_POLYP_FLAT] = { { 0.0, { 1, 1, 0.3 } } },
 };
 
-static uint32_t draw_polyp(struct endo *e, const struct model *m,
-			   const struct model_polyp *p,
+/* A cut polyp, lying free: its body alone, flattened on the wall. */
+static const struct blob lying_blob[2] = { { 0.0, { 1, 1, 0.85 } } };
+
+/*
+ * Polyp P's blobs BL (offsets along N, in its radii) from AT on the wall
+ * (N out of it, unit): what is not out of sight, in its segment's pools'
+ * program. The triangles drawn.
+ */
+static uint32_t draw_blobs(struct endo *e, const struct model *m,
+			   const struct model_polyp *p, const struct blob *bl,
+			   const double at[3], const double n[3],
 			   const struct endo_liquid *l,
 			   const struct portal_view *v)
 {
-	size_t i = model_sample_at(m, p->s_m);
-	double r = p->diameter_m / 2, at[3], n[3], x[3], y[3], c[3], s[3];
+	double r = p->diameter_m / 2, x[3], y[3], c[3], s[3];
 	int seg = (int)(model_region_at(m, p->s_m) - m->region);
 	const struct program *prog;
 	uint32_t tris = 0;
 
-	model_wall(m, i, p->angle_rad, at, n);
 	if (!portal_sphere_visible(v, at, 3 * r)) {
 		return 0;
 	}
@@ -714,15 +722,13 @@ static uint32_t draw_polyp(struct endo *e, const struct model *m,
 				  vec3_dot(at, l->up) - 3 * r));
 	set_level(prog, false, seg < ENDOSIM_SEGMENTS ? l->level_m[seg] :
 							ENDO_DRY_M);
-	vec3_copy(x, centreline_sample(m->cl, i)->t);
+	vec3_copy(x, centreline_sample(m->cl, model_sample_at(m, p->s_m))->t);
 	vec3_axpy(x, x, -vec3_dot(x, n), n);
 	vec3_normalize(x);
 	vec3_cross(y, n, x);
-	for (int b = 0; b < 2 && polyp_blobs[p->shape][b].radii[0] > 0; b++) {
-		const struct blob *bl = &polyp_blobs[p->shape][b];
-
-		vec3_axpy(c, at, bl->offset * r, n);
-		vec3_scale(s, bl->radii, r);
+	for (int b = 0; b < 2 && bl[b].radii[0] > 0; b++) {
+		vec3_axpy(c, at, bl[b].offset * r, n);
+		vec3_scale(s, bl[b].radii, r);
 		set_model(prog, x, y, n, s, c, polyp_tint);
 		glDrawElements(GL_TRIANGLES, SHAPES_SPHERE_INDICES,
 			       GL_UNSIGNED_INT, NULL);
@@ -731,37 +737,81 @@ static uint32_t draw_polyp(struct endo *e, const struct model *m,
 	return tris;
 }
 
-/* The case's polyps but those retrieved (CAM's tool: gone). */
+/* Polyp P where the case put it, standing on the wall. */
+static uint32_t draw_polyp(struct endo *e, const struct model *m,
+			   const struct model_polyp *p,
+			   const struct endo_liquid *l,
+			   const struct portal_view *v)
+{
+	double at[3], n[3];
+
+	model_wall(m, model_sample_at(m, p->s_m), p->angle_rad, at, n);
+	return draw_blobs(e, m, p, polyp_blobs[p->shape], at, n, l, v);
+}
+
+/* Polyp P cut, lying at LIE (its body's centre): flattened towards the
+ * wall, away from its ring's centre. */
+static uint32_t draw_lying(struct endo *e, const struct model *m,
+			   const struct model_polyp *p, const float lie[3],
+			   const struct endo_liquid *l,
+			   const struct portal_view *v)
+{
+	const double *o =
+		centreline_sample(m->cl, model_sample_at(m, p->s_m))->p;
+	double at[3] = { lie[0], lie[1], lie[2] }, n[3];
+
+	vec3_sub(n, o, at); /* out of the wall: towards the lumen's axis */
+	if (!(vec3_normalize(n) > 0)) {
+		return 0;
+	}
+	return draw_blobs(e, m, p, lying_blob, at, n, l, v);
+}
+
+/* The case's polyps: those cut where they lie, those retrieved not at
+ * all (CAM's tool: lying, gone), the rest where they stand. */
 static uint32_t draw_polyps(struct endo *e, const struct model *m,
 			    const struct endo_camera *cam,
 			    const struct portal_view *v)
 {
+	const struct toolview *tv = &cam->tool;
 	uint32_t tris = 0;
 
 	glBindVertexArray(e->sphere_vao);
 	for (int k = 0; k < m->polyps; k++) {
-		if (k < ENDOSIM_POLYPS && (cam->tool.gone >> k & 1u)) {
+		bool mine = k < ENDOSIM_POLYPS;
+
+		if (mine && (tv->gone >> k & 1u)) {
 			continue;
 		}
-		tris += draw_polyp(e, m, &m->polyp[k], &cam->liquid, v);
+		tris += mine && (tv->lying >> k & 1u) ?
+				draw_lying(e, m, &m->polyp[k], tv->lie[k],
+					   &cam->liquid, v) :
+				draw_polyp(e, m, &m->polyp[k], &cam->liquid,
+					   v);
 	}
 	return tris;
 }
 
 /*
- * The tool (CAM's parts): each a tube through its points on the plain
+ * A tool (TV's parts): each a tube through its points on the plain
  * texture in its colour, the steel glossier than the plastic; with the
- * dry walls' program (a tool under a pool's surface is drawn clear).
+ * dry walls' program (a tool under a pool's surface is drawn clear). A
+ * ghost (the expert's) translucent over what is drawn, writing no depth.
  */
-static uint32_t draw_tool(struct endo *e, const struct endo_camera *cam)
+static uint32_t draw_tool(struct endo *e, const struct toolview *tv)
 {
 	static float v[TOOLVIEW_POINTS * (SHAPES_TUBE_SIDES + 1)][9];
-	const struct toolview *tv = &cam->tool;
 	const struct program *p;
 	uint32_t tris = 0;
 
 	if (!tv->parts) {
 		return 0;
+	}
+	if (tv->ghost) {
+		glEnable(GL_BLEND);
+		glBlendColor(0, 0, 0, TOOLVIEW_GHOST_ALPHA);
+		glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+		glDepthMask(GL_FALSE);
 	}
 	p = use(e, PROG_DRY);
 	set_identity(p); /* a polyp's may be set */
@@ -783,6 +833,8 @@ static uint32_t draw_tool(struct endo *e, const struct endo_camera *cam)
 			       GL_UNSIGNED_INT, NULL);
 		tris += (uint32_t)(2 * (n - 1) * SHAPES_TUBE_SIDES);
 	}
+	glDisable(GL_BLEND);
+	glDepthMask(GL_TRUE);
 	return tris; /* set_programs() sets the gloss again next frame */
 }
 
@@ -808,6 +860,29 @@ static void end(void)
 	glDisable(GL_SCISSOR_TEST);
 }
 
+bool endo_project(const struct endo_camera *cam, struct endo_rect r,
+		  const double x[3], double px[2])
+{
+	double d[3], right[3], up[3], v[3], len, th, l;
+
+	vec3_sub(d, x, cam->eye);
+	vec3_cross(right, cam->dir, cam->up);
+	if (!(vec3_normalize(right) > 0) || !((len = vec3_norm(d)) > 0)) {
+		return false;
+	}
+	vec3_cross(up, right, cam->dir);
+	vec3_set(v, vec3_dot(d, right), vec3_dot(d, up), -vec3_dot(d, cam->dir));
+	th = acos(fmax(-1, fmin(1, -v[2] / len)));
+	l = hypot(v[0], v[1]);
+	if (th > 1.95) { /* behind the lens (the shader's) */
+		return false;
+	}
+	th /= ENDO_FOV_DEG / 2 * M_PI / 180;
+	px[0] = r.x + (1 + (l > 0 ? v[0] / l : 0) * th) / 2 * r.w;
+	px[1] = r.y + (1 + (l > 0 ? v[1] / l : 1) * th) / 2 * r.h;
+	return true;
+}
+
 void endo_draw(struct endo *e, const struct model *m, const struct lod *l,
 	       const struct gpumesh *g, const struct endo_camera *cam,
 	       struct endo_rect r, struct endo_stats *st)
@@ -827,6 +902,7 @@ void endo_draw(struct endo *e, const struct model *m, const struct lod *l,
 	glBindTexture(GL_TEXTURE_2D, e->texture);
 	st->triangles = draw_colon(e, m, l, g, cam, &v, st);
 	st->triangles += draw_polyps(e, m, cam, &v);
-	st->triangles += draw_tool(e, cam);
+	st->triangles += draw_tool(e, &cam->tool);
+	st->triangles += draw_tool(e, &cam->expert);
 	end();
 }

@@ -105,6 +105,7 @@ struct endo_camera {
 	double exposure; /* the light's automatic level, 0..1 */
 	struct endo_liquid liquid;
 	struct toolview tool; /* the working channel's, with the lens */
+	struct toolview expert; /* guided replay's expert's, a ghost */
 };
 
 struct endo_stats {
@@ -129,6 +130,16 @@ void endo_destroy(struct endo *e);
  * of the nine segments). */
 void endo_camera(const struct model *m, const struct endosim_state *st,
 		 struct endo_camera *cam);
+
+/*
+ * Where endo_draw() puts point X (colon frame, m) of CAM's view into R:
+ * its pixel PX (x right, y up from R's bottom-left, GL's way), as the
+ * vertex shader maps it (the angle from the view's axis over the image's
+ * half angle, in the direction about the axis). False for a point at the
+ * lens or behind it. No GL: for tests and the closing lines.
+ */
+bool endo_project(const struct endo_camera *cam, struct endo_rect r,
+		  const double x[3], double px[2]);
 
 /*
  * Draws the view from CAM into R (a square is best: the image circle

@@ -6,11 +6,13 @@
  *   endoview [--socket PATH] [--shm-name NAME] [--view endo|overview|both]
  *            [--size WxH] [--screenshot FILE.png] [--frames N]
  *            [--no-vsync] [--max-fps N] [--font FILE.ttf] [--stats]
- *            [--mute] [--voice DIR]
+ *            [--mute] [--voice DIR] [--trainee NAME | --no-login]
  *            [--print-state] [--replay FILE [--seek S] [--speed X] [--paused]]
  *
  * A separate process: it only reads the daemon's shared memory and asks
- * the sockets, so whatever happens to it, the force loop goes on. With
+ * the sockets, so whatever happens to it, the force loop goes on. Where
+ * the rig's accounts hold a trainee, it asks who is training (login.h,
+ * loginview.h) and logs them out when it quits, if it logged them in. With
  * --replay it plays a recorded session instead (replay.h), with no daemon
  * and no socket. The patient's voice (voice.h) sounds through the audio
  * device (sound.h); without one, endoview says so once and goes on
@@ -45,6 +47,8 @@
 #include "viewer/lensfx.h"
 #include "viewer/link.h"
 #include "viewer/lod.h"
+#include "viewer/login.h"
+#include "viewer/loginview.h"
 #include "base/log.h"
 #include "viewer/mapview.h"
 #include "viewer/model.h"
@@ -102,6 +106,8 @@ struct app {
 	struct colon_set colon;
 	struct input_hand hand;
 	struct overview_orbit orbit;
+	struct login login;     /* who is training */
+	bool logged_in_here;    /* this viewer logged the trainee in */
 	enum link_status status;
 	bool loading, help, map_shown;
 	uint32_t triangles, triangles_max;
@@ -112,6 +118,9 @@ struct app {
 	uint64_t replay_ns; /* the replay's clock last run on */
 	const struct endosim_state *shown; /* in the last frame */
 	bool overview_shown;    /* the last frame drew the overview */
+	bool endo_shown;        /* ... the endoscopic view: */
+	struct endo_camera cam; /* from this camera */
+	struct endo_rect endo_rect; /* into this (GL's origin) */
 	long frame;
 	long timed_from; /* the first frame the figures count */
 	uint64_t pass_ns; /* --pass-times: when the last pass finished */
@@ -275,6 +284,7 @@ static void update_link(struct app *a, uint64_t now)
 	if (link_daemon_changed(a->link)) {
 		held = 0; /* a new daemon's scene ids start again */
 		colon_free(&a->colon);
+		rigctl_trainee_now(a->rig); /* and nobody trains there yet */
 	}
 	if (a->loading) {
 		load_colon(a, now);
@@ -359,6 +369,10 @@ static void drive(struct app *a, const struct input_controls *c,
 	}
 	dt = a->hand_ns ? (double)(now - a->hand_ns) / ENDOSIM_NS_PER_S : 0;
 	a->hand_ns = now;
+	if (a->login.stage == LOGIN_ASK) {
+		a->hand.engaged = false; /* the form: nothing drives */
+		return;
+	}
 	grip = input_step(&a->hand, c, st, fmin(dt, 0.1), now, force);
 	if (grip || c->valves || a->valves) {
 		rigctl_hand(a->rig, grip ? force : NULL, c->valves,
@@ -367,6 +381,90 @@ static void drive(struct app *a, const struct input_controls *c,
 					LAPSE_MS, now);
 	}
 	a->valves = c->valves;
+}
+
+/* ------------------------------------------------------------ login */
+
+/* The form's name and PIN sent: who trains now, or the refusal shown. */
+static void send_login(struct app *a, uint64_t now)
+{
+	struct login *l = &a->login;
+	char trainee[256] = "", words[256];
+
+	if (rigctl_login(a->rig, l->name, l->pin, now, trainee, words,
+			 sizeof(words))) {
+		log_info("login of %s refused: %s", l->name, words);
+		login_refused(l, words);
+		return;
+	}
+	a->logged_in_here = true;
+	login_accepted(l, trainee);
+}
+
+/* C: who trains logs out; the form asks for the next. */
+static void send_logout(struct app *a, uint64_t now)
+{
+	char words[256];
+
+	if (rigctl_logout(a->rig, now, words, sizeof(words))) {
+		log_info("logout refused: %s", words);
+		return;
+	}
+	a->logged_in_here = false;
+	login_daemon(&a->login, true, "");
+}
+
+static void log_stage(const struct login *l, enum login_stage was)
+{
+	if (l->stage == was) {
+		return;
+	}
+	if (l->stage == LOGIN_ASK) {
+		log_info("login: who is training? (the login screen)");
+	} else if (l->stage == LOGIN_IN) {
+		log_info("login: %s trains at the rig", l->trainee);
+	} else {
+		log_info("login: nobody asked (no trainee's account, or no "
+			 "daemon)");
+	}
+}
+
+/*
+ * Who is training: what the daemon says (every second), what was typed
+ * into the form in order (each Enter that completes it sends the login),
+ * --trainee's login once the daemon answers, C's logout.
+ */
+static void update_login(struct app *a, const struct ui_actions *act,
+			 uint64_t now)
+{
+	struct login *l = &a->login;
+	enum login_stage was = l->stage;
+	char trainee[ACCOUNTS_NAME_MAX + 1];
+	bool asks = false;
+	int r;
+
+	r = rigctl_trainee(a->rig, now, &asks, trainee, sizeof(trainee));
+	if (r == 1) {
+		login_daemon(l, asks, trainee);
+	} else if (r < 0 && a->status == LINK_NO_DAEMON) {
+		login_daemon(l, false, ""); /* a slow answer changes nothing */
+	}
+	for (int k = 0; k < act->n_typed; k++) {
+		uint32_t c = act->typed[k];
+
+		if (c < UI_TYPED_KEY) {
+			login_type(l, c);
+		} else if (login_key(l, (enum login_key)(c - UI_TYPED_KEY))) {
+			send_login(a, now);
+		}
+	}
+	if (login_scripted(l)) {
+		send_login(a, now);
+	}
+	if (act->switch_trainee && l->stage == LOGIN_IN) {
+		send_logout(a, now);
+	}
+	log_stage(l, was);
 }
 
 /* T: the patient to the next position (after the one it lies in or
@@ -499,6 +597,7 @@ static void fill_info(const struct app *a, const struct endosim_state *st,
 				  : 0,
 		.help = a->help,
 		.compact = a->opt.view == HUD_VIEW_BOTH,
+		.trainee = a->login.stage == LOGIN_IN ? a->login.trainee : "",
 	};
 	link_patient_limits(a->link, &in->relief_pa, &in->strength_n_per_m);
 }
@@ -541,6 +640,7 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 
 	a->triangles = 0;
 	a->overview_shown = c->model && lay->overview.w;
+	a->endo_shown = false;
 	if (!c->model) {
 		return;
 	}
@@ -551,6 +651,9 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 
 		endo_camera(c->model, st, &cam);
 		endo_draw(a->endo, c->model, c->lod, c->gpu, &cam, in, &es);
+		a->endo_shown = true;
+		a->cam = cam;
+		a->endo_rect = lay->endo;
 		pass_done(a, TIMING_PASS_IMAGE);
 		lensfx_draw(a->lensfx, &st->patient, in, lens, t_s);
 		pass_done(a, TIMING_PASS_LENS);
@@ -600,6 +703,8 @@ static void render(struct app *a, const struct endosim_state *st,
 		mapview_draw(a->mapview, a->d2d, w, h,
 			     a->status == LINK_LIVE ? st : NULL);
 	}
+	loginview_draw(a->d2d, &a->login, w, h, (double)now /
+		       ENDOSIM_NS_PER_S);
 	draw2d_end(a->d2d);
 	pass_done(a, TIMING_PASS_PANEL);
 }
@@ -651,6 +756,7 @@ static int frame(struct app *a)
 	bool current;
 	int w, h, err = 0;
 
+	ui_set_typing(a->ui, a->login.stage == LOGIN_ASK);
 	glfwPollEvents();
 	ui_framebuffer_size(a->ui, &w, &h);
 	hud_layout((enum hud_view)(a->opt.view % HUD_VIEWS), w, h, &lay);
@@ -660,6 +766,7 @@ static int frame(struct app *a)
 		st = update_replay(a, now);
 	} else {
 		update_link(a, now);
+		update_login(a, &acts, now);
 		st = link_state(a->link);
 		drive(a, &c, st, now);
 		command_patient(a, &acts, st, now);
@@ -722,21 +829,71 @@ static void report(const struct app *a)
 	viewstats_print(stdout, &s);
 }
 
-/* What the panel said, and where the overview drew the scope and the
- * colon, in the last frame (hud_said(), overview_print()). */
+/* "endo: WHAT at X,Y": where the endoscopic view put point AT, in the
+ * image's pixels (top-left origin, as in the PNG), if in front of it. */
+static void report_point(const struct app *a, int fb_h, const char *what,
+			 const double at[3])
+{
+	double px[2];
+
+	if (endo_project(&a->cam, a->endo_rect, at, px)) {
+		printf("endo: %s at %.1f,%.1f\n", what, px[0], fb_h - px[1]);
+	}
+}
+
+/* Where the endoscopic view drew what the tools left: the bleeding
+ * point, the last clip, each cut polyp lying in the lumen. */
+static void report_left(const struct app *a, int fb_h)
+{
+	const struct toolview *tv = &a->cam.tool;
+	const struct endosim_tool_state *t = &a->shown->tool;
+	char what[32];
+
+	if (t->bleeding > 0) {
+		report_point(a, fb_h, "bleeding", t->bleed_at);
+	}
+	if (t->clips > 0) {
+		report_point(a, fb_h, "clip", t->clip_at);
+	}
+	for (int k = 0; k < ENDOSIM_POLYPS; k++) {
+		double at[3];
+
+		if (!(tv->lying >> k & 1u)) {
+			continue;
+		}
+		at[0] = tv->lie[k][0];
+		at[1] = tv->lie[k][1];
+		at[2] = tv->lie[k][2];
+		snprintf(what, sizeof(what), "polyp %d lying", k);
+		report_point(a, fb_h, what, at);
+	}
+}
+
+/* What the panel said, where the endoscopic view drew what the tools
+ * left and the overview the scope and the colon, in the last frame
+ * (hud_said(), report_left(), overview_print()). */
 static void report_drawn(const struct app *a)
 {
 	const char *said;
 	int w, h;
 
+	char login[512];
+
 	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
 		printf("hud: %s\n", said);
+	}
+	if (!a->replay) {
+		login_said(&a->login, login, sizeof(login));
+		printf("login: %s\n", login);
 	}
 	if (a->map_shown) {
 		printf("map: %s\n", mapview_said(a->mapview));
 	}
+	ui_framebuffer_size(a->ui, &w, &h);
+	if (a->endo_shown) {
+		report_left(a, h);
+	}
 	if (a->overview_shown) {
-		ui_framebuffer_size(a->ui, &w, &h);
 		overview_print(a->overview, a->colon.model, a->shown, h,
 			       stdout);
 	}
@@ -803,6 +960,16 @@ static int run(struct app *a)
 		report(a);
 	}
 	report_state(a);
+	if (a->logged_in_here && a->login.stage == LOGIN_IN) {
+		char words[256];
+
+		if (rigctl_logout(a->rig, mono_ns(), words, sizeof(words))) {
+			log_info("logout at exit refused: %s", words);
+		} else {
+			log_info("login: %s logged out as endoview quits",
+				 a->login.trainee);
+		}
+	}
 	return r < 0 ? r : 0;
 }
 
@@ -903,6 +1070,8 @@ int main(int argc, char **argv)
 	if (a.opt.replay && open_replay(&a)) {
 		goto out;
 	}
+	login_init(&a.login, a.opt.no_login || a.opt.replay, a.opt.trainee,
+		   a.opt.trainee ? getenv("ENDOSIM_PIN") : NULL);
 	if (!a.opt.replay) {
 		a.link = link_create(a.opt.socket, a.opt.shm_name);
 		a.rig = rigctl_create(a.opt.socket);

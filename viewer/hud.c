@@ -12,6 +12,7 @@
 #include "viewer/burstmark.h"
 #include "viewer/painview.h"
 #include "viewer/patientview.h"
+#include "viewer/toolview.h"
 
 #define CHART_SAMPLES 512
 #define CHART_DRAWN 240 /* samples across the chart */
@@ -41,6 +42,7 @@ const char *const hud_keys[] = {
 	"M\tthe unseen-mucosa map (recording)",
 	"U\tthe patient's voice off, on",
 	"P\tsave a picture (PNG, here)",
+	"C\tlog out: another trainee logs in",
 	"H  Q\tthis help, quit",
 	NULL,
 };
@@ -64,6 +66,7 @@ static const float dim[4] = { 0.55f, 0.58f, 0.66f, 1 };
 static const float green[4] = { 0.30f, 0.90f, 0.42f, 1 };
 static const float amber[4] = { 1.00f, 0.70f, 0.15f, 1 };
 static const float red[4] = { 1.00f, 0.27f, 0.22f, 1 };
+static const float ghost[4] = { 0.35f, 0.70f, 1.00f, 1 }; /* the expert's */
 static const float track[4] = { 1, 1, 1, 0.09f };
 static const float shade[4] = { 0, 0, 0, 0.72f };
 static const float perforated_rgb[4] = { 0.85f, 0.07f, 0.07f, 1 };
@@ -253,6 +256,11 @@ static void draw_state(struct pen *p, const struct hud_info *in)
 	snprintf(text, sizeof(text), "endosim  %s%s", in->m ? in->m->name : "",
 		 rod(in->st) ? "  rod model" : "");
 	line(p, FONT_SMALL, dim, text);
+	if (in->trainee && *in->trainee) {
+		snprintf(text, sizeof(text), "trainee %s  (C: log out)",
+			 in->trainee);
+		line(p, FONT_SMALL, green, text);
+	}
 	if (!in->st || in->link == LINK_NO_DAEMON) {
 		line(p, FONT_LARGE, red, "NO DAEMON");
 		line(p, FONT_SMALL, dim, in->link_problem);
@@ -374,38 +382,53 @@ static void draw_where(struct pen *p, const struct hud_info *in)
 	line(p, FONT_SMALL, dim, text);
 }
 
-/* The tool in the channel, as published: which, how far out, the
- * handle, the snare's loop, the pedal (amber while down), a polyp held. */
-static void draw_tool(struct pen *p, const struct endosim_tool_state *t)
+/* Tool T in words after LEAD ("tool", "expert"): which, how far out, the
+ * handle, the snare's loop, a polyp held, the pedal. */
+static void tool_words(const char *lead, const struct endosim_tool_state *t,
+		       char *text, size_t size)
 {
-	char text[256]; /* the longest is under 120 */
-	int n;
+	int n = snprintf(text, size, "%s: %s", lead, names_tool(t->kind));
 
-	if (t->kind == ENDOSIM_TOOL_NONE || t->kind >= ENDOSIM_TOOLS) {
-		return;
-	}
-	n = snprintf(text, sizeof(text), "tool: %s", names_tool(t->kind));
 	if (t->kind == ENDOSIM_TOOL_SNARE) {
-		n += snprintf(text + n, sizeof(text) - (size_t)n, " %.0f mm",
+		n += snprintf(text + n, size - (size_t)n, " %.0f mm",
 			      t->snare_m * 1000);
 	}
-	n += snprintf(text + n, sizeof(text) - (size_t)n,
+	n += snprintf(text + n, size - (size_t)n,
 		      t->depth_m > 0 ? ", %.0f mm out" : ", in the channel",
 		      t->depth_m * 1000);
-	n += snprintf(text + n, sizeof(text) - (size_t)n, ", handle %.0f %%",
+	n += snprintf(text + n, size - (size_t)n, ", handle %.0f %%",
 		      t->opening * 100);
 	if (t->kind == ENDOSIM_TOOL_SNARE && t->loop_m > 0) {
-		n += snprintf(text + n, sizeof(text) - (size_t)n,
-			      ", loop %.0f mm", t->loop_m * 1000);
+		n += snprintf(text + n, size - (size_t)n, ", loop %.0f mm",
+			      t->loop_m * 1000);
 	}
 	if (t->captured >= 0) {
-		n += snprintf(text + n, sizeof(text) - (size_t)n,
-			      ", holding polyp %d", t->captured + 1);
+		n += snprintf(text + n, size - (size_t)n, ", holding polyp %d",
+			      t->captured + 1);
 	}
 	if (t->pedal) {
-		snprintf(text + n, sizeof(text) - (size_t)n, ", pedal down");
+		snprintf(text + n, size - (size_t)n, ", pedal down");
 	}
-	line(p, FONT_SMALL, t->pedal ? amber : dim, text);
+}
+
+/* The tool in the channel, as published (amber while the pedal is
+ * down); guided replay's expert's under it, in its ghost's light blue
+ * (toolview.h), amber likewise. */
+static void draw_tool(struct pen *p, const struct endosim_state *st)
+{
+	char text[256]; /* the longest is under 130 */
+	struct endosim_tool_state expert;
+
+	if (st->tool.kind != ENDOSIM_TOOL_NONE &&
+	    st->tool.kind < ENDOSIM_TOOLS) {
+		tool_words("tool", &st->tool, text, sizeof(text));
+		line(p, FONT_SMALL, st->tool.pedal ? amber : dim, text);
+	}
+	toolview_expert(&st->guide, &expert);
+	if (expert.kind != ENDOSIM_TOOL_NONE && expert.kind < ENDOSIM_TOOLS) {
+		tool_words("expert", &expert, text, sizeof(text));
+		line(p, FONT_SMALL, expert.pedal ? amber : ghost, text);
+	}
 }
 
 /* While a point bleeds (the tools' doing: tool.h), in red: how many, the
@@ -848,7 +871,7 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 			draw_moved(p, in);
 		}
 		draw_loop(p, in, t_s);
-		draw_tool(p, &in->st->tool);
+		draw_tool(p, in->st);
 		draw_bleeding(p, &in->st->tool);
 		gap(p);
 		if (in->help) {

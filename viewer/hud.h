@@ -105,6 +105,8 @@ struct hud_info {
 	double relief_pa, strength_n_per_m;
 	const char *voice;         /* the patient's voice: on, muted, or why
 				      there is none (NULL: not said) */
+	const char *trainee;       /* who trains at the rig (login.h); NULL
+				      or "": nobody, no line */
 };
 
 struct hud;

@@ -312,21 +312,6 @@ static void draw_regions(const struct mapview *v, struct draw2d *d,
 }
 
 /* A disc of radius R at (X, Y), as a fan of triangles. */
-static void disc(struct draw2d *d, float x, float y, float r,
-		 const float rgba[4])
-{
-	const int n = 16;
-
-	for (int k = 0; k < n; k++) {
-		float a0 = (float)(2 * M_PI * k / n);
-		float a1 = (float)(2 * M_PI * (k + 1) / n);
-		float xy[6] = { x, y, x + r * cosf(a0), y + r * sinf(a0),
-				x + r * cosf(a1), y + r * sinf(a1) };
-
-		draw2d_triangle(d, xy, rgba);
-	}
-}
-
 static void draw_polyps(const struct mapview *v, struct draw2d *d,
 			const struct grid *g)
 {
@@ -338,8 +323,8 @@ static void draw_polyps(const struct mapview *v, struct draw2d *d,
 		float y = g->y + (float)((a < 0 ? a + 2 * M_PI : a) /
 					 (2 * M_PI)) * g->h;
 
-		disc(d, x, y, r + 2, black);
-		disc(d, x, y, r, polyp_rgb);
+		draw2d_disc(d, x, y, r + 2, black);
+		draw2d_disc(d, x, y, r, polyp_rgb);
 	}
 }
 

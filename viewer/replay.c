@@ -17,6 +17,20 @@
 #include "session/sessioninputs.h"
 
 
+/* A record whose cycle had tool events, and where a clip it placed went. */
+struct tool_mark {
+	size_t rec;
+	uint32_t events;       /* enum endosim_tool_event bits */
+	int32_t polyp;         /* the polyp they concern, -1 none */
+	double clip_at[3];     /* a clip placed: its jaws' point */
+};
+
+/* A cut polyp's place as a record told it, when it changed. */
+struct place {
+	size_t rec;
+	float at[3];
+};
+
 struct replay {
 	struct session_file f;
 	struct scope_params scope; /* recorded with */
@@ -35,6 +49,11 @@ struct replay {
 	double relief_pa, strength_n_per_m; /* its [patient] */
 	struct tool_params tool_par; /* its [tool] */
 	struct tool tool;            /* its case's polyps placed for it */
+	struct tool_mark *marks;     /* the records with tool events */
+	size_t n_marks;
+	struct place *places;        /* each polyp's changes of place, */
+	size_t place_first[ENDOSIM_POLYPS], place_n[ENDOSIM_POLYPS]; /* its */
+	struct endosim_state scratch;
 };
 
 static const char *read_error(int r)
@@ -101,6 +120,102 @@ static int build_colon(struct replay *r, const char *path, char *err,
 	return 0;
 }
 
+/* Where the clip placed in record REC went: its jaws' point on the pose
+ * the record's tip and tool depth give (tool.h), into AT. */
+static void clip_place(struct replay *r, size_t rec, double at[3])
+{
+	struct tool_pose pose;
+
+	session_record_to_state(&r->f.records[rec], &r->scratch);
+	tool_pose(&r->tool_par, &r->scratch.scope, r->scratch.tool.depth_m,
+		  &pose);
+	vec3_axpy(at, pose.tip, r->tool_par.clip_m, pose.dir);
+}
+
+/* The records with tool events, in order, the clips' places with them:
+ * 0, or -ENOMEM. */
+static int read_marks(struct replay *r)
+{
+	size_t n = 0;
+
+	for (size_t i = 0; i < r->f.n_records; i++) {
+		n += r->f.records[i].tool_events != 0;
+	}
+	r->marks = calloc(n ? n : 1, sizeof(*r->marks));
+	if (!r->marks) {
+		return -ENOMEM;
+	}
+	for (size_t i = 0; i < r->f.n_records; i++) {
+		const struct session_record *rec = &r->f.records[i];
+		struct tool_mark *m = &r->marks[r->n_marks];
+
+		if (!rec->tool_events) {
+			continue;
+		}
+		*m = (struct tool_mark){ .rec = i, .events = rec->tool_events,
+					 .polyp = rec->tool_event_polyp };
+		if (rec->tool_events & ENDOSIM_TOOL_CLIP_PLACED) {
+			clip_place(r, i, m->clip_at);
+		}
+		r->n_marks++;
+	}
+	return 0;
+}
+
+/* The polyp record REC tells the place of, or -1. */
+static int told(const struct replay *r, const struct session_record *rec)
+{
+	int k = rec->tool_lying_polyp;
+
+	return k >= 0 && k < r->tool.polyps ? k : -1;
+}
+
+/* Walks the places the records tell, each polyp's changes only: counts
+ * them into R's place_n, or, with AT (each polyp's next slot), writes
+ * them into its places. */
+static void walk_places(struct replay *r, size_t *at)
+{
+	bool had[ENDOSIM_POLYPS] = { false };
+	float last[ENDOSIM_POLYPS][3];
+
+	for (size_t i = 0; i < r->f.n_records; i++) {
+		const struct session_record *rec = &r->f.records[i];
+		int k = told(r, rec);
+
+		if (k < 0 || (had[k] && !memcmp(last[k], rec->tool_lying_at,
+						sizeof(last[k])))) {
+			continue;
+		}
+		had[k] = true;
+		memcpy(last[k], rec->tool_lying_at, sizeof(last[k]));
+		if (!at) {
+			r->place_n[k]++;
+			continue;
+		}
+		r->places[at[k]++] = (struct place){
+			.rec = i, .at = { last[k][0], last[k][1], last[k][2] } };
+	}
+}
+
+/* Each polyp's changes of place as the records tell them, grouped by
+ * polyp in the records' order: 0, or -ENOMEM. */
+static int read_places(struct replay *r)
+{
+	size_t n = 0, at[ENDOSIM_POLYPS];
+
+	walk_places(r, NULL);
+	for (int k = 0; k < ENDOSIM_POLYPS; k++) {
+		r->place_first[k] = at[k] = n;
+		n += r->place_n[k];
+	}
+	r->places = calloc(n ? n : 1, sizeof(*r->places));
+	if (!r->places) {
+		return -ENOMEM;
+	}
+	walk_places(r, at);
+	return 0;
+}
+
 struct replay *replay_open(const char *path, char *err, size_t errsize)
 {
 	struct replay *r = calloc(1, sizeof(*r));
@@ -133,6 +248,10 @@ struct replay *replay_open(const char *path, char *err, size_t errsize)
 	sessioninputs_tool(&r->f, &r->tool_par);
 	tool_reset(&r->tool);
 	(void)tool_place_polyps(&r->tool, r->colon);
+	if (read_marks(r) || read_places(r)) {
+		snprintf(err, errsize, "%s: out of memory", path);
+		goto fail;
+	}
 	return r;
 fail:
 	replay_destroy(r);
@@ -144,6 +263,8 @@ void replay_destroy(struct replay *r)
 	if (!r) {
 		return;
 	}
+	free(r->marks);
+	free(r->places);
 	scene_destroy(r->scene);
 	colon_destroy(r->colon);
 	session_file_close(&r->f);
@@ -366,6 +487,106 @@ static void show_tool(struct replay *r)
 	vec3_axpy(t->loop_centre, pose.tip, loop_m / 2, pose.dir);
 }
 
+/* Of polyp K's places, the last told at or before record I; NULL none. */
+static const struct place *place_at(const struct replay *r, int k, size_t i)
+{
+	const struct place *p = &r->places[r->place_first[k]];
+	size_t lo = 0, hi = r->place_n[k]; /* the first told after I: lo */
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (p[mid].rec <= i) {
+			lo = mid + 1;
+		} else {
+			hi = mid;
+		}
+	}
+	return lo ? &p[lo - 1] : NULL;
+}
+
+/* The marks at or before record I. */
+static size_t marks_by(const struct replay *r, size_t i)
+{
+	size_t lo = 0, hi = r->n_marks;
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (r->marks[mid].rec <= i) {
+			lo = mid + 1;
+		} else {
+			hi = mid;
+		}
+	}
+	return lo;
+}
+
+/* The polyps, the bleeding points and the clips as record I's cycle had
+ * them, from the events up to it: each polyp held (the record's), cut,
+ * retrieved, bleeding and stopped by a clip or by itself as they said;
+ * the last clip where its jaws were; each cut polyp where the records
+ * last told it lay (where it was cut, before they do). */
+static void show_left(struct replay *r, size_t i)
+{
+	struct endosim_tool_state *t = &r->st.tool;
+	size_t n = marks_by(r, i);
+	double most = 0;
+
+	t->polyps = (uint32_t)r->tool.polyps;
+	for (size_t m = 0; m < n; m++) {
+		const struct tool_mark *mk = &r->marks[m];
+		struct endosim_tool_polyp *p = mk->polyp >= 0 &&
+			mk->polyp < r->tool.polyps ? &t->polyp[mk->polyp] : NULL;
+
+		if (mk->events & ENDOSIM_TOOL_CLIP_PLACED) {
+			t->clips++;
+			vec3_copy(t->clip_at, mk->clip_at);
+		}
+		if (!p) {
+			continue;
+		}
+		if (mk->events & ENDOSIM_TOOL_CUT) {
+			p->state = ENDOSIM_POLYP_CUT;
+			tool_polyp_body(&r->tool.polyp[mk->polyp],
+					&r->tool_par, p->at);
+		}
+		if (mk->events & ENDOSIM_TOOL_RETRIEVE) {
+			p->state = ENDOSIM_POLYP_RETRIEVED;
+		}
+		if (mk->events & ENDOSIM_TOOL_BLEED) {
+			p->bleed = ENDOSIM_BLEED_BLEEDING;
+			p->bleed_m3_s = tool_polyp_flow(
+				&r->tool.polyp[mk->polyp], &r->tool_par);
+		}
+		if (mk->events & (ENDOSIM_TOOL_CLIPPED | ENDOSIM_TOOL_STOPPED)) {
+			p->bleed = mk->events & ENDOSIM_TOOL_CLIPPED ?
+					   ENDOSIM_BLEED_CLIPPED :
+					   ENDOSIM_BLEED_STOPPED;
+			p->bleed_m3_s = 0;
+		}
+	}
+	for (int k = 0; k < r->tool.polyps; k++) {
+		struct endosim_tool_polyp *p = &t->polyp[k];
+		const struct place *at = place_at(r, k, i);
+
+		if (k == t->captured && p->state == ENDOSIM_POLYP_IN_PLACE) {
+			p->state = ENDOSIM_POLYP_CAPTURED;
+		}
+		if (at && p->state != ENDOSIM_POLYP_RETRIEVED) {
+			p->state = ENDOSIM_POLYP_CUT;
+			for (int d = 0; d < 3; d++) {
+				p->at[d] = at->at[d];
+			}
+		}
+		if (p->bleed_m3_s > most) {
+			most = p->bleed_m3_s;
+			vec3_copy(t->bleed_at, r->tool.polyp[k].base);
+		}
+		t->bleeding += p->bleed_m3_s > 0;
+	}
+}
+
 const struct endosim_state *replay_state(struct replay *r)
 {
 	size_t i = index_at(r, r->t_s);
@@ -378,6 +599,7 @@ const struct endosim_state *replay_state(struct replay *r)
 			rebuild_tube(r, i);
 		}
 		show_tool(r);
+		show_left(r, i);
 		r->shown = i;
 	}
 	return &r->st;

@@ -28,6 +28,20 @@
  * record along the rod's points (live, it is the rod's before the step
  * that made the points: a cycle's motion apart); no colon is bowed.
  *
+ * What the tools left (lib/model/tool.h), which a record does not hold
+ * whole, from the records up to the one shown (docs/SESSION_FORMAT.md):
+ * each polyp held (tool_captured), cut, retrieved, bleeding, clipped or
+ * stopped by the tool_events of its records; the points bleeding, their
+ * flow each (the stalk's, with the file's [tool]) and the strongest
+ * one's place, its polyp's base as tool_place_polyps() puts it on the
+ * rebuilt colon; the clips placed and the last one's place, its jaws'
+ * point on the pose of the record that placed it (tool_pose() of the
+ * recorded tip and tool depth); each cut polyp's place, the last that a
+ * record's tool_lying_polyp gave for it at or before (the place where it
+ * was cut before any does). replay_open() indexes the records with
+ * events and each polyp's changes of place once; a state shown folds
+ * the events up to it (a few hundred) and finds each place by bisection.
+ *
  * Main thread only. replay_open() allocates (the file, the colon: ~0.1 s
  * at the default resolution); the rest does not.
  */

@@ -7,10 +7,13 @@
 #include <string.h>
 
 #include "base/log.h"
+#include "session/accounts.h"
 #include "viewer/reconnect.h"
 
 struct rigctl {
 	struct reconnect *rc; /* the read-write socket */
+	struct reconnect *ro; /* the read-only one: who trains */
+	uint64_t asked_ns;    /* who trains, asked last; 0: at once */
 	bool hand_refused;    /* until the next connection */
 	bool driving;
 	char said[256];
@@ -24,8 +27,10 @@ struct rigctl *rigctl_create(const char *socket)
 		return NULL;
 	}
 	r->rc = reconnect_create(socket, true, RIGCTL_RETRY_S, LOG_NOTICE, "");
-	if (!r->rc) {
-		free(r);
+	r->ro = reconnect_create(socket, false, RIGCTL_RETRY_S, LOG_DEBUG,
+				 "who trains: ");
+	if (!r->rc || !r->ro) {
+		rigctl_destroy(r);
 		return NULL;
 	}
 	return r;
@@ -37,6 +42,7 @@ void rigctl_destroy(struct rigctl *r)
 		return;
 	}
 	reconnect_destroy(r->rc);
+	reconnect_destroy(r->ro);
 	free(r);
 }
 
@@ -58,21 +64,29 @@ static int connect_rw(struct rigctl *r, uint64_t now_ns)
 	return err;
 }
 
-/* Sends REQ; a failed exchange drops the connection. *REP on success. */
-static int exchange(struct rigctl *r, Endosim__Request *req,
-		    Endosim__Reply **rep, uint64_t now_ns)
+/* Sends REQ, waiting TIMEOUT_MS for its reply; a failed exchange drops
+ * the connection. *REP on success. */
+static int exchange_within(struct rigctl *r, Endosim__Request *req,
+			   Endosim__Reply **rep, uint64_t now_ns,
+			   int timeout_ms)
 {
 	int err = connect_rw(r, now_ns);
 
 	if (err) {
 		return err;
 	}
-	err = reconnect_request(r->rc, req, rep, RIGCTL_TIMEOUT_MS);
+	err = reconnect_request(r->rc, req, rep, timeout_ms);
 	if (err) {
 		r->driving = false;
 		reconnect_say(r->rc, "control socket: %s", strerror(-err));
 	}
 	return err;
+}
+
+static int exchange(struct rigctl *r, Endosim__Request *req,
+		    Endosim__Reply **rep, uint64_t now_ns)
+{
+	return exchange_within(r, req, rep, now_ns, RIGCTL_TIMEOUT_MS);
 }
 
 static const char *reason(const Endosim__Reply *rep)
@@ -251,4 +265,106 @@ const char *rigctl_said(const struct rigctl *r)
 bool rigctl_driving(const struct rigctl *r)
 {
 	return r->driving;
+}
+
+/* ------------------------------------------------------------ who trains */
+
+int rigctl_trainee(struct rigctl *r, uint64_t now_ns, bool *asks,
+		   char *trainee, size_t size)
+{
+	Endosim__GetStatus body = ENDOSIM__GET_STATUS__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	Endosim__Reply *rep;
+	int err;
+
+	if (r->asked_ns &&
+	    now_ns - r->asked_ns < (uint64_t)(RIGCTL_TRAINEE_POLL_S * 1e9)) {
+		return 0;
+	}
+	r->asked_ns = now_ns;
+	err = reconnect_connect(r->ro, now_ns);
+	if (err < 0) {
+		return err;
+	}
+	req.body_case = ENDOSIM__REQUEST__BODY_GET_STATUS;
+	req.get_status = &body;
+	err = reconnect_request(r->ro, &req, &rep, RIGCTL_TIMEOUT_MS);
+	if (err) {
+		reconnect_say(r->ro, "%s", strerror(-err));
+		return err;
+	}
+	err = rep->status == ENDOSIM__STATUS__STATUS_OK &&
+	      rep->body_case == ENDOSIM__REPLY__BODY_STATUS_REPLY ? 1 : -EPROTO;
+	if (err == 1) {
+		*asks = rep->status_reply->asks_trainee;
+		snprintf(trainee, size, "%s", rep->status_reply->trainee);
+	}
+	endosim__reply__free_unpacked(rep, NULL);
+	return err;
+}
+
+void rigctl_trainee_now(struct rigctl *r)
+{
+	r->asked_ns = 0;
+}
+
+/* REQ (a Login or Logout) sent, WHAT said of it into r->said and, with
+ * who trains after it, into TRAINEE; the refusal's or the failure's
+ * words into WORDS. */
+static int account(struct rigctl *r, Endosim__Request *req, const char *what,
+		   uint64_t now_ns, char *trainee, size_t trainee_size,
+		   char *words, size_t size)
+{
+	Endosim__Reply *rep;
+	int err;
+
+	reconnect_now(r->rc); /* the trainee asked: try now */
+	err = exchange_within(r, req, &rep, now_ns, RIGCTL_LOGIN_TIMEOUT_MS);
+	if (err) {
+		snprintf(words, size, "%s", reconnect_problem(r->rc));
+		snprintf(r->said, sizeof(r->said), "%s: %s", what, words);
+		return err;
+	}
+	if (rep->status == ENDOSIM__STATUS__STATUS_OK &&
+	    rep->body_case == ENDOSIM__REPLY__BODY_ACCOUNTS) {
+		snprintf(trainee, trainee_size, "%s", rep->accounts->training);
+		snprintf(r->said, sizeof(r->said), "%s: %s%s", what,
+			 *trainee ? trainee : "nobody",
+			 " trains at the rig");
+	} else {
+		snprintf(words, size, "%s", reason(rep));
+		snprintf(r->said, sizeof(r->said), "%s refused: %s", what,
+			 words);
+		err = -EACCES;
+	}
+	r->asked_ns = 0; /* and who trains asked again */
+	endosim__reply__free_unpacked(rep, NULL);
+	return err;
+}
+
+int rigctl_login(struct rigctl *r, const char *name, const char *pin,
+		 uint64_t now_ns, char *trainee, char *words, size_t size)
+{
+	Endosim__Login body = ENDOSIM__LOGIN__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+
+	body.name = (char *)name;
+	body.pin = (char *)pin;
+	body.training = true;
+	req.body_case = ENDOSIM__REQUEST__BODY_LOGIN;
+	req.login = &body;
+	return account(r, &req, "login", now_ns, trainee, size, words, size);
+}
+
+int rigctl_logout(struct rigctl *r, uint64_t now_ns, char *words,
+		  size_t size)
+{
+	Endosim__Logout body = ENDOSIM__LOGOUT__INIT;
+	Endosim__Request req = ENDOSIM__REQUEST__INIT;
+	char trainee[ACCOUNTS_NAME_MAX + 1];
+
+	req.body_case = ENDOSIM__REQUEST__BODY_LOGOUT;
+	req.logout = &body;
+	return account(r, &req, "log out", now_ns, trainee, sizeof(trainee),
+		       words, size);
 }

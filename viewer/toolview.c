@@ -18,6 +18,12 @@ static const float sheath_rgb[ENDOSIM_TOOLS][3] = {
 static const float steel_rgb[3] = { 0.78f, 0.78f, 0.80f };
 _Static_assert(ENDOSIM_POLYPS <= 32, "toolview: gone holds every polyp");
 static const float blood_rgb[3] = { 0.50f, 0.02f, 0.02f };
+/* the expert's ghost: a blue near the overview's reference scope's, with
+ * little red, so that its hue stays where the light near the lens
+ * saturates (endo.c's tone curve); its snare's wire amber while its pedal
+ * is down (the HUD's amber) */
+static const float ghost_rgb[3] = { 0.05f, 0.45f, 1.00f };
+static const float ghost_hot_rgb[3] = { 1.00f, 0.70f, 0.15f };
 
 /* The frame the tool lies in: the exit, dir, and side = dir x radial
  * (tool.h), all moved by SHIFT. False when there is none to draw. */
@@ -179,10 +185,67 @@ static void in_hand(const struct endosim_tool_state *t,
 	}
 }
 
+void toolview_expert(const struct endosim_guide_state *g,
+		     struct endosim_tool_state *out)
+{
+	memset(out, 0, sizeof(*out));
+	out->kind = g->expert_kind;
+	out->pedal = g->expert_pedal;
+	out->snare_m = g->expert_snare_m;
+	out->depth_m = g->expert_depth_m;
+	out->opening = g->expert_opening;
+	out->loop_m = g->expert_loop_m;
+	vec3_copy(out->tip, g->expert_tip);
+	vec3_copy(out->loop_centre, g->expert_loop_centre);
+	out->captured = -1;
+	out->event_polyp = -1;
+}
+
+void toolview_build_ghost(const struct endosim_guide_state *g,
+			  const struct endosim_scope_state *sc,
+			  const double shift[3], struct toolview *out)
+{
+	struct endosim_tool_state t;
+
+	toolview_expert(g, &t);
+	out->ghost = true;
+	out->parts = 0;
+	out->blood = 0;
+	out->gone = 0;
+	out->lying = 0;
+	in_hand(&t, sc, shift, out);
+	for (int k = 0; k < out->parts; k++) {
+		/* the snare's wire is its second part (in_hand()) */
+		bool hot = t.pedal && t.kind == ENDOSIM_TOOL_SNARE && k == 1;
+
+		memcpy(out->part[k].rgb, hot ? ghost_hot_rgb : ghost_rgb,
+		       sizeof(out->part[k].rgb));
+	}
+}
+
+/* The polyps cut: where each lies (a place not finite: not drawn). */
+static void lying(const struct endosim_tool_state *t, struct toolview *out)
+{
+	out->lying = 0;
+	for (uint32_t i = 0; i < t->polyps && i < ENDOSIM_POLYPS; i++) {
+		const double *at = t->polyp[i].at;
+
+		if (t->polyp[i].state != ENDOSIM_POLYP_CUT ||
+		    !isfinite(vec3_dot(at, at))) {
+			continue;
+		}
+		out->lying |= 1u << i;
+		for (int k = 0; k < 3; k++) {
+			out->lie[i][k] = (float)at[k];
+		}
+	}
+}
+
 void toolview_build(const struct endosim_tool_state *t,
 		    const struct endosim_scope_state *sc,
 		    const double shift[3], struct toolview *out)
 {
+	out->ghost = false;
 	out->parts = 0;
 	out->blood = (float)toolview_redness(t->bleed_m3_s);
 	out->gone = 0;
@@ -190,6 +253,7 @@ void toolview_build(const struct endosim_tool_state *t,
 		out->gone |= (uint32_t)(t->polyp[i].state ==
 					ENDOSIM_POLYP_RETRIEVED) << i;
 	}
+	lying(t, out);
 	in_hand(t, sc, shift, out);
 	if (t->bleeding > 0) {
 		on_wall(out, t->bleed_at, sc, shift, TOOLVIEW_WELL_M,

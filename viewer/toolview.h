@@ -25,11 +25,23 @@
  * (clip_at), a steel stub TOOLVIEW_CLIP_M long; each stands from the wall
  * towards the scope's tip. And the view's reddening, toolview_redness()
  * of the published flow: the blood in the lumen before the lens; the
- * polyps retrieved, which the view no longer draws (a cut one stays
- * where it was cut, tool.h, and is drawn there).
+ * polyps retrieved, which the view no longer draws; the polyps cut,
+ * which it draws where they lie (each one's published at: fallen to the
+ * wall, tool.h), not on the wall where they stood.
  * The lengths are the model's defaults (tool.h): what the view draws, not
  * what the daemon computes with (the loop, the tip and the events are
  * the daemon's).
+ *
+ * Guided replay's expert's tool (the published guide state's expert_*:
+ * the recording's, drawn by the daemon on the scope as it is now;
+ * daemon/rig/guide.h) is a ghost beside the trainee's own
+ * (toolview_build_ghost()): the same parts as a tool of its kind at its
+ * depth and opening, every one in the light blue of the overview's
+ * reference scope (guided replay's other ghost), the snare's wire amber
+ * while the expert's pedal is down; the view draws a ghost's parts
+ * translucent, TOOLVIEW_GHOST_ALPHA over what lies behind, writing no
+ * depth (endo.c), so that the trainee's own tool and the polyp show
+ * through it. It leaves nothing on the wall and reddens nothing.
  *
  * Everything is moved by SHIFT: the camera may stand where the scope's
  * tip is not (the god-object's proxy, the lumen's margin: endo.h), and the
@@ -52,6 +64,7 @@
 #define TOOLVIEW_PRONGS_RAD 0.45 /* the clip's prongs, open */
 #define TOOLVIEW_WELL_M 0.002    /* the blood welling from a point */
 #define TOOLVIEW_CLIP_M 0.004    /* a clip placed, standing out */
+#define TOOLVIEW_GHOST_ALPHA 0.55f /* a ghost's share of its pixels */
 /* The flow that reddens the view half-way: a 5 mm stalk's (tool.h), a
  * guess at what fills the view with blood. */
 #define TOOLVIEW_BLOOD_M3_S 2e-8
@@ -65,9 +78,13 @@ struct toolview_part {
 };
 
 struct toolview {
+	bool ghost;                  /* the expert's: drawn translucent */
 	float blood;                 /* the view's reddening, 0..1 */
 	uint32_t gone;               /* bit k: the case's polyp k retrieved
 					(sucked out: not drawn) */
+	uint32_t lying;              /* bit k: polyp k cut, lying at lie[k] */
+	float lie[ENDOSIM_POLYPS][3]; /* its body's centre, m (not moved by
+					 the shift: it is the colon's) */
 	int parts;
 	struct toolview_part part[TOOLVIEW_PARTS];
 };
@@ -80,6 +97,22 @@ struct toolview {
 void toolview_build(const struct endosim_tool_state *tool,
 		    const struct endosim_scope_state *sc,
 		    const double shift[3], struct toolview *out);
+
+/*
+ * The parts that draw the expert's tool of guided replay G (its expert_*
+ * fields) on the scope SC as a ghost, moved by SHIFT (m), into OUT
+ * (ghost set; no parts for no expert's tool, one inside the channel, or
+ * a state not finite; no blood, nothing gone).
+ */
+void toolview_build_ghost(const struct endosim_guide_state *g,
+			  const struct endosim_scope_state *sc,
+			  const double shift[3], struct toolview *out);
+
+/* The expert's tool of G as a tool's published state (its kind, pedal,
+ * size, depth, opening, loop and tip; nothing held, no polyps), for the
+ * views that show a tool: OUT. */
+void toolview_expert(const struct endosim_guide_state *g,
+		     struct endosim_tool_state *out);
 
 /* The view's reddening for the bleeding points' flow BLEED_M3_S (m^3/s):
  * Q / (Q + TOOLVIEW_BLOOD_M3_S), 0..1; 0 for none or not finite. */

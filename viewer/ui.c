@@ -17,6 +17,7 @@ struct ui {
 	double last_x, last_y;
 	unsigned char pad[GLFW_GAMEPAD_BUTTON_LAST + 1];
 	bool replay;
+	bool typing;               /* into the login form */
 	/* the window as its events last said (ui.h) */
 	int win_w, win_h;          /* screen coordinates */
 	int fb_w, fb_h;            /* framebuffer pixels */
@@ -61,6 +62,8 @@ static bool *action_of(struct ui_actions *a, int key)
 		return &a->hands_off;
 	case GLFW_KEY_N:
 		return &a->next_hand;
+	case GLFW_KEY_C:
+		return &a->switch_trainee;
 	case GLFW_KEY_Q:
 	case GLFW_KEY_ESCAPE:
 		return &a->quit;
@@ -110,12 +113,58 @@ static bool replay_key(struct ui_actions *a, int key, int action, int mods)
 	}
 }
 
+/* C (a code point, or UI_TYPED_KEY + a form's key) typed. */
+static void typed(struct ui *u, uint32_t c)
+{
+	if (u->pending.n_typed < UI_TYPED_MAX) {
+		u->pending.typed[u->pending.n_typed++] = c;
+	}
+}
+
+/* KEY pressed (or repeated) while typing into the login form. */
+static void form_key(struct ui *u, int key, int action)
+{
+	switch (key) {
+	case GLFW_KEY_BACKSPACE:
+		typed(u, UI_TYPED_KEY + LOGIN_BACKSPACE);
+		break;
+	case GLFW_KEY_TAB:
+		typed(u, UI_TYPED_KEY + LOGIN_TAB);
+		break;
+	case GLFW_KEY_ENTER:
+	case GLFW_KEY_KP_ENTER:
+		typed(u, UI_TYPED_KEY + LOGIN_ENTER);
+		break;
+	case GLFW_KEY_ESCAPE:
+		typed(u, UI_TYPED_KEY + LOGIN_ESCAPE);
+		break;
+	case GLFW_KEY_F1:
+		u->pending.toggle_help |= action == GLFW_PRESS;
+		break;
+	default:
+		break; /* a character: on_char()'s */
+	}
+}
+
+static void on_char(GLFWwindow *w, unsigned int c)
+{
+	struct ui *u = glfwGetWindowUserPointer(w);
+
+	if (u->typing) {
+		typed(u, c);
+	}
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
 	struct ui *u = glfwGetWindowUserPointer(w);
 	bool *what;
 
 	(void)scancode;
+	if (action != GLFW_RELEASE && u->typing) {
+		form_key(u, key, action);
+		return;
+	}
 	if (action == GLFW_RELEASE ||
 	    (u->replay && replay_key(&u->pending, key, action, mods))) {
 		return;
@@ -172,6 +221,7 @@ struct ui *ui_create(GLFWwindow *w)
 	glfwGetCursorPos(w, &u->cursor_x, &u->cursor_y);
 	glfwSetWindowUserPointer(w, u);
 	glfwSetKeyCallback(w, on_key);
+	glfwSetCharCallback(w, on_char);
 	glfwSetScrollCallback(w, on_scroll);
 	glfwSetWindowSizeCallback(w, on_window_size);
 	glfwSetFramebufferSizeCallback(w, on_framebuffer_size);
@@ -190,12 +240,18 @@ void ui_set_replay(struct ui *u)
 	u->replay = true;
 }
 
+void ui_set_typing(struct ui *u, bool typing)
+{
+	u->typing = typing;
+}
+
 void ui_destroy(struct ui *u)
 {
 	if (!u) {
 		return;
 	}
 	glfwSetKeyCallback(u->window, NULL);
+	glfwSetCharCallback(u->window, NULL);
 	glfwSetScrollCallback(u->window, NULL);
 	glfwSetWindowSizeCallback(u->window, NULL);
 	glfwSetFramebufferSizeCallback(u->window, NULL);
@@ -377,9 +433,14 @@ void ui_frame(struct ui *u, const struct hud_layout *lay,
 	*a = u->pending;
 	memset(&u->pending, 0, sizeof(u->pending));
 	a->seek_to = -1;
-	keyboard(u, c);
-	gamepad(u, c, a);
-	mouse(u, lay, c, a, orbit);
+	if (u->typing) {
+		u->scroll = 0; /* the form: nothing drives */
+		u->button = -1;
+	} else {
+		keyboard(u, c);
+		gamepad(u, c, a);
+		mouse(u, lay, c, a, orbit);
+	}
 	if (glfwWindowShouldClose(u->window)) {
 		a->quit = true;
 	}

@@ -13,7 +13,8 @@
  *             the case's next site, then off; U the patient's voice
  *             off and on again (voice.h);
  *             V next view, O overview orbit back, P save a picture,
- *             M the unseen-mucosa map, H help, Q/Esc quit
+ *             M the unseen-mucosa map, H help, Q/Esc quit;
+ *             C log the trainee out (login.h), another logs in
  *   mouse     on the endoscopic image: drag to steer (the wheels follow
  *             the pointer), right-drag to twist, scroll to insert;
  *             on the overview: drag to turn it, scroll to zoom
@@ -27,6 +28,11 @@
  * H, Q and the overview's mouse stay; the hand's controls are still made but a
  * replay does not use them.
  *
+ * While the login form is shown (ui_set_typing()) the keyboard types into
+ * it instead: each character, and Backspace, Tab, Enter and Esc, in the
+ * order typed (struct ui_actions typed); F1 still shows the keys; the
+ * hand's controls are all still (the keys, the mouse, the gamepad).
+ *
  * Main thread; GLFW's callbacks of the window are ui's.
  */
 #ifndef ENDOVIEW_UI_H
@@ -39,6 +45,7 @@
 
 #include "viewer/hud.h"
 #include "viewer/input.h"
+#include "viewer/login.h"
 #include "viewer/overview.h"
 #include "viewer/rigctl.h"
 
@@ -50,6 +57,9 @@
 #define UI_SEEK_S 5.0       /* Left, Right in a replay */
 #define UI_SEEK_LONG_S 30.0 /* with Shift */
 
+#define UI_TYPED_MAX 64          /* what a frame keeps of the typing */
+#define UI_TYPED_KEY 0x110000u   /* + enum login_key: past Unicode */
+
 /* One-off actions this frame. */
 struct ui_actions {
 	bool command[RIGCTL_COMMANDS]; /* by enum rigctl_command */
@@ -59,6 +69,11 @@ struct ui_actions {
 	bool next_hand;      /* N: the hand on the next site, or off */
 	bool toggle_mute;    /* U: the patient's voice off, on */
 	bool hands_off;      /* Z: the hand lets go of every axis */
+	bool switch_trainee; /* C: the trainee logs out, another logs in */
+	/* typed into the login form, in order: code points, or
+	   UI_TYPED_KEY + enum login_key; what does not fit is dropped */
+	uint32_t typed[UI_TYPED_MAX];
+	int n_typed;
 	/* a replay's */
 	bool toggle_pause, seek_home, seek_end;
 	int speed_steps;     /* +1 faster, -1 slower, per key */
@@ -85,6 +100,9 @@ void ui_destroy(struct ui *u);
 
 /* The keys and the timeline drive a replay from now on. */
 void ui_set_replay(struct ui *u);
+
+/* The keyboard types into the login form (TYPING), or drives as ever. */
+void ui_set_typing(struct ui *u, bool typing);
 
 /*
  * After glfwPollEvents(): the hand's controls C and the actions A of this

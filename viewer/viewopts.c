@@ -21,6 +21,7 @@ void viewopts_usage(FILE *f)
 		"                [--screenshot FILE.png] [--frames N]\n"
 		"                [--no-vsync] [--max-fps N] [--image-scale S]\n"
 		"                [--font FILE.ttf] [--mute] [--voice DIR]\n"
+		"                [--trainee NAME | --no-login]\n"
 		"                [--stats] [--pass-times] [--print-state]\n"
 		"                [--replay FILE [--seek S] [--speed X] "
 		"[--paused]]\n"
@@ -45,6 +46,12 @@ void viewopts_usage(FILE *f)
 		"                    turns it on and off)\n"
 		"  --voice DIR       the voice's clips (default: voice/\n"
 		"                    beside endoview, else %s)\n"
+		"  --trainee NAME    log NAME in to train at the rig at\n"
+		"                    start, the PIN from $ENDOSIM_PIN (else\n"
+		"                    the login screen asks for it)\n"
+		"  --no-login        never ask who is training (the login\n"
+		"                    screen shows where the rig's accounts\n"
+		"                    hold a trainee; C logs out)\n"
 		"  --stats           print the frame figures at exit\n"
 		"  --pass-times      finish each pass of a frame before the\n"
 		"                    next and print what each took (slows\n"
@@ -112,6 +119,8 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 		{ "paused", no_argument, NULL, 'p' },
 		{ "mute", no_argument, NULL, 'u' },
 		{ "voice", required_argument, NULL, 'C' },
+		{ "trainee", required_argument, NULL, 't' },
+		{ "no-login", no_argument, NULL, 'L' },
 		{ "help", no_argument, NULL, 'h' },
 		{ "version", no_argument, NULL, 'R' },
 		{ 0 },
@@ -196,6 +205,12 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 		case 'C':
 			o->voice = optarg;
 			break;
+		case 't':
+			o->trainee = optarg;
+			break;
+		case 'L':
+			o->no_login = true;
+			break;
 		case 'h':
 			viewopts_usage(stdout);
 			exit(0);
@@ -206,7 +221,7 @@ int viewopts_parse(int argc, char **argv, struct viewopts *o)
 			return -EINVAL;
 		}
 	}
-	if (optind != argc) {
+	if (optind != argc || (o->trainee && o->no_login)) {
 		return -EINVAL;
 	}
 	if (o->screenshot && o->frames < 0) {

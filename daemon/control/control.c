@@ -308,6 +308,7 @@ static const struct handler handlers[] = {
 	  control_on_records_restore },
 	{ ENDOSIM__REQUEST__BODY_LOGIN, false, control_on_login },
 	{ ENDOSIM__REQUEST__BODY_ACCOUNTS, false, control_on_accounts },
+	{ ENDOSIM__REQUEST__BODY_LOGOUT, true, control_on_logout },
 };
 
 static const struct handler *find_handler(Endosim__Request__BodyCase body)
@@ -688,6 +689,7 @@ struct control *control_create(const struct config *cfg,
 		control_destroy(c);
 		return NULL;
 	}
+	control_training_init(c);
 	if (cfg->debug.test_commands) {
 		log_warn("[debug] test_commands = yes: clients may inject "
 			 "faults and stall the force loop; never on a rig a "

@@ -99,6 +99,11 @@ void control_accounts_destroy(struct control_accounts *ca)
 	free(ca);
 }
 
+struct accounts *control_accounts_db(struct control *c)
+{
+	return c->accounts->db;
+}
+
 /* ------------------------------------------------------------ the rule */
 
 static bool administrator(const struct client *cl)
@@ -148,6 +153,12 @@ static int seen(struct control *c, const struct client *cl, char **names)
 		*names = NULL;
 	}
 	return e;
+}
+
+int control_accounts_seen(struct control *c, const struct client *cl,
+			  char **names)
+{
+	return seen(c, cl, names);
 }
 
 static bool maintenance(Endosim__Request__BodyCase body)
@@ -281,6 +292,7 @@ static int fill_list(struct control *c, const struct client *cl)
 	m->role = cl->logged_in ? (char *)accounts_role_name(cl->user.role)
 				: "";
 	m->staff = cl->staff;
+	m->training = c->training.trainee;
 	if (administrator(cl)) {
 		e = accounts_users(ca->db, &ca->rows, &n);
 		e = e ? e : accounts_groups(ca->db, NULL, &ca->group_rows,
@@ -392,6 +404,9 @@ void control_on_login(struct control *c, struct client *cl,
 	int e;
 
 	free_reply(ca);
+	if (control_training_refused(c, cl, m, NULL, rep)) {
+		return;
+	}
 	clock_gettime(CLOCK_REALTIME, &now);
 	e = accounts_login(ca->db, m->name, m->pin, (double)now.tv_sec +
 			   1e-9 * (double)now.tv_nsec, &u, &wait_s);
@@ -413,6 +428,9 @@ void control_on_login(struct control *c, struct client *cl,
 		refuse(rep, e == -EAGAIN ? ENDOSIM__STATUS__STATUS_REFUSED
 					 : ENDOSIM__STATUS__STATUS_INTERNAL,
 		       ca->words);
+		return;
+	}
+	if (control_training_refused(c, cl, m, &u, rep)) {
 		return;
 	}
 	cl->user = u;
@@ -531,7 +549,8 @@ void control_on_accounts(struct control *c, struct client *cl,
 
 	free_reply(ca);
 	if (m->op != ENDOSIM__ACCOUNTS__OP__OP_LIST) {
-		if (change_refused(c, cl, m, rep)) {
+		if (change_refused(c, cl, m, rep) ||
+		    control_course_refused(c, m, rep)) {
 			return;
 		}
 		if ((e = change(ca->db, m))) {
@@ -550,6 +569,7 @@ void control_on_accounts(struct control *c, struct client *cl,
 				   m->op)->name, m->name, *m->group ? " in " :
 			   "", m->group, (int)cl->uid, cl->logged_in ?
 			   " as " : "", cl->logged_in ? cl->user.name : "");
+		control_training_changed(c, m);
 		control_records_poke_centre(c);
 	}
 	accounts_reply(c, cl, rep);

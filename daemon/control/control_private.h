@@ -6,7 +6,10 @@
  * with it: control_reply.c status, stats, configuration, commands, the
  * hand, subscriptions and test commands; control_case.c the scene and the
  * cases; control_session.c training sessions and their live map;
- * control_trainee.c a trainee's sessions from the rig's records; control_guide.c guided replay; control_patient.c the patient's
+ * control_trainee.c a trainee's sessions from the rig's records (the
+ * courses of their groups: control_courses.c); control_training.c who
+ * trains at the rig; control_guide.c guided replay; control_patient.c
+ * the patient's
  * commands, control_tool.c the tool's selection (their refusals' words
  * in struct control's refusal). Control
  * thread only, as all of control.h's work.
@@ -23,6 +26,7 @@
 #include "control/control.h"
 #include "proto/endosim.pb-c.h"
 #include "proto/frame.h"
+#include "control/training.h"
 #include "session/accounts.h"
 #include "session/records.h"
 
@@ -74,6 +78,8 @@ struct control {
 	struct control_guide *guide;
 	struct control_records *records;
 	struct control_accounts *accounts;
+	struct training training; /* who trains at the rig */
+	Endosim__AccountsReply logout; /* Logout's reply */
 	struct colon *colon;     /* the loop's now: read its mesh only */
 	char case_path[2 * CONFIG_STR + 8]; /* the file it was built from */
 	uint64_t scene_id;       /* its GetScene id */
@@ -196,6 +202,80 @@ bool control_accounts_refuse(struct control *c, const struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep);
 void control_accounts_filter(struct control *c, const struct client *cl,
 			     const Endosim__Request *req, Endosim__Reply *rep);
+/* The accounts' database (accounts.h), for the families that read it. */
+struct accounts *control_accounts_db(struct control *c);
+/* The trainees CL sees, one a line, into *NAMES (malloc'd; NULL: every
+ * one, as the staff or an administrator). 0 or -errno. */
+int control_accounts_seen(struct control *c, const struct client *cl,
+			  char **names);
+
+/*
+ * The courses assigned to the trainees' groups (control_courses.c),
+ * which judge their sessions. A course as assigned names its file: a
+ * path (with a '/') as it is, else NAME (".course" added when missing)
+ * in the courses' directory, `courses` beside [case] directory (the
+ * installed courses beside the installed cases; config/courses/ in a
+ * checkout). 0 or -ENAMETOOLONG.
+ */
+int control_course_file(const struct control *c, const char *course,
+			char *path, size_t size);
+
+/* Before an Accounts change M: a course assigned whose file does not load
+ * is refused (true), REP saying why (its FILE:LINE), nothing changed. */
+bool control_course_refused(struct control *c, const Endosim__Accounts *m,
+			    Endosim__Reply *rep);
+
+/* The courses of a TraineeReply and what they point into. */
+struct control_courses {
+	Endosim__TraineeCourse *entries;
+	Endosim__TraineeCourse **entries_p;
+	size_t n;
+	struct accounts_group *groups; /* the entries' group names */
+	size_t n_groups;
+};
+
+/*
+ * Each course assigned to a group of a trainee CL sees (TRAINEE's alone
+ * unless ""), by group, trainee and course, into CC; each file loaded,
+ * the keys of the measures its requirements name added to KEYS (*N of
+ * MAX, each once). 0; -EINVAL or -errno of a course that does not load
+ * (WHY, SIZE: its group and FILE:LINE); -EIO, -ENOMEM (WHY says). Free
+ * CC with control_courses_free() (also after a failure).
+ */
+int control_courses_build(struct control *c, const struct client *cl,
+			  const char *trainee, struct control_courses *cc,
+			  const char **keys, size_t *n, size_t max, char *why,
+			  size_t size);
+void control_courses_free(struct control_courses *cc);
+/* KEY added to KEYS (*N of MAX) unless it is there, or there is no room. */
+void control_key_add(const char **keys, size_t *n, size_t max,
+		     const char *key);
+
+/*
+ * Who trains at the rig (control_training.c, training.h): whether the
+ * accounts hold a trainee, looked up at start-up (init) and after the
+ * change M of the accounts (changed; a user removed no longer trains).
+ */
+void control_training_init(struct control *c);
+void control_training_changed(struct control *c, const Endosim__Accounts *m);
+
+/*
+ * A Login M that asks to train at the rig (else false at once): before
+ * the PIN's hash (U NULL) whether what it names alone is refused (not
+ * the control socket's staff, another's session recording); after it
+ * (U the user logged in), U made the rig's trainee, or refused. true:
+ * refused, REP says why, nothing changed.
+ */
+bool control_training_refused(struct control *c, const struct client *cl,
+			      const Endosim__Login *m,
+			      const struct accounts_user *u,
+			      Endosim__Reply *rep);
+
+/* The trainee of a session CL starts naming NAMED ("" none) into OUT
+ * (SIZE bytes): 0, or -1 refused (REP says why). */
+int control_training_session(struct control *c, const struct client *cl,
+			     const char *named, char *out, size_t size,
+			     Endosim__Reply *rep);
 
 /* The requests, by family (see above). */
 handler_fn control_on_get_status;
@@ -229,6 +309,7 @@ handler_fn control_on_records_backup;
 handler_fn control_on_records_restore;
 handler_fn control_on_login;
 handler_fn control_on_accounts;
+handler_fn control_on_logout;
 
 /* The status reply of the newest published state (GetStatus, a push, a
  * guide command's answer), in control_reply.c's storage. */

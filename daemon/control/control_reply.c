@@ -194,6 +194,8 @@ void control_build_status(struct control *c, Endosim__Reply *rep)
 	s->version = ENDOSIM_VERSION;
 	s->uptime_s = (double)(mono_ns() - c->deps.start_ns) / ENDOSIM_NS_PER_S;
 	s->case_name = (char *)colon_name(c->colon);
+	s->trainee = c->training.trainee;
+	s->asks_trainee = c->training.asks;
 	fields_to_pb(&fields_scope, &rb->scope, &st->scope);
 	s->scope = &rb->scope;
 	fields_to_pb(&fields_haptics, &rb->haptics, &st->haptics);

@@ -187,7 +187,7 @@ void control_on_session_start(struct control *c, struct client *cl,
 			      const Endosim__Request *req, Endosim__Reply *rep)
 {
 	const Endosim__SessionStart *ss = req->session_start;
-	char *why = c->sessions->error;
+	char *why = c->sessions->error, trainee[RECORDER_NAME];
 	size_t size = sizeof(c->sessions->error);
 	struct recorder_info info;
 	int r;
@@ -209,6 +209,10 @@ void control_on_session_start(struct control *c, struct client *cl,
 		refuse(rep, ENDOSIM__STATUS__STATUS_REFUSED, why);
 		return;
 	}
+	if (control_training_session(c, cl, ss->trainee, trainee,
+				     sizeof(trainee), rep)) {
+		return;
+	}
 	if (*ss->case_name && control_load_case(c, cl, ss->case_name, rep)) {
 		return;
 	}
@@ -216,7 +220,7 @@ void control_on_session_start(struct control *c, struct client *cl,
 		return;
 	}
 	control_await_state(c); /* the first record has it */
-	r = start_session(c, ss->trainee, &info);
+	r = start_session(c, trainee, &info);
 	if (r) {
 		snprintf(why, size, "cannot record in %s: %s",
 			 c->cfg.session.directory, strerror(-r));

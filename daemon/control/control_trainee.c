@@ -20,9 +20,11 @@ static const char *const always[] = { "duration_s", "records", "drops" };
 struct control_trainees {
 	Endosim__TraineeReply reply;
 	struct control_rows rows;  /* what the reply points into */
+	struct control_courses courses; /* the groups', likewise */
 	struct coursefile course;  /* the daemon's, for its keys */
 	const char *keys[MAX_KEYS];
-	char error[256];
+	size_t n_keys;             /* the groups' courses' */
+	char error[1024];
 };
 
 struct control_trainees *control_trainees_create(void)
@@ -36,6 +38,7 @@ void control_trainees_destroy(struct control_trainees *rb)
 		return;
 	}
 	control_rows_free(&rb->rows);
+	control_courses_free(&rb->courses);
 	free(rb);
 }
 
@@ -56,15 +59,17 @@ static void fill_trainee_session(Endosim__SessionInfo *s,
 
 /*
  * What Q asks of each session into ROWS: the facts alone (no course to
- * judge by), the measures Q names, those the daemon's course judges by,
- * or (a course that does not load: the listing says so) every measure.
+ * judge by), the measures Q names, those the daemon's courses judge by
+ * (the groups' courses' keys are rb->keys' first rb->n_keys), or (the
+ * daemon's [session] course does not load: the listing says so) every
+ * measure.
  */
 static void what_asked(struct control *c, const Endosim__TraineeSessions *q,
 		       struct control_rows *rows)
 {
 	struct control_trainees *rb = c->trainees;
+	size_t n = rb->n_keys;
 	char err[256];
-	size_t n = 0;
 
 	rows->what = RECORDS_MEASURES;
 	rows->keys = NULL;
@@ -76,18 +81,26 @@ static void what_asked(struct control *c, const Endosim__TraineeSessions *q,
 	if (!q->facts_unless_course) {
 		return;
 	}
-	if (!c->cfg.session.course[0]) {
+	if (!c->cfg.session.course[0] && !n) {
 		rows->what = RECORDS_FACTS;
 		return;
 	}
-	if (coursefile_load(&rb->course, c->cfg.session.course, err,
-			    sizeof(err))) {
-		return;
+	if (c->cfg.session.course[0]) {
+		const char *mine[MAX_KEYS];
+		size_t m;
+
+		if (coursefile_load(&rb->course, c->cfg.session.course, err,
+				    sizeof(err))) {
+			return;
+		}
+		m = coursefile_keys(&rb->course, mine, MAX_KEYS);
+		for (size_t i = 0; i < m; i++) {
+			control_key_add(rb->keys, &n, MAX_KEYS, mine[i]);
+		}
 	}
-	for (; n < sizeof(always) / sizeof(always[0]); n++) {
-		rb->keys[n] = always[n];
+	for (size_t i = 0; i < sizeof(always) / sizeof(always[0]); i++) {
+		control_key_add(rb->keys, &n, MAX_KEYS, always[i]);
 	}
-	n += coursefile_keys(&rb->course, rb->keys + n, MAX_KEYS - n);
 	rows->keys = rb->keys;
 	rows->n_keys = n;
 }
@@ -102,8 +115,18 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 	struct recorder_info ri;
 	int r;
 
-	(void)cl;
 	control_rows_free(rows);
+	control_courses_free(&rb->courses);
+	rb->n_keys = 0;
+	if (!q->course_given &&
+	    (r = control_courses_build(c, cl, q->trainee, &rb->courses,
+				       rb->keys, &rb->n_keys, MAX_KEYS - 3,
+				       rb->error, sizeof(rb->error)))) {
+		refuse(rep, r == -EIO || r == -ENOMEM ?
+		       ENDOSIM__STATUS__STATUS_INTERNAL :
+		       ENDOSIM__STATUS__STATUS_BAD_VALUE, rb->error);
+		return;
+	}
 	what_asked(c, q, rows);
 	rows->paths = true;
 	r = control_records_rows(c, *q->trainee ? q->trainee : NULL, rows,
@@ -123,6 +146,8 @@ void control_on_trainee_sessions(struct control *c, struct client *cl,
 	rb->reply.sessions = rows->infos;
 	rb->reply.directory = c->cfg.session.directory;
 	rb->reply.course = c->cfg.session.course;
+	rb->reply.n_courses = rb->courses.n;
+	rb->reply.courses = rb->courses.entries_p;
 	rep->body_case = ENDOSIM__REPLY__BODY_TRAINEE;
 	rep->trainee = &rb->reply;
 }

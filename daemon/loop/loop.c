@@ -458,7 +458,10 @@ static void pour_blood(struct loop *l, double dt_s)
 /*
  * The tool in the working channel this cycle, on the scope's published
  * state: the rig's sensing, the wall at the tool's tip; its injury of the
- * wall the patient's perforation where there is a patient.
+ * wall the patient's perforation where there is a patient; the cut
+ * polyps falling where the patient lies, onto the wall where the gas
+ * holds it. Then guided replay's expert's
+ * tool on the same scope, shown only (guide.h).
  */
 static void step_tool(struct loop *l)
 {
@@ -472,7 +475,7 @@ static void step_tool(struct loop *l)
 			   ENDOSIM_VALVE_SUCTION,
 	};
 	double dt = l->info.period_ns * ENDOSIM_S_PER_NS;
-	double depth = tool_input_depth(&l->tool, &in);
+	double depth = tool_input_depth(&l->tool, &in), g[3];
 	struct tool_pose pose;
 	unsigned ev;
 	int polyp;
@@ -485,8 +488,12 @@ static void step_tool(struct loop *l)
 		(void)patient_perforate(haptics_patient(l->haptics),
 					sc->tip_s_m);
 	}
+	patient_loose_gravity(haptics_patient(l->haptics), g);
+	tool_fall(&l->tool, &par, l->colon, g,
+		  patient_factors(haptics_patient(l->haptics)), dt);
 	pour_blood(l, dt);
 	tool_publish(&l->tool, ev, polyp, &l->state.tool);
+	guide_publish_tool(&l->guide, &par, sc, &l->tool, &l->state.guide);
 }
 
 /* Takes a tool command, if any, applies it and answers it. */

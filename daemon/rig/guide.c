@@ -29,7 +29,8 @@ static struct guide_path *path_alloc(size_t n)
 	p->q = calloc(n, sizeof(*p->q));
 	p->tip_s_m = calloc(n, sizeof(*p->tip_s_m));
 	p->patient = calloc(n, sizeof(*p->patient));
-	if (!p->q || !p->tip_s_m || !p->patient) {
+	p->tool = calloc(n, sizeof(*p->tool));
+	if (!p->q || !p->tip_s_m || !p->patient || !p->tool) {
 		guide_path_free(p);
 		return NULL;
 	}
@@ -100,6 +101,8 @@ static struct guide_path *scenario_path(const char *file, char *err,
 	scenario_destroy(scn);
 	free(p->patient); /* a scenario's commands stay its own */
 	p->patient = NULL;
+	free(p->tool);    /* ... and it holds no tool */
+	p->tool = NULL;
 	if (!any) {
 		snprintf(err, errsize, "%s: a scenario without a target: "
 			 "nothing to guide along", file);
@@ -118,6 +121,17 @@ static bool patient_of(const struct session_record *r,
 		.hand_site = r->hand_site, .hand_n = r->hand_n,
 	};
 	return r->patient;
+}
+
+/* Record R's tool as a path's sample holds it; whether it had one. */
+static bool tool_of(const struct session_record *r, struct guide_tool *out)
+{
+	*out = (struct guide_tool){
+		.kind = (int32_t)r->tool_kind, .captured = r->tool_captured,
+		.snare_m = r->tool_snare_m, .depth_m = r->tool_depth_m,
+		.opening = r->tool_opening, .pedal = r->tool_pedal,
+	};
+	return r->tool_kind != ENDOSIM_TOOL_NONE;
 }
 
 /* A session file begins with its magic; anything else may be a
@@ -143,7 +157,7 @@ struct guide_path *guide_path_load(const char *file, char *err,
 	char id[32] = "";
 	size_t first = 0, last = 0, n, r;
 	uint64_t t0, span, step = (uint64_t)(ENDOSIM_NS_PER_S / GUIDE_PATH_HZ);
-	bool patient = false;
+	bool patient = false, tool = false;
 	int e;
 
 	if (!is_session(file) && access(file, R_OK) == 0) {
@@ -185,10 +199,15 @@ struct guide_path *guide_path_load(const char *file, char *err,
 		memcpy(p->q[k], f.records[r].position, sizeof(p->q[k]));
 		p->tip_s_m[k] = f.records[r].tip_s_m;
 		patient |= patient_of(&f.records[r], &p->patient[k]);
+		tool |= tool_of(&f.records[r], &p->tool[k]);
 	}
 	if (!patient) {
 		free(p->patient);
 		p->patient = NULL;
+	}
+	if (!tool) {
+		free(p->tool);
+		p->tool = NULL;
 	}
 	session_text_get(f.header, "id", id, sizeof(id));
 	p->source_id = strtoull(id, NULL, 10);
@@ -207,6 +226,7 @@ void guide_path_free(struct guide_path *p)
 	free(p->q);
 	free(p->tip_s_m);
 	free(p->patient);
+	free(p->tool);
 	free(p);
 }
 
@@ -519,18 +539,74 @@ void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
 	}
 }
 
+/* The path's sample nearest the playhead. */
+static size_t playhead_sample(const struct guide *g)
+{
+	double x = g->t_s * GUIDE_PATH_HZ + 0.5;
+	size_t i = x > 0 ? (size_t)x : 0;
+
+	return i < g->path->n ? i : g->path->n - 1;
+}
+
 bool guide_patient_now(const struct guide *g, struct guide_patient *out)
 {
-	double x;
-	size_t i;
-
 	if (g->phase != ENDOSIM_GUIDE_GUIDING || !g->path->patient) {
 		return false;
 	}
-	x = g->t_s * GUIDE_PATH_HZ + 0.5;
-	i = x > 0 ? (size_t)x : 0;
-	*out = g->path->patient[i < g->path->n ? i : g->path->n - 1];
+	*out = g->path->patient[playhead_sample(g)];
 	return true;
+}
+
+/* The snare's loop of the recording's tool W (m): as its handle asks, or
+ * held at the thickness of T's polyp that its loop held. */
+static double expert_loop(const struct guide_tool *w, const struct tool *t)
+{
+	double d = tool_loop_diameter(w->snare_m, w->opening, w->depth_m);
+
+	if (w->captured >= 0 && w->captured < t->polyps) {
+		d = fmax(d, tool_polyp_thickness(&t->polyp[w->captured]));
+	}
+	return d;
+}
+
+void guide_publish_tool(const struct guide *g, const struct tool_params *par,
+			const struct endosim_scope_state *sc,
+			const struct tool *t, struct endosim_guide_state *st)
+{
+	const struct guide_tool *w;
+	struct tool_pose pose;
+	double loop = 0;
+
+	st->expert_kind = ENDOSIM_TOOL_NONE;
+	st->expert_pedal = 0;
+	st->expert_snare_m = st->expert_depth_m = st->expert_opening = 0;
+	st->expert_loop_m = 0;
+	memset(st->expert_tip, 0, sizeof(st->expert_tip));
+	memset(st->expert_loop_centre, 0, sizeof(st->expert_loop_centre));
+	if (g->phase != ENDOSIM_GUIDE_GUIDING || !g->path->tool) {
+		return;
+	}
+	w = &g->path->tool[playhead_sample(g)];
+	if (w->kind <= TOOL_NONE || w->kind >= ENDOSIM_TOOLS ||
+	    !isfinite(w->depth_m) || !isfinite(w->opening) ||
+	    !isfinite(w->snare_m)) {
+		return; /* none, or a damaged file's */
+	}
+	tool_pose(par, sc, w->depth_m, &pose);
+	if (w->kind == TOOL_SNARE) {
+		loop = expert_loop(w, t);
+	}
+	st->expert_kind = (uint32_t)w->kind;
+	st->expert_pedal = w->pedal != 0;
+	st->expert_snare_m = w->snare_m;
+	st->expert_depth_m = w->depth_m;
+	st->expert_opening = w->opening;
+	st->expert_loop_m = loop;
+	for (int k = 0; k < 3; k++) {
+		st->expert_tip[k] = pose.tip[k];
+		st->expert_loop_centre[k] = pose.tip[k] +
+					    loop / 2 * pose.dir[k];
+	}
 }
 
 void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],

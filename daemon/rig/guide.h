@@ -40,6 +40,26 @@
  * other's) and has the patient turned and the abdomen pressed or let go
  * as the recording's changed, at their times on the path's clock (loop.h).
  *
+ * The expert's tool is shown, not played: the tool in the working channel
+ * is sensed, never driven (no motor moves it), and only the trainee's own
+ * acts on the model. A session recorded with a tool keeps, per sample of
+ * its path, the tool as the rig sensed it then (its kind, the snare's
+ * size, its depth, the handle's opening, the pedal) and the polyp its
+ * loop held. While GUIDING, guide_publish_tool() publishes it at the
+ * playhead (the sample nearest it, as the patient's), drawn on the scope
+ * as it is now: tool.h's pose with this rig's channel, the snare's loop
+ * tool_loop_diameter()'s, or the held polyp's thickness while the
+ * recording's loop held one (its place is this rig's case's: a guided
+ * session is of the same case). The viewer draws it as a ghost beside
+ * the trainee's own tool, with a line of the HUD saying what the expert
+ * does (viewer/toolview.h, docs/TRAINEE.md). It cuts, injects, bites,
+ * clips and pours nothing; the trainee's tool stays the trainee's, as
+ * sensed. In any other phase (moving to the path, holding, taken over,
+ * off), for a path recorded without a tool (none held at any sample: a
+ * scenario's, a session before format 6) and at a sample without one,
+ * no expert's tool is published (kind none, the rest zero). The
+ * recording's suction valve is the handle's, and plays along as above.
+ *
  * Threads: guide_path_*() allocate (the control thread); the rest is the
  * force loop's: no allocation, fixed work a cycle.
  */
@@ -51,6 +71,7 @@
 #include <stdint.h>
 
 #include "conf/config.h"
+#include "model/tool.h"
 #include "proto/endosim_shm.h"
 
 #define GUIDE_PATH_HZ 100.0 /* samples a second of a path */
@@ -61,6 +82,16 @@ struct guide_patient {
 	int32_t position;        /* enum endosim_position, or turning to */
 	int32_t hand_site;       /* the case's site pressed, -1: none */
 	float hand_n;            /* the assistant's press, N */
+};
+
+/* What the recording's tool was at one sample of its path (tool.h). */
+struct guide_tool {
+	int32_t kind;            /* enum tool_kind; TOOL_NONE: none */
+	int32_t captured;        /* the polyp its loop held, -1: none */
+	float snare_m;           /* the snare's size, m */
+	float depth_m;           /* beyond the channel's exit, m */
+	float opening;           /* the handle, 0 closed .. 1 open */
+	uint32_t pedal;          /* 1: the pedal down */
 };
 
 /* A recorded session's axis positions, GUIDE_PATH_HZ samples a second. */
@@ -74,11 +105,14 @@ struct guide_path {
 	struct guide_patient *patient; /* each sample's; NULL: none (a
 					  scenario's path, a session
 					  recorded without the patient) */
+	struct guide_tool *tool; /* each sample's; NULL: none held at any
+				    (a scenario's path, a session recorded
+				    without a tool) */
 };
 
 /*
  * The path of the session file FILE: every record's axis positions (and
- * its patient's, if it had one) from
+ * its patient's and its tool's, if it had them) from
  * the first record with torque on (the session's enabled part) to the
  * last, resampled: each sample the last record at or before its time. Or, for a file that is not a session, of a scenario
  * (scenario.h): its hand's targets (an axis pushed or let go keeps its
@@ -178,6 +212,19 @@ void guide_step(struct guide *g, const struct config_guide *p, bool enabled,
  * Force loop.
  */
 bool guide_patient_now(const struct guide *g, struct guide_patient *out);
+
+/*
+ * The expert's tool into ST's expert_* fields (endosim_shm.h): while
+ * GUIDING a path with a tool, the recording's at the playhead (its sample
+ * nearest it) on the scope SC as it is now, with PAR's channel (tool.h's
+ * pose), the snare's loop held at the thickness of T's polyp that the
+ * recording's loop held; otherwise none (kind none, the rest zero). T is
+ * read only: the expert's tool acts on nothing. Force loop, after the
+ * scope is published.
+ */
+void guide_publish_tool(const struct guide *g, const struct tool_params *par,
+			const struct endosim_scope_state *sc,
+			const struct tool *t, struct endosim_guide_state *st);
 
 /* What the guidance does, for the published state. */
 void guide_publish(const struct guide *g, const double q[ENDOSIM_AXES],

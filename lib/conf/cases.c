@@ -99,6 +99,13 @@ void cases_tool_params(const struct config *cfg, struct tool_params *p)
 	p->hot_power_w = c->hot_power_w;
 	p->cut_j_per_m2 = c->cut_j_per_m2;
 	p->cold_max_m = c->cold_max_m;
+	p->coag_j_per_m3 = c->coag_j_per_m3;
+	p->bleed_min_m = c->bleed_min_m;
+	p->bleed_m_per_s = c->bleed_m_per_s;
+	p->bleed_stop_s = c->bleed_stop_s;
+	p->retrieve_max_m = c->retrieve_max_m;
+	p->retrieve_reach_m = c->retrieve_reach_m;
+	p->fall_drag_s = c->fall_drag_s;
 }
 
 void cases_rod_params(const struct config *cfg, struct rodscope_params *p)

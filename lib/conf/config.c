@@ -769,7 +769,8 @@ static const struct parse_key keys[] = {
 	   "the time in pain, the pain episodes"),
 	KS("session", "course", session.course, "", 0,
 	   "the course file (config/courses/NAME.course) that endoctl trainee "
-	   "judges the sessions by; empty: none"),
+	   "judges the sessions by, of the trainees whose groups have no "
+	   "course assigned; empty: none"),
 
 	/* records.h's RECORDS_DEFAULT_NAME, which this wing cannot name
 	 * (test_config holds them to each other) */
@@ -822,6 +823,31 @@ static const struct parse_key keys[] = {
 	KD("tool", "cold_max_m", tool.cold_max_m, TOOL_DEFAULT_COLD_MAX_M, 0,
 	   0.03, "m", LIVE,
 	   "a cold snare cuts what it holds thinner than this"),
+	KD("tool", "coag_j_per_m3", tool.coag_j_per_m3,
+	   TOOL_DEFAULT_COAG_J_PER_M3, 1e6, 1e10, "J/m^3", LIVE,
+	   "what coagulates a stalk t thick, per volume of a collar as long "
+	   "as it is thick: cut with less, it bleeds"),
+	KD("tool", "bleed_min_m", tool.bleed_min_m, TOOL_DEFAULT_BLEED_MIN_M,
+	   0, 0.03, "m", LIVE,
+	   "a stalk this thick or more bleeds when cut before it is "
+	   "coagulated"),
+	KD("tool", "bleed_m_per_s", tool.bleed_m_per_s,
+	   TOOL_DEFAULT_BLEED_M_PER_S, 0, 0.1, "m/s", LIVE,
+	   "a bleeding point's flow per area of its stalk's section"),
+	KD("tool", "bleed_stop_s", tool.bleed_stop_s, TOOL_DEFAULT_BLEED_STOP_S,
+	   0.1, 3600, "s", LIVE,
+	   "an unclipped bleeding stops by itself after this"),
+	KD("tool", "retrieve_max_m", tool.retrieve_max_m,
+	   TOOL_DEFAULT_RETRIEVE_MAX_M, 0, 0.03, "m", LIVE,
+	   "the largest cut polyp the suction takes through the channel"),
+	KD("tool", "retrieve_reach_m", tool.retrieve_reach_m,
+	   TOOL_DEFAULT_RETRIEVE_REACH_M, 0, 0.05, "m", LIVE,
+	   "the channel's exit from a cut polyp's surface, at most, for the "
+	   "suction to take it"),
+	KD("tool", "fall_drag_s", tool.fall_drag_s, TOOL_DEFAULT_FALL_DRAG_S,
+	   0.001, 10, "s", LIVE,
+	   "a cut polyp falling to the wall: its drag's time constant (its "
+	   "speed tends to g x this)"),
 };
 
 #define KEYS (sizeof(keys) / sizeof(keys[0]))

@@ -315,6 +315,13 @@ struct config {
 		double hot_power_w;
 		double cut_j_per_m2;
 		double cold_max_m;
+		double coag_j_per_m3; /* the bleeding's (tool.h) */
+		double bleed_min_m;
+		double bleed_m_per_s;
+		double bleed_stop_s;
+		double retrieve_max_m; /* retrieval's */
+		double retrieve_reach_m;
+		double fall_drag_s;   /* a cut polyp's fall */
 	} tool;
 };
 

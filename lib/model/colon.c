@@ -166,23 +166,20 @@ static double dome(const struct anatomy *a, double s, double radius)
 }
 
 /* What the lumen radius takes from s alone, computed once per ring. */
-struct section {
-	double r;  /* m, with the cecum's dome */
-	double td; /* taenia depth */
-	double fd; /* fold depth */
-};
-
-static void section_at(const struct anatomy *a, double s, struct section *x)
+static void section_at(const struct anatomy *a, double s,
+		       struct colon_ring *x)
 {
 	double r = 0.5 * blend(a, s, offsetof(struct anatomy_segment,
 					      diameter_m));
 
-	x->r = r * dome(a, s, r);
-	x->td = blend(a, s, offsetof(struct anatomy_segment, taenia_depth));
-	x->fd = blend(a, s, offsetof(struct anatomy_segment, fold_depth));
+	x->s_m = s;
+	x->r_m = r * dome(a, s, r);
+	x->taenia = blend(a, s, offsetof(struct anatomy_segment,
+					  taenia_depth));
+	x->fold = blend(a, s, offsetof(struct anatomy_segment, fold_depth));
 }
 
-static double lumen(const struct anatomy *a, const struct section *x,
+static double lumen(const struct anatomy *a, const struct colon_ring *x,
 		    double s, double theta)
 {
 	double phi = fmod(theta - a->taenia_angle_rad, 2 * M_PI);
@@ -194,8 +191,8 @@ static double lumen(const struct anatomy *a, const struct section *x,
 	c3 = cos(3 * phi);
 	g = fold_distance(a, s, (int)(phi / (2 * M_PI / 3)) % 3) /
 	    a->fold_width_m;
-	return x->r * (1 - x->td * (1 + c3) / 2) *
-	       (1 - x->fd * exp(-g * g) * (1 - c3) / 2);
+	return x->r_m * (1 - x->taenia * (1 + c3) / 2) *
+	       (1 - x->fold * exp(-g * g) * (1 - c3) / 2);
 }
 
 double colon_tube_radius(const struct colon *c, size_t sample)
@@ -207,10 +204,21 @@ double colon_tube_radius(const struct colon *c, size_t sample)
 
 double colon_lumen_radius(const struct colon *c, double s_m, double theta_rad)
 {
-	struct section x;
+	struct colon_ring x;
 
 	section_at(&c->anatomy, s_m, &x);
 	return lumen(&c->anatomy, &x, s_m, theta_rad);
+}
+
+void colon_ring_at(const struct colon *c, double s_m, struct colon_ring *out)
+{
+	section_at(&c->anatomy, s_m, out);
+}
+
+double colon_ring_radius(const struct colon *c, const struct colon_ring *ring,
+			 double theta_rad)
+{
+	return lumen(&c->anatomy, ring, ring->s_m, theta_rad);
 }
 
 /* ---------------------------------------------------------------- build */
@@ -393,7 +401,7 @@ static void make_rings(struct colon *c, uint32_t ring)
 	uint32_t v = 0, k = 0;
 
 	for (size_t i = 0; i + 1 < n; i++) {
-		struct section x;
+		struct colon_ring x;
 
 		section_at(&c->anatomy, (double)i * ds, &x);
 		for (uint32_t j = 0; j < ring; j++, v++) {

@@ -143,4 +143,22 @@ double colon_tube_radius(const struct colon *c, size_t sample);
 /* Lumen radius (m) of a generated case at S_M, THETA_RAD (for tests). */
 double colon_lumen_radius(const struct colon *c, double s_m, double theta_rad);
 
+/*
+ * The same round one ring: what the radius takes from S_M alone (the
+ * segments' diameters, taeniae and folds blended, the cecum's dome),
+ * found once by colon_ring_at() (~0.5 us), then colon_ring_radius() of
+ * it at THETA_RAD (a few tens of ns) is colon_lumen_radius(C, S_M,
+ * THETA_RAD) exactly. Fixed work, no allocation: the force loop may.
+ */
+struct colon_ring {
+	double s_m;
+	double r_m;    /* the round lumen's radius, with the cecum's dome */
+	double taenia; /* the taeniae's depth, 0..1 */
+	double fold;   /* the folds' depth, 0..1 */
+};
+
+void colon_ring_at(const struct colon *c, double s_m, struct colon_ring *out);
+double colon_ring_radius(const struct colon *c, const struct colon_ring *ring,
+			 double theta_rad);
+
 #endif

@@ -287,6 +287,11 @@ void patient_gravity(const struct patient *pt, double g[3])
 	vec3_scale(g, pt->posture.down, pt->p.gravity_m_s2);
 }
 
+void patient_loose_gravity(const struct patient *pt, double g[3])
+{
+	vec3_scale(g, pt->posture.down, pt->p.gravity_m_s2);
+}
+
 void patient_pad(const struct patient *pt, struct flex_pad *out)
 {
 	const struct anatomy *a = pt->colon ? colon_anatomy(pt->colon) : NULL;
@@ -313,6 +318,11 @@ double patient_factor_at(const struct patient *pt, double s_m)
 		return 1;
 	}
 	return gas_factor_at(pt->colon, pt->factor, s_m);
+}
+
+const double *patient_factors(const struct patient *pt)
+{
+	return pt->p.enabled && pt->colon ? pt->factor : NULL;
 }
 
 void patient_publish(const struct patient *pt,

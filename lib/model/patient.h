@@ -198,11 +198,24 @@ bool patient_finite(const struct patient *pt);
 /* Gravity's acceleration now (m/s^2, body frame); zeros when disabled. */
 void patient_gravity(const struct patient *pt, double g[3]);
 
+/*
+ * Gravity's acceleration (m/s^2, body frame) on what lies loose in the
+ * lumen (a cut polyp, tool.h): the posture's gravity_m_s2, whether the
+ * body is modelled or not (a disabled patient lies settled in its start
+ * position, and a polyp cut free still falls).
+ */
+void patient_loose_gravity(const struct patient *pt, double g[3]);
+
 /* The pad as it presses now (out->on false: none). */
 void patient_pad(const struct patient *pt, struct flex_pad *out);
 
 /* The lumen's radius factor at material S_M (gas_factor_at()). */
 double patient_factor_at(const struct patient *pt, double s_m);
+
+/* The lumen's GAS_SEGMENTS radius factors now (gas_factor_at()'s: for
+ * what lies on the wall, tool_fall()); NULL while disabled (the lumen
+ * as the case draws it). Valid until the next step. */
+const double *patient_factors(const struct patient *pt);
 
 /* The published state. */
 void patient_publish(const struct patient *pt,

@@ -8,6 +8,7 @@
 #include "base/vec3.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
 
 _Static_assert(ANATOMY_MAX_POLYPS == ENDOSIM_POLYPS,
 	       "tool: every polyp of a case published");
@@ -24,6 +25,7 @@ void tool_reset(struct tool *t)
 {
 	memset(t, 0, sizeof(*t));
 	t->captured = -1;
+	t->lying = -1;
 }
 
 /* The loop lets go of what it holds (the handle opened, another tool). */
@@ -255,9 +257,41 @@ static unsigned start_bleed(struct tool_polyp *p,
 		return 0;
 	}
 	p->bleed = TOOL_BLEED_BLEEDING;
-	p->bleed_m3_s = par->bleed_m_per_s * area;
+	p->bleed_m3_s = tool_polyp_flow(p, par);
 	p->bleed_s = 0;
 	return TOOL_EVENT_BLEED;
+}
+
+void tool_polyp_body(const struct tool_polyp *p, const struct tool_params *par,
+		     double at[3])
+{
+	double h = p->paris == ANATOMY_PARIS_IP ? p->stalk_m + p->size_m / 2
+						: tool_polyp_height(p,
+							par->lift_m) / 2;
+
+	vec3_axpy(at, p->base, h, p->normal);
+}
+
+double tool_polyp_flow(const struct tool_polyp *p,
+		       const struct tool_params *par)
+{
+	double t = p->stalk_diameter_m;
+
+	return par->bleed_m_per_s * M_PI * t * t / 4;
+}
+
+/* P cut free where it stands: its body's centre (tool.h), at rest there
+ * until its first rest is found (tool_fall()). */
+static void come_free(struct tool_polyp *p, const struct tool_params *par)
+{
+	p->state = TOOL_POLYP_CUT;
+	tool_polyp_body(p, par, p->at);
+	vec3_copy(p->rest, p->at);
+	vec3_set(p->rest_wall, 0, 0, 0);
+	p->rest_ok = false;
+	p->lies = false;
+	p->fall_v = 0;
+	p->moved = true;
 }
 
 /* The held polyp cut, hot or cold; TOOL_EVENT_* bits. */
@@ -283,7 +317,7 @@ static unsigned cut(struct tool *t, const struct tool_params *par,
 			  th < par->cold_max_m;
 	}
 	if (through) {
-		p->state = TOOL_POLYP_CUT;
+		come_free(p, par);
 		t->captured = -1;
 		ev |= TOOL_EVENT_CUT | start_bleed(p, par);
 	}
@@ -489,17 +523,6 @@ static unsigned bleed_step(struct tool *t, const struct tool_params *par,
 	return ev;
 }
 
-/* Where cut polyp P lies: its body's centre (tool.h), into X. */
-static void lying(const struct tool_polyp *p, const struct tool_params *par,
-		  double x[3])
-{
-	double h = p->paris == ANATOMY_PARIS_IP ? p->stalk_m + p->size_m / 2
-						: tool_polyp_height(p,
-							par->lift_m) / 2;
-
-	vec3_axpy(x, p->base, h, p->normal);
-}
-
 /* The suction takes the first small cut polyp the channel's exit
  * reaches; *WHICH it. */
 static unsigned retrieve_step(struct tool *t, const struct tool_params *par,
@@ -507,14 +530,12 @@ static unsigned retrieve_step(struct tool *t, const struct tool_params *par,
 {
 	for (int i = 0; in->suction && i < t->polyps; i++) {
 		struct tool_polyp *p = &t->polyp[i];
-		double x[3];
 
 		if (p->state != TOOL_POLYP_CUT ||
 		    p->size_m > par->retrieve_max_m) {
 			continue;
 		}
-		lying(p, par, x);
-		if (vec3_dist(x, t->pose.exit) <=
+		if (vec3_dist(p->at, t->pose.exit) <=
 		    p->size_m / 2 + par->retrieve_reach_m) {
 			p->state = TOOL_POLYP_RETRIEVED;
 			*which = i;
@@ -522,6 +543,221 @@ static unsigned retrieve_step(struct tool *t, const struct tool_params *par,
 		}
 	}
 	return 0;
+}
+
+/* -------------------------------------------------------------- the fall */
+
+/* A ring's wall against gravity: the lumen's (colon C's ring) in the
+ * frame Q of its centreline point, gravity's direction DOWN. */
+struct wall {
+	const struct colon *c;
+	struct colon_ring ring;
+	double gu, gv; /* DOWN along the frame's u and v */
+};
+
+/* How far the wall at THETA lies along DOWN from the centreline:
+ * r(theta) (cos theta u + sin theta v) . down. */
+static double depth_at(const struct wall *w, double theta)
+{
+	return colon_ring_radius(w->c, &w->ring, theta) *
+	       (cos(theta) * w->gu + sin(theta) * w->gv);
+}
+
+/* The lowest of the points seen so far round a ring, and the next. */
+struct lowest {
+	double th, f;
+};
+
+static double seen(struct lowest *lo, const struct wall *w, double th)
+{
+	double f = depth_at(w, th);
+
+	if (f > lo->f) {
+		lo->f = f;
+		lo->th = th;
+	}
+	return f;
+}
+
+/* The angle round W's ring where its wall lies lowest: of
+ * TOOL_REST_COARSE points from gravity's own (exactly it in a round
+ * lumen), then of golden sections between the best one's neighbours,
+ * the lowest seen. */
+static double lowest(const struct wall *w)
+{
+	const double step = 2 * M_PI / TOOL_REST_COARSE, k = 0.5 * (sqrt(5) - 1);
+	struct lowest lo = { .th = atan2(w->gv, w->gu), .f = -INFINITY };
+	double th = lo.th, a, b, x1, x2, f1, f2;
+
+	for (int i = 0; i < TOOL_REST_COARSE; i++) {
+		seen(&lo, w, th + i * step);
+	}
+	a = lo.th - step;
+	b = lo.th + step;
+	x1 = b - k * (b - a);
+	x2 = a + k * (b - a);
+	f1 = seen(&lo, w, x1);
+	f2 = seen(&lo, w, x2);
+	for (int i = 2; i < TOOL_REST_FINE; i++) {
+		if (f1 >= f2) {
+			b = x2;
+			x2 = x1;
+			f2 = f1;
+			x1 = b - k * (b - a);
+			f1 = seen(&lo, w, x1);
+		} else {
+			a = x1;
+			x1 = x2;
+			f1 = f2;
+			x2 = a + k * (b - a);
+			f2 = seen(&lo, w, x2);
+		}
+	}
+	return lo.th;
+}
+
+/* Cut polyp P's rest in colon C under gravity's direction DOWN: the
+ * lowest wall point of its ring, its body's radius in (the undeformed
+ * wall's, the ring's radius out to it kept for the gas to scale); it
+ * falls there. */
+static void find_rest(const struct colon *c, struct tool_polyp *p,
+		      const double down[3])
+{
+	struct centreline_point q;
+	struct wall w = { .c = c };
+	double out[3], th, r;
+
+	centreline_at_s(colon_centreline(c), p->s_m, &q);
+	colon_ring_at(c, p->s_m, &w.ring);
+	w.gu = vec3_dot(q.u, down);
+	w.gv = vec3_dot(q.v, down);
+	th = lowest(&w);
+	vec3_scale(out, q.u, cos(th));
+	vec3_axpy(out, out, sin(th), q.v);
+	r = colon_ring_radius(c, &w.ring, th);
+	vec3_axpy(p->rest, q.p, r - p->size_m / 2, out);
+	vec3_scale(p->rest_wall, out, r);
+	p->rest_ok = true;
+	p->lies = false;
+}
+
+/* P a step DT_S nearer TO, pulled by G_M_S2 against the drag of TAU_S,
+ * exactly for a constant pull; true if it moved. */
+static bool fall_step(struct tool_polyp *p, const double to[3],
+		      double g_m_s2, double tau_s, double dt_s)
+{
+	double d[3], l, e = exp(-dt_s / tau_s), vt = g_m_s2 * tau_s, go;
+
+	vec3_sub(d, to, p->at);
+	l = vec3_norm(d);
+	if (!(l > 0)) {
+		p->fall_v = 0;
+		return false;
+	}
+	go = vt * dt_s + (p->fall_v - vt) * tau_s * (1 - e);
+	p->fall_v = vt + (p->fall_v - vt) * e;
+	if (go >= l) {
+		vec3_copy(p->at, to);
+		p->fall_v = 0;
+	} else {
+		vec3_axpy(p->at, p->at, go / l, d);
+	}
+	return true;
+}
+
+/* The rests for gravity's direction DOWN: all sought again when it
+ * turned; one found this step, the next due after the last found. */
+static void seek_rest(struct tool *t, const struct colon *c,
+		      const double down[3])
+{
+	int n = t->polyps;
+
+	if (memcmp(down, t->down, sizeof(t->down))) {
+		vec3_copy(t->down, down);
+		for (int i = 0; i < n; i++) {
+			t->polyp[i].rest_ok = false;
+		}
+	}
+	for (int k = 0; k < n; k++) {
+		int i = (t->next_rest + k) % n;
+		struct tool_polyp *p = &t->polyp[i];
+
+		if (p->state == TOOL_POLYP_CUT && !p->rest_ok) {
+			find_rest(c, p, down);
+			t->next_rest = (i + 1) % n;
+			return;
+		}
+	}
+}
+
+/* The cut polyp published this step (tool.h): the next that moved since
+ * it was, else the next lying; -1 none. */
+static void tell(struct tool *t)
+{
+	int n = t->polyps, from = t->lying + 1, pick = -1;
+
+	for (int pass = 0; pass < 2 && pick < 0; pass++) {
+		for (int k = 0; k < n && pick < 0; k++) {
+			const struct tool_polyp *p = &t->polyp[(from + k) % n];
+
+			if (p->state == TOOL_POLYP_CUT && (pass || p->moved)) {
+				pick = (from + k) % n;
+			}
+		}
+	}
+	t->lying = pick;
+	if (pick >= 0) {
+		t->polyp[pick].moved = false;
+	}
+}
+
+/*
+ * Cut polyp P a step on with the gas's radius factor F at its place: its
+ * rest where the gas holds the wall (moved along the ring's radius by
+ * (F - 1) times it: exactly the rest at F 1); lying there, carried with
+ * the wall; else a step of its fall towards it (G_M_S2, TAU_S, DT_S:
+ * fall_step()), lying once there. True if it moved.
+ */
+static bool settle(struct tool_polyp *p, double f, double g_m_s2,
+		   double tau_s, double dt_s)
+{
+	double to[3];
+	bool moved;
+
+	vec3_axpy(to, p->rest, f - 1, p->rest_wall);
+	if (p->lies) {
+		moved = memcmp(to, p->at, sizeof(to)) != 0;
+		vec3_copy(p->at, to);
+		return moved;
+	}
+	moved = fall_step(p, to, g_m_s2, tau_s, dt_s);
+	p->lies = p->rest_ok && memcmp(to, p->at, sizeof(to)) == 0;
+	return moved;
+}
+
+void tool_fall(struct tool *t, const struct tool_params *par,
+	       const struct colon *c, const double g[3],
+	       const double *factor, double dt_s)
+{
+	double a = vec3_norm(g), down[3];
+
+	if (a > 0 && isfinite(a) && c && colon_anatomy(c) && t->polyps > 0) {
+		vec3_scale(down, g, 1 / a);
+		seek_rest(t, c, down);
+		for (int i = 0; i < t->polyps; i++) {
+			struct tool_polyp *p = &t->polyp[i];
+
+			if (p->state != TOOL_POLYP_CUT) {
+				continue;
+			}
+			if (settle(p, factor ? gas_factor_at(c, factor, p->s_m)
+					     : 1,
+				   a, par->fall_drag_s, dt_s)) {
+				p->moved = true;
+			}
+		}
+	}
+	tell(t);
 }
 
 int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par)
@@ -602,6 +838,10 @@ void tool_publish(const struct tool *t, unsigned events, int polyp,
 	out->polyps = (uint32_t)t->polyps;
 	out->blood_m3 = t->blood_m3;
 	vec3_copy(out->clip_at, t->clip_at);
+	out->lying_polyp = t->lying;
+	if (t->lying >= 0 && t->lying < t->polyps) {
+		vec3_copy(out->lying_at, t->polyp[t->lying].at);
+	}
 	for (int i = 0; i < t->polyps; i++) {
 		const struct tool_polyp *p = &t->polyp[i];
 
@@ -611,6 +851,7 @@ void tool_publish(const struct tool *t, unsigned events, int polyp,
 			.bleed = (uint32_t)p->bleed,
 			.bleed_m3_s = p->bleed_m3_s, .blood_m3 = p->blood_m3,
 		};
+		vec3_copy(out->polyp[i].at, p->at);
 		if (p->bleed_m3_s > most) {
 			most = p->bleed_m3_s;
 			vec3_copy(out->bleed_at, p->base);

@@ -143,14 +143,56 @@
  * last). A point sheds in a step exactly when its flow after the step is
  * above zero: the loop pours bleed_m3_s x dt of each into the pool.
  *
- * Retrieval. A cut polyp lies free in the lumen where it was cut (no
- * fall under gravity: kept simple): its body's centre, the head's atop
- * its stalk (Ip) or half its height over its base. With the suction
- * valve pressed and the channel's exit within retrieve_reach_m (5 mm)
- * of its body's surface, one no larger than retrieve_max_m (6 mm, a
- * guess: soft tissue squeezed through the 3.2-3.8 mm channel into the
- * trap; larger ones need a net) is sucked through the channel
- * (TOOL_EVENT_RETRIEVE): retrieved. A larger one stays where it lies.
+ * The fall. A cut polyp comes free where it was cut, its body's centre
+ * (at) the head's atop its stalk (Ip) or half its height over its base,
+ * and falls under gravity to the dependent wall of the lumen there
+ * (tool_fall(), the loop's step after tool_step()): on the ring of the
+ * centreline's frame at its place s_m (colon C's wall as the case draws
+ * it, where the polyps are placed), the wall point lowest along
+ * gravity, g's direction in the colon's frame (the patient's posture,
+ * posture.h: +x lying on the left side, +y on the back; found among
+ * TOOL_REST_COARSE points round the ring, then by golden section to
+ * TOOL_REST_FINE steps), taken where the gas holds the wall (patient.h:
+ * the lumen's radius factor f at its place scales the ring's radius r
+ * about the centreline, as for the tip's contact and the picture: the
+ * same lowest point round the ring), its body's radius (size / 2) in
+ * along the ring's radius, f r - size / 2 from the centreline, is where
+ * it comes to rest; lying there, it is carried with the wall as the gas
+ * opens or collapses the lumen. (Where the polyps case's 6 mm polyp is
+ * cut, in its descending colon collapsed to f 0.6, the case's own wall
+ * lies 9 mm beyond the wall the scope touches and the picture shows.)
+ * It goes to its rest along the straight line from where it is, as a
+ * body of the full weight slowed by a linear drag: its speed v along the
+ * line follows dv/dt = |g| - v / fall_drag_s, from rest at the cut, so
+ * that the distance L takes t with
+ *   L = |g| tau (t - tau (1 - exp(-t / tau))),   tau = fall_drag_s
+ * (integrated exactly each step; it stops at its rest, v 0). The drag's
+ * 0.1 s (terminal speed ~1 m/s; a 25 mm fall in 0.08 s, against 0.071
+ * s free) stands for the mucus and the wall it slides along: a guess,
+ * the fall a matter of a tenth of a second either way. A turn of the
+ * patient (gravity turning) moves each rest to the new dependent side,
+ * and the polyp follows it there. Each step finds one rest, in turn, of
+ * the polyps whose gravity changed (or just cut: until its first rest is
+ * found a cut polyp stays where it was cut, a step or a few). Without
+ * gravity (g zero) or a case (an imported mesh) nothing falls.
+ *
+ * Retrieval. With the suction valve pressed and the channel's exit
+ * within retrieve_reach_m (5 mm) of its body's surface where it lies, a
+ * cut polyp no larger than retrieve_max_m (6 mm, a guess: soft tissue
+ * squeezed through the 3.2-3.8 mm channel into the trap; larger ones
+ * need a net) is sucked through the channel (TOOL_EVENT_RETRIEVE):
+ * retrieved. A larger one stays where it lies.
+ *
+ * The bleeding's constants and retrieval's, like the channel's place,
+ * the hot cut's and the cold snare's, are [tool] keys of the same names
+ * (lib/conf/config.c, their defaults the TOOL_DEFAULT_* below); the
+ * others are these defaults.
+ *
+ * Published: each cut polyp's place (at), and, for a session's record
+ * (which keeps one place a cycle, not the 32), one cut polyp's a step in
+ * turn (lying): the next one after the last, in the case's order, that
+ * moved since it was last the one (a cut, a fall), or, none moving, the
+ * next one lying; -1 with none cut.
  *
  * Each polyp's fate: in place, captured, cut (lying in the lumen) or
  * retrieved (its state); partly resected where the forceps bit one in
@@ -163,8 +205,9 @@
  * Units SI. Plain data (copy it freely), no allocation, no logging; a
  * step's work is fixed: one pass over at most ANATOMY_MAX_POLYPS polyps
  * (p99 under 0.5 us with 32 in the loop on this project's VM:
- * bench_tool in `make bench`). One writer (the force loop); any thread
- * may read a copy.
+ * bench_tool in `make bench`; with tool_fall() after it, every polyp
+ * cut, gravity turning and the gas moving the wall, under 5 us). One
+ * writer (the force loop); any thread may read a copy.
  */
 #ifndef ENDOSIM_TOOL_H
 #define ENDOSIM_TOOL_H
@@ -251,6 +294,7 @@ struct tool_params {
 	double bleed_stop_s;      /* a bleed stops by itself after */
 	double retrieve_max_m;    /* the largest the channel sucks out */
 	double retrieve_reach_m;  /* the exit from its surface, at most */
+	double fall_drag_s;       /* a cut one's fall: the drag's tau */
 };
 
 #define TOOL_DEFAULT_CHANNEL_ANGLE_DEG 150.0
@@ -277,6 +321,10 @@ struct tool_params {
 #define TOOL_DEFAULT_BLEED_STOP_S 300.0
 #define TOOL_DEFAULT_RETRIEVE_MAX_M 0.006
 #define TOOL_DEFAULT_RETRIEVE_REACH_M 0.005
+#define TOOL_DEFAULT_FALL_DRAG_S 0.1
+/* A rest's search round its ring: coarse points, then golden steps. */
+#define TOOL_REST_COARSE 24
+#define TOOL_REST_FINE 12
 
 #define TOOL_PARAMS_DEFAULT { \
 		.channel_angle_rad = TOOL_DEFAULT_CHANNEL_ANGLE_RAD, \
@@ -297,7 +345,8 @@ struct tool_params {
 		.bleed_m_per_s = TOOL_DEFAULT_BLEED_M_PER_S, \
 		.bleed_stop_s = TOOL_DEFAULT_BLEED_STOP_S, \
 		.retrieve_max_m = TOOL_DEFAULT_RETRIEVE_MAX_M, \
-		.retrieve_reach_m = TOOL_DEFAULT_RETRIEVE_REACH_M }
+		.retrieve_reach_m = TOOL_DEFAULT_RETRIEVE_REACH_M, \
+		.fall_drag_s = TOOL_DEFAULT_FALL_DRAG_S }
 
 /* What the rig senses of the tool this cycle. */
 struct tool_input {
@@ -338,6 +387,16 @@ struct tool_polyp {
 	double bleed_m3_s;   /* its flow now */
 	double bleed_s;      /* how long it has bled */
 	double blood_m3;     /* shed so far */
+	double at[3];        /* cut: its body's centre, where it lies, m */
+	double rest[3];      /* cut: where it comes to rest, m (by the
+				undeformed wall) */
+	double rest_wall[3]; /* ... the ring's radius out to that wall, m:
+				the gas's factor f moves the wall, and the
+				rest, by (f - 1) times it */
+	bool rest_ok;        /* rest is for the gravity of t->down */
+	bool lies;           /* at its rest: carried with the wall */
+	double fall_v;       /* cut: its speed towards rest, m/s */
+	bool moved;          /* since it was last the published lying one */
 };
 
 struct tool {
@@ -359,6 +418,9 @@ struct tool {
 	int clips;           /* placed */
 	double blood_m3;     /* every point's shed since the case loaded */
 	int captured;        /* the polyp the loop holds; -1 none */
+	int lying;           /* the cut one published this step; -1 none */
+	int next_rest;       /* whose rest is sought first next step */
+	double down[3];      /* gravity's direction the rests are for */
 	bool injured;        /* this press of the pedal has injured */
 	int polyps;
 	struct tool_polyp polyp[ANATOMY_MAX_POLYPS];
@@ -400,10 +462,21 @@ int tool_place_polyps(struct tool *t, const struct colon *c);
 void tool_wall(const struct colon *c, double s_m, const double tip[3],
 	       struct tool_input *in);
 
+/* Polyp P's body's centre standing where it is (where a cut frees it,
+ * tool.h's fall) with PAR's lift, into AT (m). */
+void tool_polyp_body(const struct tool_polyp *p, const struct tool_params *par,
+		     double at[3]);
+
+/* Polyp P's bleeding point's flow (m^3/s) when it bleeds, with PAR's
+ * bleed_m_per_s: Q = bleed_m_per_s x pi t^2 / 4 of its stalk. */
+double tool_polyp_flow(const struct tool_polyp *p,
+		       const struct tool_params *par);
+
 /* The thickness (m) and the height (m) of polyp P's axis, which the loop
  * must close around, with lift LIFT_M (tool_params' lift_m). */
 double tool_polyp_thickness(const struct tool_polyp *p);
 double tool_polyp_height(const struct tool_polyp *p, double lift_m);
+
 
 /*
  * The loop's diameter (m) of a snare of size SNARE_M with its handle at
@@ -414,6 +487,20 @@ double tool_loop_diameter(double snare_m, double opening, double depth_m);
 
 /* Polyp P's fate (enum tool_polyp_fate) with PAR's forceps_max_m. */
 int tool_polyp_fate(const struct tool_polyp *p, const struct tool_params *par);
+
+/*
+ * The cut polyps' fall (above), a step of DT_S seconds after tool_step():
+ * on colon C's rings (NULL, or an imported mesh: none falls) under
+ * gravity G (m/s^2, colon frame; zero: none falls), the wall where the
+ * gas holds it (FACTOR: the lumen's GAS_SEGMENTS radius factors,
+ * gas_factor_at()'s; NULL: the undeformed wall); and the cut polyp
+ * published this step (T->lying). Fixed work, no allocation: at most one
+ * rest found (TOOL_REST_COARSE + TOOL_REST_FINE of the lumen's radius), a
+ * pass or two over the polyps, a factor each cut one. The force loop's.
+ */
+void tool_fall(struct tool *t, const struct tool_params *par,
+	       const struct colon *c, const double g[3],
+	       const double *factor, double dt_s);
 
 /* T as published, with this step's EVENTS and the POLYP they concern. */
 void tool_publish(const struct tool *t, unsigned events, int polyp,

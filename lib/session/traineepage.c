@@ -100,9 +100,13 @@ static void status_case(FILE *o, const struct coursefile *c, size_t k,
 		c->consecutive - p->run);
 }
 
-static int page_status(FILE *o, const struct coursefile *c,
-		       const struct traineepage_session *s, size_t n)
+/* The status of course C, the K-th of N_COURSES (one: the ids the page
+ * always had; more: each id numbered from the second). */
+static int page_status(FILE *o, const struct coursefile *c, size_t k,
+		       size_t n_courses, const struct traineepage_session *s,
+		       size_t n)
 {
+	char id[24] = "";
 	const char **cases = malloc((n ? n : 1) * sizeof(*cases));
 	const struct metrics_result **m = malloc((n ? n : 1) * sizeof(*m));
 	struct coursefile_progress p[COURSEFILE_MAX_CASES];
@@ -119,16 +123,20 @@ static int page_status(FILE *o, const struct coursefile *c,
 	}
 	coursefile_progress(c, cases, m, n, p);
 	done = coursefile_complete(c, p);
-	fputs("<section id=\"course\"><h2>Course ", o);
+	if (k) {
+		snprintf(id, sizeof(id), "-%zu", k + 1);
+	}
+	fprintf(o, "<section id=\"course%s\"><h2>Course ", id);
 	htmlpage_escape(o, c->name);
-	fprintf(o, "</h2>\n<p id=\"course-status\" class=\"%s\">%s</p>\n"
-		"<p>", done ? "complete" : "incomplete",
+	fprintf(o, "%s</h2>\n<p id=\"course-status%s\" class=\"%s\">%s</p>\n"
+		"<p>", n_courses > 1 ? " (one of the trainee's courses)" : "",
+		id, done ? "complete" : "incomplete",
 		done ? "course complete" : "course not complete yet");
 	htmlpage_escape(o, c->description);
 	fprintf(o, "</p>\n<p>Each case needs %u sessions in a row that meet "
 		"all its requirements.</p>\n<ul>\n", c->consecutive);
-	for (size_t k = 0; k < c->n_cases; k++) {
-		status_case(o, c, k, &p[k], s);
+	for (size_t i = 0; i < c->n_cases; i++) {
+		status_case(o, c, i, &p[i], s);
 	}
 	fputs("</ul></section>\n", o);
 	free(cases);
@@ -138,35 +146,90 @@ static int page_status(FILE *o, const struct coursefile *c,
 
 /* ---------------------------------------------------------- the table */
 
-static void session_reqs(FILE *o, const struct coursefile *c,
+/* The courses that judge a trainee, as the page goes through them. */
+struct courses {
+	const struct coursefile *const *c;
+	size_t n;
+};
+
+/* Each requirement of K met by M or not; each after COURSE's name unless
+ * NULL. */
+static void reqs(FILE *o, const struct coursefile_case *k,
+		 const struct metrics_result *m, const char *course)
+{
+	char text[96];
+
+	for (size_t i = 0; i < k->n_reqs; i++) {
+		bool met = coursefile_met(&k->req[i], m);
+
+		coursefile_req_text(&k->req[i], text, sizeof(text));
+		fprintf(o, "<span class=\"%s\">%s ", met ? "met" : "missed",
+			met ? "&#10003;" : "&#10007;");
+		if (course) {
+			htmlpage_escape(o, course);
+			fputs(": ", o);
+		}
+		htmlpage_escape(o, text);
+		fputs("</span>", o);
+	}
+}
+
+/* Session S judged by several courses: each that names its case. */
+static void session_courses(FILE *o, const struct courses *cs,
+			    const struct traineepage_session *s)
+{
+	size_t named = 0;
+
+	fputs("<td>", o);
+	for (size_t j = 0; j < cs->n; j++) {
+		const struct coursefile_case *k = coursefile_case(cs->c[j],
+								  s->case_name);
+		bool passed = k && coursefile_passed(k, s->m);
+
+		if (!k) {
+			continue;
+		}
+		named++;
+		fprintf(o, "<span class=\"%s\">", passed ? "met" : "missed");
+		htmlpage_escape(o, cs->c[j]->name);
+		fprintf(o, ": %s</span>", passed ? "passed" : "failed");
+	}
+	fprintf(o, "%s</td><td>", named ? "" : "not in the courses");
+	for (size_t j = 0; j < cs->n; j++) {
+		const struct coursefile_case *k = coursefile_case(cs->c[j],
+								  s->case_name);
+
+		if (k) {
+			reqs(o, k, s->m, cs->c[j]->name);
+		}
+	}
+	fputs("</td>", o);
+}
+
+static void session_reqs(FILE *o, const struct courses *cs,
 			 const struct traineepage_session *s)
 {
-	const struct coursefile_case *k = c ? coursefile_case(c, s->case_name)
-					    : NULL;
-	char text[96];
+	const struct coursefile_case *k = cs->n == 1 ?
+		coursefile_case(cs->c[0], s->case_name) : NULL;
 	bool passed;
 
+	if (cs->n > 1 && s->m) {
+		session_courses(o, cs, s);
+		return;
+	}
 	if (!k || !s->m) {
-		fprintf(o, "<td>%s</td><td></td>", !c ? "" : !k ?
-			"not in the course" : "not known");
+		fprintf(o, "<td>%s</td><td></td>", !cs->n ? "" :
+			cs->n > 1 || k ? "not known" : "not in the course");
 		return;
 	}
 	passed = coursefile_passed(k, s->m);
 	fprintf(o, "<td class=\"%s\">%s</td><td>", passed ? "met" : "missed",
 		passed ? "passed" : "failed");
-	for (size_t i = 0; i < k->n_reqs; i++) {
-		bool met = coursefile_met(&k->req[i], s->m);
-
-		coursefile_req_text(&k->req[i], text, sizeof(text));
-		fprintf(o, "<span class=\"%s\">%s ", met ? "met" : "missed",
-			met ? "&#10003;" : "&#10007;");
-		htmlpage_escape(o, text);
-		fputs("</span>", o);
-	}
+	reqs(o, k, s->m, NULL);
 	fputs("</td>", o);
 }
 
-static void session_row(FILE *o, const struct coursefile *c,
+static void session_row(FILE *o, const struct courses *c,
 			const struct traineepage_session *s)
 {
 	fputs("<tr id=\"session-", o);
@@ -204,7 +267,7 @@ static void session_row(FILE *o, const struct coursefile *c,
 	fputs("</tr>\n", o);
 }
 
-static void page_sessions(FILE *o, const struct coursefile *c,
+static void page_sessions(FILE *o, const struct courses *c,
 			  const struct traineepage_session *s, size_t n)
 {
 	fprintf(o, "<section><h2>Sessions</h2>\n<div class=\"wide\"><table "
@@ -226,9 +289,14 @@ static void page_sessions(FILE *o, const struct coursefile *c,
 
 /* ----------------------------------------------------- learning curves */
 
-/* The course's bounds on ME for the case K (NULL: none), as lines. */
-static void curve_bound(const struct htmlpage_plot *p,
-			const struct coursefile_case *k,
+/* The sections of the courses that name one case. */
+struct bounds {
+	const struct coursefile_case *k[TRAINEEPAGE_MAX_COURSES];
+	size_t n;
+};
+
+/* The courses' bounds on ME for one case (B), as lines. */
+static void curve_bound(const struct htmlpage_plot *p, const struct bounds *b,
 			const struct measure *me)
 {
 	static const char *const op_html[] = {
@@ -238,22 +306,24 @@ static void curve_bound(const struct htmlpage_plot *p,
 	};
 	char label[96];
 
-	for (size_t i = 0; k && i < k->n_reqs; i++) {
-		const struct coursefile_req *q = &k->req[i];
+	for (size_t j = 0; j < b->n; j++) {
+		for (size_t i = 0; i < b->k[j]->n_reqs; i++) {
+			const struct coursefile_req *q = &b->k[j]->req[i];
 
-		if (strcmp(q->field->key, me->key)) {
-			continue;
+			if (strcmp(q->field->key, me->key)) {
+				continue;
+			}
+			snprintf(label, sizeof(label), "requirement %s %g%s%s",
+				 op_html[q->op], q->value * me->scale,
+				 *me->unit ? " " : "", me->unit);
+			htmlpage_plot_hline(p, q->value * me->scale, label);
 		}
-		snprintf(label, sizeof(label), "requirement %s %g%s%s",
-			 op_html[q->op], q->value * me->scale,
-			 *me->unit ? " " : "", me->unit);
-		htmlpage_plot_hline(p, q->value * me->scale, label);
 	}
 }
 
 /* The y range of ME over the case's sessions and its bound. */
 static void curve_range(const struct traineepage_session *const *cs,
-			size_t n, const struct coursefile_case *k,
+			size_t n, const struct bounds *b,
 			const struct measure *me, double *lo, double *hi)
 {
 	*lo = 0;
@@ -264,25 +334,34 @@ static void curve_range(const struct traineepage_session *const *cs,
 		*lo = isfinite(v) ? fmin(*lo, v) : *lo;
 		*hi = isfinite(v) ? fmax(*hi, v) : *hi;
 	}
-	for (size_t i = 0; k && i < k->n_reqs; i++) {
-		if (!strcmp(k->req[i].field->key, me->key)) {
-			*hi = fmax(*hi, k->req[i].value * me->scale);
-			*lo = fmin(*lo, k->req[i].value * me->scale);
+	for (size_t j = 0; j < b->n; j++) {
+		const struct coursefile_case *k = b->k[j];
+
+		for (size_t i = 0; i < k->n_reqs; i++) {
+			if (!strcmp(k->req[i].field->key, me->key)) {
+				*hi = fmax(*hi, k->req[i].value * me->scale);
+				*lo = fmin(*lo, k->req[i].value * me->scale);
+			}
 		}
 	}
 	*hi = *hi > *lo ? *hi * 1.1 : *lo + 1;
 	*hi = me->count ? fmax(*hi, *lo + 5) : *hi; /* steps of 1 */
 }
 
-/* Whether M meets every requirement of K on ME: 1, 0, or -1 (none). */
-static int measure_met(const struct coursefile_case *k,
-		       const struct measure *me, const struct metrics_result *m)
+/* Whether M meets every requirement of the courses (B) on ME: 1, 0, or
+ * -1 (none). */
+static int measure_met(const struct bounds *b, const struct measure *me,
+		       const struct metrics_result *m)
 {
 	int met = -1;
 
-	for (size_t i = 0; k && i < k->n_reqs; i++) {
-		if (!strcmp(k->req[i].field->key, me->key)) {
-			met = met != 0 && coursefile_met(&k->req[i], m);
+	for (size_t j = 0; j < b->n; j++) {
+		const struct coursefile_case *k = b->k[j];
+
+		for (size_t i = 0; i < k->n_reqs; i++) {
+			if (!strcmp(k->req[i].field->key, me->key)) {
+				met = met != 0 && coursefile_met(&k->req[i], m);
+			}
 		}
 	}
 	return met;
@@ -292,8 +371,7 @@ static int measure_met(const struct coursefile_case *k,
  * marked by whether it met the course's requirements on the measure. */
 static void curve_points(const struct htmlpage_plot *p,
 			 const struct traineepage_session *const *cs, size_t n,
-			 const struct coursefile_case *k,
-			 const struct measure *me)
+			 const struct bounds *k, const struct measure *me)
 {
 	bool first = true;
 
@@ -330,7 +408,7 @@ static void curve_points(const struct htmlpage_plot *p,
 /* The plot of ME over the N sessions CS on the ORDINAL-th case. */
 static void curve(FILE *o, size_t ordinal, const char *case_name,
 		  const struct traineepage_session *const *cs, size_t n,
-		  const struct coursefile_case *k, const struct measure *me)
+		  const struct bounds *k, const struct measure *me)
 {
 	struct htmlpage_plot p = { .out = o, .xscale = 1 };
 	char id[160], ylabel[64];
@@ -356,13 +434,17 @@ static void curve(FILE *o, size_t ordinal, const char *case_name,
  * with metrics (CS: room for N). */
 static void case_curves(FILE *o, size_t ordinal, const char *case_name,
 			const struct traineepage_session *s, size_t n,
-			const struct coursefile *c,
+			const struct courses *c,
 			const struct traineepage_session **cs)
 {
-	const struct coursefile_case *k = c ? coursefile_case(c, case_name)
-					    : NULL;
+	struct bounds b = { .n = 0 };
 	size_t m = 0;
 
+	for (size_t j = 0; j < c->n; j++) {
+		if ((b.k[b.n] = coursefile_case(c->c[j], case_name))) {
+			b.n++;
+		}
+	}
 	for (size_t i = 0; i < n; i++) {
 		if (s[i].m && !strcmp(s[i].case_name, case_name)) {
 			cs[m++] = &s[i];
@@ -375,7 +457,7 @@ static void case_curves(FILE *o, size_t ordinal, const char *case_name,
 	htmlpage_escape(o, case_name);
 	fprintf(o, " (%zu session%s)</h3>\n", m, m == 1 ? "" : "s");
 	for (size_t i = 0; i < NMEASURES; i++) {
-		curve(o, ordinal, case_name, cs, m, k, &measures[i]);
+		curve(o, ordinal, case_name, cs, m, &b, &measures[i]);
 	}
 }
 
@@ -391,7 +473,7 @@ static bool case_seen_before(const struct traineepage_session *s, size_t i)
 }
 
 static int page_curves(FILE *o, const struct traineepage_session *s,
-		       size_t n, const struct coursefile *c)
+		       size_t n, const struct courses *c)
 {
 	const struct traineepage_session **cs = malloc((n ? n : 1) *
 						       sizeof(*cs));
@@ -429,19 +511,26 @@ static void page_header(FILE *o, const char *trainee, size_t n)
 
 int traineepage_write(const char *trainee,
 		      const struct traineepage_session *s, size_t n,
-		      const struct coursefile *course, const char *dir)
+		      const struct coursefile *const *courses,
+		      size_t n_courses, const char *dir)
 {
+	struct courses cs = { .c = courses, .n = n_courses };
 	char tmp[4200];
-	FILE *o = htmlpage_create(dir, tmp, sizeof(tmp));
-	int r;
+	FILE *o;
+	int r = 0;
 
-	if (!o) {
+	if (n_courses > TRAINEEPAGE_MAX_COURSES) {
+		return -EINVAL;
+	}
+	if (!(o = htmlpage_create(dir, tmp, sizeof(tmp)))) {
 		return -errno;
 	}
 	page_header(o, trainee, n);
-	r = course ? page_status(o, course, s, n) : 0;
-	page_sessions(o, course, s, n);
-	r = r ? r : page_curves(o, s, n, course);
+	for (size_t k = 0; !r && k < n_courses; k++) {
+		r = page_status(o, courses[k], k, n_courses, s, n);
+	}
+	page_sessions(o, &cs, s, n);
+	r = r ? r : page_curves(o, s, n, &cs);
 	fputs("<footer>endosim &middot; the metrics are defined in "
 	      "docs/METRICS.md, the courses in config/courses/</footer>\n"
 	      "</body></html>\n", o);

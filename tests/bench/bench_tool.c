@@ -18,7 +18,14 @@
  *    every step computes every crossing and captures, cuts and injures
  *    as they come, every one bleeding from the start of each cycle and
  *    the suction valve held (each step sheds every point's blood and
- *    looks for a cut one to retrieve).
+ *    looks for a cut one to retrieve), and gravity turning all the
+ *    while (1 rad/s about the body's long axis: each step seeks a cut
+ *    polyp's rest again and moves every cut one towards its own), the
+ *    gas opening and collapsing the lumen (every segment's radius
+ *    factor 0.8 +- 0.2 at 1 rad/s: a polyp lying is carried with the
+ *    wall each step).
+ * tool_fall() follows each tool_step(), timed with it (the case's
+ * polyps: gravity still, lying on the left side, the gas's factors 0.8).
  */
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +37,7 @@
 #include "model/anatomy.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
 #include "model/tool.h"
 
 #define DT 0.001
@@ -112,15 +120,18 @@ static void stalks(struct tool *t)
 	}
 }
 
-/* Times N cycles of T; WORST: the still tip and the stalks put back. */
-static void run(struct tool *t, const struct centreline *cl, long n,
-		bool worst, const char *what)
+/* Times N cycles of T on colon C; WORST: the still tip, the stalks put
+ * back, gravity turning. */
+static void run(struct tool *t, const struct colon *c, long n, bool worst,
+		const char *what)
 {
+	const struct centreline *cl = colon_centreline(c);
 	static const struct tool_params par = TOOL_PARAMS_DEFAULT;
 	struct series us = { calloc((size_t)n, sizeof(double)), 0 };
 	struct endosim_scope_state sc;
 	struct tool_input in = { .depth_m = 0.02, .opening = 1,
 				 .suction = worst };
+	double g[3] = { 9.81, 0, 0 }, factor[GAS_SEGMENTS];
 	long events = 0;
 
 	if (!us.v) {
@@ -145,11 +156,19 @@ static void run(struct tool *t, const struct centreline *cl, long n,
 				t->polyp[i].bleed_s = 0;
 			}
 		}
+		for (int i = 0; i < GAS_SEGMENTS; i++) {
+			factor[i] = 0.8 + (worst ? 0.2 * sin(t_s) : 0);
+		}
+		if (worst) {
+			vec3_set(g, 9.81 * cos(t_s), 9.81 * sin(t_s), 0);
+		}
 		t0 = now_us();
 		events += tool_step(t, &par, &sc, &in, DT, NULL) != 0;
+		tool_fall(t, &par, c, g, factor, DT);
 		us.v[us.n++] = now_us() - t0;
 	}
-	printf("  %s: tool_step() per cycle p50 %.3f us, p99 %.3f us, max "
+	printf("  %s: tool_step() and tool_fall() per cycle p50 %.3f us, "
+	       "p99 %.3f us, max "
 	       "%.2f us over %ld cycles, %ld with events (limit: p99 <= 10 "
 	       "us)\n", what, quantile(&us, 0.5), quantile(&us, 0.99),
 	       quantile(&us, 1), n, events);
@@ -184,7 +203,7 @@ int main(int argc, char **argv)
 	tool_reset(&t);
 	tool_select(&t, TOOL_SNARE, SNARE_M);
 	tool_place_polyps(&t, colon);
-	run(&t, colon_centreline(colon), n, false, "the case's polyps");
+	run(&t, colon, n, false, "the case's polyps");
 	tool_reset(&t);
 	tool_select(&t, TOOL_SNARE, SNARE_M);
 	memset(&sc, 0, sizeof(sc));
@@ -192,7 +211,7 @@ int main(int argc, char **argv)
 	tool_step(&t, &par, &sc, &in, DT, NULL);
 	stalks(&t);
 	snprintf(what, sizeof(what), "%d stalks in the loop", t.polyps);
-	run(&t, colon_centreline(colon), n, true, what);
+	run(&t, colon, n, true, what);
 	colon_destroy(colon);
 	return 0;
 }

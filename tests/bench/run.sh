@@ -40,9 +40,10 @@
 #    the most a step does (32 stalks in the loop), next to its 10 us.
 #    The scripted resection of the polyps case (test_resection): each
 #    polyp's times as she aims the tools herself (found, aimed, lifted,
-#    cut: found to free) and from the first touch to free, the mean, the
-#    cautery, the injections' and the stump's clip's times, next to the
-#    published resection, clip and injection times.
+#    cut: found to free; a small one's retrieval by suction from its
+#    cut) and from the first touch to free, the mean, the cautery, the
+#    injections' and the stump's clip's times, next to the published
+#    resection, clip and injection times.
 # 4. The drives: exchange rates and transaction latency against the
 #    emulators (drives.sh).
 # 5. The viewer's frame times and the age of the state it shows
@@ -146,7 +147,7 @@ echo
 echo "=== the scripted resection of the polyps case (test_resection): each polyp's times (aimed; found to free; first touch to free), next to the published ==="
 echo "published: resection 24 +/- 18 s (rotary snare), 30 +/- 26 s (standard snare); the hemostasis trainer's experts and beginners: clip 20 vs 73 s, injection 36 vs 92 s"
 ENDOSIM_TOP=$TOP "$BUILD/tests/test_resection" 2>&1 |
-	grep -E '^(polyp [0-9]+:|the expert:|the stalk)'
+	grep -E '^(polyp [0-9]+:|the expert:|the stalk|the channel)'
 echo
 echo "=== the loop's cycle on the paper model's demo, force shading on and off ==="
 "$BUILD/tests/bench_haptics" --model paper "$CASE" \

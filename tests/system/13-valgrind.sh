@@ -1,6 +1,7 @@
 #!/bin/bash
 # endosimd through a working session (commands, parameter changes,
-# subscriptions, hostile input, users, groups and logins, SIGTERM): no memory errors, and nothing
+# subscriptions, hostile input, users, groups and logins, a group's
+# course, a trainee at the rig, SIGTERM): no memory errors, and nothing
 # leaked at exit. The plain build runs under valgrind; the sanitizers'
 # build (which valgrind cannot run) runs the same session under its own
 # AddressSanitizer, with LeakSanitizer's check at exit.
@@ -34,6 +35,10 @@ session() {
 		ctl --as Ann session list'
 	check_status "a wrong PIN" 1 eval 'ENDOSIM_PIN=00000000 \
 		ctl --as Ann whoami'
+	check "the group's course judges Ann's sessions" eval 'ctl group \
+		assign 2026 basic && ctl trainee list'
+	check "Ann trains at the rig, then logs out" eval 'ENDOSIM_PIN=48213579 \
+		ctl login Ann && ctl status && ctl logout'
 }
 
 if ldd "$ENDOSIMD" | grep -q libasan; then

@@ -16,7 +16,14 @@
 # no flow, the image's red gone again. ENDOSIM_KEEP_SHOTS=DIR keeps the
 # pictures. A session recorded across it keeps the bleeding's events
 # (its start with the flow, the clip that stopped it) and its flow in the
-# CSV. No run has an OpenGL error.
+# CSV. The cut polyp falls to the lowest wall (lying on the left side:
+# at 9 o'clock here). endoview --replay of the session, at the records
+# the live shots showed, has the bleeding point, the cut polyp where it
+# lay and the clip where live had them (the state within a float's
+# rounding, the image's pixel within 2, the pixels round each as live
+# drew them); replayed at the cut and half a second on, the image
+# changed where it lies (the polyp fell there) and hardly elsewhere. No
+# run has an OpenGL error.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
 
@@ -124,6 +131,96 @@ check "... the CSV's flow: 5 mm's while it bled" eval \
 	"awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[\$i] = i; next }
 		\$c[\"tool_bleed_m3_s\"] > 1.9e-8 { n++ } END { exit !(n > 1000) }' \
 		$TMP/s.csv"
+
+# --- the session replayed: what the tools left, where live had it ---
+FILE="$TMP/sessions/$ID.endoses"
+# replay_at NAME T: the file replayed, paused T s after its first record,
+# as the live shots; its screenshot $TMP/replay-NAME.png, its output
+# $TMP/replay-NAME.out
+replay_at() {
+	endoview --no-vsync --replay "$FILE" --seek "$2" --paused --view endo \
+		--size 1280x720 --frames 3 --print-state \
+		--screenshot "$TMP/replay-$1.png" >"$TMP/replay-$1.out" 2>&1 ||
+		return 1
+	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
+		cp "$TMP/replay-$1.png" "$ENDOSIM_KEEP_SHOTS/bleed-replay-$1.png"
+}
+# since T_S: T_S (the CSVs' clock) as the replay's, from the first record
+since() {
+	awk -F, -v t="$1" 'NR == 2 { printf "%.4f", t - $1 + 0.0002; exit }' \
+		"$TMP/s.csv"
+}
+# cycle_t SHOT: the CSVs' time of the record the live shot showed
+cycle_t() {
+	awk -F, -v c="$(sed -n 's/^state: cycle=//p' "$TMP/$1.out")" '
+		NR == 1 { for (i = 1; i <= NF; i++) k[$i] = i; next }
+		$k["cycle"] == c { print $1; exit }' "$TMP/s.csv"
+}
+# state OUT KEY: a key of the state a run printed
+state() { sed -n "s/^state: $2=//p" "$1"; }
+# drawn OUT WHAT: where a run's image put WHAT ("X,Y")
+drawn() { sed -n "s/^endo: $2 at //p" "$1"; }
+# near A B TOL: the comma-separated numbers A and B within TOL each
+near() {
+	echo "$1 ~ $2"
+	awk -v a="$1" -v b="$2" -v tol="$3" 'BEGIN {
+		n = split(a, p, ","); m = split(b, q, ",")
+		if (n != m || n == 0) exit 1
+		for (i = 1; i <= n; i++) {
+			d = p[i] - q[i]; d = d < 0 ? -d : d
+			if (!(d <= tol)) exit 1
+		}
+	}'
+}
+# disc XY R: png_stats' disc of radius R round "X,Y"
+disc() { echo "disc:$1,$2"; }
+
+cut=$(awk -F, -v p="$POLYP" '$2 == "tool" && $3 == p && $4 == 4 {
+	print $1; exit }' "$TMP/events.csv")
+check "replayed at the cut" replay_at cut "$(since "$cut")"
+check "... and half a second on" \
+	replay_at fallen "$(since "$(awk -v t="$cut" 'BEGIN { print t + 0.5 }')")"
+check "... the scope's tip where it was at the cut" near \
+	"$(state "$TMP/replay-fallen.out" tip)" \
+	"$(state "$TMP/replay-cut.out" tip)" 1e-4
+LIE=$(drawn "$TMP/replay-fallen.out" "polyp $POLYP lying")
+moved=$(png_changed "$TMP/replay-fallen.png" "$TMP/replay-cut.png" \
+	"$(disc "$LIE" 20)")
+still=$(png_changed "$TMP/replay-fallen.png" "$TMP/replay-cut.png" \
+	"$IMAGE")
+check "the polyp fallen since the cut: the image changed where it lies, $LIE ($moved of a disc there, $still of the image)" \
+	float_test "$moved > 0.5 && $still < 0.05"
+check "replayed when live showed the bleeding" \
+	replay_at bleeding "$(since "$(cycle_t bleeding)")"
+check "... the same record" test "$(state "$TMP/replay-bleeding.out" cycle)" = \
+	"$(state "$TMP/bleeding.out" cycle)"
+check "... the bleeding point where live had it" near \
+	"$(state "$TMP/replay-bleeding.out" tool_bleed_at)" \
+	"$(state "$TMP/bleeding.out" tool_bleed_at)" 1e-6
+check "... the cut polyp lying where live had it" near \
+	"$(state "$TMP/replay-bleeding.out" tool_lying | tr ':' ',')" \
+	"$(state "$TMP/bleeding.out" tool_lying | tr ':' ',')" 1e-5
+LIE=$(drawn "$TMP/bleeding.out" "polyp $POLYP lying")
+check "... drawn where live drew it ($LIE)" near \
+	"$(drawn "$TMP/replay-bleeding.out" "polyp $POLYP lying")" "$LIE" 2
+same=$(png_changed "$TMP/replay-bleeding.png" "$TMP/bleeding.png" \
+	"$(disc "$LIE" 20)")
+check "... as live drew it there ($same of a disc round it differs)" \
+	float_test "$same < 0.1"
+check "replayed when live showed the clip" \
+	replay_at clipped "$(since "$(cycle_t clipped)")"
+check "... the clip where live had it" near \
+	"$(state "$TMP/replay-clipped.out" tool_clip_at)" \
+	"$(state "$TMP/clipped.out" tool_clip_at)" 1e-5
+check "... the point clipped: none bleeding" \
+	test -z "$(state "$TMP/replay-clipped.out" tool_bleeding)"
+CLIP=$(drawn "$TMP/clipped.out" clip)
+check "... drawn where live drew it ($CLIP)" near \
+	"$(drawn "$TMP/replay-clipped.out" clip)" "$CLIP" 2
+same=$(png_changed "$TMP/replay-clipped.png" "$TMP/clipped.png" \
+	"$(disc "$CLIP" 12)")
+check "... and looks as live ($same of a disc round it differs)" \
+	float_test "$same < 0.1"
 
 check "no run had an OpenGL error" eval \
 	'! grep -h "^endoview: frames=" "$TMP"/*.out | grep -qv " gl_errors=0 "'

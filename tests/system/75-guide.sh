@@ -7,7 +7,9 @@
 # session of another case, and nothing changes; started, it follows the
 # recording within 5 mm; stopped, it fades out and says why in the status
 # and the journal; a session recorded while guided has its phases as
-# events; the trainee's take-over (the viewer's key) fades it out; its
+# events; a session recorded without a tool shows no expert's tool (on
+# the wire, the HUD, the picture; one with a tool: 44-viewer-tool); the
+# trainee's take-over (the viewer's key) fades it out; its
 # report compares it with the expert's (--reference). (The
 # guidance's behaviour, measured cycle for cycle: test_guide.)
 . "$(dirname "$0")/../common.sh"
@@ -69,6 +71,11 @@ if start_xvfb; then
 	check "... how far off the path" \
 		grep -qE '^hud: off the path: ins [-+][0-9.]+ mm' "$VIEW_OUT"
 	check "the picture was written" test -s "$TMP/guided.png"
+	ghost=$(png_value "$TMP/guided.png" "$(view_channel)" ghost)
+	check "a session recorded without a tool: no expert's tool shown (its blue $ghost)" \
+		eval "status_true '.guide.expert_kind == \"none\"' &&
+		      ! grep -q '^hud: expert:' $VIEW_OUT &&
+		      float_test '$ghost < 0.01'"
 	[ -z "${ENDOSIM_KEEP_SHOTS:-}" ] ||
 		cp "$TMP/guided.png" "$ENDOSIM_KEEP_SHOTS/guided.png"
 else

@@ -15,6 +15,17 @@
 # the eight learning curves with their points and the course's bounds; the
 # screenshot is not blank. The page stays in $TMP/page (the screenshot in
 # $TRAINEE_SHOT, default $TMP/trainee.png) to be looked at.
+#
+# Courses assigned per group (issue 24): Ann in group A, whose course
+# (one passing session) her cut-short session fails and the others pass;
+# Bo in group B, whose course no session can pass; each judged by their
+# group's course, not [session] course, in the list and on the page; Bo
+# out of every group: [session] course again, as before; Ann in both
+# groups: both courses, each on her page. A course assigned by name is
+# found beside the cases; one that does not load is refused when
+# assigned (FILE:LINE), and when it goes bad later the list and the page
+# are refused in words, the page written before kept; --course judges
+# everyone by its file whatever the groups say.
 . "$(dirname "$0")/../common.sh"
 . "$(dirname "$0")/chrome_lib.sh"
 
@@ -42,9 +53,9 @@ check "session_script writes the sessions" sh -c '
 	"$1" "$2" "$3/full.tmp" "$4" >/dev/null &&
 	"$1" "$2" "$3/bo.tmp" Bo >/dev/null' _ \
 	"$TOOLS/session_script" "$CASES/polyps.case" "$TMP" "$ANN"
-# cut short after 10743 records of 568 bytes with their frames (107 s),
+# cut short after 10743 records of 584 bytes with their frames (107 s),
 # past the file's head (its CASE frame: the case file's text)
-head -c $((6102816 + $(wc -c <"$CASES/polyps.case"))) "$TMP/full.tmp" \
+head -c $((6275617 + $(wc -c <"$CASES/polyps.case"))) "$TMP/full.tmp" \
 	>"$SESS/1.endoses"
 cp "$TMP/full.tmp" "$SESS/2.endoses"
 cp "$TMP/full.tmp" "$SESS/3.endoses"
@@ -146,4 +157,88 @@ check "the trainee's name is escaped" \
 	grep -qF '<dd id="trainee">Ann O'"'"'Neil &lt;i&gt;</dd>' "$DOM"
 check "the page has no script and no external asset" \
 	sh -c "! grep -qiE '<script|src=|href=\"http' '$TMP/page/index.html'"
+
+# --- courses assigned per group -------------------------------------------
+# course FILE NAME CONSECUTIVE REQUIREMENT: a course of one requirement on
+# the polyps case
+course() {
+	printf '[course]\nname = %s\nconsecutive = %s\n[case polyps]\n%s\n' \
+		"$2" "$3" "$4" >"$1"
+}
+course "$TMP/a.course" withdrawal 1 "withdrawal_s >= 360"
+course "$TMP/b.course" impossible 1 "cecum_s <= 1"
+# trainee_json NAME JQ: the JQ over NAME's line of the last `trainee list
+# --json` (each list replays session 1, cut short: seconds on a busy VM)
+trainee_json() {
+	jq -e --arg t "$1" ".trainees[] | select(.trainee == \$t) | $2" "$OUT"
+}
+check "groups A (Ann) and B (Bo), each with a course" eval \
+	'ENDOSIM_NEW_PIN=1111 ctl user add Iris --role instructor &&
+	 ENDOSIM_NEW_PIN=2222 ctl user add "$ANN" --role trainee &&
+	 ENDOSIM_NEW_PIN=3333 ctl user add Bo --role trainee &&
+	 ctl group add A --instructor Iris && ctl group join A "$ANN" &&
+	 ctl group add B --instructor Iris && ctl group join B Bo &&
+	 (cd "$TMP" && ctl group assign A ./a.course) &&
+	 ctl group assign B "$TMP/b.course"'
+check "... a relative path assigned as the absolute one" eval \
+	'ctl --json group list | jq -e --arg f "$TMP/a.course" \
+		".groups[0].courses == [\$f]"'
+check_status "the list" 0 ctl --json trainee list
+check "... Ann judged by group A's course: complete (session 1 failed it)" \
+	trainee_json "$ANN" '.cases_complete == 1 and .course_complete and
+		.courses == [{"name": "withdrawal", "group": "A", "file":
+		"'"$TMP/a.course"'", "cases": 1, "cases_complete": 1,
+		"complete": true}]'
+check "... Bo by group B's: not complete" trainee_json Bo \
+	'.course_complete == false and .courses[0].name == "impossible"'
+check_status "the list in words" 0 ctl trainee list
+check "... each course named" eval 'grep -qE "^Ann O.Neil <i> .* withdrawal complete" "$OUT" &&
+	grep -qE "^Bo .* impossible 0 of 1 cases" "$OUT"'
+check "Bo out of every group, Ann in both" eval \
+	'ctl group leave B Bo && ctl group join B "$ANN" &&
+	 ctl --json trainee list >"$OUT"'
+check "... Bo: [session] course again, as before" trainee_json Bo \
+	'(has("courses") | not) and .cases_complete == 0 and
+	 (.course_complete | not)'
+check "... Ann: both courses" trainee_json "$ANN" \
+	'[.courses[].name] == ["withdrawal", "impossible"] and
+	 (has("course_complete") | not)'
+check_status "... her page" 0 ctl trainee report "$ANN" --out "$TMP/ga"
+check "... says so" grep -q "courses: withdrawal complete, impossible not \
+complete" "$OUT"
+check "... each course's status" sh -c '
+	grep -q "<h2>Course withdrawal (one of the trainee.s courses)</h2>" "$1" &&
+	grep -q "<p id=\"course-status\" class=\"complete\">" "$1" &&
+	grep -q "<p id=\"course-status-2\" class=\"incomplete\">" "$1"' \
+	_ "$TMP/ga/index.html"
+check "... session 1 failed group A's course, 2 and 3 passed it; both judged" sh -c '
+	grep "<tr id=\"session-1\">" "$1" | grep -q "withdrawal: failed.*&#10007; withdrawal: withdrawal_s &gt;= 360" &&
+	test "$(grep "<tr id=\"session-[23]\">" "$1" | grep -c "withdrawal: passed.*impossible: failed.*&#10003; withdrawal: withdrawal_s &gt;= 360.*&#10007; impossible: cecum_s &lt;= 1")" -eq 2 &&
+	! grep -q "polyps_seen &gt;=" "$1"' _ "$TMP/ga/index.html"
+
+check_status "a course assigned by name: the one beside the cases" 0 \
+	ctl group assign A basic
+ctl group unassign A basic >/dev/null
+check_status "a course file missing: refused" 1 ctl group assign A none
+check "... naming its file" grep -q \
+	"group A's course none: $TOP/config/courses/none.course" "$OUT"
+check_status "a course with a mistake: refused" 1 \
+	ctl group assign A "$TMP/bad.course"
+check "... FILE:LINE" grep -q "$TMP/bad.course:5: unknown metric 'cecum'" \
+	"$OUT"
+check "... nothing assigned" eval 'ctl --json group list |
+	jq -e ".groups[0].courses | length == 1"'
+cp "$TMP/ga/index.html" "$TMP/page-before.html"
+printf 'garbage\n' >"$TMP/b.course"
+check_status "group B's course gone bad: the list refused" 1 \
+	ctl trainee list
+check "... in words" grep -q \
+	"group B's course $TMP/b.course: $TMP/b.course:1:" "$OUT"
+check_status "... Ann's page refused" 1 \
+	ctl trainee report "$ANN" --out "$TMP/ga"
+check "... the page written before kept" cmp -s "$TMP/ga/index.html" \
+	"$TMP/page-before.html"
+check_status "--course FILE: everyone by it, whatever the groups" 0 \
+	ctl --json trainee list --course "$COURSE"
+check "... the same trainees as ever" test "$(jq -c . "$OUT")" = "$WANT"
 finish

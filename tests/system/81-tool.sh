@@ -32,7 +32,7 @@ check "... its polyps placed for the tool" wait_for t_true '.polyps == 5'
 
 check "status --json: the tool's keys, in their order" \
 	test "$(ctl --json status | jq -c '.tool | keys_unsorted')" = \
-	'["kind","pedal","snare_m","depth_m","opening","loop_m","tip","loop_centre","captured","events","event_polyp","clips","polyps","polyp","bleeding","bleed_m3_s","blood_m3","bleed_at","clip_at"]'
+	'["kind","pedal","snare_m","depth_m","opening","loop_m","tip","loop_centre","captured","events","event_polyp","clips","polyps","polyp","bleeding","bleed_m3_s","blood_m3","bleed_at","clip_at","lying_polyp","lying_at"]'
 check "at the start: no tool, the case's five polyps in place" \
 	t_true '.kind == "none" and .polyps == 5 and (.polyp | length) == 5
 		and all(.polyp[]; .state == "in-place") and .captured == -1'
@@ -154,7 +154,7 @@ check "... and in its report: the therapy, a row a polyp, each left" eval \
 		$TMP/report/index.html) = 5"
 ctl session export "$ID" --csv --out "$TMP/s.csv" >/dev/null
 check "the CSV: the tool's columns" eval \
-	"head -n 1 $TMP/s.csv | grep -q ',patient_torn_segment,tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,tool_captured,tool_events,tool_event_polyp,tool_bleed_m3_s$'"
+	"head -n 1 $TMP/s.csv | grep -q ',patient_torn_segment,tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,tool_captured,tool_events,tool_event_polyp,tool_bleed_m3_s,tool_lying_polyp,tool_lying_x_m,tool_lying_y_m,tool_lying_z_m$'"
 check "... the loop's opening 0.5 and the pedal recorded" eval \
 	"awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[\$i] = i; next }
 		\$c[\"tool_pedal\"] == 1 && \$c[\"tool_opening_1\"] == 0.5 { n++ }

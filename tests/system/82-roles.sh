@@ -18,11 +18,24 @@
 # own seconds: the test sleeps them out, and the one check made inside a
 # wait has 4 s to spare.) The PINs are nowhere in
 # clear: not in the accounts' database, the records' or the log.
+#
+# Who trains at the rig (endoview's login screen, on a virtual screen,
+# xdotool typing into it): a rig without a trainee's account does not
+# ask; with one, the screen asks; a wrong PIN is refused on it and
+# changes nothing; the right one makes Ann the rig's trainee (the
+# status says so, a session started without --trainee is hers, Bo's is
+# refused); C logs her out and the screen asks again; Bo logs in there
+# and is logged out as endoview quits; --trainee with $ENDOSIM_PIN logs
+# in without the screen, the HUD naming her (with a wrong one the screen
+# says so: the docs' picture).
 . "$(dirname "$0")/../common.sh"
+. "$TOP/tests/viewer_lib.sh"
 
 SESS="$TMP/sessions"
 ACCOUNTS="$SESS/accounts.sqlite"
 start_daemon || finish
+check "no trainee's account: nobody trains, endoview is not asked to" \
+	status_true '.trainee == "" and .asks_trainee == false'
 
 # as NAME PIN ARGS...: endoctl logged in as NAME
 as() {
@@ -65,6 +78,21 @@ check_status "Ann: session list" 0 as Ann 48213579 --json session list
 check "... her own two only" test "$(trainees_of)" = '["Ann","Ann"]'
 check_status "Ann: trainee list" 0 as Ann 48213579 --json trainee list
 check "... herself only" jq -e '[.trainees[].trainee] == ["Ann"]' "$OUT"
+check "... judged by her group's course" jq -e \
+	'.trainees[0].courses | map(.name + " of " + .group) == ["basic of 2026"]' \
+	"$OUT"
+printf '[course]\nname = c\nconsecutive = 1\n[case normal]\ncecum_s <= 480\n' \
+	>"$TMP/c.course"
+check "Cy's group 2027 and its course" eval 'ctl group add 2027 \
+	--instructor "Dr Ives" && ctl group join 2027 Cy &&
+	ctl group assign 2027 "$TMP/c.course"'
+echo garbage >"$TMP/c.course"
+check_status "... gone bad: the staff's list refused" 1 ctl trainee list
+check "... in words" grep -q "group 2027's course $TMP/c.course: $TMP/c.course:1:" \
+	"$OUT"
+check_status "... Ann's, which it does not judge, is not" 0 \
+	as Ann 48213579 trainee list
+ctl group remove 2027 >/dev/null
 check_status "Ann: Bo's page: refused" 1 \
 	as Ann 48213579 trainee report Bo --out "$TMP/bo"
 check "... in words" grep -q "Bo's sessions: a trainee sees only their own \
@@ -158,6 +186,61 @@ check "... (Di added, no Eve)" jq -e '[.users[].name] == ["Ada", "Ann", "Bo",
 check_status "Ada: session list" 0 as Ada 90210777 --json session list
 check "... every one" test "$(trainees_of)" = '["Ann","Ann","Bo","Cy"]'
 check_status "Ada: records check" 0 as Ada 90210777 records check
+
+# who trains at the rig: endoview's login screen
+# type TEXT: xdotool types TEXT into the viewer, then Enter
+type() { xdotool type --delay 20 "$1" && xdotool key Return; }
+# said N RE: the live viewer's log has N lines matching RE (grep -E)
+said() { test "$(grep -cE "$2" "$TMP/live.out")" -ge "$1"; }
+start_xvfb || finish
+check "the accounts hold trainees: endoview is asked to" \
+	status_true '.asks_trainee and .trainee == ""'
+live_view normal --size 640x480 --max-fps 30
+check "endoview asks who is training" \
+	wait_for said 1 "login: who is training\?"
+type Ann && type 00000000
+check "a wrong PIN: refused on the screen" \
+	wait_for said 1 "login of Ann refused: wrong name or PIN"
+check "... nobody trains" status_true '.trainee == ""'
+type 48213579
+check "the right PIN: Ann trains at the rig" \
+	wait_for said 1 "login: Ann trains at the rig"
+check "... the status says so" status_true '.trainee == "Ann"'
+check_status "... endoctl status too" 0 ctl status
+check "... (its line)" grep -qx "trainee   Ann" "$OUT"
+check_status "a session started without --trainee" 0 ctl --json session start
+check "... is Ann's" jq -e '.trainee == "Ann"' "$OUT"
+ctl session stop >/dev/null
+check_status "Bo's session while Ann trains: refused" 1 \
+	ctl session start --trainee Bo
+check "... in words" grep -q "Ann is training at the rig: a session of Bo \
+needs Ann to log out first" "$OUT"
+xdotool key c
+check "C: Ann logs out, the screen asks again" \
+	wait_for said 2 "login: who is training\?"
+check "... nobody trains" status_true '.trainee == ""'
+type Bo && type 27182818
+check "Bo logs in on it" wait_for status_true '.trainee == "Bo"'
+xdotool key q
+check "Q: endoview quits" wait_for eval '! kill -0 "$VIEWER" 2>/dev/null'
+kill "$VIEWER" 2>/dev/null
+wait "$VIEWER"
+check "... and logs Bo out" said 1 "Bo logged out as endoview quits"
+check "... nobody trains" status_true '.trainee == ""'
+ENDOSIM_PIN=00000000 view --size 640x480 --frames 4 --trainee Ann \
+	--screenshot "$TMP/login.png" --print-state
+check "--trainee Ann with a wrong PIN: the screen says so" grep -qx \
+	"login: asking: name 'Ann', PIN 0 characters, focus PIN: wrong name or PIN" \
+	"$VIEW_OUT"
+keep_picture "$TMP/login.png" endoview-login
+ENDOSIM_PIN=48213579 view --frames 1 --trainee Ann --print-state
+check "--trainee Ann, the PIN from \$ENDOSIM_PIN: in without the screen" \
+	grep -qx "login: Ann trains" "$VIEW_OUT"
+check "... the HUD names her" grep -q "^hud: trainee Ann  (C: log out)" \
+	"$VIEW_OUT"
+check "... and she is logged out as it quits" status_true '.trainee == ""'
+check "the session list: Ann's session, recorded as she trained" \
+	eval 'ctl --json session list | jq -e ".sessions[-1].trainee == \"Ann\""'
 
 # an unprivileged user: the read-only socket, no records without a login
 if [ "$(id -u)" = 0 ]; then

@@ -69,6 +69,14 @@ static void print_once(const struct endosim_state *st)
 	       st->tool.tip[0], st->tool.tip[1], st->tool.tip[2],
 	       st->tool.loop_centre[0], st->tool.loop_centre[1],
 	       st->tool.loop_centre[2]);
+	printf("guide.phase=%s\nguide.expert_kind=%s\n"
+	       "guide.expert_depth_m=%.9g\nguide.expert_opening=%.9g\n"
+	       "guide.expert_pedal=%u\nguide.expert_tip=%.9g,%.9g,%.9g\n",
+	       names_guide_phase(st->guide.phase),
+	       names_tool(st->guide.expert_kind), st->guide.expert_depth_m,
+	       st->guide.expert_opening, st->guide.expert_pedal,
+	       st->guide.expert_tip[0], st->guide.expert_tip[1],
+	       st->guide.expert_tip[2]);
 	printf("scope.depth_m=%.9g\nscope.tip_s_m=%.9g\nscope.spans=%u\n",
 	       st->scope.depth_m, st->scope.tip_s_m, st->scope.spans);
 	printf("scope.tip=%.6f,%.6f,%.6f\n", st->scope.tip[0],

@@ -59,6 +59,9 @@ struct trainee {
 	double bending_m;         /* the bending section's length */
 	double roll_min, roll_max; /* rad, within the rig's travel */
 	uint32_t valves;          /* the valves she holds */
+	uint32_t holding;         /* ... of them, by her own decision (the
+				     suction: trainee_suction()), whatever
+				     the view asks for */
 	int pressing;             /* the site the assistant presses, -1 */
 	bool turned;              /* she had the patient turned for a loop */
 	bool examining;           /* withdrawing: the segment seen uppermost */
@@ -262,7 +265,7 @@ static void care(struct trainee *t)
 	}
 	if (dirt > LENS_DIRTY ||
 	    (t->valves & ENDOSIM_VALVE_WATER && dirt > LENS_CLEAN)) {
-		valves(t, ENDOSIM_VALVE_WATER);
+		valves(t, ENDOSIM_VALVE_WATER | t->holding);
 		return;
 	}
 	view = view_ahead(t);
@@ -271,7 +274,15 @@ static void care(struct trainee *t)
 	} else if (view < VIEW_CLOSED) {
 		air = true;
 	}
-	valves(t, air ? ENDOSIM_VALVE_AIR : 0);
+	valves(t, (air ? ENDOSIM_VALVE_AIR : 0) | t->holding);
+}
+
+void trainee_suction(struct trainee *t, bool on)
+{
+	uint32_t bit = ENDOSIM_VALVE_SUCTION;
+
+	t->holding = on ? t->holding | bit : t->holding & ~bit;
+	valves(t, on ? t->valves | bit : t->valves & ~bit);
 }
 
 /*
@@ -704,14 +715,20 @@ static void aim_swing(struct trainee *t, const double e[3], double reach_m)
 
 /* She moves the aimed point by E (m) along the view: the tool's depth
  * *DEPTH_M first; the scope in or out for what the tool cannot, and to
- * bring the tool back to the depth she likes (AIM_TOOL_M). */
+ * bring the tool back to the depth she likes (AIM_TOOL_M). DEPTH_M NULL:
+ * the scope alone (the tool in the channel). */
 static void aim_reach(struct trainee *t, const double e[3], double *depth_m)
 {
-	double fw = AIM_GAIN * vec3_dot(e, t->s->scope.dir), was = *depth_m;
+	double fw = AIM_GAIN * vec3_dot(e, t->s->scope.dir), tool = 0, back = 0;
 
-	*depth_m = fmax(AIM_TOOL_MIN_M, fmin(AIM_TOOL_MAX_M, was + fw));
-	t->depth += clampd(fw - (*depth_m - was) +
-			   AIM_BACK * (*depth_m - AIM_TOOL_M), AIM_IN_MAX);
+	if (depth_m) {
+		double was = *depth_m;
+
+		*depth_m = fmax(AIM_TOOL_MIN_M, fmin(AIM_TOOL_MAX_M, was + fw));
+		tool = *depth_m - was;
+		back = AIM_BACK * (*depth_m - AIM_TOOL_M);
+	}
+	t->depth += clampd(fw - tool + back, AIM_IN_MAX);
 	t->depth = near(t->depth, t->s->axis[ENDOSIM_AXIS_INSERTION].position,
 			AIM_IN_AHEAD);
 }
@@ -726,7 +743,7 @@ static double aim_step(struct trainee *t, const struct tool_params *par,
 		       const double target[3], const double wall[3],
 		       double *depth_m, double beyond_m)
 {
-	double reach_m = *depth_m + beyond_m, e[3], x[3];
+	double reach_m = (depth_m ? *depth_m : 0) + beyond_m, e[3], x[3];
 	struct tool_pose q;
 
 	tool_pose(par, &t->s->scope, 0, &q);
@@ -738,9 +755,10 @@ static double aim_step(struct trainee *t, const struct tool_params *par,
 	return vec3_norm(e);
 }
 
-bool trainee_aim(struct trainee *t, const struct tool_params *par,
-		 const double target[3], const double wall[3],
-		 double *depth_m, double beyond_m, double tol_m, double max_s)
+/* trainee_aim(), or with DEPTH_M NULL trainee_approach(). */
+static bool aim(struct trainee *t, const struct tool_params *par,
+		const double target[3], const double wall[3], double *depth_m,
+		double beyond_m, double tol_m, double max_s)
 {
 	double since = trainee_time(t);
 	int settled = 0;
@@ -755,4 +773,18 @@ bool trainee_aim(struct trainee *t, const struct tool_params *par,
 		waypoint(t);
 	}
 	return false;
+}
+
+bool trainee_aim(struct trainee *t, const struct tool_params *par,
+		 const double target[3], const double wall[3],
+		 double *depth_m, double beyond_m, double tol_m, double max_s)
+{
+	return aim(t, par, target, wall, depth_m, beyond_m, tol_m, max_s);
+}
+
+bool trainee_approach(struct trainee *t, const struct tool_params *par,
+		      const double target[3], const double wall[3],
+		      double tol_m, double max_s)
+{
+	return aim(t, par, target, wall, NULL, 0, tol_m, max_s);
 }

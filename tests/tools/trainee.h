@@ -18,7 +18,9 @@
  *    stuck: she does not shove), until she gives up on it;
  *  - pushing on (the classic mistake), withdrawing with a twist (the
  *    classic reduction), holding still;
- *  - aiming a tool in the working channel at a polyp (trainee_aim()).
+ *  - aiming a tool in the working channel at a polyp (trainee_aim()),
+ *    bringing the channel's exit to a cut one and sucking it out
+ *    (trainee_approach(), trainee_suction()).
  *
  * With the patient enabled ([patient] enabled, struct endosim_state
  * .patient) she also looks after the view and the patient, each action a
@@ -186,6 +188,25 @@ void trainee_hold(struct trainee *t, double seconds);
 bool trainee_aim(struct trainee *t, const struct tool_params *par,
 		 const double target[3], const double wall[3],
 		 double *depth_m, double beyond_m, double tol_m, double max_s);
+
+/*
+ * Brings the channel's exit to TARGET (m) with the scope alone, the tool
+ * back in the channel: as trainee_aim() aims, with no tool to reach
+ * with (the wall WALL turned to the channel's clock, the tip swung, the
+ * scope in or out). At most MAX_S seconds; whether the exit was within
+ * TOL_M of TARGET at two waypoints running.
+ */
+bool trainee_approach(struct trainee *t, const struct tool_params *par,
+		      const double target[3], const double wall[3],
+		      double tol_m, double max_s);
+
+/*
+ * She presses the suction valve (ON) or lets it go, from the next
+ * waypoint on (a line of her script), and holds it so through her care
+ * of the view (the air or the jet joining it). Not before her first
+ * waypoint.
+ */
+void trainee_suction(struct trainee *t, bool on);
 
 /*
  * On to material TIP_S_M (m) at SPEED, steering; each time the scope is

@@ -929,6 +929,7 @@ static void test_segments_cover_mesh(void **state)
 	colon_destroy(c);
 }
 
+/* The lumen's cross-section: folds, taeniae, the cecum; its rings. */
 static void test_lumen_shape(void **state)
 {
 	struct colon *c = build("normal", 0.004, 16);
@@ -959,6 +960,19 @@ static void test_lumen_shape(void **state)
 	assert_true(colon_lumen_radius(c, end - 0.05, mid) >
 		    colon_lumen_radius(c, s, mid));
 	assert_true(colon_lumen_radius(c, end - 0.0005, mid) < 0.01);
+	/* a ring found once gives the same radius all round it, folds,
+	   taeniae, the segments' blends and the dome */
+	for (double x = 0; x < end; x += 0.0137) {
+		struct colon_ring ring;
+
+		colon_ring_at(c, x, &ring);
+		for (int k = 0; k < 24; k++) {
+			double th = 2 * M_PI * k / 24 - 1;
+
+			assert_true(colon_ring_radius(c, &ring, th) ==
+				    colon_lumen_radius(c, x, th));
+		}
+	}
 	colon_destroy(c);
 }
 

@@ -515,6 +515,13 @@ static void same_tool(const struct config *cfg)
 	SAME(c, m, cut_j_per_m2);
 	SAME(c, m, hot_power_w);
 	SAME(c, m, cold_max_m);
+	SAME(c, m, coag_j_per_m3);
+	SAME(c, m, bleed_min_m);
+	SAME(c, m, bleed_m_per_s);
+	SAME(c, m, bleed_stop_s);
+	SAME(c, m, retrieve_max_m);
+	SAME(c, m, retrieve_reach_m);
+	SAME(c, m, fall_drag_s);
 	same("snare_size_m", cfg->tool.snare_size_m, TOOL_DEFAULT_SNARE_M);
 }
 
@@ -549,6 +556,56 @@ static void same_as_owners(const struct config *cfg)
 		print_message("records.database: %s, records.h: %s\n",
 			      cfg->records.database, RECORDS_DEFAULT_NAME);
 		mismatches++;
+	}
+}
+
+/*
+ * Each [tool] key set to a value in its range other than its default
+ * reaches the model's parameters (cases_tool_params()): a key the table
+ * has but the model never takes fails.
+ */
+static void test_tool_keys_reach_model(void **state)
+{
+	static const struct {
+		const char *key, *value;
+		size_t at;   /* in struct tool_params */
+		double want; /* there */
+	} k[] = {
+#define TOOL_KEY(name, text, field, v)                                      \
+	{ "tool." name, text, offsetof(struct tool_params, field), v }
+		TOOL_KEY("channel_angle_deg", "90", channel_angle_rad,
+			 90 * TOOL_RAD_PER_DEG),
+		TOOL_KEY("channel_offset_m", "0.003", channel_offset_m, 0.003),
+		TOOL_KEY("hot_power_w", "40", hot_power_w, 40),
+		TOOL_KEY("cut_j_per_m2", "3e6", cut_j_per_m2, 3e6),
+		TOOL_KEY("cold_max_m", "0.008", cold_max_m, 0.008),
+		TOOL_KEY("coag_j_per_m3", "3e8", coag_j_per_m3, 3e8),
+		TOOL_KEY("bleed_min_m", "0.004", bleed_min_m, 0.004),
+		TOOL_KEY("bleed_m_per_s", "0.002", bleed_m_per_s, 0.002),
+		TOOL_KEY("bleed_stop_s", "60", bleed_stop_s, 60),
+		TOOL_KEY("retrieve_max_m", "0.008", retrieve_max_m, 0.008),
+		TOOL_KEY("retrieve_reach_m", "0.004", retrieve_reach_m, 0.004),
+		TOOL_KEY("fall_drag_s", "0.05", fall_drag_s, 0.05),
+#undef TOOL_KEY
+	};
+	const struct tool_params def = TOOL_PARAMS_DEFAULT;
+
+	(void)state;
+	for (size_t i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
+		struct config cfg;
+		struct tool_params p;
+		double got, was;
+
+		config_defaults(&cfg);
+		assert_int_equal(config_set(&cfg, k[i].key, k[i].value, true,
+					    err, sizeof(err)), 0);
+		cases_tool_params(&cfg, &p);
+		memcpy(&got, (const char *)&p + k[i].at, sizeof(got));
+		memcpy(&was, (const char *)&def + k[i].at, sizeof(was));
+		print_message("%s = %s: %g (default %g)\n", k[i].key,
+			      k[i].value, got, was);
+		assert_true(fabs(got - k[i].want) <= 1e-12 * fabs(k[i].want));
+		assert_true(got != was);
 	}
 }
 
@@ -607,6 +664,7 @@ int main(void)
 		cmocka_unit_test(test_print_round_trip),
 		cmocka_unit_test(test_table_sane),
 		cmocka_unit_test(test_defaults_are_the_owners),
+		cmocka_unit_test(test_tool_keys_reach_model),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

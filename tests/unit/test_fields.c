@@ -49,6 +49,7 @@ static const struct {
 #define ROD(f, why) NOT(fields_rod, struct endosim_rod_state, f, why)
 #define PATIENT(f, why)                                                      \
 	NOT(fields_patient, struct endosim_patient_state, f, why)
+#define TOOL(f, why) NOT(fields_tool, struct endosim_tool_state, f, why)
 	STATE(publish_ns, "the publisher's own clock, for shm readers"),
 	STATE(fault_axis, "the first fault's: faults[0] says it"),
 	STATE(fault_detail, "the first fault's: faults[0] says it"),
@@ -69,6 +70,7 @@ static const struct {
 	ROD(node, "the colon's nodes: the shm's, sessions' SHAPE frames"),
 	ROD(span_nodes, "the nodes' spans: the shm's, SHAPE frames'"),
 	PATIENT(reserved, "padding"),
+	TOOL(reserved, "padding"),
 #undef NOT
 #undef STATE
 #undef CAUSE
@@ -76,6 +78,7 @@ static const struct {
 #undef SCOPE
 #undef ROD
 #undef PATIENT
+#undef TOOL
 };
 
 /* Every table, from the root, each once. */
@@ -440,7 +443,9 @@ static const char csv_columns[] =
 	"tool_kind,tool_snare_m,tool_depth_m,tool_opening_1,tool_pedal,"
 	"tool_captured,tool_events,tool_event_polyp,"
 	/* format 7: the bleeding */
-	"tool_bleed_m3_s";
+	"tool_bleed_m3_s,"
+	/* format 8: a cut polyp lying */
+	"tool_lying_polyp,tool_lying_x_m,tool_lying_y_m,tool_lying_z_m";
 
 /* The column called NAME among C's N. */
 static const struct fields_column *column(const struct fields_column *c,
@@ -495,9 +500,11 @@ static void test_columns(void **state)
 			 FIELDS_STORED_U32);
 	assert_int_equal(column(c, n, "tool_opening_1")->stored,
 			 FIELDS_STORED_F32);
+	assert_int_equal(column(c, n, "tool_lying_polyp")->stored,
+			 FIELDS_STORED_I32);
 	assert_int_equal(c[n - 1].stored, FIELDS_STORED_F32);
 	assert_int_equal(c[n - 1].record,
-			 offsetof(struct session_record, tool_bleed_m3_s));
+			 offsetof(struct session_record, tool_lying_at[2]));
 }
 
 /* A state whose every double and word differs. */

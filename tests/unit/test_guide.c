@@ -21,6 +21,13 @@
  * rig with its own: each change at its recorded time, the trainee's own
  * valve joining the recording's.
  *
+ * The expert's tool is shown, not played: a session on the polyps case in
+ * which the expert's snare captures and cuts the pedunculated polyp,
+ * guided on a rig where the trainee holds her forceps in the channel and
+ * the same polyp stands under the expert's loop: the published expert's
+ * tool is the recording's at the playhead, cycle for cycle, only while
+ * guiding; hers stays hers, and the polyp is never cut.
+ *
  * Run from the top of the source tree (tests/run.sh does).
  */
 #include <setjmp.h>
@@ -53,15 +60,16 @@ static char file[256];
 static struct guide_path *path;
 static double rec_cecum_s; /* the recording's tip at the cecum, s of it */
 
-static struct offline *on_normal(struct config *cfg, struct scenario *scn)
+/* SCN played on CASE_FILE with CFG, the paper's model. */
+static struct offline *on_case(struct config *cfg, struct scenario *scn,
+			       const char *case_file)
 {
 	char err[512];
 	struct colon *c;
 	struct offline *o;
 
 	cfg->haptics.model = HAPTICS_MODEL_PAPER;
-	snprintf(cfg->colon.file, sizeof(cfg->colon.file),
-		 "config/cases/normal.case");
+	snprintf(cfg->colon.file, sizeof(cfg->colon.file), "%s", case_file);
 	c = cases_load(cfg, NULL, err, sizeof(err));
 	if (!c) {
 		fail_msg("%s", err);
@@ -73,14 +81,23 @@ static struct offline *on_normal(struct config *cfg, struct scenario *scn)
 	return o;
 }
 
+static struct offline *on_normal(struct config *cfg, struct scenario *scn)
+{
+	return on_case(cfg, scn, "config/cases/normal.case");
+}
+
+/* What a recording's every cycle is shown to: the loop O, its state ST
+ * at T_S from the first enabled one (-1 before). */
+typedef void each_fn(struct offline *o, const struct endosim_state *st,
+		     double t_s);
+
 /*
- * SCN played on the normal case with CFG, every cycle written to NAME as
- * endosimd's recorder writes a session (its id SOURCE_ID); EACH sees each
- * state with its time from the first enabled one (-1 before). -1 when
- * NAME cannot be written.
+ * SCN played on CASE_FILE with CFG, every cycle written to NAME as
+ * endosimd's recorder writes a session (its id SOURCE_ID) after EACH saw
+ * it. -1 when NAME cannot be written.
  */
-static int record(const char *name, struct config *cfg, struct scenario *scn,
-		  void (*each)(const struct endosim_state *st, double t_s))
+static int record_on(const char *name, const char *case_file,
+		     struct config *cfg, struct scenario *scn, each_fn *each)
 {
 	struct session_header h = {
 		.id = SOURCE_ID, .trainee = "expert", .case_name = "normal",
@@ -98,7 +115,7 @@ static int record(const char *name, struct config *cfg, struct scenario *scn,
 		scenario_destroy(scn);
 		return -1;
 	}
-	o = on_normal(cfg, scn);
+	o = on_case(cfg, scn, case_file);
 	cycles = (long)(offline_length_s(o) / PERIOD_S);
 	session_header_text(&h, text, sizeof(text));
 	session_file_write_magic(fd);
@@ -112,7 +129,7 @@ static int record(const char *name, struct config *cfg, struct scenario *scn,
 		if (st->state == ENDOSIM_STATE_ENABLED && t0 < 0) {
 			t0 = t;
 		}
-		each(st, t0 < 0 ? -1 : t - t0);
+		each(o, st, t0 < 0 ? -1 : t - t0);
 		session_record_from_state(st, &r);
 		session_file_write_frame(fd, SESSION_FRAME_RECORD, &r,
 					 sizeof(r));
@@ -122,8 +139,17 @@ static int record(const char *name, struct config *cfg, struct scenario *scn,
 	return 0;
 }
 
-static void cecum_seen(const struct endosim_state *st, double t_s)
+/* SCN on the normal case, recorded (record_on()). */
+static int record(const char *name, struct config *cfg, struct scenario *scn,
+		  each_fn *each)
 {
+	return record_on(name, "config/cases/normal.case", cfg, scn, each);
+}
+
+static void cecum_seen(struct offline *o, const struct endosim_state *st,
+		       double t_s)
+{
+	(void)o;
 	if (rec_cecum_s < 0 && t_s >= 0 && st->scope.tip_s_m >= CECUM_S_M) {
 		rec_cecum_s = t_s;
 	}
@@ -232,6 +258,7 @@ static void test_path(void **unused)
 	assert_int_equal(session_file_read(file, &f), 0);
 	assert_int_equal(path->source_id, SOURCE_ID);
 	assert_string_equal(path->case_name, "normal");
+	assert_null(path->tool); /* recorded without a tool */
 	assert_true(fabs(guide_path_length_s(path) -
 			 (f.n_records - 1) * PERIOD_S) < 0.011);
 	for (size_t k = 0; k < f.n_records; k += 997) {
@@ -451,6 +478,8 @@ static void follow(double speed, double cecum_tolerance_s)
 			cecum = t;
 		}
 		assert_int_equal(st->fault_bits, 0);
+		/* recorded without a tool: no expert's tool shown */
+		assert_int_equal(st->guide.expert_kind, ENDOSIM_TOOL_NONE);
 	} while (t < 2 * guide_path_length_s(path) / speed);
 	e_ins = sqrt(e_ins / (double)n);
 	e_roll = sqrt(e_roll / (double)n);
@@ -701,8 +730,10 @@ static void note(struct patient_times *pt, const struct endosim_state *st,
 	}
 }
 
-static void patient_seen(const struct endosim_state *st, double t_s)
+static void patient_seen(struct offline *o, const struct endosim_state *st,
+			 double t_s)
 {
+	(void)o;
 	note(&seen, st, t_s);
 }
 
@@ -800,6 +831,316 @@ static void test_patient_plays(void **unused)
 	guide_path_free(p);
 }
 
+/* --- the expert's tool shown ------------------------------------------ */
+
+#define POLYPS_CASE "config/cases/polyps.case"
+#define EXPERT_SNARE_M 0.020
+#define EXPERT_DEPTH_M 0.010
+#define EXPERT_SHUT 0.1     /* the handle closed on the stalk */
+#define EXPERT_S 4.0        /* the recording's length, s */
+#define EXPERT_RECORDS 4010 /* its records, at most */
+#define TRAINEE_DEPTH_M -0.005 /* her forceps, in the channel */
+#define TRAINEE_OPENING 0.3
+#define RAMP_S 0.1          /* the rigs' enable ramp: short, not to wait */
+
+/* The expert's snare and what became of it, recorded cycle by cycle. */
+static struct expert_run {
+	int ip;                /* the case's pedunculated polyp */
+	double base[3], normal[3]; /* where it stood, under the loop */
+	bool placed;
+	double cut_s;          /* the polyp cut free (s of the path) */
+	long first;            /* the first enabled record */
+	long n;                /* records so far */
+	float loop_m[EXPERT_RECORDS]; /* each record's loop, m */
+} ex;
+
+/* The case's pedunculated polyp in C. */
+static int pedunculated(const struct colon *c)
+{
+	const struct anatomy *a = colon_anatomy(c);
+
+	for (int i = 0; a && i < a->polyps; i++) {
+		if (a->polyp[i].paris == ANATOMY_PARIS_IP) {
+			return i;
+		}
+	}
+	fail_msg("no pedunculated polyp in %s", POLYPS_CASE);
+	return -1;
+}
+
+/* From A to B as T goes from T0 to T1. */
+static double ramp(double t, double t0, double t1, double a, double b)
+{
+	double f = (t - t0) / (t1 - t0);
+
+	return a + (b - a) * fmax(0, fmin(1, f));
+}
+
+/* The pedunculated polyp of O's tool stood under the open loop of ST:
+ * its stalk through the loop's centre along the channel's radial
+ * direction (test_tool_loop's placing). */
+static void under_the_loop(struct offline *o, const struct endosim_state *st)
+{
+	struct tool_params par = TOOL_PARAMS_DEFAULT;
+	struct tool_polyp *p = &offline_tool(o)->polyp[ex.ip];
+	struct tool_pose pose;
+	double h = tool_polyp_height(p, par.lift_m);
+
+	tool_pose(&par, &st->scope, st->tool.depth_m, &pose);
+	for (int k = 0; k < 3; k++) {
+		p->base[k] = st->tool.loop_centre[k] + h / 2 * pose.radial[k];
+		p->normal[k] = -pose.radial[k];
+	}
+	memcpy(ex.base, p->base, sizeof(ex.base));
+	memcpy(ex.normal, p->normal, sizeof(ex.normal));
+	ex.placed = true;
+}
+
+/*
+ * The expert's hand, each cycle of the recording: a 20 mm snare handed
+ * over; its sheath out 10 mm (0 .. 0.3 s), the loop opened (.. 0.6 s),
+ * the case's pedunculated polyp standing under it, the loop closed on
+ * the stalk (0.7 .. 1.0 s), the pedal down from 1.2 s until it is cut,
+ * the snare back in the channel (0.3 s after the cut, over 0.3 s).
+ */
+static void expert_hand(struct offline *o, const struct endosim_state *st,
+			double t_s)
+{
+	double depth, opening;
+
+	if (ex.n == 0) {
+		ex.ip = pedunculated(offline_colon(o));
+		offline_tool_select(o, TOOL_SNARE, EXPERT_SNARE_M);
+	}
+	if (t_s >= 0 && ex.first < 0) {
+		ex.first = ex.n;
+	}
+	if (ex.n < (long)(sizeof(ex.loop_m) / sizeof(ex.loop_m[0]))) {
+		ex.loop_m[ex.n] = (float)st->tool.loop_m;
+	}
+	ex.n++;
+	if (st->tool.events & ENDOSIM_TOOL_CUT) {
+		ex.cut_s = t_s;
+	}
+	if (t_s >= 0.65 && !ex.placed) {
+		under_the_loop(o, st);
+	}
+	t_s = fmax(0, t_s);
+	depth = ex.cut_s > 0 ? ramp(t_s, ex.cut_s + 0.3, ex.cut_s + 0.6,
+				    EXPERT_DEPTH_M, -EXPERT_DEPTH_M)
+			     : ramp(t_s, 0, 0.3, -EXPERT_DEPTH_M,
+				    EXPERT_DEPTH_M);
+	opening = t_s < 0.7 ? ramp(t_s, 0.3, 0.6, 0, 1)
+			    : ramp(t_s, 0.7, 1.0, 1, EXPERT_SHUT);
+	offline_tool_input(o, depth, opening, t_s >= 1.2 && ex.cut_s < 0,
+			   0.003);
+}
+
+/* A cycle of the trainee's rig: her forceps held in the channel. */
+static const struct endosim_state *trainee_step(struct offline *o)
+{
+	offline_tool_input(o, TRAINEE_DEPTH_M, TRAINEE_OPENING, false, 0.003);
+	return offline_step(o);
+}
+
+/* The trainee's rig for the expert's recording: the polyps case, the
+ * pedunculated polyp where the expert's stood, her forceps in the
+ * channel; nobody's hand on the scope. */
+static struct offline *trainee_rig(struct config *cfg)
+{
+	struct offline *o;
+	struct tool *t;
+
+	config_defaults(cfg);
+	cfg->limits.enable_ramp_s = RAMP_S;
+	o = on_case(cfg, scenario_create(), POLYPS_CASE);
+	t = offline_tool(o);
+	memcpy(t->polyp[ex.ip].base, ex.base, sizeof(ex.base));
+	memcpy(t->polyp[ex.ip].normal, ex.normal, sizeof(ex.normal));
+	offline_tool_select(o, TOOL_FORCEPS, 0);
+	while (trainee_step(o)->safety.ramp < 1) { /* enabled in full */
+	}
+	assert_int_equal(offline_tool_answer(o), 0);
+	return o;
+}
+
+/* What the expert's tool and hers must be after a cycle (ST) of guided
+ * replay of F (the expert's records), counted in *SHOWN and *PEDAL
+ * while it shows the expert's. */
+static void check_shown(const struct endosim_state *st,
+			const struct session_file *f, long *shown,
+			long *pedal)
+{
+	const struct endosim_guide_state *g = &st->guide;
+	const struct session_record *r;
+	struct tool_params par = TOOL_PARAMS_DEFAULT;
+	struct tool_pose pose;
+	long k;
+
+	/* hers, as she holds it; the polyp uncut, nothing happening */
+	assert_int_equal(st->tool.kind, ENDOSIM_TOOL_FORCEPS);
+	assert_true(st->tool.depth_m == TRAINEE_DEPTH_M);
+	assert_true(st->tool.opening == TRAINEE_OPENING);
+	assert_int_equal(st->tool.pedal, 0);
+	assert_int_equal(st->tool.events, 0);
+	assert_int_equal(st->tool.polyp[ex.ip].state, ENDOSIM_POLYP_IN_PLACE);
+	assert_true(st->tool.polyp[ex.ip].energy_j == 0);
+	assert_true(st->tool.blood_m3 == 0);
+	assert_int_equal(st->fault_bits, 0);
+	if (g->phase != ENDOSIM_GUIDE_GUIDING) {
+		assert_int_equal(g->expert_kind, ENDOSIM_TOOL_NONE);
+		assert_true(g->expert_depth_m == 0 && g->expert_opening == 0 &&
+			    g->expert_pedal == 0 && g->expert_loop_m == 0);
+		return;
+	}
+	/* the record of the path's sample nearest the playhead */
+	k = ex.first + (long)(g->time_s * GUIDE_PATH_HZ + 0.5) *
+		       (long)(1 / (GUIDE_PATH_HZ * PERIOD_S) + 0.5);
+	assert_true(k < (long)f->n_records && k < ex.n);
+	r = &f->records[k];
+	assert_int_equal(g->expert_kind, r->tool_kind);
+	if (r->tool_kind == ENDOSIM_TOOL_NONE) {
+		return;
+	}
+	assert_true(g->expert_snare_m == r->tool_snare_m);
+	assert_true(g->expert_depth_m == r->tool_depth_m);
+	assert_true(g->expert_opening == r->tool_opening);
+	assert_int_equal(g->expert_pedal, r->tool_pedal);
+	/* the loop the recording's model had; on the scope as it is now */
+	assert_true(fabs(g->expert_loop_m - ex.loop_m[k]) < 1e-6);
+	tool_pose(&par, &st->scope, r->tool_depth_m, &pose);
+	for (int c = 0; c < 3; c++) {
+		assert_true(fabs(g->expert_tip[c] - pose.tip[c]) < 1e-12);
+		assert_true(fabs(g->expert_loop_centre[c] - pose.tip[c] -
+				 g->expert_loop_m / 2 * pose.dir[c]) < 1e-12);
+	}
+	*shown += 1;
+	*pedal += g->expert_pedal;
+}
+
+/* Steps O (guided replay of F) for MAX_S, or until the guidance is in
+ * PHASE (-1: the whole time) and then fails if it never was, each cycle
+ * checked; the last state. */
+static const struct endosim_state *
+checked(struct offline *o, const struct session_file *f, int phase,
+	double max_s, long *shown, long *pedal)
+{
+	const struct endosim_state *st = NULL;
+
+	for (long k = 0; k < (long)(max_s / PERIOD_S + 0.5); k++) {
+		st = trainee_step(o);
+		check_shown(st, f, shown, pedal);
+		if (phase >= 0 && st->guide.phase == (uint32_t)phase) {
+			return st;
+		}
+	}
+	if (phase >= 0) {
+		fail_msg("the guidance never got to %s in %.1f s",
+			 names_guide_phase((uint32_t)phase), max_s);
+	}
+	return st;
+}
+
+/* The guidance command C on O, answered in its next (checked) cycle. */
+static void checked_command(struct offline *o, const struct session_file *f,
+			    struct guide_command c)
+{
+	long none = 0;
+
+	offline_guide(o, &c);
+	checked(o, f, -1, PERIOD_S, &none, &none);
+	assert_int_equal(offline_guide_answer(o), 0);
+}
+
+/*
+ * An expert's snare recorded on the polyps case (expert_hand(): the
+ * pedunculated polyp captured and cut hot), guided on the trainee's rig
+ * with her forceps in the channel. At every cycle: while GUIDING, the
+ * published expert's tool is the recording's sample nearest the playhead
+ * (its kind, size, depth, opening, pedal exactly; its loop the
+ * recording's model's, the stalk held included; its tip and loop on the
+ * scope as it is now, with the channel's place), at 1x and at 2x; in any
+ * other phase (moving to the path, holding after a reset, fading and
+ * free after a take-over, off) none; her forceps as she holds them, no
+ * event, the polyp under the expert's loop in place, no energy into it,
+ * no blood. The pedal shown down about as long as the expert held it,
+ * over the speed.
+ */
+static void test_tool_shown(void **unused)
+{
+	struct config cfg;
+	struct scenario *scn = scenario_create();
+	struct session_file f = { 0 };
+	struct guide_path *p;
+	struct offline *o;
+	char name[300], err[512];
+	long shown, pedal, recorded_pedal = 0, none = 0;
+
+	(void)unused;
+	assert_int_equal(scenario_append(scn, "4 end", err, sizeof(err)), 0);
+	snprintf(name, sizeof(name), "%s/tool.endoses", dir);
+	memset(&ex, 0, sizeof(ex));
+	ex.first = -1;
+	ex.cut_s = -1;
+	config_defaults(&cfg);
+	cfg.limits.enable_ramp_s = RAMP_S;
+	assert_int_equal(record_on(name, POLYPS_CASE, &cfg, scn, expert_hand),
+			 0);
+	printf("# the expert's recording: the stalk cut at %.3f s\n",
+	       ex.cut_s);
+	assert_true(ex.placed && ex.cut_s > 1.2 && ex.cut_s < 3.3);
+	assert_int_equal(session_file_read(name, &f), 0);
+	p = guide_path_load(name, err, sizeof(err));
+	assert_non_null(p);
+	assert_non_null(p->tool);
+	for (size_t i = 0; i < f.n_records; i++) {
+		recorded_pedal += f.records[i].tool_pedal;
+	}
+
+	o = trainee_rig(&cfg);
+	for (int speed = 1; speed <= 2; speed++) {
+		const struct endosim_state *st;
+
+		checked_command(o, &f, (struct guide_command){
+			.action = GUIDE_START, .path = p, .speed = speed });
+		checked(o, &f, ENDOSIM_GUIDE_GUIDING, 1, &none, &none);
+		shown = pedal = 0;
+		st = checked(o, &f, ENDOSIM_GUIDE_OFF, EXPERT_S + 2, &shown,
+			     &pedal);
+		printf("# %dx: the expert's tool shown %ld cycles, its pedal "
+		       "down %ld (recorded %ld cycles)\n", speed, shown,
+		       pedal, recorded_pedal);
+		assert_int_equal(st->guide.ended, ENDOSIM_GUIDE_END_DONE);
+		assert_true(shown > (long)(3.0 / speed / PERIOD_S));
+		assert_true(pedal > 0 &&
+			    labs(pedal * speed - recorded_pedal) <= 20);
+		if (speed > 1) {
+			break;
+		}
+		/* reset: moving, then holding */
+		checked_command(o, &f, (struct guide_command){
+			.action = GUIDE_RESET, .from_s = 1.5 });
+		checked(o, &f, ENDOSIM_GUIDE_HOLDING, 1, &none, &none);
+		st = checked(o, &f, -1, 0.2, &none, &none);
+		assert_int_equal(st->guide.phase, ENDOSIM_GUIDE_HOLDING);
+		/* resumed: shown again; taken over: fading, then free */
+		checked_command(o, &f, (struct guide_command){
+			.action = GUIDE_RESUME, .from_s = 1.5 });
+		checked(o, &f, ENDOSIM_GUIDE_GUIDING, 1, &none, &none);
+		shown = 0;
+		checked(o, &f, -1, 0.2, &shown, &none);
+		assert_true(shown > 0);
+		checked_command(o, &f, (struct guide_command){
+			.action = GUIDE_TAKEOVER });
+		checked(o, &f, ENDOSIM_GUIDE_FREE, 2, &none, &none);
+		checked(o, &f, -1, 0.2, &none, &none);
+	}
+	offline_destroy(o);
+	guide_path_free(p);
+	session_file_close(&f);
+	unlink(name);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -814,6 +1155,7 @@ int main(void)
 		cmocka_unit_test(test_reset),
 		cmocka_unit_test(test_ends),
 		cmocka_unit_test(test_patient_plays),
+		cmocka_unit_test(test_tool_shown),
 	};
 
 	return cmocka_run_group_tests(tests, record_course, remove_course);

@@ -796,7 +796,7 @@ static void read_text(const char *path, char *buf, size_t size)
  */
 static void write_along_session(const char *path)
 {
-	static const char head[] = "format=7\nrecord_size=556\nid=9\n"
+	static const char head[] = "format=8\nrecord_size=572\nid=9\n"
 				   "case=straight\nstep_m=0.002\n"
 				   "ring_vertices=48\nsegment_m=0.04\n";
 	static char case_text[1 << 16];

@@ -22,21 +22,31 @@
  *    the base, or the open loop's centre at the middle of the polyp's
  *    axis (the loop hangs forward from the sheath's tip in the model, so
  *    that the sheath's tip stays short of the polyp: she does not push
- *    it beyond), then she closes; at most AIM_S a tool. Retrieving it is
- *    format 7's (the bleeding's branch), not yet here. Every polyp of the
- *    case comes out complete, the wall uninjured, no perforation; her
- *    times per polyp (found, aimed, lifted, cut: found to free) are
- *    printed next to the published ones, and each resection's time as
- *    the metrics count it (the first tool's touch to the polyp free)
- *    with the clip's; the session passes the polypectomy course
- *    (config/courses/polypectomy.course);
+ *    it beyond), then she closes; at most AIM_S a tool. A cut polyp the
+ *    channel takes (retrieve_max_m, tool.h: the case's 4 and 6 mm ones)
+ *    she sucks out: the snare back in, the channel's exit brought to
+ *    where it lies with the scope (trainee_approach()): fallen to the
+ *    lowest wall of its ring, that wall where the gas holds it (tool.h;
+ *    the 6 mm one lies where the lumen is collapsed to 0.6 of the
+ *    case's radius), then the suction valve pressed: it is retrieved in
+ *    the first cycle the valve is, the exit within retrieve_reach_m of
+ *    its surface (and not before: no suction, no retrieval); a larger
+ *    one she leaves lying. Every
+ *    polyp of the case comes out complete (retrieved where it can be),
+ *    the wall uninjured, no perforation;
+ *    her times per polyp (found, aimed, lifted, cut: found to free; the
+ *    retrieval from the cut) are printed next to the published ones,
+ *    and each resection's time as the metrics count it (the first
+ *    tool's touch to the polyp free) with the clip's; the session
+ *    passes the polypectomy course (config/courses/polypectomy.course);
  *  - the careless trainee: the same session going on, the snare open
  *    and pushed against the mucosa with the pedal held: the wall
  *    injured, the patient perforated, and the course fails the session
  *    on exactly its two requirements of the wall (tool_injuries,
  *    perforations);
  *  - the fates in the END frame (metricstext_format(), parsed back
- *    alike) and in the report's table of polyps (reporttherapy.h);
+ *    alike) and in the report's table of polyps (reporttherapy.h), the
+ *    retrieved ones among them;
  *  - the rules on records made for them: a polyp left, one bitten and
  *    left in place (partly), one the forceps took whole (complete, in no
  *    time), one burnt in the loop and let go uncut (partly; its
@@ -61,6 +71,8 @@
 
 #include "base/vec3.h"
 #include "conf/cases.h"
+#include "model/centreline.h"
+#include "model/colon.h"
 #include "model/tool.h"
 #include "proto/session_file.h"
 #include "session/coursefile.h"
@@ -90,6 +102,14 @@
 #define LOOP_TOL_M 0.002 /* the loop's centre off a polyp's axis' middle */
 #define NEEDLE_TOL_M 0.001 /* the needle's point off its place */
 #define FLAT_DEG 30.0    /* the loop over a polyp, flat to its wall within */
+#define RETRIEVE_S 10.0  /* her time to suck a cut polyp out, at most */
+#define OVER_M 0.0005    /* the tip's side clear of the wall by, sucking */
+#define NEARER_M 0.0002  /* less nearer a waypoint: no nearer */
+#define STALLED 4        /* waypoints running no nearer: as near as it comes
+			    (rolling the scope to a polyp fallen to the
+			    other side takes her further first) */
+#define NEAR 0.6         /* of the retrieval's reach: near enough to suck */
+#define SUCK_BEFORE_M 0.01 /* the tip short of a cut polyp, to suck it */
 
 struct run {
 	struct config cfg;
@@ -104,11 +124,53 @@ struct run {
 	unsigned events;    /* since the last look */
 	int event_polyp;    /* the last event's polyp */
 	double event_s;     /* ... and its time */
+	int sucking;        /* the cut polyp she sucks at, -1: none */
+	double gap_m;       /* the channel's exit from its body's surface */
+	int sucked;         /* cycles with the suction pressed, up to its
+			       retrieval */
+	double retrieved_gap_m; /* the gap at its retrieval */
 };
 
 static double now_s(const struct endosim_state *s)
 {
 	return (double)s->stamp_ns * ENDOSIM_S_PER_NS;
+}
+
+/* The channel's exit on the scope of S from polyp I's body's surface
+ * (tool.h's retrieval reach), m. */
+static double exit_gap(const struct run *r, const struct endosim_state *s,
+		       int i)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	struct tool_pose q;
+	double body[3];
+
+	tool_pose(&r->par, &s->scope, 0, &q);
+	if (p->state == TOOL_POLYP_CUT || p->state == TOOL_POLYP_RETRIEVED) {
+		vec3_copy(body, p->at); /* where it fell (and was sucked) */
+	} else {
+		tool_polyp_body(p, &r->par, body);
+	}
+	return vec3_dist(q.exit, body) - p->size_m / 2;
+}
+
+/* While she goes for a cut polyp: the exit's gap from it each cycle;
+ * the cycles with the suction pressed up to its retrieval, and the gap
+ * then. */
+static void watch_retrieval(struct run *r, const struct endosim_state *s)
+{
+	if (r->sucking < 0) {
+		return;
+	}
+	r->gap_m = exit_gap(r, s, r->sucking);
+	if (r->retrieved_gap_m < INFINITY) {
+		return;
+	}
+	r->sucked += (s->patient.valves & ENDOSIM_VALVE_SUCTION) != 0;
+	if ((s->tool.events & ENDOSIM_TOOL_RETRIEVE) &&
+	    s->tool.event_polyp == r->sucking) {
+		r->retrieved_gap_m = r->gap_m;
+	}
 }
 
 /*
@@ -126,6 +188,7 @@ static void watch(const struct endosim_state *s, void *arg)
 	r->st = s;
 	session_record_from_state(s, &rec);
 	metrics_record(r->m, &rec);
+	watch_retrieval(r, s);
 	r->events |= s->tool.events;
 	if (s->tool.events) {
 		r->event_polyp = s->tool.event_polyp;
@@ -161,6 +224,7 @@ static void start(struct run *r)
 	r->m = metrics_create(trainee_colon(r->tr), &mp);
 	assert_non_null(r->m);
 	r->depth_m = r->from_d = r->to_d = -SHEATH_M; /* in the channel */
+	r->sucking = -1;
 	trainee_watch(r->tr, watch, r);
 }
 
@@ -278,6 +342,8 @@ struct times {
 	double loop_s;    /* the loop aimed */
 	double cut_s;     /* ... and the polyp cut, from its closing */
 	double total_s;   /* from found to free */
+	double retrieve_s; /* sucked out, from the cut; -1: left lying */
+	double cut_at_s;  /* when it was cut (the clock's) */
 };
 
 /* The needle lifts polyp I's base: out, aimed into the wall under it,
@@ -337,13 +403,94 @@ static void resect(struct run *r, int i, struct times *tm)
 	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_CUT);
 	tm->cut_s = r->event_s - t1;
 	tm->total_s = r->event_s - t0;
+	tm->cut_at_s = r->event_s;
 	move(r, 0.5, -SHEATH_M, 0);
+}
+
+/* Where she brings the channel's exit to suck cut polyp P out: its body
+ * where it fell (tool.h: on the lowest wall of its ring where the gas
+ * holds it, its radius in),
+ * raised towards the lumen's centre as far as the tip's side needs to
+ * come clear of the wall there (the exit is the channel's offset from
+ * the tip's axis, towards the wall), into X; the wall's normal there
+ * into the lumen into N. */
+static void suck_at(const struct run *r, const struct tool_polyp *p,
+		    double x[3], double n[3])
+{
+	double clear = r->cfg.haptics.scope_radius_m -
+		       r->par.channel_offset_m + OVER_M;
+	struct centreline_point c;
+
+	centreline_at_s(colon_centreline(trainee_colon(r->tr)), p->s_m, &c);
+	vec3_sub(n, c.p, p->at);
+	vec3_normalize(n);
+	vec3_axpy(x, p->at, fmax(0, clear - p->size_m / 2), n);
+}
+
+/*
+ * Cut polyp I sucked out through the channel where it can be (no larger
+ * than the channel takes, retrieve_max_m): the tool back in, she moves
+ * in, steering, until the tip is SUCK_BEFORE_M short of it along the
+ * colon, then brings the channel's exit to where it lies with the scope
+ * (suck_at()) until it is near (NEAR of the reach) or comes no nearer;
+ * she presses the suction valve until it is gone (at most a second) and
+ * lets go. A larger one she leaves lying. TM's retrieve_s: from the cut
+ * to out, or -1.
+ */
+static void retrieve(struct run *r, int i, struct times *tm)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double at[3], wall[3], was = INFINITY;
+	int stalled = 0;
+
+	tm->retrieve_s = -1;
+	if (p->size_m > r->par.retrieve_max_m) {
+		return;
+	}
+	r->events = 0;
+	r->sucking = i;
+	r->sucked = 0;
+	r->retrieved_gap_m = INFINITY;
+	r->gap_m = exit_gap(r, r->st, i);
+	if (r->st->scope.tip_s_m < p->s_m - SUCK_BEFORE_M) {
+		assert_true(trainee_insert(r->tr, p->s_m - SUCK_BEFORE_M,
+					   FIND_SPEED, FIND_STUCK_S));
+	}
+	for (double s = 0; s < RETRIEVE_S &&
+			   r->gap_m > NEAR * r->par.retrieve_reach_m;
+	     s += TRAINEE_STEP_S) {
+		suck_at(r, p, at, wall);
+		trainee_approach(r->tr, &r->par, at, wall, 0,
+				 TRAINEE_STEP_S);
+		if (r->gap_m > was - NEARER_M) {
+			if (++stalled >= STALLED) {
+				break; /* as near as it comes */
+			}
+			continue;
+		}
+		stalled = 0;
+		was = r->gap_m;
+	}
+	assert_false(r->events & ENDOSIM_TOOL_RETRIEVE); /* not unasked */
+	trainee_suction(r->tr, true);
+	until(r, ENDOSIM_TOOL_RETRIEVE, 1);
+	trainee_suction(r->tr, false);
+	hold(r, TRAINEE_STEP_S);
+	r->sucking = -1;
+	assert_true(r->events & ENDOSIM_TOOL_RETRIEVE);
+	assert_int_equal(r->event_polyp, i);
+	assert_int_equal(r->st->tool.polyp[i].state, ENDOSIM_POLYP_RETRIEVED);
+	/* in the first cycle the valve was pressed, the exit within reach */
+	assert_int_equal(r->sucked, 1);
+	assert_true(r->retrieved_gap_m <= r->par.retrieve_reach_m);
+	tm->retrieve_s = r->event_s - tm->cut_at_s;
 }
 
 /* Polyp I's scripted times, found FOUND_S after the last. */
 static void print_times(int i, double found_s, const struct times *tm)
 {
 	char needle[160] = "no needle";
+	char out[96] = "left lying (larger than the channel takes)";
 
 	if (tm->needle_s >= 0) {
 		snprintf(needle, sizeof(needle), "needle aimed %.2f s, lifted "
@@ -351,11 +498,16 @@ static void print_times(int i, double found_s, const struct times *tm)
 			 "experts 36 s, beginners 92 s, the whole task)",
 			 tm->needle_s, tm->lift_s);
 	}
+	if (tm->retrieve_s >= 0) {
+		snprintf(out, sizeof(out), "retrieved by suction %.2f s after "
+			 "the cut", tm->retrieve_s);
+	}
 	print_message("polyp %d: found in %.2f s; %s; loop aimed %.2f s, "
 		      "cut %.2f s later: resected %.2f s after found "
-		      "(published: %.0f s rotary, %.0f s standard)\n", i + 1,
-		      found_s, needle, tm->loop_s, tm->cut_s, tm->total_s,
-		      REPORTTHERAPY_ROTARY_S, REPORTTHERAPY_STANDARD_S);
+		      "(published: %.0f s rotary, %.0f s standard); %s\n",
+		      i + 1, found_s, needle, tm->loop_s, tm->cut_s,
+		      tm->total_s, REPORTTHERAPY_ROTARY_S,
+		      REPORTTHERAPY_STANDARD_S, out);
 }
 
 /* The clip's jaws' distance from the wall ahead (as the loop sees the
@@ -414,6 +566,9 @@ static bool pedal_on_wall(struct run *r)
 	return r->events & ENDOSIM_TOOL_INJURY;
 }
 
+static bool retrievable[ANATOMY_MAX_POLYPS]; /* small enough to suck out */
+static double retrieve_max_m;
+
 /*
  * The whole script on the polyps case: the expert's session into EXPERT;
  * then, the same session going on, the careless pedal on the wall, the
@@ -430,11 +585,17 @@ static void script(struct metrics_result *expert_out,
 	hold(&r, TRAINEE_STEP_S);
 	n = (int)r.st->tool.polyps;
 	assert_int_equal(n, 5);
+	retrieve_max_m = r.par.retrieve_max_m;
+	for (int i = 0; i < n; i++) {
+		retrievable[i] = offline_tool(r.o)->polyp[i].size_m <=
+				 r.par.retrieve_max_m;
+	}
 	for (int i = 0; i < n; i++) {
 		double found_s = find(&r, i);
 		struct times tm;
 
 		resect(&r, i, &tm);
+		retrieve(&r, i, &tm);
 		print_times(i, found_s, &tm);
 		if (offline_tool(r.o)->polyp[i].paris == ANATOMY_PARIS_IP) {
 			clip_s = clip_wall(&r);
@@ -479,6 +640,8 @@ static void test_expert_resects_all(void **unused)
 	const struct coursefile_case *k = polyps_section(&c);
 
 	(void)unused;
+	uint32_t small = 0;
+
 	for (uint32_t i = 0; i < m->n_polyp; i++) {
 		const struct metrics_polyp *p = &m->polyp[i];
 
@@ -486,9 +649,17 @@ static void test_expert_resects_all(void **unused)
 			      "later, cautery %.2f s\n", i + 1,
 			      therapy_fate_name(p->fate), p->start_s,
 			      p->cut_s - p->start_s, p->cautery_s);
-		assert_int_equal(p->fate, METRICS_FATE_COMPLETE);
+		assert_int_equal(p->fate, retrievable[i] ?
+				 METRICS_FATE_RETRIEVED :
+				 METRICS_FATE_COMPLETE);
 		assert_true(p->start_s >= 0 && p->cut_s > p->start_s);
+		small += retrievable[i];
 	}
+	print_message("the channel takes up to %.0f mm: %u of the case's "
+		      "polyps retrieved, the rest left lying\n",
+		      retrieve_max_m * 1e3, small);
+	assert_int_equal(small, 2); /* the case's 4 and 6 mm ones */
+	assert_int_equal(m->polyps_retrieved, small);
 	print_message("the expert: %u of %u resected, %.2f s a resection "
 		      "(published: %.0f s rotary, %.0f s standard), cautery "
 		      "%.2f s, %u injuries, %u perforations\n",
@@ -545,7 +716,9 @@ static void test_end_frame_and_report(void **unused)
 	assert_true(n > 0);
 	assert_non_null(strstr(text, "\npolyps_resected=5\n"));
 	assert_non_null(strstr(text, "\ntool_injuries=1\n"));
-	assert_non_null(strstr(text, "\npolyp.4=2,"));
+	assert_non_null(strstr(text, "\npolyp.4=2,"));   /* complete */
+	assert_non_null(strstr(text, "\npolyp.0=3,"));   /* retrieved */
+	assert_non_null(strstr(text, "\npolyps_retrieved=2\n"));
 	assert_int_equal(metricstext_parse(text, &back), 0);
 	assert_int_equal(back.n_polyp, careless.n_polyp);
 	for (uint32_t i = 0; i < back.n_polyp; i++) {
@@ -565,6 +738,11 @@ static void test_end_frame_and_report(void **unused)
 	}
 	assert_non_null(strstr(page, "<tr id=\"polyp-4\" class=\"good\">"
 				   "<th>4</th><td>complete</td>"));
+	assert_non_null(strstr(page, "<tr id=\"polyp-1\" class=\"good\">"
+				   "<th>1</th><td>retrieved</td>"));
+	assert_non_null(strstr(page, "<tr id=\"polyp-3\" class=\"good\">"
+				   "<th>3</th><td>retrieved</td>"));
+	assert_non_null(strstr(page, "2 retrieved"));
 	assert_null(strstr(page, ">left</td>"));
 	assert_non_null(strstr(page, "5 of 5"));
 	free(page);

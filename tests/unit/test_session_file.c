@@ -219,6 +219,8 @@ static int read_sized(const char *head, size_t length, size_t fields,
 			.pain = 4.5f, .torn_segment = 2,
 			.tool_kind = ENDOSIM_TOOL_SNARE, .tool_captured = 3,
 			.tool_event_polyp = 3, .tool_bleed_m3_s = 2e-8f,
+			.tool_lying_polyp = 4,
+			.tool_lying_at = { 0.1f, 0.2f, 0.3f },
 		};
 
 		memcpy(raw, &r, fields);
@@ -251,7 +253,8 @@ static void csv_header(const struct session_file *f, char *out, size_t size)
  * file's the patient's body's too (and nothing torn by the tip), a
  * format-5 file's its pain as well (and no tool), a
  * format-6 file's the tool's too (and no bleeding), a format-7 file's
- * the bleeding's flow as well.
+ * the bleeding's flow as well (and none lying), a format-8 file's the
+ * cut polyp lying as well.
  */
 static void test_old_layout(void **state)
 {
@@ -362,14 +365,32 @@ static void test_old_layout(void **state)
 	assert_non_null(strstr(csv, ",patient_torn_segment,tool_kind,"));
 	assert_null(strstr(csv, "tool_bleed"));
 	session_file_close(&f);
-	assert_int_equal(read_sized("format=7\nrecord_size=556\n", 556, all,
-				    &f), 0);
+	/* format 7's: the bleeding, none lying */
+	assert_int_equal(SESSION_RECORD_SIZE_7,
+			 offsetof(struct session_record, tool_lying_polyp));
+	assert_int_equal(read_sized("format=7\nrecord_size=556\n", 556,
+				    SESSION_RECORD_SIZE_7, &f), 0);
 	assert_int_equal(f.records[2].tool_captured, 3);
 	assert_true(f.records[2].tool_bleed_m3_s == 2e-8f);
+	assert_int_equal(f.records[2].tool_lying_polyp, -1);
 	session_record_to_state(&f.records[2], &st);
 	assert_true(st.tool.bleed_m3_s == (double)2e-8f);
+	assert_int_equal(st.tool.lying_polyp, -1);
 	csv_header(&f, csv, sizeof(csv));
 	assert_non_null(strstr(csv, ",tool_event_polyp,tool_bleed_m3_s"));
+	assert_null(strstr(csv, "tool_lying"));
+	session_file_close(&f);
+	/* format 8's: a cut polyp lying, and where */
+	assert_int_equal(read_sized("format=8\nrecord_size=572\n", 572, all,
+				    &f), 0);
+	assert_int_equal(f.records[2].tool_lying_polyp, 4);
+	session_record_to_state(&f.records[2], &st);
+	assert_int_equal(st.tool.lying_polyp, 4);
+	assert_true(st.tool.lying_at[2] == (double)0.3f);
+	csv_header(&f, csv, sizeof(csv));
+	assert_non_null(strstr(csv, ",tool_bleed_m3_s,tool_lying_polyp,"
+				    "tool_lying_x_m,tool_lying_y_m,"
+				    "tool_lying_z_m"));
 	session_file_close(&f);
 	assert_int_equal(read_sized("format=1\n", 304, v1, &f), 0);
 	session_file_close(&f);

@@ -33,6 +33,9 @@
  *    pressed and the channel's exit within reach, not a 7 mm one, one
  *    beyond reach or without suction; a bitten large polyp's fate is
  *    partly resected;
+ *  - the fall of a cut polyp to the lowest wall of its ring, in the
+ *    drag's time, following a turn, onto the wall where the gas holds
+ *    it and carried with that wall (each test below says how);
  *  - the case's polyps on the colon's wall (the polyps case).
  */
 #include <errno.h>
@@ -51,8 +54,11 @@
 #include "model/anatomy.h"
 #include "model/centreline.h"
 #include "model/colon.h"
+#include "model/gas.h"
+#include "model/posture.h"
 #include "model/tool.h"
 #include "base/vec3.h"
+#include "plain_anatomy.h"
 
 #define DT 0.001
 #define SNARE 0.020 /* a 20 mm snare */
@@ -786,6 +792,385 @@ static void test_retrieve_small_only(void **unused)
 	assert_int_equal(retrieved(0.005, 0, false), TOOL_POLYP_CUT);
 }
 
+/* --------------------------------------------------------------- the fall */
+
+#define FALL_S_M 0.30   /* the cut polyp's ring: the sigmoid */
+#define FALL_SIZE 0.006 /* a 6 mm sessile polyp */
+#define G_M_S2 9.81
+
+/* A 6 mm sessile polyp cut cold by the bench's snare, its ring at
+ * FALL_S_M, then put (as if it came free there) at AT; *I its index. */
+static void cut_free(struct bench *b, const double at[3], int *i)
+{
+	bench_init(b);
+	open_snare(b, 0.025);
+	*i = polyp_at(b, ANATOMY_PARIS_IS, FALL_SIZE, 0, 0, false);
+	run(b, 500, 0.2);
+	run(b, 500, 0);
+	assert_int_equal(b->t.polyp[*i].state, TOOL_POLYP_CUT);
+	assert_false(b->t.polyp[*i].rest_ok);
+	b->t.polyp[*i].s_m = FALL_S_M;
+	vec3_copy(b->t.polyp[*i].at, at);
+	vec3_copy(b->t.polyp[*i].rest, at);
+}
+
+/* A colon of the plain anatomy (a round lumen DIAMETER_M wide, no folds,
+ * no taeniae) or, with PATH, that case's. */
+static struct colon *fall_colon(const char *path, double diameter_m)
+{
+	struct colon_params cp = COLON_PARAMS_DEFAULT;
+	struct anatomy a;
+	struct colon *c;
+	char err[256];
+
+	if (path) {
+		assert_int_equal(anatomy_load(&a, path, err, sizeof(err)), 0);
+	} else {
+		plain_anatomy(&a, diameter_m);
+	}
+	c = colon_create(&a, &cp, err, sizeof(err));
+	assert_non_null(c);
+	return c;
+}
+
+/* The time (s) a body from rest takes over L_M pulled by G_M_S2 against a
+ * drag of TAU_S (tool.h): L = g tau (t - tau (1 - exp(-t / tau))). */
+static double fall_time(double l_m, double g_m_s2, double tau_s)
+{
+	double lo = 0, hi = 10;
+
+	for (int k = 0; k < 200; k++) {
+		double t = (lo + hi) / 2;
+		double x = g_m_s2 * tau_s * (t - tau_s * (1 - exp(-t / tau_s)));
+
+		if (x < l_m) {
+			lo = t;
+		} else {
+			hi = t;
+		}
+	}
+	return (lo + hi) / 2;
+}
+
+/* Steps of tool_fall() with gravity G until polyp I arrives where it
+ * rests (at most MAX); the steps taken. */
+static long fall_until_rest(struct bench *b, const struct colon *c,
+			    const double g[3], int i, long max)
+{
+	const struct tool_polyp *p = &b->t.polyp[i];
+	long n = 0;
+
+	do {
+		tool_fall(&b->t, &par, c, g, NULL, DT);
+		n++;
+	} while (n < max && !(p->rest_ok && vec3_dist(p->at, p->rest) == 0));
+	return n;
+}
+
+/*
+ * From the lumen's axis in a round lumen 50 mm across, the cut polyp
+ * falls to the wall point lowest along gravity, its radius in: supine
+ * (gravity +y) and lying on the left (+x), gravity's part across the
+ * ring, R - size/2 from the axis. It gets there in the time the drag's
+ * law gives for that distance (to a step), and stays at rest after.
+ */
+static void falls_to(const double down[3])
+{
+	struct colon *c = fall_colon(NULL, 0.05);
+	struct centreline_point q;
+	double g[3], across[3], want[3], l, t_s;
+	struct bench b;
+	long n;
+	int i;
+
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	vec3_scale(g, down, G_M_S2);
+	vec3_axpy(across, down, -vec3_dot(down, q.t), q.t);
+	assert_true(vec3_normalize(across) > 0.9);
+	l = 0.025 - FALL_SIZE / 2;
+	vec3_axpy(want, q.p, l, across);
+	t_s = fall_time(l, G_M_S2, par.fall_drag_s);
+	n = fall_until_rest(&b, c, g, i, 10000);
+	print_message("down (%g, %g, %g): %.1f mm in %ld steps, the law's "
+		      "%.4f s\n", down[0], down[1], down[2], l * 1e3, n, t_s);
+	assert_vec_near(b.t.polyp[i].at, want, 1e-9);
+	assert_true(fabs((double)n - t_s / DT) <= 1);
+	for (int k = 0; k < 100; k++) {
+		tool_fall(&b.t, &par, c, g, NULL, DT);
+	}
+	assert_vec_near(b.t.polyp[i].at, want, 1e-9);
+	assert_true(b.t.polyp[i].fall_v == 0);
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+	colon_destroy(c);
+}
+
+static void test_fall_supine_and_left(void **unused)
+{
+	const double supine[3] = { 0, 1, 0 }, left[3] = { 1, 0, 0 };
+
+	(void)unused;
+	falls_to(supine);
+	falls_to(left);
+}
+
+/*
+ * In the polyps case's sigmoid (taeniae and folds: a ring not round) the
+ * rest is the lowest of 3600 points round the ring to 0.01 mm along
+ * gravity, its body's radius in along the ring's radius there.
+ */
+static void test_fall_lowest_of_ring(void **unused)
+{
+	struct colon *c = fall_colon("config/cases/polyps.case", 0);
+	const double down[3] = { 0.6, 0.8, 0 };
+	struct centreline_point q;
+	double g[3], x[3], best = -1, got;
+	struct bench b;
+	int i;
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	for (int k = 0; k < 3600; k++) {
+		double th = 2 * M_PI * k / 3600;
+		double r = colon_lumen_radius(c, FALL_S_M, th);
+
+		vec3_scale(x, q.u, r * cos(th));
+		vec3_axpy(x, x, r * sin(th), q.v);
+		best = fmax(best, vec3_dot(x, down));
+	}
+	vec3_scale(g, down, G_M_S2);
+	fall_until_rest(&b, c, g, i, 10000);
+	/* the wall behind the body: its radius on along the ring's radius */
+	vec3_sub(x, b.t.polyp[i].at, q.p);
+	got = vec3_dot(x, down);
+	vec3_normalize(x);
+	got += FALL_SIZE / 2 * vec3_dot(x, down);
+	print_message("lowest wall along gravity %.4f mm, the rest's %.4f mm\n",
+		      best * 1e3, got * 1e3);
+	assert_near(got, best, 1e-5);
+	colon_destroy(c);
+}
+
+/*
+ * The patient turned from the back onto the left side over 2 s (the
+ * posture's eased turn): the polyp lying on the dependent wall follows it
+ * round, within 1 mm of the wall all the way, and lies at the left
+ * side's rest once the turn is over. Without gravity it lies still.
+ */
+static void test_fall_follows_turn(void **unused)
+{
+	struct colon *c = fall_colon(NULL, 0.05);
+	struct centreline_point q;
+	double g[3], want[3], across[3], worst = 0;
+	struct posture pos;
+	struct bench b;
+	int i;
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	posture_reset(&pos, POSTURE_SUPINE);
+	vec3_scale(g, pos.down, G_M_S2);
+	fall_until_rest(&b, c, g, i, 10000);
+	assert_int_equal(posture_turn(&pos, POSTURE_LEFT_LATERAL, 2), 0);
+	for (int k = 0; k < 2500; k++) {
+		double x[3], off;
+
+		posture_step(&pos, DT);
+		vec3_scale(g, pos.down, G_M_S2);
+		tool_fall(&b.t, &par, c, g, NULL, DT);
+		vec3_sub(x, b.t.polyp[i].at, q.p);
+		off = 0.025 - FALL_SIZE / 2 - vec3_norm(x);
+		worst = fmax(worst, off);
+	}
+	vec3_axpy(across, pos.down, -vec3_dot(pos.down, q.t), q.t);
+	vec3_normalize(across);
+	vec3_axpy(want, q.p, 0.025 - FALL_SIZE / 2, across);
+	print_message("turned supine to left lateral: at most %.3f mm off the "
+		      "wall\n", worst * 1e3);
+	assert_true(worst < 0.001);
+	assert_vec_near(b.t.polyp[i].at, want, 1e-9);
+	memset(g, 0, sizeof(g));
+	vec3_copy(want, b.t.polyp[i].at);
+	for (int k = 0; k < 100; k++) {
+		tool_fall(&b.t, &par, c, g, NULL, DT);
+	}
+	assert_vec_near(b.t.polyp[i].at, want, 0);
+	colon_destroy(c);
+}
+
+/* Every segment's radius factor F, into FACTOR. */
+static void factors(double factor[GAS_SEGMENTS], double f)
+{
+	for (int k = 0; k < GAS_SEGMENTS; k++) {
+		factor[k] = f;
+	}
+}
+
+/* Polyp P's distance from the ring's centre Q less F times R (its
+ * centre's on the wall of radius R at factor 1, the body's radius in:
+ * f R - size / 2 from the axis): 0 on the wall the gas holds. */
+static double off_gas_wall(const struct tool_polyp *p,
+			   const struct centreline_point *q, double f, double r)
+{
+	return vec3_dist(p->at, q->p) - (f * r - p->size_m / 2);
+}
+
+/*
+ * The wall where the gas holds it. In the polyps case's sigmoid
+ * collapsed to a radius factor of 0.6, the cut polyp falls to the lowest
+ * of 3600 points round the ring scaled by 0.6, its radius in (not to the
+ * case's wall, 40 % further out), in the time the drag's law gives for
+ * that way. Lying there it is carried with the wall: the lumen opened
+ * to 1.2 over a second, on the wall at every step (f R - size / 2 from
+ * the axis, along the same radius), never falling (its speed 0);
+ * collapsed to 0.4 in a step, on the wall in that step; at 1, at its rest
+ * by the case's wall exactly.
+ */
+static void test_fall_onto_gas_wall(void **unused)
+{
+	struct colon *c = fall_colon("config/cases/polyps.case", 0);
+	const double down[3] = { 0, 1, 0 };
+	double factor[GAS_SEGMENTS], g[3], x[3], u[3], best = -1, got, l, t_s;
+	double r, worst = 0, turned = 0;
+	struct centreline_point q;
+	const struct tool_polyp *p;
+	struct bench b;
+	long n = 0;
+	int i;
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	p = &b.t.polyp[i];
+	factors(factor, 0.6);
+	assert_near(gas_factor_at(c, factor, FALL_S_M), 0.6, 1e-12);
+	for (int k = 0; k < 3600; k++) {
+		double th = 2 * M_PI * k / 3600;
+		double rk = 0.6 * colon_lumen_radius(c, FALL_S_M, th);
+
+		vec3_scale(x, q.u, rk * cos(th));
+		vec3_axpy(x, x, rk * sin(th), q.v);
+		best = fmax(best, vec3_dot(x, down));
+	}
+	vec3_scale(g, down, G_M_S2);
+	do {
+		tool_fall(&b.t, &par, c, g, factor, DT);
+	} while (++n < 10000 && !p->lies);
+	vec3_sub(u, p->at, q.p);
+	l = vec3_normalize(u);
+	got = vec3_dot(u, down) * (l + FALL_SIZE / 2);
+	t_s = fall_time(l, G_M_S2, par.fall_drag_s);
+	print_message("collapsed to 0.6: the lowest wall along gravity %.4f "
+		      "mm, the rest's %.4f mm; %.1f mm in %ld steps, the law's "
+		      "%.4f s\n", best * 1e3, got * 1e3, l * 1e3, n, t_s);
+	assert_near(got, best, 1e-5);
+	assert_true(fabs((double)n - t_s / DT) <= 1);
+	r = (l + FALL_SIZE / 2) / 0.6;
+	for (int k = 1; k <= 1000; k++) {
+		double f = 0.6 + 0.6 * k / 1000;
+
+		factors(factor, f);
+		tool_fall(&b.t, &par, c, g, factor, DT);
+		vec3_sub(x, p->at, q.p);
+		vec3_normalize(x);
+		worst = fmax(worst, fabs(off_gas_wall(p, &q, f, r)));
+		turned = fmax(turned, 1 - vec3_dot(x, u));
+		assert_true(p->fall_v == 0);
+	}
+	print_message("opened to 1.2 over 1 s: at most %.2g m off the wall, "
+		      "%.2g off its radius\n", worst, turned);
+	assert_true(worst < 1e-12 && turned < 1e-12);
+	factors(factor, 0.4);
+	tool_fall(&b.t, &par, c, g, factor, DT);
+	assert_near(off_gas_wall(p, &q, 0.4, r), 0, 1e-12);
+	factors(factor, 1);
+	tool_fall(&b.t, &par, c, g, factor, DT);
+	assert_vec_near(p->at, p->rest, 0);
+	assert_near(off_gas_wall(p, &q, 1, r), 0, 1e-12);
+	colon_destroy(c);
+}
+
+/*
+ * Retrieval where it lies: fallen to the wall, the suction takes it with
+ * the channel's exit at its body there, not at the place it was cut.
+ */
+static void test_retrieve_where_it_lies(void **unused)
+{
+	const double g[3] = { G_M_S2, 0, 0 };
+	struct colon *c = fall_colon(NULL, 0.05);
+	struct centreline_point q;
+	double exit[3];
+	struct bench b;
+	int i;
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	fall_until_rest(&b, c, g, i, 10000);
+	b.in.suction = true;
+	/* the exit where it was cut (the lumen's axis): not in reach */
+	vec3_copy(exit, q.p);
+	vec3_axpy(b.sc.tip, exit, -par.channel_offset_m, b.t.pose.radial);
+	b.events = 0;
+	run(&b, 5, 0);
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_CUT);
+	/* at its body where it lies: taken */
+	vec3_copy(exit, b.t.polyp[i].at);
+	vec3_axpy(b.sc.tip, exit, -par.channel_offset_m, b.t.pose.radial);
+	run(&b, 5, 0);
+	assert_true(b.events & TOOL_EVENT_RETRIEVE);
+	assert_int_equal(b.t.polyp[i].state, TOOL_POLYP_RETRIEVED);
+	colon_destroy(c);
+}
+
+/*
+ * Published in turn: of two cut polyps, the one falling each step while
+ * it falls; both at rest, one and the other; none cut, none.
+ */
+static void test_lying_in_turn(void **unused)
+{
+	const double g[3] = { 0, G_M_S2, 0 };
+	struct colon *c = fall_colon(NULL, 0.05);
+	struct centreline_point q;
+	struct endosim_tool_state pub;
+	struct bench b;
+	int i, j, seen[2] = { 0, 0 };
+
+	(void)unused;
+	centreline_at_s(colon_centreline(c), FALL_S_M, &q);
+	cut_free(&b, q.p, &i);
+	tool_fall(&b.t, &par, c, g, NULL, DT);
+	tool_publish(&b.t, 0, -1, &pub);
+	assert_int_equal(pub.lying_polyp, i);
+	assert_vec_near(pub.lying_at, b.t.polyp[i].at, 0);
+	assert_vec_near(pub.polyp[i].at, b.t.polyp[i].at, 0);
+	fall_until_rest(&b, c, g, i, 10000);
+	/* a second one cut, falling: told every step till it rests */
+	j = 1 - i;
+	b.t.polyps = 2;
+	b.t.polyp[j] = b.t.polyp[i];
+	vec3_copy(b.t.polyp[j].at, q.p);
+	b.t.polyp[j].rest_ok = false;
+	b.t.polyp[j].moved = true;
+	for (int k = 0; k < 20; k++) {
+		tool_fall(&b.t, &par, c, g, NULL, DT);
+		assert_int_equal(b.t.lying, j);
+	}
+	fall_until_rest(&b, c, g, j, 10000);
+	for (int k = 0; k < 10; k++) {
+		tool_fall(&b.t, &par, c, g, NULL, DT);
+		seen[b.t.lying]++;
+	}
+	assert_int_equal(seen[0], 5);
+	assert_int_equal(seen[1], 5);
+	b.t.polyp[i].state = b.t.polyp[j].state = TOOL_POLYP_RETRIEVED;
+	tool_fall(&b.t, &par, c, g, NULL, DT);
+	assert_int_equal(b.t.lying, -1);
+	colon_destroy(c);
+}
+
 /* Each fate: a 6 mm polyp bitten in place is partly resected. */
 static void test_fates(void **unused)
 {
@@ -858,6 +1243,12 @@ int main(void)
 		cmocka_unit_test(test_bleed_volume_and_stop),
 		cmocka_unit_test(test_clip_stops_bleed),
 		cmocka_unit_test(test_retrieve_small_only),
+		cmocka_unit_test(test_fall_supine_and_left),
+		cmocka_unit_test(test_fall_lowest_of_ring),
+		cmocka_unit_test(test_fall_follows_turn),
+		cmocka_unit_test(test_fall_onto_gas_wall),
+		cmocka_unit_test(test_retrieve_where_it_lies),
+		cmocka_unit_test(test_lying_in_turn),
 		cmocka_unit_test(test_fates),
 		cmocka_unit_test(test_place_polyps_on_wall),
 	};

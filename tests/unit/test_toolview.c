@@ -8,7 +8,10 @@
  * half open; everything moved with the lens; nothing while the tool is in
  * the channel, for no tool, or for a state not finite; a bleeding point
  * welling from its place towards the tip, the view reddened by the flow,
- * and the clip placed standing on the wall, tool in hand or not.
+ * and the clip placed standing on the wall, tool in hand or not; guided
+ * replay's expert's tool as a ghost of its own colour.
+ * and the clip placed standing on the wall, tool in hand or not; the
+ * polyps cut drawn where they lie, those retrieved not at all.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -248,6 +251,112 @@ static void on_the_wall(void **unused)
 	assert_int_equal(v.gone, 1u << 2);
 }
 
+/* Guided replay's expert's tool: the published tool's fields as the
+ * guide state's expert_* (toolview_expert()'s inverse). */
+static void expert_of(const struct endosim_tool_state *t,
+		      struct endosim_guide_state *g)
+{
+	memset(g, 0, sizeof(*g));
+	g->phase = ENDOSIM_GUIDE_GUIDING;
+	g->expert_kind = t->kind;
+	g->expert_pedal = t->pedal;
+	g->expert_snare_m = t->snare_m;
+	g->expert_depth_m = t->depth_m;
+	g->expert_opening = t->opening;
+	g->expert_loop_m = t->loop_m;
+	vec3_copy(g->expert_tip, t->tip);
+	vec3_copy(g->expert_loop_centre, t->loop_centre);
+}
+
+/*
+ * The expert's ghost: the parts of the same tool in hand, point for
+ * point (with the lens too), every one in the ghost's light blue (blue
+ * above red), marked a ghost; the snare's wire amber while its pedal is
+ * down, the sheath still blue; nothing for none, in the channel, or not
+ * finite; no blood, nothing gone; the trainee's own tool not a ghost.
+ */
+static void ghost(void **unused)
+{
+	static const double shift[3] = { 0.001, -0.002, 0.0005 };
+	struct endosim_guide_state g;
+	struct endosim_tool_state back;
+	struct toolview mine, v;
+
+	(void)unused;
+	setup_tool(ENDOSIM_TOOL_SNARE, 0.012, 0.7);
+	expert_of(&tool, &g);
+	toolview_build(&tool, &sc, shift, &mine);
+	toolview_build_ghost(&g, &sc, shift, &v);
+	assert_false(mine.ghost);
+	assert_true(v.ghost);
+	assert_int_equal(v.parts, 2);
+	assert_int_equal(v.parts, mine.parts);
+	for (int k = 0; k < v.parts; k++) {
+		const float *c = v.part[k].rgb;
+
+		assert_int_equal(v.part[k].points, mine.part[k].points);
+		for (int j = 0; j < v.part[k].points; j++) {
+			for (int x = 0; x < 3; x++) {
+				assert_true(v.part[k].p[j][x] ==
+					    mine.part[k].p[j][x]);
+			}
+		}
+		assert_true(c[2] > c[1] && c[1] > c[0] + 0.2f);
+	}
+	assert_true(v.blood == 0 && v.gone == 0);
+	toolview_expert(&g, &back);
+	assert_int_equal(back.kind, ENDOSIM_TOOL_SNARE);
+	assert_true(back.depth_m == tool.depth_m &&
+		    back.opening == tool.opening &&
+		    back.loop_m == tool.loop_m);
+	assert_int_equal(back.captured, -1);
+	g.expert_pedal = 1;
+	toolview_build_ghost(&g, &sc, none, &v);
+	assert_true(v.part[1].rgb[0] > v.part[1].rgb[2]); /* the wire amber */
+	assert_true(v.part[0].rgb[2] > v.part[0].rgb[0]); /* the sheath not */
+	g.expert_kind = ENDOSIM_TOOL_NONE;
+	toolview_build_ghost(&g, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+	setup_tool(ENDOSIM_TOOL_FORCEPS, -0.002, 1);
+	expert_of(&tool, &g);
+	toolview_build_ghost(&g, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+	setup_tool(ENDOSIM_TOOL_FORCEPS, 0.010, 1);
+	expert_of(&tool, &g);
+	toolview_build_ghost(&g, &sc, none, &v);
+	assert_int_equal(v.parts, 3);
+	g.expert_tip[0] = NAN;
+	toolview_build_ghost(&g, &sc, none, &v);
+	assert_int_equal(v.parts, 0);
+}
+
+/*
+ * The polyps: one cut drawn where it lies (its published at, not moved
+ * with the lens), one retrieved not at all, one in place where it
+ * stands; a cut one whose place is not finite not drawn.
+ */
+static void lying_where_published(void **unused)
+{
+	const double shift[3] = { 0.001, 0.002, 0.003 };
+	struct toolview v;
+
+	(void)unused;
+	setup_tool(ENDOSIM_TOOL_NONE, 0, 0);
+	tool.polyps = 4;
+	tool.polyp[0].state = ENDOSIM_POLYP_CUT;
+	vec3_set(tool.polyp[0].at, 0.012, -0.02, 0.31);
+	tool.polyp[1].state = ENDOSIM_POLYP_RETRIEVED;
+	vec3_set(tool.polyp[1].at, 0.1, 0.1, 0.1);
+	tool.polyp[2].state = ENDOSIM_POLYP_IN_PLACE;
+	tool.polyp[3].state = ENDOSIM_POLYP_CUT;
+	vec3_set(tool.polyp[3].at, NAN, 0, 0);
+	toolview_build(&tool, &sc, shift, &v);
+	assert_int_equal(v.lying, 1u << 0);
+	assert_int_equal(v.gone, 1u << 1);
+	assert_true(dist_f(v.lie[0], tool.polyp[0].at) < TOL);
+	assert_int_equal(v.parts, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -257,6 +366,8 @@ int main(void)
 		cmocka_unit_test(with_the_lens),
 		cmocka_unit_test(nothing),
 		cmocka_unit_test(on_the_wall),
+		cmocka_unit_test(ghost),
+		cmocka_unit_test(lying_where_published),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
