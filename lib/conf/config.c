@@ -768,9 +768,9 @@ static const struct parse_key keys[] = {
 	   "metrics: the patient is in pain at this pain (0-10) or above: "
 	   "the time in pain, the pain episodes"),
 	KS("session", "course", session.course, "", 0,
-	   "the course file (config/courses/NAME.course) that endoctl trainee "
-	   "judges the sessions by, of the trainees whose groups have no "
-	   "course assigned; empty: none"),
+	   "the course file (config/courses/NAME.course) endoctl trainee "
+	   "judges by, for trainees whose groups have no course assigned; "
+	   "empty: none"),
 
 	/* records.h's RECORDS_DEFAULT_NAME, which this wing cannot name
 	 * (test_config holds them to each other) */
