@@ -771,14 +771,18 @@ static const struct command {
 	  "terminal (4 to 64 characters, kept only as a salted Argon2id "
 	  "hash); add, remove and another's pin: an administrator on the "
 	  "control socket (root or the endosim group are one while not "
-	  "logged in); anyone logged in may change their own PIN" },
+	  "logged in), or an instructor logged in there adding a trainee or "
+	  "setting the PIN of a trainee of their groups; anyone logged in "
+	  "may change their own PIN" },
 	{ "group", ctl_cmd_group, "groups of trainees and their courses",
 	  "group list | add GROUP --instructor NAME | remove GROUP | join "
 	  "GROUP TRAINEE... | leave GROUP TRAINEE... | assign GROUP COURSE | "
 	  "unassign GROUP COURSE", "endoctl group join 2026 Ann Bo",
 	  "a group (a year's intake) is managed by one instructor, who sees "
 	  "the sessions of its trainees; its courses are the course files "
-	  "assigned to it; changes: an administrator on the control socket" },
+	  "assigned to it; changes: an administrator on the control socket, "
+	  "or its instructor logged in there joining and leaving trainees "
+	  "(one in no group, or in theirs) and assigning courses" },
 	{ "whoami", ctl_cmd_whoami, "who this connection is to endosimd",
 	  "whoami", "ENDOSIM_PIN=4821 endoctl --as Ann whoami",
 	  "with --as NAME the name and role the PIN logged in as; without, "

@@ -33,21 +33,28 @@ struct control_accounts {
 	char words[512];            /* a refusal's */
 };
 
+void control_accounts_path(const struct config *cfg, char *out,
+			   size_t size)
+{
+	const char *db = cfg->records.database;
+	char *slash;
+
+	if (db[0] == '/') {
+		snprintf(out, size, "%s", db);
+	} else {
+		snprintf(out, size, "%s/%s", cfg->session.directory, db);
+	}
+	slash = strrchr(out, '/');
+	snprintf(slash + 1, size - (size_t)(slash + 1 - out), "%s",
+		 ACCOUNTS_DEFAULT_NAME);
+}
+
 struct control_accounts *control_accounts_create(const struct config *cfg)
 {
 	struct control_accounts *ca = calloc(1, sizeof(*ca));
-	const char *db = cfg->records.database;
-	char path[3 * CONFIG_STR], *slash;
+	char path[3 * CONFIG_STR];
 
-	if (db[0] == '/') {
-		snprintf(path, sizeof(path), "%s", db);
-	} else {
-		snprintf(path, sizeof(path), "%s/%s", cfg->session.directory,
-			 db);
-	}
-	slash = strrchr(path, '/');
-	snprintf(slash + 1, sizeof(path) - (size_t)(slash + 1 - path), "%s",
-		 ACCOUNTS_DEFAULT_NAME);
+	control_accounts_path(cfg, path, sizeof(path));
 	if (!ca || !(ca->db = accounts_create(path))) {
 		log_err("control: out of memory, or libsodium cannot start");
 		free(ca);
@@ -463,12 +470,46 @@ static int change(struct accounts *db, const Endosim__Accounts *m)
 	}
 }
 
-/* Whether CL may make the change M, else REP refused: true. */
+/* The change M as accounts.h's CH (its texts M's): 0, or -ENOSYS. */
+static int change_of(const Endosim__Accounts *m, struct accounts_change *ch)
+{
+	static const enum accounts_op ops[] = {
+		[ENDOSIM__ACCOUNTS__OP__OP_USER_ADD] = ACCOUNTS_USER_ADD,
+		[ENDOSIM__ACCOUNTS__OP__OP_USER_REMOVE] = ACCOUNTS_USER_REMOVE,
+		[ENDOSIM__ACCOUNTS__OP__OP_USER_PIN] = ACCOUNTS_USER_PIN,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_ADD] = ACCOUNTS_GROUP_ADD,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_REMOVE] =
+			ACCOUNTS_GROUP_REMOVE,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_JOIN] = ACCOUNTS_GROUP_JOIN,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_LEAVE] = ACCOUNTS_GROUP_LEAVE,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_ASSIGN] =
+			ACCOUNTS_GROUP_ASSIGN,
+		[ENDOSIM__ACCOUNTS__OP__OP_GROUP_UNASSIGN] =
+			ACCOUNTS_GROUP_UNASSIGN,
+	};
+
+	if (m->op < ENDOSIM__ACCOUNTS__OP__OP_USER_ADD ||
+	    m->op > ENDOSIM__ACCOUNTS__OP__OP_GROUP_UNASSIGN) {
+		return -ENOSYS;
+	}
+	*ch = (struct accounts_change){ .op = ops[m->op], .name = m->name,
+					.pin = m->pin, .group = m->group,
+					.course = m->course };
+	if (accounts_role_parse(m->role, &ch->role)) {
+		ch->role = ACCOUNTS_ADMINISTRATOR; /* judged as the most */
+	}
+	return 0;
+}
+
+/* Whether CL may make the change M (accounts_may()), else REP refused:
+ * true. */
 static bool change_refused(struct control *c, const struct client *cl,
 			   const Endosim__Accounts *m, Endosim__Reply *rep)
 {
 	bool own_pin = m->op == ENDOSIM__ACCOUNTS__OP__OP_USER_PIN &&
 		       cl->logged_in && !strcmp(m->name, cl->user.name);
+	struct accounts_change ch;
+	int e;
 
 	if (own_pin) {
 		return false;
@@ -478,9 +519,25 @@ static bool change_refused(struct control *c, const struct client *cl,
 		       "read-only socket: use the control socket");
 		return true;
 	}
-	return !administrator(cl) &&
-	       refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
-		       "only an administrator changes the accounts");
+	if (administrator(cl) || change_of(m, &ch)) {
+		return false; /* no such op: change() says so */
+	}
+	if (!cl->logged_in) {
+		return refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			       "only an administrator changes the accounts");
+	}
+	if ((e = accounts_may(c->accounts->db, &cl->user, &ch)) == -EPERM) {
+		return refused(c, cl, rep, ENDOSIM__STATUS__STATUS_PERMISSION,
+			       accounts_error(c->accounts->db));
+	}
+	if (e) {
+		snprintf(c->accounts->words, sizeof(c->accounts->words), "%s",
+			 accounts_error(c->accounts->db));
+		refuse(rep, ENDOSIM__STATUS__STATUS_INTERNAL,
+		       c->accounts->words);
+		return true;
+	}
+	return false;
 }
 
 void control_on_accounts(struct control *c, struct client *cl,
@@ -513,6 +570,7 @@ void control_on_accounts(struct control *c, struct client *cl,
 			   "", m->group, (int)cl->uid, cl->logged_in ?
 			   " as " : "", cl->logged_in ? cl->user.name : "");
 		control_training_changed(c, m);
+		control_records_poke_centre(c);
 	}
 	accounts_reply(c, cl, rep);
 }

@@ -138,20 +138,24 @@ void control_records_ended(struct control *c, const struct recorder_info *ri);
  * worker thread of its own (control_centre.c): the control thread never
  * waits on the network (a centre that does not answer would stall every
  * client), and the force loop never touches it. The worker sends the
- * sessions queued in the rig's records (records.h) in their order: at
- * start (those left from before), when poked, and every [records]
- * centre_retry_s while the centre cannot be reached (each try waits at
- * most CENTRE_CONNECT_TIMEOUT_S to connect; main.c refused a URL that
- * libpq cannot read at start-up). NULL on ENOMEM (logged: endosimd does
- * not start). Destroy waits for the session being sent (at most the
- * connect timeout, or the server's answer).
+ * sessions queued in the rig's records (records.h) in their order, then
+ * the changes queued in the rig's accounts (accounts.h), then copies the
+ * centre's people into the rig's accounts when they changed: at start,
+ * when poked, and every [records] centre_retry_s (each try waits at most
+ * CENTRE_CONNECT_TIMEOUT_S to connect; main.c refused a URL that libpq
+ * cannot read at start-up). NULL on ENOMEM (logged: endosimd does not
+ * start). Destroy waits for what is being sent (at most the connect
+ * timeout, or the server's answer).
  */
 struct control_centre;
 struct control_centre *control_centre_create(const struct config *cfg);
 void control_centre_destroy(struct control_centre *cc);
-/* Sessions were queued (a session's end, a rebuild): the worker sends
- * them now. Any thread. */
+/* Sessions or changes of the accounts were queued (a session's end, a
+ * rebuild, a user or group changed): the worker sends them now. Any
+ * thread. */
 void control_centre_poke(struct control_centre *cc);
+/* The same for the control's centre, when it has one. Control thread. */
+void control_records_poke_centre(struct control *c);
 
 /*
  * The sessions of the records as a reply's SessionInfos, by ID: TRAINEE's
@@ -183,6 +187,9 @@ void control_rows_free(struct control_rows *rows);
  */
 struct control_accounts *control_accounts_create(const struct config *cfg);
 void control_accounts_destroy(struct control_accounts *ca);
+/* The accounts' database of CFG (beside its records) into OUT. */
+void control_accounts_path(const struct config *cfg, char *out,
+			   size_t size);
 
 /*
  * Before REQ's handler: true when CL may not make it, REP refused in words

@@ -117,6 +117,13 @@ void control_records_ended(struct control *c, const struct recorder_info *ri)
 	}
 }
 
+void control_records_poke_centre(struct control *c)
+{
+	if (c->records->centre) {
+		control_centre_poke(c->records->centre);
+	}
+}
+
 /* One row of control_records_rows(): what its info points into. */
 struct control_row {
 	Endosim__SessionInfo info;  /* first: free() of its address frees all */

@@ -768,9 +768,9 @@ static const struct parse_key keys[] = {
 	   "metrics: the patient is in pain at this pain (0-10) or above: "
 	   "the time in pain, the pain episodes"),
 	KS("session", "course", session.course, "", 0,
-	   "the course file (config/courses/NAME.course) that endoctl trainee "
-	   "judges the sessions by, of the trainees whose groups have no "
-	   "course assigned; empty: none"),
+	   "the course file (config/courses/NAME.course) endoctl trainee "
+	   "judges by, for trainees whose groups have no course assigned; "
+	   "empty: none"),
 
 	/* records.h's RECORDS_DEFAULT_NAME, which this wing cannot name
 	 * (test_config holds them to each other) */
@@ -785,8 +785,8 @@ static const struct parse_key keys[] = {
 	   "password in libpq's password file) each session goes to as "
 	   "well; empty: none"),
 	KD("records", "centre_retry_s", records.centre_retry_s, 30, 0.05,
-	   3600, "s", 0, "an unreachable centre is tried again after this "
-	   "(its sessions wait in the rig's records)"),
+	   3600, "s", 0, "an unreachable centre is tried again after this; "
+	   "the centre's people are looked at for changes this often"),
 
 	KD("scope", "bending_length_m", scope.bending_length_m,
 	   SCOPE_DEFAULT_BENDING_LENGTH_M, 0.01, 0.3, "m", LIVE,

@@ -229,7 +229,7 @@ struct config {
 		char database[CONFIG_STR];     /* relative: under the sessions */
 		char rig[CONFIG_STR];          /* "": the host's name */
 		char centre[CONFIG_STR];       /* centre.h's URL; "": none */
-		double centre_retry_s;         /* an unreachable centre again */
+		double centre_retry_s;         /* retry; the people looked at */
 	} records;
 	struct {
 		double bending_length_m;

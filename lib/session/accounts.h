@@ -19,8 +19,9 @@
  *
  * A trainee sees only the sessions whose trainee is their name; an
  * instructor those of the trainees of the groups they manage; an
- * administrator every session, and only an administrator changes the
- * accounts or deletes records (control_accounts.c applies it).
+ * administrator every session, and only an administrator deletes
+ * records. Who changes the accounts is accounts_may()'s rule
+ * (control_accounts.c applies both).
  *
  * PINs: 4 to ACCOUNTS_PIN_MAX characters, no control characters; hashed
  * with Argon2id at ACCOUNTS_PIN_OPS passes over ACCOUNTS_PIN_MEM bytes
@@ -34,17 +35,23 @@
  *
  * Each call opens the database, does its work and closes it. Blocks on
  * the disk and, for a PIN, on the hash (tens of ms); allocates: the
- * control thread or a tool, never the force loop. One writer (endosimd).
+ * control thread, the centre's worker or a tool, never the force loop.
+ * Writers: endosimd's control thread and its centre's worker, each with a
+ * struct accounts of its own (SQLite's locks between them).
  */
 #ifndef ENDOSIM_ACCOUNTS_H
 #define ENDOSIM_ACCOUNTS_H
 
+#include <errno.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <string.h>
 
-#define ACCOUNTS_SCHEMA_VERSION 1
+#define ACCOUNTS_SCHEMA_VERSION 2
 #define ACCOUNTS_DEFAULT_NAME "accounts.sqlite"
 #define ACCOUNTS_NAME_MAX 63        /* bytes of a user's or group's name */
+#define ACCOUNTS_COURSE_MAX 4095    /* bytes of a course's name or path */
+#define ACCOUNTS_HASH_MAX 127       /* bytes of a PIN's Argon2id string */
 #define ACCOUNTS_PIN_MIN 4
 #define ACCOUNTS_PIN_MAX 64
 #define ACCOUNTS_PIN_OPS 2          /* Argon2id passes */
@@ -75,10 +82,31 @@ struct accounts_group {
 	char *courses;
 };
 
-/* "trainee", "instructor", "administrator". */
-const char *accounts_role_name(enum accounts_role role);
+/* "trainee", "instructor", "administrator" (inline, as the ops' names
+ * below: centre.c has them without linking SQLite or libsodium). */
+static inline const char *accounts_role_name(enum accounts_role role)
+{
+	static const char *const names[] = {
+		[ACCOUNTS_TRAINEE] = "trainee",
+		[ACCOUNTS_INSTRUCTOR] = "instructor",
+		[ACCOUNTS_ADMINISTRATOR] = "administrator",
+	};
+
+	return role <= ACCOUNTS_ADMINISTRATOR ? names[role] : "?";
+}
+
 /* NAME as a role into *ROLE: 0 or -EINVAL. */
-int accounts_role_parse(const char *name, enum accounts_role *role);
+static inline int accounts_role_parse(const char *name,
+				      enum accounts_role *role)
+{
+	for (int i = 0; i <= ACCOUNTS_ADMINISTRATOR; i++) {
+		if (!strcmp(name, accounts_role_name((enum accounts_role)i))) {
+			*role = (enum accounts_role)i;
+			return 0;
+		}
+	}
+	return -EINVAL;
+}
 
 /*
  * The accounts of the database PATH (made, mode 0600, on the first
@@ -159,5 +187,149 @@ int accounts_seen(struct accounts *a, const struct accounts_user *u,
 
 /* Whether TRAINEE is one of the lines of NAMES (accounts_seen()'s). */
 bool accounts_among(const char *names, const char *trainee);
+
+/* ------------------------------------------------- who changes what */
+
+/* The changes of the accounts, each as the calls above make it. */
+enum accounts_op {
+	ACCOUNTS_USER_ADD,
+	ACCOUNTS_USER_REMOVE,
+	ACCOUNTS_USER_PIN,
+	ACCOUNTS_GROUP_ADD,
+	ACCOUNTS_GROUP_REMOVE,
+	ACCOUNTS_GROUP_JOIN,
+	ACCOUNTS_GROUP_LEAVE,
+	ACCOUNTS_GROUP_ASSIGN,
+	ACCOUNTS_GROUP_UNASSIGN,
+};
+
+/*
+ * One change: its texts are not the struct's ("" where the change has
+ * none). NAME: the user added, removed, whose PIN, who joins or leaves;
+ * GROUP_ADD's instructor. ROLE: USER_ADD's. PIN: USER_ADD's and
+ * USER_PIN's, the PIN itself where a user makes the change, its Argon2id
+ * string on its way to or from a centre. GROUP, COURSE: the group's.
+ */
+struct accounts_change {
+	enum accounts_op op;
+	const char *name;
+	enum accounts_role role;
+	const char *pin;
+	const char *group;
+	const char *course;
+};
+
+/* "user_add", "user_remove", "user_pin", "group_add", ... "group_unassign":
+ * the centre's words too. */
+static inline const char *accounts_op_name(enum accounts_op op)
+{
+	static const char *const names[] = {
+		[ACCOUNTS_USER_ADD] = "user_add",
+		[ACCOUNTS_USER_REMOVE] = "user_remove",
+		[ACCOUNTS_USER_PIN] = "user_pin",
+		[ACCOUNTS_GROUP_ADD] = "group_add",
+		[ACCOUNTS_GROUP_REMOVE] = "group_remove",
+		[ACCOUNTS_GROUP_JOIN] = "group_join",
+		[ACCOUNTS_GROUP_LEAVE] = "group_leave",
+		[ACCOUNTS_GROUP_ASSIGN] = "group_assign",
+		[ACCOUNTS_GROUP_UNASSIGN] = "group_unassign",
+	};
+
+	return op <= ACCOUNTS_GROUP_UNASSIGN ? names[op] : "?";
+}
+
+/* NAME as an op into *OP: 0 or -EINVAL. */
+static inline int accounts_op_parse(const char *name, enum accounts_op *op)
+{
+	for (int i = 0; i <= ACCOUNTS_GROUP_UNASSIGN; i++) {
+		if (!strcmp(name, accounts_op_name((enum accounts_op)i))) {
+			*op = (enum accounts_op)i;
+			return 0;
+		}
+	}
+	return -EINVAL;
+}
+
+/*
+ * Whether U may make the change CH:
+ * - an administrator, any;
+ * - an instructor: a trainee added (with a first PIN); the PIN of a
+ *   trainee of the groups they manage; in the groups they manage, a
+ *   trainee joined (one in no group, or in one of theirs already: a
+ *   trainee of another instructor's group stays theirs) or left, a course
+ *   assigned or unassigned. Never an instructor or administrator added,
+ *   a user removed, a group made or removed, another's group touched;
+ * - anyone: their own PIN.
+ * 0; -EPERM (why, for the one refused, in accounts_error()); -EIO. A
+ * change let through may still fail on its own terms (no such group, a
+ * name taken): the call that makes it says so.
+ */
+int accounts_may(struct accounts *a, const struct accounts_user *u,
+		 const struct accounts_change *ch);
+
+/* ------------------------------------------------- a centre's copy */
+
+/*
+ * With a training centre ([records] centre, centre.h; docs/INSTRUCTOR.md
+ * "A centre's rigs together") the rigs share one set of people: the
+ * centre's users, groups, members and courses, of which each rig keeps a
+ * copy here, so that a login is checked on the rig even while the centre
+ * cannot be reached.
+ * - Up: every change made on the rig (the calls above; a wrong PIN's
+ *   count and wait are the rig's own and stay here) is queued, in the
+ *   same transaction as the change itself (the schema's triggers), with
+ *   a random ID by which the centre takes it once. The centre's worker
+ *   sends the queue in order (accounts_queue_head(), _arrived()).
+ * - Down: once the rig's queue is empty, the centre's accounts replace
+ *   the rig's (accounts_replace()): the centre's state wins every
+ *   conflict (it takes the first add of a name, and drops what it cannot
+ *   apply).
+ */
+#define ACCOUNTS_ID_LEN 32 /* a queued change's ID: hex digits */
+
+/* A queued change: CH's texts point into the struct's own. */
+struct accounts_queued {
+	char id[ACCOUNTS_ID_LEN + 1];
+	struct accounts_change ch;
+	char name[ACCOUNTS_NAME_MAX + 1];
+	char group[ACCOUNTS_NAME_MAX + 1];
+	char pin[ACCOUNTS_HASH_MAX + 1];
+	char course[ACCOUNTS_COURSE_MAX + 1];
+};
+
+/*
+ * The centre at URL (NULL or "": none) these accounts are kept with.
+ * With one: changes queued from now on; the first time with this URL,
+ * every user, group, member and course queued too (the centre takes
+ * those it lacks) and the copy's version forgotten (the database made if
+ * missing). Without: nothing queued, the queue emptied (a database not
+ * made yet is left so). 0; -EIO.
+ */
+int accounts_centre(struct accounts *a, const char *url);
+
+/* The change queued first into *Q, how many are queued into *WAITING.
+ * 0; -ENOENT (none, or no database); -EIO. */
+int accounts_queue_head(struct accounts *a, struct accounts_queued *q,
+			size_t *waiting);
+
+/* The queued change ID taken by the centre: out of the queue. 0; -EIO. */
+int accounts_queue_arrived(struct accounts *a, const char *id);
+
+/* The version of the centre's accounts last copied here into OUT (""
+ * none yet, or no database). 0; -EIO. */
+int accounts_copy_version(struct accounts *a, char *out, size_t size);
+
+/*
+ * The centre's accounts at VERSION made these, in one transaction,
+ * nothing of it queued: the N changes CH onto empty accounts, first
+ * USER_ADD (each with its Argon2id string), then GROUP_ADD, GROUP_JOIN and
+ * GROUP_ASSIGN. A user it lacks is removed; one it has keeps their count
+ * of wrong PINs while their PIN is the same. 0; -EBUSY (changes of the
+ * rig are queued still: nothing done, the copy waits for them to
+ * arrive); -EINVAL (a change of another kind, a name or hash out of the
+ * rules, a member or group whose user it lacks: nothing done); -EIO.
+ */
+int accounts_replace(struct accounts *a, const char *version,
+		     const struct accounts_change *ch, size_t n);
 
 #endif

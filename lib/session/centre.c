@@ -37,8 +37,40 @@ static const char schema[] =
 	" report text,"
 	" received timestamptz NOT NULL DEFAULT now());"
 	"CREATE INDEX IF NOT EXISTS sessions_by_trainee ON sessions"
-	" (trainee, started);";
+	" (trainee, started);"
+	"CREATE TABLE IF NOT EXISTS endosim_people ("
+	" name text PRIMARY KEY,"
+	" role text NOT NULL"
+	"  CHECK (role IN ('trainee', 'instructor', 'administrator')),"
+	" pin text NOT NULL);"
+	"CREATE TABLE IF NOT EXISTS endosim_groups ("
+	" name text PRIMARY KEY,"
+	" instructor text NOT NULL REFERENCES endosim_people (name));"
+	"CREATE TABLE IF NOT EXISTS endosim_members ("
+	" group_name text NOT NULL"
+	"  REFERENCES endosim_groups (name) ON DELETE CASCADE,"
+	" trainee text NOT NULL"
+	"  REFERENCES endosim_people (name) ON DELETE CASCADE,"
+	" PRIMARY KEY (group_name, trainee));"
+	"CREATE TABLE IF NOT EXISTS endosim_courses ("
+	" group_name text NOT NULL"
+	"  REFERENCES endosim_groups (name) ON DELETE CASCADE,"
+	" course text NOT NULL,"
+	" PRIMARY KEY (group_name, course));"
+	"CREATE TABLE IF NOT EXISTS endosim_changes ("
+	" id uuid PRIMARY KEY,"
+	" arrival bigserial NOT NULL,"
+	" rig text NOT NULL,"
+	" op text NOT NULL,"
+	" name text NOT NULL,"
+	" group_name text NOT NULL,"
+	" course text NOT NULL,"
+	" applied boolean NOT NULL DEFAULT false,"
+	" received timestamptz NOT NULL DEFAULT now());";
 #define SCHEMA_COLUMNS 13 /* the table's before the measures' */
+
+/* Held while a change of the people is taken ("peop"). */
+#define PEOPLE_LOCK "1885695856"
 
 struct centre {
 	char *url;
@@ -102,6 +134,11 @@ const char *centre_error(const struct centre *c)
 	return c->error;
 }
 
+bool centre_connected(const struct centre *c)
+{
+	return c->pg && PQstatus(c->pg) == CONNECTION_OK;
+}
+
 void centre_disconnect(struct centre *c)
 {
 	PQfinish(c->pg);
@@ -150,14 +187,15 @@ static int failed(struct centre *c, PGresult *res, const char *what)
 	return e;
 }
 
-/* SQL with the N texts V (NULL: SQL's NULL) run: its result in *RES
- * (NULL: not wanted), or as failed(). Without texts SQL may be several
- * statements (PQexec()'s). */
-static int run(struct centre *c, const char *sql, int n,
-	       const char *const *v, PGresult **res, const char *what)
+/* SQL with the N texts V (NULL: SQL's NULL; of TYPES, NULL: as the
+ * server infers them) run: its result in *RES (NULL: not wanted), or as
+ * failed(). Without texts SQL may be several statements (PQexec()'s). */
+static int run_typed(struct centre *c, const char *sql, int n,
+		     const char *const *v, const Oid *types, PGresult **res,
+		     const char *what)
 {
-	PGresult *r = n ? PQexecParams(c->pg, sql, n, NULL, v, NULL, NULL, 0)
-			: PQexec(c->pg, sql);
+	PGresult *r = n ? PQexecParams(c->pg, sql, n, types, v, NULL, NULL,
+				       0) : PQexec(c->pg, sql);
 	ExecStatusType st = PQresultStatus(r);
 
 	if (st != PGRES_COMMAND_OK && st != PGRES_TUPLES_OK) {
@@ -169,6 +207,12 @@ static int run(struct centre *c, const char *sql, int n,
 		PQclear(r);
 	}
 	return 0;
+}
+
+static int run(struct centre *c, const char *sql, int n,
+	       const char *const *v, PGresult **res, const char *what)
+{
+	return run_typed(c, sql, n, v, NULL, res, what);
 }
 
 /* ----------------------------------------------------------- schema */
@@ -227,7 +271,7 @@ int centre_connect(struct centre *c, bool write)
 	int e;
 
 	c->error[0] = '\0';
-	if (c->pg && PQstatus(c->pg) == CONNECTION_OK) {
+	if (centre_connected(c)) {
 		return 0;
 	}
 	centre_disconnect(c);
@@ -480,4 +524,211 @@ int centre_report_page(const char *path, char **html)
 		*html = NULL;
 	}
 	return e;
+}
+
+/* ------------------------------------------------------------ people */
+
+#define TEXT_OID 25 /* PostgreSQL's text type (pg_type.h) */
+
+/* Each change's statement, its texts $1 name, $2 role, $3 pin, $4 group,
+ * $5 course (accounts.h's struct accounts_change). */
+static const char *const change_sql[] = {
+	[ACCOUNTS_USER_ADD] = "INSERT INTO endosim_people (name, role, pin) "
+		"VALUES ($1, $2, $3) ON CONFLICT (name) DO NOTHING",
+	[ACCOUNTS_USER_REMOVE] = "DELETE FROM endosim_people WHERE name = $1",
+	[ACCOUNTS_USER_PIN] = "UPDATE endosim_people SET pin = $3 "
+		"WHERE name = $1",
+	[ACCOUNTS_GROUP_ADD] = "INSERT INTO endosim_groups (name, instructor) "
+		"VALUES ($4, $1) ON CONFLICT (name) DO NOTHING",
+	[ACCOUNTS_GROUP_REMOVE] = "DELETE FROM endosim_groups WHERE name = $4",
+	[ACCOUNTS_GROUP_JOIN] = "INSERT INTO endosim_members (group_name, "
+		"trainee) VALUES ($4, $1) ON CONFLICT DO NOTHING",
+	[ACCOUNTS_GROUP_LEAVE] = "DELETE FROM endosim_members "
+		"WHERE group_name = $4 AND trainee = $1",
+	[ACCOUNTS_GROUP_ASSIGN] = "INSERT INTO endosim_courses (group_name, "
+		"course) VALUES ($4, $5) ON CONFLICT DO NOTHING",
+	[ACCOUNTS_GROUP_UNASSIGN] = "DELETE FROM endosim_courses "
+		"WHERE group_name = $4 AND course = $5",
+};
+
+/* CH applied within the transaction (a savepoint round it: a change the
+ * centre refuses leaves the rest of it). */
+static int apply(struct centre *c, const struct accounts_change *ch,
+		 enum centre_outcome *out)
+{
+	static const Oid types[5] = { TEXT_OID, TEXT_OID, TEXT_OID, TEXT_OID,
+				      TEXT_OID };
+	const char *const v[5] = { ch->name, accounts_role_name(ch->role),
+				   ch->pin, ch->group, ch->course };
+	PGresult *res;
+	int e = run(c, "SAVEPOINT change", 0, NULL, NULL, "SAVEPOINT");
+
+	if (e) {
+		return e;
+	}
+	e = run_typed(c, change_sql[ch->op], 5, v, types, &res,
+		      accounts_op_name(ch->op));
+	if (e == -EBADMSG) {
+		*out = CENTRE_REFUSED; /* its words kept in c->error */
+		return run(c, "ROLLBACK TO SAVEPOINT change", 0, NULL, NULL,
+			   "ROLLBACK TO SAVEPOINT");
+	}
+	if (!e) {
+		*out = strcmp(PQcmdTuples(res), "0") ? CENTRE_APPLIED
+						     : CENTRE_UNCHANGED;
+		PQclear(res);
+	}
+	return e;
+}
+
+/* Q noted in endosim_changes, and applied unless noted before. */
+static int take(struct centre *c, const char *rig,
+		const struct accounts_queued *q, enum centre_outcome *out)
+{
+	const char *const note[] = { q->id, rig, accounts_op_name(q->ch.op),
+				     q->ch.name, q->ch.group, q->ch.course };
+	const char *done[] = { q->id, NULL };
+	PGresult *res;
+	int e = run(c, "SELECT pg_advisory_xact_lock(" PEOPLE_LOCK ")", 0,
+		    NULL, NULL, "locking the people");
+
+	if (e || (e = run(c, "INSERT INTO endosim_changes (id, rig, op, "
+			  "name, group_name, course) VALUES ($1, $2, $3, $4, "
+			  "$5, $6) ON CONFLICT (id) DO NOTHING", 6, note, &res,
+			  "noting a change"))) {
+		return e;
+	}
+	*out = CENTRE_TAKEN;
+	if (!strcmp(PQcmdTuples(res), "0")) {
+		PQclear(res);
+		return 0;
+	}
+	PQclear(res);
+	if ((e = apply(c, &q->ch, out)) || *out != CENTRE_APPLIED) {
+		return e;
+	}
+	done[1] = "true";
+	return run(c, "UPDATE endosim_changes SET applied = $2 WHERE id = $1",
+		   2, done, NULL, "noting a change applied");
+}
+
+int centre_change(struct centre *c, const char *rig,
+		  const struct accounts_queued *q, enum centre_outcome *out)
+{
+	char refused[sizeof(c->error)] = "";
+	int e = centre_connect(c, true);
+
+	*out = CENTRE_TAKEN;
+	if (e || (e = run(c, "BEGIN", 0, NULL, NULL, "BEGIN"))) {
+		return e;
+	}
+	if (!(e = take(c, rig, q, out))) {
+		snprintf(refused, sizeof(refused), "%s", c->error);
+		e = run(c, "COMMIT", 0, NULL, NULL, "COMMIT");
+	}
+	if (e && c->pg) {
+		PQclear(PQexec(c->pg, "ROLLBACK"));
+	}
+	if (!e && *out == CENTRE_REFUSED) {
+		snprintf(c->error, sizeof(c->error), "%s", refused);
+	}
+	return e;
+}
+
+int centre_people_version(struct centre *c, char *out, size_t size)
+{
+	PGresult *res;
+	int e = centre_connect(c, true);
+
+	if (e || (e = run(c, "SELECT coalesce(max(arrival), 0) FROM "
+			  "endosim_changes", 0, NULL, &res,
+			  "reading the people's version"))) {
+		return e;
+	}
+	snprintf(out, size, "%s", PQgetvalue(res, 0, 0));
+	PQclear(res);
+	return 0;
+}
+
+/* The people's rows of P's results made changes (P->ch, P->n). */
+static int people_rows(struct centre_people *p)
+{
+	size_t n = 0;
+	PGresult **r = p->res;
+
+	for (int k = 1; k < 5; k++) {
+		n += (size_t)PQntuples(r[k]);
+	}
+	if (!(p->ch = calloc(n ? n : 1, sizeof(*p->ch)))) {
+		return -ENOMEM;
+	}
+	for (int k = 1; k < 5; k++) {
+		for (int i = 0; i < PQntuples(r[k]); i++) {
+			struct accounts_change *ch = &p->ch[p->n++];
+			const char *a = PQgetvalue(r[k], i, 0);
+			const char *b = PQgetvalue(r[k], i, 1);
+
+			*ch = (struct accounts_change){ .name = "", .pin = "",
+							.group = "",
+							.course = "" };
+			if (k == 1) {
+				ch->op = ACCOUNTS_USER_ADD;
+				ch->name = a;
+				ch->pin = PQgetvalue(r[k], i, 2);
+				accounts_role_parse(b, &ch->role);
+			} else {
+				ch->op = k == 2 ? ACCOUNTS_GROUP_ADD : k == 3 ?
+					 ACCOUNTS_GROUP_JOIN :
+					 ACCOUNTS_GROUP_ASSIGN;
+				ch->group = a;
+				*(k == 4 ? &ch->course : &ch->name) = b;
+			}
+		}
+	}
+	return 0;
+}
+
+int centre_people(struct centre *c, struct centre_people *p)
+{
+	static const char *const sql[5] = {
+		"SELECT coalesce(max(arrival), 0) FROM endosim_changes",
+		"SELECT name, role, pin FROM endosim_people ORDER BY name",
+		"SELECT name, instructor FROM endosim_groups ORDER BY name",
+		"SELECT group_name, trainee FROM endosim_members "
+		"ORDER BY group_name, trainee",
+		"SELECT group_name, course FROM endosim_courses "
+		"ORDER BY group_name, course",
+	};
+	int e = centre_connect(c, true);
+
+	memset(p, 0, sizeof(*p));
+	if (e || (e = run(c, "BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY",
+			  0, NULL, NULL, "BEGIN"))) {
+		return e;
+	}
+	for (int k = 0; !e && k < 5; k++) {
+		e = run(c, sql[k], 0, NULL, &p->res[k], "reading the people");
+	}
+	e = e ? e : run(c, "COMMIT", 0, NULL, NULL, "COMMIT");
+	if (e && c->pg) {
+		PQclear(PQexec(c->pg, "ROLLBACK"));
+	}
+	if (!e) {
+		snprintf(p->version, sizeof(p->version), "%s",
+			 PQgetvalue(p->res[0], 0, 0));
+		e = people_rows(p);
+	}
+	if (e) {
+		centre_people_free(p);
+	}
+	return e;
+}
+
+void centre_people_free(struct centre_people *p)
+{
+	for (int k = 0; k < 5; k++) {
+		PQclear(p->res[k]);
+	}
+	free(p->ch);
+	memset(p, 0, sizeof(*p));
 }

@@ -20,6 +20,16 @@
  * and adds the columns of measures it has that the table lacks, under an
  * advisory lock, so that two rigs starting together do not race.
  *
+ * The people (the rigs' accounts, accounts.h: docs/SESSION_FORMAT.md "A
+ * centre's people"): endosim_people(name, role, pin: its Argon2id
+ * string), endosim_groups(name, instructor), endosim_members(group_name,
+ * trainee), endosim_courses(group_name, course), made by the rigs'
+ * changes alone, each noted once in endosim_changes(id: the rig's random
+ * ID of it, arrival: the order the centre took them in, rig, op, name,
+ * group_name, course, applied, received); the last arrival is the
+ * people's version. config/centre-roles.sql reads them for row-level
+ * security.
+ *
  * Every statement binds its values as parameters. Blocks on the network
  * (each call up to the connect timeout, or as long as the server takes to
  * answer), allocates: a worker thread or a tool, never the force loop, and
@@ -31,6 +41,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "session/accounts.h"
 #include "session/records.h"
 
 #define CENTRE_CONNECT_TIMEOUT_S 5
@@ -60,6 +71,10 @@ const char *centre_error(const struct centre *c);
  * statement failed).
  */
 int centre_connect(struct centre *c, bool write);
+
+/* Whether a connection is held: one the server has closed since (a
+ * restart) is known lost only when the next statement fails. */
+bool centre_connected(const struct centre *c);
 
 /* The connection closed (a later call connects again). */
 void centre_disconnect(struct centre *c);
@@ -95,5 +110,49 @@ int centre_report(struct centre *c, const char *uuid, char **html);
  * 0 or -errno.
  */
 int centre_report_page(const char *path, char **html);
+
+/* What became of a change of a rig's accounts at the centre. */
+enum centre_outcome {
+	CENTRE_APPLIED,   /* it changed the centre's people */
+	CENTRE_UNCHANGED, /* they were so already, or otherwise: a name the
+			     centre has, added again, stays as it is */
+	CENTRE_REFUSED,   /* the centre cannot apply it (a user or group it
+			     lacks, an instructor who manages a group): its
+			     people stand; why in centre_error() */
+	CENTRE_TAKEN,     /* its ID was taken before: not applied again */
+};
+
+/*
+ * The change Q of the accounts of the rig RIG applied to the centre's
+ * people and noted in endosim_changes, in one transaction, unless its ID
+ * is there already: its outcome into *OUT. Changes are taken one at a
+ * time (a lock), so that their arrival is the order they commit in. 0;
+ * -ENOTCONN; -EIO.
+ */
+int centre_change(struct centre *c, const char *rig,
+		  const struct accounts_queued *q, enum centre_outcome *out);
+
+/* The version of the centre's people (the last change's arrival, "0"
+ * none) into OUT. 0; -ENOTCONN; -EIO. */
+int centre_people_version(struct centre *c, char *out, size_t size);
+
+struct pg_result;
+
+/* The centre's people as accounts_replace() takes them. */
+struct centre_people {
+	char version[24];
+	struct accounts_change *ch; /* its texts in res */
+	size_t n;
+	struct pg_result *res[5];
+};
+
+/*
+ * The centre's people at one instant (one snapshot) into *P
+ * (centre_people_free()): every person (USER_ADD, with their Argon2id
+ * string), then every group, member and course. 0; -ENOTCONN; -EIO;
+ * -ENOMEM.
+ */
+int centre_people(struct centre *c, struct centre_people *p);
+void centre_people_free(struct centre_people *p);
 
 #endif

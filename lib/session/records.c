@@ -184,6 +184,11 @@ const char *records_path(const struct records *r)
 	return r->path;
 }
 
+const char *records_rig(const struct records *r)
+{
+	return r->rig;
+}
+
 const char *records_error(const struct records *r)
 {
 	return r->error;

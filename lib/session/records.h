@@ -85,6 +85,9 @@ void records_destroy(struct records *r);
 /* The database's path (DIR/records.sqlite by default). */
 const char *records_path(const struct records *r);
 
+/* This rig's name in the records (records_create()'s RIG, or the host's). */
+const char *records_rig(const struct records *r);
+
 /*
  * Why the last call failed, in words naming the database ("" when it did
  * not): a newer schema, SQLite's error.

@@ -12,6 +12,13 @@
 # `endoctl trainee list|report --centre` read the centre directly: the
 # trainee's sessions from both rigs, each with its rig. A malformed URL,
 # a URL with a password and an unreachable centre are refused in words.
+# The people: trainees, an instructor and his group made on rig-a reach
+# the centre and rig-b, where Ann logs in with the PIN she was given on
+# rig-a; a change of the group made on rig-a while the server is stopped
+# waits in rig-a's accounts and arrives once when it is back, reaching
+# rig-b and the instructor's login at the centre, which then reads his
+# group's sessions only; the same change sent again (as after a lost
+# acknowledgement) is not applied twice.
 # Skipped (never passed) where Debian's postgresql is not installed.
 . "$(dirname "$0")/../common.sh"
 
@@ -39,16 +46,45 @@ queued() { sqlite3 -readonly "$(sessions_dir)/records.sqlite" \
 drained() { [ "$(queued)" = 0 ]; }
 at_centre() { [ "$(sql 'SELECT COUNT(*) FROM sessions')" = "$1" ]; }
 
+# changes_queued: how many changes of its accounts wait in the slot's rig
+changes_queued() { sqlite3 -readonly "$(sessions_dir)/accounts.sqlite" \
+	'SELECT COUNT(*) FROM centre_queue'; }
+changes_sent() { [ "$(changes_queued)" = 0 ]; }
+# group_is NAME TRAINEES: the slot's rig's group NAME, its trainees a JSON
+# array
+group_is() { ctl --json group list | jq -e --arg g "$1" --argjson t "$2" \
+	'.groups | map(select(.name == $g)) | .[0].trainees == $t'; }
+members_are() { [ "$(sql "SELECT string_agg(trainee, ',' ORDER BY trainee)
+	FROM endosim_members WHERE group_name = '2026'")" = "$1" ]; }
+
 rig rig-a || finish
 rig rig-b || finish
+use_slot rig-a
+check "rig-a: Ann and Bo, Dr Ives, his group 2026 of them" eval \
+	'ENDOSIM_NEW_PIN=48213579 ctl user add Ann --role trainee &&
+	 ENDOSIM_NEW_PIN=27182818 ctl user add Bo --role trainee &&
+	 ENDOSIM_NEW_PIN=16180339 ctl user add "Dr Ives" --role instructor &&
+	 ctl group add 2026 --instructor "Dr Ives" &&
+	 ctl group join 2026 Ann Bo'
+use_slot rig-b
+check "rig-b: the group, from the centre" wait_for group_is 2026 '["Ann","Bo"]'
+check_status "rig-b: Ann logs in with her PIN from rig-a" 0 \
+	env ENDOSIM_PIN=48213579 "$ENDOCTL" --socket "$SOCK" --as Ann whoami
+check "... as a trainee" grep -qx "Ann (trainee)" "$OUT"
 use_slot rig-a
 check "rig-a: a session of Ann" record Ann
 use_slot rig-b
 check "rig-b: a session of Ann" record Ann
 check "both at the centre" wait_for at_centre 2
+check "centre-roles.sql run; Dr Ives's login at the centre" eval \
+	'centre -f "$TOP/config/centre-roles.sql" &&
+	 login "Dr Ives" endosim_instructor'
 
 check "the server stopped in the middle" pg_stop
 use_slot rig-a
+check_status "rig-a: Bo leaves 2026 while the centre is away" 0 \
+	ctl group leave 2026 Bo
+check "... the change waits in rig-a's accounts" test "$(changes_queued)" = 1
 check "rig-a records on: Ann, Ann" eval 'record Ann && record Ann'
 use_slot rig-b
 check "rig-b records on: Bo, Ann" eval 'record Bo && record Ann'
@@ -76,18 +112,40 @@ check "... each with its report page and measures" test "$(sql "SELECT
 	COUNT(*) FROM sessions WHERE ended AND has_measures AND
 	report LIKE '%<html%' AND length(report) > 10000 AND
 	duration_s > 0")" = 6
-for s in rig-a rig-b; do
-	use_slot "$s"
-	check "$s: its queue drained" wait_for drained
-	check "$s: the log says the centre came back" \
-		grep -q "centre reachable again: 2 sessions sent" "$LOG"
+for s in rig-a:1 rig-b:0; do
+	use_slot "${s%:*}"
+	check "${s%:*}: its queue drained" wait_for drained
+	check "${s%:*}: the log says the centre came back" grep -q \
+		"centre reachable again: 2 sessions sent, ${s#*:} changes" \
+		"$LOG"
 done
-
+check "the change arrived: 2026 of Ann alone" wait_for members_are Ann
+check "... once" test "$(sql "SELECT COUNT(*) FROM endosim_changes
+	WHERE op = 'group_leave' AND name = 'Bo'")" = 1
+use_slot rig-b
+check "... and reached rig-b" wait_for group_is 2026 '["Ann"]'
+check "Dr Ives at the centre: his group's sessions, Ann's five" test \
+	"$(as "Dr Ives" "SELECT trainee || ':' || COUNT(*) FROM sessions
+	GROUP BY trainee")" = "Ann:5"
+check "... Bo's none" test "$(as "Dr Ives" "SELECT COUNT(*) FROM sessions
+	WHERE trainee = 'Bo'")" = 0
+# Bo's join sent again with its ID, as if its acknowledgement was lost;
 # the same session twice: rig-a's own database rebuilt from its files,
-# every one of its sessions queued again
+# every one of its sessions queued again (which sends the join too)
 use_slot rig-a
+BO_JOIN=$(sql "SELECT replace(id::text, '-', '') FROM endosim_changes
+	WHERE op = 'group_join' AND name = 'Bo'")
+check "rig-a: Bo's join queued again" \
+	sqlite3 "$(sessions_dir)/accounts.sqlite" "INSERT INTO centre_queue
+	(id, op, name, role, pin, group_name, course)
+	VALUES ('$BO_JOIN', 'group_join', 'Bo', '', '', '2026', '')"
 check_status "rig-a: records rebuild" 0 ctl records rebuild
-check "... its queue drains again" wait_for drained
+check "... the join sent" wait_for changes_sent
+check "... and not taken twice: 2026 of Ann alone still" members_are Ann
+check "... the join noted once" test "$(sql "SELECT COUNT(*) FROM
+	endosim_changes WHERE op = 'group_join' AND name = 'Bo'")" = 1
+
+check "... its queue of sessions drains again" wait_for drained
 check "... and the centre has each session still once" at_centre 6
 
 check_status "trainee list --centre" 0 ctl --json trainee list --centre "$URL"

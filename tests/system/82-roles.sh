@@ -6,7 +6,12 @@
 # lists only their own sessions and is refused, in words, another's by
 # name, a session of another shown, the records' maintenance and the
 # accounts' changes, which change nothing; the instructor lists their
-# group's trainees' only; the administrator every one. Without a login an
+# group's trainees' only, and manages his group: a trainee of his own
+# added with a first PIN, who logs in; trainees joined and left, courses
+# assigned and unassigned; refused, in words and changing nothing, an
+# instructor added, a user removed, another instructor's group or trainee
+# touched. The administrator sees every
+# session. Without a login an
 # unprivileged user (nobody) sees no records, with one their own. Wrong
 # PINs: a few refused, then a try waits, even with the right PIN, a wait
 # that grows; after it the right PIN logs in. (The waits are the rule's
@@ -43,9 +48,10 @@ add() { ENDOSIM_NEW_PIN=$3 ctl user add "$1" --role "$2"; }
 # trainees_of: the trainees of the sessions the last --json list gave
 trainees_of() { jq -c '[.sessions[].trainee] | sort' "$OUT"; }
 
-check "staff: an administrator, an instructor, three trainees" eval \
+check "staff: an administrator, two instructors, three trainees" eval \
 	'add Ada administrator 90210777 && add "Dr Ives" instructor 16180339 &&
-	 add Ann trainee 48213579 && add Bo trainee 27182818 && add Cy trainee 31415926'
+	 add "Dr Jay" instructor 14142135 && add Ann trainee 48213579 &&
+	 add Bo trainee 27182818 && add Cy trainee 31415926'
 check_status "a PIN too short: refused" 1 \
 	env ENDOSIM_NEW_PIN=12 "$ENDOCTL" --socket "$SOCK" user add Di \
 	--role trainee
@@ -55,10 +61,12 @@ check "... in words" grep -q "there is a user Ann already" "$OUT"
 check "group 2026 of Ann and Bo, managed by Dr Ives" eval \
 	'ctl group add 2026 --instructor "Dr Ives" &&
 	 ctl group join 2026 Ann Bo && ctl group assign 2026 basic.course'
+check "group 2025 of Cy, managed by Dr Jay" eval \
+	'ctl group add 2025 --instructor "Dr Jay" && ctl group join 2025 Cy'
 check_status "group list" 0 ctl --json group list
-check "... as made" jq -e '.groups == [{"name": "2026", "instructor":
-	"Dr Ives", "trainees": ["Ann", "Bo"], "courses": ["basic.course"]}]' \
-	"$OUT"
+check "... as made" jq -e '.groups | map(select(.name == "2026")) == [{
+	"name": "2026", "instructor": "Dr Ives", "trainees": ["Ann", "Bo"],
+	"courses": ["basic.course"]}]' "$OUT"
 check "sessions of Ann, Ann, Bo and Cy" eval \
 	'record_session Ann && record_session Ann && record_session Bo &&
 	 record_session Cy'
@@ -109,15 +117,15 @@ check "... in words" grep -q "Bo's sessions: a trainee sees only their own" \
 	"$OUT"
 check "... none recording" live_status '.recording == false'
 check_status "Ann: user remove Bo: refused" 1 as Ann 48213579 user remove Bo
-check "... in words" grep -q "only an administrator changes the accounts" \
-	"$OUT"
+check "... in words" grep -q "only an administrator, or an instructor in \
+the groups they manage, changes the accounts" "$OUT"
 check_status "Ann: group leave 2026 Ann: refused" 1 \
 	as Ann 48213579 group leave 2026 Ann
 check_status "... nothing changed" 0 ctl --json group list
-check "... (the group as it was)" jq -e '.groups[0].trainees == ["Ann",
-	"Bo"]' "$OUT"
+check "... (the group as it was)" jq -e '.groups | map(select(.name ==
+	"2026"))[0].trainees == ["Ann", "Bo"]' "$OUT"
 check_status "... (the users as they were)" 0 ctl --json user list
-check "... (five)" jq -e '.users | length == 5' "$OUT"
+check "... (six)" jq -e '.users | length == 6' "$OUT"
 
 # the instructor
 check_status "Dr Ives: session list" 0 as "Dr Ives" 16180339 --json session list
@@ -131,6 +139,48 @@ check "... no page written" test ! -e "$TMP/cy"
 check_status "Dr Ives: group list" 0 as "Dr Ives" 16180339 --json group list
 check "... his group, no users" jq -e '(.groups | map(.name)) == ["2026"]
 	and (.users | length == 0)' "$OUT"
+
+# the instructor manages his group: a trainee of his own, who logs in
+# with her first PIN (each command below logs in anew: a hash each, so
+# the rest of the rule is test_accounts')
+ives() { as "Dr Ives" 16180339 "$@"; }
+# ives_new PIN ARGS...: the same, a new PIN with it
+ives_new() {
+	local pin=$1
+	shift
+	ENDOSIM_NEW_PIN=$pin ives "$@"
+}
+check_status "Dr Ives: a trainee Di added, with a first PIN" 0 \
+	ives_new 11235813 user add Di --role trainee
+check_status "Dr Ives: Di, in no group, joins 2026" 0 ives group join 2026 Di
+check_status "Dr Ives: Bo leaves 2026" 0 ives group leave 2026 Bo
+check_status "Dr Ives: a course assigned to 2026" 0 \
+	ives group assign 2026 polypectomy.course
+check_status "Dr Ives: one unassigned" 0 ives group unassign 2026 basic.course
+check_status "Di: logs in with her first PIN" 0 as Di 11235813 whoami
+check "... as a trainee" grep -qx "Di (trainee)" "$OUT"
+# refused: each in words, nothing changed
+check_status "Dr Ives: an instructor added: refused" 1 \
+	ives_new 55556666 user add Eve --role instructor
+check "... in words" grep -q "an instructor adds trainees only" "$OUT"
+check_status "Dr Ives: Di into Dr Jay's 2025: refused" 1 \
+	ives group join 2025 Di
+check "... in words" grep -q "group 2025 is Dr Jay's: an instructor changes \
+only the groups they manage (you are logged in as Dr Ives (instructor))" \
+	"$OUT"
+check_status "Dr Ives: Cy, Dr Jay's trainee, into 2026: refused" 1 \
+	ives group join 2026 Cy
+check "... in words" grep -q "Cy is a trainee of group 2025, Dr Jay's" "$OUT"
+check_status "Dr Ives: user remove Di: refused" 1 ives user remove Di
+check "... in words" grep -q "only an administrator removes a user" "$OUT"
+check_status "... the groups as he left them" 0 ctl --json group list
+check "... (2026 his, 2025 untouched)" jq -e '.groups == [{"name": "2025",
+	"instructor": "Dr Jay", "trainees": ["Cy"], "courses": []}, {"name":
+	"2026", "instructor": "Dr Ives", "trainees": ["Ann", "Di"], "courses":
+	["polypectomy.course"]}]' "$OUT"
+check_status "... the users" 0 ctl --json user list
+check "... (Di added, no Eve)" jq -e '[.users[].name] == ["Ada", "Ann", "Bo",
+	"Cy", "Di", "Dr Ives", "Dr Jay"]' "$OUT"
 
 # the administrator
 check_status "Ada: session list" 0 as Ada 90210777 --json session list
@@ -240,10 +290,11 @@ check "... in the same words" grep -q "wrong name or PIN" "$OUT"
 # the PINs in clear: nowhere
 for f in "$ACCOUNTS" "$SESS/records.sqlite" "$LOG"; do
 	check "no PIN in clear in $(basename "$f")" eval \
-		"! grep -a -q -e 90210777 -e 16180339 -e 48213579 -e 55443322 -e 31415926 '$f'"
+		"! grep -a -q -e 90210777 -e 16180339 -e 48213579 -e 55443322 -e 31415926 \
+		-e 11235813 '$f'"
 done
 check "the accounts' database holds Argon2id hashes" test \
-	"$(grep -a -o '\$argon2id\$' "$ACCOUNTS" | wc -l)" -ge 5
+	"$(grep -a -o '\$argon2id\$' "$ACCOUNTS" | wc -l)" -ge 7
 check "... and only its owner reads it" test \
 	"$(stat -c %a "$ACCOUNTS")" = 600
 

@@ -48,6 +48,18 @@ trap 'pg_stop >/dev/null 2>&1; cleanup' EXIT
 admin() { psql -X -q -At -v ON_ERROR_STOP=1 \
 	"host=$PGSOCK user=admin dbname=postgres" -c "$1"; }
 sql() { psql -X -q -At -v ON_ERROR_STOP=1 "$URL" -c "$1"; }
+# centre ARGS: psql as the superuser in the centre's database
+centre() { psql -X -q -At -v ON_ERROR_STOP=1 \
+	"host=$PGSOCK user=admin dbname=endosim" "$@"; }
+# as LOGIN SQL: a query with the credentials of the login LOGIN
+as() { psql -X -q -At -v ON_ERROR_STOP=1 \
+	"host=$PGSOCK user='$1' dbname=endosim" -c "$2"; }
+# login NAME GROUPROLE: the centre's login of the person NAME (a role of
+# that name in GROUPROLE), its password in the password file
+login() {
+	centre -c "CREATE ROLE \"$1\" LOGIN PASSWORD '$1-pw' IN ROLE $2" &&
+		printf '*:*:endosim:%s:%s-pw\n' "$1" "$1" >>"$PGPASSFILE"
+}
 
 # pg_make: the cluster made and started, the rigs' role and database
 pg_make() {
