@@ -15,10 +15,12 @@
 # default 2).
 #
 # The unit tests need no real time: as many run at once as there are CPUs.
-# The system tests run one at a time: they measure the force loop's timing
-# and talk to emulated drives whose serial framing is a matter of
-# microseconds (tried: two streams at once on two CPUs saved no time and
-# broke the Modbus RTU tests).
+# The system tests that time something, or talk to emulated drives whose
+# framing is a matter of microseconds, or stall or starve the machine on
+# purpose, run one at a time with nothing beside them (tried: two streams
+# of every system test at once broke the Modbus RTU tests); the others,
+# which wait on states and mostly wait for a course in real time, run two
+# at a time (SYSTEM_POOL), with the sanitizers' and the fuzz targets'.
 set -u
 
 # The system tests the sanitizers' build runs: with the unit tests they
@@ -31,6 +33,25 @@ set -u
 # (tests/README.md).
 ASAN_SYSTEM="01-status 04-hostile 31-drives-tcp 50-fault-drive
 	73-session-input 78-patient"
+
+# The system tests that may run beside another (two at a time, the
+# longest first): each waits on states, never on elapsed time, reads and
+# writes only its own temporary directory, sockets, shm name, X server
+# (Xvfb -displayfd) and PostgreSQL cluster, and times nothing; each
+# passed with the machine loaded to 8 by four builds. The rest run alone
+# before them: the loop's rate and latency (01, 15), the slow disk's
+# overruns (71), the drives on their emulators (30-33, the faults 50-66),
+# valgrind's (13), and those that look at the machine itself: another
+# daemon (10), systemd (11), a user (12), the source tree's defaults (18).
+# A new test runs alone until it is put here. The sanitizers' in the pool:
+# those of ASAN_SYSTEM named here too.
+SYSTEM_POOL="43-viewer-voice 41-replay 40-viewer 42-viewer-patient
+	76-trainee 80-centre 46-viewer-bleed 77-live-map 78-patient
+	72-report 79-records 82-roles 44-viewer-tool 75-guide 83-centre-roles
+	84-records-kill 73-session-input 70-session 74-session-rod 19-docs
+	81-tool 14-case 16-haptics 45-replay-tool 85-record-names 02-states
+	03-readonly 04-hostile 05-config 06-sigterm 07-shm 08-hand
+	09-subscribe 17-socket-security"
 
 # The unit tests that take longest (over 10 s on this 2-CPU VM, in either
 # build), the longest first: they start first, so that none of them starts
@@ -137,27 +158,86 @@ unit_tests() {
 	rm -rf "$dir"
 }
 
-# system_tests BUILD_DIR PREFIX SANITIZED [NAME...]: in order, one at a
-# time; every one, or those NAMEs only.
+# in_list NAME LIST: whether the word NAME is in LIST
+in_list() {
+	[[ " $(echo $2) " == *" $1 "* ]]
+}
+
+# system_job OUT BUILD SANITIZED TEST: one system test into OUT.out, its
+# exit status into OUT.rc and its seconds into OUT.s; a test that ran out
+# of its 300 s says so as a failed check. (Run by xargs too: exported.)
+system_job() {
+	local out=$1 build=$2 sanitized=$3 t=$4 started=$SECONDS rc
+	BUILD="$build" SANITIZED=$sanitized timeout -k 20 300 bash "$t" \
+		>"$out.out" 2>&1
+	rc=$?
+	if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+		echo "not ok - $(basename "$t") ran out of its 300 s" \
+			>>"$out.out"
+	fi
+	echo "$rc" >"$out.rc"
+	echo $((SECONDS - started)) >"$out.s"
+}
+export -f system_job
+
+# system_tests BUILD_DIR PREFIX SANITIZED NAMES: those of NAMES (a list)
+# in order, one at a time.
 system_tests() {
-	local build=$1 prefix=$2 sanitized=$3 t started rc
-	shift 3
+	local build=$1 prefix=$2 sanitized=$3 names=$4 t name
 	for t in tests/system/[0-9]*.sh; do
 		[ -e "$t" ] || continue
-		if [ $# -gt 0 ] && ! [[ " $* " == *" $(basename "$t" .sh) "* ]]; then
-			continue
-		fi
-		started=$SECONDS
-		BUILD="$build" SANITIZED=$sanitized timeout -k 20 300 bash "$t" \
-			>"$work/system.out" 2>&1
-		rc=$?
-		if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
-			echo "not ok - $(basename "$t") ran out of its 300 s" \
-				>>"$work/system.out"
-		fi
-		record "${prefix}system/$(basename "$t" .sh)" "$work/system.out" \
-			$rc $((SECONDS - started))
+		name=$(basename "$t" .sh)
+		in_list "$name" "$names" || continue
+		system_job "$work/system" "$build" "$sanitized" "$t"
+		record "${prefix}system/$name" "$work/system.out" \
+			"$(cat "$work/system.rc")" "$(cat "$work/system.s")"
 	done
+}
+
+# pool_tests BUILD:PREFIX:SANITIZED:NAMES...: the system tests NAMES of
+# each build, in SYSTEM_POOL's order, two at a time, and the fuzz targets
+# beside them (when $BUILD/fuzz holds them); recorded in order after.
+pool_tests() {
+	local dir=$work/pool spec build prefix sanitized names name n
+	mkdir -p "$dir"
+	{
+		for spec in "$@"; do
+			IFS=: read -r build prefix sanitized names <<<"$spec"
+			for name in $SYSTEM_POOL; do
+				in_list "$name" "$names" || continue
+				printf '%s\0%s\0%s\0%s\0' \
+					"$dir/${prefix//\//-}$name" "$build" \
+					"$sanitized" "tests/system/$name.sh"
+			done
+		done
+		if [ -d "$BUILD/fuzz" ]; then
+			printf '%s\0%s\0%s\0%s\0' "$dir/zz-fuzz" "$BUILD/fuzz" \
+				"" fuzz
+		fi
+	} | xargs -0 -r -n 4 -P 2 bash -c \
+		'if [ "$4" = fuzz ]; then
+			s=$SECONDS
+			FUZZ_SECONDS=${FUZZ_SECONDS:-2} tests/fuzz/run.sh "$2" \
+				>"$1.out" 2>&1
+			echo $? >"$1.rc"; echo $((SECONDS - s)) >"$1.s"
+		 else
+			system_job "$@"
+		 fi' _
+	for spec in "$@"; do
+		IFS=: read -r build prefix sanitized names <<<"$spec"
+		for name in $SYSTEM_POOL; do
+			in_list "$name" "$names" || continue
+			n="$dir/${prefix//\//-}$name"
+			record "${prefix}system/$name" "$n.out" \
+				"$(cat "$n.rc")" "$(cat "$n.s")"
+		done
+	done
+	if [ -e "$dir/zz-fuzz.out" ]; then
+		record "fuzz" "$dir/zz-fuzz.out" "$(cat "$dir/zz-fuzz.rc")" \
+			"$(cat "$dir/zz-fuzz.s")"
+		grep -v "passed, .* failed$" "$dir/zz-fuzz.out" | sed 's/^/    /'
+	fi
+	rm -rf "$dir"
 }
 
 started=$SECONDS
@@ -171,27 +251,30 @@ if [ -d "$BUILD/asan/tests" ]; then
 else
 	unit_tests "$BUILD:"
 fi
-system_tests "$BUILD" "" ""
-if [ -d "$BUILD/asan/tests" ]; then
-	# a name that names no test (renamed, mistyped) fails, not skips
-	for name in $ASAN_SYSTEM; do
-		if [ ! -e "tests/system/$name.sh" ]; then
-			echo "not ok - ASAN_SYSTEM names $name: no such test" \
-				>"$work/system.out"
-			record "asan/system/$name" "$work/system.out" 1 0
-		fi
+# a name that names no test (renamed, mistyped) fails, not skips
+for name in $ASAN_SYSTEM $SYSTEM_POOL; do
+	if [ ! -e "tests/system/$name.sh" ]; then
+		echo "not ok - run.sh names $name: no such test" >"$work/system.out"
+		record "system/$name" "$work/system.out" 1 0
+	fi
+done
+# alone LIST: the system tests of LIST that are not in the pool
+alone() {
+	local t name out=""
+	for t in $1; do
+		name=$(basename "$t" .sh)
+		in_list "$name" "$SYSTEM_POOL" || out="$out $name"
 	done
+	echo "$out"
+}
+system_tests "$BUILD" "" "" "$(alone "$(echo tests/system/[0-9]*.sh)")"
+pool=("$BUILD:::$(echo $SYSTEM_POOL)")
+if [ -d "$BUILD/asan/tests" ]; then
 	# a system test may shorten what only checks timing there
-	# shellcheck disable=SC2086 # the list's words are the names
-	system_tests "$BUILD/asan" "asan/" 1 $ASAN_SYSTEM
+	system_tests "$BUILD/asan" "asan/" 1 "$(alone "$ASAN_SYSTEM")"
+	pool+=("$BUILD/asan:asan/:1:$(echo $ASAN_SYSTEM)")
 fi
-if [ -d "$BUILD/fuzz" ]; then
-	started=$SECONDS
-	FUZZ_SECONDS=${FUZZ_SECONDS:-2} tests/fuzz/run.sh "$BUILD/fuzz" \
-		>"$work/fuzz.out" 2>&1
-	record "fuzz" "$work/fuzz.out" $? $((SECONDS - started))
-	grep -v "passed, .* failed$" "$work/fuzz.out" | sed 's/^/    /'
-fi
+pool_tests "${pool[@]}"
 passed=$(awk '{ s += $2 } END { print s + 0 }' "$work/results")
 failed=$(awk '{ s += $3 } END { print s + 0 }' "$work/results")
 skipped=$(awk '{ s += $4 } END { print s + 0 }' "$work/results")

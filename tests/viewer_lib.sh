@@ -13,25 +13,22 @@ PNG_STATS="$TOOLS/png_stats"
 VIEW_OUT="$TMP/endoview.out"
 XVFB_PID=""
 
-# start_xvfb [WxH]: an X server of our own on the first free display from
-# :90; exports DISPLAY.
+# start_xvfb [WxH]: an X server of our own on a display it chose itself
+# (-displayfd: the first free one, taken atomically by its lock file, so
+# that tests running at once never share one); exports DISPLAY.
 start_xvfb() {
-	local size=${1:-1920x1080} n
-	for n in $(seq 90 130); do
-		if [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; then
-			continue
-		fi
-		Xvfb ":$n" -screen 0 "${size}x24" -nolisten tcp -noreset \
-			>"$TMP/xvfb.log" 2>&1 &
-		XVFB_PID=$!
-		if wait_for test -e "/tmp/.X11-unix/X$n"; then
-			export DISPLAY=":$n"
-			return 0
-		fi
-		kill "$XVFB_PID" 2>/dev/null
-		wait "$XVFB_PID" 2>/dev/null
-		XVFB_PID=""
-	done
+	local size=${1:-1920x1080} n=""
+	Xvfb -displayfd 3 -screen 0 "${size}x24" -nolisten tcp -noreset \
+		3>"$TMP/xvfb.display" >"$TMP/xvfb.log" 2>&1 &
+	XVFB_PID=$!
+	if wait_for grep -q '^[0-9]' "$TMP/xvfb.display"; then
+		n=$(head -n 1 "$TMP/xvfb.display")
+		export DISPLAY=":$n"
+		return 0
+	fi
+	kill "$XVFB_PID" 2>/dev/null
+	wait "$XVFB_PID" 2>/dev/null
+	XVFB_PID=""
 	echo "# no display for Xvfb; its log:"
 	sed 's/^/#   /' "$TMP/xvfb.log"
 	return 1
