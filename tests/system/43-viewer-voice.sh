@@ -40,13 +40,14 @@ wave_conf() {
 }
 
 # hear NAME ARGS...: endoview replaying $FILE headless into the wave
-# file $TMP/NAME.wav; its output in $TMP/NAME.out
+# file $TMP/NAME.wav, in a small window (what it draws is the screenshots'
+# below; these runs are for their sound); its output in $TMP/NAME.out
 hear() {
 	local name=$1
 	shift
 	wave_conf "$name"
 	ALSOFT_CONF="$TMP/$name.conf" ALSOFT_DRIVERS=wave \
-		endoview --no-vsync --max-fps 60 --size 640x480 \
+		endoview --no-vsync --max-fps 60 --size 320x240 \
 		--replay "$FILE" "$@" >"$TMP/$name.out" 2>&1
 }
 
@@ -107,51 +108,44 @@ check_status "session_synth: 14.5 s, the pain and the tear as chosen" 0 \
 	--pain 3:0 --pain 4:6 --pain 8.5:6 --pain 9:9 --tear 12.5:2 \
 	"$TOP/tests/cases/straight.case" "$TMP/hold.scn" "$FILE" 14.5
 
-# --- heard -------------------------------------------------------------------
-check_status "the replay, heard through the wave backend" 0 \
-	hear voice --frames 870
-check "... each clip once, at its time: groan 3.67 s" clip_at voice groan 3.67
-check "... ow when the interval is over, 7.67 s" clip_at voice ow 7.67
-check "... please stop, 11.67 s" clip_at voice stop 11.67
-check "... the cry at the tear, 12.5 s" clip_at voice cry 12.5
-check "... nothing else (that hurts: crossed within the interval)" \
-	eval '[ "$(said voice | wc -l)" = 4 ]'
-groan=$(sound_t voice groan)
-ow=$(sound_t voice ow)
-stop=$(sound_t voice stop)
-cry=$(sound_t voice cry)
-check "the wave file: silent before the groan" \
-	quiet voice 0 "$(awk -v t="$groan" 'BEGIN { print t - 0.1 }')"
-check "... the groan sounds" loud voice "$groan" 0.6
-check "... ow sounds" loud voice "$ow" 0.5
-check "... silent while the level is held, until please stop" \
-	quiet voice "$(awk -v t="$ow" 'BEGIN { print t + 1.0 }')" \
-	"$(awk -v a="$ow" -v b="$stop" 'BEGIN { print b - a - 1.1 }')"
-check "... please stop sounds" loud voice "$stop" 0.5
-check "... the cry sounds" loud voice "$cry" 0.5
-
-# --- muted -------------------------------------------------------------------
-# --mute: muted from the start, the panel says so (the silence itself is
-# the key's run's below: the same muting, over the groan and ow)
-check_status "--mute: the replay's first 2 s" 0 hear mute --mute \
-	--frames 120 --print-state
-check "... the panel says so" grep -q '^hud: voice muted (U: on)$' \
-	"$TMP/mute.out"
-
-# the key U, pressed as the window opens (before the first frame's
-# events are read): muted from the replay's start
+# --- the runs that take their time, at once ----------------------------------
+# Each paced in real time (the wave file is written as time passes): the
+# replay heard (14.5 s), muted (--mute, 2 s; by the key U, 8.3 s) and the
+# daemon's live pain (15 s), each with its own wave file and output, all
+# started here and checked once done: the checks read the replay's clock
+# and the logged sound times, not the wall clock. The key's run first and
+# alone: its window must be the only one xdotool finds. The key U,
+# pressed as the window opens (before the first frame's events are read):
+# muted from the replay's start. Then the live viewer, which must be up
+# before the daemon's patient hurts, and the replays.
 wave_conf key
 (ALSOFT_CONF="$TMP/key.conf" ALSOFT_DRIVERS=wave endoview --no-vsync \
-	--max-fps 60 --size 640x480 --replay "$FILE" --frames 500 \
+	--max-fps 60 --size 320x240 --replay "$FILE" --frames 500 \
 	>"$TMP/key.out" 2>&1) &
-VIEWER=$!
+KEYED=$!
 window=$(xdotool search --sync --name '^endoview$' | head -n 1)
 xdotool key --window "$window" u
-wait "$VIEWER"
-check "the key U: muted" grep -q '^endoview: voice muted$' "$TMP/key.out"
-check "... nothing said to 8.3 s (groan and ow due)" \
-	eval '[ -z "$(said key)" ]'
-check "... the wave file silent" quiet key 0 8
+# live: the daemon on the simulated rig with the patient, the scope 30 cm
+# in, the tip steered up into the sigmoid's wall from 8 s (the viewer is
+# up long before) and held there: the pain rises past 4 and the tip tears
+# the wall. The viewer, live, groans first and cries out at the tear.
+printf '%s\n' '0 insertion target 0.30 1.5' '8 wheel_ud target 0.6 1.0' \
+	'60 end' >"$TMP/wall.scn"
+start_daemon --set patient.enabled=yes --set haptics.model=paper \
+	--set "case.directory=$TOP/tests/cases" --set case.name=straight \
+	--scenario "$TMP/wall.scn" || finish
+ctl enable >/dev/null
+wave_conf live
+(ALSOFT_CONF="$TMP/live.conf" ALSOFT_DRIVERS=wave endoview --socket "$SOCK" \
+	--shm-name "$SHM" --no-vsync --max-fps 30 --size 320x240 \
+	--frames 450 >"$TMP/live.out" 2>&1) & # 15 s at least
+VIEWER=$!
+hear voice --frames 870 &
+HEARD=$!
+# --mute: muted from the start, the panel says so (the silence itself is
+# the key's run's: the same muting, over the groan and ow)
+hear mute --mute --frames 120 --print-state &
+MUTED=$!
 
 # --- no audio device ---------------------------------------------------------
 check_status "no audio device: the replay runs" 0 env ALSOFT_DRIVERS=none \
@@ -193,22 +187,40 @@ check "... the panel says it" grep -q '^hud: PERFORATED: sigmoid$' \
 torn_red=$(png_value "$TMP/torn.png" "$TOP_STRIP" red)
 check "... the red banner across the image's top (red $torn_red)" \
 	float_test "$torn_red > 0.5"
+
+# --- heard -------------------------------------------------------------------
+check_status "the replay, heard through the wave backend" 0 wait "$HEARD"
+check "... each clip once, at its time: groan 3.67 s" clip_at voice groan 3.67
+check "... ow when the interval is over, 7.67 s" clip_at voice ow 7.67
+check "... please stop, 11.67 s" clip_at voice stop 11.67
+check "... the cry at the tear, 12.5 s" clip_at voice cry 12.5
+check "... nothing else (that hurts: crossed within the interval)" \
+	eval '[ "$(said voice | wc -l)" = 4 ]'
+groan=$(sound_t voice groan)
+ow=$(sound_t voice ow)
+stop=$(sound_t voice stop)
+cry=$(sound_t voice cry)
+check "the wave file: silent before the groan" \
+	quiet voice 0 "$(awk -v t="$groan" 'BEGIN { print t - 0.1 }')"
+check "... the groan sounds" loud voice "$groan" 0.6
+check "... ow sounds" loud voice "$ow" 0.5
+check "... silent while the level is held, until please stop" \
+	quiet voice "$(awk -v t="$ow" 'BEGIN { print t + 1.0 }')" \
+	"$(awk -v a="$ow" -v b="$stop" 'BEGIN { print b - a - 1.1 }')"
+check "... please stop sounds" loud voice "$stop" 0.5
+check "... the cry sounds" loud voice "$cry" 0.5
+
+# --- muted -------------------------------------------------------------------
+check_status "--mute: the replay's first 2 s" 0 wait "$MUTED"
+check "... the panel says so" grep -q '^hud: voice muted (U: on)$' \
+	"$TMP/mute.out"
+wait "$KEYED"
+check "the key U: muted" grep -q '^endoview: voice muted$' "$TMP/key.out"
+check "... nothing said to 8.3 s (groan and ow due)" \
+	eval '[ -z "$(said key)" ]'
+check "... the wave file silent" quiet key 0 8
+
 # --- live: the daemon's own pain ----------------------------------------------
-# the daemon on the simulated rig with the patient, the scope 30 cm in,
-# the tip steered up into the sigmoid's wall from 8 s (the viewer is up
-# long before) and held there: the pain rises past 4 and the tip tears
-# the wall. The viewer, live, groans first and cries out at the tear.
-printf '%s\n' '0 insertion target 0.30 1.5' '8 wheel_ud target 0.6 1.0' \
-	'60 end' >"$TMP/wall.scn"
-start_daemon --set patient.enabled=yes --set haptics.model=paper \
-	--set "case.directory=$TOP/tests/cases" --set case.name=straight \
-	--scenario "$TMP/wall.scn" || finish
-ctl enable >/dev/null
-wave_conf live
-(ALSOFT_CONF="$TMP/live.conf" ALSOFT_DRIVERS=wave endoview --socket "$SOCK" \
-	--shm-name "$SHM" --no-vsync --max-fps 30 --size 640x480 \
-	--frames 450 >"$TMP/live.out" 2>&1) & # 15 s at least
-VIEWER=$!
 WAIT_S=40 check "live: the tip tears the sigmoid (the daemon's perforation)" \
 	wait_for status_true '.patient.torn_segment == 2'
 wait "$VIEWER"

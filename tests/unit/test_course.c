@@ -125,20 +125,74 @@ static void see_haptics(struct haptics_seen *s, const struct endosim_state *st)
 	s->faults |= st->fault_bits;
 }
 
-static void test_demo_haptics(void **unused)
+/*
+ * The demo's course, played once (group setup) for the tests that look
+ * at it whole or at its start: its first 32 s' haptics, its records'
+ * metrics, its first 26 s' hash (one of the two runs compared).
+ */
+#define HAPTICS_CYCLES 32000
+#define REPEAT_CYCLES 26000
+static struct demo {
+	struct haptics_seen seen; /* its first HAPTICS_CYCLES */
+	struct metrics_result r;  /* every record's */
+	float *scen;              /* each record's scenario time */
+	long cycles;
+	uint64_t hash;            /* of its first REPEAT_CYCLES */
+} demo;
+
+/* The whole course recorded as the daemon records a session (70's). */
+static int play_demo(void **unused)
 {
 	struct config cfg;
 	struct colon *colon;
 	struct offline *o;
-	struct haptics_seen s = { 0 };
+	struct metrics_params p;
+	struct metrics *m;
+	struct session_record rec;
 
 	(void)unused;
 	config_defaults(&cfg);
 	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
-	for (long k = 0; k < 32000; k++) {
-		see_haptics(&s, offline_step(o));
+	demo.cycles = lround(offline_length_s(o) / PERIOD_S);
+	demo.hash = OFFLINE_HASH_START;
+	metrics_params_default(&p);
+	p.force_threshold_n = 10;
+	m = metrics_create(colon, &p);
+	demo.scen = calloc((size_t)demo.cycles, sizeof(*demo.scen));
+	if (!m || !demo.scen) {
+		return -1;
 	}
+	for (long k = 0; k < demo.cycles; k++) {
+		const struct endosim_state *st = offline_step(o);
+
+		if (k < HAPTICS_CYCLES) {
+			see_haptics(&demo.seen, st);
+		}
+		if (k < REPEAT_CYCLES) {
+			demo.hash = offline_hash(demo.hash, st);
+		}
+		session_record_from_state(st, &rec);
+		metrics_record(m, &rec);
+		demo.scen[k] = (float)st->scenario_time_s;
+	}
+	metrics_result(m, &demo.r);
+	metrics_destroy(m);
 	offline_destroy(o);
+	return 0;
+}
+
+static int forget_demo(void **unused)
+{
+	(void)unused;
+	free(demo.scen);
+	return 0;
+}
+
+static void test_demo_haptics(void **unused)
+{
+	const struct haptics_seen s = demo.seen;
+
+	(void)unused;
 	printf("# 32 s: contact %ld cycles, F_static max %.2f N, friction "
 	       "deep %.2f N, curvature %.2f rad, tension %.4f N m, bow %.4f m "
 	       "(%.4f m at 32 s), loop force min %.2f N\n", s.contact,
@@ -369,37 +423,15 @@ static void episodes_within(const struct metrics_episode *ep, uint32_t n,
 	}
 }
 
-/* The whole course recorded as the daemon records a session (70's). */
+/* The whole course's metrics, as the daemon's session would give them
+ * (play_demo()). */
 static void test_session_metrics(void **unused)
 {
-	struct config cfg;
-	struct colon *colon;
-	struct offline *o;
-	struct metrics_params p;
-	struct metrics *m;
-	struct metrics_result r;
-	struct session_record rec;
-	long cycles;
-	float *scen;
+	const struct metrics_result r = demo.r;
+	const float *scen = demo.scen;
+	long cycles = demo.cycles;
 
 	(void)unused;
-	config_defaults(&cfg);
-	o = course(&cfg, "config/scenarios/demo-paper.scn", &colon);
-	cycles = lround(offline_length_s(o) / PERIOD_S);
-	metrics_params_default(&p);
-	p.force_threshold_n = 10;
-	m = metrics_create(colon, &p);
-	scen = calloc((size_t)cycles, sizeof(*scen));
-	assert_non_null(m);
-	assert_non_null(scen);
-	for (long k = 0; k < cycles; k++) {
-		const struct endosim_state *st = offline_step(o);
-
-		session_record_from_state(st, &rec);
-		metrics_record(m, &rec);
-		scen[k] = (float)st->scenario_time_s;
-	}
-	metrics_result(m, &r);
 	printf("# %.1f s: cecum at %.3f s (%.3f s of the course), insertion "
 	       "%.3f s, withdrawal %.3f s; %u loops, largest %.4f m; %u force "
 	       "episodes; mucosa seen %.3f\n", r.duration_s, r.cecum_s,
@@ -421,9 +453,6 @@ static void test_session_metrics(void **unused)
 			    fmin(12, MESENTERY_N_PER_M * r.largest_loop_m));
 	}
 	assert_true(r.mucosa_seen > 0.5);
-	metrics_destroy(m);
-	offline_destroy(o);
-	free(scen);
 }
 
 static uint64_t run_hash(long cycles)
@@ -442,14 +471,14 @@ static uint64_t run_hash(long cycles)
 	return h;
 }
 
-/* Same inputs, same outputs, bit for bit: the flexure's loop included. */
+/* Same inputs, same outputs, bit for bit: the flexure's loop included
+ * (the first run play_demo()'s). */
 static void test_repeats_exactly(void **unused)
 {
-	uint64_t a, b;
+	uint64_t a = demo.hash, b;
 
 	(void)unused;
-	a = run_hash(26000);
-	b = run_hash(26000);
+	b = run_hash(REPEAT_CYCLES);
 	printf("# two runs of 26 s: %016llx, %016llx\n",
 	       (unsigned long long)a, (unsigned long long)b);
 	assert_true(a == b);
@@ -471,5 +500,5 @@ int main(void)
 		perror(top);
 		return 1;
 	}
-	return cmocka_run_group_tests(tests, NULL, NULL);
+	return cmocka_run_group_tests(tests, play_demo, forget_demo);
 }

@@ -34,6 +34,7 @@
 #include "model/plant.h"
 #include "offline.h"
 #include "rig/hand.h"
+#include "branch.h"
 
 #define DT 0.001
 #define NS(s) ((uint64_t)llround((s) * ENDOSIM_NS_PER_S))
@@ -128,19 +129,15 @@ static void axis_held(void **unused)
 }
 
 /* The normal case, rod model, no scenario to speak of (one ended at
- * once): the tube pushed in 3 s at 15 N, then the input lapses; RELEASE:
- * hands off. The carriage's and the roll's moves over the next 2 s, and
- * the insertion and roll forces the tube pushed back with when the input
- * lapsed, into MOVED and BACK. */
-static void rig_after(bool release, double moved[2], double back[2])
+ * once): the tube pushed in 3 s at 15 N (the same for the tube held and
+ * let go: played once, each a branch of it, branch.h). */
+static struct offline *rig_pushed(void)
 {
 	const double push[ENDOSIM_AXES] = { 15, 0, 0, 0 };
 	struct config cfg;
 	struct colon *colon;
 	struct offline *o;
-	const struct endosim_state *st;
 	char scn[] = "/tmp/test_grip.XXXXXX", err[512];
-	double d0, r0;
 	int fd = mkstemp(scn);
 	FILE *f = fdopen(fd, "w");
 
@@ -162,48 +159,83 @@ static void rig_after(bool release, double moved[2], double back[2])
 	}
 	offline_step(o);
 	offline_hand(o, push, 3.0);
-	for (int k = 0; k < 3000; k++) {
-		st = offline_step(o);
+	for (int k = 0; k < 2999; k++) {
+		offline_step(o);
 	}
-	back[0] = st->axis[ENDOSIM_AXIS_INSERTION].command;
-	back[1] = st->axis[ENDOSIM_AXIS_ROLL].command;
+	return o;
+}
+
+/* After the push: the carriage's and the roll's moves over the next 2 s,
+ * and the insertion and roll forces the tube pushed back with when the
+ * input lapsed. */
+struct after {
+	double moved[2], back[2];
+	bool enabled; /* throughout */
+};
+
+/* What the pushed rig ARG (its last cycle of the push to play) does
+ * after the input lapses, into OUT (struct after); released (hands off)
+ * where RELEASE. In branch_run()'s child: no assertion here. */
+static void rig_after(struct offline *o, bool release, struct after *a)
+{
+	const struct endosim_state *st = offline_step(o);
+	double d0, r0;
+
+	a->back[0] = st->axis[ENDOSIM_AXIS_INSERTION].command;
+	a->back[1] = st->axis[ENDOSIM_AXIS_ROLL].command;
 	d0 = st->axis[ENDOSIM_AXIS_INSERTION].position;
 	r0 = st->axis[ENDOSIM_AXIS_ROLL].position;
 	if (release) {
 		offline_hands_off(o);
 	}
+	a->enabled = true;
 	for (int k = 0; k < 2000; k++) {
 		st = offline_step(o);
-		assert_int_equal(st->state, ENDOSIM_STATE_ENABLED);
+		a->enabled = a->enabled && st->state == ENDOSIM_STATE_ENABLED;
 	}
-	moved[0] = st->axis[ENDOSIM_AXIS_INSERTION].position - d0;
-	moved[1] = st->axis[ENDOSIM_AXIS_ROLL].position - r0;
+	a->moved[0] = st->axis[ENDOSIM_AXIS_INSERTION].position - d0;
+	a->moved[1] = st->axis[ENDOSIM_AXIS_ROLL].position - r0;
 	offline_destroy(o);
+}
+
+static void held(void *o, void *out)
+{
+	rig_after(o, false, out);
+}
+
+static void let_go(void *o, void *out)
+{
+	rig_after(o, true, out);
 }
 
 static void rig_held_and_let_go(void **unused)
 {
 	struct config cfg;
-	double held[2], free_[2], back[2], back_free[2], k_ins, k_roll;
+	struct offline *o = rig_pushed();
+	struct after h, f;
+	double k_ins, k_roll;
 
 	(void)unused;
 	config_defaults(&cfg);
 	k_ins = cfg.sim.hand_stiffness[ENDOSIM_AXIS_INSERTION];
 	k_roll = cfg.sim.hand_stiffness[ENDOSIM_AXIS_ROLL];
-	rig_after(false, held, back);
-	rig_after(true, free_, back_free);
+	branch_run(held, o, &h, sizeof(h));
+	branch_run(let_go, o, &f, sizeof(f));
+	offline_destroy(o);
+	assert_true(h.enabled && f.enabled);
 	print_message("the tube pushed back %.2f N, %.4f N m when the input "
-		      "lapsed\n", back[0], back[1]);
+		      "lapsed\n", h.back[0], h.back[1]);
 	print_message("held: carriage %+.2f cm, roll %+.1f deg (stiffness "
 		      "answer %.2f cm, %.1f deg); let go: carriage %+.2f cm, "
-		      "roll %+.1f deg\n", held[0] * 100, held[1] * 180 / M_PI,
-		      fabs(back[0]) / k_ins * 100,
-		      fabs(back[1]) / k_roll * 180 / M_PI, free_[0] * 100,
-		      free_[1] * 180 / M_PI);
-	assert_true(fabs(back[0]) > 1); /* the tube is loaded */
-	assert_true(fabs(held[0]) <= 1.1 * fabs(back[0]) / k_ins + 0.002);
-	assert_true(fabs(held[1]) <= 1.1 * fabs(back[1]) / k_roll + 0.02);
-	assert_true(fabs(free_[0]) > 2 * fabs(held[0]) + 0.01);
+		      "roll %+.1f deg\n", h.moved[0] * 100,
+		      h.moved[1] * 180 / M_PI, fabs(h.back[0]) / k_ins * 100,
+		      fabs(h.back[1]) / k_roll * 180 / M_PI, f.moved[0] * 100,
+		      f.moved[1] * 180 / M_PI);
+	assert_true(fabs(h.back[0]) > 1); /* the tube is loaded */
+	assert_true(fabs(h.moved[0]) <= 1.1 * fabs(h.back[0]) / k_ins + 0.002);
+	assert_true(fabs(h.moved[1]) <=
+		    1.1 * fabs(h.back[1]) / k_roll + 0.02);
+	assert_true(fabs(f.moved[0]) > 2 * fabs(h.moved[0]) + 0.01);
 }
 
 int main(void)

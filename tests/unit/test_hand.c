@@ -15,9 +15,14 @@
  * moves the colon from its rest before the push: that is not the loop);
  * the tip's advance is how far its point moved.
  *
- * Under AddressSanitizer (three times slower) each push is two steps,
- * with the assistant over the sigmoid and without: a run for memory
- * errors; the plain build checks the hand's effect.
+ * Every push begins with the same insertion to the sigmoid's end: it is
+ * played once, and each push is a branch of it (branch.h), the same run
+ * bit for bit as one played from the start.
+ *
+ * Under the sanitizers (sanitized.h; three times slower) each push is two
+ * steps, with the assistant over the sigmoid and without, the hand at
+ * twice the pace (6 cm/s): a run for memory errors; the plain build
+ * checks the hand's effect.
  *
  * Run from the top of the source tree (tests/run.sh does), or with
  * ENDOSIM_TOP naming it.
@@ -37,6 +42,8 @@
 #include "base/vec3.h"
 #include "model/anatomy.h"
 #include "model/centreline.h"
+#include "branch.h"
+#include "sanitized.h"
 #include "trainee.h"
 
 #define CASE "config/cases/normal.case"
@@ -45,11 +52,7 @@
 #define PUSH_MOST_M 0.30
 #define LOOP_M 0.05        /* the clinic's loop */
 #define SAMPLES 4096       /* the centreline's, at most */
-#if defined(__SANITIZE_ADDRESS__)
-#define SANITIZED 1
-#else
-#define SANITIZED 0
-#endif
+#define PACE_M_PER_S (SANITIZED ? 0.06 : 0.03) /* the hand's, in and on */
 
 struct push {
 	double loop_m;     /* the sigmoid's growth under the push */
@@ -57,22 +60,32 @@ struct push {
 	double pushed_m;   /* the carriage's */
 	double force_n;    /* the hand's at the end */
 	int steps;         /* of PUSH_STEP_M */
+	int hand_site;     /* the published one, once pressed */
+	uint32_t faults;   /* the fault bits at the end */
+};
+
+/* The trainee at the sigmoid's end, where every push begins. */
+struct start {
+	struct trainee *t;
+	size_t i0, i1;     /* the sigmoid's samples */
+};
+
+/* One push from START: the assistant pressing at SITE (NULL: nobody),
+ * STEPS steps of PUSH_STEP_M (0: until the clinic's loop). */
+struct push_of {
+	const struct start *start;
+	const char *site;
+	int steps;
 };
 
 /* The sigmoid's samples: where they lie now into AT, or how far they are
  * from AT (the largest). */
-static double sigmoid(const struct trainee *t, const struct anatomy *a,
-		      double (*at)[3], int keep)
+static double sigmoid(const struct start *s, double (*at)[3], int keep)
 {
-	const struct centreline *cl = colon_centreline(trainee_colon(t));
-	double ds = centreline_step(cl), most = 0;
-	size_t i0 = (size_t)ceil(anatomy_segment_start(a, ANATOMY_SIGMOID) /
-				 ds);
-	size_t i1 = (size_t)floor(anatomy_segment_start(a, ANATOMY_DESCENDING) /
-				  ds);
+	const struct centreline *cl = colon_centreline(trainee_colon(s->t));
+	double most = 0;
 
-	assert_true(i1 < SAMPLES);
-	for (size_t i = i0; i <= i1; i++) {
+	for (size_t i = s->i0; i <= s->i1; i++) {
 		const double *p = centreline_sample(cl, i)->p;
 
 		if (keep) {
@@ -84,49 +97,77 @@ static double sigmoid(const struct trainee *t, const struct anatomy *a,
 	return most;
 }
 
-/*
- * The held-tip push with the assistant pressing at SITE (NULL: nobody),
- * STEPS steps of PUSH_STEP_M (0: until the clinic's loop).
- */
-static struct push held_push(const char *site, int steps)
+/* The trainee steered to the sigmoid's end (the same for every push:
+ * played once, each push a branch of it, branch.h). */
+static void to_junction(struct start *s)
 {
-	static double at[SAMPLES][3];
-	struct push r = { 0 };
 	struct config cfg;
 	struct anatomy a;
-	struct trainee *t;
 	char err[512];
-	double tip0[3], d0;
+	double ds;
 
 	trainee_demo_config(&cfg);
 	assert_int_equal(anatomy_load(&a, CASE, err, sizeof(err)), 0);
-	t = trainee_create(&cfg, CASE, NULL, err, sizeof(err));
-	if (!t) {
+	s->t = trainee_create(&cfg, CASE, NULL, err, sizeof(err));
+	if (!s->t) {
 		fail_msg("%s", err);
 	}
-	assert_true(trainee_insert(t, anatomy_segment_start(&a,
-					ANATOMY_DESCENDING) - 0.01, 0.03, 8));
-	if (site) {
-		trainee_press(t, site, 0);
+	ds = centreline_step(colon_centreline(trainee_colon(s->t)));
+	s->i0 = (size_t)ceil(anatomy_segment_start(&a, ANATOMY_SIGMOID) / ds);
+	s->i1 = (size_t)floor(anatomy_segment_start(&a, ANATOMY_DESCENDING) /
+			      ds);
+	assert_true(s->i1 < SAMPLES);
+	assert_true(trainee_insert(s->t, anatomy_segment_start(&a,
+					ANATOMY_DESCENDING) - 0.01, PACE_M_PER_S, 8));
+}
+
+/* The held-tip push of ARG (struct push_of) into OUT (struct push), in
+ * the child of branch_run(): no assertion here. */
+static void held_push(void *arg, void *out)
+{
+	static double at[SAMPLES][3];
+	const struct push_of *p = arg;
+	struct trainee *t = p->start->t;
+	struct push *r = out;
+	double tip0[3], d0;
+
+	memset(r, 0, sizeof(*r));
+	if (p->site) {
+		trainee_press(t, p->site, 0);
 	}
 	trainee_relax(t, 1.0);
-	assert_int_equal(trainee_state(t)->patient.hand_site,
-			 site ? anatomy_site_find(&a, site) : -1);
-	sigmoid(t, &a, at, 1);
+	r->hand_site = trainee_state(t)->patient.hand_site;
+	sigmoid(p->start, at, 1);
 	vec3_copy(tip0, trainee_state(t)->scope.tip);
 	d0 = trainee_state(t)->scope.depth_m;
 	trainee_hold_tip(t, HOLD_N_PER_M);
-	while (steps ? r.steps < steps : r.steps * PUSH_STEP_M < PUSH_MOST_M &&
-				    sigmoid(t, &a, at, 0) < LOOP_M) {
-		trainee_push(t, PUSH_STEP_M, 0.03);
-		r.steps++;
+	while (p->steps ? r->steps < p->steps :
+			  r->steps * PUSH_STEP_M < PUSH_MOST_M &&
+				  sigmoid(p->start, at, 0) < LOOP_M) {
+		trainee_push(t, PUSH_STEP_M, PACE_M_PER_S);
+		r->steps++;
 	}
-	r.loop_m = sigmoid(t, &a, at, 0);
-	r.advance_m = vec3_dist(trainee_state(t)->scope.tip, tip0);
-	r.pushed_m = trainee_state(t)->scope.depth_m - d0;
-	r.force_n = -trainee_state(t)->axis[ENDOSIM_AXIS_INSERTION].command;
-	assert_int_equal(trainee_state(t)->fault_bits, 0);
+	r->loop_m = sigmoid(p->start, at, 0);
+	r->advance_m = vec3_dist(trainee_state(t)->scope.tip, tip0);
+	r->pushed_m = trainee_state(t)->scope.depth_m - d0;
+	r->force_n = -trainee_state(t)->axis[ENDOSIM_AXIS_INSERTION].command;
+	r->faults = trainee_state(t)->fault_bits;
 	trainee_destroy(t);
+}
+
+/* The push of held_push() from START, checked to have run clean. */
+static struct push push(const struct start *start, const char *site,
+			int steps)
+{
+	struct push_of p = { start, site, steps };
+	struct push r;
+	struct anatomy a;
+	char err[512];
+
+	assert_int_equal(anatomy_load(&a, CASE, err, sizeof(err)), 0);
+	branch_run(held_push, &p, &r, sizeof(r));
+	assert_int_equal(r.hand_site, site ? anatomy_site_find(&a, site) : -1);
+	assert_int_equal(r.faults, 0);
 	print_message("%-9s pushed %.1f cm (%d steps): the loop %.2f cm, the "
 		      "tip %.2f mm, %.1f N\n", site ? site : "no hand",
 		      r.pushed_m * 100, r.steps, r.loop_m * 100,
@@ -137,19 +178,25 @@ static struct push held_push(const char *site, int steps)
 static void test_hand_over_the_loop(void **unused)
 {
 	struct push none, near, far;
+	struct start start;
 
 	(void)unused;
+	to_junction(&start);
 	if (SANITIZED) {
-		none = held_push(NULL, 2);
-		near = held_push("llq", 2);
+		none = push(&start, NULL, 2);
+		near = push(&start, "llq", 2);
+		trainee_destroy(start.t);
 		assert_true(near.steps == 2 && none.steps == 2);
-		print_message("sanitized build: two steps each; the hand's "
-			      "effect is checked in the plain build\n");
+		sanitized_leaves("at 6 cm/s, two steps each, with the "
+				 "assistant over the sigmoid and without; the "
+				 "hand's effect, and far from the loop, are the "
+				 "plain build's");
 		return;
 	}
-	none = held_push(NULL, 0);
-	near = held_push("llq", none.steps);
-	far = held_push("umbilical", none.steps);
+	none = push(&start, NULL, 0);
+	near = push(&start, "llq", none.steps);
+	far = push(&start, "umbilical", none.steps);
+	trainee_destroy(start.t);
 	print_message("over the sigmoid: the loop %+.0f %%, the tip's advance "
 		      "x%.2f; far from it: %+.0f %%, x%.2f\n",
 		      100 * (near.loop_m / none.loop_m - 1),

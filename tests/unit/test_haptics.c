@@ -17,6 +17,10 @@
  *  - stability: pressing and holding against the wall puts no energy into
  *    the hand, and where a stiff wall sampled at 1 kHz would (no damping),
  *    the passivity observer keeps it bounded.
+ *
+ * Under the sanitizers (sanitized.h) the loop is pushed and withdrawn in
+ * steps twice as long, and its balance at rest taken at one push; the
+ * law across two pushes is the plain build's.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -38,8 +42,10 @@
 #include "model/plant.h"
 #include "model/scope.h"
 #include "base/vec3.h"
+#include "sanitized.h"
 
 #define DT 0.001
+#define LOOP_STEP_M (SANITIZED ? 0.004 : 0.002) /* the held tip's push */
 
 /* ------------------------------------------------------------ fixtures */
 
@@ -550,7 +556,7 @@ static void test_loop_grows_and_returns(void **state)
 	a.seg[ANATOMY_TRANSVERSE].mesentery_height_m = 0.07;
 	world_init(&w, &a);
 	cl = colon_centreline(w.colon);
-	for (; q[0] <= 1.62; q[0] += 0.002) {
+	for (; q[0] <= 1.62; q[0] += LOOP_STEP_M) {
 		settle(&w, q, 300);
 		double bow = centreline_bow_amplitude(cl, 0);
 		double f = -w.cmd[ENDOSIM_AXIS_INSERTION];
@@ -577,7 +583,7 @@ static void test_loop_grows_and_returns(void **state)
 	       w.pose.tip_s_m, tip0);
 	assert_true(last_bow > 0.03);
 	assert_true(last_f > 1.5 * f0);
-	for (; q[0] >= 1.40; q[0] -= 0.002) {
+	for (; q[0] >= 1.40; q[0] -= LOOP_STEP_M) {
 		settle(&w, q, 300);
 	}
 	assert_true(centreline_bow_amplitude(cl, 0) < 0.001);
@@ -663,6 +669,7 @@ static double loop_world(struct world *w)
 static void test_loop_balance_at_rest(void **state)
 {
 	const double share[2] = { 1.5, 3.0 }; /* A = h / 2, A = h */
+	const int pushes = SANITIZED ? 1 : 2;
 	double f0, f[2], bow[2];
 	struct world w;
 
@@ -672,7 +679,7 @@ static void test_loop_balance_at_rest(void **state)
 	assert_near(rest_bow(&w, 0.8 * f0, f0), 0, 0);
 	assert_near(w.out.trans_loop_n, 0, 0);
 	world_free(&w);
-	for (int i = 0; i < 2; i++) {
+	for (int i = 0; i < pushes; i++) {
 		double want = LOOP_H * sqrt((share[i] - 1) / 2);
 
 		f0 = loop_world(&w);
@@ -687,6 +694,9 @@ static void test_loop_balance_at_rest(void **state)
 		assert_near(w.out.trans_loop_n, -f[i], 1e-3 * f[i]);
 		assert_near(w.out.trans_contact_n, 0, 1e-3 * f[i]);
 		world_free(&w);
+	}
+	if (pushes < 2) {
+		return;
 	}
 	/* the law with c out of it */
 	assert_near((f[1] - f[0]) / f[0],
@@ -1173,5 +1183,8 @@ int main(void)
 		cmocka_unit_test(test_lagging_wheel_on_wall_settles),
 	};
 
+	sanitized_leaves("the loop pushed and withdrawn in 4 mm steps, its "
+			 "balance at rest at one push; the law across two "
+			 "pushes is the plain build's");
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -3,7 +3,9 @@
  * are the mesh's own triangles; every level's triangles face the lumen and
  * address real vertices; what a segment costs at a level does not depend
  * on the mesh's resolution (the default ~290 000 triangles or 2 million);
- * the GPU holds only the vertices the levels draw.
+ * the GPU holds only the vertices the levels draw. The default colon
+ * and the 2 million triangles' are built once for the tests that look at
+ * them (group setup).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -33,6 +35,44 @@ static void canonical(uint32_t t[3])
 		t[1] = t[2];
 		t[2] = x;
 	}
+}
+
+/* The normal colon at the default resolution (rings 2 mm apart, 192
+ * vertices round: ~290 000 triangles) and at 2 million triangles (1 mm,
+ * 672), each with the viewer's model of it and its levels. */
+struct built {
+	struct fixture f;
+	struct lod *l;
+};
+static struct built dflt, fine;
+
+static void build(struct built *b, double step_m, uint32_t ring)
+{
+	fixture_setup(&b->f, "config/cases", "normal", step_m, ring);
+	b->l = lod_create(b->f.model->mesh, b->f.model->ring);
+	assert_non_null(b->l);
+}
+
+static int build_both(void **unused)
+{
+	(void)unused;
+	build(&dflt, 0.002, 192);
+	build(&fine, 0.001, 672);
+	return 0;
+}
+
+static void unbuild(struct built *b)
+{
+	lod_destroy(b->l);
+	fixture_teardown(&b->f);
+}
+
+static int free_both(void **unused)
+{
+	(void)unused;
+	unbuild(&dflt);
+	unbuild(&fine);
+	return 0;
 }
 
 /* A tube of 32 vertices a ring, 2 mm apart: level 0 is the mesh itself. */
@@ -76,15 +116,11 @@ static void full_detail_is_the_mesh(void **state)
 /* Each triangle of each level faces the centreline of its first vertex. */
 static void levels_face_the_lumen(void **state)
 {
-	struct fixture f;
-	const struct mesh *me;
-	struct lod *l;
+	const struct fixture *f = &dflt.f;
+	const struct mesh *me = f->model->mesh;
+	const struct lod *l = dflt.l;
 
 	(void)state;
-	fixture_setup(&f, "config/cases", "normal", 0.002, 192);
-	me = f.model->mesh;
-	l = lod_create(me, f.model->ring);
-	assert_non_null(l);
 	assert_int_equal(l->levels, LOD_LEVELS);
 	for (int lv = 0; lv < l->levels; lv++) {
 		struct lod_range r = lod_span(l, lv, 0, me->segments - 1);
@@ -105,50 +141,40 @@ static void levels_face_the_lumen(void **state)
 			vec3_sub(ab, p[1], p[0]);
 			vec3_sub(ac, p[2], p[0]);
 			vec3_cross(n, ab, ac);
-			vec3_sub(in, centreline_sample(f.model->cl,
+			vec3_sub(in, centreline_sample(f->model->cl,
 				 me->sample[lod_source(l, l->index[k],
 						      NULL)])->p,
 				 p[0]);
 			assert_true(vec3_dot(n, in) > 0);
 		}
 	}
-	lod_destroy(l);
-	fixture_teardown(&f);
 }
 
-/* Triangles of segment K at each level, for a colon at STEP_M and RING. */
-static void segment_costs(double step_m, uint32_t ring, uint32_t k,
+/* Triangles of segment K at each level, for the colon B. */
+static void segment_costs(const struct built *b, uint32_t k,
 			  uint32_t tris[LOD_LEVELS])
 {
-	struct fixture f;
-	struct lod *l;
-
-	fixture_setup(&f, "config/cases", "normal", step_m, ring);
-	l = lod_create(f.model->mesh, f.model->ring);
-	assert_non_null(l);
 	for (int lv = 0; lv < LOD_LEVELS; lv++) {
-		tris[lv] = lod_segment(l, lv, k).count / 3;
+		tris[lv] = lod_segment(b->l, lv, k).count / 3;
 	}
-	lod_destroy(l);
-	fixture_teardown(&f);
 }
 
 static void cost_independent_of_resolution(void **state)
 {
-	uint32_t fine[LOD_LEVELS], dflt[LOD_LEVELS];
+	uint32_t high[LOD_LEVELS], low[LOD_LEVELS];
 
 	(void)state;
-	segment_costs(0.002, 192, 10, dflt);
-	segment_costs(0.001, 672, 10, fine);
+	segment_costs(&dflt, 10, low);
+	segment_costs(&fine, 10, high);
 	for (int lv = 0; lv < LOD_LEVELS; lv++) {
 		print_message("level %d: %u and %u triangles a segment\n", lv,
-			      dflt[lv], fine[lv]);
-		assert_true(dflt[lv] > 0);
-		assert_true(fabs((double)fine[lv] - dflt[lv]) <=
-			    0.1 * dflt[lv]);
+			      low[lv], high[lv]);
+		assert_true(low[lv] > 0);
+		assert_true(fabs((double)high[lv] - low[lv]) <=
+			    0.1 * low[lv]);
 	}
 	/* level 0: 4 cm of rings 2 mm apart, 32 vertices round */
-	assert_int_equal(dflt[0], 20 * 32 * 2);
+	assert_int_equal(low[0], 20 * 32 * 2);
 }
 
 /* The GPU's vertices [K0, K1) are those of rings I0..I1 that it holds. */
@@ -176,17 +202,12 @@ static void range_is_rows(const struct lod *l, const struct mesh *me,
  * of any stretch of rings are one run. */
 static void holds_what_is_drawn(void **state)
 {
-	struct fixture f;
-	const struct mesh *me;
-	struct lod *l;
+	const struct mesh *me = fine.f.model->mesh;
+	const struct lod *l = fine.l;
 	uint8_t *used, *shown;
 	uint32_t per_row;
 
 	(void)state;
-	fixture_setup(&f, "config/cases", "normal", 0.001, 672);
-	me = f.model->mesh;
-	l = lod_create(me, f.model->ring);
-	assert_non_null(l);
 	assert_int_equal(l->column, 21);
 	per_row = 672 / 21 + 1;
 	assert_int_equal(l->vertices, (l->rows - 1) * per_row + 1);
@@ -220,8 +241,6 @@ static void holds_what_is_drawn(void **state)
 	range_is_rows(l, me, 1000, (uint32_t)me->samples - 1);
 	free(used);
 	free(shown);
-	lod_destroy(l);
-	fixture_teardown(&f);
 }
 
 /* An imported mesh has one level: its own triangles, segment by segment. */
@@ -256,5 +275,5 @@ int main(void)
 		cmocka_unit_test(import_has_one_level),
 	};
 
-	return cmocka_run_group_tests(tests, NULL, NULL);
+	return cmocka_run_group_tests(tests, build_both, free_both);
 }
