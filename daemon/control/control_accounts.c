@@ -279,6 +279,39 @@ void control_accounts_filter(struct control *c, const struct client *cl,
 
 /* ------------------------------------------------------------ replies */
 
+/*
+ * The users instructor ME acts on, kept of ROWS (*N, compacted): themself,
+ * the trainees of the groups they manage, and the trainees in no group
+ * (whom they may join to one). 0 or -EIO.
+ */
+static int instructor_users(struct accounts *db, const char *me,
+			    struct accounts_user *rows, size_t *n)
+{
+	struct accounts_group *g;
+	size_t n_groups, kept = 0;
+	int e = accounts_groups(db, NULL, &g, &n_groups);
+
+	if (e) {
+		return e;
+	}
+	for (size_t i = 0; i < *n; i++) {
+		bool keep = !strcmp(rows[i].name, me), grouped = false;
+
+		for (size_t j = 0; !keep && j < n_groups; j++) {
+			if (accounts_among(g[j].trainees, rows[i].name)) {
+				grouped = true;
+				keep = !strcmp(g[j].instructor, me);
+			}
+		}
+		if (keep || (rows[i].role == ACCOUNTS_TRAINEE && !grouped)) {
+			rows[kept++] = rows[i];
+		}
+	}
+	*n = kept;
+	accounts_groups_free(g, n_groups);
+	return 0;
+}
+
 /* The reply: who CL is, and the users and groups it may see. */
 static int fill_list(struct control *c, const struct client *cl)
 {
@@ -300,6 +333,9 @@ static int fill_list(struct control *c, const struct client *cl)
 	} else if (cl->logged_in && cl->user.role == ACCOUNTS_INSTRUCTOR) {
 		e = accounts_groups(ca->db, cl->user.name, &ca->group_rows,
 				    &ca->n_groups);
+		e = e ? e : accounts_users(ca->db, &ca->rows, &n);
+		e = e ? e : instructor_users(ca->db, cl->user.name, ca->rows,
+					     &n);
 	}
 	if (e || !(ca->users = calloc(n + 1, sizeof(*ca->users))) ||
 	    !(ca->users_p = calloc(n + 1, sizeof(*ca->users_p)))) {

@@ -137,8 +137,9 @@ check "... in words" grep -q "Cy's sessions: not a trainee of your groups" \
 	"$OUT"
 check "... no page written" test ! -e "$TMP/cy"
 check_status "Dr Ives: group list" 0 as "Dr Ives" 16180339 --json group list
-check "... his group, no users" jq -e '(.groups | map(.name)) == ["2026"]
-	and (.users | length == 0)' "$OUT"
+check "... his group, the users he acts on: himself and its trainees" \
+	jq -e '(.groups | map(.name)) == ["2026"] and ([.users[].name] ==
+	["Ann", "Bo", "Dr Ives"])' "$OUT"
 
 # the instructor manages his group: a trainee of his own, who logs in
 # with her first PIN (each command below logs in anew: a hash each, so
@@ -181,6 +182,9 @@ check "... (2026 his, 2025 untouched)" jq -e '.groups == [{"name": "2025",
 check_status "... the users" 0 ctl --json user list
 check "... (Di added, no Eve)" jq -e '[.users[].name] == ["Ada", "Ann", "Bo",
 	"Cy", "Di", "Dr Ives", "Dr Jay"]' "$OUT"
+check_status "... Dr Ives's user list" 0 ives --json user list
+check "... (his group's, Bo in no group now, not Dr Jay's Cy)" jq -e \
+	'[.users[].name] == ["Ann", "Bo", "Di", "Dr Ives"]' "$OUT"
 
 # the administrator
 check_status "Ada: session list" 0 as Ada 90210777 --json session list
