@@ -604,6 +604,9 @@ static void *control_main(void *arg)
 		for (int i = 0; i < n; i++) {
 			handle_event(c, &evs[i]);
 		}
+		if (control_records_people_copied(c)) {
+			control_training_refresh(c);
+		}
 		uint64_t now = mono_ns();
 
 		update_loop_rate(c, now);
@@ -684,7 +687,7 @@ struct control *control_create(const struct config *cfg,
 	c->max_request = (size_t)cfg->socket.max_request_bytes;
 	c->max_queued = (size_t)cfg->socket.max_queued_bytes;
 	if (alloc_buffers(c) || open_sockets(c) ||
-	    !(c->records = control_records_create(cfg)) ||
+	    !(c->records = control_records_create(cfg, c->wake_fd)) ||
 	    !(c->accounts = control_accounts_create(cfg))) {
 		control_destroy(c);
 		return NULL;

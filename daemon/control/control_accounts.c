@@ -605,7 +605,7 @@ void control_on_accounts(struct control *c, struct client *cl,
 				   m->op)->name, m->name, *m->group ? " in " :
 			   "", m->group, (int)cl->uid, cl->logged_in ?
 			   " as " : "", cl->logged_in ? cl->user.name : "");
-		control_training_changed(c, m);
+		control_training_refresh(c);
 		control_records_poke_centre(c);
 	}
 	accounts_reply(c, cl, rep);

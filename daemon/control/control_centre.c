@@ -10,9 +10,12 @@
  */
 #include <errno.h>
 #include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "base/log.h"
 #include "control/control_private.h"
@@ -29,6 +32,8 @@ struct control_centre {
 	bool down;             /* the last round failed, and was said */
 	bool people;           /* the rig's accounts are kept with the centre */
 	char version[32];      /* of the centre's people last copied to them */
+	atomic_uint copies;    /* of the people made so far */
+	int wake_fd;           /* the control thread's eventfd; -1: none */
 	double retry_s;
 	struct records *db;    /* the worker's own */
 	struct accounts *accounts; /* the worker's own */
@@ -218,9 +223,16 @@ static const char *copy_people(struct control_centre *cc)
 	}
 	e = accounts_replace(cc->accounts, p.version, p.ch, p.n);
 	if (!e) {
+		uint64_t one = 1;
+
 		snprintf(cc->version, sizeof(cc->version), "%s", p.version);
 		log_info("centre: the rig's accounts are the centre's people "
 			 "now: %zu people (version %s)", people, p.version);
+		atomic_fetch_add(&cc->copies, 1);
+		if (cc->wake_fd >= 0 &&
+		    write(cc->wake_fd, &one, sizeof(one)) < 0) {
+			/* full: the control thread is woken already */
+		}
 	}
 	centre_people_free(&p);
 	return e && e != -EBUSY ? accounts_error(cc->accounts) : NULL;
@@ -340,7 +352,8 @@ static void free_worker(struct control_centre *cc)
 	}
 }
 
-struct control_centre *control_centre_create(const struct config *cfg)
+struct control_centre *control_centre_create(const struct config *cfg,
+					     int wake_fd)
 {
 	struct control_centre *cc = calloc(1, sizeof(*cc));
 	char path[3 * CONFIG_STR];
@@ -360,6 +373,7 @@ struct control_centre *control_centre_create(const struct config *cfg)
 	snprintf(cc->dir, sizeof(cc->dir), "%s", cfg->session.directory);
 	snprintf(cc->url, sizeof(cc->url), "%s", cfg->records.centre);
 	cc->retry_s = cfg->records.centre_retry_s;
+	cc->wake_fd = wake_fd;
 	cc->poked = true;
 	if ((e = pthread_create(&cc->thread, NULL, centre_main, cc))) {
 		log_err("centre: no thread: %s", strerror(e));
@@ -382,6 +396,11 @@ void control_centre_destroy(struct control_centre *cc)
 	pthread_cond_destroy(&cc->wake);
 	pthread_mutex_destroy(&cc->lock);
 	free_worker(cc);
+}
+
+unsigned control_centre_copies(struct control_centre *cc)
+{
+	return atomic_load(&cc->copies);
 }
 
 void control_centre_poke(struct control_centre *cc)

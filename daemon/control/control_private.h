@@ -121,10 +121,13 @@ void control_guide_destroy(struct control_guide *g);
 
 /*
  * The rig's records (records.h) of CFG's session directory, brought up to
- * date with its files; NULL on ENOMEM or a database of a newer schema
+ * date with its files, and their centre's worker when there is one
+ * (WAKE_FD: the control thread's eventfd, written when the worker copied
+ * the centre's people); NULL on ENOMEM or a database of a newer schema
  * (logged: endosimd does not start).
  */
-struct control_records *control_records_create(const struct config *cfg);
+struct control_records *control_records_create(const struct config *cfg,
+					       int wake_fd);
 void control_records_destroy(struct control_records *cr);
 
 /* The session RI ended: its file written to the records (its checksum
@@ -143,12 +146,14 @@ void control_records_ended(struct control *c, const struct recorder_info *ri);
  * centre's people into the rig's accounts when they changed: at start,
  * when poked, and every [records] centre_retry_s (each try waits at most
  * CENTRE_CONNECT_TIMEOUT_S to connect; main.c refused a URL that libpq
- * cannot read at start-up). NULL on ENOMEM (logged: endosimd does not
- * start). Destroy waits for what is being sent (at most the connect
- * timeout, or the server's answer).
+ * cannot read at start-up). After each copy of the people it writes 1 to
+ * WAKE_FD (-1: none). NULL on ENOMEM (logged: endosimd does not start).
+ * Destroy waits for what is being sent (at most the connect timeout, or
+ * the server's answer).
  */
 struct control_centre;
-struct control_centre *control_centre_create(const struct config *cfg);
+struct control_centre *control_centre_create(const struct config *cfg,
+					     int wake_fd);
 void control_centre_destroy(struct control_centre *cc);
 /* Sessions or changes of the accounts were queued (a session's end, a
  * rebuild, a user or group changed): the worker sends them now. Any
@@ -156,6 +161,12 @@ void control_centre_destroy(struct control_centre *cc);
 void control_centre_poke(struct control_centre *cc);
 /* The same for the control's centre, when it has one. Control thread. */
 void control_records_poke_centre(struct control *c);
+/* How many times the worker copied the centre's people into the rig's
+ * accounts. Any thread. */
+unsigned control_centre_copies(struct control_centre *cc);
+/* Whether the control's centre copied the people since the last call
+ * (false without a centre). Control thread. */
+bool control_records_people_copied(struct control *c);
 
 /*
  * The sessions of the records as a reply's SessionInfos, by ID: TRAINEE's
@@ -253,11 +264,13 @@ void control_key_add(const char **keys, size_t *n, size_t max,
 
 /*
  * Who trains at the rig (control_training.c, training.h): whether the
- * accounts hold a trainee, looked up at start-up (init) and after the
- * change M of the accounts (changed; a user removed no longer trains).
+ * accounts hold a trainee, and whether the rig's trainee is still one,
+ * looked up at start-up (init) and after each change of the accounts
+ * (refresh: a change on this rig, a copy of the centre's people; a
+ * trainee no longer among the users no longer trains).
  */
 void control_training_init(struct control *c);
-void control_training_changed(struct control *c, const Endosim__Accounts *m);
+void control_training_refresh(struct control *c);
 
 /*
  * A Login M that asks to train at the rig (else false at once): before

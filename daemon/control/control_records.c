@@ -18,6 +18,7 @@
 struct control_records {
 	struct records *db;
 	struct control_centre *centre;  /* NULL: none */
+	unsigned copies_seen;           /* control_centre_copies() so far */
 	struct records_report report;   /* what the last reply points into */
 	Endosim__RecordsReply reply;
 };
@@ -31,7 +32,8 @@ static const char *why(const struct control_records *cr, int e)
 }
 
 /* With a centre: the sessions it has not had queued, and its worker. */
-static int start_centre(struct control_records *cr, const struct config *cfg)
+static int start_centre(struct control_records *cr, const struct config *cfg,
+			int wake_fd)
 {
 	size_t waiting = 0;
 	int e;
@@ -45,7 +47,7 @@ static int start_centre(struct control_records *cr, const struct config *cfg)
 	} else if (waiting) {
 		log_notice("records: %zu sessions wait for the centre", waiting);
 	}
-	cr->centre = control_centre_create(cfg);
+	cr->centre = control_centre_create(cfg, wake_fd);
 	return cr->centre ? 0 : -EINVAL;
 }
 
@@ -72,7 +74,8 @@ static int bring_up_to_date(struct control_records *cr)
 	return 0;
 }
 
-struct control_records *control_records_create(const struct config *cfg)
+struct control_records *control_records_create(const struct config *cfg,
+					       int wake_fd)
 {
 	struct control_records *cr = calloc(1, sizeof(*cr));
 
@@ -84,7 +87,7 @@ struct control_records *control_records_create(const struct config *cfg)
 		control_records_destroy(cr);
 		return NULL;
 	}
-	if (bring_up_to_date(cr) || start_centre(cr, cfg)) {
+	if (bring_up_to_date(cr) || start_centre(cr, cfg, wake_fd)) {
 		control_records_destroy(cr);
 		return NULL;
 	}
@@ -122,6 +125,22 @@ void control_records_poke_centre(struct control *c)
 	if (c->records->centre) {
 		control_centre_poke(c->records->centre);
 	}
+}
+
+bool control_records_people_copied(struct control *c)
+{
+	struct control_records *cr = c->records;
+	unsigned now;
+
+	if (!cr->centre) {
+		return false;
+	}
+	now = control_centre_copies(cr->centre);
+	if (now == cr->copies_seen) {
+		return false;
+	}
+	cr->copies_seen = now;
+	return true;
 }
 
 /* One row of control_records_rows(): what its info points into. */

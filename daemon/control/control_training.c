@@ -1,10 +1,11 @@
 /*
  * control_training.c - who trains at the rig (training.h) on the
  * requests (control_private.h): a Login with training, Logout, the
- * trainee of a session started, a user removed; and whether the accounts
- * hold a trainee at all (StatusReply.asks_trainee: endoview asks who is
- * training only then), looked up at start-up and after each change of the
- * accounts, never per status (a push may ask for one every few ms).
+ * trainee of a session started; and whether the accounts hold a trainee
+ * at all (StatusReply.asks_trainee: endoview asks who is training only
+ * then) and the rig's trainee still (removed on this rig or at the
+ * centre: nobody trains), looked up at start-up and after each change of
+ * the accounts, never per status (a push may ask for one every few ms).
  */
 #include <errno.h>
 #include <stdio.h>
@@ -14,41 +15,40 @@
 #include "base/log.h"
 #include "control/control_private.h"
 
-/* Whether the accounts hold a trainee (a database not made yet: none). */
-static bool any_trainee(struct control *c)
+void control_training_refresh(struct control *c)
 {
-	struct accounts_user *u = NULL;
-	bool any = false;
-	size_t n = 0;
-
 	struct accounts *db = control_accounts_db(c);
+	const char *name = c->training.trainee;
+	struct accounts_user *u = NULL;
+	bool any = false, still = !*name;
+	size_t n = 0;
 
 	if (accounts_users(db, &u, &n)) {
 		log_warn("accounts: %s: whether endoview asks who is training "
 			 "is not known", accounts_error(db));
+		free(u);
+		c->training.asks = false;
+		return; /* who trains stays */
 	}
-	for (size_t i = 0; i < n && !any; i++) {
-		any = u[i].role == ACCOUNTS_TRAINEE;
+	for (size_t i = 0; i < n; i++) {
+		if (u[i].role == ACCOUNTS_TRAINEE) {
+			any = true;
+			still |= !strcmp(u[i].name, name);
+		}
 	}
 	free(u);
-	return any;
+	c->training.asks = any;
+	if (!still) {
+		log_notice("%s no longer trains at the rig: no such trainee "
+			   "in the accounts now", name);
+		training_forget(&c->training, name);
+	}
 }
 
 void control_training_init(struct control *c)
 {
 	c->training.trainee[0] = '\0';
-	c->training.asks = any_trainee(c);
-}
-
-void control_training_changed(struct control *c, const Endosim__Accounts *m)
-{
-	if (m->op == ENDOSIM__ACCOUNTS__OP__OP_USER_REMOVE &&
-	    !strcmp(m->name, c->training.trainee)) {
-		log_notice("%s no longer trains at the rig: the user is gone",
-			   m->name);
-		training_forget(&c->training, m->name);
-	}
-	c->training.asks = any_trainee(c);
+	control_training_refresh(c);
 }
 
 /* The trainee of the recording session, NULL when none records. */

@@ -18,7 +18,9 @@
 # waits in rig-a's accounts and arrives once when it is back, reaching
 # rig-b and the instructor's login at the centre, which then reads his
 # group's sessions only; the same change sent again (as after a lost
-# acknowledgement) is not applied twice.
+# acknowledgement) is not applied twice. A trainee training on rig-b and
+# removed on rig-a no longer trains on rig-b once the centre's people
+# reach it.
 # Skipped (never passed) where Debian's postgresql is not installed.
 . "$(dirname "$0")/../common.sh"
 
@@ -68,6 +70,8 @@ check "rig-a: Ann and Bo, Dr Ives, his group 2026 of them" eval \
 	 ctl group join 2026 Ann Bo'
 use_slot rig-b
 check "rig-b: the group, from the centre" wait_for group_is 2026 '["Ann","Bo"]'
+check "... its trainees: endoview on rig-b asks who is training" \
+	wait_for status_true '.asks_trainee'
 check_status "rig-b: Ann logs in with her PIN from rig-a" 0 \
 	env ENDOSIM_PIN=48213579 "$ENDOCTL" --socket "$SOCK" --as Ann whoami
 check "... as a trainee" grep -qx "Ann (trainee)" "$OUT"
@@ -170,6 +174,22 @@ pages_linked() {
 }
 check "... and links each session's report page, from the centre" \
 	pages_linked
+
+# a trainee removed on one rig no longer trains on another
+has_user() { ctl --json user list | jq -e --arg u "$1" \
+	'.users | map(.name) | index($u) != null'; }
+use_slot rig-b
+check "rig-b: Cy added, and trains at the rig" eval \
+	'ENDOSIM_NEW_PIN=31415926 ctl user add Cy --role trainee &&
+	 ENDOSIM_PIN=31415926 ctl login Cy && status_true ".trainee == \"Cy\""'
+use_slot rig-a
+check "rig-a: Cy, from the centre" wait_for has_user Cy
+check_status "rig-a: Cy removed" 0 ctl user remove Cy
+use_slot rig-b
+check "rig-b: Cy gone from the accounts" wait_for eval '! has_user Cy'
+check "... and no longer trains there" wait_for status_true '.trainee == ""'
+check "... the log says why" grep -q \
+	"Cy no longer trains at the rig: no such trainee in the accounts" "$LOG"
 
 check_status "a malformed URL: refused" 2 \
 	ctl trainee list --centre "postgresql://[bad"
