@@ -457,11 +457,12 @@ static void pour_blood(struct loop *l, double dt_s)
 
 /*
  * The tool in the working channel this cycle, on the scope's published
- * state: the rig's sensing, the wall at the tool's tip; its injury of the
- * wall the patient's perforation where there is a patient; the cut
- * polyps falling where the patient lies, onto the wall where the gas
- * holds it. Then guided replay's expert's
- * tool on the same scope, shown only (guide.h).
+ * state: the rig's sensing; the wall at the tool's tip and the polyps on
+ * it where the gas holds it (the surface the scope touches and the
+ * picture shows); its injury of the wall the patient's perforation where
+ * there is a patient; the cut polyps falling where the patient lies.
+ * Then guided replay's expert's tool on the same scope, shown only
+ * (guide.h).
  */
 static void step_tool(struct loop *l)
 {
@@ -476,21 +477,22 @@ static void step_tool(struct loop *l)
 	};
 	double dt = l->info.period_ns * ENDOSIM_S_PER_NS;
 	double depth = tool_input_depth(&l->tool, &in), g[3];
+	const double *factor = patient_factors(haptics_patient(l->haptics));
 	struct tool_pose pose;
 	unsigned ev;
 	int polyp;
 
 	cases_tool_params(&l->cfg, &par);
 	tool_pose(&par, sc, depth, &pose);
-	tool_wall(l->colon, sc->tip_s_m + depth, pose.tip, &in);
+	tool_follow_gas(&l->tool, l->colon, factor);
+	tool_wall(l->colon, sc->tip_s_m + depth, pose.tip, factor, &in);
 	ev = tool_step(&l->tool, &par, sc, &in, dt, &polyp);
 	if (ev & TOOL_EVENT_INJURY) {
 		(void)patient_perforate(haptics_patient(l->haptics),
 					sc->tip_s_m);
 	}
 	patient_loose_gravity(haptics_patient(l->haptics), g);
-	tool_fall(&l->tool, &par, l->colon, g,
-		  patient_factors(haptics_patient(l->haptics)), dt);
+	tool_fall(&l->tool, &par, l->colon, g, factor, dt);
 	pour_blood(l, dt);
 	tool_publish(&l->tool, ev, polyp, &l->state.tool);
 	guide_publish_tool(&l->guide, &par, sc, &l->tool, &l->state.guide);

@@ -109,13 +109,16 @@ int tool_place_polyps(struct tool *t, const struct colon *c)
 		if (e < 0) {
 			return e;
 		}
+		t->polyp[e].on_wall = true;
+		vec3_copy(t->polyp[e].wall_axis, q.p);
+		vec3_scale(t->polyp[e].wall_out, out, r);
 		added++;
 	}
 	return added;
 }
 
 void tool_wall(const struct colon *c, double s_m, const double tip[3],
-	       struct tool_input *in)
+	       const double *factor, struct tool_input *in)
 {
 	struct centreline_point q;
 	double x[3], out[3], theta;
@@ -129,8 +132,26 @@ void tool_wall(const struct colon *c, double s_m, const double tip[3],
 	theta = atan2(vec3_dot(x, q.v), vec3_dot(x, q.u));
 	vec3_scale(out, q.u, cos(theta));
 	vec3_axpy(out, out, sin(theta), q.v);
-	vec3_axpy(in->wall_point, q.p, colon_lumen_radius(c, s_m, theta), out);
+	vec3_axpy(in->wall_point, q.p,
+		  colon_lumen_radius(c, s_m, theta) *
+			  (factor ? gas_factor_at(c, factor, s_m) : 1),
+		  out);
 	vec3_scale(in->wall_normal, out, -1);
+}
+
+void tool_follow_gas(struct tool *t, const struct colon *c,
+		     const double *factor)
+{
+	for (int i = 0; i < t->polyps; i++) {
+		struct tool_polyp *p = &t->polyp[i];
+
+		if (p->on_wall) {
+			vec3_axpy(p->base, p->wall_axis,
+				  factor ? gas_factor_at(c, factor, p->s_m)
+					 : 1,
+				  p->wall_out);
+		}
+	}
 }
 
 double tool_polyp_thickness(const struct tool_polyp *p)

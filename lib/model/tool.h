@@ -372,6 +372,11 @@ struct tool_pose {
 struct tool_polyp {
 	double base[3];      /* on the wall, m */
 	double normal[3];    /* the wall's there, unit, into the lumen */
+	bool on_wall;        /* placed on a colon (tool_place_polyps()): its
+				base follows the gas (tool_follow_gas()) */
+	double wall_axis[3]; /* ... the centreline's point at s_m, m */
+	double wall_out[3];  /* ... from it to the undeformed wall under the
+				base, m: the base is wall_axis + f x this */
 	double size_m;       /* anatomy's diameter_m */
 	double stalk_m;      /* Ip: the stalk's length; 0 otherwise */
 	double stalk_diameter_m; /* Ip: its thickness; 0 otherwise */
@@ -446,7 +451,8 @@ int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
 
 /*
  * The case's polyps on colon C's undeformed wall (colon_lumen_radius() at
- * each polyp's place), after any added before. Returns the number added,
+ * each polyp's place; tool_follow_gas() moves them with the gas), after
+ * any added before. Returns the number added,
  * or a negative errno; 0 for an imported mesh (no case, no polyps).
  * Not for the force loop (it reads the centreline).
  */
@@ -454,13 +460,25 @@ int tool_place_polyps(struct tool *t, const struct colon *c);
 
 /*
  * The wall nearest the tool's tip into IN (wall, wall_point, wall_normal):
- * colon C's undeformed wall (as the polyps are placed) on the ring of the
- * centreline's frame at the material S_M nearest the tip, in the tip's
- * direction from the centreline. No wall for an imported mesh (no case).
- * Fixed work, no allocation: the force loop's.
+ * colon C's wall where the gas holds it (the undeformed wall's radius
+ * times the gas's factor at S_M, gas_factor_at() of FACTOR; NULL: 1, no
+ * patient), the surface the scope's contact and the picture have, on the
+ * ring of the centreline's frame at the material S_M nearest the tip, in
+ * the tip's direction from the centreline. No wall for an imported mesh
+ * (no case). Fixed work, no allocation: the force loop's.
  */
 void tool_wall(const struct colon *c, double s_m, const double tip[3],
-	       struct tool_input *in);
+	       const double *factor, struct tool_input *in);
+
+/*
+ * The polyps placed on colon C (tool_place_polyps()) moved with the wall
+ * where the gas holds it: each one's base (and so its axis, its stump and
+ * its bleeding point) at wall_axis + f x wall_out, f the gas's factor at
+ * its s_m (gas_factor_at() of FACTOR; NULL: 1). Before tool_step(), each
+ * cycle. Fixed work, no allocation: the force loop's.
+ */
+void tool_follow_gas(struct tool *t, const struct colon *c,
+		     const double *factor);
 
 /* Polyp P's body's centre standing where it is (where a cut frees it,
  * tool.h's fall) with PAR's lift, into AT (m). */

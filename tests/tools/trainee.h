@@ -169,7 +169,8 @@ void trainee_hold(struct trainee *t, double seconds);
 /*
  * Aims the tool in the working channel as an endoscopist does, from what
  * she sees (the published scope; TARGET and WALL, a polyp's, as the
- * test's eyes give them): she turns the polyp's wall (WALL, its normal
+ * test's eyes give them, read at each waypoint: a caller may move TARGET
+ * with the polyp, the gas moving the wall): she turns the polyp's wall (WALL, its normal
  * into the lumen) to the channel's clock in the image (PAR's
  * channel_angle_rad: 5 o'clock) by rolling the tube, the wheels turned
  * against the roll so that the tip keeps its way; swings the tip with

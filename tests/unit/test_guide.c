@@ -889,7 +889,7 @@ static double ramp(double t, double t0, double t1, double a, double b)
 
 /* The pedunculated polyp of O's tool stood under the open loop of ST:
  * its stalk through the loop's centre along the channel's radial
- * direction (test_tool_loop's placing). */
+ * direction (test_tool_loop's placing; held there, off the wall). */
 static void under_the_loop(struct offline *o, const struct endosim_state *st)
 {
 	struct tool_params par = TOOL_PARAMS_DEFAULT;
@@ -902,6 +902,7 @@ static void under_the_loop(struct offline *o, const struct endosim_state *st)
 		p->base[k] = st->tool.loop_centre[k] + h / 2 * pose.radial[k];
 		p->normal[k] = -pose.radial[k];
 	}
+	p->on_wall = false;
 	memcpy(ex.base, p->base, sizeof(ex.base));
 	memcpy(ex.normal, p->normal, sizeof(ex.normal));
 	ex.placed = true;
@@ -968,6 +969,7 @@ static struct offline *trainee_rig(struct config *cfg)
 	t = offline_tool(o);
 	memcpy(t->polyp[ex.ip].base, ex.base, sizeof(ex.base));
 	memcpy(t->polyp[ex.ip].normal, ex.normal, sizeof(ex.normal));
+	t->polyp[ex.ip].on_wall = false;
 	offline_tool_select(o, TOOL_FORCEPS, 0);
 	while (trainee_step(o)->safety.ramp < 1) { /* enabled in full */
 	}

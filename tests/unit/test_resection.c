@@ -129,6 +129,9 @@ struct run {
 	int sucked;         /* cycles with the suction pressed, up to its
 			       retrieval */
 	double retrieved_gap_m; /* the gap at its retrieval */
+	int aiming;         /* the polyp she aims at (aim_polyp()), -1: none */
+	double aim_along_m; /* ... the point along its axis */
+	double aim_at[3];   /* ... where that point is now, m */
 };
 
 static double now_s(const struct endosim_state *s)
@@ -186,6 +189,11 @@ static void watch(const struct endosim_state *s, void *arg)
 				 : 1;
 
 	r->st = s;
+	if (r->aiming >= 0) {
+		const struct tool_polyp *p = &offline_tool(r->o)->polyp[r->aiming];
+
+		vec3_axpy(r->aim_at, p->base, r->aim_along_m, p->normal);
+	}
 	session_record_from_state(s, &rec);
 	metrics_record(r->m, &rec);
 	watch_retrieval(r, s);
@@ -225,6 +233,7 @@ static void start(struct run *r)
 	assert_non_null(r->m);
 	r->depth_m = r->from_d = r->to_d = -SHEATH_M; /* in the channel */
 	r->sucking = -1;
+	r->aiming = -1;
 	trainee_watch(r->tr, watch, r);
 }
 
@@ -305,6 +314,26 @@ static double aim(struct run *r, const double target[3],
 	return now_s(r->st) - t0;
 }
 
+/*
+ * She aims the point BEYOND_M ahead of the tool's tip ALONG_M along
+ * polyp I's axis from its base, within TOL_M (aim()), following it as
+ * the gas moves the wall, and the base with it (tool_follow_gas(): the
+ * point kept where it is now by watch()). The seconds it took.
+ */
+static double aim_polyp(struct run *r, int i, double along_m,
+			double beyond_m, double tol_m)
+{
+	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
+	double s;
+
+	r->aiming = i;
+	r->aim_along_m = along_m;
+	vec3_axpy(r->aim_at, p->base, along_m, p->normal);
+	s = aim(r, r->aim_at, p->normal, beyond_m, tol_m);
+	r->aiming = -1;
+	return s;
+}
+
 /* She brings polyp I under the open loop: its axis' middle at the loop's
  * centre, the loop lying flat over it (the polyp at the channel's clock:
  * its wall's normal within FLAT_DEG of the loop's). The seconds it
@@ -312,12 +341,11 @@ static double aim(struct run *r, const double target[3],
 static double under_loop(struct run *r, int i)
 {
 	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	double h = tool_polyp_height(p, r->par.lift_m), mid[3], s;
+	double h = tool_polyp_height(p, r->par.lift_m), s;
 	struct tool_pose q;
 
-	vec3_axpy(mid, p->base, h / 2, p->normal);
-	s = aim(r, mid, p->normal, r->st->tool.loop_m / 2,
-		fmin(LOOP_TOL_M, h / 3));
+	s = aim_polyp(r, i, h / 2, r->st->tool.loop_m / 2,
+		      fmin(LOOP_TOL_M, h / 3));
 	pose(r, &q);
 	assert_true(-vec3_dot(p->normal, q.radial) >=
 		    cos(FLAT_DEG * TOOL_RAD_PER_DEG));
@@ -328,11 +356,7 @@ static double under_loop(struct run *r, int i)
  * base. The seconds it took. */
 static double over_needle(struct run *r, int i)
 {
-	const struct tool_polyp *p = &offline_tool(r->o)->polyp[i];
-	double at[3];
-
-	vec3_axpy(at, p->base, -UNDER_M, p->normal);
-	return aim(r, at, p->normal, r->par.needle_m, NEEDLE_TOL_M);
+	return aim_polyp(r, i, -UNDER_M, r->par.needle_m, NEEDLE_TOL_M);
 }
 
 /* The scripted times of a resection, s. */
@@ -521,7 +545,7 @@ static double jaws_to_wall(const struct run *r)
 	pose(r, &q);
 	vec3_axpy(jaws, q.tip, r->par.clip_m, q.dir);
 	tool_wall(offline_colon(r->o), r->st->scope.tip_s_m + r->depth_m,
-		  q.tip, &in);
+		  q.tip, r->st->patient.factor, &in);
 	assert_true(in.wall);
 	vec3_sub(d, jaws, in.wall_point);
 	return vec3_dot(d, in.wall_normal);

@@ -1190,21 +1190,30 @@ static void test_fates(void **unused)
 
 /* -------------------------------------------------------- on the colon */
 
-static void test_place_polyps_on_wall(void **unused)
+/* The polyps case into A, its colon (returned), its polyps placed on its
+ * wall in T. */
+static struct colon *polyps_placed(struct anatomy *a, struct tool *t)
 {
 	struct colon_params cp = COLON_PARAMS_DEFAULT;
-	struct anatomy a;
 	struct colon *c;
-	struct tool t;
 	char err[256];
 
-	(void)unused;
-	assert_int_equal(anatomy_load(&a, "config/cases/polyps.case", err,
+	assert_int_equal(anatomy_load(a, "config/cases/polyps.case", err,
 				      sizeof(err)), 0);
-	c = colon_create(&a, &cp, err, sizeof(err));
+	c = colon_create(a, &cp, err, sizeof(err));
 	assert_non_null(c);
-	tool_reset(&t);
-	assert_int_equal(tool_place_polyps(&t, c), a.polyps);
+	tool_reset(t);
+	assert_int_equal(tool_place_polyps(t, c), a->polyps);
+	return c;
+}
+
+static void test_place_polyps_on_wall(void **unused)
+{
+	struct anatomy a;
+	struct tool t;
+	struct colon *c = polyps_placed(&a, &t);
+
+	(void)unused;
 	for (int i = 0; i < a.polyps; i++) {
 		const struct tool_polyp *p = &t.polyp[i];
 		struct centreline_point q;
@@ -1220,6 +1229,55 @@ static void test_place_polyps_on_wall(void **unused)
 		assert_int_equal(p->paris, a.polyp[i].paris);
 		assert_near(p->size_m, a.polyp[i].diameter_m, 0);
 	}
+	colon_destroy(c);
+}
+
+/* The polyps on the wall and the wall at the tool's tip where the gas
+ * holds them: on the ring scaled by the factor at their place, the
+ * normal as it was; without a patient (NULL) the case's; a polyp placed
+ * by hand (tool_add_polyp()) left where it is. */
+static void test_polyps_and_wall_follow_gas(void **unused)
+{
+	static const double factor[GAS_SEGMENTS] = { 0.6, 0.7, 0.8, 0.9, 1.0,
+						     1.1, 1.2, 1.3, 1.4 };
+	const double *each[] = { factor, NULL };
+	double hand[3] = { 0.01, 0.02, 0.03 }, up[3] = { 0, 0, 1 };
+	struct anatomy a;
+	struct tool t;
+	struct colon *c = polyps_placed(&a, &t);
+	int moved = 0;
+
+	(void)unused;
+	assert_int_equal(tool_add_polyp(&t, &a.polyp[0], hand, up), a.polyps);
+	for (int k = 0; k < 2; k++) {
+		tool_follow_gas(&t, c, each[k]);
+		for (int i = 0; i < a.polyps; i++) {
+			const struct tool_polyp *p = &t.polyp[i];
+			double s = a.polyp[i].s_m, f = each[k] ?
+				gas_factor_at(c, factor, s) : 1;
+			double r = colon_lumen_radius(c, s, a.polyp[i].angle_rad);
+			struct centreline_point q;
+			struct tool_input in;
+			double x[3], tip[3];
+
+			centreline_at_s(colon_centreline(c), s, &q);
+			vec3_sub(x, p->base, q.p);
+			assert_near(vec3_norm(x), f * r, 1e-9);
+			moved += fabs(f - 1) > 0.05;
+			vec3_normalize(x);
+			assert_near(vec3_dot(x, p->normal), -1, 1e-9);
+			/* the tool's tip halfway out to the polyp: the wall
+			 * it meets in that direction is the polyp's */
+			vec3_axpy(tip, q.p, f * r / 2, x);
+			tool_wall(c, s, tip, each[k], &in);
+			assert_true(in.wall);
+			assert_near(vec3_dist(in.wall_point, p->base), 0, 1e-9);
+			assert_near(vec3_dot(in.wall_normal, p->normal), 1,
+				    1e-9);
+		}
+		assert_near(vec3_dist(t.polyp[a.polyps].base, hand), 0, 0);
+	}
+	assert_true(moved >= 3); /* the factors moved most of them */
 	colon_destroy(c);
 }
 
@@ -1251,6 +1309,7 @@ int main(void)
 		cmocka_unit_test(test_lying_in_turn),
 		cmocka_unit_test(test_fates),
 		cmocka_unit_test(test_place_polyps_on_wall),
+		cmocka_unit_test(test_polyps_and_wall_follow_gas),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -186,7 +186,8 @@ static void move(struct run *r, long n, double depth_m, double opening)
 }
 
 /* The case's polyp I moved under the open loop: its axis' middle at the
- * loop's centre, along the channel's radial direction. */
+ * loop's centre, along the channel's radial direction (held there: not
+ * on the wall the gas moves). */
 static void polyp_under_loop(struct run *r, int i)
 {
 	struct tool *t = offline_tool(r->o);
@@ -203,6 +204,7 @@ static void polyp_under_loop(struct run *r, int i)
 		  pose.radial);
 	vec3_scale(p->normal, pose.radial, -1);
 	p->s_m = r->st->scope.tip_s_m + r->depth_m + SNARE_M / 2; /* its ring */
+	p->on_wall = false;
 }
 
 static void test_polyps_placed(void **state)
