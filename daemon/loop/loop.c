@@ -458,8 +458,8 @@ static void pour_blood(struct loop *l, double dt_s)
 /*
  * The tool in the working channel this cycle, on the scope's published
  * state: the rig's sensing; the wall at the tool's tip and the polyps on
- * it where the gas holds it (the surface the scope touches and the
- * picture shows); its injury of the wall the patient's perforation where
+ * it where the gas holds it and the scope has bowed it (the surface the
+ * scope touches and the picture shows); its injury of the wall the patient's perforation where
  * there is a patient; the cut polyps falling where the patient lies.
  * Then guided replay's expert's tool on the same scope, shown only
  * (guide.h).
@@ -484,7 +484,7 @@ static void step_tool(struct loop *l)
 
 	cases_tool_params(&l->cfg, &par);
 	tool_pose(&par, sc, depth, &pose);
-	tool_follow_gas(&l->tool, l->colon, factor);
+	tool_follow_wall(&l->tool, l->colon, factor);
 	tool_wall(l->colon, sc->tip_s_m + depth, pose.tip, factor, &in);
 	ev = tool_step(&l->tool, &par, sc, &in, dt, &polyp);
 	if (ev & TOOL_EVENT_INJURY) {

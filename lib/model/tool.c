@@ -110,8 +110,8 @@ int tool_place_polyps(struct tool *t, const struct colon *c)
 			return e;
 		}
 		t->polyp[e].on_wall = true;
-		vec3_copy(t->polyp[e].wall_axis, q.p);
-		vec3_scale(t->polyp[e].wall_out, out, r);
+		t->polyp[e].angle_rad = ap->angle_rad;
+		t->polyp[e].wall_r_m = r;
 		added++;
 	}
 	return added;
@@ -139,18 +139,23 @@ void tool_wall(const struct colon *c, double s_m, const double tip[3],
 	vec3_scale(in->wall_normal, out, -1);
 }
 
-void tool_follow_gas(struct tool *t, const struct colon *c,
-		     const double *factor)
+void tool_follow_wall(struct tool *t, const struct colon *c,
+		      const double *factor)
 {
 	for (int i = 0; i < t->polyps; i++) {
 		struct tool_polyp *p = &t->polyp[i];
+		struct centreline_point q;
+		double out[3], f;
 
-		if (p->on_wall) {
-			vec3_axpy(p->base, p->wall_axis,
-				  factor ? gas_factor_at(c, factor, p->s_m)
-					 : 1,
-				  p->wall_out);
+		if (!p->on_wall) {
+			continue;
 		}
+		f = factor ? gas_factor_at(c, factor, p->s_m) : 1;
+		centreline_at_s(colon_centreline(c), p->s_m, &q);
+		vec3_scale(out, q.u, cos(p->angle_rad));
+		vec3_axpy(out, out, sin(p->angle_rad), q.v);
+		vec3_axpy(p->base, q.p, f * p->wall_r_m, out);
+		vec3_scale(p->normal, out, -1);
 	}
 }
 

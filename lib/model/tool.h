@@ -373,10 +373,9 @@ struct tool_polyp {
 	double base[3];      /* on the wall, m */
 	double normal[3];    /* the wall's there, unit, into the lumen */
 	bool on_wall;        /* placed on a colon (tool_place_polyps()): its
-				base follows the gas (tool_follow_gas()) */
-	double wall_axis[3]; /* ... the centreline's point at s_m, m */
-	double wall_out[3];  /* ... from it to the undeformed wall under the
-				base, m: the base is wall_axis + f x this */
+				base follows the wall (tool_follow_wall()) */
+	double angle_rad;    /* ... round the lumen from the frame's u */
+	double wall_r_m;     /* ... the case's lumen radius there */
 	double size_m;       /* anatomy's diameter_m */
 	double stalk_m;      /* Ip: the stalk's length; 0 otherwise */
 	double stalk_diameter_m; /* Ip: its thickness; 0 otherwise */
@@ -451,7 +450,7 @@ int tool_add_polyp(struct tool *t, const struct anatomy_polyp *ap,
 
 /*
  * The case's polyps on colon C's undeformed wall (colon_lumen_radius() at
- * each polyp's place; tool_follow_gas() moves them with the gas), after
+ * each polyp's place; tool_follow_wall() moves them with the wall), after
  * any added before. Returns the number added,
  * or a negative errno; 0 for an imported mesh (no case, no polyps).
  * Not for the force loop (it reads the centreline).
@@ -471,14 +470,16 @@ void tool_wall(const struct colon *c, double s_m, const double tip[3],
 	       const double *factor, struct tool_input *in);
 
 /*
- * The polyps placed on colon C (tool_place_polyps()) moved with the wall
- * where the gas holds it: each one's base (and so its axis, its stump and
- * its bleeding point) at wall_axis + f x wall_out, f the gas's factor at
- * its s_m (gas_factor_at() of FACTOR; NULL: 1). Before tool_step(), each
+ * The polyps placed on colon C (tool_place_polyps()) moved with its wall
+ * as it is now: each one's base (and so its axis, its stump and its
+ * bleeding point) on the ring of C's centreline as the scope has moved
+ * it (a bowed or displaced segment) at its s_m, at its angle, the case's
+ * radius there times the gas's factor (gas_factor_at() of FACTOR; NULL:
+ * 1), its normal that ring's, into the lumen. Before tool_step(), each
  * cycle. Fixed work, no allocation: the force loop's.
  */
-void tool_follow_gas(struct tool *t, const struct colon *c,
-		     const double *factor);
+void tool_follow_wall(struct tool *t, const struct colon *c,
+		      const double *factor);
 
 /* Polyp P's body's centre standing where it is (where a cut frees it,
  * tool.h's fall) with PAR's lift, into AT (m). */

@@ -317,7 +317,7 @@ static double aim(struct run *r, const double target[3],
 /*
  * She aims the point BEYOND_M ahead of the tool's tip ALONG_M along
  * polyp I's axis from its base, within TOL_M (aim()), following it as
- * the gas moves the wall, and the base with it (tool_follow_gas(): the
+ * the wall moves, and the base with it (tool_follow_wall(): the
  * point kept where it is now by watch()). The seconds it took.
  */
 static double aim_polyp(struct run *r, int i, double along_m,

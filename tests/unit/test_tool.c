@@ -1232,52 +1232,75 @@ static void test_place_polyps_on_wall(void **unused)
 	colon_destroy(c);
 }
 
-/* The polyps on the wall and the wall at the tool's tip where the gas
- * holds them: on the ring scaled by the factor at their place, the
- * normal as it was; without a patient (NULL) the case's; a polyp placed
- * by hand (tool_add_polyp()) left where it is. */
-static void test_polyps_and_wall_follow_gas(void **unused)
+/* Polyp I of A on T, and the wall at a tool's tip halfway out to it, on
+ * C's centreline as it is now, with the gas's FACTOR (NULL: none): on the
+ * ring at its angle, the case's radius scaled by the factor at its
+ * place, the normal that ring's. Its base, into BASE. */
+static void on_the_ring(const struct anatomy *a, const struct tool *t,
+			const struct colon *c, int i, const double *factor,
+			double base[3])
+{
+	const struct tool_polyp *p = &t->polyp[i];
+	double s = a->polyp[i].s_m, f = factor ? gas_factor_at(c, factor, s) : 1;
+	double r = colon_lumen_radius(c, s, a->polyp[i].angle_rad);
+	struct centreline_point q;
+	struct tool_input in;
+	double x[3], tip[3];
+
+	centreline_at_s(colon_centreline(c), s, &q);
+	vec3_sub(x, p->base, q.p);
+	assert_near(vec3_norm(x), f * r, 1e-9);
+	assert_near(vec3_dot(x, q.t), 0, 1e-9);
+	assert_near(atan2(vec3_dot(x, q.v), vec3_dot(x, q.u)),
+		    remainder(a->polyp[i].angle_rad, 2 * M_PI), 1e-9);
+	vec3_normalize(x);
+	assert_near(vec3_dot(x, p->normal), -1, 1e-9);
+	vec3_axpy(tip, q.p, f * r / 2, x);
+	tool_wall(c, s, tip, factor, &in);
+	assert_true(in.wall);
+	assert_near(vec3_dist(in.wall_point, p->base), 0, 1e-9);
+	assert_near(vec3_dot(in.wall_normal, p->normal), 1, 1e-9);
+	vec3_copy(base, p->base);
+}
+
+/* The polyps on the wall follow it, and the wall at the tool's tip is
+ * the same: where the gas holds it (a factor each segment), without a
+ * patient (NULL) the case's, and with the mobile segments bowed 3 cm
+ * (the polyps in the sigmoid and the transverse colon carried along); a
+ * polyp placed by hand (tool_add_polyp()) left where it is. */
+static void test_polyps_and_wall_follow(void **unused)
 {
 	static const double factor[GAS_SEGMENTS] = { 0.6, 0.7, 0.8, 0.9, 1.0,
 						     1.1, 1.2, 1.3, 1.4 };
-	const double *each[] = { factor, NULL };
 	double hand[3] = { 0.01, 0.02, 0.03 }, up[3] = { 0, 0, 1 };
+	double straight[ANATOMY_MAX_POLYPS][3], base[3];
 	struct anatomy a;
 	struct tool t;
 	struct colon *c = polyps_placed(&a, &t);
-	int moved = 0;
+	int scaled = 0, carried = 0;
 
 	(void)unused;
 	assert_int_equal(tool_add_polyp(&t, &a.polyp[0], hand, up), a.polyps);
-	for (int k = 0; k < 2; k++) {
-		tool_follow_gas(&t, c, each[k]);
-		for (int i = 0; i < a.polyps; i++) {
-			const struct tool_polyp *p = &t.polyp[i];
-			double s = a.polyp[i].s_m, f = each[k] ?
-				gas_factor_at(c, factor, s) : 1;
-			double r = colon_lumen_radius(c, s, a.polyp[i].angle_rad);
-			struct centreline_point q;
-			struct tool_input in;
-			double x[3], tip[3];
-
-			centreline_at_s(colon_centreline(c), s, &q);
-			vec3_sub(x, p->base, q.p);
-			assert_near(vec3_norm(x), f * r, 1e-9);
-			moved += fabs(f - 1) > 0.05;
-			vec3_normalize(x);
-			assert_near(vec3_dot(x, p->normal), -1, 1e-9);
-			/* the tool's tip halfway out to the polyp: the wall
-			 * it meets in that direction is the polyp's */
-			vec3_axpy(tip, q.p, f * r / 2, x);
-			tool_wall(c, s, tip, each[k], &in);
-			assert_true(in.wall);
-			assert_near(vec3_dist(in.wall_point, p->base), 0, 1e-9);
-			assert_near(vec3_dot(in.wall_normal, p->normal), 1,
-				    1e-9);
-		}
-		assert_near(vec3_dist(t.polyp[a.polyps].base, hand), 0, 0);
+	tool_follow_wall(&t, c, NULL);
+	for (int i = 0; i < a.polyps; i++) {
+		on_the_ring(&a, &t, c, i, NULL, straight[i]);
 	}
-	assert_true(moved >= 3); /* the factors moved most of them */
+	tool_follow_wall(&t, c, factor);
+	for (int i = 0; i < a.polyps; i++) {
+		on_the_ring(&a, &t, c, i, factor, base);
+		scaled += vec3_dist(base, straight[i]) > 0.002;
+	}
+	for (int k = 0; k < centreline_spans(colon_centreline(c)); k++) {
+		assert_int_equal(colon_bow(c, k, 0.03, false), 0);
+	}
+	tool_follow_wall(&t, c, NULL);
+	for (int i = 0; i < a.polyps; i++) {
+		on_the_ring(&a, &t, c, i, NULL, base);
+		carried += vec3_dist(base, straight[i]) > 0.01;
+	}
+	assert_near(vec3_dist(t.polyp[a.polyps].base, hand), 0, 0);
+	assert_true(scaled >= 3);  /* the factors moved most of them */
+	assert_int_equal(carried, 2); /* the sigmoid's and the transverse's */
 	colon_destroy(c);
 }
 
@@ -1309,7 +1332,7 @@ int main(void)
 		cmocka_unit_test(test_lying_in_turn),
 		cmocka_unit_test(test_fates),
 		cmocka_unit_test(test_place_polyps_on_wall),
-		cmocka_unit_test(test_polyps_and_wall_follow_gas),
+		cmocka_unit_test(test_polyps_and_wall_follow),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
