@@ -605,7 +605,7 @@ static void *control_main(void *arg)
 			handle_event(c, &evs[i]);
 		}
 		if (control_records_people_copied(c)) {
-			control_training_refresh(c);
+			control_accounts_refresh(c);
 		}
 		uint64_t now = mono_ns();
 
@@ -692,7 +692,7 @@ struct control *control_create(const struct config *cfg,
 		control_destroy(c);
 		return NULL;
 	}
-	control_training_init(c);
+	control_accounts_refresh(c);
 	if (cfg->debug.test_commands) {
 		log_warn("[debug] test_commands = yes: clients may inject "
 			 "faults and stall the force loop; never on a rig a "

@@ -277,6 +277,52 @@ void control_accounts_filter(struct control *c, const struct client *cl,
 	free(names);
 }
 
+/* ------------------------------------------------------------ refresh */
+
+/* Each connection's login whose user is not among U (N) as it logged in
+ * ended. */
+static void end_logins(struct control *c, const struct accounts_user *u,
+		       size_t n)
+{
+	for (int i = 0; i < c->max_clients; i++) {
+		struct client *cl = &c->clients[i];
+		bool still = false;
+
+		if (cl->fd < 0 || !cl->logged_in) {
+			continue;
+		}
+		for (size_t k = 0; k < n && !still; k++) {
+			still = !strcmp(u[k].name, cl->user.name) &&
+				u[k].role == cl->user.role;
+		}
+		if (!still) {
+			log_notice("client pid %d (uid %d): logged out: %s (%s) "
+				   "is no longer a user so", (int)cl->pid,
+				   (int)cl->uid, cl->user.name,
+				   accounts_role_name(cl->user.role));
+			cl->logged_in = false;
+		}
+	}
+}
+
+void control_accounts_refresh(struct control *c)
+{
+	struct accounts *db = c->accounts->db;
+	struct accounts_user *u = NULL;
+	size_t n = 0;
+
+	if (accounts_users(db, &u, &n)) {
+		log_warn("accounts: %s: whether endoview asks who is training "
+			 "is not known", accounts_error(db));
+		free(u);
+		control_training_users(c, NULL, 0);
+		return;
+	}
+	end_logins(c, u, n);
+	control_training_users(c, u, n);
+	free(u);
+}
+
 /* ------------------------------------------------------------ replies */
 
 /*
@@ -605,7 +651,7 @@ void control_on_accounts(struct control *c, struct client *cl,
 				   m->op)->name, m->name, *m->group ? " in " :
 			   "", m->group, (int)cl->uid, cl->logged_in ?
 			   " as " : "", cl->logged_in ? cl->user.name : "");
-		control_training_refresh(c);
+		control_accounts_refresh(c);
 		control_records_poke_centre(c);
 	}
 	accounts_reply(c, cl, rep);

@@ -263,14 +263,21 @@ void control_key_add(const char **keys, size_t *n, size_t max,
 		     const char *key);
 
 /*
- * Who trains at the rig (control_training.c, training.h): whether the
- * accounts hold a trainee, and whether the rig's trainee is still one,
- * looked up at start-up (init) and after each change of the accounts
- * (refresh: a change on this rig, a copy of the centre's people; a
- * trainee no longer among the users no longer trains).
+ * After a change of the accounts (a change on this rig, a copy of the
+ * centre's people) and at start-up: the users read once, and what hangs
+ * on them looked at again: each connection's login, whose user is gone
+ * or has another role now, ended (logged); who trains at the rig
+ * (control_training_users()). A failed read logged, nothing ended.
  */
-void control_training_init(struct control *c);
-void control_training_refresh(struct control *c);
+void control_accounts_refresh(struct control *c);
+
+/*
+ * Who trains at the rig (control_training.c, training.h) on the users U
+ * (N of them; U NULL: not known): whether the accounts hold a trainee,
+ * and whether the rig's trainee is still one (no longer: nobody trains).
+ */
+void control_training_users(struct control *c,
+			    const struct accounts_user *u, size_t n);
 
 /*
  * A Login M that asks to train at the rig (else false at once): before

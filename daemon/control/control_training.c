@@ -5,7 +5,8 @@
  * at all (StatusReply.asks_trainee: endoview asks who is training only
  * then) and the rig's trainee still (removed on this rig or at the
  * centre: nobody trains), looked up at start-up and after each change of
- * the accounts, never per status (a push may ask for one every few ms).
+ * the accounts (control_accounts_refresh()), never per status (a push
+ * may ask for one every few ms).
  */
 #include <errno.h>
 #include <stdio.h>
@@ -15,20 +16,15 @@
 #include "base/log.h"
 #include "control/control_private.h"
 
-void control_training_refresh(struct control *c)
+void control_training_users(struct control *c,
+			    const struct accounts_user *u, size_t n)
 {
-	struct accounts *db = control_accounts_db(c);
 	const char *name = c->training.trainee;
-	struct accounts_user *u = NULL;
 	bool any = false, still = !*name;
-	size_t n = 0;
 
-	if (accounts_users(db, &u, &n)) {
-		log_warn("accounts: %s: whether endoview asks who is training "
-			 "is not known", accounts_error(db));
-		free(u);
+	if (!u) {
 		c->training.asks = false;
-		return; /* who trains stays */
+		return; /* not known: who trains stays */
 	}
 	for (size_t i = 0; i < n; i++) {
 		if (u[i].role == ACCOUNTS_TRAINEE) {
@@ -36,7 +32,6 @@ void control_training_refresh(struct control *c)
 			still |= !strcmp(u[i].name, name);
 		}
 	}
-	free(u);
 	c->training.asks = any;
 	if (!still) {
 		log_notice("%s no longer trains at the rig: no such trainee "
@@ -45,11 +40,6 @@ void control_training_refresh(struct control *c)
 	}
 }
 
-void control_training_init(struct control *c)
-{
-	c->training.trainee[0] = '\0';
-	control_training_refresh(c);
-}
 
 /* The trainee of the recording session, NULL when none records. */
 static const char *recording(struct control *c, struct recorder_info *ri)

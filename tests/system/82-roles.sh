@@ -225,6 +225,17 @@ check "C: Ann logs out, the screen asks again" \
 check "... nobody trains" status_true '.trainee == ""'
 type Bo && type 27182818
 check "Bo logs in on it" wait_for status_true '.trainee == "Bo"'
+check_status "Bo removed while he trains" 0 ctl user remove Bo
+check "... nobody trains" status_true '.trainee == ""'
+check "... endoview's login as Bo ended" grep -q \
+	"logged out: Bo (trainee) is no longer a user" "$LOG"
+check "... and it asks who is training again" \
+	wait_for said 3 "login: who is training\?"
+check_status "Bo added again, his PIN as before" 0 \
+	env ENDOSIM_NEW_PIN=27182818 "$ENDOCTL" --socket "$SOCK" user add Bo \
+	--role trainee
+type Bo && type 27182818
+check "... and logs in on it" wait_for status_true '.trainee == "Bo"'
 xdotool key q
 check "Q: endoview quits" wait_for eval '! kill -0 "$VIEWER" 2>/dev/null'
 kill "$VIEWER" 2>/dev/null
