@@ -151,10 +151,15 @@ static GLFWwindow *open_window(const struct viewopts *o)
 	glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT,
 		       o->screenshot ? GLFW_TRUE : GLFW_FALSE);
 	glfwWindowHint(GLFW_VISIBLE, o->screenshot ? GLFW_FALSE : GLFW_TRUE);
-	/* no depth or stencil: the 3-D views draw offscreen (imagescale.h),
-	 * and llvmpipe copies them into a window without in its fast path */
-	glfwWindowHint(GLFW_DEPTH_BITS, 0);
-	glfwWindowHint(GLFW_STENCIL_BITS, 0);
+	/* the endoscopic view (and the benchmark's empty frame) without depth
+	 * or stencil: its image is drawn offscreen and llvmpipe copies it
+	 * into such a window in its fast path; the overview draws in the
+	 * window itself, or offscreen once a key shows it here
+	 * (imagescale.h) */
+	if (o->view == HUD_VIEW_ENDO || o->view == VIEWOPTS_VIEW_EMPTY) {
+		glfwWindowHint(GLFW_DEPTH_BITS, 0);
+		glfwWindowHint(GLFW_STENCIL_BITS, 0);
+	}
 	w = glfwCreateWindow(o->width, o->height, "endoview", NULL, NULL);
 	if (!w) {
 		log_err("no OpenGL 3.3 core context");
@@ -695,7 +700,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	pass_done(a, TIMING_PASS_UPDATE); /* since the last swap; GL idle */
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
-	glClear(GL_COLOR_BUFFER_BIT);
+	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* depth if any */
 	if (a->opt.view == VIEWOPTS_VIEW_EMPTY || w <= 0 || h <= 0) {
 		return; /* the benchmark's empty frame, or a minimised window */
 	}

@@ -15,6 +15,7 @@ struct imagescale {
 	GLint u_from;
 	int w, h;          /* the target's, px */
 	struct endo_rect from; /* what was drawn in it */
+	bool window_depth; /* the window has a depth buffer */
 	bool bound;        /* between begin and end */
 	bool failed;       /* a target could not be made: said once */
 };
@@ -46,9 +47,26 @@ static const char *fragment_src =
 	"	frag = texture(u_image, v_uv);\n"
 	"}\n";
 
+/* Whether the window's framebuffer has a depth buffer. */
+static bool window_depth(void)
+{
+	GLint type = GL_NONE;
+
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH,
+					      GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+					      &type);
+	return type != GL_NONE;
+}
+
 struct imagescale *imagescale_create(void)
 {
-	return calloc(1, sizeof(struct imagescale));
+	struct imagescale *s = calloc(1, sizeof(struct imagescale));
+
+	if (s) {
+		s->window_depth = window_depth();
+	}
+	return s;
 }
 
 static void drop(struct imagescale *s)
@@ -151,7 +169,8 @@ struct endo_rect imagescale_begin(struct imagescale *s, struct endo_rect r,
 	int h = full ? r.y + r.h : (int)lround(r.h * scale);
 
 	s->bound = false;
-	if (s->failed || r.w < 1 || r.h < 1 || w < 1 || h < 1) {
+	if ((full && s->window_depth) || s->failed || r.w < 1 || r.h < 1 ||
+	    w < 1 || h < 1) {
 		return r;
 	}
 	if (!make(s, w, h)) {

@@ -11,22 +11,25 @@
  * endoscope's video is, and keeps its vessels and folds. On a GPU it is
  * drawn at full size; --image-scale chooses.
  *
- * The 3-D views draw offscreen: the window has neither a depth nor a
- * stencil buffer (endoview.c), so that llvmpipe takes its fast paths
- * there (a plain textured rectangle), which it takes only into a
- * framebuffer without depth, and its clear has no depth to clear: a 2 M
- * triangles' 1280x720 endoscopic frame took 2.8 ms of CPU less of ~21
- * (docs/ENGINEER.md).
+ * In the endoscopic view the window has neither a depth nor a stencil
+ * buffer (endoview.c): llvmpipe draws a plain textured rectangle fastest
+ * into a framebuffer without depth, and the window's clear then has no
+ * depth to clear. The image, always drawn offscreen there, is copied in
+ * as such a rectangle: a 2 M triangles' 1280x720 endoscopic frame took
+ * ~3 ms of CPU less of ~21 (docs/ENGINEER.md). The overview's window
+ * keeps its depth buffer: copying a view at full size cost as much as
+ * that gained.
  *
  * imagescale_begin() binds an offscreen target (a colour texture and a
  * depth buffer) and gives the rectangle to draw the view of R in there
  * (endo_draw(), then lensfx_draw(): the mask and the lens follow it): at
  * SCALE < 1 the target is SCALE times R's size and the rectangle its
- * whole; at SCALE 1 the target reaches R's far corner and the rectangle
- * is R itself (the overview keeps its window coordinates for its labels).
- * imagescale_end() copies it into R in the window's back buffer, as a
- * textured rectangle (scaled up with a linear filter, or texel for texel
- * at SCALE 1), and binds that again.
+ * whole; at SCALE 1 in a window without depth the target reaches R's far
+ * corner and the rectangle is R itself (the overview keeps its window
+ * coordinates for its labels). imagescale_end() copies it into R in the
+ * window's back buffer, as a textured rectangle (scaled up with a linear
+ * filter, or texel for texel), and binds that again. At SCALE 1 in a
+ * window with depth both do nothing and the view is drawn in R itself.
  *
  * Main thread, with the GL context current; the target is made anew when
  * its size changes.
@@ -41,7 +44,8 @@
 
 struct imagescale;
 
-/* NULL when out of memory. */
+/* NULL when out of memory. Looks whether the window has a depth buffer:
+ * its framebuffer is bound after. */
 struct imagescale *imagescale_create(void);
 
 /* NULL is fine. */
