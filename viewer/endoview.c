@@ -94,7 +94,8 @@ struct app {
 	struct draw2d *d2d;
 	struct endo *endo;
 	struct lensfx *lensfx;
-	struct imagescale *scale; /* the image drawn smaller, scaled up */
+	struct imagescale *scale; /* the image, offscreen and scaled up */
+	struct imagescale *overscale; /* the overview, offscreen */
 	double image_scale;       /* of each side: 1 full size */
 	struct overview *overview;
 	struct hud *hud;
@@ -150,6 +151,15 @@ static GLFWwindow *open_window(const struct viewopts *o)
 	glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT,
 		       o->screenshot ? GLFW_TRUE : GLFW_FALSE);
 	glfwWindowHint(GLFW_VISIBLE, o->screenshot ? GLFW_FALSE : GLFW_TRUE);
+	/* the endoscopic view (and the benchmark's empty frame) without depth
+	 * or stencil: its image is drawn offscreen and llvmpipe copies it
+	 * into such a window in its fast path; the overview draws in the
+	 * window itself, or offscreen once a key shows it here
+	 * (imagescale.h) */
+	if (o->view == HUD_VIEW_ENDO || o->view == VIEWOPTS_VIEW_EMPTY) {
+		glfwWindowHint(GLFW_DEPTH_BITS, 0);
+		glfwWindowHint(GLFW_STENCIL_BITS, 0);
+	}
 	w = glfwCreateWindow(o->width, o->height, "endoview", NULL, NULL);
 	if (!w) {
 		log_err("no OpenGL 3.3 core context");
@@ -178,6 +188,7 @@ static int make_renderers(struct app *a)
 	a->endo = endo_create();
 	a->lensfx = lensfx_create();
 	a->scale = imagescale_create();
+	a->overscale = imagescale_create();
 	a->image_scale = a->opt.image_scale > 0 ?
 		a->opt.image_scale :
 		imagescale_for((const char *)glGetString(GL_RENDERER));
@@ -191,8 +202,8 @@ static int make_renderers(struct app *a)
 	a->mapview = mapview_create(a->opt.socket, a->replay != NULL);
 	a->timing = timing_create();
 	a->ui = ui_create(a->window);
-	if (!a->d2d || !a->endo || !a->lensfx || !a->scale || !a->overview ||
-	    !a->hud || !a->mapview || !a->timing || !a->ui) {
+	if (!a->d2d || !a->endo || !a->lensfx || !a->scale || !a->overscale ||
+	    !a->overview || !a->hud || !a->mapview || !a->timing || !a->ui) {
 		log_err("cannot set up the views");
 		return -ENOMEM;
 	}
@@ -662,9 +673,13 @@ static void draw_views(struct app *a, const struct hud_layout *lay,
 		a->triangles += es.triangles;
 	}
 	if (lay->overview.w) {
+		struct endo_rect in = imagescale_begin(a->overscale,
+						       lay->overview, 1);
+
 		a->triangles += overview_draw(a->overview, c->model, c->lod,
 					      c->gpu, current ? st : NULL,
-					      &a->orbit, lay->overview);
+					      &a->orbit, in);
+		imagescale_end(a->overscale, lay->overview);
 		pass_done(a, TIMING_PASS_OVERVIEW);
 	}
 	if (a->triangles > a->triangles_max) {
@@ -685,7 +700,7 @@ static void render(struct app *a, const struct endosim_state *st,
 	pass_done(a, TIMING_PASS_UPDATE); /* since the last swap; GL idle */
 	glViewport(0, 0, w, h);
 	glClearColor(0, 0, 0, 1);
-	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* depth if any */
 	if (a->opt.view == VIEWOPTS_VIEW_EMPTY || w <= 0 || h <= 0) {
 		return; /* the benchmark's empty frame, or a minimised window */
 	}
@@ -984,6 +999,7 @@ static void cleanup(struct app *a)
 	overview_destroy(a->overview);
 	lensfx_destroy(a->lensfx);
 	imagescale_destroy(a->scale);
+	imagescale_destroy(a->overscale);
 	endo_destroy(a->endo);
 	draw2d_destroy(a->d2d);
 	font_destroy(a->font);

@@ -1,7 +1,8 @@
 /*
- * imagescale.h - the endoscopic image drawn at a fraction of its size
- * and scaled up to it. Where the drawing is done in software (Mesa's
- * llvmpipe, softpipe, swrast), shading the image's pixels is most of a
+ * imagescale.h - the 3-D views drawn offscreen and copied into the
+ * window, the endoscopic image at a fraction of its size and scaled up.
+ * Where the drawing is done in software (Mesa's llvmpipe, softpipe,
+ * swrast), shading the image's pixels is most of a
  * frame: at 1280x720 (a 720 x 720 image) it took 11.5 of a 16 ms frame
  * on the 2-CPU VM, the panel 2, and the fluid and the lens (lensfx.h)
  * shade each pixel again. Drawn at IMAGESCALE_SOFTWARE of each side (a
@@ -10,12 +11,25 @@
  * endoscope's video is, and keeps its vessels and folds. On a GPU it is
  * drawn at full size; --image-scale chooses.
  *
+ * In the endoscopic view the window has neither a depth nor a stencil
+ * buffer (endoview.c): llvmpipe draws a plain textured rectangle fastest
+ * into a framebuffer without depth, and the window's clear then has no
+ * depth to clear. The image, always drawn offscreen there, is copied in
+ * as such a rectangle: a 2 M triangles' 1280x720 endoscopic frame took
+ * ~3 ms of CPU less of ~21 (docs/ENGINEER.md). The overview's window
+ * keeps its depth buffer: copying a view at full size cost as much as
+ * that gained.
+ *
  * imagescale_begin() binds an offscreen target (a colour texture and a
- * depth buffer) of SCALE times R's size and gives the rectangle to draw
- * the image in there (endo_draw(), then lensfx_draw(): the mask and the
- * lens follow it); imagescale_end() scales it up into R in the window's
- * back buffer and binds that again. With SCALE 1 both do nothing and the
- * image is drawn in R itself.
+ * depth buffer) and gives the rectangle to draw the view of R in there
+ * (endo_draw(), then lensfx_draw(): the mask and the lens follow it): at
+ * SCALE < 1 the target is SCALE times R's size and the rectangle its
+ * whole; at SCALE 1 in a window without depth the target reaches R's far
+ * corner and the rectangle is R itself (the overview keeps its window
+ * coordinates for its labels). imagescale_end() copies it into R in the
+ * window's back buffer, as a textured rectangle (scaled up with a linear
+ * filter, or texel for texel), and binds that again. At SCALE 1 in a
+ * window with depth both do nothing and the view is drawn in R itself.
  *
  * Main thread, with the GL context current; the target is made anew when
  * its size changes.
@@ -30,7 +44,8 @@
 
 struct imagescale;
 
-/* NULL when out of memory. */
+/* NULL when out of memory. Looks whether the window has a depth buffer:
+ * its framebuffer is bound after. */
 struct imagescale *imagescale_create(void);
 
 /* NULL is fine. */
@@ -40,14 +55,15 @@ void imagescale_destroy(struct imagescale *s);
 double imagescale_for(const char *renderer);
 
 /*
- * Where to draw the image of R at SCALE (IMAGESCALE_MIN..1): a rectangle
- * in the target it binds, or R itself (SCALE 1, or a target that cannot
- * be made: logged once).
+ * Where to draw the view of R at SCALE (IMAGESCALE_MIN..1): a rectangle in
+ * the target it binds, or R in the window (a target that cannot be made:
+ * logged once; drawn there without a depth test).
  */
 struct endo_rect imagescale_begin(struct imagescale *s, struct endo_rect r,
 				  double scale);
 
-/* The image drawn since imagescale_begin() into R of the back buffer. */
+/* The view drawn since imagescale_begin() into R of the back buffer; the
+ * window's framebuffer bound, blending off. */
 void imagescale_end(struct imagescale *s, struct endo_rect r);
 
 #endif

@@ -155,6 +155,22 @@ walls=$(png_value "$TMP/lumen.png" \
 echo "# lumen: mean luma $centre at the centre, $walls on the ring around"
 check "lumen: a dark hole at the centre, lit walls around it" \
 	float_test "$centre < 0.35 * $walls && $walls > 40"
+# At full size (a GPU's way): drawn offscreen where it lies in the window
+# and copied texel for texel; the same lumen, sharper.
+check_status "lumen at full size: screenshot" 0 \
+	view "${SMALL[@]}" --view endo --frames 20 --image-scale 1 \
+	--screenshot "$TMP/lumen-full.png"
+full_centre=$(png_value "$TMP/lumen-full.png" "disc:$CX,$CY,$((W / 10))" mean)
+full_walls=$(png_value "$TMP/lumen-full.png" \
+	"ring:$CX,$CY,$((W * 3 / 10)),$((W * 9 / 20))" mean)
+changed=$("$PNG_STATS" "$TMP/lumen-full.png" --diff "$TMP/lumen.png" \
+	"$ENDO" | sed -n 's/.* changed=\([^ ]*\).*/\1/p')
+echo "# lumen at full size: mean luma $full_centre at the centre," \
+	"$full_walls around; $changed of the image changed from the scaled one"
+check "lumen at full size: the same hole and walls, no OpenGL error" \
+	eval 'ran_clean live && float_test "$full_centre < 0.35 * $full_walls &&
+		$full_walls > 0.9 * $walls && $full_walls < 1.1 * $walls &&
+		$changed < 0.05"'
 check "lumen: thousands of triangles drawn of the colon's 290 000" \
 	float_test "$(view_field triangles) > 1000 && \
 		    $(view_field triangles) < 20000"
