@@ -78,7 +78,14 @@ check_status() {
 }
 
 # ctl ARGS...: endoctl on the test's daemon; CTL_TIMEOUT_MS, when set,
-# how long it waits for a reply (endoctl's own default otherwise)
+# how long it waits for a reply (endoctl's own default otherwise). Under
+# the sanitizers 20 s unless set: the instrumented daemon answers a
+# request that loads a case several times slower (a session started with
+# --case once took over endoctl's 2 s in the pool), and no check run
+# there is about how soon an answer comes.
+if [ -n "${SANITIZED:-}" ]; then
+	CTL_TIMEOUT_MS=${CTL_TIMEOUT_MS:-20000}
+fi
 ctl() {
 	"$ENDOCTL" --socket "$SOCK" \
 		${CTL_TIMEOUT_MS:+--timeout "$CTL_TIMEOUT_MS"} "$@"
