@@ -152,8 +152,8 @@ static GLFWwindow *open_window(const struct viewopts *o)
 		       o->screenshot ? GLFW_TRUE : GLFW_FALSE);
 	glfwWindowHint(GLFW_VISIBLE, o->screenshot ? GLFW_FALSE : GLFW_TRUE);
 	/* the endoscopic view (and the benchmark's empty frame) without depth
-	 * or stencil: its image is drawn offscreen and llvmpipe copies it
-	 * into such a window in its fast path; the overview draws in the
+	 * or stencil: its image is drawn offscreen and copied in, and the
+	 * window's clear has no depth to clear; the overview draws in the
 	 * window itself, or offscreen once a key shows it here
 	 * (imagescale.h) */
 	if (o->view == HUD_VIEW_ENDO || o->view == VIEWOPTS_VIEW_EMPTY) {

@@ -23,9 +23,9 @@ struct imagescale {
 /* The target's texture over the viewport, sampled through its filter: a
  * rectangle of two triangles made from the vertex' index (no buffer), an
  * affine texture coordinate over u_from (the drawn part, in the
- * texture's 0..1), no depth, no blending: the plain textured rectangle
- * llvmpipe draws fastest, at a fifth to a seventh of the frame's work
- * less than glBlitFramebuffer() into a window with a depth buffer. */
+ * texture's 0..1), no depth, no blending: with the window's depth gone,
+ * a fifth to a seventh of the frame's work less than glBlitFramebuffer()
+ * into a window with a depth buffer (docs/ENGINEER.md). */
 static const char *vertex_src =
 	"#version 330 core\n"
 	"uniform vec4 u_from;\n"

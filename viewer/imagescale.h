@@ -12,11 +12,12 @@
  * drawn at full size; --image-scale chooses.
  *
  * In the endoscopic view the window has neither a depth nor a stencil
- * buffer (endoview.c): llvmpipe draws a plain textured rectangle fastest
- * into a framebuffer without depth, and the window's clear then has no
- * depth to clear. The image, always drawn offscreen there, is copied in
- * as such a rectangle: a 2 M triangles' 1280x720 endoscopic frame took
- * ~3 ms of CPU less of ~21 (docs/ENGINEER.md). The overview's window
+ * buffer (endoview.c), so its clear has no depth to clear, and the
+ * image, always drawn offscreen there, is copied in as a plain textured
+ * rectangle rather than by glBlitFramebuffer(): together a 2 M
+ * triangles' 1280x720 endoscopic frame took ~3 ms of CPU less of ~21
+ * (docs/ENGINEER.md; llvmpipe's linear path for such rectangles is not
+ * what gave it: Mesa 22.3 does not take it here). The overview's window
  * keeps its depth buffer: copying a view at full size cost as much as
  * that gained.
  *
