@@ -2,7 +2,11 @@
 # 65-valves.sh - the handle's valves on a real rig, through each backend's
 # real code: the carriage's EPOS4 under umockdev (a bit of its digital
 # inputs 0x60FD), then the wheels' Modbus drives on a pty (discrete
-# inputs, function 0x02; one wired to open when pressed). The patient on:
+# inputs, function 0x02; one wired to open when pressed), its emulator
+# replying as late as a 115200 Bd line would: an exchange then takes
+# longer than the loop's 1 ms cycle, as on a rig, and "within one
+# exchange" is not a race with the cycle (as fast as a pty goes, two
+# exchanges took 1.2 ms and a loaded VM missed it once). The patient on:
 #
 #  - pressed on the emulated drive, the valve shows in the published state
 #    within one exchange (the first input read after the press carries it;
@@ -144,7 +148,8 @@ wheels_conf "$TMP/mb.conf" "valve_air = discrete 0x0010
 valve_suction = discrete 0x0011" \
 	"valve_water = discrete 0x0000 u16 scale=-1 offset=1"
 
-check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
+check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty" \
+	--baud 115200
 check "endosimd up on it, the patient on" start_on "$TMP/mb.conf" "${ARGS[@]}"
 check "Modbus: released at first (the inverted input reads 1)" valves_are 0
 

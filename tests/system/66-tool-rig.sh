@@ -6,7 +6,9 @@
 # digital inputs 0x60FD for the cautery's pedal), then the wheels' Modbus
 # drives on a pty (input registers, function 0x04, for the depth and the
 # handle; a discrete input, function 0x02, for the pedal, on the drive
-# read with 0x17):
+# read with 0x17), its emulator replying as late as a 115200 Bd line
+# would (an exchange longer than the loop's 1 ms cycle, as on a rig;
+# 65-valves.sh says why):
 #
 #  - moved on the emulated drive, the tool's depth, its handle's opening
 #    and the pedal show in the published state within one exchange (the
@@ -137,7 +139,8 @@ ENDOSIMD="$BUILD/endosimd"
 wheels_conf "$TMP/mb.conf" "tool_depth = input 0x0020 i32 scale=1e-5
 tool_opening = input 0x0022 u16 scale=0.0001" "tool_pedal = discrete 0x0000"
 
-check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty"
+check "Modbus emulator up on a pty" start_modbus "$TMP/mb.conf" --pty "$TMP/tty" \
+	--baud 115200
 check "endosimd up on it" start_on "$TMP/mb.conf" "${ARGS[@]}"
 check "Modbus: the tool at 0, the handle closed, the pedal up" \
 	wait_for tool_is 0 0 0
@@ -198,7 +201,8 @@ grep -v -e pedal -e '^\[rig\]' -e '^backend = drives' "$TMP/usb.conf" \
 
 rm -f "$TMP/usb.ready" # the first emulator's testbed
 check "both emulators up" start_epos4 EMU-INS
-check "... the Modbus one" start_modbus "$TMP/both.conf" --pty "$TMP/tty"
+check "... the Modbus one" start_modbus "$TMP/both.conf" --pty "$TMP/tty" \
+	--baud 115200
 check "endosimd up on both" start_on "$TMP/both.conf" "${ARGS[@]}"
 usb "aux EMU-INS 2 3200"
 usb "analog EMU-INS 1 3500"

@@ -263,11 +263,18 @@ said() {
 	sed 's/^/# /' "$TMP/check.out"
 }
 
+# more_reads_than N TRACE PATTERN: over N lines with PATTERN in TRACE
+more_reads_than() {
+	[ "$(grep -c -- "$3" "$2")" -gt "$1" ]
+}
+
 # reads_every_exchange TRACE INPUT POSITION: as many input reads as
 # position reads (one exchange may be under way), counted in one copy of
-# the trace (the emulator goes on writing it)
+# the trace (the emulator goes on writing it) once it holds over 100 (a
+# line as slow as 115200 Bd makes ~70 exchanges a second)
 reads_every_exchange() {
 	local i p
+	wait_for more_reads_than 100 "$1" "$2"
 	cp "$1" "$TMP/trace.copy"
 	i=$(grep -c -- "$2" "$TMP/trace.copy")
 	p=$(grep -c -- "$3" "$TMP/trace.copy")
