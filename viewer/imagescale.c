@@ -104,26 +104,6 @@ double imagescale_for(const char *renderer)
 	return 1;
 }
 
-/* The target's colour, W x H, given as BGRA: the layout of the window's
- * pixels, which a software driver then keeps for it. */
-static GLuint make_colour(int w, int h)
-{
-	GLuint t;
-
-	glGenTextures(1, &t);
-	glBindTexture(GL_TEXTURE_2D, t);
-	glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_BGRA,
-		     GL_UNSIGNED_BYTE, NULL);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-	glBindTexture(GL_TEXTURE_2D, 0);
-	if (gfx_check("image target")) {
-		glDeleteTextures(1, &t);
-		return 0;
-	}
-	return t;
-}
-
 /* A target of W x H; false when the driver will not have it. */
 static bool make(struct imagescale *s, int w, int h)
 {
@@ -132,11 +112,12 @@ static bool make(struct imagescale *s, int w, int h)
 	}
 	drop(s);
 	s->program = gfx_program("imagescale", vertex_src, fragment_src);
-	s->colour = s->program ? make_colour(w, h) : 0;
+	s->colour = s->program ? gfx_texture(w, h, 4, NULL, false, false) : 0;
 	if (!s->colour) {
 		drop(s);
 		return false;
 	}
+	glBindTexture(GL_TEXTURE_2D, 0);
 	s->u_from = glGetUniformLocation(s->program, "u_from");
 	glGenVertexArrays(1, &s->vao);
 	glGenRenderbuffers(1, &s->depth);
