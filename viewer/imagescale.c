@@ -63,17 +63,21 @@ struct imagescale *imagescale_create(void)
 {
 	struct imagescale *s = calloc(1, sizeof(struct imagescale));
 
-	if (s) {
-		s->window_depth = window_depth();
+	if (!s) {
+		return NULL;
+	}
+	s->window_depth = window_depth();
+	s->program = gfx_program("imagescale", vertex_src, fragment_src);
+	if (s->program) {
+		s->u_from = glGetUniformLocation(s->program, "u_from");
+		glGenVertexArrays(1, &s->vao);
 	}
 	return s;
 }
 
+/* The target, not the copy's program. */
 static void drop(struct imagescale *s)
 {
-	glDeleteProgram(s->program);
-	glDeleteVertexArrays(1, &s->vao);
-	s->program = s->vao = 0;
 	glDeleteFramebuffers(1, &s->fbo);
 	glDeleteTextures(1, &s->colour);
 	glDeleteRenderbuffers(1, &s->depth);
@@ -87,6 +91,8 @@ void imagescale_destroy(struct imagescale *s)
 		return;
 	}
 	drop(s);
+	glDeleteProgram(s->program);
+	glDeleteVertexArrays(1, &s->vao);
 	free(s);
 }
 
@@ -111,15 +117,11 @@ static bool make(struct imagescale *s, int w, int h)
 		return true;
 	}
 	drop(s);
-	s->program = gfx_program("imagescale", vertex_src, fragment_src);
 	s->colour = s->program ? gfx_texture(w, h, 4, NULL, false, false) : 0;
 	if (!s->colour) {
-		drop(s);
 		return false;
 	}
 	glBindTexture(GL_TEXTURE_2D, 0);
-	s->u_from = glGetUniformLocation(s->program, "u_from");
-	glGenVertexArrays(1, &s->vao);
 	glGenRenderbuffers(1, &s->depth);
 	glBindRenderbuffer(GL_RENDERBUFFER, s->depth);
 	glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);

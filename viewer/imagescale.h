@@ -32,8 +32,8 @@
  * filter, or texel for texel), and binds that again. At SCALE 1 in a
  * window with depth both do nothing and the view is drawn in R itself.
  *
- * Main thread, with the GL context current; the target is made anew when
- * its size changes.
+ * Main thread, with the GL context current; the copy's program is made
+ * once (imagescale_create()), the target anew when its size changes.
  */
 #ifndef ENDOVIEW_IMAGESCALE_H
 #define ENDOVIEW_IMAGESCALE_H
