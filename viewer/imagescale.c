@@ -170,12 +170,12 @@ struct endo_rect imagescale_begin(struct imagescale *s, struct endo_rect r,
 
 void imagescale_end(struct imagescale *s, struct endo_rect r)
 {
-	bool same = s->from.w == r.w && s->from.h == r.h;
-	GLint filter = same ? GL_NEAREST : GL_LINEAR;
+	GLint filter;
 
 	if (!s->bound) {
 		return;
 	}
+	filter = s->from.w == r.w && s->from.h == r.h ? GL_NEAREST : GL_LINEAR;
 	glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	glViewport(r.x, r.y, r.w, r.h);
 	glDisable(GL_BLEND);

@@ -45,8 +45,9 @@
 
 struct imagescale;
 
-/* NULL when out of memory. Looks whether the window has a depth buffer:
- * its framebuffer is bound after. */
+/* NULL when out of memory. Looks whether the window has a depth buffer
+ * (its framebuffer is bound after) and compiles the copy's program (one
+ * that does not compile: the views drawn in the window, logged). */
 struct imagescale *imagescale_create(void);
 
 /* NULL is fine. */
