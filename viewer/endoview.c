@@ -884,9 +884,10 @@ static void report_left(const struct app *a, int fb_h)
 	}
 }
 
-/* What the panel said, where the endoscopic view drew what the tools
- * left and the overview the scope and the colon, in the last frame
- * (hud_said(), report_left(), overview_print()). */
+/* What the panel said (and how much had no room, where its text
+ * ended), where the endoscopic view drew what the tools left and the
+ * overview the scope and the colon, in the last frame (hud_said(),
+ * report_left(), overview_print()). */
 static void report_drawn(const struct app *a)
 {
 	const char *said;
@@ -897,6 +898,8 @@ static void report_drawn(const struct app *a)
 	for (int i = 0; (said = hud_said(a->hud, i)); i++) {
 		printf("hud: %s\n", said);
 	}
+	printf("panel: hidden=%d end_px=%.0f\n", hud_hidden(a->hud),
+	       hud_end_px(a->hud));
 	if (!a->replay) {
 		login_said(&a->login, login, sizeof(login));
 		printf("login: %s\n", login);

@@ -90,6 +90,8 @@ struct hud {
 	unsigned int next, count;
 	char said[HUD_LINES][HUD_LINE]; /* the last panel's lines */
 	int lines;
+	int hidden;   /* the last panel's lines that found no room */
+	float end_px; /* where its text ended, from the framebuffer's top */
 };
 
 /* Where the next line goes. */
@@ -98,6 +100,8 @@ struct pen {
 	struct hud *h;    /* keeps what it says */
 	float x, y, w;    /* left, top of the next line, width */
 	float small, large;
+	float limit;      /* the lines end here: room for the note below */
+	int hidden;       /* lines not drawn for want of room */
 };
 
 void hud_font_px(int h, float *small_px, float *large_px)
@@ -177,9 +181,24 @@ void hud_record(struct hud *h, const struct endosim_state *st, double t_s)
 	h->count += h->count < CHART_SAMPLES;
 }
 
-/* TEXT on the next line, cut short where the panel ends. */
-static void line(struct pen *p, enum font_size size, const float rgb[4],
-		 const char *text)
+/*
+ * Whether what comes next, H px high, has room above the footer (and
+ * the note that says what had none). Once something has not, nothing
+ * after it has: the panel keeps its order, the least needed last.
+ */
+static bool room(struct pen *p, float h)
+{
+	if (p->hidden || p->y + h > p->limit) {
+		p->hidden++;
+		return false;
+	}
+	return true;
+}
+
+/* TEXT on the next line, cut short where the panel ends, wherever the
+ * line falls. */
+static void put(struct pen *p, enum font_size size, const float rgb[4],
+		const char *text)
 {
 	float px = size == FONT_LARGE ? p->large : p->small;
 	char cut[256];
@@ -193,6 +212,15 @@ static void line(struct pen *p, enum font_size size, const float rgb[4],
 		snprintf(p->h->said[p->h->lines++], HUD_LINE, "%s", cut);
 	}
 	p->y += px * 1.35f;
+}
+
+/* TEXT on the next line where there is room. */
+static void line(struct pen *p, enum font_size size, const float rgb[4],
+		 const char *text)
+{
+	if (room(p, (size == FONT_LARGE ? p->large : p->small) * 1.35f)) {
+		put(p, size, rgb, text);
+	}
 }
 
 static void gap(struct pen *p)
@@ -514,42 +542,63 @@ static void draw_moved(struct pen *p, const struct hud_info *in)
 	line(p, FONT_SMALL, dim, text);
 }
 
-/* The position, and the turn in progress. */
-static void draw_position(struct pen *p, const struct endosim_patient_state *pt)
+/* The position, and the turn in progress, into TEXT; its colour. */
+static const float *position_words(const struct endosim_patient_state *pt,
+				   char *text, size_t size)
 {
-	char name[32], text[96];
+	char name[32];
 
 	spaced(names_position(pt->position), name, sizeof(name));
 	if (pt->turning) {
-		snprintf(text, sizeof(text), "turning to %s, %.0f %%", name,
+		snprintf(text, size, "turning to %s, %.0f %%", name,
 			 fmin(1, fmax(0, pt->turn)) * 100);
 	} else {
-		snprintf(text, sizeof(text), "patient %s", name);
+		snprintf(text, size, "patient %s", name);
 	}
-	line(p, FONT_SMALL, pt->turning ? amber : white, text);
+	return pt->turning ? amber : white;
 }
 
-/* The gas, its relief and where the first wall would burst. */
-static void draw_gas(struct pen *p, const struct hud_info *in, double burst)
+/* The gas, its relief and where the first wall would burst, into TEXT;
+ * its colour. */
+static const float *gas_words(const struct hud_info *in, double burst,
+			      char *text, size_t size)
 {
 	const struct endosim_patient_state *pt = &in->st->patient;
 	double mmhg = pt->pressure_pa / BURSTMARK_PA_PER_MMHG;
-	char text[160];
 	int n;
 
-	n = snprintf(text, sizeof(text), "gas %.1f mmHg, %.2f L", mmhg,
+	n = snprintf(text, size, "gas %.1f mmHg, %.2f L", mmhg,
 		     pt->gas_m3 * 1e3);
-	if (in->relief_pa > 0 && n > 0 && (size_t)n < sizeof(text)) {
-		n += snprintf(text + n, sizeof(text) - (size_t)n,
-			      ", relief %.0f",
+	if (in->relief_pa > 0 && n > 0 && (size_t)n < size) {
+		n += snprintf(text + n, size - (size_t)n, ", relief %.0f",
 			      in->relief_pa / BURSTMARK_PA_PER_MMHG);
 	}
-	if (!isnan(burst) && n > 0 && (size_t)n < sizeof(text)) {
-		snprintf(text + n, sizeof(text) - (size_t)n, ", bursts ~%.0f",
+	if (!isnan(burst) && n > 0 && (size_t)n < size) {
+		snprintf(text + n, size - (size_t)n, ", bursts ~%.0f",
 			 burst / BURSTMARK_PA_PER_MMHG);
 	}
-	line(p, FONT_SMALL, mmhg > PATIENTVIEW_HIGH_MMHG ? amber : white,
-	     text);
+	return mmhg > PATIENTVIEW_HIGH_MMHG ? amber : white;
+}
+
+/* The position and the gas: a line each, or in a compact panel one
+ * where it fits the panel's width (amber when either is). */
+static void draw_position_gas(struct pen *p, const struct hud_info *in,
+			      double burst)
+{
+	char where[96], gas[160], both[260];
+	const float *where_rgb = position_words(&in->st->patient, where,
+						sizeof(where));
+	const float *gas_rgb = gas_words(in, burst, gas, sizeof(gas));
+
+	snprintf(both, sizeof(both), "%s; %s", where, gas);
+	if (in->compact &&
+	    draw2d_text_width(p->d, FONT_SMALL, both) <= p->w) {
+		line(p, FONT_SMALL, where_rgb == amber ? amber : gas_rgb,
+		     both);
+		return;
+	}
+	line(p, FONT_SMALL, where_rgb, where);
+	line(p, FONT_SMALL, gas_rgb, gas);
 }
 
 /* The assistant's hand and the handle's valves. */
@@ -668,8 +717,8 @@ static void draw_vitals(struct pen *p, const struct endosim_patient_state *pt)
 /*
  * The patient panel: the figure, the gauge and the face side by side, the
  * pain's bar under them, then the lines: the level's words, the vital
- * signs, the position, the gas, the hand and the valves, the lens, the
- * voice; in a compact panel the lines alone.
+ * signs, the position, the gas, the hand and the valves, the lens; in a
+ * compact panel the lines alone, the position and the gas on one.
  */
 static void draw_patient(struct pen *p, const struct hud_info *in)
 {
@@ -681,7 +730,7 @@ static void draw_patient(struct pen *p, const struct hud_info *in)
 		return;
 	}
 	draw_burst(p, in);
-	if (!in->compact) {
+	if (!in->compact && room(p, size + p->small * 1.4f)) {
 		top = p->y;
 		patientview_figure(p->d, x + size / 2, top + size / 2, size,
 				   pt, in->m);
@@ -696,13 +745,9 @@ static void draw_patient(struct pen *p, const struct hud_info *in)
 	}
 	draw_pain_words(p, pt, in->m);
 	draw_vitals(p, pt);
-	draw_position(p, pt);
-	draw_gas(p, in, burst);
+	draw_position_gas(p, in, burst);
 	draw_hand_valves(p, in);
 	draw_lens(p, pt);
-	if (in->voice) {
-		line(p, FONT_SMALL, dim, in->voice);
-	}
 }
 
 /* V, shown with DIGITS decimals: no "-0.0" for a hair below zero. */
@@ -716,21 +761,22 @@ static float bar_x(float x0, float w, double v)
 	return x0 + w / 2 + (float)(fmax(-1, fmin(1, v)) * w / 2);
 }
 
-/* One axis: label, a bar of what the drive gets (the force model's ask
- * as a line, the hand's push as a tick), the value. */
+/* One axis in the column from X, COL px wide, on the pen's line: label,
+ * a bar of what the drive gets (the force model's ask as a line, the
+ * hand's push as a tick), the value. */
 static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
-		     int a)
+		     int a, float x, float col)
 {
 	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
 	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
-	float x0 = p->x + label_w, w = p->w - label_w - value_w;
+	float x0 = x + label_w, w = col - label_w - value_w;
 	float h = p->small * 0.8f, y = p->y + p->small * 0.25f;
 	float v = bar_x(x0, w, ax->limited / axis_scale[a]);
 	float c = bar_x(x0, w, ax->command / axis_scale[a]);
 	float hand = bar_x(x0, w, ax->hand / axis_scale[a]);
 	float mid = x0 + w / 2;
 
-	draw2d_text(p->d, FONT_SMALL, p->x, p->y + p->small, dim,
+	draw2d_text(p->d, FONT_SMALL, x, p->y + p->small, dim,
 		    axis_label[a]);
 	draw2d_rect(p->d, x0, y, w, h, track);
 	draw2d_rect(p->d, fminf(mid, v), y, fabsf(v - mid), h, axis_rgb[a]);
@@ -739,7 +785,33 @@ static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
 	draw2d_printf(p->d, FONT_SMALL, x0 + w + 8, p->y + p->small, white,
 		      a == ENDOSIM_AXIS_INSERTION ? "%+.1f N" : "%+.3f N m",
 		      tidy(ax->limited, a == ENDOSIM_AXIS_INSERTION ? 1 : 3));
-	p->y += p->small * 1.5f;
+}
+
+/* The axes' bars, a row each; in a compact panel wide enough for bars
+ * of BAR_MIN_SMALLS, two to a row. */
+#define BAR_MIN_SMALLS 4.0f
+static void draw_bars(struct pen *p, const struct hud_info *in)
+{
+	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
+	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
+	float gutter = p->small * 1.5f, col = (p->w - gutter) / 2;
+	int per_row = in->compact &&
+		      col - label_w - value_w >= BAR_MIN_SMALLS * p->small
+		      ? 2 : 1;
+
+	if (per_row == 1) {
+		col = p->w;
+	}
+	for (int a = 0; a < ENDOSIM_AXES; a += per_row) {
+		if (!room(p, p->small * 1.5f)) {
+			continue;
+		}
+		for (int k = 0; k < per_row && a + k < ENDOSIM_AXES; k++) {
+			draw_bar(p, &in->st->axis[a + k], a + k,
+				 p->x + (float)k * (col + gutter), col);
+		}
+		p->y += p->small * 1.5f;
+	}
 }
 
 /* The rod model's tube: its pull at the carriage, the wall along it. */
@@ -790,6 +862,9 @@ static void draw_chart(struct pen *p, const struct hud *h, double t_s)
 	float ch = p->small * 5, x0 = p->x, w = p->w;
 	float mid = p->y + ch / 2;
 
+	if (!room(p, ch + p->small * 0.5f)) {
+		return;
+	}
 	draw2d_rect(p->d, x0, p->y, w, ch, track);
 	draw2d_rect(p->d, x0, mid, w, 1, track);
 	for (unsigned int k = 1; k < h->count; k++) {
@@ -818,6 +893,9 @@ static void draw_help(struct pen *p, const char *const *keys)
 		const char *tab = strchr(keys[k], '\t');
 		char key[48];
 
+		if (!room(p, p->small * 1.3f)) {
+			continue;
+		}
 		snprintf(key, sizeof(key), "%.*s", (int)(tab - keys[k]),
 			 keys[k]);
 		draw2d_text(p->d, FONT_SMALL, p->x, p->y + p->small, amber,
@@ -828,16 +906,35 @@ static void draw_help(struct pen *p, const char *const *keys)
 	}
 }
 
+/* The footer's two lines end at BOTTOM; the gap and the note above
+ * them. */
+#define FOOTER_SMALLS 2.9f
+#define ABOVE_FOOTER_SMALLS (0.6f + 1.35f)
+
+/* What found no room, in a line of its own. */
+static void draw_hidden(struct pen *p)
+{
+	char text[96];
+
+	if (!p->hidden) {
+		return;
+	}
+	snprintf(text, sizeof(text), "+ %d more line%s: no room here",
+		 p->hidden, p->hidden == 1 ? "" : "s");
+	put(p, FONT_SMALL, dim, text);
+}
+
 static void draw_footer(struct pen *p, const struct hud_info *in,
 			float bottom)
 {
 	char text[192];
 
-	p->y = fmaxf(p->y + p->small * 0.6f, bottom - p->small * 2.9f);
+	p->y = fmaxf(p->y + p->small * 0.6f,
+		     bottom - p->small * FOOTER_SMALLS);
 	if (*in->rig_problem) {
-		line(p, FONT_SMALL, amber, in->rig_problem);
+		put(p, FONT_SMALL, amber, in->rig_problem);
 	} else {
-		line(p, FONT_SMALL, dim, *in->rig_said ? in->rig_said :
+		put(p, FONT_SMALL, dim, *in->rig_said ? in->rig_said :
 				in->driving ? "your hand drives the rig" :
 					      "H: keys");
 	}
@@ -849,13 +946,14 @@ static void draw_footer(struct pen *p, const struct hud_info *in,
 		snprintf(text, sizeof(text), "%.0f fps, %u triangles, state "
 			 "%.1f ms old", in->fps, in->triangles, in->age_ms);
 	}
-	line(p, FONT_SMALL, dim, text);
+	put(p, FONT_SMALL, dim, text);
 }
 
 static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 		       const struct hud_layout *lay, int fb_h, double t_s)
 {
 	const char *const *keys = in->replay ? hud_replay_keys : hud_keys;
+	bool patient = in->st && in->st->patient.enabled;
 
 	draw_state(p, in);
 	if (in->replay && in->st) {
@@ -878,17 +976,23 @@ static void draw_panel(struct hud *h, struct pen *p, const struct hud_info *in,
 			draw_help(p, keys);
 			return;
 		}
-		for (int a = 0; a < ENDOSIM_AXES; a++) {
-			draw_bar(p, &in->st->axis[a], a);
-		}
-		if (!in->compact && !in->st->patient.enabled) {
-			draw_parts(p, in->st);
-			gap(p);
-		}
-		if (in->st->patient.enabled) {
+		if (patient && in->compact) {
+			/* little room: the patient before the forces */
 			draw_patient(p, in);
-		} else if (!in->compact) {
-			draw_chart(p, h, t_s);
+			gap(p);
+			draw_bars(p, in);
+		} else {
+			draw_bars(p, in);
+			if (patient) {
+				draw_patient(p, in);
+			} else if (!in->compact) {
+				draw_parts(p, in->st);
+				gap(p);
+				draw_chart(p, h, t_s);
+			}
+		}
+		if (patient && in->voice) {
+			line(p, FONT_SMALL, dim, in->voice);
 		}
 	} else if (in->help) {
 		draw_help(p, keys);
@@ -964,22 +1068,38 @@ void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 {
 	struct endo_rect r = lay->panel;
 	float top = (float)(hgt - r.y - r.h);
+	float bottom = top + (float)r.h - MARGIN_PX;
+	float small = draw2d_px(d, FONT_SMALL);
 	struct pen p = {
 		.d = d, .h = h, .x = (float)r.x + MARGIN_PX,
 		.y = top + MARGIN_PX,
 		.w = (float)r.w - 2 * MARGIN_PX,
-		.small = draw2d_px(d, FONT_SMALL),
+		.small = small,
 		.large = draw2d_px(d, FONT_LARGE),
+		.limit = bottom - small * (FOOTER_SMALLS + ABOVE_FOOTER_SMALLS),
 	};
 
 	(void)w;
 	h->lines = 0;
 	draw_panel(h, &p, in, lay, hgt, t_s);
-	draw_footer(&p, in, top + (float)r.h - MARGIN_PX);
+	draw_hidden(&p);
+	h->hidden = p.hidden;
+	draw_footer(&p, in, bottom);
+	h->end_px = p.y;
 	banners(d, lay, in, hgt);
 }
 
 const char *hud_said(const struct hud *h, int i)
 {
 	return i >= 0 && i < h->lines ? h->said[i] : NULL;
+}
+
+int hud_hidden(const struct hud *h)
+{
+	return h->hidden;
+}
+
+float hud_end_px(const struct hud *h)
+{
+	return h->end_px;
 }

@@ -26,7 +26,8 @@
  * (hud_info voice); PERFORATED in red once a wall tore. A
  * perforation (by the gas or by the tip) is also a red banner across
  * the top of the image, "PERFORATION: sigmoid". A compact panel has
- * the lines without the pictures.
+ * the lines without the pictures, the patient's before the force's
+ * bars, the position and the gas on one line where it fits.
  *
  * A replay (endoview --replay) shows the recorded state, fault and forces
  * the same way, with the replay's lines in place of the state's hint
@@ -37,7 +38,13 @@
  * Layout: the image is a square as high as the window (less room for the
  * panel in a narrow window) on the right, the panel on the left; with
  * both views, the overview is an inset at the bottom of the panel and the
- * panel above it compact (no parts of the force, no chart).
+ * panel above it compact (no parts of the force, no chart). The footer
+ * (the keys or the rig's last word, the frame rate) keeps the panel's
+ * bottom; what does not fit above it is left out from the first thing
+ * that does not, the rest with it (the panel's order puts the least
+ * needed last: the voice, the lens, the valves), and a line says how
+ * many ("+ 3 more lines: no room here") rather than writing over the
+ * overview.
  *
  * Main thread, with the GL context current (it draws through draw2d.h).
  */
@@ -137,6 +144,14 @@ void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 /* Line I of the panel's text as the last hud_draw() drew it (cut where
  * the panel ends), NULL past the last: what the panel says, for tests. */
 const char *hud_said(const struct hud *h, int i);
+
+/* How many of the last panel's lines (a bar, the chart, the patient's
+ * pictures: one each) found no room and were not drawn. */
+int hud_hidden(const struct hud *h);
+
+/* Where the last panel's text (its footer the last) ended: px from the
+ * framebuffer's top, within the panel's rectangle. */
+float hud_end_px(const struct hud *h);
 
 /* The key help, one line per key, NULL-terminated: live, replay. */
 extern const char *const hud_keys[];

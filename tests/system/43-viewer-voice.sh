@@ -22,6 +22,9 @@
 # without an audio device one line says
 # so and the replay goes on. Live, on the daemon's own pain (the tip held
 # into the wall until it tears), the patient groans, then cries out.
+# In both views the panel above the overview says what it has room for
+# (the patient's lines first) and counts the rest in a line, its text
+# ending above the overview.
 # ENDOSIM_KEEP_SHOTS=DIR keeps the pictures.
 . "$(dirname "$0")/../common.sh"
 . "$TOP/tests/viewer_lib.sh"
@@ -143,8 +146,9 @@ VIEWER=$!
 hear voice --frames 870 &
 HEARD=$!
 # --mute: muted from the start, the panel says so (the silence itself is
-# the key's run's: the same muting, over the groan and ow)
-hear mute --mute --frames 120 --print-state &
+# the key's run's: the same muting, over the groan and ow); in a window
+# whose panel has room for the voice's line, the patient's last
+hear mute --mute --size 640x480 --frames 120 --print-state &
 MUTED=$!
 
 # --- no audio device ---------------------------------------------------------
@@ -187,6 +191,39 @@ check "... the panel says it" grep -q '^hud: PERFORATED: sigmoid$' \
 torn_red=$(png_value "$TMP/torn.png" "$TOP_STRIP" red)
 check "... the red banner across the image's top (red $torn_red)" \
 	float_test "$torn_red > 0.5"
+check "... the panel has room for all it says" \
+	grep -q '^panel: hidden=0 ' "$VIEW_OUT"
+
+# both SIZE: the paused replay at 14 s in both views at SIZE: the panel
+# above the overview says less than the endoscopic view's (the patient's
+# first, the perforation and the pain among it); its text, footer last,
+# ends above the overview, and a line counts what had no room. The
+# overview's top left (clear of the colon here) has no text ($BAND_LIT)
+both() {
+	local x y w h
+	endoview --no-vsync --size "$1" --replay "$FILE" --paused --seek 14 \
+		--view both --frames 4 --print-state \
+		--screenshot "$TMP/both.png" >"$VIEW_OUT" 2>&1 || return 1
+	read -r x y w h < <(view_rect overview)
+	END_PX=$(sed -n 's/^panel: .* end_px=\([0-9]*\)$/\1/p' "$VIEW_OUT")
+	HIDDEN=$(sed -n 's/^panel: hidden=\([0-9]*\) .*/\1/p' "$VIEW_OUT")
+	OVERVIEW_Y=$y
+	BAND_LIT=$(png_value "$TMP/both.png" \
+		"rect:$x,$y,$((w / 3)),$((h / 12))" lit)
+	grep -q '^hud: PERFORATED: sigmoid$' "$VIEW_OUT" &&
+		grep -q '^hud: pain ' "$VIEW_OUT"
+}
+for size in 1280x720 960x540; do
+	check "both views at $size, perforated: the panel says it and the pain" \
+		both "$size"
+	check "... its text ends (at $END_PX px) above the overview (from $OVERVIEW_Y)" \
+		test "${END_PX:-999999}" -le "$OVERVIEW_Y"
+	check "... a line counts the $HIDDEN with no room" eval \
+		'[ "${HIDDEN:-0}" -gt 0 ] &&
+		 grep -q "^hud: + $HIDDEN more lines: no room here$" "$VIEW_OUT"'
+	check "... no text over the overview's top left (lit $BAND_LIT)" \
+		float_test "$BAND_LIT < 0.002"
+done
 
 # --- heard -------------------------------------------------------------------
 check_status "the replay, heard through the wave backend" 0 wait "$HEARD"
