@@ -108,6 +108,66 @@ GLuint gfx_texture(int w, int h, int channels, const uint8_t *pixels,
 	return t;
 }
 
+void gfx_target_drop(struct gfx_target *t)
+{
+	glDeleteFramebuffers(1, &t->fbo);
+	glDeleteRenderbuffers(1, &t->depth);
+	glDeleteTextures(1, &t->texture);
+	*t = (struct gfx_target){ 0 };
+}
+
+bool gfx_target(struct gfx_target *t, int w, int h,
+		enum gfx_target_kind kind)
+{
+	bool complete;
+
+	if (t->texture && t->w == w && t->h == h) {
+		return true;
+	}
+	gfx_target_drop(t);
+	t->texture = gfx_texture(w, h, 4, NULL, false, false);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	if (!t->texture) {
+		return false;
+	}
+	t->w = w;
+	t->h = h;
+	if (kind == GFX_TARGET_TEXTURE) {
+		return true;
+	}
+	glGenFramebuffers(1, &t->fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+			       GL_TEXTURE_2D, t->texture, 0);
+	if (kind == GFX_TARGET_DEPTH) {
+		glGenRenderbuffers(1, &t->depth);
+		glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+		glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w,
+				      h);
+		glBindRenderbuffer(GL_RENDERBUFFER, 0);
+		glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+					  GL_RENDERBUFFER, t->depth);
+	}
+	complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) ==
+		   GL_FRAMEBUFFER_COMPLETE;
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	if (!complete) {
+		gfx_target_drop(t);
+	}
+	return complete;
+}
+
+const char *const gfx_viewport_vertex_src =
+	"#version 330 core\n"
+	"uniform vec4 u_texrect;\n"
+	"out vec2 v_uv;\n"
+	"void main() {\n"
+	"	vec2 p = vec2((gl_VertexID & 1) * 4 - 1,\n"
+	"		      (gl_VertexID & 2) * 2 - 1);\n"
+	"	v_uv = u_texrect.xy + (0.5 * p + 0.5) * u_texrect.zw;\n"
+	"	gl_Position = vec4(p, 0.0, 1.0);\n"
+	"}\n";
+
 static void GLAPIENTRY on_debug(GLenum source, GLenum type, GLuint id,
 				GLenum severity, GLsizei length,
 				const GLchar *message, const void *user)

@@ -10,34 +10,20 @@
 #include "viewer/gfx.h"
 
 struct imagescale {
-	GLuint fbo, colour, depth;
+	struct gfx_target target;
 	GLuint program, vao; /* the copy into the window */
-	GLint u_from;
-	int w, h;          /* the target's, px */
-	struct endo_rect from; /* what was drawn in it */
+	GLint u_texrect;
+	struct endo_rect from; /* what was drawn in the target */
 	bool window_depth; /* the window has a depth buffer */
 	bool bound;        /* between begin and end */
 	bool failed;       /* a target could not be made: said once */
 };
 
-/* The target's texture over the viewport, sampled through its filter: a
- * rectangle of two triangles made from the vertex' index (no buffer), an
- * affine texture coordinate over u_from (the drawn part, in the
- * texture's 0..1), no depth, no blending: with the window's depth gone,
- * a fifth to a seventh of the frame's work less than glBlitFramebuffer()
- * into a window with a depth buffer (docs/ENGINEER.md). */
-static const char *vertex_src =
-	"#version 330 core\n"
-	"uniform vec4 u_from;\n"
-	"out vec2 v_uv;\n"
-	"void main() {\n"
-	"	const vec2 corner[6] = vec2[](vec2(0, 0), vec2(1, 0),\n"
-	"		vec2(0, 1), vec2(0, 1), vec2(1, 0), vec2(1, 1));\n"
-	"	vec2 c = corner[gl_VertexID];\n"
-	"	v_uv = u_from.xy + c * u_from.zw;\n"
-	"	gl_Position = vec4(2.0 * c - 1.0, 0.0, 1.0);\n"
-	"}\n";
-
+/* The target's texture over the viewport (gfx_viewport_vertex_src, its
+ * u_texrect the drawn part), sampled through its filter, no depth, no
+ * blending: with the window's depth gone, a fifth to a seventh of the
+ * frame's work less than glBlitFramebuffer() into a window with a depth
+ * buffer (docs/ENGINEER.md). */
 static const char *fragment_src =
 	"#version 330 core\n"
 	"uniform sampler2D u_image;\n"
@@ -67,22 +53,13 @@ struct imagescale *imagescale_create(void)
 		return NULL;
 	}
 	s->window_depth = window_depth();
-	s->program = gfx_program("imagescale", vertex_src, fragment_src);
+	s->program = gfx_program("imagescale", gfx_viewport_vertex_src,
+				 fragment_src);
 	if (s->program) {
-		s->u_from = glGetUniformLocation(s->program, "u_from");
+		s->u_texrect = glGetUniformLocation(s->program, "u_texrect");
 		glGenVertexArrays(1, &s->vao);
 	}
 	return s;
-}
-
-/* The target, not the copy's program. */
-static void drop(struct imagescale *s)
-{
-	glDeleteFramebuffers(1, &s->fbo);
-	glDeleteTextures(1, &s->colour);
-	glDeleteRenderbuffers(1, &s->depth);
-	s->fbo = s->colour = s->depth = 0;
-	s->w = s->h = 0;
 }
 
 void imagescale_destroy(struct imagescale *s)
@@ -90,7 +67,7 @@ void imagescale_destroy(struct imagescale *s)
 	if (!s) {
 		return;
 	}
-	drop(s);
+	gfx_target_drop(&s->target);
 	glDeleteProgram(s->program);
 	glDeleteVertexArrays(1, &s->vao);
 	free(s);
@@ -110,40 +87,6 @@ double imagescale_for(const char *renderer)
 	return 1;
 }
 
-/* A target of W x H; false when the driver will not have it. */
-static bool make(struct imagescale *s, int w, int h)
-{
-	if (s->fbo && s->w == w && s->h == h) {
-		return true;
-	}
-	drop(s);
-	s->colour = s->program ? gfx_texture(w, h, 4, NULL, false, false) : 0;
-	if (!s->colour) {
-		return false;
-	}
-	glBindTexture(GL_TEXTURE_2D, 0);
-	glGenRenderbuffers(1, &s->depth);
-	glBindRenderbuffer(GL_RENDERBUFFER, s->depth);
-	glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-	glBindRenderbuffer(GL_RENDERBUFFER, 0);
-	glGenFramebuffers(1, &s->fbo);
-	glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
-	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
-			       GL_TEXTURE_2D, s->colour, 0);
-	glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
-				  GL_RENDERBUFFER, s->depth);
-	if (glCheckFramebufferStatus(GL_FRAMEBUFFER) !=
-	    GL_FRAMEBUFFER_COMPLETE) {
-		glBindFramebuffer(GL_FRAMEBUFFER, 0);
-		drop(s);
-		return false;
-	}
-	glBindFramebuffer(GL_FRAMEBUFFER, 0);
-	s->w = w;
-	s->h = h;
-	return true;
-}
-
 struct endo_rect imagescale_begin(struct imagescale *s, struct endo_rect r,
 				  double scale)
 {
@@ -156,13 +99,13 @@ struct endo_rect imagescale_begin(struct imagescale *s, struct endo_rect r,
 	    w < 1 || h < 1) {
 		return r;
 	}
-	if (!make(s, w, h)) {
+	if (!s->program || !gfx_target(&s->target, w, h, GFX_TARGET_DEPTH)) {
 		log_warn("3-D view: no offscreen target of %dx%d: drawn in "
 			 "the window, without a depth test", w, h);
 		s->failed = true;
 		return r;
 	}
-	glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, s->target.fbo);
 	s->bound = true;
 	s->from = full ? r : (struct endo_rect){ 0, 0, w, h };
 	return s->from;
@@ -180,16 +123,16 @@ void imagescale_end(struct imagescale *s, struct endo_rect r)
 	glViewport(r.x, r.y, r.w, r.h);
 	glDisable(GL_BLEND);
 	glUseProgram(s->program);
-	glUniform4f(s->u_from, (float)s->from.x / (float)s->w,
-		    (float)s->from.y / (float)s->h,
-		    (float)s->from.w / (float)s->w,
-		    (float)s->from.h / (float)s->h);
+	glUniform4f(s->u_texrect, (float)s->from.x / (float)s->target.w,
+		    (float)s->from.y / (float)s->target.h,
+		    (float)s->from.w / (float)s->target.w,
+		    (float)s->from.h / (float)s->target.h);
 	glActiveTexture(GL_TEXTURE0);
-	glBindTexture(GL_TEXTURE_2D, s->colour);
+	glBindTexture(GL_TEXTURE_2D, s->target.texture);
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
 	glBindVertexArray(s->vao);
-	glDrawArrays(GL_TRIANGLES, 0, 6);
+	glDrawArrays(GL_TRIANGLES, 0, 3);
 	glBindVertexArray(0);
 	s->bound = false;
 }

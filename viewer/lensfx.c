@@ -4,7 +4,6 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "base/log.h"
 #include "viewer/gfx.h"
@@ -26,28 +25,14 @@ static const char *const uniform_name[UNIFORMS] = {
 	"u_smear", "u_murk", "u_redout", "u_water", "u_time", "u_edge",
 };
 
-/* A texture and the framebuffer that draws into it. */
-struct target {
-	GLuint texture, fbo;
-	int w, h;
-};
-
 struct lensfx {
 	GLuint program, shrink, noise, vao;
 	GLint u[UNIFORMS];
 	GLint shrink_source, shrink_ratio;
-	struct target image;      /* the image as drawn (no framebuffer) */
-	struct target soft[SOFT]; /* its blurred copies */
+	struct gfx_target image;      /* the image as drawn (a texture) */
+	struct gfx_target soft[SOFT]; /* its blurred copies */
+	bool failed; /* a target could not be made: said, no lens since */
 };
-
-/* One triangle over the viewport, from the vertex ids alone. */
-static const char *vertex_src =
-	"#version 330 core\n"
-	"void main() {\n"
-	"	vec2 p = vec2((gl_VertexID & 1) * 4 - 1,\n"
-	"		      (gl_VertexID & 2) * 2 - 1);\n"
-	"	gl_Position = vec4(p, 0.0, 1.0);\n"
-	"}\n";
 
 /*
  * 1 / u_ratio of the source each way (u_ratio 4 or 2): the mean of each
@@ -203,8 +188,10 @@ struct lensfx *lensfx_create(void)
 	if (!fx) {
 		return NULL;
 	}
-	fx->program = gfx_program("lens", vertex_src, fragment_src);
-	fx->shrink = fx->program ? gfx_program("lens's blur", vertex_src,
+	fx->program = gfx_program("lens", gfx_viewport_vertex_src,
+				  fragment_src);
+	fx->shrink = fx->program ? gfx_program("lens's blur",
+					       gfx_viewport_vertex_src,
 					       shrink_src) : 0;
 	fx->noise = fx->shrink ? make_noise() : 0;
 	if (!fx->noise) {
@@ -221,21 +208,14 @@ struct lensfx *lensfx_create(void)
 	return fx;
 }
 
-static void drop_target(struct target *t)
-{
-	glDeleteFramebuffers(1, &t->fbo);
-	glDeleteTextures(1, &t->texture);
-	memset(t, 0, sizeof(*t));
-}
-
 void lensfx_destroy(struct lensfx *fx)
 {
 	if (!fx) {
 		return;
 	}
-	drop_target(&fx->image);
+	gfx_target_drop(&fx->image);
 	for (int k = 0; k < SOFT; k++) {
-		drop_target(&fx->soft[k]);
+		gfx_target_drop(&fx->soft[k]);
 	}
 	glDeleteTextures(1, &fx->noise);
 	glDeleteVertexArrays(1, &fx->vao);
@@ -244,51 +224,37 @@ void lensfx_destroy(struct lensfx *fx)
 	free(fx);
 }
 
-/* T as a W x H texture (a framebuffer's with FBO), made anew when its
- * size changed. */
-static void size_target(struct target *t, int w, int h, bool fbo)
-{
-	if (t->texture && t->w == w && t->h == h) {
-		return;
-	}
-	drop_target(t);
-	t->texture = gfx_texture(w, h, 4, NULL, false, false);
-	if (fbo) {
-		glGenFramebuffers(1, &t->fbo);
-		glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-		glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
-				       GL_TEXTURE_2D, t->texture, 0);
-		glBindFramebuffer(GL_FRAMEBUFFER, 0);
-	}
-	t->w = w;
-	t->h = h;
-}
-
 /* The image in R of the framebuffer bound into its texture, and its
  * blurred copies, the first a quarter of the image's side at FACTOR 1
  * (at FACTOR 0.5, the image drawn at half its side: a half); that
- * framebuffer bound again. */
-static void copy_image(struct lensfx *fx, struct endo_rect r, double factor)
+ * framebuffer bound again. False when a target could not be made. */
+static bool copy_image(struct lensfx *fx, struct endo_rect r, double factor)
 {
-	const struct target *from = &fx->image;
+	const struct gfx_target *from = &fx->image;
 	GLint bound = 0;
 
 	glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
 
 	glActiveTexture(GL_TEXTURE0);
-	size_target(&fx->image, r.w, r.h, false);
+	if (!gfx_target(&fx->image, r.w, r.h, GFX_TARGET_TEXTURE)) {
+		return false;
+	}
 	glBindTexture(GL_TEXTURE_2D, fx->image.texture);
 	glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, r.x, r.y, r.w, r.h);
 	glUseProgram(fx->shrink);
 	glUniform1i(fx->shrink_source, 0);
 	glBindVertexArray(fx->vao);
 	for (int k = 0; k < SOFT; k++) {
-		struct target *to = &fx->soft[k];
+		struct gfx_target *to = &fx->soft[k];
 		int ratio = k == 0 ? (int)lround(SHRINK * factor) : SHRINK;
 
 		glUniform1f(fx->shrink_ratio, (float)ratio);
-		size_target(to, from->w / ratio > 0 ? from->w / ratio : 1,
-			    from->h / ratio > 0 ? from->h / ratio : 1, true);
+		if (!gfx_target(to, from->w / ratio > 0 ? from->w / ratio : 1,
+				from->h / ratio > 0 ? from->h / ratio : 1,
+				GFX_TARGET_COLOUR)) {
+			glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)bound);
+			return false;
+		}
 		glBindFramebuffer(GL_FRAMEBUFFER, to->fbo);
 		glViewport(0, 0, to->w, to->h);
 		glBindTexture(GL_TEXTURE_2D, from->texture);
@@ -296,15 +262,21 @@ static void copy_image(struct lensfx *fx, struct endo_rect r, double factor)
 		from = to;
 	}
 	glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)bound);
+	return true;
 }
 
 void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
 		 struct endo_rect r, double factor, double t_s)
 {
-	if (!lensfx_visible(p) || r.w <= 0 || r.h <= 0) {
+	if (fx->failed || !lensfx_visible(p) || r.w <= 0 || r.h <= 0) {
 		return;
 	}
-	copy_image(fx, r, factor);
+	if (!copy_image(fx, r, factor)) {
+		log_warn("lens: no offscreen target of %dx%d: the image "
+			 "drawn without the lens from now on", r.w, r.h);
+		fx->failed = true;
+		return;
+	}
 	glViewport(r.x, r.y, r.w, r.h);
 	glUseProgram(fx->program);
 	glUniform1i(fx->u[U_IMAGE], 0);

@@ -71,6 +71,8 @@ double lensfx_image_factor(const struct endosim_patient_state *p);
  * this frame, in the framebuffer bound: the back buffer, or
  * imagescale.h's target), the image drawn at FACTOR of its side
  * (lensfx_image_factor()'s, or 1), at time T_S (s; the jet's ripples).
+ * Where the driver will not have its offscreen targets it says so once
+ * and draws nothing from then on: the image as it is.
  */
 void lensfx_draw(struct lensfx *fx, const struct endosim_patient_state *p,
 		 struct endo_rect r, double factor, double t_s);
