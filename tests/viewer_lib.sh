@@ -116,3 +116,16 @@ png_value() {
 float_test() {
 	awk "BEGIN { exit !($1) }"
 }
+
+# hold_scope READY ARGS...: the daemon (ARGS its own) on the simulated
+# rig, enabled, pushing the scope 60 cm in and holding it there, once
+# the status makes READY true (the benchmarks' fixed view).
+HOLD_AT='.axes.insertion.position > 0.59'
+hold_scope() {
+	local ready=$1
+	shift
+	printf '%s\n' '0 insertion target 0.60 2' >"$TMP/hold.scn"
+	start_daemon "$@" --scenario "$TMP/hold.scn" || return 1
+	ctl enable >/dev/null
+	wait_for status_true "$ready"
+}

@@ -22,8 +22,6 @@ set -u
 
 FRAMES=${VIEWER_FRAMES:-150}
 SIZES="1280x720 640x480"
-SCN="$TMP/hold.scn"
-printf '%s\n' '0 insertion target 0.60 2' >"$SCN"
 
 # measure VIEW SIZE: one run; prints its row.
 measure() {
@@ -52,13 +50,11 @@ measure() {
 # mesh NAME ARGS...: the daemon with the colon at that resolution, every
 # view ($VIEWS) at every size, once the status makes $READY true.
 VIEWS="empty endo endo-full overview"
-READY='.axes.insertion.position > 0.59'
+READY=$HOLD_AT
 mesh() {
 	local name=$1
 	shift
-	start_daemon "$@" --scenario "$SCN" || return 1
-	ctl enable >/dev/null
-	wait_for status_true "$READY"
+	hold_scope "$READY" "$@" || return 1
 	echo "colon: $name, $(ctl --json scene info 2>/dev/null |
 		jq -r '"\(.triangles) triangles"' 2>/dev/null)"
 	printf '  %-9s %-9s %7s %8s %8s %7s %9s %8s %9s\n' view size fps \

@@ -29,13 +29,9 @@ fi
 for b in "$@"; do
 	[ -x "$b" ] || { echo "$b: not an executable" >&2; exit 2; }
 done
-SCN="$TMP/hold.scn"
-printf '%s\n' '0 insertion target 0.60 2' >"$SCN"
 start_xvfb 1920x1080 || exit 1
 # shellcheck disable=SC2086 # word splitting intended
-start_daemon ${AB_DAEMON:-} --scenario "$SCN" || exit 1
-ctl enable >/dev/null
-wait_for status_true '.axes.insertion.position > 0.59' || exit 1
+hold_scope "$HOLD_AT" ${AB_DAEMON:-} || exit 1
 echo "colon: $(ctl --json scene info 2>/dev/null | jq -r .triangles) triangles"
 for r in $(seq "${AB_ROUNDS:-3}"); do
 	for b in "$@"; do
