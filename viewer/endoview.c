@@ -745,15 +745,21 @@ static void account(struct app *a, const struct endosim_state *st,
 	a->frame++;
 }
 
-/* The P key: the frame as endoview-DATE-TIME.png in the current folder. */
+/* The P key: the frame as endoview-DATE-TIME.png in the current folder
+ * (endoview-DATE-TIME-2.png and on for more in the same second: none
+ * written over). */
 static void capture(int w, int h)
 {
-	char name[64];
+	char stamp[32], name[64];
 	time_t t = time(NULL);
 	struct tm tm;
 
 	localtime_r(&t, &tm);
-	strftime(name, sizeof(name), "endoview-%Y%m%d-%H%M%S.png", &tm);
+	strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &tm);
+	snprintf(name, sizeof(name), "endoview-%s.png", stamp);
+	for (int k = 2; access(name, F_OK) == 0 && k < 1000; k++) {
+		snprintf(name, sizeof(name), "endoview-%s-%d.png", stamp, k);
+	}
 	if (shot_write(name, w, h)) {
 		log_err("%s: cannot write the picture", name);
 	} else {

@@ -69,6 +69,7 @@ static const float red[4] = { 1.00f, 0.27f, 0.22f, 1 };
 static const float ghost[4] = { 0.35f, 0.70f, 1.00f, 1 }; /* the expert's */
 static const float track[4] = { 1, 1, 1, 0.09f };
 static const float shade[4] = { 0, 0, 0, 0.72f };
+static const float black[4] = { 0, 0, 0, 1 };
 static const float perforated_rgb[4] = { 0.85f, 0.07f, 0.07f, 1 };
 static const float axis_rgb[ENDOSIM_AXES][4] = {
 	{ 0.35f, 0.75f, 1.00f, 1 }, { 0.85f, 0.55f, 1.00f, 1 },
@@ -1066,20 +1067,28 @@ static void banners(struct draw2d *d, const struct hud_layout *lay,
 void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
 	      const struct hud_info *in, int w, int hgt, double t_s)
 {
-	struct endo_rect r = lay->panel;
-	float top = (float)(hgt - r.y - r.h);
-	float bottom = top + (float)r.h - MARGIN_PX;
-	float small = draw2d_px(d, FONT_SMALL);
+	struct endo_rect r = lay->panel, o = lay->overview;
+	float top, bottom, small = draw2d_px(d, FONT_SMALL);
 	struct pen p = {
 		.d = d, .h = h, .x = (float)r.x + MARGIN_PX,
-		.y = top + MARGIN_PX,
 		.w = (float)r.w - 2 * MARGIN_PX,
 		.small = small,
 		.large = draw2d_px(d, FONT_LARGE),
-		.limit = bottom - small * (FOOTER_SMALLS + ABOVE_FOOTER_SMALLS),
 	};
 
 	(void)w;
+	if (in->help && lay->endo.w && o.w && o.y + o.h <= r.y) {
+		/* the keys asked for with both views: the panel takes the
+		 * overview's inset below it too */
+		draw2d_rect(d, (float)o.x, (float)(hgt - o.y - o.h),
+			    (float)o.w, (float)o.h, black);
+		r.h += r.y - o.y;
+		r.y = o.y;
+	}
+	top = (float)(hgt - r.y - r.h);
+	bottom = top + (float)r.h - MARGIN_PX;
+	p.y = top + MARGIN_PX;
+	p.limit = bottom - small * (FOOTER_SMALLS + ABOVE_FOOTER_SMALLS);
 	h->lines = 0;
 	draw_panel(h, &p, in, lay, hgt, t_s);
 	draw_hidden(&p);

@@ -44,7 +44,8 @@
  * that does not, the rest with it (the panel's order puts the least
  * needed last: the voice, the lens, the valves), and a line says how
  * many ("+ 3 more lines: no room here") rather than writing over the
- * overview.
+ * overview. The keys (hud_info help) take the overview's inset too: the
+ * panel then reaches the window's bottom.
  *
  * Main thread, with the GL context current (it draws through draw2d.h).
  */

@@ -344,6 +344,46 @@ xdotool key p
 check "resized to 800x600: the next picture is that size" \
 	wait_for eval '[ "$(png_value "$(ls "$TMP"/endoview-*.png | head -n 1)" \
 		rect:0,0,4000,4000 n)" = 480000 ]'
+# P where a picture of that second is already there (placeholders for
+# the next 30 s): written beside it, -2, the placeholder left empty.
+# Then both views (V twice), a picture, the keys (H), another: with the
+# keys asked for, the panel takes the overview's inset (800x600: the
+# bottom 240 x 240) for them, the keys' amber names there, the overview's
+# blue-grey ground gone. A picture after each key marks a frame drawn.
+rm -f "$TMP"/endoview-*.png
+now=$(date +%s)
+for s in $(seq 0 30); do
+	: >"$TMP/endoview-$(date -d "@$((now + s))" +%Y%m%d-%H%M%S).png"
+done
+# taken N: N pictures written (not the placeholders), the newest $SHOT
+taken() {
+	[ "$(find "$TMP" -maxdepth 1 -name 'endoview-*.png' -size +0 |
+		wc -l)" -ge "$1" ] &&
+		SHOT=$(ls -t $(find "$TMP" -maxdepth 1 -name 'endoview-*.png' \
+			-size +0) | head -n 1)
+}
+xdotool key v p
+check "P in a second that has a picture: another beside it" \
+	wait_for taken 1
+check "... named -2, the first left as it was" eval \
+	'case "$SHOT" in *-2.png) true ;; *) false ;; esac &&
+	 [ -z "$(find "$TMP" -maxdepth 1 -size +0 \
+		-name "endoview-*-[0-9][0-9][0-9][0-9][0-9][0-9].png")" ]'
+xdotool key v p
+wait_for taken 2
+plain=$SHOT
+xdotool key h p
+wait_for taken 3
+keys=$SHOT
+INSET=rect:0,360,240,240
+plain_amber=$(png_value "$plain" "$INSET" amber)
+keys_amber=$(png_value "$keys" "$INSET" amber)
+plain_mean=$(png_value "$plain" "$INSET" mean)
+keys_mean=$(png_value "$keys" "$INSET" mean)
+check "both views, the keys: amber names over the inset ($plain_amber -> $keys_amber)" \
+	float_test "$keys_amber > $plain_amber + 0.0007"
+check "... on black, not the overview (mean luma $plain_mean -> $keys_mean)" \
+	float_test "$keys_mean < $plain_mean"
 xdotool key q
 wait "$viewer"
 check "Q quits the viewer cleanly" test $? = 0
