@@ -146,8 +146,8 @@ void hud_draw(struct hud *h, struct draw2d *d, const struct hud_layout *lay,
  * the panel ends), NULL past the last: what the panel says, for tests. */
 const char *hud_said(const struct hud *h, int i);
 
-/* How many of the last panel's lines (a bar, the chart, the patient's
- * pictures: one each) found no room and were not drawn. */
+/* How many of the last panel's lines (a row of bars, the chart, the
+ * patient's pictures: one each) found no room and were not drawn. */
 int hud_hidden(const struct hud *h);
 
 /* Where the last panel's text (its footer the last) ended: px from the
