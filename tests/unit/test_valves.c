@@ -175,7 +175,7 @@ static void test_tool_rule(void **state)
 
 enum fake_mode {
 	FAKE_OK,
-	FAKE_SLOW,       /* each exchange hangs 600 ms */
+	FAKE_SLOW,       /* an exchange hangs while the mode is so */
 	FAKE_LATE,       /* drive 0 does not answer */
 	FAKE_LATE_OTHER, /* drive 1 does not answer */
 	FAKE_FAULT,      /* drive 0 faults */
@@ -224,7 +224,9 @@ static int fake_exchange(struct drive *d, const double *setpoint,
 	memset(s, 0, sizeof(*s) * (size_t)d->n);
 	switch (mode) {
 	case FAKE_SLOW:
-		nap_ms(600);
+		while (atomic_load(&f->mode) == FAKE_SLOW) {
+			nap_ms(10);
+		}
 		break;
 	case FAKE_LATE:
 		return drive_fail(d, 0, -ETIMEDOUT, "no reply");
@@ -378,6 +380,7 @@ static int bus_teardown(void **state)
 {
 	struct rig_valves *r = *state;
 
+	atomic_store(&r->f->mode, FAKE_OK); /* a failed test's hang ends */
 	bus_destroy(r->b);
 	free(r);
 	return 0;
