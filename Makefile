@@ -57,7 +57,7 @@ DEPS_BUILD = gcc make pkg-config protobuf-c-compiler libprotobuf-c-dev \
 # libFuzzer's runtime is only a recommendation of clang: named here
 DEPS_TEST = $(DEPS_BUILD) clang libclang-rt-14-dev libcmocka-dev socat jq sqlite3 \
 	    postgresql \
-	    procps systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
+	    procps iproute2 systemd valgrind umockdev libumockdev-dev libglib2.0-dev \
 	    $(DEPS_SCREEN) xdotool chromium sox
 DEPS_BENCH = $(DEPS_BUILD) rt-tests jq umockdev libumockdev-dev \
 	     libglib2.0-dev clang libclang-rt-14-dev $(DEPS_SCREEN)

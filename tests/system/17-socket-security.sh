@@ -27,15 +27,26 @@ check "a member of the group may command" as_users "$ENDOCTL" --socket "$SOCK/co
 check "-> ENABLED" test "$(status_field .state)" = ENABLED
 ctl disable >/dev/null
 
-# bounded clients: six silent holders fill the table, a seventh is turned away
+# bounded clients: six silent holders fill the table, a seventh is turned
+# away. Each holder is a socat that connects once this shell opens the
+# FIFO it reads and sends nothing until the shell closes it: the holders
+# stay however slowly they start, and leave together. The seventh tries
+# once all six are in (ss: the daemon's connected sockets on the path).
+mkfifo "$TMP/hold"
 holders=""
 for i in 1 2 3 4 5 6; do
-	sleep 1.2 | socat -u - "UNIX-CONNECT:$SOCK/status.sock" 2>/dev/null &
+	socat -u "OPEN:$TMP/hold" "UNIX-CONNECT:$SOCK/status.sock" 2>/dev/null &
 	holders="$holders $!"
 done
-sleep 0.3
+exec 3>"$TMP/hold"
+# connected N: N clients or more on status.sock
+connected() {
+	[ "$(ss -x state established | grep -cF " $SOCK/status.sock ")" -ge "$1" ]
+}
+check "six silent holders connected" wait_for connected 6
 check_status "a seventh client is turned away" 4 "$ENDOCTL" --socket "$SOCK" --timeout 500 status
 check "too many clients is logged" grep -q "too many clients (6)" "$LOG"
+exec 3>&-
 # shellcheck disable=SC2086
 wait $holders
 check "served again once they left" wait_for ctl status
