@@ -169,11 +169,11 @@ start_daemon() {
 # session status`) satisfies JQ.
 live_status() { ctl --json session status | jq -e "$1"; }
 
-# record NAME: a session of trainee NAME on the test's daemon, a few
-# hundred records long, stopped.
+# record NAME [N]: a session of trainee NAME on the test's (or the
+# slot's) daemon, more than N records long (300 unless given), stopped.
 record() {
 	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 300' &&
+		wait_for live_status ".records > ${2:-300}" &&
 		ctl session stop >/dev/null
 }
 
@@ -306,15 +306,6 @@ tally() {
 	fi
 	[ "$FAILED" -eq 0 ]
 	exit $?
-}
-
-# record_session NAME: a session of trainee NAME on the slot's daemon, a
-# hundred records long or more
-live_status() { ctl --json session status | jq -e "$1"; }
-record_session() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 100' &&
-		ctl session stop >/dev/null
 }
 
 # A suite stopped from outside (tests/run.sh's time limit) says so, with

@@ -31,8 +31,6 @@ check "... as session 1 in the session directory" \
 # its own (at or before this reading)
 t_start=$(status_field .scenario_time_s)
 ctl enable >/dev/null
-# live_status JQ: the session's live status satisfies JQ
-live_status() { ctl --json session status | jq -e "$1"; }
 check "live status: recording, records and live metrics coming in" \
 	wait_for live_status '.recording and .records > 3000 and
 	       .metrics.records > 3000 and .metrics.max_tip_s_m > 0.05'

@@ -31,8 +31,6 @@ fi
 ctl session start >/dev/null
 before=$(status_field .overruns)
 t0=$(now_s)
-# live_status JQ: the session's live status satisfies JQ
-live_status() { ctl --json session status | jq -e "$1"; }
 # the ring holds 500 records and the disk takes ~300 a second of the 1000
 WAIT_S=30 check "drops counted and reported while the disk lags (over 1000)" \
 	wait_for live_status '.recording and .drops > 1000'

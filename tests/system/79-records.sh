@@ -29,13 +29,6 @@ BOBBY="Robert'); DROP TABLE sessions;--"
 
 start_daemon --session-dir "$SESS" || finish
 
-# record NAME: a session of NAME, a few hundred records long
-live_status() { ctl --json session status | jq -e "$1"; }
-record() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 300' &&
-		ctl session stop >/dev/null
-}
 # sql QUERY: the database's answer, read beside the daemon
 sql() { sqlite3 -readonly "$DB" "$1"; }
 # measures_equal ID: the database's measures of session ID are those

@@ -33,13 +33,6 @@ rig() {
 	start_daemon --set "records.centre=$URL" --set "records.rig=$1" \
 		--set records.centre_retry_s=0.1
 }
-live_status() { ctl --json session status | jq -e "$1"; }
-# record NAME: a session of NAME on the slot's rig
-record() {
-	ctl session start --trainee "$1" >/dev/null &&
-		wait_for live_status '.records > 100' &&
-		ctl session stop >/dev/null
-}
 # queued: how many sessions wait in the slot's rig's own queue
 sessions_dir() { [ "$SLOT" = main ] && echo "$TMP/sessions" ||
 	echo "$TMP/slot-$SLOT/sessions"; }
@@ -76,9 +69,9 @@ check_status "rig-b: Ann logs in with her PIN from rig-a" 0 \
 	env ENDOSIM_PIN=48213579 "$ENDOCTL" --socket "$SOCK" --as Ann whoami
 check "... as a trainee" grep -qx "Ann (trainee)" "$OUT"
 use_slot rig-a
-check "rig-a: a session of Ann" record Ann
+check "rig-a: a session of Ann" record Ann 100
 use_slot rig-b
-check "rig-b: a session of Ann" record Ann
+check "rig-b: a session of Ann" record Ann 100
 check "both at the centre" wait_for at_centre 2
 check "centre-roles.sql run; Dr Ives's login at the centre" eval \
 	'centre -f "$TOP/config/centre-roles.sql" &&
@@ -89,9 +82,9 @@ use_slot rig-a
 check_status "rig-a: Bo leaves 2026 while the centre is away" 0 \
 	ctl group leave 2026 Bo
 check "... the change waits in rig-a's accounts" test "$(changes_queued)" = 1
-check "rig-a records on: Ann, Ann" eval 'record Ann && record Ann'
+check "rig-a records on: Ann, Ann" eval 'record Ann 100 && record Ann 100'
 use_slot rig-b
-check "rig-b records on: Bo, Ann" eval 'record Bo && record Ann'
+check "rig-b records on: Bo, Ann" eval 'record Bo 100 && record Ann 100'
 for s in rig-a rig-b; do
 	use_slot "$s"
 	check "$s: its two wait in its own queue" test "$(queued)" = 2

@@ -68,8 +68,8 @@ check "... as made" jq -e '.groups | map(select(.name == "2026")) == [{
 	"name": "2026", "instructor": "Dr Ives", "trainees": ["Ann", "Bo"],
 	"courses": ["basic.course"]}]' "$OUT"
 check "sessions of Ann, Ann, Bo and Cy" eval \
-	'record_session Ann && record_session Ann && record_session Bo &&
-	 record_session Cy'
+	'record Ann 100 && record Ann 100 && record Bo 100 &&
+	 record Cy 100'
 
 # the trainee
 check_status "Ann: whoami" 0 as Ann 48213579 whoami

@@ -45,7 +45,7 @@ check "... their PINs as Argon2id strings" test "$(sql "SELECT COUNT(*)
 check "... the PINs nowhere in clear" eval "! sql 'SELECT pin FROM
 	endosim_people' | grep -q -e 48213579 -e 27182818 -e 16180339"
 check "sessions of Ann, Bo and Cy recorded" eval \
-	'record_session Ann && record_session Bo && record_session Cy'
+	'record Ann 100 && record Bo 100 && record Cy 100'
 check "... at the centre" wait_for at_centre 3
 
 check "centre-roles.sql run" centre -f "$TOP/config/centre-roles.sql"
@@ -113,7 +113,7 @@ check "Dr Ives granted a trainee's role only: none of his group's rows" \
 	test \"\$(as 'Dr Ives' 'SELECT COUNT(*) FROM sessions')\" = 0"
 
 # the rig writes on under the policies
-check "the rig: another session of Ann" record_session Ann
+check "the rig: another session of Ann" record Ann 100
 check "... at the centre" wait_for at_centre 3
 check "... and Ann's to read" test \
 	"$(as Ann 'SELECT COUNT(*) FROM sessions')" = 2

@@ -50,13 +50,13 @@ FAULT_ARGS=(--set limits.enable_ramp_s=0.1)
 start_sim() {
 	start_daemon --set debug.test_commands=yes "${FAULT_ARGS[@]}" \
 		--scenario "$SOAK" "$@" &&
-		record_session && ctl enable >/dev/null &&
+		start_recording && ctl enable >/dev/null &&
 		wait_for status_true '.ramp == 1'
 }
 
-# record_session: a session recording every cycle from now on, in the
+# start_recording: a session recording every cycle from now on, in the
 # file $SESSION_FILE
-record_session() {
+start_recording() {
 	SESSION_FILE=$(ctl --json session start --trainee fault-test |
 		jq -er .path)
 }
@@ -119,7 +119,7 @@ start_mb_rig() {
 	conf=$(mb_rig_conf)
 	start_modbus "$conf" --pty "$TMP/tty" "${MB_MOTOR[@]}" || return 1
 	start_on "$conf" "${FAULT_ARGS[@]}" --scenario "$SOAK" "$@" || return 1
-	record_session || return 1
+	start_recording || return 1
 	mb "hand 1 0.004 1"
 	mb "hand 2 0.004 1.3"
 	ctl set haptics.wheel_ud_damping_n_m_s_per_rad 0.02 >/dev/null
