@@ -182,7 +182,10 @@ static int watch_loop(struct ctl *ctl, double duration_s, bool tty)
 		}
 		if (rep->body_case == ENDOSIM__REPLY__BODY_STATUS_REPLY) {
 			if (ctl->json) {
+				/* a line at a time down a pipe, as the
+				 * text's */
 				ctl_json_status(rep->status_reply);
+				fflush(stdout);
 			} else {
 				watch_line(rep->status_reply, tty);
 			}

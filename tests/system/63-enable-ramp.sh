@@ -13,13 +13,15 @@
 check "simulated rig up, IDLE" start_daemon --set debug.test_commands=yes
 check "a constant command of -10 N on the carriage" ctl debug force insertion -10
 
-# ramp_run T: enable during a subscription, then check its states
+# ramp_run T: enable during a subscription, once it has seen a state
+# (IDLE), then check its states; the subscription lasts 1.5 s past the
+# ramp's T, however late the enable comes after the first state
 ramp_run() {
 	local T=$1 n
-	ctl --json watch --rate 200 --duration $(awk -v t="$T" 'BEGIN { print t + 0.6 }') \
+	ctl --json watch --rate 200 --duration $(awk -v t="$T" 'BEGIN { print t + 1.5 }') \
 		>"$TMP/ramp.json" &
 	local sub=$!
-	sleep 0.2
+	wait_for grep -q IDLE "$TMP/ramp.json"
 	ctl enable >/dev/null
 	wait "$sub"
 	jq -c '{s: .stamp_ns, st: .state, r: .ramp, c: .axes.insertion.command,
