@@ -68,7 +68,6 @@ shot() {
 	xdotool key p
 	wait_for eval "[ \$(grep -c 'saved endoview-' $TMP/live.out) -gt $before ]"
 	mv "$(ls -t "$TMP"/endoview-*.png | head -n 1)" "$TMP/shot$1.png"
-	sleep 1.1 # the next picture's name, by the second, differs
 }
 shot 1
 xdotool key m
