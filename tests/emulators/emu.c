@@ -48,7 +48,9 @@ static void step(struct emu_motor *m, double dt_s)
 
 void emu_motor_advance(struct emu_motor *m, double dt_s)
 {
-	dt_s = fmin(dt_s, 0.05);
+	if (!m->moving) {
+		dt_s = fmin(dt_s, 0.05);
+	}
 	for (double t = 0; t < dt_s; t += 0.001) {
 		step(m, fmin(0.001, dt_s - t));
 	}

@@ -48,8 +48,11 @@ struct emu_motor_params {
 void emu_motor_init(struct emu_motor *m, const struct emu_motor_params *p);
 
 /*
- * Advances the motor by DT_S (at most 50 ms: an emulator that slept longer
- * does not catch up) under its drive and hand torques, in 1 ms steps.
+ * Advances the motor by DT_S under its drive and hand torques, in 1 ms
+ * steps: at most 50 ms of them, an emulator that slept longer does not
+ * catch up in a burst. A motor turned at a set speed (move) is not
+ * integrated and keeps the whole DT_S: a test measures its speed over
+ * the daemon's clock, which a pause of the emulator does not stop.
  */
 void emu_motor_advance(struct emu_motor *m, double dt_s);
 
