@@ -18,6 +18,7 @@ check "a constant command of -10 N on the carriage" ctl debug force insertion -1
 # ramp's T, however late the enable comes after the first state
 ramp_run() {
 	local T=$1 n
+	rm -f "$TMP/ramp.json" # not the last run's IDLE
 	ctl --json watch --rate 200 --duration $(awk -v t="$T" 'BEGIN { print t + 1.5 }') \
 		>"$TMP/ramp.json" &
 	local sub=$!
