@@ -762,26 +762,29 @@ static float bar_x(float x0, float w, double v)
 	return x0 + w / 2 + (float)(fmax(-1, fmin(1, v)) * w / 2);
 }
 
-/* One axis in the column from X, COL px wide, on the pen's line: label,
- * a bar of what the drive gets (the force model's ask as a line, the
- * hand's push as a tick), the value. */
+/* A column of bars: from X, W px wide, its labels' and values' room. */
+struct bar_column {
+	float x, w, label_w, value_w;
+};
+
+/* One axis in column C on the pen's line: label, a bar of what the
+ * drive gets (the force model's ask as a line, the hand's push as a
+ * tick), the value. */
 static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
-		     int a, float x, float col)
+		     int a, struct bar_column c)
 {
-	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
-	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
-	float x0 = x + label_w, w = col - label_w - value_w;
+	float x0 = c.x + c.label_w, w = c.w - c.label_w - c.value_w;
 	float h = p->small * 0.8f, y = p->y + p->small * 0.25f;
 	float v = bar_x(x0, w, ax->limited / axis_scale[a]);
-	float c = bar_x(x0, w, ax->command / axis_scale[a]);
+	float asked = bar_x(x0, w, ax->command / axis_scale[a]);
 	float hand = bar_x(x0, w, ax->hand / axis_scale[a]);
 	float mid = x0 + w / 2;
 
-	draw2d_text(p->d, FONT_SMALL, x, p->y + p->small, dim,
+	draw2d_text(p->d, FONT_SMALL, c.x, p->y + p->small, dim,
 		    axis_label[a]);
 	draw2d_rect(p->d, x0, y, w, h, track);
 	draw2d_rect(p->d, fminf(mid, v), y, fabsf(v - mid), h, axis_rgb[a]);
-	draw2d_rect(p->d, c - 1, y - 2, 2, h + 4, white);
+	draw2d_rect(p->d, asked - 1, y - 2, 2, h + 4, white);
 	draw2d_rect(p->d, hand - 1, y + h, 3, 4, amber);
 	draw2d_printf(p->d, FONT_SMALL, x0 + w + 8, p->y + p->small, white,
 		      a == ENDOSIM_AXIS_INSERTION ? "%+.1f N" : "%+.3f N m",
@@ -793,23 +796,28 @@ static void draw_bar(struct pen *p, const struct endosim_axis_state *ax,
 #define BAR_MIN_SMALLS 4.0f
 static void draw_bars(struct pen *p, const struct hud_info *in)
 {
-	float label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  ");
-	float value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m");
-	float gutter = p->small * 1.5f, col = (p->w - gutter) / 2;
-	int per_row = in->compact &&
-		      col - label_w - value_w >= BAR_MIN_SMALLS * p->small
-		      ? 2 : 1;
+	struct bar_column c = {
+		.x = p->x,
+		.label_w = draw2d_text_width(p->d, FONT_SMALL, "wheel U/D  "),
+		.value_w = draw2d_text_width(p->d, FONT_SMALL, " +0.000 N m"),
+	};
+	float gutter = p->small * 1.5f;
+	int per_row;
 
+	c.w = (p->w - gutter) / 2;
+	per_row = in->compact &&
+		  c.w - c.label_w - c.value_w >= BAR_MIN_SMALLS * p->small
+		  ? 2 : 1;
 	if (per_row == 1) {
-		col = p->w;
+		c.w = p->w;
 	}
 	for (int a = 0; a < ENDOSIM_AXES; a += per_row) {
 		if (!room(p, p->small * 1.5f)) {
 			continue;
 		}
 		for (int k = 0; k < per_row && a + k < ENDOSIM_AXES; k++) {
-			draw_bar(p, &in->st->axis[a + k], a + k,
-				 p->x + (float)k * (col + gutter), col);
+			c.x = p->x + (float)k * (c.w + gutter);
+			draw_bar(p, &in->st->axis[a + k], a + k, c);
 		}
 		p->y += p->small * 1.5f;
 	}
