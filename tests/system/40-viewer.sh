@@ -357,10 +357,10 @@ for s in $(seq 0 30); do
 done
 # taken N: N pictures written (not the placeholders), the newest $SHOT
 taken() {
-	[ "$(find "$TMP" -maxdepth 1 -name 'endoview-*.png' -size +0 |
-		wc -l)" -ge "$1" ] &&
-		SHOT=$(ls -t $(find "$TMP" -maxdepth 1 -name 'endoview-*.png' \
-			-size +0) | head -n 1)
+	local shots
+	shots=$(find "$TMP" -maxdepth 1 -name 'endoview-*.png' -size +0)
+	[ "$(echo "$shots" | grep -c .)" -ge "$1" ] &&
+		SHOT=$(ls -t $shots | head -n 1)
 }
 xdotool key v p
 check "P in a second that has a picture: another beside it" \
